@@ -1,0 +1,44 @@
+/* hy_status.h: status codes and error messages shared by every hystviz module.
+ *
+ * Every fallible function returns an int status (HY_OK = 0 on success) and,
+ * when given a non-NULL hy_error *, writes one human-readable sentence into it
+ * that names the offending parameter or file.  A failed call leaves its
+ * outputs untouched unless its header says otherwise.
+ *
+ *     hy_error err;
+ *     if (hy_model_validate(&m, &err)) { fprintf(stderr, "%s\n", err.msg); ... }
+ */
+#ifndef HY_STATUS_H
+#define HY_STATUS_H
+
+#include <stddef.h>
+
+enum {
+    HY_OK = 0,
+    HY_EINVAL = 1,  /* a parameter or input is outside its domain      */
+    HY_ENOMEM = 2,  /* an allocation failed                             */
+    HY_ENUM = 3,    /* a numerical method failed (step cap, divergence) */
+    HY_EIO = 4,     /* a file could not be read or written              */
+    HY_EUNSUP = 5   /* the request is valid but not supported here      */
+};
+
+typedef struct hy_error {
+    int code;
+    char msg[512];
+} hy_error;
+
+/* Formats the message into e (if e is not NULL) and returns code. */
+int hy_error_set(hy_error *e, int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* Prefixes an existing message with "prefix: " (used to add file:line). */
+void hy_error_prefix(hy_error *e, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+#endif
