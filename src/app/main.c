@@ -1,14 +1,56 @@
 /* main.c: the hystviz command; wires subcommands, owns no numerics. */
 #include "hy_config.h"
+
 #include <stdio.h>
 #include <string.h>
 
+#include "cmd_loop.h"
+
+static const char usage[] =
+    "usage: hystviz COMMAND [OPTIONS]\n"
+    "\n"
+    "hystviz renders figures and animations of hysteresis models (Dahl, LuGre,\n"
+    "Bouc-Wen) from declarative scene files, with exact reference solutions.\n"
+    "\n"
+    "commands:\n"
+    "  loop      print a steady hysteresis loop, y*_{u,k} or y_gamma as CSV\n"
+    "  loops     print the major and minor loops of an input with their areas\n"
+    "\n"
+    "options:\n"
+    "  -h, --help     this text (COMMAND --help: that command's options)\n"
+    "  --version      the program version\n"
+    "\n"
+    "example:\n"
+    "  hystviz loop --model lugre --sigma0 6 --fc 1 --fs 2 --vs 1 --beta 1 \\\n"
+    "               --input bimodal:0,0.5,1,1.5 --points 200\n";
+
+typedef struct command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+} command;
+
+static const command commands[] = {
+    {"loop", hy_cmd_loop},
+    {"loops", hy_cmd_loop},
+};
+
 int main(int argc, char **argv)
 {
-    if (argc > 1 && strcmp(argv[1], "--version") == 0) {
+    if (argc < 2) {
+        fputs(usage, stderr);
+        return 2;
+    }
+    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
         printf("hystviz %s\n", HY_VERSION);
         return 0;
     }
-    fprintf(stderr, "hystviz: no command given (try --help)\n");
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (!strcmp(argv[1], commands[i].name))
+            return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "hystviz: unknown command '%s' (try hystviz --help)\n", argv[1]);
     return 2;
 }

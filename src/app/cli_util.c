@@ -1,0 +1,148 @@
+/* cli_util.c: option parsing and atomic output helpers for the hystviz command. */
+#include "cli_util.h"
+
+#include <errno.h>
+#include <stddef.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+int cli_num(const char *opt, const char *s, double *out)
+{
+    char *end;
+    if (!s) {
+        fprintf(stderr, "hystviz: %s needs a value\n", opt);
+        return -1;
+    }
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end || !isfinite(v)) {
+        fprintf(stderr, "hystviz: %s: '%s' is not a finite number\n", opt, s);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+int cli_long(const char *opt, const char *s, long lo, long hi, long *out)
+{
+    char *end;
+    if (!s) {
+        fprintf(stderr, "hystviz: %s needs a value\n", opt);
+        return -1;
+    }
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || errno || v < lo || v > hi) {
+        fprintf(stderr, "hystviz: %s: '%s' is not an integer in [%ld, %ld]\n", opt, s, lo, hi);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+void cli_model_defaults(cli_model *cm)
+{
+    memset(cm, 0, sizeof *cm);
+    cm->kind = "lugre";
+    cm->sigma0 = 1;
+    cm->sigma1 = 0;
+    cm->fc = 1;
+    cm->fs = 2;
+    cm->vs = 1;
+    cm->beta = 1;
+    cm->rho = 1;
+    cm->tau = 1;
+}
+
+int cli_model_option(cli_model *cm, int argc, char **argv, int *i)
+{
+    static const struct { const char *name; size_t off; } opts[] = {
+        {"--sigma0", offsetof(cli_model, sigma0)}, {"--sigma1", offsetof(cli_model, sigma1)},
+        {"--sigma2", offsetof(cli_model, sigma2)}, {"--fc", offsetof(cli_model, fc)},
+        {"--fs", offsetof(cli_model, fs)},         {"--vs", offsetof(cli_model, vs)},
+        {"--beta", offsetof(cli_model, beta)},     {"--rho", offsetof(cli_model, rho)},
+        {"--tau", offsetof(cli_model, tau)},       {"--x0", offsetof(cli_model, x0)},
+    };
+    const char *a = argv[*i];
+    const char *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (strcmp(a, "--model") == 0) {
+        if (!val) {
+            fprintf(stderr, "hystviz: --model needs a value (dahl, lugre, dahl-filter)\n");
+            return -1;
+        }
+        if (!hy_model_type_find(val)) {
+            fprintf(stderr, "hystviz: --model: unknown model '%s' (dahl, lugre, dahl-filter)\n", val);
+            return -1;
+        }
+        cm->kind = val;
+        (*i)++;
+        return 1;
+    }
+    for (size_t k = 0; k < sizeof opts / sizeof opts[0]; k++) {
+        if (strcmp(a, opts[k].name) == 0) {
+            if (cli_num(a, val, (double *)((char *)cm + opts[k].off)))
+                return -1;
+            if (k == 0)
+                cm->set_sigma0 = 1;
+            if (k == 4)
+                cm->set_fs = 1;
+            (*i)++;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int cli_model_build(const cli_model *cm, hy_model *m)
+{
+    const hy_model_type *type = hy_model_type_find(cm->kind);
+    if (type == hy_model_lugre) {
+        hy_model_lugre_init(m, cm->sigma0, cm->sigma1, cm->fc, cm->fs, cm->vs, cm->beta);
+        m->sigma2 = cm->sigma2;
+    } else if (type == hy_model_dahl)
+        hy_model_dahl_init(m, cm->rho, cm->fc);
+    else
+        hy_model_dahl_filter_init(m, cm->rho, cm->fc, cm->tau);
+    m->x0 = cm->x0;
+    hy_error err;
+    if (hy_model_validate(m, &err)) {
+        fprintf(stderr, "hystviz: model %s: %s\n", cm->kind, err.msg);
+        return -1;
+    }
+    return 0;
+}
+
+FILE *cli_out_open(const char *path, char *tmp, size_t tmpsz)
+{
+    if (!path || strcmp(path, "-") == 0) {
+        tmp[0] = '\0';
+        return stdout;
+    }
+    snprintf(tmp, tmpsz, "%s.tmp.%ld", path, (long)getpid());
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        fprintf(stderr, "hystviz: %s: cannot write: %s\n", path, strerror(errno));
+    return f;
+}
+
+int cli_out_close(FILE *f, const char *path, const char *tmp)
+{
+    if (!tmp[0]) {
+        if (fflush(f) || ferror(f)) {
+            fprintf(stderr, "hystviz: error writing to standard output: %s\n", strerror(errno));
+            return -1;
+        }
+        return 0;
+    }
+    int bad = ferror(f);
+    if (fclose(f))
+        bad = 1;
+    if (bad || rename(tmp, path)) {
+        fprintf(stderr, "hystviz: %s: write failed: %s (nothing written)\n", path, strerror(errno ? errno : EIO));
+        remove(tmp);
+        return -1;
+    }
+    return 0;
+}

@@ -1,0 +1,223 @@
+/* cmd_loop.c: `hystviz loop` (steady loop, y*_{u,k} or y_γ as CSV) and
+ * `hystviz loops` (major and minor loops with their areas). */
+#include "cmd_loop.h"
+
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_util.h"
+#include "hy_gamma.h"
+#include "hy_limit.h"
+#include "hy_loops.h"
+#include "hy_ode.h"
+
+static const char loop_help[] =
+    "usage: hystviz loop [MODEL OPTIONS] --input SPEC [--points N] [--k K]\n"
+    "                    [--gamma G [--solver NAME] [--cycles C] [--rtol R]] [-o FILE]\n"
+    "       hystviz loops [MODEL OPTIONS] --input SPEC [-o FILE]\n"
+    "\n"
+    "loop prints CSV 't,u,y' (%.17g) over one period of the input:\n"
+    "  default        the steady hysteresis loop y°_u (Theorem 2(b), exact)\n"
+    "  --k K          the k-cycle function y*_{u,K}(t) = y*_u(t + K T) (exact)\n"
+    "  --gamma G      y_γ at finite γ over C periods from z(0) = x0 (--cycles, default 1),\n"
+    "                 exact for piecewise-linear inputs, else --solver (default rkf45)\n"
+    "loops prints one CSV row per loop (the major loop first): its ϱ interval,\n"
+    "the input and output where it starts and closes, and ∮ y du (energy per cycle).\n"
+    "\n"
+    "model options (defaults: LuGre of Example 2):\n"
+    "  --model dahl|lugre|dahl-filter   --sigma0 S0 --sigma1 S1 --sigma2 S2\n"
+    "  --fc FC --fs FS --vs VS --beta B (LuGre g(v) = FC + (FS-FC) e^{-|v/VS|^B})\n"
+    "  --rho R (Dahl)  --tau T (filter of system (16))  --x0 Z0 (initial state)\n"
+    "input SPEC:\n"
+    "  bimodal:umin1,umin2,umax1,umax2[,t1,t2,t3,t4][:cosine]   multimodal:e0,e1,...[:cosine]\n"
+    "  triangle:min,max,T   sine:amp,T[,offset]   pwl:t0,u0,t1,u1,...   file:PATH\n"
+    "example:\n"
+    "  hystviz loop --model lugre --sigma0 6 --fc 1 --fs 2 --vs 1 --beta 1 \\\n"
+    "               --input bimodal:0,0.5,1,1.5 --points 200\n";
+
+typedef struct loop_args {
+    cli_model cm;
+    const char *input, *out, *solver;
+    long points, cycles;
+    double k, gamma, rtol;
+    int have_k, have_gamma;
+} loop_args;
+
+static int parse_args(int argc, char **argv, loop_args *a)
+{
+    memset(a, 0, sizeof *a);
+    cli_model_defaults(&a->cm);
+    a->points = 200;
+    a->cycles = 1;
+    a->rtol = 1e-10;
+    for (int i = 1; i < argc; i++) {
+        const char *s = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int r = cli_model_option(&a->cm, argc, argv, &i);
+        if (r < 0)
+            return 2;
+        if (r > 0)
+            continue;
+        if (!strcmp(s, "-h") || !strcmp(s, "--help")) {
+            fputs(loop_help, stdout);
+            return 1;
+        } else if (!strcmp(s, "--input") && v) {
+            a->input = v;
+            i++;
+        } else if ((!strcmp(s, "-o") || !strcmp(s, "--output")) && v) {
+            a->out = v;
+            i++;
+        } else if (!strcmp(s, "--solver") && v) {
+            a->solver = v;
+            i++;
+        } else if (!strcmp(s, "--points")) {
+            if (cli_long(s, v, 2, 100000000L, &a->points))
+                return 2;
+            i++;
+        } else if (!strcmp(s, "--cycles")) {
+            if (cli_long(s, v, 1, 1000000L, &a->cycles))
+                return 2;
+            i++;
+        } else if (!strcmp(s, "--k")) {
+            if (cli_num(s, v, &a->k))
+                return 2;
+            if (a->k < 0 || a->k != floor(a->k)) {
+                fprintf(stderr, "hystviz: --k must be a whole number >= 0 (got %s)\n", v);
+                return 2;
+            }
+            a->have_k = 1;
+            i++;
+        } else if (!strcmp(s, "--gamma")) {
+            if (cli_num(s, v, &a->gamma))
+                return 2;
+            a->have_gamma = 1;
+            i++;
+        } else if (!strcmp(s, "--rtol")) {
+            if (cli_num(s, v, &a->rtol))
+                return 2;
+            i++;
+        } else {
+            fprintf(stderr, "hystviz loop: unknown or incomplete option '%s' (see hystviz loop --help)\n", s);
+            return 2;
+        }
+    }
+    if (!a->input) {
+        fprintf(stderr, "hystviz loop: --input SPEC is required (see hystviz loop --help)\n");
+        return 2;
+    }
+    return 0;
+}
+
+static int compute(const loop_args *a, const hy_model *m, const hy_input *in, double *t, double *u,
+                   double *y, size_t n)
+{
+    hy_error err;
+    double span = in->period * (a->have_gamma ? (double)a->cycles : 1.0);
+    for (size_t i = 0; i < n; i++) {
+        t[i] = span * (double)i / (double)(n - 1);
+        u[i] = hy_input_u(in, t[i]);
+    }
+    if (a->have_gamma) {
+        int rc;
+        if (!a->solver && hy_gamma_exact_applies(m, in))
+            rc = hy_gamma_exact(m, in, a->gamma, t, n, y, NULL, &err);
+        else {
+            hy_ode_opts o = hy_ode_defaults();
+            o.stepper = a->solver ? a->solver : "rkf45";
+            o.rtol = a->rtol;
+            o.atol = a->rtol * 1e-2;
+            rc = (a->solver && !strcmp(a->solver, "exact")) ? hy_gamma_exact(m, in, a->gamma, t, n, y, NULL, &err)
+                                                            : hy_ode_solve(m, in, a->gamma, &o, t, n, y, NULL, &err);
+        }
+        if (rc) {
+            fprintf(stderr, "hystviz loop: %s\n", err.msg);
+            return 1;
+        }
+        return 0;
+    }
+    hy_steady st;
+    if (hy_steady_init(&st, m, in, &err)) {
+        fprintf(stderr, "hystviz loop: %s\n", err.msg);
+        return 1;
+    }
+    for (size_t i = 0; i < n; i++)
+        y[i] = a->have_k ? hy_ystar_k(&st, m->x0, a->k, t[i]) : hy_steady_at(&st, t[i]);
+    y[n - 1] = a->have_k ? hy_ystar_k(&st, m->x0, a->k, in->period) : st.y_run[in->nruns];
+    hy_steady_free(&st);
+    return 0;
+}
+
+static int write_loop(const char *path, const double *t, const double *u, const double *y, size_t n)
+{
+    char tmp[4096];
+    FILE *f = cli_out_open(path, tmp, sizeof tmp);
+    if (!f)
+        return 1;
+    fprintf(f, "t,u,y\n");
+    for (size_t i = 0; i < n; i++)
+        fprintf(f, "%.17g,%.17g,%.17g\n", t[i], u[i], y[i]);
+    return cli_out_close(f, path, tmp) ? 1 : 0;
+}
+
+static int write_loops(const char *path, const hy_loops *L)
+{
+    char tmp[4096];
+    FILE *f = cli_out_open(path, tmp, sizeof tmp);
+    if (!f)
+        return 1;
+    fprintf(f, "loop,depth,rho_start,rho_turn,rho_close,u_start,u_turn,y_start,y_close,area,own_area\n");
+    for (size_t i = 0; i <= L->nminor; i++) {
+        const hy_loop *p = i ? &L->minor[i - 1] : &L->major;
+        fprintf(f, "%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", i ? "minor" : "major",
+                p->depth, p->rho_start, p->rho_turn, p->rho_close, p->u_start, p->u_turn, p->y_start,
+                p->y_close, p->area, p->own_area);
+    }
+    fprintf(f, "# energy per cycle (closed integral of y du over one period): %.17g\n", L->area_period);
+    return cli_out_close(f, path, tmp) ? 1 : 0;
+}
+
+int hy_cmd_loop(int argc, char **argv)
+{
+    loop_args a;
+    int rc = parse_args(argc, argv, &a);
+    if (rc)
+        return rc == 1 ? 0 : 2;
+    gsl_set_error_handler_off();
+    hy_model m;
+    if (cli_model_build(&a.cm, &m))
+        return 2;
+    hy_input in;
+    hy_error err;
+    if (hy_input_parse(&in, a.input, &err)) {
+        fprintf(stderr, "hystviz loop: --input: %s\n", err.msg);
+        return 2;
+    }
+    if (!strcmp(argv[0], "loops")) {
+        hy_steady st;
+        hy_loops L;
+        rc = hy_steady_init(&st, &m, &in, &err) || hy_loops_find(&st, &L, &err);
+        if (rc)
+            fprintf(stderr, "hystviz loops: %s\n", err.msg);
+        else {
+            rc = write_loops(a.out, &L);
+            hy_loops_free(&L);
+        }
+        hy_steady_free(&st);
+        hy_input_free(&in);
+        return rc ? 1 : 0;
+    }
+    size_t n = (size_t)a.points;
+    double *buf = malloc(3 * n * sizeof *buf);
+    if (!buf) {
+        fprintf(stderr, "hystviz loop: out of memory for %zu points\n", n);
+        hy_input_free(&in);
+        return 1;
+    }
+    rc = compute(&a, &m, &in, buf, buf + n, buf + 2 * n, n);
+    if (!rc)
+        rc = write_loop(a.out, buf, buf + n, buf + 2 * n, n);
+    free(buf);
+    hy_input_free(&in);
+    return rc;
+}

@@ -1,0 +1,129 @@
+/* hy_gamma.c: exact piecewise-exponential solution of Eq. (3) of seed 000 for
+ * piecewise-linear inputs, and of system (16) with its first-order filter. */
+#include "hy_gamma.h"
+
+#include <math.h>
+#include "hy_limit.h"
+
+int hy_gamma_check(double gamma, hy_error *err)
+{
+    if (!isfinite(gamma) || !(gamma > 0))
+        return hy_error_set(err, HY_EINVAL, "gamma must be a finite number > 0 (got %g)", gamma);
+    return HY_OK;
+}
+
+int hy_gamma_exact_applies(const hy_model *m, const hy_input *in)
+{
+    return in->all_linear || hy_model_rate_independent(m);
+}
+
+/* State of the solution at the start of a piece. */
+typedef struct seg {
+    double z, yf;
+} seg;
+
+/* Coefficients of z on one piece. */
+typedef struct coef {
+    double lambda, zeq, v;
+    int linear;
+} coef;
+
+static coef piece_coef(const hy_model *m, const hy_piece *p, double gamma)
+{
+    coef c = {0, 0, 0, p->shape == HY_PIECE_LINEAR};
+    if (c.linear) {
+        c.v = (p->u1 - p->u0) / (p->t1 - p->t0);
+        if (c.v != 0) {
+            double g = hy_model_g(m, c.v / gamma);
+            c.lambda = m->sigma0 * fabs(c.v) / g;
+            c.zeq = (c.v > 0 ? g : -g) / m->sigma0;
+        }
+    } else { /* rate-independent model on a monotone smooth piece */
+        double g = hy_model_g0(m);
+        c.lambda = m->sigma0 / g; /* per unit of variation */
+        c.zeq = (p->u1 > p->u0 ? g : -g) / m->sigma0;
+    }
+    return c;
+}
+
+/* e^{-λs} (X0-Xe) μ φ(s) + ... : the filter driven by an exponential (exact). */
+static double filter_at(double X0, double Xe, double lambda, double mu, double yf0, double s)
+{
+    double dl = fabs(mu - lambda), lo = fmin(mu, lambda);
+    double phi = exp(-lo * s) * s * hy_phi1(dl * s); /* (e^{-λs} - e^{-μs})/(μ - λ) */
+    return Xe + (X0 - Xe) * mu * phi + (yf0 - Xe) * exp(-mu * s);
+}
+
+/* Evaluates state/output at time t inside piece p from the start state s0. */
+static void eval_piece(const hy_model *m, const hy_piece *p, const coef *c, double gamma,
+                       const seg *s0, double t, seg *s1, double *y)
+{
+    double dt = t - p->t0;
+    double decay;
+    if (c->linear)
+        decay = exp(-c->lambda * dt);
+    else
+        decay = exp(-c->lambda * fabs(hy_piece_u(p, t) - p->u0));
+    double z = (c->lambda == 0) ? s0->z : c->zeq + (s0->z - c->zeq) * decay;
+    s1->z = z;
+    s1->yf = s0->yf;
+    if (m->type->has_filter) {
+        double mu = gamma / m->tau, X = m->sigma0 * z;
+        if (c->lambda == 0)
+            s1->yf = X + (s0->yf - X) * exp(-mu * dt);
+        else if (c->linear)
+            s1->yf = filter_at(m->sigma0 * s0->z, m->sigma0 * c->zeq, c->lambda, mu, s0->yf, dt);
+        *y = s1->yf;
+        return;
+    }
+    double v = c->linear ? c->v : hy_piece_du(p, t);
+    double zdot = (c->lambda == 0) ? v : -c->lambda * (z - c->zeq) * (c->linear ? 1.0 : fabs(v));
+    *y = m->sigma0 * z + (m->sigma1 / gamma) * zdot + m->sigma2 * v / gamma;
+}
+
+int hy_gamma_exact(const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n,
+                   double *y_out, double *z_out, hy_error *err)
+{
+    int rc;
+    if ((rc = hy_model_validate(m, err)) || (rc = hy_gamma_check(gamma, err)))
+        return rc;
+    if (!hy_gamma_exact_applies(m, in))
+        return hy_error_set(err, HY_EUNSUP,
+                            "no exact solution for %s with %s at finite gamma (needs a piecewise-linear input or a rate-independent model); choose an ODE solver",
+                            m->type->name, in->desc);
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(t[i]) || t[i] < 0 || (i && t[i] < t[i - 1]))
+            return hy_error_set(err, HY_EINVAL, "output times must be finite, >= 0 and ascending (t[%zu] = %g)", i, t[i]);
+    seg s = {m->x0, m->yf0};
+    size_t ip = 0;           /* current piece index within the period */
+    double base = 0;         /* start time of the current period      */
+    coef c = piece_coef(m, &in->pieces[0], gamma);
+    for (size_t j = 0; j < n; j++) {
+        /* advance whole pieces until t[j] lies in [base + t0, base + t1) */
+        for (;;) {
+            const hy_piece *p = &in->pieces[ip];
+            double tend = base + p->t1;
+            if (t[j] < tend)
+                break;
+            hy_piece shifted = *p;
+            seg s1;
+            double ydummy;
+            eval_piece(m, &shifted, &c, gamma, &s, shifted.t1, &s1, &ydummy);
+            s = s1;
+            if (++ip == in->npieces) {
+                ip = 0;
+                base += in->period;
+                if (!isfinite(base))
+                    return hy_error_set(err, HY_EINVAL, "time %g is too large", t[j]);
+            }
+            c = piece_coef(m, &in->pieces[ip], gamma);
+        }
+        seg s1;
+        double y;
+        eval_piece(m, &in->pieces[ip], &c, gamma, &s, t[j] - base, &s1, &y);
+        y_out[j] = y;
+        if (z_out)
+            z_out[j] = s1.z;
+    }
+    return HY_OK;
+}

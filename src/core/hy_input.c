@@ -1,0 +1,582 @@
+/* hy_input.c: periodic piecewise-monotone inputs, variation ρ_u (Eq. 5) and
+ * normalised input ψ_u (Eqs. 9-10) of seed 000. */
+#include "hy_input.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define HY_PI 3.14159265358979323846
+
+static void piece_linear(hy_piece *p, double t0, double t1, double u0, double u1)
+{
+    memset(p, 0, sizeof *p);
+    p->t0 = t0;
+    p->t1 = t1;
+    p->u0 = u0;
+    p->u1 = u1;
+    p->shape = HY_PIECE_LINEAR;
+}
+
+/* A half-cosine from (t0,u0) to (t1,u1): u = c + A sin(ωt + φ), u̇ = 0 at both ends. */
+static void piece_halfcos(hy_piece *p, double t0, double t1, double u0, double u1)
+{
+    piece_linear(p, t0, t1, u0, u1);
+    p->shape = HY_PIECE_SINE;
+    p->c = 0.5 * (u0 + u1);
+    p->amp = 0.5 * (u1 - u0);
+    p->omega = HY_PI / (t1 - t0);
+    p->phase = -p->omega * t0 - 0.5 * HY_PI;
+}
+
+double hy_piece_u(const hy_piece *p, double t)
+{
+    if (t <= p->t0)
+        return p->u0;
+    if (t >= p->t1)
+        return p->u1;
+    if (p->shape == HY_PIECE_LINEAR) {
+        double s = (t - p->t0) / (p->t1 - p->t0);
+        return p->u0 + (p->u1 - p->u0) * s;
+    }
+    double u = p->c + p->amp * sin(p->omega * t + p->phase);
+    /* keep the piece monotone and inside its end values despite rounding */
+    double lo = fmin(p->u0, p->u1), hi = fmax(p->u0, p->u1);
+    return u < lo ? lo : (u > hi ? hi : u);
+}
+
+double hy_piece_du(const hy_piece *p, double t)
+{
+    if (p->shape == HY_PIECE_LINEAR)
+        return (p->u1 - p->u0) / (p->t1 - p->t0);
+    return p->amp * p->omega * cos(p->omega * t + p->phase);
+}
+
+static double piece_ddu(const hy_piece *p, double t)
+{
+    if (p->shape == HY_PIECE_LINEAR)
+        return 0;
+    return -p->amp * p->omega * p->omega * sin(p->omega * t + p->phase);
+}
+
+static int sgn(double x) { return (x > 0) - (x < 0); }
+
+/* Computes ρ at every piece start, the runs, T and ρ_T; takes ownership of pcs. */
+static int finish(hy_input *in, hy_piece *pcs, size_t n, hy_error *err)
+{
+    memset(in, 0, sizeof *in);
+    if (n == 0) {
+        free(pcs);
+        return hy_error_set(err, HY_EINVAL, "input has no pieces");
+    }
+    in->runs = malloc(n * sizeof *in->runs);
+    if (!in->runs) {
+        free(pcs);
+        return hy_error_set(err, HY_ENOMEM, "out of memory for input runs");
+    }
+    in->pieces = pcs;
+    in->npieces = n;
+    in->all_linear = 1;
+    double rho = 0;
+    for (size_t i = 0; i < n; i++) {
+        pcs[i].rho0 = rho;
+        rho += fabs(pcs[i].u1 - pcs[i].u0);
+        if (pcs[i].shape != HY_PIECE_LINEAR)
+            in->all_linear = 0;
+        int s = sgn(pcs[i].u1 - pcs[i].u0);
+        if (s == 0)
+            continue;
+        hy_run *last = in->nruns ? &in->runs[in->nruns - 1] : NULL;
+        if (last && last->sign == s) {
+            last->p1 = i + 1;
+            last->rho1 = rho;
+            last->u1 = pcs[i].u1;
+        } else {
+            hy_run *r = &in->runs[in->nruns++];
+            r->p0 = i;
+            r->p1 = i + 1;
+            r->rho0 = pcs[i].rho0;
+            r->rho1 = rho;
+            r->u0 = pcs[i].u0;
+            r->u1 = pcs[i].u1;
+            r->sign = s;
+        }
+    }
+    in->period = pcs[n - 1].t1;
+    in->rho_T = rho;
+    if (in->nruns < 2 || !(rho > 0) || !isfinite(rho)) {
+        hy_input_free(in);
+        return hy_error_set(err, HY_EINVAL,
+                            "input must rise and fall within its period (a periodic input needs at least two monotone runs with finite variation)");
+    }
+    return HY_OK;
+}
+
+void hy_input_free(hy_input *in)
+{
+    if (!in)
+        return;
+    free(in->pieces);
+    free(in->runs);
+    in->pieces = NULL;
+    in->runs = NULL;
+    in->npieces = in->nruns = 0;
+}
+
+static int check_finite_arr(const char *what, const double *v, size_t n, hy_error *err)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return hy_error_set(err, HY_EINVAL, "%s[%zu] must be a finite number (got %g)", what, i, v[i]);
+    return HY_OK;
+}
+
+int hy_input_pwl(hy_input *in, const double *t, const double *u, size_t n, hy_error *err)
+{
+    int rc;
+    if (n < 3)
+        return hy_error_set(err, HY_EINVAL, "a piecewise-linear input needs at least 3 points (got %zu)", n);
+    if ((rc = check_finite_arr("t", t, n, err)) || (rc = check_finite_arr("u", u, n, err)))
+        return rc;
+    if (t[0] != 0)
+        return hy_error_set(err, HY_EINVAL, "t[0] must be 0 (got %g)", t[0]);
+    for (size_t i = 1; i < n; i++)
+        if (!(t[i] > t[i - 1]))
+            return hy_error_set(err, HY_EINVAL, "times must be strictly increasing: t[%zu] = %g is not > t[%zu] = %g",
+                                i, t[i], i - 1, t[i - 1]);
+    if (u[n - 1] != u[0])
+        return hy_error_set(err, HY_EINVAL, "input is not periodic: u at the last point (%g) differs from u(0) = %g",
+                            u[n - 1], u[0]);
+    hy_piece *p = malloc((n - 1) * sizeof *p);
+    if (!p)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu pieces", n - 1);
+    for (size_t i = 0; i + 1 < n; i++)
+        piece_linear(&p[i], t[i], t[i + 1], u[i], u[i + 1]);
+    rc = finish(in, p, n - 1, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "piecewise-linear input, %zu points", n);
+    return rc;
+}
+
+int hy_input_multimodal(hy_input *in, const double *e, size_t n, const double *tm, int shape,
+                        hy_error *err)
+{
+    int rc;
+    if (n < 2 || n % 2)
+        return hy_error_set(err, HY_EINVAL, "a multimodal input needs an even number (>= 2) of alternating extrema (got %zu)", n);
+    if ((rc = check_finite_arr("extrema", e, n, err)))
+        return rc;
+    if (tm && (rc = check_finite_arr("times", tm, n + 1, err)))
+        return rc;
+    for (size_t i = 0; i < n; i++) {
+        double d0 = e[(i + 1) % n] - e[i], d1 = e[(i + 2) % n] - e[(i + 1) % n];
+        if (d0 == 0)
+            return hy_error_set(err, HY_EINVAL, "consecutive extrema must differ: extrema[%zu] = extrema[%zu] = %g",
+                                i, (i + 1) % n, e[i]);
+        if (sgn(d0) == sgn(d1))
+            return hy_error_set(err, HY_EINVAL, "extrema must alternate between maxima and minima: extrema[%zu] = %g is not an extremum",
+                                (i + 1) % n, e[(i + 1) % n]);
+    }
+    if (tm) {
+        if (tm[0] != 0)
+            return hy_error_set(err, HY_EINVAL, "times[0] must be 0 (got %g)", tm[0]);
+        for (size_t i = 1; i <= n; i++)
+            if (!(tm[i] > tm[i - 1]))
+                return hy_error_set(err, HY_EINVAL, "times must be strictly increasing: t%zu = %g is not > t%zu = %g",
+                                    i, tm[i], i - 1, tm[i - 1]);
+    }
+    hy_piece *p = malloc(n * sizeof *p);
+    if (!p)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu pieces", n);
+    double t = 0;
+    for (size_t i = 0; i < n; i++) {
+        double a = e[i], b = e[(i + 1) % n];
+        double t1 = tm ? tm[i + 1] : t + fabs(b - a);
+        if (shape == HY_SHAPE_COSINE)
+            piece_halfcos(&p[i], t, t1, a, b);
+        else
+            piece_linear(&p[i], t, t1, a, b);
+        t = t1;
+    }
+    rc = finish(in, p, n, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "multimodal input, %zu extrema%s", n,
+                 shape == HY_SHAPE_COSINE ? ", half-cosine pieces" : "");
+    return rc;
+}
+
+int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, double umax2,
+                     const double t[4], int shape, hy_error *err)
+{
+    const double v[4] = {umin1, umin2, umax1, umax2};
+    const char *nm[4] = {"u_min,1", "u_min,2", "u_max,1", "u_max,2"};
+    for (int i = 0; i < 4; i++)
+        if (!isfinite(v[i]))
+            return hy_error_set(err, HY_EINVAL, "%s must be a finite number (got %g)", nm[i], v[i]);
+    if (!(umin1 <= umin2))
+        return hy_error_set(err, HY_EINVAL, "Definition 1 needs u_min,1 <= u_min,2 (got %g > %g)", umin1, umin2);
+    if (!(umin2 < umax1))
+        return hy_error_set(err, HY_EINVAL, "Definition 1 needs u_min,2 < u_max,1 (got u_min,2 = %g >= u_max,1 = %g)",
+                            umin2, umax1);
+    if (!(umax1 <= umax2))
+        return hy_error_set(err, HY_EINVAL, "Definition 1 needs u_max,1 <= u_max,2 (got %g > %g)", umax1, umax2);
+    if (umin1 == umin2 && umax1 == umax2)
+        return hy_error_set(err, HY_EINVAL, "Definition 1 needs u_min,1 != u_min,2 or u_max,1 != u_max,2 (both pairs are equal)");
+    double tm[5] = {0, 0, 0, 0, 0};
+    if (t) {
+        for (int i = 0; i < 4; i++) {
+            if (!isfinite(t[i]))
+                return hy_error_set(err, HY_EINVAL, "t%d must be a finite number (got %g)", i + 1, t[i]);
+            if (!(t[i] > (i ? t[i - 1] : 0)))
+                return hy_error_set(err, HY_EINVAL, "Definition 1 needs 0 < t1 < t2 < t3 < t4 (t%d = %g)", i + 1, t[i]);
+            tm[i + 1] = t[i];
+        }
+    }
+    /* alternation may degenerate when u_min,1 == u_min,2: the extrema list is
+       still min1, max1, min2, max2 with nonzero steps, so build it directly */
+    const double e[4] = {umin1, umax1, umin2, umax2};
+    hy_piece *p = malloc(4 * sizeof *p);
+    if (!p)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    double tc = 0;
+    for (int i = 0; i < 4; i++) {
+        double a = e[i], b = e[(i + 1) % 4];
+        double t1 = t ? tm[i + 1] : tc + fabs(b - a);
+        if (shape == HY_SHAPE_COSINE)
+            piece_halfcos(&p[i], tc, t1, a, b);
+        else
+            piece_linear(&p[i], tc, t1, a, b);
+        tc = t1;
+    }
+    int rc = finish(in, p, 4, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "bimodal input (%g, %g, %g, %g)", umin1, umin2, umax1, umax2);
+    return rc;
+}
+
+int hy_input_triangle(hy_input *in, double umin, double umax, double period, hy_error *err)
+{
+    if (!isfinite(umin) || !isfinite(umax) || !(umin < umax))
+        return hy_error_set(err, HY_EINVAL, "triangle needs finite min < max (got %g, %g)", umin, umax);
+    if (!isfinite(period) || !(period > 0))
+        return hy_error_set(err, HY_EINVAL, "triangle period must be > 0 (got %g)", period);
+    double t[3] = {0, 0.5 * period, period}, u[3] = {umin, umax, umin};
+    int rc = hy_input_pwl(in, t, u, 3, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "triangle %g..%g, period %g", umin, umax, period);
+    return rc;
+}
+
+int hy_input_sine(hy_input *in, double amp, double period, double offset, hy_error *err)
+{
+    if (!isfinite(amp) || amp == 0)
+        return hy_error_set(err, HY_EINVAL, "sine amplitude must be finite and nonzero (got %g)", amp);
+    if (!isfinite(period) || !(period > 0))
+        return hy_error_set(err, HY_EINVAL, "sine period must be > 0 (got %g)", period);
+    if (!isfinite(offset))
+        return hy_error_set(err, HY_EINVAL, "sine offset must be finite (got %g)", offset);
+    hy_piece *p = malloc(3 * sizeof *p);
+    if (!p)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    double w = 2 * HY_PI / period;
+    double tb[4] = {0, 0.25 * period, 0.75 * period, period};
+    double ub[4] = {offset, offset + amp, offset - amp, offset};
+    for (int i = 0; i < 3; i++) {
+        piece_linear(&p[i], tb[i], tb[i + 1], ub[i], ub[i + 1]);
+        p[i].shape = HY_PIECE_SINE;
+        p[i].c = offset;
+        p[i].amp = amp;
+        p[i].omega = w;
+        p[i].phase = 0;
+    }
+    int rc = finish(in, p, 3, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "sine, amplitude %g, period %g", amp, period);
+    return rc;
+}
+
+/* Reads "t u" / "t,u" lines into growing arrays; errors name path:line. */
+static int read_samples(const char *path, double **pt, double **pu, size_t *pn, hy_error *err)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return hy_error_set(err, HY_EIO, "%s: cannot open input file: %s", path, strerror(errno));
+    size_t n = 0, cap = 0, line = 0;
+    double *t = NULL, *u = NULL;
+    char buf[512];
+    int rc = HY_OK;
+    while (fgets(buf, sizeof buf, f)) {
+        line++;
+        char *s = buf;
+        while (isspace((unsigned char)*s))
+            s++;
+        if (*s == '#' || *s == '\0')
+            continue;
+        char *end;
+        errno = 0;
+        double a = strtod(s, &end);
+        if (end == s) {
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: expected two numbers 't u', found '%.40s'", path, line, s);
+            break;
+        }
+        s = end;
+        while (isspace((unsigned char)*s) || *s == ',')
+            s++;
+        double b = strtod(s, &end);
+        if (end == s) {
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: expected a second number (u) after t", path, line);
+            break;
+        }
+        for (s = end; isspace((unsigned char)*s); s++)
+            ;
+        if (*s && *s != '#') {
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: unexpected text after 't u': '%.40s'", path, line, s);
+            break;
+        }
+        if (!isfinite(a) || !isfinite(b)) {
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: values must be finite numbers", path, line);
+            break;
+        }
+        if (n && !(a > t[n - 1])) {
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: time %g is not greater than the previous time %g", path, line, a, t[n - 1]);
+            break;
+        }
+        if (!n && a != 0) {
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: the first sample must be at t = 0 (got %g)", path, line, a);
+            break;
+        }
+        if (n == cap) {
+            cap = cap ? 2 * cap : 256;
+            double *nt = realloc(t, (cap + 1) * sizeof *t), *nu = nt ? realloc(u, (cap + 1) * sizeof *u) : NULL;
+            if (nt)
+                t = nt;
+            if (nu)
+                u = nu;
+            if (!nt || !nu) {
+                rc = hy_error_set(err, HY_ENOMEM, "%s: out of memory at line %zu", path, line);
+                break;
+            }
+        }
+        t[n] = a;
+        u[n] = b;
+        n++;
+    }
+    if (!rc && ferror(f))
+        rc = hy_error_set(err, HY_EIO, "%s: read error: %s", path, strerror(errno));
+    fclose(f);
+    if (!rc && n < 2)
+        rc = hy_error_set(err, HY_EINVAL, "%s: needs at least 2 samples 't u' (found %zu)", path, n);
+    if (rc) {
+        free(t);
+        free(u);
+        return rc;
+    }
+    if (u[n - 1] != u[0]) { /* close the period over one mean sampling step */
+        t[n] = t[n - 1] + t[n - 1] / (double)(n - 1);
+        u[n] = u[0];
+        n++;
+    }
+    *pt = t;
+    *pu = u;
+    *pn = n;
+    return HY_OK;
+}
+
+int hy_input_file(hy_input *in, const char *path, hy_error *err)
+{
+    double *t, *u;
+    size_t n;
+    int rc = read_samples(path, &t, &u, &n, err);
+    if (rc)
+        return rc;
+    rc = hy_input_pwl(in, t, u, n, err);
+    if (rc)
+        hy_error_prefix(err, "%s", path);
+    else
+        snprintf(in->desc, sizeof in->desc, "sampled input from %s", path);
+    free(t);
+    free(u);
+    return rc;
+}
+
+/* Parses a comma-separated list of numbers; returns the count or -1. */
+static long parse_list(const char *s, double *out, size_t max, hy_error *err, const char *spec)
+{
+    size_t n = 0;
+    while (*s) {
+        char *end;
+        double v = strtod(s, &end);
+        if (end == s || (*end && *end != ',')) {
+            hy_error_set(err, HY_EINVAL, "input '%s': '%.20s' is not a number", spec, s);
+            return -1;
+        }
+        if (!isfinite(v)) {
+            hy_error_set(err, HY_EINVAL, "input '%s': values must be finite", spec);
+            return -1;
+        }
+        if (n == max) {
+            hy_error_set(err, HY_EINVAL, "input '%s': more than %zu numbers", spec, max);
+            return -1;
+        }
+        out[n++] = v;
+        s = *end ? end + 1 : end;
+    }
+    return (long)n;
+}
+
+int hy_input_parse(hy_input *in, const char *spec, hy_error *err)
+{
+    const char *colon = strchr(spec, ':');
+    if (!colon)
+        return hy_error_set(err, HY_EINVAL, "input '%s' needs the form KIND:VALUES (bimodal, multimodal, triangle, sine, pwl, file)", spec);
+    size_t kl = (size_t)(colon - spec);
+    const char *rest = colon + 1;
+    if (kl == 4 && strncmp(spec, "file", 4) == 0)
+        return hy_input_file(in, rest, err);
+    char body[4096];
+    snprintf(body, sizeof body, "%s", rest);
+    int shape = HY_SHAPE_LINEAR;
+    char *sh = strchr(body, ':');
+    if (sh) {
+        *sh++ = '\0';
+        if (strcmp(sh, "cosine") == 0)
+            shape = HY_SHAPE_COSINE;
+        else if (strcmp(sh, "linear") != 0)
+            return hy_error_set(err, HY_EINVAL, "input '%s': unknown shape '%s' (linear or cosine)", spec, sh);
+    }
+    enum { MAXV = 4096 };
+    double *v = malloc(MAXV * sizeof *v);
+    if (!v)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    long n = parse_list(body, v, MAXV, err, spec);
+    int rc = HY_EINVAL;
+    if (n < 0)
+        rc = HY_EINVAL;
+    else if (kl == 7 && strncmp(spec, "bimodal", 7) == 0) {
+        if (n == 4 || n == 8)
+            rc = hy_input_bimodal(in, v[0], v[1], v[2], v[3], n == 8 ? v + 4 : NULL, shape, err);
+        else
+            hy_error_set(err, HY_EINVAL, "input '%s': bimodal takes umin1,umin2,umax1,umax2[,t1,t2,t3,t4]", spec);
+    } else if (kl == 10 && strncmp(spec, "multimodal", 10) == 0)
+        rc = hy_input_multimodal(in, v, (size_t)n, NULL, shape, err);
+    else if (kl == 8 && strncmp(spec, "triangle", 8) == 0) {
+        if (n == 3)
+            rc = hy_input_triangle(in, v[0], v[1], v[2], err);
+        else
+            hy_error_set(err, HY_EINVAL, "input '%s': triangle takes min,max,period", spec);
+    } else if (kl == 4 && strncmp(spec, "sine", 4) == 0) {
+        if (n == 2 || n == 3)
+            rc = hy_input_sine(in, v[0], v[1], n == 3 ? v[2] : 0, err);
+        else
+            hy_error_set(err, HY_EINVAL, "input '%s': sine takes amp,period[,offset]", spec);
+    } else if (kl == 3 && strncmp(spec, "pwl", 3) == 0) {
+        if (n >= 6 && n % 2 == 0) {
+            size_t m = (size_t)n / 2;
+            double *t = malloc(2 * m * sizeof *t);
+            if (!t)
+                rc = hy_error_set(err, HY_ENOMEM, "out of memory");
+            else {
+                for (size_t i = 0; i < m; i++) {
+                    t[i] = v[2 * i];
+                    t[m + i] = v[2 * i + 1];
+                }
+                rc = hy_input_pwl(in, t, t + m, m, err);
+                free(t);
+            }
+        } else
+            hy_error_set(err, HY_EINVAL, "input '%s': pwl takes pairs t0,u0,t1,u1,... (at least 3)", spec);
+    } else
+        hy_error_set(err, HY_EINVAL, "input '%s': unknown kind '%.*s' (bimodal, multimodal, triangle, sine, pwl, file)",
+                     spec, (int)kl, spec);
+    free(v);
+    return rc;
+}
+
+size_t hy_input_piece_at(const hy_input *in, double t, double *tmod, double *kcycles)
+{
+    double k = floor(t / in->period);
+    double tm = t - k * in->period;
+    if (tm >= in->period) { /* rounding */
+        tm -= in->period;
+        k += 1;
+    }
+    if (tm < 0)
+        tm = 0;
+    size_t lo = 0, hi = in->npieces - 1;
+    while (lo < hi) {
+        size_t mid = (lo + hi + 1) / 2;
+        if (in->pieces[mid].t0 <= tm)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    if (tmod)
+        *tmod = tm;
+    if (kcycles)
+        *kcycles = k;
+    return lo;
+}
+
+double hy_input_u(const hy_input *in, double t)
+{
+    double tm;
+    size_t i = hy_input_piece_at(in, t, &tm, NULL);
+    return hy_piece_u(&in->pieces[i], tm);
+}
+
+double hy_input_du(const hy_input *in, double t)
+{
+    double tm;
+    size_t i = hy_input_piece_at(in, t, &tm, NULL);
+    return hy_piece_du(&in->pieces[i], tm);
+}
+
+double hy_input_ddu(const hy_input *in, double t)
+{
+    double tm;
+    size_t i = hy_input_piece_at(in, t, &tm, NULL);
+    return piece_ddu(&in->pieces[i], tm);
+}
+
+double hy_input_rho(const hy_input *in, double t)
+{
+    double tm, k;
+    size_t i = hy_input_piece_at(in, t, &tm, &k);
+    const hy_piece *p = &in->pieces[i];
+    return k * in->rho_T + p->rho0 + fabs(hy_piece_u(p, tm) - p->u0);
+}
+
+size_t hy_input_run_at(const hy_input *in, double rho, double *rmod)
+{
+    double k = floor(rho / in->rho_T);
+    double r = rho - k * in->rho_T;
+    if (r >= in->rho_T)
+        r -= in->rho_T;
+    if (r < 0)
+        r = 0;
+    size_t lo = 0, hi = in->nruns - 1;
+    while (lo < hi) {
+        size_t mid = (lo + hi + 1) / 2;
+        if (in->runs[mid].rho0 <= r)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    if (rmod)
+        *rmod = r;
+    return lo;
+}
+
+double hy_input_psi(const hy_input *in, double rho)
+{
+    double r;
+    const hy_run *run = &in->runs[hy_input_run_at(in, rho, &r)];
+    double d = r - run->rho0;
+    double span = run->rho1 - run->rho0;
+    if (d > span)
+        d = span;
+    return run->u0 + run->sign * d;
+}

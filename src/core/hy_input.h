@@ -1,0 +1,100 @@
+/* hy_input.h: periodic piecewise-monotone inputs u(t) (seed 000, Definition 1,
+ * Eqs. (5), (9)-(10)).
+ *
+ * An input is a list of pieces covering one period [0, T].  Each piece is
+ * monotone: linear (u̇ constant, the case the exact finite-γ solver needs) or a
+ * sine arc c + A sin(ωt + φ) between two consecutive extrema or parts of one
+ * (smooth pieces, so that ψ_u ≠ u can be shown).  Consecutive pieces moving the
+ * same way form a run; runs are separated by the extrema of u.
+ *
+ *     hy_input in;
+ *     if (hy_input_parse(&in, "bimodal:0,0.5,1,1.5", &err)) ...
+ *     double u = hy_input_u(&in, t), r = hy_input_rho(&in, t);
+ *     double psi = hy_input_psi(&in, r);        // ψ_u(ρ_u(t)) == u(t)
+ *     hy_input_free(&in);
+ */
+#ifndef HY_INPUT_H
+#define HY_INPUT_H
+
+#include <stddef.h>
+#include "hy_status.h"
+
+enum { HY_PIECE_LINEAR = 0, HY_PIECE_SINE = 1 };
+enum { HY_SHAPE_LINEAR = 0, HY_SHAPE_COSINE = 1 };
+
+typedef struct hy_piece {
+    double t0, t1;      /* time interval, t0 < t1                          */
+    double u0, u1;      /* values at the ends (u0 == u1: a dwell)          */
+    int shape;          /* HY_PIECE_LINEAR or HY_PIECE_SINE                */
+    double c, amp, omega, phase; /* sine pieces: u = c + amp sin(ω t + φ)  */
+    double rho0;        /* ρ_u(t0)                                          */
+} hy_piece;
+
+typedef struct hy_run {
+    size_t p0, p1;      /* pieces [p0, p1) of this run                     */
+    double rho0, rho1;  /* variation at its ends                            */
+    double u0, u1;      /* values at its ends                               */
+    int sign;           /* +1 rising, -1 falling                            */
+} hy_run;
+
+typedef struct hy_input {
+    hy_piece *pieces;
+    size_t npieces;
+    hy_run *runs;
+    size_t nruns;
+    double period;      /* T                                                */
+    double rho_T;       /* ρ_u(T), the variation over one period            */
+    int all_linear;     /* every piece has constant u̇                       */
+    char desc[160];     /* what was asked for, for messages and legends    */
+} hy_input;
+
+/* Piecewise-linear periodic input through (t[i], u[i]), i < n, t[0] = 0,
+ * t strictly increasing, u[n-1] == u[0].  HY_EINVAL names the bad index. */
+int hy_input_pwl(hy_input *in, const double *t, const double *u, size_t n, hy_error *err);
+
+/* Bimodal input of Definition 1: umin1 <= umin2 < umax1 <= umax2, not both
+ * equalities, 0 < t1 < t2 < t3 < t4 (t == NULL: normalised, slopes ±1).
+ * shape HY_SHAPE_COSINE makes each monotone piece a half-cosine. */
+int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, double umax2,
+                     const double t[4], int shape, hy_error *err);
+
+/* Multimodal input through the alternating extrema e[0..n-1] (e[0] repeated at
+ * the period's end), reached at times tm[1..n] (tm == NULL: slopes ±1; tm[0] = 0). */
+int hy_input_multimodal(hy_input *in, const double *e, size_t n, const double *tm,
+                        int shape, hy_error *err);
+
+/* Triangle from umin (t = 0) up to umax (t = T/2) and back. */
+int hy_input_triangle(hy_input *in, double umin, double umax, double period, hy_error *err);
+
+/* offset + amp sin(2π t / period), split at its extrema into sine pieces. */
+int hy_input_sine(hy_input *in, double amp, double period, double offset, hy_error *err);
+
+/* Sampled signal from a text file: lines "t u" or "t,u" (# comments allowed),
+ * t from 0 strictly increasing; closed back to u(0) if it does not end there.
+ * Errors name path:line. */
+int hy_input_file(hy_input *in, const char *path, hy_error *err);
+
+/* Parses "bimodal:umin1,umin2,umax1,umax2[,t1,t2,t3,t4]", "multimodal:e0,e1,...",
+ * "triangle:min,max,T", "sine:amp,T[,offset]", "pwl:t0,u0,t1,u1,...",
+ * "file:PATH"; a trailing ":cosine" on bimodal/multimodal selects half-cosines. */
+int hy_input_parse(hy_input *in, const char *spec, hy_error *err);
+
+void hy_input_free(hy_input *in);
+
+/* Index of the piece containing t modulo the period (t in [t0, t1)). */
+size_t hy_input_piece_at(const hy_input *in, double t, double *tmod, double *kcycles);
+/* u(t), u̇(t), ü(t) for any t >= 0 (periodic extension). */
+double hy_input_u(const hy_input *in, double t);
+double hy_input_du(const hy_input *in, double t);
+double hy_input_ddu(const hy_input *in, double t);
+/* u, u̇ on piece p at absolute time t inside it (no search). */
+double hy_piece_u(const hy_piece *p, double t);
+double hy_piece_du(const hy_piece *p, double t);
+/* ρ_u(t) = ∫_0^t |u̇| (Eq. 5), including whole periods. */
+double hy_input_rho(const hy_input *in, double t);
+/* ψ_u(ϱ) (Eqs. 9-10): the normalised input, slopes ±1, ϱ_T-periodic. */
+double hy_input_psi(const hy_input *in, double rho);
+/* Index of the run containing ϱ modulo ρ_T. */
+size_t hy_input_run_at(const hy_input *in, double rho, double *rmod);
+
+#endif

@@ -1,0 +1,248 @@
+/* hy_loops.c: major and minor loops of the steady state by rainflow pairing of
+ * the turning points of ψ_u (seed 000, Theorem A(b) and its multimodal
+ * generalisation), with exact areas ∫ y° dψ. */
+#include "hy_loops.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct tp {
+    double rho, u;   /* absolute ϱ of the turning point and its value */
+    int is_max;
+} tp;
+
+/* Iterates over the monotone stretches of [rho0, rho1], calling fn on each. */
+static size_t for_each_arc(const hy_steady *st, double rho0, double rho1,
+                           void (*fn)(void *, const hy_arc *), void *ctx)
+{
+    const hy_input *in = st->in;
+    size_t count = 0;
+    double rho = rho0;
+    while (rho < rho1) {
+        double r;
+        size_t i = hy_input_run_at(in, rho, &r);
+        const hy_run *run = &in->runs[i];
+        double base = rho - r; /* absolute ϱ of this period's start */
+        double end = base + run->rho1;
+        if (end <= rho) { /* rounding at a run end: step to the next run */
+            i = (i + 1) % in->nruns;
+            run = &in->runs[i];
+            if (i == 0)
+                base += in->rho_T;
+            r = rho - base;
+            end = base + run->rho1;
+        }
+        if (end > rho1)
+            end = rho1;
+        hy_arc arc;
+        arc.rho0 = rho;
+        arc.rho1 = end;
+        arc.sign = run->sign;
+        double d = r - run->rho0;
+        if (d < 0)
+            d = 0;
+        arc.u0 = run->u0 + run->sign * d;
+        arc.y0 = hy_limit_step(st->a, st->g0, st->y_run[i], run->sign, d);
+        if (fn)
+            fn(ctx, &arc);
+        count++;
+        rho = end;
+    }
+    return count;
+}
+
+struct arc_buf { hy_arc *arcs; size_t max, n; };
+static void collect_arc(void *ctx, const hy_arc *a)
+{
+    struct arc_buf *b = ctx;
+    if (b->n < b->max)
+        b->arcs[b->n] = *a;
+    b->n++;
+}
+
+size_t hy_steady_arcs(const hy_steady *st, double rho0, double rho1, hy_arc *arcs, size_t max)
+{
+    struct arc_buf b = {arcs, max, 0};
+    return for_each_arc(st, rho0, rho1, collect_arc, &b);
+}
+
+struct area_acc { const hy_steady *st; double sum; };
+static void add_area(void *ctx, const hy_arc *a)
+{
+    struct area_acc *acc = ctx;
+    acc->sum += hy_limit_step_area(acc->st->a, acc->st->g0, a->y0, a->sign, a->rho1 - a->rho0);
+}
+
+double hy_steady_area(const hy_steady *st, double rho0, double rho1)
+{
+    struct area_acc acc = {st, 0};
+    for_each_arc(st, rho0, rho1, add_area, &acc);
+    return acc.sum;
+}
+
+/* Turning points of one period starting at the global maximum, closed by it. */
+static tp *turning_points(const hy_input *in, size_t *count)
+{
+    size_t n = in->nruns;
+    tp *raw = malloc((n + 1) * sizeof *raw);
+    if (!raw)
+        return NULL;
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) { /* extremum at the start of run i */
+        const hy_run *prev = &in->runs[(i + n - 1) % n], *cur = &in->runs[i];
+        if (prev->sign == cur->sign)
+            continue; /* runs split by the period boundary */
+        raw[m].rho = cur->rho0;
+        raw[m].u = cur->u0;
+        raw[m].is_max = cur->sign < 0;
+        m++;
+    }
+    size_t imax = 0;
+    for (size_t i = 1; i < m; i++)
+        if (raw[i].u > raw[imax].u)
+            imax = i;
+    tp *seq = malloc((m + 1) * sizeof *seq);
+    if (!seq) {
+        free(raw);
+        return NULL;
+    }
+    for (size_t i = 0; i <= m; i++) {
+        size_t j = (imax + i) % m;
+        seq[i] = raw[j];
+        seq[i].rho += (double)((imax + i) / m) * in->rho_T;
+    }
+    free(raw);
+    *count = m + 1;
+    return seq;
+}
+
+/* First ϱ after q where the path seq[q..] returns to value u (inclusive). */
+static double close_point(const tp *seq, size_t q, size_t last, double u)
+{
+    for (size_t i = q; i < last; i++) {
+        double lo = fmin(seq[i].u, seq[i + 1].u), hi = fmax(seq[i].u, seq[i + 1].u);
+        if (i > q && seq[i].u == u)
+            return seq[i].rho;
+        if (u > lo && u <= hi && i + 1 <= last) {
+            if (seq[i + 1].u == u)
+                return seq[i + 1].rho;
+            return seq[i].rho + fabs(u - seq[i].u);
+        }
+    }
+    return seq[last].rho;
+}
+
+static int cmp_loop(const void *a, const void *b)
+{
+    double x = ((const hy_loop *)a)->rho_start, y = ((const hy_loop *)b)->rho_start;
+    return (x > y) - (x < y);
+}
+
+int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
+{
+    memset(out, 0, sizeof *out);
+    size_t n = 0;
+    tp *seq = turning_points(st->in, &n);
+    size_t *stack = malloc(n * sizeof *stack);
+    hy_loop *loops = malloc(n * sizeof *loops);
+    if (!seq || !stack || !loops) {
+        free(seq);
+        free(stack);
+        free(loops);
+        return hy_error_set(err, HY_ENOMEM, "out of memory for loop detection");
+    }
+    size_t sp = 0, nl = 0;
+    for (size_t i = 0; i < n; i++) {
+        stack[sp++] = i;
+        while (sp >= 3) {
+            const tp *p = &seq[stack[sp - 3]], *q = &seq[stack[sp - 2]], *r = &seq[stack[sp - 1]];
+            double X = fabs(r->u - q->u), Y = fabs(q->u - p->u);
+            if (X < Y || (X == Y && !p->is_max))
+                break;
+            hy_loop *L = &loops[nl++];
+            memset(L, 0, sizeof *L);
+            L->rho_start = p->rho;
+            L->rho_turn = q->rho;
+            L->rho_close = close_point(seq, stack[sp - 2], stack[sp - 1], p->u);
+            L->u_start = p->u;
+            L->u_turn = q->u;
+            L->starts_at_max = p->is_max;
+            stack[sp - 3] = stack[sp - 1];
+            sp -= 2;
+        }
+    }
+    /* the major loop: the largest range, the last found among equals */
+    size_t imaj = 0;
+    for (size_t i = 1; i < nl; i++)
+        if (fabs(loops[i].u_turn - loops[i].u_start) >= fabs(loops[imaj].u_turn - loops[imaj].u_start))
+            imaj = i;
+    for (size_t i = 0; i < nl; i++) {
+        hy_loop *L = &loops[i];
+        L->y_start = hy_steady_at_rho(st, L->rho_start);
+        L->y_close = hy_steady_at_rho(st, L->rho_close);
+        L->area = hy_steady_area(st, L->rho_start, L->rho_close);
+    }
+    out->major = loops[imaj];
+    out->nminor = nl - 1;
+    out->minor = malloc((nl ? nl : 1) * sizeof *out->minor);
+    if (!out->minor) {
+        free(seq);
+        free(stack);
+        free(loops);
+        return hy_error_set(err, HY_ENOMEM, "out of memory for loops");
+    }
+    for (size_t i = 0, k = 0; i < nl; i++)
+        if (i != imaj)
+            out->minor[k++] = loops[i];
+    /* express minor loops within [0, ρ_T) where possible, then sort */
+    for (size_t i = 0; i < out->nminor; i++) {
+        hy_loop *L = &out->minor[i];
+        double shift = floor(L->rho_start / st->in->rho_T) * st->in->rho_T;
+        L->rho_start -= shift;
+        L->rho_turn -= shift;
+        L->rho_close -= shift;
+    }
+    qsort(out->minor, out->nminor, sizeof *out->minor, cmp_loop);
+    /* nesting: depth = 1 + number of minor loops strictly containing it */
+    out->major.own_area = out->major.area;
+    for (size_t i = 0; i < out->nminor; i++) {
+        hy_loop *L = &out->minor[i];
+        L->depth = 1;
+        L->own_area = L->area;
+        for (size_t j = 0; j < out->nminor; j++) {
+            const hy_loop *M = &out->minor[j];
+            if (j != i && M->rho_start <= L->rho_start && L->rho_close <= M->rho_close &&
+                M->rho_close - M->rho_start > L->rho_close - L->rho_start)
+                L->depth++;
+        }
+    }
+    for (size_t i = 0; i < out->nminor; i++) { /* subtract direct children */
+        const hy_loop *L = &out->minor[i];
+        int parent_found = 0;
+        for (size_t j = 0; j < out->nminor; j++) {
+            hy_loop *M = &out->minor[j];
+            if (M->depth == L->depth - 1 && M->rho_start <= L->rho_start && L->rho_close <= M->rho_close) {
+                M->own_area -= L->area;
+                parent_found = 1;
+                break;
+            }
+        }
+        if (!parent_found)
+            out->major.own_area -= L->area;
+    }
+    out->area_period = hy_steady_area(st, 0, st->in->rho_T);
+    free(seq);
+    free(stack);
+    free(loops);
+    return HY_OK;
+}
+
+void hy_loops_free(hy_loops *l)
+{
+    if (l) {
+        free(l->minor);
+        l->minor = NULL;
+        l->nminor = 0;
+    }
+}
