@@ -59,12 +59,19 @@ static void eval_piece(const hy_model *m, const hy_piece *p, const coef *c, doub
                        const seg *s0, double t, seg *s1, double *y)
 {
     double dt = t - p->t0;
-    double decay;
-    if (c->linear)
-        decay = exp(-c->lambda * dt);
-    else
-        decay = exp(-c->lambda * fabs(hy_piece_u(p, t) - p->u0));
-    double z = (c->lambda == 0) ? s0->z : c->zeq + (s0->z - c->zeq) * decay;
+    /* z = z0 e^{-x} + z_eq (1 - e^{-x}), with z_eq (1 - e^{-x}) written as
+       (drive) φ1(x) so that a large z_eq (small σ0) does not cancel */
+    double x, drive;
+    if (c->linear) {
+        x = c->lambda * dt;
+        drive = c->v * dt;
+    } else {
+        double du = hy_piece_u(p, t) - p->u0;
+        x = c->lambda * fabs(du);
+        drive = du;
+    }
+    double ex = exp(-x);
+    double z = (c->lambda == 0) ? s0->z + drive : s0->z * ex + drive * hy_phi1(x);
     s1->z = z;
     s1->yf = s0->yf;
     if (m->type->has_filter) {
@@ -77,7 +84,8 @@ static void eval_piece(const hy_model *m, const hy_piece *p, const coef *c, doub
         return;
     }
     double v = c->linear ? c->v : hy_piece_du(p, t);
-    double zdot = (c->lambda == 0) ? v : -c->lambda * (z - c->zeq) * (c->linear ? 1.0 : fabs(v));
+    /* ż = v - λ z = (v - λ z0) e^{-x}: exact, and 0 once the state saturates */
+    double zdot = (v - c->lambda * (c->linear ? 1.0 : fabs(v)) * s0->z) * ex;
     *y = m->sigma0 * z + (m->sigma1 / gamma) * zdot + m->sigma2 * v / gamma;
 }
 

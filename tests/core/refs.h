@@ -58,7 +58,7 @@ static void ref_q_map(const hy_input *in, __float128 a, __float128 g0, __float12
             d = -d;
         __float128 E = expq(-a * d);
         AA *= E;
-        BB = E * BB + r->sign * g0 * (1 - E);
+        BB = E * BB + r->sign * g0 * -expm1q(-a * d); /* 1 - E without cancellation */
     }
     *A = AA;
     *B = BB;
@@ -69,7 +69,8 @@ static __float128 ref_q_steady_rho(const hy_input *in, double sigma0, double g0,
 {
     __float128 a = (__float128)sigma0 / (__float128)g0, A, B;
     ref_q_map(in, a, g0, &A, &B);
-    __float128 y = B / (1 - A);
+    __float128 y = B / -expm1q(-a * (__float128)in->rho_T);
+    (void)A;
     for (size_t i = 0; i < in->nruns; i++) {
         const hy_run *r = &in->runs[i];
         __float128 d = (__float128)r->u1 - (__float128)r->u0;
@@ -77,11 +78,9 @@ static __float128 ref_q_steady_rho(const hy_input *in, double sigma0, double g0,
             d = -d;
         if (rho < r->rho1 || i + 1 == in->nruns) {
             __float128 dd = (__float128)rho - (__float128)r->rho0;
-            __float128 E = expq(-a * dd);
-            return E * y + r->sign * g0 * (1 - E);
+            return expq(-a * dd) * y + r->sign * g0 * -expm1q(-a * dd);
         }
-        __float128 E = expq(-a * d);
-        y = E * y + r->sign * g0 * (1 - E);
+        y = expq(-a * d) * y + r->sign * g0 * -expm1q(-a * d);
     }
     return y;
 }
