@@ -13,14 +13,14 @@
 
 typedef struct qctx { const hy_input *in; double a, rref; } qctx;
 
-static double q_integrand(double tau, void *p)
+static inline double q_integrand(double tau, void *p)
 {
     const qctx *c = p;
     return exp(c->a * (hy_input_rho(c->in, tau) - c->rref)) * hy_input_du(c->in, tau);
 }
 
 /* ∫_{t0}^{t1} e^{a(ρ(τ) - rref)} u̇(τ) dτ, piece by piece (t1 <= T). */
-static double q_integral(const hy_input *in, double a, double rref, double t0, double t1,
+static inline double q_integral(const hy_input *in, double a, double rref, double t0, double t1,
                          gsl_integration_workspace *w)
 {
     qctx c = {in, a, rref};
@@ -38,7 +38,7 @@ static double q_integral(const hy_input *in, double a, double rref, double t0, d
 }
 
 /* y°(t), t in [0, T], from Eqs. (8) and (6) by quadrature. */
-static double ref_quad_steady(const hy_input *in, double sigma0, double g0, double t,
+static inline double ref_quad_steady(const hy_input *in, double sigma0, double g0, double t,
                               gsl_integration_workspace *w)
 {
     double a = sigma0 / g0;
@@ -48,7 +48,7 @@ static double ref_quad_steady(const hy_input *in, double sigma0, double g0, doub
 }
 
 /* Affine period map y -> A y + B in quad precision by direct composition. */
-static void ref_q_map(const hy_input *in, __float128 a, __float128 g0, __float128 *A, __float128 *B)
+static inline void ref_q_map(const hy_input *in, __float128 a, __float128 g0, __float128 *A, __float128 *B)
 {
     __float128 AA = 1, BB = 0;
     for (size_t i = 0; i < in->nruns; i++) {
@@ -65,7 +65,7 @@ static void ref_q_map(const hy_input *in, __float128 a, __float128 g0, __float12
 }
 
 /* y°(ϱ) in quad precision: fixed point, then propagation along the runs. */
-static __float128 ref_q_steady_rho(const hy_input *in, double sigma0, double g0, double rho)
+static inline __float128 ref_q_steady_rho(const hy_input *in, double sigma0, double g0, double rho)
 {
     __float128 a = (__float128)sigma0 / (__float128)g0, A, B;
     ref_q_map(in, a, g0, &A, &B);

@@ -91,8 +91,8 @@ static void many_cycles(void)
         hy_input_bimodal(&in, 0, 0.2, 1, 1.5, NULL, HY_SHAPE_LINEAR, &err);
         hy_steady st;
         hy_steady_init(&st, &m, &in, &err);
-        __float128 a = (__float128)m.sigma0 / 1e3Q, A, B;
-        ref_q_map(&in, a, 1e3Q, &A, &B);
+        __float128 a = (__float128)m.sigma0 / ((__float128)1e3), A, B;
+        ref_q_map(&in, a, ((__float128)1e3), &A, &B);
         for (size_t j = 0; j < 6; j++) {
             /* (A, B)^k: y_k(0) = A^k y0 + B (1 + A + ... + A^{k-1}) */
             __float128 Ak = 1, Bk = 0, P = A, Q = B;
@@ -143,7 +143,7 @@ static void gamma_extremes(void)
                     __float128 t0 = cyc * (__float128)in.period + pc->t0, t1 = t0 + (pc->t1 - pc->t0);
                     __float128 v = ((__float128)pc->u1 - pc->u0) / ((__float128)pc->t1 - pc->t0);
                     __float128 av = v < 0 ? -v : v;
-                    __float128 g = 1 + 0.5Q * expq(-powq(av / (gs[j] * 1e-3Q), 2));
+                    __float128 g = 1 + ((__float128)0.5) * expq(-powq(av / (gs[j] * ((__float128)1e-3)), 2));
                     __float128 lam = (__float128)m.sigma0 * av / g, zeq = (v > 0 ? g : -g) / m.sigma0;
                     while (q < N && t[q] < t1) {
                         __float128 zz = zeq + (z - zeq) * expq(-lam * (t[q] - t0));
