@@ -1,0 +1,54 @@
+#!/bin/sh
+# Command-line tests of hystviz: --help, --version, loop CSV, clear errors with
+# non-zero exit status and no partial output.
+set -u
+hv=$1
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+"$hv" --help > "$tmp/h" 2>&1 && grep -q 'usage: hystviz COMMAND' "$tmp/h" && grep -q 'loop' "$tmp/h" && ok || bad "--help"
+"$hv" --version | grep -Eq '^hystviz [0-9]+\.[0-9]+\.[0-9]+$' && ok || bad "--version"
+"$hv" loop --help | grep -q 'input SPEC' && ok || bad "loop --help"
+
+# the issue's example: 200 rows plus a header, t,u,y, %.17g, periodic loop
+"$hv" loop --model lugre --sigma0 6 --fc 1 --fs 2 --vs 1 --beta 1 --input bimodal:0,0.5,1,1.5 --points 200 > "$tmp/loop.csv"
+[ "$(head -1 "$tmp/loop.csv")" = "t,u,y" ] && ok || bad "loop header"
+[ "$(wc -l < "$tmp/loop.csv")" -eq 201 ] && ok || bad "loop rows: $(wc -l < "$tmp/loop.csv")"
+first=$(sed -n 2p "$tmp/loop.csv" | cut -d, -f3)
+last=$(tail -1 "$tmp/loop.csv" | cut -d, -f3)
+[ "$first" = "$last" ] && ok || bad "loop not closed: $first vs $last"
+# %.17g: the first output value is printed with 17 significant digits
+echo "$first" | grep -Eq '^-?[0-9]\.[0-9]{16}$' && ok || bad "not %.17g: $first"
+
+# -o writes atomically and deterministically
+"$hv" loop --input bimodal:0,0.2,1,1.5 -o "$tmp/a.csv" && "$hv" loop --input bimodal:0,0.2,1,1.5 -o "$tmp/b.csv" &&
+    cmp -s "$tmp/a.csv" "$tmp/b.csv" && ok || bad "deterministic -o"
+"$hv" loops --model lugre --sigma0 6 --input bimodal:0,0.5,1,1.5 | grep -q '^minor,1,1,1.5,2,' && ok || bad "loops: Example 4 minor loop [1, 2]"
+
+# errors: message, exit status 2, no output file
+expect_err() { # expected-text, args...
+    want=$1
+    shift
+    "$hv" "$@" > "$tmp/out" 2> "$tmp/err"
+    st=$?
+    if [ $st -ne 0 ] && grep -qF -- "$want" "$tmp/err" && [ ! -s "$tmp/out" ]; then ok; else
+        bad "hystviz $* -> status $st, stderr: $(cat "$tmp/err")"
+    fi
+}
+expect_err "sigma0 must be > 0" loop --sigma0 -1 --input bimodal:0,0.5,1,1.5
+expect_err "'nan' is not a finite number" loop --sigma0 nan --input bimodal:0,0.5,1,1.5
+expect_err "u_min,2 < u_max,1" loop --input bimodal:0,1.2,1,1.5
+expect_err "unknown command 'lop'" lop
+expect_err "unknown or incomplete option '--sigma'" loop --sigma 3 --input bimodal:0,0.5,1,1.5
+expect_err "--input SPEC is required" loop
+expect_err "unknown model 'lugr'" loop --model lugr --input bimodal:0,0.5,1,1.5
+expect_err "gamma must be a finite number > 0" loop --gamma 0 --input bimodal:0,0.5,1,1.5
+expect_err "cannot write" loop --input bimodal:0,0.5,1,1.5 -o /nonexistent/dir/x.csv
+[ ! -e /nonexistent/dir/x.csv ] && ok || bad "partial file"
+
+echo "cli: $pass passed, $fail failed"
+[ $fail -eq 0 ]
