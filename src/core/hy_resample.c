@@ -146,13 +146,15 @@ void hy_fir1_lowpass(size_t r, double b[HY_DECIMATE_TAPS])
 {
     const int M = (HY_DECIMATE_TAPS - 1) / 2; /* 15: the group delay */
     double wn = 1.0 / (double)r, sum = 0.0;
-    for (int i = 0; i < HY_DECIMATE_TAPS; i++) {
-        int d = i - M;
+    /* half and mirror, as MATLAB's hamming does: exactly symmetric taps */
+    for (int i = 0; i <= M; i++) {
+        int d = M - i;
         double ideal = d == 0 ? wn : sin(M_PI * wn * d) / (M_PI * d);
         double ham = 0.54 - 0.46 * cos(2.0 * M_PI * i / (HY_DECIMATE_TAPS - 1));
-        b[i] = ideal * ham;
-        sum += b[i];
+        b[i] = b[HY_DECIMATE_TAPS - 1 - i] = ideal * ham;
     }
+    for (int i = 0; i < HY_DECIMATE_TAPS; i++)
+        sum += b[i];
     for (int i = 0; i < HY_DECIMATE_TAPS; i++)
         b[i] /= sum;
 }
