@@ -365,7 +365,7 @@ static int write_csv(const char *path, const series *s, hy_error *err)
     FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
     int rc = HY_OK;
     if (!f) {
-        rc = hy_error_set(err, HY_EIO, "%s: cannot create: %s", tmp, strerror(errno));
+        rc = hy_error_set(err, HY_EIO, "%s: cannot create a temporary file next to it: %s", path, strerror(errno));
         if (fd >= 0)
             close(fd);
     } else {
