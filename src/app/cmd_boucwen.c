@@ -44,7 +44,7 @@ static const char usage[] =
     "  --signal sine        120 N at 1 Hz, P periods from rest (default 10)\n"
     "  --signal file        the force in --input FILE: one value a line or\n"
     "                       't,u' lines (uniform t gives fs); upsampled by a\n"
-    "                       Kaiser-windowed sinc\n"
+    "                       Kaiser-windowed sinc; t is written from 0\n"
     "  --input FILE         input force file (implies --signal file)\n"
     "  --data-dir DIR       folder of uval_multisine.txt (validation)\n"
     "  --periods P          number of periods written (periodic signals)\n"
@@ -262,83 +262,118 @@ static int synth_once(const opts *o, const double *u_int, size_t n_int,
     return rc;
 }
 
-static int make_signal(opts *o, series *s, hy_error *err)
+static int signal_multisine(const opts *o, series *s, hy_error *err)
 {
     size_t r = o->upsample;
-    double *u = NULL;
-    int rc;
-    if (strcmp(o->signal, "multisine") == 0) {
-        hy_multisine ms;
-        hy_multisine_default(&ms);
-        ms.fs = o->fs;
-        ms.seed = o->seed;
-        if (!(u = malloc(ms.n * r * sizeof *u)))
-            return hy_error_set(err, HY_ENOMEM, "out of memory for the multisine");
-        rc = hy_multisine_design(&ms, r, u, err);
-        if (!rc)
-            rc = synth_periodic(o, u, ms.n * r, o->periods ? o->periods : 5, 0, s, err);
-    } else if (strcmp(o->signal, "validation") == 0) {
-        char path[4096];
-        double *uv = NULL, fsf;
-        size_t n;
-        if (validation_path(o, path, sizeof path))
-            return hy_error_set(err, HY_EIO, "validation data not found");
-        rc = hy_signal_read(path, &uv, &n, &fsf, err);
-        if (!rc && !(u = malloc(n * r * sizeof *u)))
-            rc = hy_error_set(err, HY_ENOMEM, "out of memory for the validation input");
-        if (!rc)
-            rc = hy_signal_upsample_fft(uv, n, r, u, err);
-        /* two settling periods: the transient is ~1e-24 of y after them */
-        if (!rc)
-            rc = synth_periodic(o, u, n * r, o->periods ? o->periods : 1, 2, s, err);
-        for (size_t i = 0; !rc && i < s->n; i++) /* the file's values, bit-exact */
-            s->u[i] = uv[i % n];
-        free(uv);
-    } else if (strcmp(o->signal, "sine") == 0) {
-        double fint = o->fs * (double)r;
-        size_t n = (size_t)llround(fint); /* one 1 Hz period */
-        if (fabs((double)n - fint) > 1e-9 * fint || n % r)
-            return hy_error_set(err, HY_EINVAL, "sine: fs x upsample = %g Hz must be an integer", fint);
-        if (!(u = malloc(n * sizeof *u)))
-            return hy_error_set(err, HY_ENOMEM, "out of memory for the sine");
-        rc = hy_sine_fill(120.0, 1.0, fint, u, n, err);
-        if (!rc)
-            rc = synth_periodic(o, u, n, o->periods ? o->periods : 10, 0, s, err);
-    } else if (strcmp(o->signal, "sweep") == 0) {
-        hy_sweep sw;
-        hy_sweep_default(&sw);
-        size_t nd = hy_sweep_length(&sw, o->fs), n = (nd - 1) * r + 1;
-        if (nd == 0)
-            return hy_error_set(err, HY_EINVAL, "sweep: fs = %g Hz must exceed 100 Hz", o->fs);
-        if (!(u = malloc(n * sizeof *u)))
-            return hy_error_set(err, HY_ENOMEM, "out of memory for the sweep");
-        rc = hy_sweep_fill(&sw, o->fs * (double)r, u, n, err);
-        if (!rc)
-            rc = synth_once(o, u, n, s, err);
-    } else if (strcmp(o->signal, "file") == 0) {
-        double *uf = NULL, fsf;
-        size_t n;
-        if (!o->input)
-            return hy_error_set(err, HY_EINVAL, "--signal file needs --input FILE");
-        rc = hy_signal_read(o->input, &uf, &n, &fsf, err);
-        if (!rc && fsf > 0)
-            o->fs = fsf;
-        if (!rc && n < 2)
-            rc = hy_error_set(err, HY_EINVAL, "%s: needs at least 2 samples", o->input);
-        if (!rc && !(u = malloc(((n - 1) * r + 1) * sizeof *u)))
-            rc = hy_error_set(err, HY_ENOMEM, "out of memory for %s", o->input);
-        if (!rc)
-            rc = hy_signal_upsample_sinc(uf, n, r, u, err);
-        if (!rc)
-            rc = synth_once(o, u, (n - 1) * r + 1, s, err);
-        free(uf);
-    } else {
-        return hy_error_set(err, HY_EINVAL,
-                            "unknown signal '%s' (multisine, validation, sweep, sine, file)",
-                            o->signal);
-    }
+    hy_multisine ms;
+    hy_multisine_default(&ms);
+    ms.fs = o->fs;
+    ms.seed = o->seed;
+    double *u = malloc(ms.n * r * sizeof *u);
+    if (!u)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the multisine");
+    int rc = hy_multisine_design(&ms, r, u, err);
+    if (!rc)
+        rc = synth_periodic(o, u, ms.n * r, o->periods ? o->periods : 5, 0, s, err);
     free(u);
     return rc;
+}
+
+static int signal_validation(const opts *o, series *s, hy_error *err)
+{
+    size_t r = o->upsample, n;
+    char path[4096];
+    double *uv = NULL, *u = NULL, fsf;
+    if (validation_path(o, path, sizeof path))
+        return hy_error_set(err, HY_EIO, "validation data not found");
+    int rc = hy_signal_read(path, &uv, &n, &fsf, err);
+    if (!rc && !(u = malloc(n * r * sizeof *u)))
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory for the validation input");
+    if (!rc)
+        rc = hy_signal_upsample_fft(uv, n, r, u, err);
+    /* two settling periods: the transient is ~1e-24 of y after them */
+    if (!rc)
+        rc = synth_periodic(o, u, n * r, o->periods ? o->periods : 1, 2, s, err);
+    for (size_t i = 0; !rc && i < s->n; i++) /* the file's values, bit-exact */
+        s->u[i] = uv[i % n];
+    free(uv);
+    free(u);
+    return rc;
+}
+
+static int signal_sine(const opts *o, series *s, hy_error *err)
+{
+    size_t r = o->upsample;
+    double fint = o->fs * (double)r;
+    size_t n = (size_t)llround(fint); /* one 1 Hz period */
+    if (fabs((double)n - fint) > 1e-9 * fint || n % r)
+        return hy_error_set(err, HY_EINVAL, "sine: fs x upsample = %g Hz must be an integer", fint);
+    double *u = malloc(n * sizeof *u);
+    if (!u)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the sine");
+    int rc = hy_sine_fill(120.0, 1.0, fint, u, n, err);
+    if (!rc)
+        rc = synth_periodic(o, u, n, o->periods ? o->periods : 10, 0, s, err);
+    free(u);
+    return rc;
+}
+
+static int signal_sweep(const opts *o, series *s, hy_error *err)
+{
+    size_t r = o->upsample;
+    hy_sweep sw;
+    hy_sweep_default(&sw);
+    size_t nd = hy_sweep_length(&sw, o->fs);
+    if (nd == 0)
+        return hy_error_set(err, HY_EINVAL, "sweep: fs = %g Hz must exceed 100 Hz", o->fs);
+    size_t n = (nd - 1) * r + 1; /* generated at the integration rate */
+    double *u = malloc(n * sizeof *u);
+    if (!u)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the sweep");
+    int rc = hy_sweep_fill(&sw, o->fs * (double)r, u, n, err);
+    if (!rc)
+        rc = synth_once(o, u, n, s, err);
+    free(u);
+    return rc;
+}
+
+static int signal_file(opts *o, series *s, hy_error *err)
+{
+    size_t r = o->upsample, n;
+    double *uf = NULL, *u = NULL, fsf;
+    if (!o->input)
+        return hy_error_set(err, HY_EINVAL, "--signal file needs --input FILE");
+    int rc = hy_signal_read(o->input, &uf, &n, &fsf, err);
+    if (!rc && fsf > 0)
+        o->fs = fsf;
+    if (!rc && n < 2)
+        rc = hy_error_set(err, HY_EINVAL, "%s: needs at least 2 samples", o->input);
+    if (!rc && !(u = malloc(((n - 1) * r + 1) * sizeof *u)))
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory for %s", o->input);
+    if (!rc)
+        rc = hy_signal_upsample_sinc(uf, n, r, u, err);
+    if (!rc)
+        rc = synth_once(o, u, (n - 1) * r + 1, s, err);
+    free(uf);
+    free(u);
+    return rc;
+}
+
+static int make_signal(opts *o, series *s, hy_error *err)
+{
+    if (strcmp(o->signal, "multisine") == 0)
+        return signal_multisine(o, s, err);
+    if (strcmp(o->signal, "validation") == 0)
+        return signal_validation(o, s, err);
+    if (strcmp(o->signal, "sine") == 0)
+        return signal_sine(o, s, err);
+    if (strcmp(o->signal, "sweep") == 0)
+        return signal_sweep(o, s, err);
+    if (strcmp(o->signal, "file") == 0)
+        return signal_file(o, s, err);
+    return hy_error_set(err, HY_EINVAL,
+                        "unknown signal '%s' (multisine, validation, sweep, sine, file)",
+                        o->signal);
 }
 
 static int write_rows(FILE *f, const series *s)

@@ -121,8 +121,8 @@ int hy_signal_decimate(const double *x, size_t n, size_t r, double *y,
                        hy_error *err);
 
 /* Decimation by r in one stage (staged == 0) or in its prime factors in
- * increasing order (20 -> 2, 2, 5).  Writes the final ceil(...) samples to y
- * (same count as one stage when r divides n). Allocates scratch internally. */
+ * increasing order (20 -> 2, 2, 5).  Writes ceil(n / r) samples to y either
+ * way, and that count to *ny.  Allocates scratch internally. */
 int hy_signal_decimate_stages(const double *x, size_t n, size_t r, int staged,
                               double *y, size_t *ny, hy_error *err);
 

@@ -90,6 +90,31 @@ int main(void)
     CHECK(rc == 0 && n3 == 1500, "sine rows %zu", n3);
     if (n2 == 1500 && n3 == 1500) /* %.17g round trip: the noise exactly */
         CHECK(fabs(hy_signal_erms(y2, y3, 1500) - 1e-5) < 1e-12, "noise rms %g", hy_signal_erms(y2, y3, 1500));
+    /* a t,u file at 500 Hz: fs from t, one output row per input row; a
+     * malformed file is refused (status 2) and leaves no output */
+    char in[300];
+    snprintf(in, sizeof in, "%s/in.csv", dir);
+    FILE *fi = fopen(in, "w");
+    for (int i = 0; i < 300; i++)
+        fprintf(fi, "%.17g,%.17g\n", i / 500.0, 50 * sin(2 * M_PI * 7 * i / 500.0));
+    fclose(fi);
+    rc = run("boucwen", "data", "--input", in, "--noise", "0", "-o", out, NULL);
+    double *u4, *y4;
+    size_t n4 = read_csv(out, &u4, &y4);
+    CHECK(rc == 0 && n4 == 300, "file rows %zu (status %d)", n4, rc);
+    if (n4 == 300)
+        CHECK(fabs(u4[7] - 50 * sin(2 * M_PI * 7 * 7 / 500.0)) < 1e-12 && fabs(y4[150]) > 1e-5,
+              "file run: u %g y %g", u4[7], y4[150]);
+    free(u4);
+    free(y4);
+    unlink(out);
+    fi = fopen(in, "w");
+    fputs("0,1\n0.002,oops\n", fi);
+    fclose(fi);
+    CHECK(run("boucwen", "data", "--input", in, "-o", out, NULL) == 2, "malformed file accepted");
+    CHECK(access(out, F_OK) != 0, "a refused file run left %s", out);
+    unlink(in);
+
     /* the validation signal through the command reproduces yval */
     unlink(tab);
     if (bw_failures) /* report them before a possible SKIP below */
