@@ -42,11 +42,16 @@ static double *param_ptr(hy_boucwen_params *p, size_t i)
     return (double *)((char *)p + param_table[i].off);
 }
 
+static double param_get(const hy_boucwen_params *p, size_t i)
+{
+    return *(const double *)((const char *)p + param_table[i].off);
+}
+
 int hy_boucwen_params_validate(const hy_boucwen_params *p, hy_error *err)
 {
     static const char *what[] = {"finite", "finite and >= 0", "finite and > 0"};
     for (size_t i = 0; i < NPARAM; i++) {
-        double v = *param_ptr((hy_boucwen_params *)p, i);
+        double v = param_get(p, i);
         int d = param_table[i].domain;
         int ok = isfinite(v) && (d == 0 || (d == 1 && v >= 0) || (d == 2 && v > 0));
         if (!ok)
