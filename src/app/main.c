@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cmd_boucwen.h"
 #include "cmd_loop.h"
 
 static const char usage[] =
@@ -15,6 +16,7 @@ static const char usage[] =
     "commands:\n"
     "  loop      print a steady hysteresis loop, y*_{u,k} or y_gamma as CSV\n"
     "  loops     print the major and minor loops of an input with their areas\n"
+    "  boucwen   the Bouc-Wen benchmark: Table 2, synthetic data sets as CSV\n"
     "\n"
     "options:\n"
     "  -h, --help     this text (COMMAND --help: that command's options)\n"
@@ -32,6 +34,7 @@ typedef struct command {
 static const command commands[] = {
     {"loop", hy_cmd_loop},
     {"loops", hy_cmd_loop},
+    {"boucwen", hy_cmd_boucwen},
 };
 
 int main(int argc, char **argv)

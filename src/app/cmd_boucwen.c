@@ -1,0 +1,476 @@
+/* cmd_boucwen.c: `hystviz boucwen`: Table 2 and synthesised benchmark data
+ * (seeds/001, Sections 2-5: signal, 20x upsampling, Newmark, decimation,
+ * output noise), written as CSV t,u,y through a temporary file. */
+#include "cmd_boucwen.h"
+
+#include "hy_boucwen.h"
+#include "hy_config.h"
+#include "hy_signal.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static const char usage[] =
+    "usage: hystviz boucwen table2 [--set-param NAME=VALUE]...\n"
+    "       hystviz boucwen data --signal KIND [options] [-o FILE]\n"
+    "       hystviz boucwen --help\n"
+    "\n"
+    "The Bouc-Wen hysteretic benchmark (Noel & Schoukens):\n"
+    "  m y'' + c y' + k y + z = u,\n"
+    "  z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z + delta y' |z|^nu),\n"
+    "integrated by Newmark (a 0.5, b 0.25, c 0.5) with Newton-Raphson at\n"
+    "fs x UPSAMPLE Hz, then decimated like MATLAB decimate(y, r, 'fir') in the\n"
+    "prime factors of r (20: 2, 2, 5).\n"
+    "\n"
+    "table2      print Table 2 (natural frequency and damping ratio from the\n"
+    "            linearised stiffness k + alpha)\n"
+    "data        write CSV 't,u,y' (s, N, m) at the working rate, %.17g\n"
+    "\n"
+    "data options:\n"
+    "  --signal multisine   random-phase multisine 5-150 Hz, 8192 samples a\n"
+    "                       period at 750 Hz, std 50 N (set at the integration\n"
+    "                       rate); P periods from rest (default 5), the first\n"
+    "                       holds the transient\n"
+    "  --signal validation  the official validation input uval_multisine.txt,\n"
+    "                       P steady-state periods (default 1; comparable with\n"
+    "                       yval_multisine.txt); noiseless unless --noise\n"
+    "  --signal sweep       40 N sine sweep 20 -> 50 Hz at 10 Hz/min (180 s)\n"
+    "  --signal sine        120 N at 1 Hz, P periods from rest (default 10)\n"
+    "  --signal file        the force in --input FILE: one value a line or\n"
+    "                       't,u' lines (uniform t gives fs); upsampled by a\n"
+    "                       Kaiser-windowed sinc; t is written from 0\n"
+    "  --input FILE         input force file (implies --signal file)\n"
+    "  --data-dir DIR       folder of uval_multisine.txt (validation)\n"
+    "  --periods P          number of periods written (periodic signals)\n"
+    "  --noise RMS          output noise RMS in metres, Gaussian band-limited\n"
+    "                       to 0-fs/2 (default 8e-6 = 8e-3 mm; 0 = none;\n"
+    "                       validation: 0)\n"
+    "  --seed S             seed of the multisine phases and the noise (1)\n"
+    "  --fs HZ              working sampling rate (750; file: from t if given)\n"
+    "  --upsample R         integration rate factor (20)\n"
+    "  --single-stage       decimate in one stage instead of prime factors\n"
+    "  --set-param N=V      change a parameter: m c k alpha beta gamma delta nu\n"
+    "                       (Table 1: 2 10 5e4 5e4 1e3 0.8 -1.1 1)\n"
+    "  -o FILE              output file (written to a temporary name, then\n"
+    "                       renamed); default standard output\n";
+
+typedef struct opts {
+    const char *signal, *input, *data_dir, *out;
+    size_t periods; /* 0: the signal's default */
+    double noise;   /* NAN: the signal's default */
+    uint64_t seed;
+    double fs;
+    size_t upsample;
+    int staged;
+    hy_boucwen_params p;
+} opts;
+
+typedef struct series {
+    double *t, *u, *y;
+    size_t n;
+} series;
+
+static void series_free(series *s)
+{
+    free(s->t);
+    free(s->u);
+    free(s->y);
+}
+
+static int series_alloc(series *s, size_t n)
+{
+    s->n = n;
+    s->t = malloc(n * sizeof *s->t);
+    s->u = malloc(n * sizeof *s->u);
+    s->y = malloc(n * sizeof *s->y);
+    return s->t && s->u && s->y ? 0 : -1;
+}
+
+static int bad_usage(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "hystviz boucwen: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, " (try 'hystviz boucwen --help')\n");
+    return 2;
+}
+
+static int parse_size(const char *s, size_t *out)
+{
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(s, &end, 10);
+    if (end == s || *end || errno || s[0] == '-')
+        return -1;
+    *out = (size_t)v;
+    return 0;
+}
+
+static int parse_double(const char *s, double *out)
+{
+    char *end;
+    *out = strtod(s, &end);
+    return end == s || *end ? -1 : 0;
+}
+
+/* Value of option a[i] ("--x v" or "--x=v"); advances *i; NULL if missing. */
+static const char *optval(int argc, char **argv, int *i, const char *name)
+{
+    size_t len = strlen(name);
+    if (strncmp(argv[*i], name, len) == 0 && argv[*i][len] == '=')
+        return argv[*i] + len + 1;
+    if (strcmp(argv[*i], name) == 0 && *i + 1 < argc)
+        return argv[++*i];
+    return NULL;
+}
+
+static int is_opt(const char *arg, const char *name)
+{
+    size_t len = strlen(name);
+    return strncmp(arg, name, len) == 0 && (arg[len] == '\0' || arg[len] == '=');
+}
+
+/* Parses argv[first..]; returns 0 or an exit status. */
+static int parse_opts(int argc, char **argv, int first, opts *o)
+{
+    for (int i = first; i < argc; i++) {
+        const char *a = argv[i], *v;
+        hy_error err;
+        if (strcmp(a, "--single-stage") == 0) {
+            o->staged = 0;
+            continue;
+        }
+        static const char *valued[] = {"--signal", "--input", "--data-dir", "-o",
+                                       "--periods", "--noise", "--seed", "--fs",
+                                       "--upsample", "--set-param"};
+        const char *name = NULL;
+        for (size_t k = 0; k < sizeof valued / sizeof *valued; k++)
+            if (is_opt(a, valued[k]))
+                name = valued[k];
+        if (!name)
+            return bad_usage("unknown option '%s'", a);
+        if (!(v = optval(argc, argv, &i, name)))
+            return bad_usage("option %s needs a value", name);
+        if (strcmp(name, "--signal") == 0)
+            o->signal = v;
+        else if (strcmp(name, "--input") == 0)
+            o->input = v;
+        else if (strcmp(name, "--data-dir") == 0)
+            o->data_dir = v;
+        else if (strcmp(name, "-o") == 0)
+            o->out = v;
+        else if (strcmp(name, "--periods") == 0) {
+            if (parse_size(v, &o->periods) || o->periods < 1 || o->periods > 1000)
+                return bad_usage("--periods '%s' must be an integer in 1..1000", v);
+        } else if (strcmp(name, "--noise") == 0) {
+            if (parse_double(v, &o->noise) || !isfinite(o->noise) || o->noise < 0)
+                return bad_usage("--noise '%s' must be a finite RMS >= 0 in metres", v);
+        } else if (strcmp(name, "--seed") == 0) {
+            size_t s;
+            if (parse_size(v, &s))
+                return bad_usage("--seed '%s' must be a non-negative integer", v);
+            o->seed = (uint64_t)s;
+        } else if (strcmp(name, "--fs") == 0) {
+            if (parse_double(v, &o->fs) || !isfinite(o->fs) || o->fs <= 0)
+                return bad_usage("--fs '%s' must be a positive number of Hz", v);
+        } else if (strcmp(name, "--upsample") == 0) {
+            if (parse_size(v, &o->upsample) || o->upsample < 1 || o->upsample > 1000)
+                return bad_usage("--upsample '%s' must be an integer in 1..1000", v);
+        } else if (hy_boucwen_params_parse(&o->p, v, &err)) {
+            return bad_usage("%s", err.msg);
+        }
+    }
+    return 0;
+}
+
+static int cmd_table2(const opts *o)
+{
+    hy_boucwen_modal md;
+    hy_error err;
+    if (hy_boucwen_table2(&o->p, &md, &err)) {
+        fprintf(stderr, "hystviz boucwen: %s\n", err.msg);
+        return 1;
+    }
+    printf("Table 2: linear modal parameters (linearised stiffness k + alpha)\n");
+    printf("%-28s %8s  %s\n", "parameter", "value", "full precision");
+    printf("%-28s %8.2f  %.17g\n", "natural frequency f0 (Hz)", md.f0_hz, md.f0_hz);
+    printf("%-28s %8.2f  %.17g\n", "damping ratio zeta (%)", 100 * md.zeta, 100 * md.zeta);
+    return 0;
+}
+
+/* Finds uval_multisine.txt: --data-dir, $HY_BOUCWEN_DATA, next to the source. */
+static int validation_path(const opts *o, char *path, size_t size)
+{
+    const char *cand[] = {o->data_dir, getenv("HY_BOUCWEN_DATA"),
+                          HY_SOURCE_DIR "/../shared/data/boucwen",
+                          HY_SOURCE_DIR "/../../shared/data/boucwen"};
+    for (size_t i = 0; i < sizeof cand / sizeof *cand; i++) {
+        struct stat st;
+        if (!cand[i])
+            continue;
+        snprintf(path, size, "%s/uval_multisine.txt", cand[i]);
+        if (stat(path, &st) == 0 || o->data_dir)
+            return 0;
+    }
+    fprintf(stderr, "hystviz boucwen: uval_multisine.txt not found; give --data-dir DIR\n");
+    return -1;
+}
+
+/* Periodic signals: one period u_per at the integration rate, P periods out;
+ * skip leading periods are integrated but not written (steady state). */
+static int synth_periodic(const opts *o, const double *u_per, size_t n_per,
+                          size_t P, size_t skip, series *s, hy_error *err)
+{
+    hy_newmark_opts no;
+    hy_newmark_opts_default(&no);
+    size_t r = o->upsample, nd = n_per / r, total = P + skip;
+    double *y = malloc(total * nd * sizeof *y);
+    if (!y || series_alloc(s, P * nd)) {
+        free(y);
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu periods", total);
+    }
+    int rc = hy_boucwen_synth_periodic(&o->p, &no, o->fs, r, o->staged, u_per,
+                                       n_per, total, y, err);
+    for (size_t i = 0; !rc && i < s->n; i++) {
+        s->t[i] = (double)i / o->fs;
+        s->u[i] = u_per[(i % nd) * r];
+        s->y[i] = y[skip * nd + i];
+    }
+    free(y);
+    return rc;
+}
+
+/* Non-periodic signals: n_int samples at the integration rate. */
+static int synth_once(const opts *o, const double *u_int, size_t n_int,
+                      series *s, hy_error *err)
+{
+    hy_newmark_opts no;
+    hy_newmark_opts_default(&no);
+    size_t r = o->upsample, nd = (n_int + r - 1) / r;
+    if (series_alloc(s, nd))
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu samples", nd);
+    int rc = hy_boucwen_synth(&o->p, &no, o->fs, r, o->staged, u_int, n_int, s->y, err);
+    for (size_t i = 0; !rc && i < nd; i++) {
+        s->t[i] = (double)i / o->fs;
+        s->u[i] = u_int[i * r];
+    }
+    return rc;
+}
+
+static int signal_multisine(const opts *o, series *s, hy_error *err)
+{
+    size_t r = o->upsample;
+    hy_multisine ms;
+    hy_multisine_default(&ms);
+    ms.fs = o->fs;
+    ms.seed = o->seed;
+    double *u = malloc(ms.n * r * sizeof *u);
+    if (!u)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the multisine");
+    int rc = hy_multisine_design(&ms, r, u, err);
+    if (!rc)
+        rc = synth_periodic(o, u, ms.n * r, o->periods ? o->periods : 5, 0, s, err);
+    free(u);
+    return rc;
+}
+
+static int signal_validation(const opts *o, series *s, hy_error *err)
+{
+    size_t r = o->upsample, n;
+    char path[4096];
+    double *uv = NULL, *u = NULL, fsf;
+    if (validation_path(o, path, sizeof path))
+        return hy_error_set(err, HY_EIO, "validation data not found");
+    int rc = hy_signal_read(path, &uv, &n, &fsf, err);
+    if (!rc && !(u = malloc(n * r * sizeof *u)))
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory for the validation input");
+    if (!rc)
+        rc = hy_signal_upsample_fft(uv, n, r, u, err);
+    /* two settling periods: the transient is ~1e-24 of y after them */
+    if (!rc)
+        rc = synth_periodic(o, u, n * r, o->periods ? o->periods : 1, 2, s, err);
+    for (size_t i = 0; !rc && i < s->n; i++) /* the file's values, bit-exact */
+        s->u[i] = uv[i % n];
+    free(uv);
+    free(u);
+    return rc;
+}
+
+static int signal_sine(const opts *o, series *s, hy_error *err)
+{
+    size_t r = o->upsample;
+    double fint = o->fs * (double)r;
+    size_t n = (size_t)llround(fint); /* one 1 Hz period */
+    if (fabs((double)n - fint) > 1e-9 * fint || n % r)
+        return hy_error_set(err, HY_EINVAL, "sine: fs x upsample = %g Hz must be an integer", fint);
+    double *u = malloc(n * sizeof *u);
+    if (!u)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the sine");
+    int rc = hy_sine_fill(120.0, 1.0, fint, u, n, err);
+    if (!rc)
+        rc = synth_periodic(o, u, n, o->periods ? o->periods : 10, 0, s, err);
+    free(u);
+    return rc;
+}
+
+static int signal_sweep(const opts *o, series *s, hy_error *err)
+{
+    size_t r = o->upsample;
+    hy_sweep sw;
+    hy_sweep_default(&sw);
+    size_t nd = hy_sweep_length(&sw, o->fs);
+    if (nd == 0)
+        return hy_error_set(err, HY_EINVAL, "sweep: fs = %g Hz must exceed 100 Hz", o->fs);
+    size_t n = (nd - 1) * r + 1; /* generated at the integration rate */
+    double *u = malloc(n * sizeof *u);
+    if (!u)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the sweep");
+    int rc = hy_sweep_fill(&sw, o->fs * (double)r, u, n, err);
+    if (!rc)
+        rc = synth_once(o, u, n, s, err);
+    free(u);
+    return rc;
+}
+
+static int signal_file(opts *o, series *s, hy_error *err)
+{
+    size_t r = o->upsample, n;
+    double *uf = NULL, *u = NULL, fsf;
+    if (!o->input)
+        return hy_error_set(err, HY_EINVAL, "--signal file needs --input FILE");
+    int rc = hy_signal_read(o->input, &uf, &n, &fsf, err);
+    if (!rc && fsf > 0)
+        o->fs = fsf;
+    if (!rc && n < 2)
+        rc = hy_error_set(err, HY_EINVAL, "%s: needs at least 2 samples", o->input);
+    if (!rc && !(u = malloc(((n - 1) * r + 1) * sizeof *u)))
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory for %s", o->input);
+    if (!rc)
+        rc = hy_signal_upsample_sinc(uf, n, r, u, err);
+    if (!rc)
+        rc = synth_once(o, u, (n - 1) * r + 1, s, err);
+    free(uf);
+    free(u);
+    return rc;
+}
+
+static int make_signal(opts *o, series *s, hy_error *err)
+{
+    if (strcmp(o->signal, "multisine") == 0)
+        return signal_multisine(o, s, err);
+    if (strcmp(o->signal, "validation") == 0)
+        return signal_validation(o, s, err);
+    if (strcmp(o->signal, "sine") == 0)
+        return signal_sine(o, s, err);
+    if (strcmp(o->signal, "sweep") == 0)
+        return signal_sweep(o, s, err);
+    if (strcmp(o->signal, "file") == 0)
+        return signal_file(o, s, err);
+    return hy_error_set(err, HY_EINVAL,
+                        "unknown signal '%s' (multisine, validation, sweep, sine, file)",
+                        o->signal);
+}
+
+static int write_rows(FILE *f, const series *s)
+{
+    fprintf(f, "t,u,y\n");
+    for (size_t i = 0; i < s->n; i++)
+        fprintf(f, "%.17g,%.17g,%.17g\n", s->t[i], s->u[i], s->y[i]);
+    return ferror(f) ? -1 : 0;
+}
+
+/* Writes s to path through path.tmpXXXXXX and rename(); "-" or NULL: stdout. */
+static int write_csv(const char *path, const series *s, hy_error *err)
+{
+    if (!path || strcmp(path, "-") == 0)
+        return write_rows(stdout, s) || fflush(stdout)
+                   ? hy_error_set(err, HY_EIO, "writing standard output failed")
+                   : HY_OK;
+    size_t len = strlen(path) + 16;
+    char *tmp = malloc(len);
+    if (!tmp)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    snprintf(tmp, len, "%s.tmpXXXXXX", path);
+    int fd = mkstemp(tmp);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    int rc = HY_OK;
+    if (!f) {
+        rc = hy_error_set(err, HY_EIO, "%s: cannot create a temporary file next to it: %s", path, strerror(errno));
+        if (fd >= 0)
+            close(fd);
+    } else {
+        int bad = write_rows(f, s);
+        bad |= fclose(f) != 0;
+        if (bad)
+            rc = hy_error_set(err, HY_EIO, "%s: write failed: %s", tmp, strerror(errno));
+        else if (rename(tmp, path) != 0)
+            rc = hy_error_set(err, HY_EIO, "%s: cannot rename into place: %s", path, strerror(errno));
+    }
+    if (rc && fd >= 0)
+        unlink(tmp);
+    free(tmp);
+    return rc;
+}
+
+static int cmd_data(opts *o)
+{
+    hy_error err;
+    series s = {0};
+    if (!o->signal)
+        o->signal = o->input ? "file" : NULL;
+    if (!o->signal)
+        return bad_usage("%s", "data needs --signal multisine|validation|sweep|sine|file");
+    if (strcmp(o->signal, "sweep") == 0 && o->periods)
+        return bad_usage("%s", "--periods does not apply to the sweep");
+    if (o->input && strcmp(o->signal, "file") != 0)
+        return bad_usage("--input goes with --signal file, not '%s'", o->signal);
+    int rc = hy_boucwen_params_validate(&o->p, &err);
+    if (!rc)
+        rc = make_signal(o, &s, &err);
+    if (!rc) {
+        double rms = isnan(o->noise) ? (strcmp(o->signal, "validation") == 0 ? 0.0 : 8e-6) : o->noise;
+        /* the noise stream is seeded apart from the multisine phases */
+        rc = hy_signal_add_noise(s.y, s.n, rms, o->fs / 2, o->fs,
+                                 o->seed ^ 0x6e6f697365ULL, &err);
+    }
+    if (!rc)
+        rc = write_csv(o->out, &s, &err);
+    series_free(&s);
+    if (rc) {
+        fprintf(stderr, "hystviz boucwen: %s\n", err.msg);
+        return rc == HY_EINVAL ? 2 : 1;
+    }
+    return 0;
+}
+
+int hy_cmd_boucwen(int argc, char **argv)
+{
+    opts o = {.signal = NULL, .input = NULL, .data_dir = NULL, .out = NULL,
+              .periods = 0, .noise = NAN, .seed = 1, .fs = 750.0,
+              .upsample = 20, .staged = 1};
+    hy_boucwen_params_default(&o.p);
+    if (argc < 2)
+        return bad_usage("%s", "needs 'table2', 'data' or '--help'");
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
+        strcmp(argv[1], "help") == 0) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    int is_table = strcmp(argv[1], "table2") == 0;
+    if (!is_table && strcmp(argv[1], "data") != 0)
+        return bad_usage("unknown subcommand '%s' (table2, data)", argv[1]);
+    for (int i = 2; i < argc; i++)
+        if (strcmp(argv[i], "--help") == 0) {
+            fputs(usage, stdout);
+            return 0;
+        }
+    int rc = parse_opts(argc, argv, 2, &o);
+    if (rc)
+        return rc;
+    return is_table ? cmd_table2(&o) : cmd_data(&o);
+}

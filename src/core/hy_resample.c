@@ -1,0 +1,238 @@
+/* hy_resample.c: band-limited upsampling (DFT zero-padding, windowed sinc)
+ * and MATLAB decimate(x, r, 'fir') (fir1 order 30, Hamming) for the
+ * benchmark's 20x integration rate (seeds/001, Section 4). */
+#include "hy_signal.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_fft_halfcomplex.h>
+#include <gsl/gsl_fft_real.h>
+#include <gsl/gsl_sf_bessel.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* In-place real forward DFT (GSL halfcomplex layout) of n values. */
+static int fft_real(double *x, size_t n, hy_error *err)
+{
+    gsl_fft_real_wavetable *wt = gsl_fft_real_wavetable_alloc(n);
+    gsl_fft_real_workspace *ws = gsl_fft_real_workspace_alloc(n);
+    int rc = HY_OK;
+    if (!wt || !ws)
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory for a DFT of %zu points", n);
+    else if (gsl_fft_real_transform(x, 1, n, wt, ws) != GSL_SUCCESS)
+        rc = hy_error_set(err, HY_ENUM, "GSL real DFT of %zu points failed", n);
+    gsl_fft_real_wavetable_free(wt);
+    gsl_fft_real_workspace_free(ws);
+    return rc;
+}
+
+/* In-place inverse of fft_real (divides by n). */
+static int ifft_halfcomplex(double *x, size_t n, hy_error *err)
+{
+    gsl_fft_halfcomplex_wavetable *wt = gsl_fft_halfcomplex_wavetable_alloc(n);
+    gsl_fft_real_workspace *ws = gsl_fft_real_workspace_alloc(n);
+    int rc = HY_OK;
+    if (!wt || !ws)
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory for a DFT of %zu points", n);
+    else if (gsl_fft_halfcomplex_inverse(x, 1, n, wt, ws) != GSL_SUCCESS)
+        rc = hy_error_set(err, HY_ENUM, "GSL inverse DFT of %zu points failed", n);
+    gsl_fft_halfcomplex_wavetable_free(wt);
+    gsl_fft_real_workspace_free(ws);
+    return rc;
+}
+
+int hy_signal_fft_forward(double *x, size_t n, hy_error *err)
+{
+    return fft_real(x, n, err);
+}
+
+int hy_signal_fft_inverse(double *x, size_t n, hy_error *err)
+{
+    return ifft_halfcomplex(x, n, err);
+}
+
+int hy_signal_upsample_fft(const double *x, size_t n, size_t r, double *y,
+                           hy_error *err)
+{
+    if (n == 0 || r == 0)
+        return hy_error_set(err, HY_EINVAL, "upsampling needs n >= 1 samples and r >= 1");
+    size_t L = n * r;
+    double *X = malloc(n * sizeof *X);
+    if (!X)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu samples", n);
+    memcpy(X, x, n * sizeof *X);
+    int rc = fft_real(X, n, err);
+    if (rc) {
+        free(X);
+        return rc;
+    }
+    memset(y, 0, L * sizeof *y);
+    double g = (double)r; /* the inverse divides by L = n r */
+    y[0] = g * X[0];
+    size_t half = (n - 1) / 2; /* complex lines 1 .. half */
+    for (size_t k = 1; k <= half; k++) {
+        y[2 * k - 1] = g * X[2 * k - 1];
+        y[2 * k] = g * X[2 * k];
+    }
+    if (n % 2 == 0 && n >= 2) {
+        if (r == 1)
+            y[n - 1] = g * X[n - 1];
+        else /* Nyquist line n/2 split: half at +n/2, half at -n/2 */
+            y[n - 1] = 0.5 * g * X[n - 1];
+    }
+    free(X);
+    return ifft_halfcomplex(y, L, err);
+}
+
+/* Kaiser window of shape beta at x in [-1, 1]. */
+static double kaiser(double x, double beta)
+{
+    double a = 1.0 - x * x;
+    if (a <= 0)
+        return 0.0;
+    return gsl_sf_bessel_I0(beta * sqrt(a)) / gsl_sf_bessel_I0(beta);
+}
+
+/* x continued by point reflection past both ends. */
+static double reflect(const double *x, size_t n, long i)
+{
+    long last = (long)n - 1;
+    /* n >= 2: each reflection brings i closer to [0, last], so this ends. */
+    if (i < 0)
+        return 2.0 * x[0] - reflect(x, n, -i);
+    if (i > last)
+        return 2.0 * x[last] - reflect(x, n, 2 * last - i);
+    return x[i];
+}
+
+int hy_signal_upsample_sinc(const double *x, size_t n, size_t r, double *y,
+                            hy_error *err)
+{
+    enum { K = 16 };
+    const double beta = 8.0;
+    if (n < 2 || r == 0)
+        return hy_error_set(err, HY_EINVAL, "sinc upsampling needs n >= 2 samples and r >= 1");
+    /* Polyphase kernel: w[j][m] for fraction j/r and input offset m - K + 1. */
+    double *w = malloc(r * 2 * K * sizeof *w);
+    if (!w)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the sinc kernel");
+    for (size_t j = 0; j < r; j++) {
+        double frac = (double)j / (double)r;
+        for (int m = 0; m < 2 * K; m++) {
+            double d = frac - (double)(m - K + 1); /* distance to sample */
+            double s = d == 0 ? 1.0 : sin(M_PI * d) / (M_PI * d);
+            w[j * 2 * K + m] = s * kaiser(d / K, beta);
+        }
+    }
+    size_t ny = (n - 1) * r + 1;
+    for (size_t i = 0; i < n; i++) {
+        for (size_t j = 0; j < r && i * r + j < ny; j++) {
+            if (j == 0) { /* sinc zeros: exact samples */
+                y[i * r] = x[i];
+                continue;
+            }
+            const double *wj = w + j * 2 * K;
+            double acc = 0.0;
+            for (int m = 0; m < 2 * K; m++)
+                acc += wj[m] * reflect(x, n, (long)i + m - K + 1);
+            y[i * r + j] = acc;
+        }
+    }
+    free(w);
+    return HY_OK;
+}
+
+void hy_fir1_lowpass(size_t r, double b[HY_DECIMATE_TAPS])
+{
+    const int M = (HY_DECIMATE_TAPS - 1) / 2; /* 15: the group delay */
+    double wn = 1.0 / (double)r, sum = 0.0;
+    /* half and mirror, as MATLAB's hamming does: exactly symmetric taps */
+    for (int i = 0; i <= M; i++) {
+        int d = M - i;
+        double ideal = d == 0 ? wn : sin(M_PI * wn * d) / (M_PI * d);
+        double ham = 0.54 - 0.46 * cos(2.0 * M_PI * i / (HY_DECIMATE_TAPS - 1));
+        b[i] = b[HY_DECIMATE_TAPS - 1 - i] = ideal * ham;
+    }
+    for (int i = 0; i < HY_DECIMATE_TAPS; i++)
+        sum += b[i];
+    for (int i = 0; i < HY_DECIMATE_TAPS; i++)
+        b[i] /= sum;
+}
+
+int hy_signal_decimate(const double *x, size_t n, size_t r, double *y,
+                       hy_error *err)
+{
+    const long M = (HY_DECIMATE_TAPS - 1) / 2;
+    if (r < 1)
+        return hy_error_set(err, HY_EINVAL, "decimation factor r must be >= 1");
+    if (r == 1) {
+        memmove(y, x, n * sizeof *y);
+        return HY_OK;
+    }
+    if (n < (size_t)M + 1)
+        return hy_error_set(err, HY_EINVAL,
+                            "decimation needs at least %ld samples (got %zu)",
+                            M + 1, n);
+    double b[HY_DECIMATE_TAPS];
+    hy_fir1_lowpass(r, b);
+    size_t nout = (n + r - 1) / r;
+    for (size_t k = 0; k < nout; k++) {
+        long c = (long)(k * r);
+        double acc = 0.0;
+        if (c >= M && c + M < (long)n) {
+            const double *xc = x + c - M;
+            for (long j = 0; j < HY_DECIMATE_TAPS; j++)
+                acc += b[j] * xc[j];
+        } else {
+            for (long j = 0; j < HY_DECIMATE_TAPS; j++)
+                acc += b[j] * reflect(x, n, c - M + j);
+        }
+        y[k] = acc;
+    }
+    return HY_OK;
+}
+
+int hy_signal_decimate_stages(const double *x, size_t n, size_t r, int staged,
+                              double *y, size_t *ny, hy_error *err)
+{
+    if (r < 1)
+        return hy_error_set(err, HY_EINVAL, "decimation factor r must be >= 1");
+    size_t f[64], nf = 0;
+    if (staged) {
+        size_t q = r;
+        for (size_t p = 2; q > 1 && nf < 64; p++)
+            while (q % p == 0) {
+                f[nf++] = p;
+                q /= p;
+            }
+    } else {
+        f[nf++] = r;
+    }
+    if (nf == 0 || (nf == 1 && f[0] == 1)) {
+        memmove(y, x, n * sizeof *y);
+        *ny = n;
+        return HY_OK;
+    }
+    double *a = malloc(n * sizeof *a), *bb = malloc(n * sizeof *bb);
+    int rc = HY_OK;
+    if (!a || !bb) {
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory for %zu samples", n);
+    } else {
+        memcpy(a, x, n * sizeof *a);
+        size_t m = n;
+        for (size_t s = 0; s < nf && !rc; s++) {
+            rc = hy_signal_decimate(a, m, f[s], bb, err);
+            m = (m + f[s] - 1) / f[s];
+            double *t = a;
+            a = bb;
+            bb = t;
+        }
+        if (!rc) {
+            memcpy(y, a, m * sizeof *y);
+            *ny = m;
+        }
+    }
+    free(a);
+    free(bb);
+    return rc;
+}
