@@ -16,10 +16,14 @@
 #include "hy_plot.h"
 #include "hy_plot_private.h"
 
-/* Sink for cairo's stream surfaces; remembers the first write error. */
+/* Sink for cairo's stream surfaces; remembers the first write error.  With
+ * buf set it collects the bytes in memory instead (SVG, renumbered later). */
 typedef struct sink {
     FILE *fp;
     int err;   /* errno of the first failure, 0 if none */
+    unsigned char *buf;
+    size_t len, cap;
+    int buffered;
 } sink;
 
 static cairo_status_t sink_write(void *closure, const unsigned char *data, unsigned int len)
@@ -27,11 +31,61 @@ static cairo_status_t sink_write(void *closure, const unsigned char *data, unsig
     sink *s = closure;
     if (s->err)
         return CAIRO_STATUS_WRITE_ERROR;
+    if (s->buffered) {
+        if (s->len + len > s->cap) {
+            size_t cap = s->cap ? 2 * s->cap : 65536;
+            while (cap < s->len + len)
+                cap *= 2;
+            unsigned char *nb = realloc(s->buf, cap);
+            if (!nb) {
+                s->err = ENOMEM;
+                return CAIRO_STATUS_NO_MEMORY;
+            }
+            s->buf = nb;
+            s->cap = cap;
+        }
+        memcpy(s->buf + s->len, data, len);
+        s->len += len;
+        return CAIRO_STATUS_SUCCESS;
+    }
     if (fwrite(data, 1, len, s->fp) != len) {
         s->err = errno ? errno : EIO;
         return CAIRO_STATUS_WRITE_ERROR;
     }
     return CAIRO_STATUS_SUCCESS;
+}
+
+/* cairo numbers SVG surfaces ("surface123") with a process-wide counter;
+ * renumber them by first appearance so the bytes depend only on the figure. */
+static int svg_flush_renumbered(sink *s)
+{
+    static const char key[] = "surface";
+    long seen[64];
+    int nseen = 0;
+    size_t i = 0, k = sizeof key - 1;
+    while (i < s->len) {
+        if (i + k < s->len && !memcmp(s->buf + i, key, k) && s->buf[i + k] >= '0' && s->buf[i + k] <= '9') {
+            size_t j = i + k;
+            long v = 0;
+            while (j < s->len && s->buf[j] >= '0' && s->buf[j] <= '9' && v < 100000000L)
+                v = v * 10 + (s->buf[j++] - '0');
+            int id = 0;
+            while (id < nseen && seen[id] != v)
+                id++;
+            if (id == nseen && nseen < 64)
+                seen[nseen++] = v;
+            if (fprintf(s->fp, "%s%d", key, id + 1) < 0)
+                return errno ? errno : EIO;
+            i = j;
+            continue;
+        }
+        size_t start = i++;
+        while (i < s->len && s->buf[i] != 's')
+            i++;
+        if (fwrite(s->buf + start, 1, i - start, s->fp) != i - start)
+            return errno ? errno : EIO;
+    }
+    return 0;
 }
 
 static int draw_on(cairo_surface_t *surf, const hy_figure *f, double scale, hy_error *err)
@@ -55,6 +109,7 @@ static int write_vector(const hy_figure *f, int format, sink *sk, hy_error *err)
     double W, H, dpi;
     hy__figure_size(f, &W, &H, &dpi);
     cairo_surface_t *surf;
+    sk->buffered = format == HY_FORMAT_SVG;
     if (format == HY_FORMAT_SVG) {
         surf = cairo_svg_surface_create_for_stream(sink_write, sk, W, H);
         cairo_svg_surface_set_document_unit(surf, CAIRO_SVG_UNIT_PT);
@@ -67,6 +122,10 @@ static int write_vector(const hy_figure *f, int format, sink *sk, hy_error *err)
     cairo_surface_finish(surf);
     cairo_status_t cs = cairo_surface_status(surf);
     cairo_surface_destroy(surf);
+    if (!st && !sk->err && cs == CAIRO_STATUS_SUCCESS && sk->buffered)
+        sk->err = svg_flush_renumbered(sk);
+    free(sk->buf);
+    sk->buf = NULL;
     if (!st && (cs != CAIRO_STATUS_SUCCESS || sk->err))
         st = hy_error_set(err, HY_EIO, "%s", sk->err ? strerror(sk->err) : cairo_status_to_string(cs));
     return st;
@@ -182,7 +241,7 @@ int hy_figure_write(const hy_figure *f, const char *path, int format, hy_error *
         return hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, strerror(e));
     }
     fchmod(fd, 0644);
-    sink sk = {fdopen(fd, "wb"), 0};
+    sink sk = {fdopen(fd, "wb"), 0, NULL, 0, 0, 0};
     int st;
     if (!sk.fp) {
         close(fd);
