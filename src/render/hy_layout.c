@@ -1,5 +1,6 @@
 /* hy_layout.c: plot layout (ranges, ticks, margins, legend placement, clipping) drawn through a hy_canvas. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "hy_markup.h"
@@ -58,6 +59,8 @@ typedef struct panel {
     int xlog, ylog;
     hy_ticks xt, yt;
     double ytick_w, xtick_h;
+    double cx, cy, cw, ch;               /* the grid cell */
+    double ml, mr, mt, mb;               /* margins: frame to cell edges */
 } panel;
 
 static double tr(double v, int log_scale) { return log_scale ? log10(v) : v; }
@@ -176,8 +179,23 @@ static int panel_ticks(panel *p)
     return st;
 }
 
-/* Frame position inside the cell: margins from measured labels, iterated to a fixed point. */
-static int panel_layout(panel *p, double cx, double cy, double cw, double ch, hy_error *err)
+/* Places the frame in the cell with the given margins and picks ticks for it. */
+static int panel_frame(panel *p, hy_error *err)
+{
+    p->x0 = p->cx + p->ml;
+    p->y0 = p->cy + p->mt;
+    p->w = p->cw - p->ml - p->mr;
+    p->h = p->ch - p->mt - p->mb;
+    if (p->w < 2.0 * p->fs || p->h < 2.0 * p->fs)
+        return hy_error_set(err, HY_EINVAL, "figure too small: a panel's plot area would be "
+                            "%.0f x %.0f pt", p->w, p->h);
+    if (panel_ticks(p))
+        return hy_error_set(err, HY_EINVAL, "cannot place ticks on the axis range");
+    return HY_OK;
+}
+
+/* Margins from measured labels, iterated to a fixed point (ticks depend on the frame size). */
+static int panel_layout(panel *p, hy_error *err)
 {
     const hy_axes *ax = p->ax;
     double ylab = label_height(p->cv, ax->ylabel, p->fs, NULL);
@@ -185,28 +203,22 @@ static int panel_layout(panel *p, double cx, double cy, double cw, double ch, hy
     double ttl = label_height(p->cv, ax->title, p->fs, NULL);
     p->ytick_w = 2.5 * p->fs;
     p->xtick_h = p->fs;
-    double right = OUTER + 0.5 * p->fs;
+    p->mr = OUTER + 0.5 * p->fs;
     for (int iter = 0; iter < 3; iter++) {
-        double left = OUTER + (ylab > 0 ? ylab + GAP : 0.0) + p->ytick_w + PAD;
-        double bottom = OUTER + (xlab > 0 ? xlab + GAP : 0.0) + p->xtick_h + PAD;
-        double top = OUTER + (ttl > 0 ? ttl + GAP : 0.5 * p->fs);
-        p->x0 = cx + left;
-        p->y0 = cy + top;
-        p->w = cw - left - right;
-        p->h = ch - top - bottom;
-        if (p->w < 2.0 * p->fs || p->h < 2.0 * p->fs)
-            return hy_error_set(err, HY_EINVAL, "figure too small: a panel's plot area would be "
-                                "%.0f x %.0f pt", p->w, p->h);
-        if (panel_ticks(p))
-            return hy_error_set(err, HY_EINVAL, "cannot place ticks on the axis range");
+        p->ml = OUTER + (ylab > 0 ? ylab + GAP : 0.0) + p->ytick_w + PAD;
+        p->mb = OUTER + (xlab > 0 ? xlab + GAP : 0.0) + p->xtick_h + PAD;
+        p->mt = OUTER + (ttl > 0 ? ttl + GAP : 0.5 * p->fs);
+        int st = panel_frame(p, err);
+        if (st)
+            return st;
         /* The last x tick label may stick out on the right. */
-        right = OUTER + 0.5 * p->fs;
+        p->mr = OUTER + 0.5 * p->fs;
         if (p->xt.n > 0) {
             measure_ctx mx = {p->cv, p->fs, 1};
             double half = 0.5 * measure_label(&mx, p->xt.label[p->xt.n - 1]);
             double room = p->x0 + p->w - map_x(p, p->xt.v[p->xt.n - 1]);
-            if (OUTER + half - room > right)
-                right = OUTER + half - room;
+            if (OUTER + half - room > p->mr)
+                p->mr = OUTER + half - room;
         }
     }
     return HY_OK;
@@ -566,28 +578,54 @@ static void draw_legend(const panel *p)
     }
 }
 
-static int draw_panel(const hy_canvas *cv, const hy_axes *ax, double fs, double cx, double cy,
-                      double cw, double ch, hy_error *err)
+static void draw_panel(panel *p)
 {
-    panel p;
-    memset(&p, 0, sizeof p);
-    p.ax = ax, p.cv = cv, p.fs = fs, p.xlog = ax->x.log, p.ylog = ax->y.log;
-    int st = axis_range(ax, 0, &p.xlo, &p.xhi, err);
-    if (!st)
-        st = axis_range(ax, 1, &p.ylo, &p.yhi, err);
-    if (!st)
-        st = panel_layout(&p, cx, cy, cw, ch, err);
-    if (st)
-        return st;
-    draw_band_grid(&p);
-    cv->ops->clip(cv->ctx, p.x0, p.y0, p.w, p.h);
-    for (size_t s = 0; s < ax->nseries; s++)
-        draw_series(&p, &ax->series[s]);
+    const hy_canvas *cv = p->cv;
+    draw_band_grid(p);
+    cv->ops->clip(cv->ctx, p->x0, p->y0, p->w, p->h);
+    for (size_t s = 0; s < p->ax->nseries; s++)
+        draw_series(p, &p->ax->series[s]);
     cv->ops->unclip(cv->ctx);
-    draw_annotations(&p);
-    draw_frame_ticks(&p);
-    draw_labels(&p);
-    draw_legend(&p);
+    draw_annotations(p);
+    draw_frame_ticks(p);
+    draw_labels(p);
+    draw_legend(p);
+}
+
+static double maxd(double a, double b) { return a > b ? a : b; }
+
+/* Lays out every panel alone, then gives panels in a column the same left and
+ * right margins and panels in a row the same top and bottom, so frames align. */
+static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
+{
+    for (int i = 0; i < rows * cols; i++) {
+        int st = axis_range(ps[i].ax, 0, &ps[i].xlo, &ps[i].xhi, err);
+        if (!st)
+            st = axis_range(ps[i].ax, 1, &ps[i].ylo, &ps[i].yhi, err);
+        if (!st)
+            st = panel_layout(&ps[i], err);
+        if (st) {
+            if (rows * cols > 1)
+                hy_error_prefix(err, "panel %d", i + 1);
+            return st;
+        }
+    }
+    for (int i = 0; i < rows * cols; i++) {
+        panel *p = &ps[i];
+        int r = i / cols, c = i % cols;
+        for (int k = 0; k < rows; k++)
+            p->ml = maxd(p->ml, ps[k * cols + c].ml), p->mr = maxd(p->mr, ps[k * cols + c].mr);
+        for (int k = 0; k < cols; k++)
+            p->mt = maxd(p->mt, ps[r * cols + k].mt), p->mb = maxd(p->mb, ps[r * cols + k].mb);
+    }
+    for (int i = 0; i < rows * cols; i++) {
+        int st = panel_frame(&ps[i], err);
+        if (st) {
+            if (rows * cols > 1)
+                hy_error_prefix(err, "panel %d", i + 1);
+            return st;
+        }
+    }
     return HY_OK;
 }
 
@@ -599,19 +637,25 @@ int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err)
     double fs = f->font_size > 0 ? f->font_size : 9.0;
     if (!f->axes)
         return hy_error_set(err, HY_EINVAL, "figure has no panels (axes is NULL)");
-    if (!isfinite(W) || !isfinite(H) || W > 1e5 || H > 1e5 || rows * cols > 64)
-        return hy_error_set(err, HY_EINVAL, "figure size %g x %g pt or %d x %d panels is not usable",
-                            W, H, rows, cols);
-    cv->ops->fill_rect(cv->ctx, 0, 0, W, H, (hy_rgb){1, 1, 1}, 1.0);
-    for (int r = 0; r < rows; r++)
-        for (int c = 0; c < cols; c++) {
-            int st = draw_panel(cv, &f->axes[r * cols + c], fs, c * W / cols, r * H / rows,
-                                W / cols, H / rows, err);
-            if (st) {
-                if (rows * cols > 1)
-                    hy_error_prefix(err, "panel %d", r * cols + c + 1);
-                return st;
-            }
-        }
-    return HY_OK;
+    if (!isfinite(W) || !isfinite(H) || W > 1e5 || H > 1e5 || rows * cols > 64 || !(fs < 1000))
+        return hy_error_set(err, HY_EINVAL, "figure size %g x %g pt, font %g pt or %d x %d panels "
+                            "is not usable", W, H, fs, rows, cols);
+    panel *ps = calloc((size_t)(rows * cols), sizeof *ps);
+    if (!ps)
+        return hy_error_set(err, HY_ENOMEM, "out of memory laying out %d panels", rows * cols);
+    for (int i = 0; i < rows * cols; i++) {
+        panel *p = &ps[i];
+        p->ax = &f->axes[i], p->cv = cv, p->fs = fs;
+        p->xlog = p->ax->x.log, p->ylog = p->ax->y.log;
+        p->cx = (i % cols) * W / cols, p->cy = (i / cols) * H / rows;
+        p->cw = W / cols, p->ch = H / rows;
+    }
+    int st = layout_grid(ps, rows, cols, err);
+    if (!st) {
+        cv->ops->fill_rect(cv->ctx, 0, 0, W, H, (hy_rgb){1, 1, 1}, 1.0);
+        for (int i = 0; i < rows * cols; i++)
+            draw_panel(&ps[i]);
+    }
+    free(ps);
+    return st;
 }

@@ -106,18 +106,26 @@ static const char *fig_loglog(hy_figure *fig)
     return "loglog";
 }
 
+/* Two stacked panels: the paper's labels as text, and a bimodal input with
+ * wider tick labels (the frames must still align). */
 static const char *fig_markup(hy_figure *fig)
 {
-    static hy_axes ax;
+    static hy_axes ax[2];
     static hy_text tx[6];
+    static hy_series s;
+    static double ut[6] = {0, 1, 1.8, 3.1, 4.6, 5.6}, uu[6] = {0, 1000, 200, 1500, 0, 1000};
     static const char *lab[6] = {"y^\\circ_u", "y^*_{u,k}(t)", "\\sigma_0 = 6", "\\psi_u(\\varrho)",
                                  "\\|y_\\gamma - y^*_u\\|_\\infty", "g(v)"};
     for (int i = 0; i < 6; i++)
         tx[i] = (hy_text){.x = 0.1 + 0.45 * (i % 2), .y = 2.6 - i / 2, .text = lab[i]};
-    ax = (hy_axes){.texts = tx, .ntexts = 6, .x = {.lo = 0, .hi = 1}, .y = {.lo = 0, .hi = 3},
-                   .xlabel = "u_{\\min,2} - u_{\\min,1}", .ylabel = "10^{-3}\\times F_s"};
-    *fig = (hy_figure){.width = hy_cm(8.0), .height = hy_cm(6.0), .dpi = 150, .font_size = 10,
-                       .axes = &ax, .nrows = 1, .ncols = 1};
+    s = (hy_series){.x = ut, .y = uu, .n = 6, .marker = HY_MARKER_CIRCLE, .marker_filled = 1,
+                    .colour = {.palette = 5}, .label = "u_{\\min,2} = 200"};
+    ax[0] = (hy_axes){.texts = tx, .ntexts = 6, .x = {.lo = 0, .hi = 1}, .y = {.lo = 0, .hi = 3},
+                      .xlabel = "u_{\\min,2} - u_{\\min,1}", .ylabel = "F_s"};
+    ax[1] = (hy_axes){.series = &s, .nseries = 1, .xlabel = "t", .ylabel = "u(t)",
+                      .legend = HY_LEGEND_BEST, .band = 1, .band_lo = 0.0, .band_hi = 4.6};
+    *fig = (hy_figure){.width = hy_cm(8.0), .height = hy_cm(10.0), .dpi = 150, .font_size = 10,
+                       .axes = ax, .nrows = 2, .ncols = 1};
     return "markup";
 }
 
