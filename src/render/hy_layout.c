@@ -52,7 +52,8 @@ static hy_rgb colour_of(hy_colour c)
 /* One panel being laid out: its frame in points and its axis mappings. */
 typedef struct panel {
     const hy_axes *ax;
-    const hy_canvas *cv;
+    const hy_canvas *cv;                 /* axes, text, legend; also measures */
+    const hy_canvas *dv;                 /* data: band, grid, series, marks */
     double fs;
     double x0, y0, w, h;
     double xlo, xhi, ylo, yhi;
@@ -299,7 +300,7 @@ static void draw_marker(const hy_canvas *cv, int marker, double x, double y, dou
 
 static void draw_series(const panel *p, const hy_series *s)
 {
-    const hy_canvas *cv = p->cv;
+    const hy_canvas *cv = p->dv;
     double dash[4], lw = s->width > 0 ? s->width : 1.0;
     hy_pen pen = series_pen(s, dash);
     double xa = p->x0 - 2 * lw, xb = p->x0 + p->w + 2 * lw;
@@ -343,7 +344,7 @@ static void draw_series(const panel *p, const hy_series *s)
 static void draw_band_grid(const panel *p)
 {
     const hy_axes *ax = p->ax;
-    const hy_canvas *cv = p->cv;
+    const hy_canvas *cv = p->dv;
     if (ax->band && usable(ax->band_lo, p->xlog) && usable(ax->band_hi, p->xlog)) {
         double a = map_x(p, ax->band_lo), b = map_x(p, ax->band_hi);
         if (a > b) {
@@ -455,7 +456,7 @@ static void draw_labels(const panel *p)
     }
 }
 
-static void draw_annotations(const panel *p)
+static void draw_marks(const panel *p)
 {
     const hy_axes *ax = p->ax;
     for (size_t i = 0; i < ax->nmarks; i++) {
@@ -464,9 +465,14 @@ static void draw_annotations(const panel *p)
             continue;
         double x = map_x(p, m->x), y = map_y(p, m->y);
         if (x >= p->x0 - 1 && x <= p->x0 + p->w + 1 && y >= p->y0 - 1 && y <= p->y0 + p->h + 1)
-            draw_marker(p->cv, m->marker ? m->marker : HY_MARKER_CIRCLE, x, y,
+            draw_marker(p->dv, m->marker ? m->marker : HY_MARKER_CIRCLE, x, y,
                         m->size > 0 ? m->size : 5.0, colour_of(m->colour), m->filled);
     }
+}
+
+static void draw_texts(const panel *p)
+{
+    const hy_axes *ax = p->ax;
     for (size_t i = 0; i < ax->ntexts; i++) {
         const hy_text *t = &ax->texts[i];
         hy_markup_box b;
@@ -578,15 +584,20 @@ static void draw_legend(const panel *p)
     }
 }
 
-static void draw_panel(panel *p)
+static void draw_panel_data(const panel *p)
 {
-    const hy_canvas *cv = p->cv;
+    const hy_canvas *dv = p->dv;
     draw_band_grid(p);
-    cv->ops->clip(cv->ctx, p->x0, p->y0, p->w, p->h);
+    dv->ops->clip(dv->ctx, p->x0, p->y0, p->w, p->h);
     for (size_t s = 0; s < p->ax->nseries; s++)
         draw_series(p, &p->ax->series[s]);
-    cv->ops->unclip(cv->ctx);
-    draw_annotations(p);
+    dv->ops->unclip(dv->ctx);
+    draw_marks(p);
+}
+
+static void draw_panel_overlay(const panel *p)
+{
+    draw_texts(p);
     draw_frame_ticks(p);
     draw_labels(p);
     draw_legend(p);
@@ -629,7 +640,8 @@ static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
     return HY_OK;
 }
 
-int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err)
+int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *cv,
+                          hy_error *err)
 {
     double W, H, dpi;
     hy__figure_size(f, &W, &H, &dpi);
@@ -645,17 +657,28 @@ int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err)
         return hy_error_set(err, HY_ENOMEM, "out of memory laying out %d panels", rows * cols);
     for (int i = 0; i < rows * cols; i++) {
         panel *p = &ps[i];
-        p->ax = &f->axes[i], p->cv = cv, p->fs = fs;
+        p->ax = &f->axes[i], p->cv = cv, p->dv = data ? data : cv, p->fs = fs;
         p->xlog = p->ax->x.log, p->ylog = p->ax->y.log;
         p->cx = (i % cols) * W / cols, p->cy = (i / cols) * H / rows;
         p->cw = W / cols, p->ch = H / rows;
     }
     int st = layout_grid(ps, rows, cols, err);
     if (!st) {
-        cv->ops->fill_rect(cv->ctx, 0, 0, W, H, (hy_rgb){1, 1, 1}, 1.0);
-        for (int i = 0; i < rows * cols; i++)
-            draw_panel(&ps[i]);
+        const hy_canvas *dv = data ? data : cv;
+        dv->ops->fill_rect(dv->ctx, 0, 0, W, H, (hy_rgb){1, 1, 1}, 1.0);
+        for (int i = 0; i < rows * cols; i++) {
+            draw_panel_data(&ps[i]);
+            if (dv == cv)
+                draw_panel_overlay(&ps[i]);
+        }
+        for (int i = 0; dv != cv && i < rows * cols; i++)
+            draw_panel_overlay(&ps[i]);
     }
     free(ps);
     return st;
+}
+
+int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err)
+{
+    return hy_figure_draw_layers(f, cv, cv, err);
 }

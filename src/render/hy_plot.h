@@ -117,6 +117,12 @@ int hy_pt_to_px(double pt, double dpi); /* rounded, at least 1 */
  * HY_EINVAL with a message for an invalid figure (no panels, bad range). */
 int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err);
 
+/* As hy_figure_draw, but the white background, shaded bands, grid, series and
+ * marks go to data (e.g. an OpenGL canvas) and text, frame, ticks, labels and
+ * legend to overlay (e.g. cairo), which also measures text.  data may be NULL. */
+int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *overlay,
+                          hy_error *err);
+
 /* Renders f as HY_FORMAT_SVG, _PDF or _PNG into path, through a temporary
  * file in the same directory renamed on success: on failure (HY_EIO with the
  * path in the message, HY_EINVAL, HY_ENOMEM) no file is left behind.

@@ -29,7 +29,7 @@ typedef struct rec {
     double clip[4];
     int white_rects;
     double legend[4];            /* the last white rectangle after the background */
-    int moves, lines;
+    int moves, lines, texts, clips;
 } rec;
 
 static void note_point(rec *r, double x, double y)
@@ -70,6 +70,7 @@ static void r_text(void *c, double x, double y, const char *s, double sz, int it
 {
     rec *r = c;
     hy_text_extents e;
+    r->texts++;
     r->inner.ops->measure(r->inner.ctx, s, sz, it, &e);
     double x0, x1, y0, y1;   /* box of the run: advance x (0.78 / 0.24 em) */
     if (v)
@@ -91,6 +92,7 @@ static void r_clip(void *c, double x, double y, double w, double h)
 {
     rec *r = c;
     r->clipped = 1;
+    r->clips++;
     r->clip[0] = x, r->clip[1] = y, r->clip[2] = w, r->clip[3] = h;
     r->inner.ops->clip(r->inner.ctx, x, y, w, h);
 }
@@ -176,6 +178,31 @@ int main(void)
     fig.axes = &la;
     fig.width = 20;
     CHECK(draw(&fig, &r) == HY_EINVAL, "a 20 pt wide figure accepted");
+
+    /* Layers: data (series, marks) and overlay (text, axes) go to separate canvases. */
+    {
+        hy_figure lf;
+        fig_build(1, &lf);
+        rec a, b;
+        cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 10, 10);
+        cairo_t *cra = cairo_create(img), *crb = cairo_create(img);
+        hy_cairo_canvas ca, cb;
+        memset(&a, 0, sizeof a);
+        memset(&b, 0, sizeof b);
+        a.inner = hy_canvas_cairo(&ca, cra, "DejaVu Sans");
+        b.inner = hy_canvas_cairo(&cb, crb, "DejaVu Sans");
+        a.W = b.W = lf.width, a.H = b.H = lf.height;
+        hy_canvas ov = {&rec_ops, &a}, dv = {&rec_ops, &b};
+        hy_error err;
+        CHECK(hy_figure_draw_layers(&lf, &dv, &ov, &err) == 0, "layers failed");
+        CHECK(b.texts == 0 && a.texts > 0, "text on the data layer (%d) or none on the overlay (%d)",
+              b.texts, a.texts);
+        CHECK(b.clips == 1 && a.clips == 0, "series clip on the wrong layer (data %d, overlay %d)",
+              b.clips, a.clips);
+        cairo_destroy(cra);
+        cairo_destroy(crb);
+        cairo_surface_destroy(img);
+    }
 
     cairo_debug_reset_static_data();
     printf("%s\n", fails ? "FAILED" : "ok");
