@@ -170,11 +170,13 @@ int hy_ticks_fit(double lo, double hi, int log_scale, double length, double gap,
         if (labels_fit(t, lo, hi, log_scale, length, gap, measure, ctx))
             return HY_OK;
     }
-    /* Nothing fits: keep only the extreme ticks. */
+    /* Nothing fits: keep the extreme ticks, or only the first if even they collide. */
     if (t->n > 2) {
         t->v[1] = t->v[t->n - 1];
         memcpy(t->label[1], t->label[t->n - 1], HY_TICK_LABEL);
         t->n = 2;
     }
+    if (t->n == 2 && !labels_fit(t, lo, hi, log_scale, length, gap, measure, ctx))
+        t->n = 1;
     return st;
 }

@@ -41,7 +41,8 @@ typedef double (*hy_ticks_measure_fn)(void *ctx, const char *label);
 
 /* Picks the largest tick count (<= max_target) whose labels, measured with
  * measure, are separated by at least gap points on an axis length points
- * long.  Always leaves at least the two extreme ticks when possible. */
+ * long.  When no count fits it keeps the two extreme ticks, or one if
+ * even those collide.  Returns HY_EINVAL for an empty or unusable range. */
 int hy_ticks_fit(double lo, double hi, int log_scale, double length, double gap,
                  int max_target, hy_ticks_measure_fn measure, void *ctx, hy_ticks *t);
 

@@ -111,6 +111,8 @@ int main(void)
     CHECK(t.n >= 5, "0..1 on 200 pt got only %d ticks", t.n);
     hy_ticks_fit(0, 1, 0, 60, 4.0, 10, fake_width, &(double){30.0}, &t);
     CHECK(t.n <= 2, "labels 90 pt wide on a 60 pt axis: %d ticks", t.n);
+    hy_ticks_fit(0, 1, 0, 30, 4.0, 10, fake_width, &(double){30.0}, &t);
+    CHECK(t.n == 1, "labels 90 pt wide on a 30 pt axis: %d ticks, want 1", t.n);
 
     printf("%s\n", fails ? "FAILED" : "ok");
     return fails ? 1 : 0;
