@@ -441,12 +441,13 @@ static void draw_labels(const panel *p)
     hy_markup_box b;
     if (ax->xlabel && *ax->xlabel) {
         hy_markup_text(cv, ax->xlabel, p->fs, 0, 0, 0, 0, black, &b);
-        double base = p->y0 + p->h + PAD + p->xtick_h + GAP + b.ascent;
+        /* At the bottom of the (row-aligned) margin, so labels of a row line up. */
+        double base = p->y0 + p->h + p->mb - OUTER - b.descent;
         hy_markup_text(cv, ax->xlabel, p->fs, 1, 0, p->x0 + 0.5 * (p->w - b.width), base, black, NULL);
     }
     if (ax->ylabel && *ax->ylabel) {
         hy_markup_text(cv, ax->ylabel, p->fs, 0, 1, 0, 0, black, &b);
-        double base = p->x0 - PAD - p->ytick_w - GAP - b.descent;
+        double base = p->x0 - p->ml + OUTER + b.ascent;   /* column-aligned */
         hy_markup_text(cv, ax->ylabel, p->fs, 1, 1, base, p->y0 + 0.5 * (p->h + b.width), black, NULL);
     }
     if (ax->title && *ax->title) {
