@@ -120,6 +120,9 @@ static int axis_range(const hy_axes *ax, int axis, double *lo, double *hi, hy_er
         return HY_OK;
     }
     double a = tr(*lo, lg), b = tr(*hi, lg);
+    if (!isfinite(b - a) || !isfinite(1.1 * (b - a)))
+        return hy_error_set(err, HY_EINVAL, "%s-axis data range [%g, %g] is too wide to plot; "
+                            "set explicit limits", axis ? "y" : "x", *lo, *hi);
     if (b - a < 1e-12 * (fabs(a) + fabs(b)) || b == a) {
         double d = lg ? 0.5 : (a != 0.0 ? 0.1 * fabs(a) : 1.0);
         a -= d;

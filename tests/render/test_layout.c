@@ -175,6 +175,13 @@ int main(void)
     hy_axes bad = {.series = &diag, .nseries = 1, .x = {.lo = -1, .hi = 1, .log = 1}};
     fig.axes = &bad;
     CHECK(draw(&fig, &r) == HY_EINVAL, "log axis with a negative limit accepted");
+    static double huge[2] = {-1.7e308, 1.7e308}, tiny[2] = {1e-300, 3e-300};
+    hy_series hs = {.x = tiny, .y = huge, .n = 2};
+    hy_axes ha = {.series = &hs, .nseries = 1};
+    fig.axes = &ha;
+    CHECK(draw(&fig, &r) == HY_EINVAL, "a y range of 3.4e308 accepted");
+    hs.y = tiny;
+    CHECK(draw(&fig, &r) == 0 && r.text_outside == 0, "a range of 2e-300 failed");
     fig.axes = &la;
     fig.width = 20;
     CHECK(draw(&fig, &r) == HY_EINVAL, "a 20 pt wide figure accepted");
