@@ -521,31 +521,16 @@ static size_t points_inside(const panel *p, double rx, double ry, double rw, dou
     return count;
 }
 
-static void draw_legend(const panel *p)
+/* Top-left corner of a bw x bh legend box for the panel's legend setting. */
+static void legend_place(const panel *p, double bw, double bh, double *x, double *y)
 {
-    const hy_axes *ax = p->ax;
-    const hy_canvas *cv = p->cv;
-    const double sample = 22.0, pad = 4.0, inset = 5.0;
-    double maxw = 0.0, rowh = 1.25 * p->fs;
-    size_t rows = 0;
-    for (size_t s = 0; s < ax->nseries; s++) {
-        hy_markup_box b;
-        if (!ax->series[s].label)
-            continue;
-        hy_markup_text(cv, ax->series[s].label, p->fs, 0, 0, 0, 0, hy_palette[0], &b);
-        maxw = b.width > maxw ? b.width : maxw;
-        rowh = b.ascent + b.descent + 1.0 > rowh ? b.ascent + b.descent + 1.0 : rowh;
-        rows++;
-    }
-    if (!rows || ax->legend == HY_LEGEND_NONE)
-        return;
-    double bw = 2 * pad + sample + 5.0 + maxw, bh = 2 * pad + rows * rowh - 0.25 * p->fs;
+    const double inset = 5.0;
     double left = p->x0 + inset, right = p->x0 + p->w - inset - bw;
     double top = p->y0 + inset, bottom = p->y0 + p->h - inset - bh;
     /* Candidates in preference order: top-right, top-left, bottom-right, bottom-left. */
     double cx[4] = {right, left, right, left}, cy[4] = {top, top, bottom, bottom};
     int pick = 0;
-    switch (ax->legend) {
+    switch (p->ax->legend) {
     case HY_LEGEND_TOP_LEFT: pick = 1; break;
     case HY_LEGEND_BOTTOM_RIGHT: pick = 2; break;
     case HY_LEGEND_BOTTOM_LEFT: pick = 3; break;
@@ -560,7 +545,30 @@ static void draw_legend(const panel *p)
     }
     default: break;
     }
-    double x = cx[pick], y = cy[pick];
+    *x = cx[pick];
+    *y = cy[pick];
+}
+
+static void draw_legend(const panel *p)
+{
+    const hy_axes *ax = p->ax;
+    const hy_canvas *cv = p->cv;
+    const double sample = 22.0, pad = 4.0;
+    double maxw = 0.0, rowh = 1.25 * p->fs, x, y;
+    size_t rows = 0;
+    for (size_t s = 0; s < ax->nseries; s++) {
+        hy_markup_box b;
+        if (!ax->series[s].label)
+            continue;
+        hy_markup_text(cv, ax->series[s].label, p->fs, 0, 0, 0, 0, hy_palette[0], &b);
+        maxw = b.width > maxw ? b.width : maxw;
+        rowh = b.ascent + b.descent + 1.0 > rowh ? b.ascent + b.descent + 1.0 : rowh;
+        rows++;
+    }
+    if (!rows || ax->legend == HY_LEGEND_NONE)
+        return;
+    double bw = 2 * pad + sample + 5.0 + maxw, bh = 2 * pad + rows * rowh - 0.25 * p->fs;
+    legend_place(p, bw, bh, &x, &y);
     cv->ops->fill_rect(cv->ctx, x, y, bw, bh, (hy_rgb){1, 1, 1}, 1.0);
     hy_pen frame = {{0.55, 0.55, 0.55}, 1.0, 0.5, NULL, 0, 0};
     cv->ops->begin_path(cv->ctx);
