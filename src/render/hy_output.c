@@ -233,7 +233,7 @@ int hy_figure_write(const hy_figure *f, const char *path, int format, hy_error *
     if (!tmp)
         return hy_error_set(err, HY_ENOMEM, "out of memory writing '%s'", path);
     memcpy(tmp, path, n);
-    memcpy(tmp + n, ".tmp-XXXXXX", 12);
+    memcpy(tmp + n, ".tmp.XXXXXX", 12);  /* matches the *.tmp.* ignore rule */
     int fd = mkstemp(tmp);
     if (fd < 0) {
         int e = errno;
