@@ -128,7 +128,7 @@ static int axis_range(const hy_axes *ax, int axis, double *lo, double *hi, hy_er
         a -= d;
         b += d;
     } else {
-        double pad = 0.04 * (b - a);
+        double pad = r->tight ? 0.0 : 0.04 * (b - a);
         a -= pad;
         b += pad;
     }

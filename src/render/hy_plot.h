@@ -77,10 +77,12 @@ typedef struct hy_text {
     hy_colour colour;
 } hy_text;
 
-/* Axis range: explicit when lo < hi, else automatic from the data. */
+/* Axis range: explicit when lo < hi, else automatic from the data, padded by
+ * 4 % of the span on each side unless tight (e.g. time axes). */
 typedef struct hy_range {
     double lo, hi;
     int log;                  /* logarithmic scale (data <= 0 is skipped) */
+    int tight;                /* automatic limits exactly at the data's extremes */
 } hy_range;
 
 typedef struct hy_axes {

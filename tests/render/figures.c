@@ -37,7 +37,7 @@ static const char *fig_gamma(hy_figure *fig)
     for (int i = 0; i < 4; i++)
         s[i] = (hy_series){.x = t, .y = y[i], .n = N, .style = sty[i], .colour = {.palette = col[i]},
                            .width = i == 3 ? 1.2 : 1.0, .label = lab[i]};
-    ax = (hy_axes){.series = s, .nseries = 4, .xlabel = "t", .ylabel = "y_\\gamma(t)",
+    ax = (hy_axes){.series = s, .nseries = 4, .xlabel = "t", .ylabel = "y_\\gamma(t)", .x = {.tight = 1},
                    .legend = HY_LEGEND_BEST, .band = 1, .band_lo = 2.0, .band_hi = 4.0};
     *fig = (hy_figure){.width = hy_cm(8.5), .height = hy_cm(6.0), .dpi = 150, .axes = &ax,
                        .nrows = 1, .ncols = 1};
