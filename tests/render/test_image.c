@@ -87,8 +87,26 @@ done:
     return rc;
 }
 
+/* DejaVu Sans digits advance 1303/2048 em; another font means fontconfig substituted. */
+static int have_dejavu(void)
+{
+    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 4, 4);
+    cairo_t *cr = cairo_create(img);
+    cairo_text_extents_t te;
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, 100.0);
+    cairo_text_extents(cr, "0123456789", &te);
+    cairo_destroy(cr);
+    cairo_surface_destroy(img);
+    double want = 1000.0 * 1303.0 / 2048.0;
+    return te.x_advance > 0.99 * want && te.x_advance < 1.01 * want;
+}
+
 int main(void)
 {
+    if (!have_dejavu())
+        printf("warning: the font \"DejaVu Sans\" is not installed (Debian: fonts-dejavu-core); "
+               "text will differ from the references\n");
     const char *upd = getenv("HY_UPDATE_REFERENCE");
     int update = upd && !strcmp(upd, "1"), fails = 0;
     for (int i = 0; i < FIG_COUNT; i++) {
