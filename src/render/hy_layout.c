@@ -1,0 +1,696 @@
+/* hy_layout.c: plot layout (ranges, ticks, margins, legend placement, clipping) drawn through a hy_canvas. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hy_markup.h"
+#include "hy_plot.h"
+#include "hy_plot_private.h"
+#include "hy_ticks.h"
+
+const hy_rgb hy_palette[HY_PALETTE_SIZE] = {
+    {0.000, 0.000, 0.000}, {0.902, 0.624, 0.000}, {0.337, 0.706, 0.914},
+    {0.000, 0.620, 0.451}, {0.941, 0.894, 0.259}, {0.000, 0.447, 0.698},
+    {0.835, 0.369, 0.000}, {0.800, 0.475, 0.655},
+};
+
+#define TICK_LEN 3.5   /* major tick length, points, drawn inward */
+#define PAD 3.0        /* tick label to frame */
+#define GAP 4.0        /* tick labels to axis label */
+#define OUTER 3.0      /* figure edge */
+#define FRAME_W 0.6
+
+double hy_cm(double cm) { return cm * 72.0 / 2.54; }
+double hy_in(double in) { return in * 72.0; }
+double hy_px(double px, double dpi) { return px * 72.0 / dpi; }
+
+int hy_pt_to_px(double pt, double dpi)
+{
+    long v = lround(pt * dpi / 72.0);
+    return v < 1 ? 1 : v > 100000 ? 100000 : (int)v;
+}
+
+void hy__figure_size(const hy_figure *f, double *width, double *height, double *dpi)
+{
+    *width = f->width > 0 ? f->width : hy_cm(8.0);
+    *height = f->height > 0 ? f->height : hy_cm(6.0);
+    *dpi = f->dpi > 0 ? f->dpi : 150.0;
+}
+
+const char *hy__figure_font(const hy_figure *f)
+{
+    return f->font && f->font[0] ? f->font : HY__DEFAULT_FONT;
+}
+
+static hy_rgb colour_of(hy_colour c)
+{
+    if (c.palette == HY_RGB_EXPLICIT)
+        return c.rgb;
+    return hy_palette[(c.palette < 0 ? -c.palette : c.palette) % HY_PALETTE_SIZE];
+}
+
+/* One panel being laid out: its frame in points and its axis mappings. */
+typedef struct panel {
+    const hy_axes *ax;
+    const hy_canvas *cv;                 /* axes, text, legend; also measures */
+    const hy_canvas *dv;                 /* data: band, grid, series, marks */
+    double fs;
+    double x0, y0, w, h;
+    double xlo, xhi, ylo, yhi;
+    int xlog, ylog;
+    hy_ticks xt, yt;
+    double ytick_w, xtick_h;
+    double cx, cy, cw, ch;               /* the grid cell */
+    double ml, mr, mt, mb;               /* margins: frame to cell edges */
+} panel;
+
+static double tr(double v, int log_scale) { return log_scale ? log10(v) : v; }
+
+static double map_x(const panel *p, double v)
+{
+    return p->x0 + (tr(v, p->xlog) - tr(p->xlo, p->xlog)) /
+                       (tr(p->xhi, p->xlog) - tr(p->xlo, p->xlog)) * p->w;
+}
+
+static double map_y(const panel *p, double v)
+{
+    return p->y0 + p->h - (tr(v, p->ylog) - tr(p->ylo, p->ylog)) /
+                              (tr(p->yhi, p->ylog) - tr(p->ylo, p->ylog)) * p->h;
+}
+
+static int usable(double v, int log_scale) { return isfinite(v) && (!log_scale || v > 0.0); }
+
+static void grow(double v, int log_scale, double *lo, double *hi)
+{
+    if (!usable(v, log_scale))
+        return;
+    if (v < *lo)
+        *lo = v;
+    if (v > *hi)
+        *hi = v;
+}
+
+/* Data range of one axis (0 = x, 1 = y) with 4 % padding, or the explicit limits. */
+static int axis_range(const hy_axes *ax, int axis, double *lo, double *hi, hy_error *err)
+{
+    const hy_range *r = axis ? &ax->y : &ax->x;
+    int lg = r->log;
+    if (r->lo < r->hi) {
+        if (!isfinite(r->lo) || !isfinite(r->hi) || (lg && r->lo <= 0.0))
+            return hy_error_set(err, HY_EINVAL, "%s-axis limits [%g, %g] are not usable%s",
+                                axis ? "y" : "x", r->lo, r->hi, lg ? " on a log scale" : "");
+        *lo = r->lo;
+        *hi = r->hi;
+        return HY_OK;
+    }
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (size_t s = 0; s < ax->nseries; s++) {
+        const hy_series *se = &ax->series[s];
+        const double *v = axis ? se->y : se->x;
+        for (size_t i = 0; v && i < se->n; i++)
+            if (usable(se->x ? se->x[i] : 0, ax->x.log) && usable(se->y ? se->y[i] : 0, ax->y.log))
+                grow(v[i], lg, lo, hi);
+    }
+    for (size_t m = 0; m < ax->nmarks; m++)
+        grow(axis ? ax->marks[m].y : ax->marks[m].x, lg, lo, hi);
+    if (!(*lo <= *hi)) {
+        *lo = lg ? 1.0 : 0.0;
+        *hi = lg ? 10.0 : 1.0;
+        return HY_OK;
+    }
+    double a = tr(*lo, lg), b = tr(*hi, lg);
+    if (!isfinite(b - a) || !isfinite(1.1 * (b - a)))
+        return hy_error_set(err, HY_EINVAL, "%s-axis data range [%g, %g] is too wide to plot; "
+                            "set explicit limits", axis ? "y" : "x", *lo, *hi);
+    if (b - a < 1e-12 * (fabs(a) + fabs(b)) || b == a) {
+        double d = lg ? 0.5 : (a != 0.0 ? 0.1 * fabs(a) : 1.0);
+        a -= d;
+        b += d;
+    } else {
+        double pad = r->tight ? 0.0 : 0.04 * (b - a);
+        a -= pad;
+        b += pad;
+    }
+    *lo = lg ? pow(10.0, a) : a;
+    *hi = lg ? pow(10.0, b) : b;
+    return HY_OK;
+}
+
+typedef struct measure_ctx {
+    const hy_canvas *cv;
+    double fs;
+    int horizontal;
+} measure_ctx;
+
+static double measure_label(void *ctx, const char *label)
+{
+    const measure_ctx *m = ctx;
+    hy_markup_box b;
+    hy_markup_text(m->cv, label, m->fs, 0, 0, 0, 0, hy_palette[0], &b);
+    return m->horizontal ? b.width : b.ascent + b.descent;
+}
+
+static double label_height(const hy_canvas *cv, const char *s, double fs, double *desc)
+{
+    hy_markup_box b = {0, 0, 0};
+    if (s && *s)
+        hy_markup_text(cv, s, fs, 0, 0, 0, 0, hy_palette[0], &b);
+    if (desc)
+        *desc = b.descent;
+    return s && *s ? b.ascent + b.descent : 0.0;
+}
+
+/* Ticks for both axes at the current frame size, and the extents of their labels. */
+static int panel_ticks(panel *p)
+{
+    measure_ctx mx = {p->cv, p->fs, 1}, my = {p->cv, p->fs, 0};
+    int st = hy_ticks_fit(p->xlo, p->xhi, p->xlog, p->w, 0.8 * p->fs, 10, measure_label, &mx, &p->xt);
+    if (!st)
+        st = hy_ticks_fit(p->ylo, p->yhi, p->ylog, p->h, 0.5 * p->fs, 10, measure_label, &my, &p->yt);
+    p->ytick_w = 0.0;
+    p->xtick_h = p->fs;
+    for (int i = 0; i < p->yt.n; i++) {
+        double w = measure_label(&mx, p->yt.label[i]);
+        if (w > p->ytick_w)
+            p->ytick_w = w;
+    }
+    for (int i = 0; i < p->xt.n; i++) {
+        double hgt = measure_label(&my, p->xt.label[i]);
+        if (hgt > p->xtick_h)
+            p->xtick_h = hgt;
+    }
+    return st;
+}
+
+/* Places the frame in the cell with the given margins and picks ticks for it. */
+static int panel_frame(panel *p, hy_error *err)
+{
+    p->x0 = p->cx + p->ml;
+    p->y0 = p->cy + p->mt;
+    p->w = p->cw - p->ml - p->mr;
+    p->h = p->ch - p->mt - p->mb;
+    if (p->w < 2.0 * p->fs || p->h < 2.0 * p->fs)
+        return hy_error_set(err, HY_EINVAL, "figure too small: a panel's plot area would be "
+                            "%.0f x %.0f pt", p->w, p->h);
+    if (panel_ticks(p))
+        return hy_error_set(err, HY_EINVAL, "cannot place ticks on the axis range");
+    return HY_OK;
+}
+
+/* Margins from measured labels, iterated to a fixed point (ticks depend on the frame size). */
+static int panel_layout(panel *p, hy_error *err)
+{
+    const hy_axes *ax = p->ax;
+    double ylab = label_height(p->cv, ax->ylabel, p->fs, NULL);
+    double xlab = label_height(p->cv, ax->xlabel, p->fs, NULL);
+    double ttl = label_height(p->cv, ax->title, p->fs, NULL);
+    p->ytick_w = 2.5 * p->fs;
+    p->xtick_h = p->fs;
+    p->mr = OUTER + 0.5 * p->fs;
+    for (int iter = 0; iter < 3; iter++) {
+        p->ml = OUTER + (ylab > 0 ? ylab + GAP : 0.0) + p->ytick_w + PAD;
+        p->mb = OUTER + (xlab > 0 ? xlab + GAP : 0.0) + p->xtick_h + PAD;
+        p->mt = OUTER + (ttl > 0 ? ttl + GAP : 0.5 * p->fs);
+        int st = panel_frame(p, err);
+        if (st)
+            return st;
+        /* The last x tick label may stick out on the right. */
+        p->mr = OUTER + 0.5 * p->fs;
+        if (p->xt.n > 0) {
+            measure_ctx mx = {p->cv, p->fs, 1};
+            double half = 0.5 * measure_label(&mx, p->xt.label[p->xt.n - 1]);
+            double room = p->x0 + p->w - map_x(p, p->xt.v[p->xt.n - 1]);
+            if (OUTER + half - room > p->mr)
+                p->mr = OUTER + half - room;
+        }
+    }
+    return HY_OK;
+}
+
+static void line(const hy_canvas *cv, double x1, double y1, double x2, double y2, const hy_pen *pen)
+{
+    cv->ops->begin_path(cv->ctx);
+    cv->ops->move_to(cv->ctx, x1, y1);
+    cv->ops->line_to(cv->ctx, x2, y2);
+    cv->ops->stroke(cv->ctx, pen);
+}
+
+/* Liang-Barsky: clips the segment to [xa,xb]x[ya,yb]; 0 if nothing is left. */
+static int clip_segment(double *x1, double *y1, double *x2, double *y2,
+                        double xa, double ya, double xb, double yb)
+{
+    double t0 = 0.0, t1 = 1.0, dx = *x2 - *x1, dy = *y2 - *y1;
+    double pq[4][2] = {{-dx, *x1 - xa}, {dx, xb - *x1}, {-dy, *y1 - ya}, {dy, yb - *y1}};
+    for (int i = 0; i < 4; i++) {
+        double pp = pq[i][0], q = pq[i][1];
+        if (pp == 0.0) {
+            if (q < 0.0)
+                return 0;
+            continue;
+        }
+        double r = q / pp;
+        if (pp < 0.0) {
+            if (r > t1)
+                return 0;
+            if (r > t0)
+                t0 = r;
+        } else {
+            if (r < t0)
+                return 0;
+            if (r < t1)
+                t1 = r;
+        }
+    }
+    double ox = *x1, oy = *y1;
+    *x1 = ox + t0 * dx;
+    *y1 = oy + t0 * dy;
+    *x2 = ox + t1 * dx;
+    *y2 = oy + t1 * dy;
+    return 1;
+}
+
+/* The pen of a series: width, colour and a dash pattern that survives greyscale. */
+static hy_pen series_pen(const hy_series *s, double dash[4])
+{
+    double w = s->width > 0 ? s->width : 1.0, k = w > 0.8 ? w : 0.8;
+    hy_pen pen = {colour_of(s->colour), 1.0, w, dash, 0, 0};
+    switch (s->style) {
+    case HY_LINE_DASHED:
+        dash[0] = 5.0 * k, dash[1] = 2.5 * k, pen.ndash = 2;
+        break;
+    case HY_LINE_DOTTED:
+        dash[0] = 0.0, dash[1] = 2.2 * k, pen.ndash = 2, pen.round_caps = 1;
+        break;
+    case HY_LINE_DASHDOT:
+        dash[0] = 5.0 * k, dash[1] = 2.4 * k, dash[2] = 0.0, dash[3] = 2.4 * k;
+        pen.ndash = 4, pen.round_caps = 1;
+        break;
+    default:
+        pen.dash = NULL;
+        break;
+    }
+    return pen;
+}
+
+static void draw_marker(const hy_canvas *cv, int marker, double x, double y, double size,
+                        hy_rgb c, int filled)
+{
+    hy_pen pen = {c, 1.0, 0.7, NULL, 0, 0};
+    int shape = marker == HY_MARKER_SQUARE ? HY_SHAPE_SQUARE : HY_SHAPE_CIRCLE;
+    cv->ops->marker(cv->ctx, shape, x, y, size, &pen, filled ? &c : NULL);
+}
+
+static void draw_series(const panel *p, const hy_series *s)
+{
+    const hy_canvas *cv = p->dv;
+    double dash[4], lw = s->width > 0 ? s->width : 1.0;
+    hy_pen pen = series_pen(s, dash);
+    double xa = p->x0 - 2 * lw, xb = p->x0 + p->w + 2 * lw;
+    double ya = p->y0 - 2 * lw, yb = p->y0 + p->h + 2 * lw;
+    if (s->style != HY_LINE_NONE && s->x && s->y) {
+        int have_prev = 0, open = 0;
+        double px = 0, py = 0, ex = NAN, ey = NAN;
+        cv->ops->begin_path(cv->ctx);
+        for (size_t i = 0; i < s->n; i++) {
+            if (!usable(s->x[i], p->xlog) || !usable(s->y[i], p->ylog)) {
+                have_prev = 0;
+                continue;
+            }
+            double x = map_x(p, s->x[i]), y = map_y(p, s->y[i]);
+            if (have_prev) {
+                double x1 = px, y1 = py, x2 = x, y2 = y;
+                if (clip_segment(&x1, &y1, &x2, &y2, xa, ya, xb, yb)) {
+                    if (!open || x1 != ex || y1 != ey)
+                        cv->ops->move_to(cv->ctx, x1, y1);
+                    cv->ops->line_to(cv->ctx, x2, y2);
+                    open = 1;
+                    ex = x2, ey = y2;
+                }
+            }
+            px = x, py = y, have_prev = 1;
+        }
+        cv->ops->stroke(cv->ctx, &pen);
+    }
+    if (s->marker != HY_MARKER_NONE && s->x && s->y) {
+        double ms = s->marker_size > 0 ? s->marker_size : 4.0;
+        for (size_t i = 0; i < s->n; i++) {
+            if (!usable(s->x[i], p->xlog) || !usable(s->y[i], p->ylog))
+                continue;
+            double x = map_x(p, s->x[i]), y = map_y(p, s->y[i]);
+            if (x >= xa && x <= xb && y >= ya && y <= yb)
+                draw_marker(cv, s->marker, x, y, ms, colour_of(s->colour), s->marker_filled);
+        }
+    }
+}
+
+static void draw_band_grid(const panel *p)
+{
+    const hy_axes *ax = p->ax;
+    const hy_canvas *cv = p->dv;
+    if (ax->band && usable(ax->band_lo, p->xlog) && usable(ax->band_hi, p->xlog)) {
+        double a = map_x(p, ax->band_lo), b = map_x(p, ax->band_hi);
+        if (a > b) {
+            double t = a;
+            a = b;
+            b = t;
+        }
+        a = a < p->x0 ? p->x0 : a;
+        b = b > p->x0 + p->w ? p->x0 + p->w : b;
+        if (b > a)
+            cv->ops->fill_rect(cv->ctx, a, p->y0, b - a, p->h, (hy_rgb){0.88, 0.88, 0.88}, 1.0);
+    }
+    if (!ax->grid)
+        return;
+    hy_pen pen = {{0.82, 0.82, 0.82}, 1.0, 0.4, NULL, 0, 0};
+    for (int i = 0; i < p->xt.n; i++) {
+        double x = map_x(p, p->xt.v[i]);
+        line(cv, x, p->y0, x, p->y0 + p->h, &pen);
+    }
+    for (int i = 0; i < p->yt.n; i++) {
+        double y = map_y(p, p->yt.v[i]);
+        line(cv, p->x0, y, p->x0 + p->w, y, &pen);
+    }
+}
+
+/* Minor log ticks at 2..9 x 10^k between lo and hi, on one axis. */
+static void draw_minor_log(const panel *p, int axis, const hy_pen *pen)
+{
+    double lo = axis ? p->ylo : p->xlo, hi = axis ? p->yhi : p->xhi;
+    hy_ticks *t = axis ? (hy_ticks *)&p->yt : (hy_ticks *)&p->xt;
+    if (t->step != 1.0)
+        return;   /* only when every decade is labelled */
+    for (int d = (int)floor(log10(lo)); d <= (int)ceil(log10(hi)); d++)
+        for (int m = 2; m <= 9; m++) {
+            double v = m * pow(10.0, d);
+            if (v < lo || v > hi)
+                continue;
+            if (axis) {
+                double y = map_y(p, v);
+                line(p->cv, p->x0, y, p->x0 + 0.55 * TICK_LEN, y, pen);
+                line(p->cv, p->x0 + p->w, y, p->x0 + p->w - 0.55 * TICK_LEN, y, pen);
+            } else {
+                double x = map_x(p, v);
+                line(p->cv, x, p->y0 + p->h, x, p->y0 + p->h - 0.55 * TICK_LEN, pen);
+                line(p->cv, x, p->y0, x, p->y0 + 0.55 * TICK_LEN, pen);
+            }
+        }
+}
+
+static void draw_frame_ticks(const panel *p)
+{
+    const hy_canvas *cv = p->cv;
+    hy_rgb black = hy_palette[0];
+    hy_pen pen = {black, 1.0, FRAME_W, NULL, 0, 0};
+    double x1 = p->x0 + p->w, y1 = p->y0 + p->h;
+    cv->ops->begin_path(cv->ctx);
+    cv->ops->move_to(cv->ctx, p->x0, p->y0);
+    cv->ops->line_to(cv->ctx, x1, p->y0);
+    cv->ops->line_to(cv->ctx, x1, y1);
+    cv->ops->line_to(cv->ctx, p->x0, y1);
+    cv->ops->line_to(cv->ctx, p->x0, p->y0);
+    cv->ops->stroke(cv->ctx, &pen);
+    for (int i = 0; i < p->xt.n; i++) {
+        double x = map_x(p, p->xt.v[i]);
+        hy_markup_box b;
+        line(cv, x, y1, x, y1 - TICK_LEN, &pen);
+        line(cv, x, p->y0, x, p->y0 + TICK_LEN, &pen);
+        hy_markup_text(cv, p->xt.label[i], p->fs, 0, 0, 0, 0, black, &b);
+        hy_markup_text(cv, p->xt.label[i], p->fs, 1, 0, x - 0.5 * b.width, y1 + PAD + b.ascent,
+                       black, NULL);
+    }
+    for (int i = 0; i < p->yt.n; i++) {
+        double y = map_y(p, p->yt.v[i]);
+        hy_markup_box b;
+        line(cv, p->x0, y, p->x0 + TICK_LEN, y, &pen);
+        line(cv, x1, y, x1 - TICK_LEN, y, &pen);
+        hy_markup_text(cv, p->yt.label[i], p->fs, 0, 0, 0, 0, black, &b);
+        hy_markup_text(cv, p->yt.label[i], p->fs, 1, 0, p->x0 - PAD - b.width, y + 0.36 * p->fs,
+                       black, NULL);
+    }
+    hy_pen minor = pen;
+    minor.width = 0.5;
+    if (p->xlog)
+        draw_minor_log(p, 0, &minor);
+    if (p->ylog)
+        draw_minor_log(p, 1, &minor);
+}
+
+static void draw_labels(const panel *p)
+{
+    const hy_axes *ax = p->ax;
+    const hy_canvas *cv = p->cv;
+    hy_rgb black = hy_palette[0];
+    hy_markup_box b;
+    if (ax->xlabel && *ax->xlabel) {
+        hy_markup_text(cv, ax->xlabel, p->fs, 0, 0, 0, 0, black, &b);
+        /* At the bottom of the (row-aligned) margin, so labels of a row line up. */
+        double base = p->y0 + p->h + p->mb - OUTER - b.descent;
+        hy_markup_text(cv, ax->xlabel, p->fs, 1, 0, p->x0 + 0.5 * (p->w - b.width), base, black, NULL);
+    }
+    if (ax->ylabel && *ax->ylabel) {
+        hy_markup_text(cv, ax->ylabel, p->fs, 0, 1, 0, 0, black, &b);
+        double base = p->x0 - p->ml + OUTER + b.ascent;   /* column-aligned */
+        hy_markup_text(cv, ax->ylabel, p->fs, 1, 1, base, p->y0 + 0.5 * (p->h + b.width), black, NULL);
+    }
+    if (ax->title && *ax->title) {
+        hy_markup_text(cv, ax->title, p->fs, 0, 0, 0, 0, black, &b);
+        hy_markup_text(cv, ax->title, p->fs, 1, 0, p->x0 + 0.5 * (p->w - b.width),
+                       p->y0 - GAP - b.descent, black, NULL);
+    }
+}
+
+static void draw_marks(const panel *p)
+{
+    const hy_axes *ax = p->ax;
+    for (size_t i = 0; i < ax->nmarks; i++) {
+        const hy_mark *m = &ax->marks[i];
+        if (!usable(m->x, p->xlog) || !usable(m->y, p->ylog))
+            continue;
+        double x = map_x(p, m->x), y = map_y(p, m->y);
+        if (x >= p->x0 - 1 && x <= p->x0 + p->w + 1 && y >= p->y0 - 1 && y <= p->y0 + p->h + 1)
+            draw_marker(p->dv, m->marker ? m->marker : HY_MARKER_CIRCLE, x, y,
+                        m->size > 0 ? m->size : 5.0, colour_of(m->colour), m->filled);
+    }
+}
+
+static void draw_texts(const panel *p)
+{
+    const hy_axes *ax = p->ax;
+    for (size_t i = 0; i < ax->ntexts; i++) {
+        const hy_text *t = &ax->texts[i];
+        hy_markup_box b;
+        if (!t->text || !usable(t->x, p->xlog) || !usable(t->y, p->ylog))
+            continue;
+        hy_markup_text(p->cv, t->text, p->fs, 0, 0, 0, 0, hy_palette[0], &b);
+        double x = map_x(p, t->x) + t->dx - 0.5 * t->anchor * b.width;
+        hy_markup_text(p->cv, t->text, p->fs, 1, 0, x, map_y(p, t->y) - t->dy,
+                       colour_of(t->colour), NULL);
+    }
+}
+
+/* Number of data points (and points along long segments) inside a rectangle. */
+static size_t points_inside(const panel *p, double rx, double ry, double rw, double rh)
+{
+    size_t count = 0;
+    for (size_t s = 0; s < p->ax->nseries; s++) {
+        const hy_series *se = &p->ax->series[s];
+        double px = NAN, py = NAN;
+        for (size_t i = 0; se->x && se->y && i < se->n; i++) {
+            if (!usable(se->x[i], p->xlog) || !usable(se->y[i], p->ylog)) {
+                px = NAN;
+                continue;
+            }
+            double x = map_x(p, se->x[i]), y = map_y(p, se->y[i]);
+            int k = 1;
+            if (isfinite(px) && se->style != HY_LINE_NONE) {
+                double len = hypot(x - px, y - py);
+                k = len > 3.0 ? (int)(len / 3.0) + 1 : 1;
+                if (k > 400)
+                    k = 400;
+            }
+            for (int j = 1; j <= k; j++) {
+                double f = (double)j / k;
+                double qx = isfinite(px) ? px + f * (x - px) : x;
+                double qy = isfinite(px) ? py + f * (y - py) : y;
+                count += qx >= rx && qx <= rx + rw && qy >= ry && qy <= ry + rh;
+            }
+            px = x, py = y;
+        }
+    }
+    return count;
+}
+
+/* Top-left corner of a bw x bh legend box for the panel's legend setting. */
+static void legend_place(const panel *p, double bw, double bh, double *x, double *y)
+{
+    const double inset = 5.0;
+    double left = p->x0 + inset, right = p->x0 + p->w - inset - bw;
+    double top = p->y0 + inset, bottom = p->y0 + p->h - inset - bh;
+    /* Candidates in preference order: top-right, top-left, bottom-right, bottom-left. */
+    double cx[4] = {right, left, right, left}, cy[4] = {top, top, bottom, bottom};
+    int pick = 0;
+    switch (p->ax->legend) {
+    case HY_LEGEND_TOP_LEFT: pick = 1; break;
+    case HY_LEGEND_BOTTOM_RIGHT: pick = 2; break;
+    case HY_LEGEND_BOTTOM_LEFT: pick = 3; break;
+    case HY_LEGEND_BEST: {
+        size_t best = (size_t)-1;
+        for (int c = 0; c < 4; c++) {
+            size_t n = points_inside(p, cx[c] - 2, cy[c] - 2, bw + 4, bh + 4);
+            if (n < best)
+                best = n, pick = c;
+        }
+        break;
+    }
+    default: break;
+    }
+    *x = cx[pick];
+    *y = cy[pick];
+}
+
+static void draw_legend(const panel *p)
+{
+    const hy_axes *ax = p->ax;
+    const hy_canvas *cv = p->cv;
+    const double sample = 22.0, pad = 4.0;
+    double maxw = 0.0, rowh = 1.25 * p->fs, x, y;
+    size_t rows = 0;
+    for (size_t s = 0; s < ax->nseries; s++) {
+        hy_markup_box b;
+        if (!ax->series[s].label)
+            continue;
+        hy_markup_text(cv, ax->series[s].label, p->fs, 0, 0, 0, 0, hy_palette[0], &b);
+        maxw = b.width > maxw ? b.width : maxw;
+        rowh = b.ascent + b.descent + 1.0 > rowh ? b.ascent + b.descent + 1.0 : rowh;
+        rows++;
+    }
+    if (!rows || ax->legend == HY_LEGEND_NONE)
+        return;
+    double bw = 2 * pad + sample + 5.0 + maxw, bh = 2 * pad + rows * rowh - 0.25 * p->fs;
+    legend_place(p, bw, bh, &x, &y);
+    cv->ops->fill_rect(cv->ctx, x, y, bw, bh, (hy_rgb){1, 1, 1}, 1.0);
+    hy_pen frame = {{0.55, 0.55, 0.55}, 1.0, 0.5, NULL, 0, 0};
+    cv->ops->begin_path(cv->ctx);
+    cv->ops->move_to(cv->ctx, x, y);
+    cv->ops->line_to(cv->ctx, x + bw, y);
+    cv->ops->line_to(cv->ctx, x + bw, y + bh);
+    cv->ops->line_to(cv->ctx, x, y + bh);
+    cv->ops->line_to(cv->ctx, x, y);
+    cv->ops->stroke(cv->ctx, &frame);
+    double row_y = y + pad + 0.5 * rowh - 0.125 * p->fs;
+    for (size_t s = 0; s < ax->nseries; s++) {
+        const hy_series *se = &ax->series[s];
+        if (!se->label)
+            continue;
+        double dash[4];
+        hy_pen pen = series_pen(se, dash);
+        if (se->style != HY_LINE_NONE)
+            line(cv, x + pad, row_y, x + pad + sample, row_y, &pen);
+        if (se->marker != HY_MARKER_NONE)
+            draw_marker(cv, se->marker, x + pad + 0.5 * sample, row_y,
+                        se->marker_size > 0 ? se->marker_size : 4.0, pen.colour, se->marker_filled);
+        hy_markup_text(cv, se->label, p->fs, 1, 0, x + pad + sample + 5.0, row_y + 0.36 * p->fs,
+                       hy_palette[0], NULL);
+        row_y += rowh;
+    }
+}
+
+static void draw_panel_data(const panel *p)
+{
+    const hy_canvas *dv = p->dv;
+    draw_band_grid(p);
+    dv->ops->clip(dv->ctx, p->x0, p->y0, p->w, p->h);
+    for (size_t s = 0; s < p->ax->nseries; s++)
+        draw_series(p, &p->ax->series[s]);
+    dv->ops->unclip(dv->ctx);
+    draw_marks(p);
+}
+
+static void draw_panel_overlay(const panel *p)
+{
+    draw_texts(p);
+    draw_frame_ticks(p);
+    draw_labels(p);
+    draw_legend(p);
+}
+
+static double maxd(double a, double b) { return a > b ? a : b; }
+
+/* Lays out every panel alone, then gives panels in a column the same left and
+ * right margins and panels in a row the same top and bottom, so frames align. */
+static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
+{
+    for (int i = 0; i < rows * cols; i++) {
+        int st = axis_range(ps[i].ax, 0, &ps[i].xlo, &ps[i].xhi, err);
+        if (!st)
+            st = axis_range(ps[i].ax, 1, &ps[i].ylo, &ps[i].yhi, err);
+        if (!st)
+            st = panel_layout(&ps[i], err);
+        if (st) {
+            if (rows * cols > 1)
+                hy_error_prefix(err, "panel %d", i + 1);
+            return st;
+        }
+    }
+    for (int i = 0; i < rows * cols; i++) {
+        panel *p = &ps[i];
+        int r = i / cols, c = i % cols;
+        for (int k = 0; k < rows; k++)
+            p->ml = maxd(p->ml, ps[k * cols + c].ml), p->mr = maxd(p->mr, ps[k * cols + c].mr);
+        for (int k = 0; k < cols; k++)
+            p->mt = maxd(p->mt, ps[r * cols + k].mt), p->mb = maxd(p->mb, ps[r * cols + k].mb);
+    }
+    for (int i = 0; i < rows * cols; i++) {
+        int st = panel_frame(&ps[i], err);
+        if (st) {
+            if (rows * cols > 1)
+                hy_error_prefix(err, "panel %d", i + 1);
+            return st;
+        }
+    }
+    return HY_OK;
+}
+
+int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *cv,
+                          hy_error *err)
+{
+    double W, H, dpi;
+    hy__figure_size(f, &W, &H, &dpi);
+    int rows = f->nrows > 0 ? f->nrows : 1, cols = f->ncols > 0 ? f->ncols : 1;
+    double fs = f->font_size > 0 ? f->font_size : 9.0;
+    if (!f->axes)
+        return hy_error_set(err, HY_EINVAL, "figure has no panels (axes is NULL)");
+    if (!isfinite(W) || !isfinite(H) || W > 1e5 || H > 1e5 || rows * cols > 64 || !(fs < 1000))
+        return hy_error_set(err, HY_EINVAL, "figure size %g x %g pt, font %g pt or %d x %d panels "
+                            "is not usable", W, H, fs, rows, cols);
+    panel *ps = calloc((size_t)(rows * cols), sizeof *ps);
+    if (!ps)
+        return hy_error_set(err, HY_ENOMEM, "out of memory laying out %d panels", rows * cols);
+    for (int i = 0; i < rows * cols; i++) {
+        panel *p = &ps[i];
+        p->ax = &f->axes[i], p->cv = cv, p->dv = data ? data : cv, p->fs = fs;
+        p->xlog = p->ax->x.log, p->ylog = p->ax->y.log;
+        p->cx = (i % cols) * W / cols, p->cy = (i / cols) * H / rows;
+        p->cw = W / cols, p->ch = H / rows;
+    }
+    int st = layout_grid(ps, rows, cols, err);
+    if (!st) {
+        const hy_canvas *dv = data ? data : cv;
+        dv->ops->fill_rect(dv->ctx, 0, 0, W, H, (hy_rgb){1, 1, 1}, 1.0);
+        for (int i = 0; i < rows * cols; i++) {
+            draw_panel_data(&ps[i]);
+            if (dv == cv)
+                draw_panel_overlay(&ps[i]);
+        }
+        for (int i = 0; dv != cv && i < rows * cols; i++)
+            draw_panel_overlay(&ps[i]);
+    }
+    free(ps);
+    return st;
+}
+
+int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err)
+{
+    return hy_figure_draw_layers(f, cv, cv, err);
+}

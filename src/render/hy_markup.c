@@ -1,0 +1,287 @@
+/* hy_markup.c: TeX-subset label markup (Greek, scripts, symbols) parsed into runs and set on a hy_canvas. */
+#include "hy_markup.h"
+
+#include <string.h>
+
+typedef struct sym {
+    const char *name, *utf8;
+} sym;
+
+static const sym syms[] = {
+    {"alpha", "\xCE\xB1"}, {"beta", "\xCE\xB2"}, {"gamma", "\xCE\xB3"}, {"delta", "\xCE\xB4"},
+    {"epsilon", "\xCF\xB5"}, {"varepsilon", "\xCE\xB5"}, {"zeta", "\xCE\xB6"}, {"eta", "\xCE\xB7"},
+    {"theta", "\xCE\xB8"}, {"vartheta", "\xCF\x91"}, {"iota", "\xCE\xB9"}, {"kappa", "\xCE\xBA"},
+    {"lambda", "\xCE\xBB"}, {"mu", "\xCE\xBC"}, {"nu", "\xCE\xBD"}, {"xi", "\xCE\xBE"},
+    {"pi", "\xCF\x80"}, {"rho", "\xCF\x81"}, {"varrho", "\xCF\xB1"}, {"sigma", "\xCF\x83"},
+    {"tau", "\xCF\x84"}, {"upsilon", "\xCF\x85"}, {"phi", "\xCF\x95"}, {"varphi", "\xCF\x86"},
+    {"chi", "\xCF\x87"}, {"psi", "\xCF\x88"}, {"omega", "\xCF\x89"},
+    {"Gamma", "\xCE\x93"}, {"Delta", "\xCE\x94"}, {"Theta", "\xCE\x98"}, {"Lambda", "\xCE\x9B"},
+    {"Xi", "\xCE\x9E"}, {"Pi", "\xCE\xA0"}, {"Sigma", "\xCE\xA3"}, {"Phi", "\xCE\xA6"},
+    {"Psi", "\xCE\xA8"}, {"Omega", "\xCE\xA9"},
+    {"infty", "\xE2\x88\x9E"}, {"circ", "\xC2\xB0"}, {"cdot", "\xC2\xB7"}, {"times", "\xC3\x97"},
+    {"pm", "\xC2\xB1"}, {"le", "\xE2\x89\xA4"}, {"leq", "\xE2\x89\xA4"}, {"ge", "\xE2\x89\xA5"},
+    {"geq", "\xE2\x89\xA5"}, {"approx", "\xE2\x89\x88"}, {"to", "\xE2\x86\x92"},
+    {"rightarrow", "\xE2\x86\x92"}, {"partial", "\xE2\x88\x82"}, {"dots", "\xE2\x80\xA6"},
+    {"ldots", "\xE2\x80\xA6"}, {"in", "\xE2\x88\x88"}, {"quad", "\xE2\x80\x83"},
+    {"prime", "\xE2\x80\xB2"}, {"sim", "\xE2\x88\xBC"}, {"neq", "\xE2\x89\xA0"},
+};
+
+typedef struct parser {
+    const char *src, *p;
+    hy_mrun *runs;
+    size_t cap, n;
+    int upright;          /* inside \mathrm{...} */
+    int ngroups;
+    int last_group, last_script;  /* the script group just closed, for stacking */
+    hy_error *err;
+} parser;
+
+static int is_alpha(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
+
+/* Appends UTF-8 bytes with a style, merging with the previous run when possible. */
+static int emit(parser *ps, const char *s, size_t len, int script, int italic, int group)
+{
+    hy_mrun *r = ps->n ? &ps->runs[ps->n - 1] : NULL;
+    if (!r || r->script != script || r->italic != italic || r->group != group ||
+        strlen(r->text) + len >= HY_MRUN_BYTES) {
+        if (ps->n >= ps->cap)
+            return hy_error_set(ps->err, HY_EINVAL, "label \"%s\" has too many parts", ps->src);
+        r = &ps->runs[ps->n++];
+        r->text[0] = '\0';
+        r->script = script;
+        r->italic = italic;
+        r->group = group;
+    }
+    size_t m = strlen(r->text);
+    memcpy(r->text + m, s, len);
+    r->text[m + len] = '\0';
+    if (script == HY_SCRIPT_BASE)
+        ps->last_group = 0;
+    return HY_OK;
+}
+
+static int parse_seq(parser *ps, int script, int group, int in_brace);
+
+/* A backslash command at ps->p (pointing after the backslash). */
+static int parse_command(parser *ps, int script, int group)
+{
+    const char *p = ps->p;
+    if (!is_alpha(*p)) {
+        static const char esc[] = "_^{}\\$%&#";
+        ps->p = p + (*p ? 1 : 0);
+        if (*p == '|')
+            return emit(ps, "\xE2\x80\x96", 3, script, 0, group);
+        if (*p == ',')
+            return emit(ps, "\xE2\x80\x89", 3, script, 0, group);
+        if (*p == ';' || *p == ':' || *p == ' ')
+            return emit(ps, " ", 1, script, 0, group);
+        if (*p && strchr(esc, *p))
+            return emit(ps, p, 1, script, 0, group);
+        return hy_error_set(ps->err, HY_EINVAL, "label \"%s\": unknown command '\\%c'", ps->src,
+                            *p ? *p : ' ');
+    }
+    size_t len = 0;
+    while (is_alpha(p[len]))
+        len++;
+    ps->p = p + len;
+    if ((len == 6 && !strncmp(p, "mathrm", 6)) || (len == 4 && !strncmp(p, "text", 4)) ||
+        (len == 2 && !strncmp(p, "rm", 2))) {
+        int saved = ps->upright;
+        ps->upright = 1;
+        int st = HY_OK;
+        if (*ps->p == '{') {
+            ps->p++;
+            st = parse_seq(ps, script, group, 1);
+            ps->upright = saved;
+        }
+        return st;
+    }
+    static const char *const ops[] = {"min", "max", "sin", "cos", "tan", "exp", "log", "ln",
+                                      "sup", "inf", "lim", "arg", "det", "sgn", "sign"};
+    for (size_t i = 0; i < sizeof ops / sizeof ops[0]; i++)
+        if (strlen(ops[i]) == len && !strncmp(ops[i], p, len))
+            return emit(ps, p, len, script, 0, group);   /* operator names: upright */
+    for (size_t i = 0; i < sizeof syms / sizeof syms[0]; i++)
+        if (strlen(syms[i].name) == len && !strncmp(syms[i].name, p, len))
+            return emit(ps, syms[i].utf8, strlen(syms[i].utf8), script, 0, group);
+    return hy_error_set(ps->err, HY_EINVAL, "label \"%s\": unknown command '\\%.*s'", ps->src,
+                        (int)len, p);
+}
+
+/* One ordinary character (UTF-8 sequence) at ps->p. */
+static int parse_char(parser *ps, int script, int group)
+{
+    const char *p = ps->p;
+    unsigned char c = (unsigned char)*p;
+    size_t len = c < 0x80 ? 1 : c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC0 ? 2 : 1;
+    for (size_t i = 1; i < len; i++)
+        if (!p[i]) {
+            len = i;
+            break;
+        }
+    ps->p = p + len;
+    int prev_alpha = p > ps->src && is_alpha(p[-1]);
+    int next_alpha = is_alpha(p[1]);
+    if (len == 1 && is_alpha(*p))
+        return emit(ps, p, 1, script, !ps->upright && !prev_alpha && !next_alpha, group);
+    if (*p == '-' && !(prev_alpha && next_alpha))
+        return emit(ps, "\xE2\x88\x92", 3, script, 0, group);
+    return emit(ps, p, len, script, 0, group);
+}
+
+/* One sub/superscript argument: a braced group, a command or a character. */
+static int parse_script(parser *ps, int base_script, char kind)
+{
+    int s = kind == '^' ? HY_SCRIPT_SUP : HY_SCRIPT_SUB;
+    int group;
+    if (base_script != HY_SCRIPT_BASE) {
+        s = base_script;          /* nested script: kept at the script level */
+        group = ps->n ? ps->runs[ps->n - 1].group : 0;
+    } else if (ps->last_group && ps->last_script != s) {
+        group = ps->last_group;   /* y^a_b: stack on the same base */
+    } else {
+        group = ++ps->ngroups;
+    }
+    ps->p++;
+    while (*ps->p == ' ')
+        ps->p++;
+    int st;
+    if (*ps->p == '{') {
+        ps->p++;
+        st = parse_seq(ps, s, group, 1);
+    } else if (*ps->p == '\\') {
+        ps->p++;
+        st = parse_command(ps, s, group);
+    } else if (*ps->p) {
+        st = parse_char(ps, s, group);
+    } else {
+        return hy_error_set(ps->err, HY_EINVAL, "label \"%s\": '%c' at the end has no argument",
+                            ps->src, kind);
+    }
+    if (base_script == HY_SCRIPT_BASE && st == HY_OK) {
+        /* A second script stacks only on a group holding one kind so far. */
+        ps->last_group = ps->last_group == group ? 0 : group;
+        ps->last_script = s;
+    }
+    return st;
+}
+
+static int parse_seq(parser *ps, int script, int group, int in_brace)
+{
+    while (*ps->p) {
+        char c = *ps->p;
+        int st = HY_OK;
+        if (c == '}') {
+            if (!in_brace)
+                return hy_error_set(ps->err, HY_EINVAL, "label \"%s\": unbalanced '}'", ps->src);
+            ps->p++;
+            return HY_OK;
+        } else if (c == '{') {
+            ps->p++;
+            st = parse_seq(ps, script, group, 1);
+        } else if (c == '^' || c == '_') {
+            st = parse_script(ps, script, c);
+        } else if (c == '\\') {
+            ps->p++;
+            st = parse_command(ps, script, group);
+        } else if (c == '$') {
+            ps->p++;
+        } else {
+            st = parse_char(ps, script, group);
+        }
+        if (st)
+            return st;
+    }
+    if (in_brace)
+        return hy_error_set(ps->err, HY_EINVAL, "label \"%s\": missing '}'", ps->src);
+    return HY_OK;
+}
+
+int hy_markup_parse(const char *src, hy_mrun *runs, size_t cap, size_t *n, hy_error *err)
+{
+    parser ps = {.src = src ? src : "", .p = src ? src : "", .runs = runs, .cap = cap, .err = err};
+    int st = parse_seq(&ps, HY_SCRIPT_BASE, 0, 0);
+    *n = ps.n;
+    return st;
+}
+
+typedef struct group_state {
+    int id;
+    double x0, sup_w, sub_w;
+} group_state;
+
+static double run_shift(int script, double size)
+{
+    return script == HY_SCRIPT_SUP ? -0.38 * size : script == HY_SCRIPT_SUB ? 0.22 * size : 0.0;
+}
+
+void hy_markup_layout(const hy_canvas *cv, const hy_mrun *runs, size_t n, double size,
+                      int draw, int vertical, double x, double y, hy_rgb colour,
+                      hy_markup_box *box)
+{
+    double pen = 0.0, asc = 0.78 * size, desc = 0.24 * size;
+    group_state g = {0, 0, 0, 0};
+    int prev_italic = 0;
+    for (size_t i = 0; i < n; i++) {
+        const hy_mrun *r = &runs[i];
+        double rs = r->script == HY_SCRIPT_BASE ? size : 0.7 * size;
+        double off = run_shift(r->script, size), at;
+        hy_text_extents ext;
+        cv->ops->measure(cv->ctx, r->text, rs, r->italic, &ext);
+        if (r->group != g.id) {          /* close the previous group, open a new one */
+            if (g.id)
+                pen = g.x0 + (g.sup_w > g.sub_w ? g.sup_w : g.sub_w);
+            g.id = r->group;
+            g.x0 = pen + (r->group && prev_italic ? 0.06 * size : 0.0);
+            g.sup_w = g.sub_w = 0.0;
+        }
+        if (r->group) {
+            double *w = r->script == HY_SCRIPT_SUP ? &g.sup_w : &g.sub_w;
+            at = g.x0 + *w;
+            *w += ext.advance;
+        } else {
+            at = pen;
+            pen += ext.advance;
+            prev_italic = r->italic;
+        }
+        if (draw) {
+            double px = vertical ? x + off : x + at, py = vertical ? y - at : y + off;
+            cv->ops->text(cv->ctx, px, py, r->text, rs, r->italic, vertical, colour);
+        }
+        if (0.78 * rs - off > asc)
+            asc = 0.78 * rs - off;
+        if (0.24 * rs + off > desc)
+            desc = 0.24 * rs + off;
+    }
+    if (g.id)
+        pen = g.x0 + (g.sup_w > g.sub_w ? g.sup_w : g.sub_w);
+    if (box) {
+        box->width = pen;
+        box->ascent = asc;
+        box->descent = desc;
+    }
+}
+
+void hy_markup_text(const hy_canvas *cv, const char *src, double size, int draw,
+                    int vertical, double x, double y, hy_rgb colour, hy_markup_box *box)
+{
+    hy_mrun runs[HY_MARKUP_MAX];
+    size_t n = 0;
+    if (hy_markup_parse(src, runs, HY_MARKUP_MAX, &n, NULL)) {
+        n = 0;   /* draw the label verbatim, in as many plain runs as it needs */
+        for (const char *p = src ? src : ""; *p && n < HY_MARKUP_MAX; n++) {
+            size_t k = strlen(p) < HY_MRUN_BYTES - 1 ? strlen(p) : HY_MRUN_BYTES - 1;
+            while (k > 0 && ((unsigned char)p[k] & 0xC0) == 0x80)
+                k--;   /* do not split a UTF-8 sequence */
+            memcpy(runs[n].text, p, k);
+            runs[n].text[k] = '\0';
+            runs[n].script = HY_SCRIPT_BASE;
+            runs[n].italic = runs[n].group = 0;
+            p += k;
+        }
+    }
+    hy_markup_layout(cv, runs, n, size, draw, vertical, x, y, colour, box);
+}

@@ -1,0 +1,264 @@
+/* hy_output.c: figure output to SVG, PDF (cairo) and PNG (libpng), written atomically via temp file + rename. */
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <errno.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "hy_cairo.h"
+#include "hy_plot.h"
+#include "hy_plot_private.h"
+
+/* Sink for cairo's stream surfaces; remembers the first write error.  With
+ * buf set it collects the bytes in memory instead (SVG, renumbered later). */
+typedef struct sink {
+    FILE *fp;
+    int err;   /* errno of the first failure, 0 if none */
+    unsigned char *buf;
+    size_t len, cap;
+    int buffered;
+} sink;
+
+static cairo_status_t sink_write(void *closure, const unsigned char *data, unsigned int len)
+{
+    sink *s = closure;
+    if (s->err)
+        return CAIRO_STATUS_WRITE_ERROR;
+    if (s->buffered) {
+        if (s->len + len > s->cap) {
+            size_t cap = s->cap ? 2 * s->cap : 65536;
+            while (cap < s->len + len)
+                cap *= 2;
+            unsigned char *nb = realloc(s->buf, cap);
+            if (!nb) {
+                s->err = ENOMEM;
+                return CAIRO_STATUS_NO_MEMORY;
+            }
+            s->buf = nb;
+            s->cap = cap;
+        }
+        memcpy(s->buf + s->len, data, len);
+        s->len += len;
+        return CAIRO_STATUS_SUCCESS;
+    }
+    if (fwrite(data, 1, len, s->fp) != len) {
+        s->err = errno ? errno : EIO;
+        return CAIRO_STATUS_WRITE_ERROR;
+    }
+    return CAIRO_STATUS_SUCCESS;
+}
+
+/* cairo numbers SVG surfaces ("surface123") with a process-wide counter;
+ * renumber them by first appearance so the bytes depend only on the figure. */
+static int svg_flush_renumbered(sink *s)
+{
+    static const char key[] = "surface";
+    long seen[64];
+    int nseen = 0;
+    size_t i = 0, k = sizeof key - 1;
+    while (i < s->len) {
+        if (i + k < s->len && !memcmp(s->buf + i, key, k) && s->buf[i + k] >= '0' && s->buf[i + k] <= '9') {
+            size_t j = i + k;
+            long v = 0;
+            while (j < s->len && s->buf[j] >= '0' && s->buf[j] <= '9' && v < 100000000L)
+                v = v * 10 + (s->buf[j++] - '0');
+            int id = 0;
+            while (id < nseen && seen[id] != v)
+                id++;
+            if (id == nseen && nseen < 64)
+                seen[nseen++] = v;
+            if (fprintf(s->fp, "%s%d", key, id + 1) < 0)
+                return errno ? errno : EIO;
+            i = j;
+            continue;
+        }
+        size_t start = i++;
+        while (i < s->len && s->buf[i] != 's')
+            i++;
+        if (fwrite(s->buf + start, 1, i - start, s->fp) != i - start)
+            return errno ? errno : EIO;
+    }
+    return 0;
+}
+
+static int draw_on(cairo_surface_t *surf, const hy_figure *f, double scale, hy_error *err)
+{
+    cairo_t *cr = cairo_create(surf);
+    hy_cairo_canvas cc;
+    hy_canvas cv = hy_canvas_cairo(&cc, cr, hy__figure_font(f));
+    if (scale != 1.0)
+        cairo_scale(cr, scale, scale);
+    int st = hy_figure_draw(f, &cv, err);
+    cairo_status_t cs = cairo_status(cr);
+    cairo_destroy(cr);
+    if (!st && cs != CAIRO_STATUS_SUCCESS)
+        st = hy_error_set(err, cs == CAIRO_STATUS_NO_MEMORY ? HY_ENOMEM : HY_EIO,
+                          "cairo failed while drawing: %s", cairo_status_to_string(cs));
+    return st;
+}
+
+static int write_vector(const hy_figure *f, int format, sink *sk, hy_error *err)
+{
+    double W, H, dpi;
+    hy__figure_size(f, &W, &H, &dpi);
+    cairo_surface_t *surf;
+    sk->buffered = format == HY_FORMAT_SVG;
+    if (format == HY_FORMAT_SVG) {
+        surf = cairo_svg_surface_create_for_stream(sink_write, sk, W, H);
+        cairo_svg_surface_set_document_unit(surf, CAIRO_SVG_UNIT_PT);
+    } else {
+        surf = cairo_pdf_surface_create_for_stream(sink_write, sk, W, H);
+        cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATOR, "hystviz");
+        cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
+    }
+    int st = draw_on(surf, f, 1.0, err);
+    cairo_surface_finish(surf);
+    cairo_status_t cs = cairo_surface_status(surf);
+    cairo_surface_destroy(surf);
+    if (!st && !sk->err && cs == CAIRO_STATUS_SUCCESS && sk->buffered)
+        sk->err = svg_flush_renumbered(sk);
+    free(sk->buf);
+    sk->buf = NULL;
+    if (!st && (cs != CAIRO_STATUS_SUCCESS || sk->err))
+        st = hy_error_set(err, HY_EIO, "%s", sk->err ? strerror(sk->err) : cairo_status_to_string(cs));
+    return st;
+}
+
+static void png_fail(png_structp png, png_const_charp msg)
+{
+    (void)msg;
+    png_longjmp(png, 1);
+}
+
+static void png_sink(png_structp png, png_bytep data, size_t len)
+{
+    sink *s = png_get_io_ptr(png);
+    if (!s->err && fwrite(data, 1, len, s->fp) != len)
+        s->err = errno ? errno : EIO;
+    if (s->err)
+        png_error(png, "write failed");
+}
+
+static void png_flush_fn(png_structp png) { (void)png; }
+
+/* Writes an opaque ARGB32 image as 8-bit RGB with its resolution (pHYs). */
+static int png_encode(cairo_surface_t *img, double dpi, sink *sk, hy_error *err)
+{
+    int w = cairo_image_surface_get_width(img), h = cairo_image_surface_get_height(img);
+    int stride = cairo_image_surface_get_stride(img);
+    unsigned char *data = cairo_image_surface_get_data(img);
+    unsigned char *row = malloc((size_t)w * 3);
+    if (!row)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for a %d-pixel PNG row", w);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, png_fail, NULL);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!info) {
+        png_destroy_write_struct(&png, NULL);
+        free(row);
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the PNG encoder");
+    }
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        free(row);
+        return hy_error_set(err, HY_EIO, "%s", sk->err ? strerror(sk->err) : "PNG encoding failed");
+    }
+    png_set_write_fn(png, sk, png_sink, png_flush_fn);
+    png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_uint_32 ppm = (png_uint_32)(dpi / 0.0254 + 0.5);
+    png_set_pHYs(png, info, ppm, ppm, PNG_RESOLUTION_METER);
+    png_write_info(png, info);
+    for (int y = 0; y < h; y++) {
+        const uint32_t *src = (const uint32_t *)(const void *)(data + (size_t)y * stride);
+        for (int x = 0; x < w; x++) {
+            row[3 * x] = (unsigned char)(src[x] >> 16);
+            row[3 * x + 1] = (unsigned char)(src[x] >> 8);
+            row[3 * x + 2] = (unsigned char)src[x];
+        }
+        png_write_row(png, row);
+    }
+    png_write_end(png, info);
+    png_destroy_write_struct(&png, &info);
+    free(row);
+    return HY_OK;
+}
+
+static int write_png(const hy_figure *f, sink *sk, hy_error *err)
+{
+    double W, H, dpi;
+    hy__figure_size(f, &W, &H, &dpi);
+    int pw = hy_pt_to_px(W, dpi), ph = hy_pt_to_px(H, dpi);
+    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, pw, ph);
+    if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
+        cairo_surface_destroy(img);
+        return hy_error_set(err, HY_ENOMEM, "cannot allocate a %d x %d image", pw, ph);
+    }
+    int st = draw_on(img, f, dpi / 72.0, err);
+    cairo_surface_flush(img);
+    if (!st)
+        st = png_encode(img, dpi, sk, err);
+    cairo_surface_destroy(img);
+    return st;
+}
+
+int hy_format_from_path(const char *path)
+{
+    const char *dot = path ? strrchr(path, '.') : NULL;
+    if (!dot)
+        return -1;
+    if (!strcmp(dot, ".svg"))
+        return HY_FORMAT_SVG;
+    if (!strcmp(dot, ".pdf"))
+        return HY_FORMAT_PDF;
+    if (!strcmp(dot, ".png"))
+        return HY_FORMAT_PNG;
+    return -1;
+}
+
+int hy_figure_write(const hy_figure *f, const char *path, int format, hy_error *err)
+{
+    if (!f || !path || !*path)
+        return hy_error_set(err, HY_EINVAL, "hy_figure_write needs a figure and a path");
+    if (format < HY_FORMAT_SVG || format > HY_FORMAT_PNG)
+        return hy_error_set(err, HY_EINVAL, "cannot write '%s': unknown format %d", path, format);
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 16);
+    if (!tmp)
+        return hy_error_set(err, HY_ENOMEM, "out of memory writing '%s'", path);
+    memcpy(tmp, path, n);
+    memcpy(tmp + n, ".tmp.XXXXXX", 12);  /* matches the *.tmp.* ignore rule */
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        int e = errno;
+        free(tmp);
+        return hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, strerror(e));
+    }
+    fchmod(fd, 0644);
+    sink sk = {fdopen(fd, "wb"), 0, NULL, 0, 0, 0};
+    int st;
+    if (!sk.fp) {
+        close(fd);
+        st = hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, strerror(errno));
+    } else {
+        st = format == HY_FORMAT_PNG ? write_png(f, &sk, err) : write_vector(f, format, &sk, err);
+        if (fflush(sk.fp) != 0 && !st)
+            st = hy_error_set(err, HY_EIO, "%s", strerror(errno));
+        if (fclose(sk.fp) != 0 && !st)
+            st = hy_error_set(err, HY_EIO, "%s", strerror(errno));
+        if (!st && rename(tmp, path) != 0)
+            st = hy_error_set(err, HY_EIO, "renaming the temporary file: %s", strerror(errno));
+        if (st)
+            hy_error_prefix(err, "cannot write '%s'", path);
+    }
+    if (st)
+        unlink(tmp);
+    free(tmp);
+    return st;
+}

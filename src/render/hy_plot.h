@@ -1,0 +1,137 @@
+/* hy_plot.h: figure description (pure data) and figure output.
+ *
+ * A figure is a grid of panels (hy_axes); each panel holds series (lines
+ * and/or markers), point marks, text labels and an optional shaded x-band.
+ * Everything is plain data borrowed by pointer: the caller owns the arrays
+ * and strings, which must outlive the call that draws them.  Sizes are in
+ * points (1/72 in); zero fields take sensible defaults, so a zero-initialised
+ * struct plus data is a valid figure.  Labels are markup (hy_markup.h).
+ *
+ *     hy_series s = { .x = t, .y = y, .n = n, .style = HY_LINE_DASHED,
+ *                     .colour = { .palette = 1 }, .label = "\\gamma = 10" };
+ *     hy_axes ax = { .series = &s, .nseries = 1, .xlabel = "t",
+ *                    .ylabel = "y_\\gamma(t)", .legend = HY_LEGEND_BEST };
+ *     hy_figure fig = { .width = hy_cm(8), .height = hy_cm(6), .dpi = 300,
+ *                       .axes = &ax, .nrows = 1, .ncols = 1 };
+ *     hy_error err;
+ *     if (hy_figure_write(&fig, "fig7.pdf", HY_FORMAT_PDF, &err)) puts(err.msg);
+ *
+ * Output needs the "DejaVu Sans" font (Debian/Ubuntu: fonts-dejavu-core).
+ */
+#ifndef HY_PLOT_H
+#define HY_PLOT_H
+
+#include <stddef.h>
+
+#include "hy_canvas.h"
+#include "hy_status.h"
+
+enum { HY_LINE_SOLID = 0, HY_LINE_DASHED, HY_LINE_DOTTED, HY_LINE_DASHDOT, HY_LINE_NONE };
+enum { HY_MARKER_NONE = 0, HY_MARKER_CIRCLE, HY_MARKER_SQUARE };
+enum { HY_LEGEND_NONE = 0, HY_LEGEND_BEST, HY_LEGEND_TOP_LEFT, HY_LEGEND_TOP_RIGHT,
+       HY_LEGEND_BOTTOM_LEFT, HY_LEGEND_BOTTOM_RIGHT };
+enum { HY_FORMAT_SVG = 0, HY_FORMAT_PDF, HY_FORMAT_PNG };
+/* Text anchor for hy_text: which point of the label sits at (x, y). */
+enum { HY_ANCHOR_LEFT = 0, HY_ANCHOR_CENTER, HY_ANCHOR_RIGHT };
+
+#define HY_PALETTE_SIZE 8
+#define HY_RGB_EXPLICIT (-1)
+
+/* Okabe-Ito palette: 0 black, 1 orange, 2 sky blue, 3 bluish green,
+ * 4 yellow, 5 blue, 6 vermillion, 7 reddish purple. */
+extern const hy_rgb hy_palette[HY_PALETTE_SIZE];
+
+/* palette >= 0 selects hy_palette[palette % 8]; HY_RGB_EXPLICIT uses rgb. */
+typedef struct hy_colour {
+    int palette;
+    hy_rgb rgb;
+} hy_colour;
+
+typedef struct hy_series {
+    const double *x, *y;      /* n points; non-finite points break the line */
+    size_t n;
+    int style;                /* HY_LINE_* */
+    hy_colour colour;
+    double width;             /* line width in points; 0 -> 1.0 */
+    int marker;               /* HY_MARKER_* drawn at every point */
+    double marker_size;       /* points; 0 -> 4 */
+    int marker_filled;
+    const char *label;        /* legend entry (markup) or NULL */
+} hy_series;
+
+/* A single marker at a data point. */
+typedef struct hy_mark {
+    double x, y;
+    int marker;               /* HY_MARKER_CIRCLE or HY_MARKER_SQUARE */
+    double size;              /* points; 0 -> 5 */
+    int filled;
+    hy_colour colour;
+} hy_mark;
+
+/* A text label anchored at a data point, shifted by (dx, dy) points (dy up). */
+typedef struct hy_text {
+    double x, y;
+    const char *text;         /* markup */
+    int anchor;               /* HY_ANCHOR_* (vertical: baseline) */
+    double dx, dy;
+    hy_colour colour;
+} hy_text;
+
+/* Axis range: explicit when lo < hi, else automatic from the data, padded by
+ * 4 % of the span on each side unless tight (e.g. time axes). */
+typedef struct hy_range {
+    double lo, hi;
+    int log;                  /* logarithmic scale (data <= 0 is skipped) */
+    int tight;                /* automatic limits exactly at the data's extremes */
+} hy_range;
+
+typedef struct hy_axes {
+    const hy_series *series;
+    size_t nseries;
+    const hy_mark *marks;
+    size_t nmarks;
+    const hy_text *texts;
+    size_t ntexts;
+    const char *xlabel, *ylabel, *title;  /* markup or NULL */
+    hy_range x, y;
+    int legend;               /* HY_LEGEND_* */
+    int grid;                 /* light grid lines at the ticks */
+    int band;                 /* shade band_lo <= x <= band_hi in light grey */
+    double band_lo, band_hi;
+} hy_axes;
+
+typedef struct hy_figure {
+    double width, height;     /* points; 0 -> 8 cm x 6 cm */
+    double dpi;               /* PNG resolution; 0 -> 150 */
+    const char *font;         /* NULL -> "DejaVu Sans" */
+    double font_size;         /* points; 0 -> 9 */
+    const hy_axes *axes;      /* nrows * ncols panels, row-major */
+    int nrows, ncols;         /* 0 -> 1 */
+} hy_figure;
+
+/* Unit helpers: lengths to points, and points to pixels at a resolution. */
+double hy_cm(double cm);
+double hy_in(double in);
+double hy_px(double px, double dpi);   /* px at dpi -> points */
+int hy_pt_to_px(double pt, double dpi); /* rounded, at least 1 */
+
+/* Draws the whole figure on cv (white background included).  Returns
+ * HY_EINVAL with a message for an invalid figure (no panels, bad range). */
+int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err);
+
+/* As hy_figure_draw, but the white background, shaded bands, grid, series and
+ * marks go to data (e.g. an OpenGL canvas) and text, frame, ticks, labels and
+ * legend to overlay (e.g. cairo), which also measures text.  data may be NULL. */
+int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *overlay,
+                          hy_error *err);
+
+/* Renders f as HY_FORMAT_SVG, _PDF or _PNG into path, through a temporary
+ * file in the same directory renamed on success: on failure (HY_EIO with the
+ * path in the message, HY_EINVAL, HY_ENOMEM) no file is left behind.
+ * Output bytes depend only on f (fixed PDF dates, no timestamps). */
+int hy_figure_write(const hy_figure *f, const char *path, int format, hy_error *err);
+
+/* Format from a file name's extension (.svg .pdf .png), or -1. */
+int hy_format_from_path(const char *path);
+
+#endif

@@ -1,0 +1,108 @@
+/* test_markup.c: markup parser token sequences for the paper's labels, errors, and script layout. */
+#include <stdio.h>
+#include <string.h>
+
+#include "hy_markup.h"
+
+static int fails;
+
+/* Renders runs as "text/script/italic/group" joined by spaces. */
+static void describe(const hy_mrun *r, size_t n, char *out, size_t cap)
+{
+    static const char sc[] = "BPB";
+    out[0] = '\0';
+    for (size_t i = 0; i < n; i++) {
+        char one[4096];
+        snprintf(one, sizeof one, "%s[%s|%c%s|%d]", i ? " " : "", r[i].text,
+                 r[i].script == HY_SCRIPT_SUB ? 'b' : sc[r[i].script], r[i].italic ? "i" : "",
+                 r[i].group);
+        strncat(out, one, cap - strlen(out) - 1);
+    }
+}
+
+static void expect(const char *src, const char *want)
+{
+    hy_mrun r[HY_MARKUP_MAX];
+    size_t n;
+    hy_error err;
+    char got[2048];
+    if (hy_markup_parse(src, r, HY_MARKUP_MAX, &n, &err)) {
+        printf("FAIL \"%s\": %s\n", src, err.msg);
+        fails++;
+        return;
+    }
+    describe(r, n, got, sizeof got);
+    if (strcmp(got, want)) {
+        printf("FAIL \"%s\"\n  got  %s\n  want %s\n", src, got, want);
+        fails++;
+    }
+}
+
+static void expect_error(const char *src, const char *needle)
+{
+    hy_mrun r[HY_MARKUP_MAX];
+    size_t n;
+    hy_error err = {0, ""};
+    if (!hy_markup_parse(src, r, HY_MARKUP_MAX, &n, &err) || !strstr(err.msg, needle)) {
+        printf("FAIL \"%s\" should fail mentioning \"%s\" (got \"%s\")\n", src, needle, err.msg);
+        fails++;
+    }
+}
+
+/* A fake backend: every byte advances 0.5 em; text calls are counted. */
+static int ntext;
+static void f_measure(void *ctx, const char *s, double size, int italic, hy_text_extents *e)
+{
+    (void)ctx, (void)italic;
+    memset(e, 0, sizeof *e);
+    e->advance = 0.5 * size * (double)strlen(s);
+}
+static void f_text(void *ctx, double x, double y, const char *s, double size, int it, int v, hy_rgb c)
+{
+    (void)ctx, (void)x, (void)y, (void)s, (void)size, (void)it, (void)v, (void)c;
+    ntext++;
+}
+static const hy_canvas_ops fake_ops = {.name = "fake", .measure = f_measure, .text = f_text};
+
+int main(void)
+{
+    /* U+00B0 degree, U+03B3 gamma, U+03C3 sigma, U+03C8 psi, U+03F1 varrho, U+2016, U+2212, U+221E */
+    expect("y^\\circ_u", "[y|Bi|0] [\xC2\xB0|P|1] [u|bi|1]");
+    expect("y^*_{u,k}(t)", "[y|Bi|0] [*|P|1] [u|bi|1] [,|b|1] [k|bi|1] [(|B|0] [t|Bi|0] [)|B|0]");
+    expect("\\sigma_0 = 6", "[\xCF\x83|B|0] [0|b|1] [ = 6|B|0]");
+    expect("\\psi_u(\\varrho)", "[\xCF\x88|B|0] [u|bi|1] [(\xCF\xB1)|B|0]");
+    expect("\\|y_\\gamma - y^*_u\\|_\\infty",
+           "[\xE2\x80\x96|B|0] [y|Bi|0] [\xCE\xB3|b|1] [ \xE2\x88\x92 |B|0] [y|Bi|0] [*|P|2] [u|bi|2] "
+           "[\xE2\x80\x96|B|0] [\xE2\x88\x9E|b|3]");
+    expect("g(v)", "[g|Bi|0] [(|B|0] [v|Bi|0] [)|B|0]");
+    expect("$\\sigma_0$", "[\xCF\x83|B|0] [0|b|1]");
+    expect("area = 0.123", "[area = 0.123|B|0]");
+    expect("Bouc-Wen", "[Bouc-Wen|B|0]");
+    expect("10^{-3}\\times F_s", "[10|B|0] [\xE2\x88\x92" "3|P|1] [\xC3\x97 |B|0] [F|Bi|0] [s|bi|2]");
+    expect("u_{\\min,2}", "[u|Bi|0] [min,2|b|1]");
+    expect("x_a^b_c", "[x|Bi|0] [a|bi|1] [b|Pi|1] [c|bi|2]");
+    expect("\\mathrm{d}t", "[d|B|0] [t|Bi|0]");
+    expect_error("y_{u", "missing '}'");
+    expect_error("a}", "unbalanced");
+    expect_error("\\foo", "\\foo");
+    expect_error("x^", "no argument");
+
+    /* Layout: a stacked sup/sub takes the wider of the two, scripts at 70 %. */
+    hy_canvas cv = {&fake_ops, NULL};
+    hy_markup_box b;
+    hy_mrun r[HY_MARKUP_MAX];
+    size_t n;
+    hy_markup_parse("y^*_u", r, HY_MARKUP_MAX, &n, NULL);
+    hy_markup_layout(&cv, r, n, 10.0, 1, 0, 0, 0, (hy_rgb){0, 0, 0}, &b);
+    double want = 5.0 + 0.6 + 3.5; /* y, italic kern, max(*, u) at 7 pt */
+    if (b.width < want - 1e-9 || b.width > want + 1e-9 || ntext != 3) {
+        printf("FAIL layout y^*_u: width %g (want %g), %d text calls (want 3)\n", b.width, want, ntext);
+        fails++;
+    }
+    if (!(b.ascent > 7.8 && b.descent > 2.4)) {
+        printf("FAIL layout y^*_u: ascent %g descent %g do not include the scripts\n", b.ascent, b.descent);
+        fails++;
+    }
+    printf("%s\n", fails ? "FAILED" : "ok");
+    return fails ? 1 : 0;
+}
