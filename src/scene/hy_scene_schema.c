@@ -1,6 +1,7 @@
 /* hy_scene_schema.c: the scene vocabulary, one static table (models and inputs of seed 000, Sections 2-4). */
 #include "hy_scene_schema.h"
 
+#include <stdio.h>
 #include <string.h>
 
 /* NOLIM, POS and NONNEG stand for the three fields flags, min, max; K expands
@@ -81,7 +82,7 @@ static const hy_scene_key_spec compute_keys[] = {
     K("gamma", HY_KIND_NUMBER_LIST, NULL, POS, 1, 0, "1, 10, 100",
       "time scales gamma for y_gamma (Figs. 4, 7, 11)"),
     K("k", HY_KIND_INTEGER_LIST, NULL, NONNEG, 1, 0, "0, 1, 2, 3",
-      "periods k for y*_{u,k} (Figs. 8, 12, 13)"),
+      "periods k for `y*_{u,k}` (Figs. 8, 12, 13)"),
     K("cycles", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 100000, 0, 0, "1",
       "number of input periods simulated"),
     K("solver", HY_KIND_ENUM, solvers, NOLIM, 0, 0, "exact",
@@ -100,7 +101,7 @@ static const hy_scene_key_spec figure_keys[] = {
       "what the axes show: signals versus t, an output-versus-input loop, u(t), g(v), psi_u"),
     K("title", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"", "title above the axes (empty: none)"),
     K("xlabel", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
-      "x-axis label; TeX-like markup such as y^\\circ_u passes through (default: from kind)"),
+      "x-axis label; TeX-like markup such as `y^\\circ_u` passes through (default: from kind)"),
     K("ylabel", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "y-axis label (default: from kind)"),
     K("xlim", HY_KIND_LIMITS, NULL, NOLIM, 0, 0, "auto", "x-axis range, or auto"),
     K("ylim", HY_KIND_LIMITS, NULL, NOLIM, 0, 0, "auto", "y-axis range, or auto"),
@@ -210,4 +211,18 @@ const char *hy_scene_kind_name(hy_scene_kind kind)
     case HY_KIND_LIMITS: return "limits";
     }
     return "value";
+}
+
+void hy_scene_range_text(const hy_scene_key_spec *k, char *buf, size_t n)
+{
+    int lo = (k->flags & HY_SPEC_MIN) != 0, hi = (k->flags & HY_SPEC_MAX) != 0;
+    int lox = (k->flags & HY_SPEC_MIN_EXCL) != 0, hix = (k->flags & HY_SPEC_MAX_EXCL) != 0;
+    if (lo && hi)
+        snprintf(buf, n, "in %c%.15g, %.15g%c", lox ? '(' : '[', k->min, k->max, hix ? ')' : ']');
+    else if (lo)
+        snprintf(buf, n, "%s %.15g", lox ? ">" : ">=", k->min);
+    else if (hi)
+        snprintf(buf, n, "%s %.15g", hix ? "<" : "<=", k->max);
+    else if (n)
+        buf[0] = '\0';
 }

@@ -81,4 +81,8 @@ int hy_scene_schema_key(int sec, const char *key);
 /* Returns the human name of a kind ("number", "list of integers", ...). */
 const char *hy_scene_kind_name(hy_scene_kind kind);
 
+/* Writes the numeric range of k as text ("> 0", "in [36, 2400]", "in (0, 1]");
+ * an empty string if unbounded. */
+void hy_scene_range_text(const hy_scene_key_spec *k, char *buf, size_t n);
+
 #endif

@@ -221,21 +221,6 @@ static int strict_integer(const char *s, long *out)
     return 0;
 }
 
-/* Writes the spec's range as text ("> 0", "in [36, 2400]"); "" if unbounded. */
-static void range_text(const hy_scene_key_spec *k, char *buf, size_t n)
-{
-    int lo = (k->flags & HY_SPEC_MIN) != 0, hi = (k->flags & HY_SPEC_MAX) != 0;
-    int lox = (k->flags & HY_SPEC_MIN_EXCL) != 0, hix = (k->flags & HY_SPEC_MAX_EXCL) != 0;
-    if (lo && hi)
-        snprintf(buf, n, "in %c%g, %g%c", lox ? '(' : '[', k->min, k->max, hix ? ')' : ']');
-    else if (lo)
-        snprintf(buf, n, "%s %g", lox ? ">" : ">=", k->min);
-    else if (hi)
-        snprintf(buf, n, "%s %g", hix ? "<" : "<=", k->max);
-    else
-        buf[0] = '\0';
-}
-
 static int in_range(const hy_scene_key_spec *k, double v)
 {
     if (k->flags & HY_SPEC_MIN) {
@@ -254,7 +239,7 @@ static int check_range(vctx *c, const item *it, double v)
     if (in_range(c->spec, v))
         return HY_OK;
     char r[96];
-    range_text(c->spec, r, sizeof r);
+    hy_scene_range_text(c->spec, r, sizeof r);
     return fail(c, it->col, "'%s' in %s must be %s, got %s", c->spec->name, c->where, r,
                 it->text);
 }
