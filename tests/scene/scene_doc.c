@@ -132,11 +132,11 @@ static int check_examples(const char *doc, const char *path)
         const char *start = p + 10, *end = strstr(start, "\n```");
         if (!end)
             break;
-        int line = 2;
+        int line = 1;
         for (const char *q = doc; q < start; q++)
             line += *q == '\n';
         char name[600];
-        snprintf(name, sizeof name, "%s example at line %d", path, line);
+        snprintf(name, sizeof name, "%s (example from line %d)", path, line);
         hy_scene *s = NULL;
         hy_error err;
         if (hy_scene_parse_buffer(name, start, (size_t)(end - start) + 1, &s, &err)) {
