@@ -61,6 +61,9 @@ void hy__value_clear(hy__value *v);
 /* True if text at p starts a comment ('#' not opening a #rrggbb colour). */
 int hy__is_comment(const char *p, const char *end);
 
+/* Writes ch as it should appear in a message: itself if printable, else \xNN. */
+const char *hy__char_text(int ch, char buf[8]);
+
 /* Optimal-string-alignment edit distance (typos, transpositions). */
 size_t hy__edit_distance(const char *a, const char *b);
 

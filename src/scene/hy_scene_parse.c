@@ -200,6 +200,7 @@ static int parse_header(pctx *c, fstate *fs, const char *ls, const char *p, cons
     const char *w, *nm = NULL;
     size_t wl, nl = 0;
     int ncol = 0, hcol = (int)(p - ls) + 1;
+    char ch[8];
     p = skip_ws(p + 1, end);
     w = p;
     while (p < end && is_ident((unsigned char)*p))
@@ -223,7 +224,7 @@ static int parse_header(pctx *c, fstate *fs, const char *ls, const char *p, cons
     p = skip_ws(p + 1, end);
     if (p < end && !hy__is_comment(p, end))
         return perr(c, fs->line, (int)(p - ls) + 1, HY_EINVAL,
-                    "unexpected '%c' after the section header", *p);
+                    "unexpected '%s' after the section header", hy__char_text(*p, ch));
     int sec = header_spec(c, fs, w, wl, nm, nl, (int)(w - ls) + 1, ncol);
     if (sec < 0)
         return HY_EINVAL;
@@ -318,9 +319,12 @@ static int parse_key(pctx *c, fstate *fs, const char *ls, const char *p, const c
     while (p < end && (isalnum((unsigned char)*p) || *p == '_'))
         p++;
     size_t kl = (size_t)(p - k0);
-    if (!kl)
+    if (!kl) {
+        char ch[8];
         return perr(c, fs->line, col, HY_EINVAL,
-                    "expected 'key = value', '[section]' or 'include \"file\"', got '%c'", *p);
+                    "expected 'key = value', '[section]' or 'include \"file\"', got '%s'",
+                    hy__char_text(*p, ch));
+    }
     if (kl >= sizeof key)
         return perr(c, fs->line, col, HY_EINVAL, "key name too long");
     memcpy(key, k0, kl);
@@ -349,7 +353,26 @@ static int parse_key(pctx *c, fstate *fs, const char *ls, const char *p, const c
 
 static int parse_text(pctx *c, const char *text, size_t len);
 
-/* Cycle detection, depth limit, reading and parsing of one included file. */
+/* Fails if canon (the real path of an included file) is already on the
+ * include stack, naming the chain from its first appearance. */
+static int check_cycle(pctx *c, fstate *fs, const char *canon, const char *path, int col)
+{
+    for (int i = 0; canon && i < c->depth; i++) {
+        if (!c->stack[i].canon || strcmp(c->stack[i].canon, canon) != 0)
+            continue;
+        char chain[400];
+        size_t used = 0;
+        for (int j = i; j < c->depth && used < sizeof chain; j++)
+            used += (size_t)snprintf(chain + used, sizeof chain - used, "%s -> ",
+                                     c->s->files[c->stack[j].inst]);
+        if (used < sizeof chain)
+            snprintf(chain + used, sizeof chain - used, "%s", path);
+        return perr(c, fs->line, col, HY_EINVAL, "include cycle: %s", chain);
+    }
+    return HY_OK;
+}
+
+/* Depth limit, reading and parsing of one included file. */
 static int include_file(pctx *c, fstate *fs, const char *rel, int col)
 {
     const frame *top = &c->stack[c->depth - 1];
@@ -371,19 +394,9 @@ static int include_file(pctx *c, fstate *fs, const char *rel, int col)
         goto done;
     }
     canon = realpath(path, NULL);
-    for (int i = 0; canon && i < c->depth; i++) {
-        if (!c->stack[i].canon || strcmp(c->stack[i].canon, canon) != 0)
-            continue;
-        char chain[400];
-        size_t used = 0;
-        for (int j = i; j < c->depth && used < sizeof chain; j++)
-            used += (size_t)snprintf(chain + used, sizeof chain - used, "%s -> ",
-                                     c->s->files[c->stack[j].inst]);
-        if (used < sizeof chain)
-            snprintf(chain + used, sizeof chain - used, "%s", path);
-        rc = perr(c, fs->line, col, HY_EINVAL, "include cycle: %s", chain);
+    rc = check_cycle(c, fs, canon, path, col);
+    if (rc)
         goto done;
-    }
     if (c->depth >= HY_SCENE_MAX_DEPTH) {
         rc = perr(c, fs->line, col, HY_EINVAL,
                   "includes nested deeper than %d levels at '%s'", HY_SCENE_MAX_DEPTH, rel);

@@ -55,6 +55,16 @@ static int is_hex_color(const char *p, const char *end)
     return p + 7 == end || p[7] == ',' || isspace((unsigned char)p[7]);
 }
 
+const char *hy__char_text(int ch, char buf[8])
+{
+    unsigned char u = (unsigned char)ch;
+    if (isprint(u))
+        snprintf(buf, 8, "%c", u);
+    else
+        snprintf(buf, 8, "\\x%02x", u);
+    return buf;
+}
+
 int hy__is_comment(const char *p, const char *end)
 {
     return p < end && *p == '#' && !is_hex_color(p, end);
@@ -159,8 +169,9 @@ static int lex_value(vctx *c, const char *text, size_t len, int col0, lexed *l)
             const char *hint = (kind == HY_KIND_STRING || kind == HY_KIND_PATH)
                                    ? " (quote text that contains spaces)"
                                    : " (separate list elements with ',')";
-            return fail(c, col0 + (int)(p - text), "unexpected '%c' after the value of '%s'%s",
-                        *p, c->spec->name, hint);
+            char ch[8];
+            return fail(c, col0 + (int)(p - text), "unexpected '%s' after the value of '%s'%s",
+                        hy__char_text(*p, ch), c->spec->name, hint);
         }
         p++;
     }
