@@ -38,7 +38,7 @@ static int prepare_defaults(hy_scene *s, hy_error *err)
         for (size_t j = 0; j < sec[i].nkeys; j++) {
             const hy_scene_key_spec *k = &sec[i].keys[j];
             char msg[256], where[64];
-            int col;
+            int col = 0;
             if (!k->def)
                 continue;
             snprintf(where, sizeof where, "[%s]", sec[i].name);
@@ -481,7 +481,7 @@ static int apply_override(hy_scene *s, const char *a, int sec, const char *name,
 {
     const hy_scene_section_spec *ss = hy_scene_schema(NULL) + sec;
     char where[160], msg[400];
-    int col;
+    int col = 0;
     hy__value v;
     if (name)
         snprintf(where, sizeof where, "[%s %s]", ss->name, name);
