@@ -469,9 +469,15 @@ static int check_target(const hy_scene *s, const char *a, const char *secname, c
         for (size_t i = 0; i < n; i++)
             c[i] = ss->keys[i].name;
         const char *sug = hy__suggest(key, c, n);
-        return hy_error_set(err, HY_EINVAL, "--set %s: unknown key '%s' in [%s]%s%s%s", a, key,
-                            secname, sug ? "; did you mean '" : "", sug ? sug : "",
-                            sug ? "'?" : "");
+        if (sug)
+            return hy_error_set(err, HY_EINVAL, "--set %s: unknown key '%s' in [%s]; did you mean '%s'?",
+                                a, key, secname, sug);
+        char list[300];
+        size_t used = 0;
+        for (size_t i = 0; i < n && used < sizeof list; i++)
+            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", c[i]);
+        return hy_error_set(err, HY_EINVAL, "--set %s: unknown key '%s' in [%s]; valid keys are %s",
+                            a, key, secname, list);
     }
     return HY_OK;
 }

@@ -16,7 +16,9 @@
  *
  * Every error message is one sentence prefixed with `file:line:col:` (or
  * `--set section.key=value:` for an override).  No global state: scenes are
- * independent and may be parsed and freed repeatedly.
+ * independent and may be parsed and freed repeatedly, from several threads
+ * if each scene stays in one.  Numbers are read with strtod after a strict
+ * syntax check, so LC_NUMERIC must stay "C" (the default).
  */
 #ifndef HY_SCENE_H
 #define HY_SCENE_H

