@@ -25,6 +25,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "hy_scene_schema.h"
 #include "hy_status.h"
@@ -149,6 +150,12 @@ int hy_scene_error_at(const hy_scene *s, const char *section, const char *name,
     __attribute__((format(printf, 7, 8)))
 #endif
     ;
+
+/* Writes the effective scene (every value after includes and overrides, with
+ * its origin as a comment; with defaults != 0 also every schema default) as
+ * scene text that parses back to the same values (PATH values are written
+ * resolved).  Returns HY_OK or HY_EIO if writing failed. */
+int hy_scene_write(const hy_scene *s, FILE *f, int defaults);
 
 /* The path or display name the scene was parsed from (owned by the scene). */
 const char *hy_scene_source(const hy_scene *s);

@@ -2,6 +2,8 @@
 #ifndef HY_SCENE_INTERNAL_H
 #define HY_SCENE_INTERNAL_H
 
+#include <stdio.h>
+
 #include "hy_scene.h"
 
 enum { HY__UNIT_PT, HY__UNIT_CM, HY__UNIT_MM, HY__UNIT_IN, HY__UNIT_PX };
@@ -54,6 +56,9 @@ struct hy_scene {
 int hy__value_parse(const hy_scene_key_spec *spec, const char *where, const char *dir,
                     const char *text, size_t len, int col0, hy__value *out, int *errcol,
                     char *msg, size_t msgsz);
+
+/* Writes the value as scene text that parses back to the same value. */
+void hy__value_write(const hy_scene_key_spec *k, const hy__value *v, FILE *f);
 
 /* Frees what the value owns and zeroes it. */
 void hy__value_clear(hy__value *v);

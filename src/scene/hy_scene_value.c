@@ -581,3 +581,60 @@ const char *hy__suggest(const char *word, const char *const *cands, size_t n)
     size_t len = strlen(best);
     return (bd <= 1 + len / 4 && bd < len) ? best : NULL;
 }
+
+static const char *const unit_names[] = {"pt", "cm", "mm", "in", "px"};
+
+static void put_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"' || (*s == '\\' && (s[1] == '"' || s[1] == '\\' || s[1] == '\0')))
+            fputc('\\', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+void hy__value_write(const hy_scene_key_spec *k, const hy__value *v, FILE *f)
+{
+    switch (k->kind) {
+    case HY_KIND_NUMBER: fprintf(f, "%.17g", v->num); break;
+    case HY_KIND_INTEGER: fprintf(f, "%ld", v->ival); break;
+    case HY_KIND_BOOL: fputs(v->ival ? "true" : "false", f); break;
+    case HY_KIND_ENUM: fputs(k->enums[v->ival], f); break;
+    case HY_KIND_STRING:
+    case HY_KIND_NAME:
+    case HY_KIND_PATH: put_string(f, v->str); break;
+    case HY_KIND_NUMBER_LIST:
+    case HY_KIND_INTEGER_LIST:
+    case HY_KIND_ENUM_LIST:
+        for (size_t i = 0; i < v->n; i++) {
+            if (i)
+                fputs(", ", f);
+            if (k->kind == HY_KIND_ENUM_LIST)
+                fputs(k->enums[(size_t)v->list[i]], f);
+            else
+                fprintf(f, "%.17g", v->list[i]);
+        }
+        break;
+    case HY_KIND_LENGTH: fprintf(f, "%.17g%s", v->a[0], unit_names[v->unit[0]]); break;
+    case HY_KIND_LENGTH_PAIR:
+        fprintf(f, "%.17g%s, %.17g%s", v->a[0], unit_names[v->unit[0]], v->a[1],
+                unit_names[v->unit[1]]);
+        break;
+    case HY_KIND_COLOR:
+        if (v->color.index)
+            fputs(okabe_ito[v->color.index - 1].name, f);
+        else
+            fprintf(f, "#%02x%02x%02x", (unsigned)lround(v->color.r * 255),
+                    (unsigned)lround(v->color.g * 255), (unsigned)lround(v->color.b * 255));
+        break;
+    case HY_KIND_PAIR:
+    case HY_KIND_LIMITS:
+        if (v->is_auto)
+            fputs("auto", f);
+        else
+            fprintf(f, "%.17g, %.17g", v->a[0], v->a[1]);
+        break;
+    }
+}
