@@ -1,0 +1,534 @@
+/* hy_scene.c: the scene object: schema defaults, typed getters, --set overrides, content hash. */
+#include "hy_scene_internal.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define FNV_OFFSET 0xcbf29ce484222325ULL
+#define FNV_PRIME 0x100000001b3ULL
+
+static char *dup_range(const char *p, size_t n)
+{
+    char *s = malloc(n + 1);
+    if (s) {
+        memcpy(s, p, n);
+        s[n] = '\0';
+    }
+    return s;
+}
+
+/* Parses every schema default once per scene so getters can return them. */
+static int prepare_defaults(hy_scene *s, hy_error *err)
+{
+    size_t nsec, total = 0;
+    const hy_scene_section_spec *sec = hy_scene_schema(&nsec);
+    s->defoff = malloc(nsec * sizeof *s->defoff);
+    if (!s->defoff)
+        return hy_error_set(err, HY_ENOMEM, "out of memory preparing scene defaults");
+    for (size_t i = 0; i < nsec; i++) {
+        s->defoff[i] = total;
+        total += sec[i].nkeys;
+    }
+    s->defaults = calloc(total, sizeof *s->defaults);
+    if (!s->defaults)
+        return hy_error_set(err, HY_ENOMEM, "out of memory preparing scene defaults");
+    for (size_t i = 0; i < nsec; i++)
+        for (size_t j = 0; j < sec[i].nkeys; j++) {
+            const hy_scene_key_spec *k = &sec[i].keys[j];
+            char msg[256], where[64];
+            int col = 0;
+            if (!k->def)
+                continue;
+            snprintf(where, sizeof where, "[%s]", sec[i].name);
+            if (hy__value_parse(k, where, NULL, k->def, strlen(k->def), 1,
+                                &s->defaults[s->defoff[i] + j], &col, msg, sizeof msg))
+                return hy_error_set(err, HY_EINVAL, "schema default of %s.%s is invalid: %s",
+                                    sec[i].name, k->name, msg);
+        }
+    return HY_OK;
+}
+
+hy_scene *hy__scene_new(hy_error *err)
+{
+    hy_scene *s = calloc(1, sizeof *s);
+    if (!s) {
+        hy_error_set(err, HY_ENOMEM, "out of memory allocating a scene");
+        return NULL;
+    }
+    s->hash = FNV_OFFSET;
+    if (prepare_defaults(s, err)) {
+        hy_scene_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+void hy_scene_free(hy_scene *s)
+{
+    if (!s)
+        return;
+    size_t nsec;
+    const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
+    for (size_t i = 0; i < s->nsecs; i++) {
+        hy__section *sec = &s->secs[i];
+        for (size_t j = 0; j < spec[sec->spec].nkeys; j++)
+            hy__value_clear(&sec->slots[j].v);
+        free(sec->slots);
+        free(sec->name);
+    }
+    free(s->secs);
+    if (s->defaults && s->defoff) {
+        for (size_t i = 0; i < nsec; i++)
+            for (size_t j = 0; j < spec[i].nkeys; j++)
+                hy__value_clear(&s->defaults[s->defoff[i] + j]);
+    }
+    free(s->defaults);
+    free(s->defoff);
+    for (size_t i = 0; i < s->nfiles; i++)
+        free(s->files[i]);
+    free(s->files);
+    free(s);
+}
+
+int hy__scene_add_file(hy_scene *s, const char *name)
+{
+    if (s->nfiles == s->capfiles) {
+        size_t cap = s->capfiles ? 2 * s->capfiles : 8;
+        char **f = realloc(s->files, cap * sizeof *f);
+        if (!f)
+            return -1;
+        s->files = f;
+        s->capfiles = cap;
+    }
+    char *d = strdup(name);
+    if (!d)
+        return -1;
+    s->files[s->nfiles] = d;
+    return (int)s->nfiles++;
+}
+
+hy__section *hy__scene_find(const hy_scene *s, int sec, const char *name)
+{
+    for (size_t i = 0; i < s->nsecs; i++) {
+        const hy__section *x = &s->secs[i];
+        if (x->spec == sec && ((!name && !x->name) || (name && x->name && strcmp(name, x->name) == 0)))
+            return &s->secs[i];
+    }
+    return NULL;
+}
+
+hy__section *hy__scene_touch(hy_scene *s, int sec, const char *name, hy_scene_loc loc)
+{
+    hy__section *x = hy__scene_find(s, sec, name);
+    if (x)
+        return x;
+    if (s->nsecs == s->capsecs) {
+        size_t cap = s->capsecs ? 2 * s->capsecs : 8;
+        hy__section *n = realloc(s->secs, cap * sizeof *n);
+        if (!n)
+            return NULL;
+        s->secs = n;
+        s->capsecs = cap;
+    }
+    const hy_scene_section_spec *spec = hy_scene_schema(NULL);
+    x = &s->secs[s->nsecs];
+    memset(x, 0, sizeof *x);
+    x->spec = sec;
+    x->loc = loc;
+    x->slots = calloc(spec[sec].nkeys, sizeof *x->slots);
+    x->name = name ? strdup(name) : NULL;
+    if (!x->slots || (name && !x->name)) {
+        free(x->slots);
+        free(x->name);
+        return NULL;
+    }
+    s->nsecs++;
+    return x;
+}
+
+void hy__scene_hash_bytes(hy_scene *s, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    uint64_t h = s->hash;
+    for (size_t i = 0; i < n; i++) {
+        h ^= b[i];
+        h *= FNV_PRIME;
+    }
+    s->hash = h;
+}
+
+uint64_t hy_scene_hash(const hy_scene *s)
+{
+    return s->hash;
+}
+
+const char *hy_scene_source(const hy_scene *s)
+{
+    return s->nfiles ? s->files[0] : "";
+}
+
+/* ---- getters ---- */
+
+/* Finds the value of section/name/key if its kind is one of kinds (bitmask of
+ * 1u << kind); returns SET, DEFAULT, ABSENT or BADKEY. */
+static int lookup(const hy_scene *s, const char *section, const char *name, const char *key,
+                  unsigned kinds, const hy__value **v, const hy__slot **slot)
+{
+    int sec = hy_scene_schema_section(section);
+    int k = hy_scene_schema_key(sec, key);
+    if (k < 0)
+        return HY_SCENE_BADKEY;
+    const hy_scene_section_spec *spec = hy_scene_schema(NULL) + sec;
+    if (!(kinds & (1u << spec->keys[k].kind)) || (spec->takes_name != (name != NULL)))
+        return HY_SCENE_BADKEY;
+    const hy__section *x = hy__scene_find(s, sec, name);
+    if (x && x->slots[k].set) {
+        *v = &x->slots[k].v;
+        if (slot)
+            *slot = &x->slots[k];
+        return HY_SCENE_SET;
+    }
+    if (!spec->keys[k].def)
+        return HY_SCENE_ABSENT;
+    *v = &s->defaults[s->defoff[sec] + (size_t)k];
+    return HY_SCENE_DEFAULT;
+}
+
+#define BIT(k) (1u << (k))
+
+int hy_scene_get_num(const hy_scene *s, const char *section, const char *name,
+                     const char *key, double *out)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_NUMBER) | BIT(HY_KIND_INTEGER), &v, NULL);
+    if (rc >= 0)
+        *out = v->num;
+    return rc;
+}
+
+int hy_scene_get_int(const hy_scene *s, const char *section, const char *name,
+                     const char *key, long *out)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_INTEGER), &v, NULL);
+    if (rc >= 0)
+        *out = v->ival;
+    return rc;
+}
+
+int hy_scene_get_bool(const hy_scene *s, const char *section, const char *name,
+                      const char *key, int *out)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_BOOL), &v, NULL);
+    if (rc >= 0)
+        *out = (int)v->ival;
+    return rc;
+}
+
+int hy_scene_get_enum(const hy_scene *s, const char *section, const char *name,
+                      const char *key, int *index, const char **text)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_ENUM), &v, NULL);
+    if (rc >= 0) {
+        int sec = hy_scene_schema_section(section);
+        const hy_scene_key_spec *k = &hy_scene_schema(NULL)[sec].keys[hy_scene_schema_key(sec, key)];
+        if (index)
+            *index = (int)v->ival;
+        if (text)
+            *text = k->enums[v->ival];
+    }
+    return rc;
+}
+
+int hy_scene_get_str(const hy_scene *s, const char *section, const char *name,
+                     const char *key, const char **out)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key,
+                    BIT(HY_KIND_STRING) | BIT(HY_KIND_NAME) | BIT(HY_KIND_PATH), &v, NULL);
+    if (rc >= 0)
+        *out = v->str;
+    return rc;
+}
+
+int hy_scene_get_list(const hy_scene *s, const char *section, const char *name,
+                      const char *key, const double **vals, size_t *n)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key,
+                    BIT(HY_KIND_NUMBER_LIST) | BIT(HY_KIND_INTEGER_LIST), &v, NULL);
+    if (rc >= 0) {
+        *vals = v->list;
+        *n = v->n;
+    }
+    return rc;
+}
+
+int hy_scene_get_enum_at(const hy_scene *s, const char *section, const char *name,
+                         const char *key, size_t i, const char **text, size_t *n)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_ENUM_LIST), &v, NULL);
+    if (rc < 0)
+        return rc;
+    if (i >= v->n)
+        return HY_SCENE_BADKEY;
+    int sec = hy_scene_schema_section(section);
+    const hy_scene_key_spec *k = &hy_scene_schema(NULL)[sec].keys[hy_scene_schema_key(sec, key)];
+    if (text)
+        *text = k->enums[(size_t)v->list[i]];
+    if (n)
+        *n = v->n;
+    return rc;
+}
+
+static double to_pt(const hy_scene *s, double x, int unit)
+{
+    switch (unit) {
+    case HY__UNIT_CM: return x * 72.0 / 2.54;
+    case HY__UNIT_MM: return x * 72.0 / 25.4;
+    case HY__UNIT_IN: return x * 72.0;
+    case HY__UNIT_PX: {
+        long dpi = 300;
+        hy_scene_get_int(s, "figure", NULL, "dpi", &dpi);
+        return x * 72.0 / (double)dpi;
+    }
+    default: return x;
+    }
+}
+
+int hy_scene_get_length_pt(const hy_scene *s, const char *section, const char *name,
+                           const char *key, double *out)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_LENGTH), &v, NULL);
+    if (rc >= 0)
+        *out = to_pt(s, v->a[0], v->unit[0]);
+    return rc;
+}
+
+int hy_scene_get_length_pair_pt(const hy_scene *s, const char *section, const char *name,
+                                const char *key, double out[2])
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_LENGTH_PAIR), &v, NULL);
+    if (rc >= 0) {
+        out[0] = to_pt(s, v->a[0], v->unit[0]);
+        out[1] = to_pt(s, v->a[1], v->unit[1]);
+    }
+    return rc;
+}
+
+int hy_scene_get_pair(const hy_scene *s, const char *section, const char *name,
+                      const char *key, double out[2], int *is_auto)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_PAIR) | BIT(HY_KIND_LIMITS), &v, NULL);
+    if (rc >= 0) {
+        if (is_auto)
+            *is_auto = v->is_auto;
+        if (!v->is_auto) {
+            out[0] = v->a[0];
+            out[1] = v->a[1];
+        }
+    }
+    return rc;
+}
+
+int hy_scene_get_color(const hy_scene *s, const char *section, const char *name,
+                       const char *key, hy_scene_color *out)
+{
+    const hy__value *v;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_COLOR), &v, NULL);
+    if (rc >= 0)
+        *out = v->color;
+    return rc;
+}
+
+size_t hy_scene_count(const hy_scene *s, const char *section)
+{
+    int sec = hy_scene_schema_section(section);
+    size_t n = 0;
+    for (size_t i = 0; i < s->nsecs; i++)
+        n += s->secs[i].spec == sec;
+    return n;
+}
+
+const char *hy_scene_name_at(const hy_scene *s, const char *section, size_t i)
+{
+    int sec = hy_scene_schema_section(section);
+    for (size_t j = 0; j < s->nsecs; j++)
+        if (s->secs[j].spec == sec && i-- == 0)
+            return s->secs[j].name;
+    return NULL;
+}
+
+int hy_scene_get_loc(const hy_scene *s, const char *section, const char *name,
+                     const char *key, hy_scene_loc *loc)
+{
+    int sec = hy_scene_schema_section(section);
+    const hy__section *x = sec < 0 ? NULL : hy__scene_find(s, sec, name);
+    if (!x)
+        return 0;
+    if (!key) {
+        *loc = x->loc;
+        return 1;
+    }
+    int k = hy_scene_schema_key(sec, key);
+    if (k < 0 || !x->slots[k].set)
+        return 0;
+    *loc = x->slots[k].loc;
+    return 1;
+}
+
+int hy_scene_error_at(const hy_scene *s, const char *section, const char *name,
+                      const char *key, hy_error *err, int code, const char *fmt, ...)
+{
+    if (!err)
+        return code;
+    hy_scene_loc loc = {hy_scene_source(s), 0, 0};
+    if (!hy_scene_get_loc(s, section, name, key, &loc))
+        hy_scene_get_loc(s, section, name, NULL, &loc);
+    va_list ap;
+    va_start(ap, fmt);
+    err->code = code;
+    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+    va_end(ap);
+    if (loc.line > 0)
+        hy_error_prefix(err, "%s:%d:%d", loc.file, loc.line, loc.col);
+    else
+        hy_error_prefix(err, "%s", loc.file);
+    return code;
+}
+
+/* ---- overrides ---- */
+
+/* Splits "section[.name].key=value"; returns 0 or an error. */
+static int split_assignment(const char *a, char **sec, char **name, char **key,
+                            const char **value, hy_error *err)
+{
+    const char *eq = strchr(a, '=');
+    if (!eq)
+        return hy_error_set(err, HY_EINVAL, "--set %s: expected section.key=value", a);
+    const char *b = a, *e = eq;
+    while (b < e && (*b == ' ' || *b == '\t'))
+        b++;
+    while (e > b && (e[-1] == ' ' || e[-1] == '\t'))
+        e--;
+    const char *d1 = memchr(b, '.', (size_t)(e - b));
+    const char *d2 = e;
+    while (d2 > b && d2[-1] != '.')
+        d2--;
+    if (!d1 || d1 == b || d2 == e || d2 - 1 < d1)
+        return hy_error_set(err, HY_EINVAL,
+                            "--set %s: expected section.key=value or section.NAME.key=value", a);
+    *sec = dup_range(b, (size_t)(d1 - b));
+    *key = dup_range(d2, (size_t)(e - d2));
+    *name = (d2 - 1 > d1) ? dup_range(d1 + 1, (size_t)(d2 - 1 - d1 - 1)) : NULL;
+    *value = eq + 1;
+    if (!*sec || !*key || (d2 - 1 > d1 && !*name))
+        return hy_error_set(err, HY_ENOMEM, "--set %s: out of memory", a);
+    if (*name && !**name)
+        return hy_error_set(err, HY_EINVAL, "--set %s: empty section name", a);
+    return HY_OK;
+}
+
+/* Checks section, name and key of an override against the schema and scene. */
+static int check_target(const hy_scene *s, const char *a, const char *secname, const char *name,
+                        const char *key, int *sec, int *k, hy_error *err)
+{
+    size_t nsec;
+    const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
+    *sec = hy_scene_schema_section(secname);
+    if (*sec < 0) {
+        const char *c[16];
+        for (size_t i = 0; i < nsec && i < 16; i++)
+            c[i] = spec[i].name;
+        const char *sug = hy__suggest(secname, c, nsec < 16 ? nsec : 16);
+        return hy_error_set(err, HY_EINVAL, "--set %s: unknown section [%s]%s%s%s", a, secname,
+                            sug ? "; did you mean '" : "", sug ? sug : "", sug ? "'?" : "");
+    }
+    const hy_scene_section_spec *ss = &spec[*sec];
+    if (ss->takes_name && !name)
+        return hy_error_set(err, HY_EINVAL, "--set %s: [%s] sections are named: write %s.NAME.%s=...",
+                            a, secname, secname, key);
+    if (!ss->takes_name && name)
+        return hy_error_set(err, HY_EINVAL, "--set %s: [%s] takes no name: write %s.%s=...", a,
+                            secname, secname, key);
+    if (name && !hy__scene_find(s, *sec, name))
+        return hy_error_set(err, HY_EINVAL, "--set %s: the scene has no section [%s %s]", a,
+                            secname, name);
+    *k = hy_scene_schema_key(*sec, key);
+    if (*k < 0) {
+        const char *c[64];
+        size_t n = ss->nkeys < 64 ? ss->nkeys : 64;
+        for (size_t i = 0; i < n; i++)
+            c[i] = ss->keys[i].name;
+        const char *sug = hy__suggest(key, c, n);
+        if (sug)
+            return hy_error_set(err, HY_EINVAL, "--set %s: unknown key '%s' in [%s]; did you mean '%s'?",
+                                a, key, secname, sug);
+        char list[300];
+        size_t used = 0;
+        for (size_t i = 0; i < n && used < sizeof list; i++)
+            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", c[i]);
+        return hy_error_set(err, HY_EINVAL, "--set %s: unknown key '%s' in [%s]; valid keys are %s",
+                            a, key, secname, list);
+    }
+    return HY_OK;
+}
+
+static int apply_override(hy_scene *s, const char *a, int sec, const char *name, int k,
+                          const char *value, hy_error *err)
+{
+    const hy_scene_section_spec *ss = hy_scene_schema(NULL) + sec;
+    char where[160], msg[400];
+    int col = 0;
+    hy__value v;
+    if (name)
+        snprintf(where, sizeof where, "[%s %s]", ss->name, name);
+    else
+        snprintf(where, sizeof where, "[%s]", ss->name);
+    int rc = hy__value_parse(&ss->keys[k], where, NULL, value, strlen(value), 1, &v, &col, msg,
+                             sizeof msg);
+    if (rc)
+        return hy_error_set(err, rc, "--set %s: %s", a, msg);
+    char label[400];
+    snprintf(label, sizeof label, "--set %s", a);
+    int inst = hy__scene_add_file(s, label);
+    hy_scene_loc loc = {inst < 0 ? NULL : s->files[inst], 0, 0};
+    hy__section *x = inst < 0 ? NULL : hy__scene_touch(s, sec, name, loc);
+    if (!x) {
+        hy__value_clear(&v);
+        return hy_error_set(err, HY_ENOMEM, "--set %s: out of memory", a);
+    }
+    hy__slot *slot = &x->slots[k];
+    hy__value_clear(&slot->v);
+    slot->v = v;
+    slot->set = 1;
+    slot->inst = inst;
+    slot->loc = loc;
+    hy__scene_hash_bytes(s, "\n--set ", 7);
+    hy__scene_hash_bytes(s, a, strlen(a));
+    return HY_OK;
+}
+
+int hy_scene_set(hy_scene *s, const char *assignment, hy_error *err)
+{
+    char *secname = NULL, *name = NULL, *key = NULL;
+    const char *value = NULL;
+    int sec = -1, k = -1;
+    int rc = split_assignment(assignment, &secname, &name, &key, &value, err);
+    if (!rc)
+        rc = check_target(s, assignment, secname, name, key, &sec, &k, err);
+    if (!rc)
+        rc = apply_override(s, assignment, sec, name, k, value, err);
+    free(secname);
+    free(name);
+    free(key);
+    return rc;
+}

@@ -1,0 +1,163 @@
+/* hy_scene.h: scene files: parse, validate, override, query (format in docs/SCENES.md).
+ *
+ * A scene is an INI-like text file of [section] or [section NAME] headers and
+ * `key = value` lines, validated against the table in hy_scene_schema.c.
+ * Parse once, apply command-line overrides, then read typed values; a getter
+ * falls back to the schema default and says whether the scene set the key:
+ *
+ *     hy_scene *s; hy_error err;
+ *     if (hy_scene_parse_file("scenes/fig15.scene", &s, &err)) { puts(err.msg); return 1; }
+ *     if (hy_scene_set(s, "series.ystar.style=dashed", &err)) { ... }
+ *     double s0;
+ *     if (hy_scene_get_num(s, "model", NULL, "sigma0", &s0) < 0) { ... no value ... }
+ *     for (size_t i = 0; i < hy_scene_count(s, "series"); i++)
+ *         draw(hy_scene_name_at(s, "series", i));
+ *     hy_scene_free(s);
+ *
+ * Every error message is one sentence prefixed with `file:line:col:` (or
+ * `--set section.key=value:` for an override).  No global state: scenes are
+ * independent and may be parsed and freed repeatedly, from several threads
+ * if each scene stays in one.  Numbers are read with strtod after a strict
+ * syntax check, so LC_NUMERIC must stay "C" (the default).
+ */
+#ifndef HY_SCENE_H
+#define HY_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "hy_scene_schema.h"
+#include "hy_status.h"
+
+typedef struct hy_scene hy_scene;
+
+/* Where a value was written: file (as opened, or "--set ..."), 1-based line
+ * and column (line 0 for an override).  file lives as long as the scene. */
+typedef struct hy_scene_loc {
+    const char *file;
+    int line;
+    int col;
+} hy_scene_loc;
+
+/* A colour: components in [0, 1]; index is the Okabe-Ito index 1-8, or 0
+ * for a #rrggbb colour. */
+typedef struct hy_scene_color {
+    double r, g, b;
+    int index;
+} hy_scene_color;
+
+/* What a getter found. */
+enum {
+    HY_SCENE_SET = 1,      /* the scene (or an override) set the key        */
+    HY_SCENE_DEFAULT = 0,  /* not set: *out holds the schema default        */
+    HY_SCENE_ABSENT = -1,  /* not set and no default: *out untouched        */
+    HY_SCENE_BADKEY = -2   /* no such section/key, or a getter of another kind */
+};
+
+/* Parses the scene file at path and the files it includes into *out.
+ * On error returns a status, leaves *out NULL and writes err. Caller frees. */
+int hy_scene_parse_file(const char *path, hy_scene **out, hy_error *err);
+
+/* As hy_scene_parse_file, from len bytes of text; name is shown in messages
+ * and its directory is where relative includes and paths are looked up. */
+int hy_scene_parse_buffer(const char *name, const char *text, size_t len, hy_scene **out,
+                          hy_error *err);
+
+/* Frees the scene and everything it owns; NULL is allowed. */
+void hy_scene_free(hy_scene *s);
+
+/* Applies one override "section.key=value" or "section.NAME.key=value",
+ * parsed and validated like a scene line; it beats every value in the files.
+ * On error the scene is unchanged. */
+int hy_scene_set(hy_scene *s, const char *assignment, hy_error *err);
+
+/* 64-bit FNV-1a over the bytes of every file read (in reading order) and of
+ * every override applied: equal hashes mean the same scene text. */
+uint64_t hy_scene_hash(const hy_scene *s);
+
+/* Typed getters.  name is the section's label for [series NAME]-like
+ * sections and NULL otherwise.  Each returns HY_SCENE_SET, HY_SCENE_DEFAULT,
+ * HY_SCENE_ABSENT or HY_SCENE_BADKEY (see above). */
+
+/* A number (NUMBER kind), or an INTEGER converted. */
+int hy_scene_get_num(const hy_scene *s, const char *section, const char *name,
+                     const char *key, double *out);
+
+/* An INTEGER. */
+int hy_scene_get_int(const hy_scene *s, const char *section, const char *name,
+                     const char *key, long *out);
+
+/* A BOOL as 0 or 1. */
+int hy_scene_get_bool(const hy_scene *s, const char *section, const char *name,
+                      const char *key, int *out);
+
+/* An ENUM: its index in the key's enum list and/or its text (either may be
+ * NULL; the text is static). */
+int hy_scene_get_enum(const hy_scene *s, const char *section, const char *name,
+                      const char *key, int *index, const char **text);
+
+/* A STRING, NAME or PATH (a PATH already resolved against the directory of
+ * the file that set it); the text is owned by the scene. */
+int hy_scene_get_str(const hy_scene *s, const char *section, const char *name,
+                     const char *key, const char **out);
+
+/* A NUMBER_LIST or INTEGER_LIST: *vals (owned by the scene) and *n. */
+int hy_scene_get_list(const hy_scene *s, const char *section, const char *name,
+                      const char *key, const double **vals, size_t *n);
+
+/* An ENUM_LIST: the i-th identifier (static text) of the list, for i < *n;
+ * call with i = 0 to learn *n.  Returns as above, or HY_SCENE_BADKEY if i is
+ * past the end of a non-empty list. */
+int hy_scene_get_enum_at(const hy_scene *s, const char *section, const char *name,
+                         const char *key, size_t i, const char **text, size_t *n);
+
+/* A LENGTH in points (1in = 72pt = 2.54cm; px uses [figure] dpi). */
+int hy_scene_get_length_pt(const hy_scene *s, const char *section, const char *name,
+                           const char *key, double *out);
+
+/* A LENGTH_PAIR in points. */
+int hy_scene_get_length_pair_pt(const hy_scene *s, const char *section, const char *name,
+                                const char *key, double out[2]);
+
+/* A PAIR or LIMITS; *is_auto (may be NULL for PAIR) is 1 for `auto`, when
+ * out[] is left untouched. */
+int hy_scene_get_pair(const hy_scene *s, const char *section, const char *name,
+                      const char *key, double out[2], int *is_auto);
+
+/* A COLOR. */
+int hy_scene_get_color(const hy_scene *s, const char *section, const char *name,
+                       const char *key, hy_scene_color *out);
+
+/* Number of sections of a kind present (0 or 1 for unnamed kinds). */
+size_t hy_scene_count(const hy_scene *s, const char *section);
+
+/* Label of the i-th named section of a kind in order of first appearance,
+ * or NULL past the end (or for unnamed kinds). */
+const char *hy_scene_name_at(const hy_scene *s, const char *section, size_t i);
+
+/* Where a key was set (key NULL: where the section header first appeared).
+ * Returns 1 and fills *loc, or 0 if not written in the scene. */
+int hy_scene_get_loc(const hy_scene *s, const char *section, const char *name,
+                     const char *key, hy_scene_loc *loc);
+
+/* For semantic checks after parsing: writes "file:line:col: <message>" at the
+ * location of the key (or section, or the scene file if neither was written)
+ * into err and returns code. */
+int hy_scene_error_at(const hy_scene *s, const char *section, const char *name,
+                      const char *key, hy_error *err, int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 7, 8)))
+#endif
+    ;
+
+/* Writes the effective scene (every value after includes and overrides, with
+ * its origin as a comment; with defaults != 0 also every schema default) as
+ * scene text that parses back to the same values (PATH values are written
+ * resolved).  Returns HY_OK or HY_EIO if writing failed. */
+int hy_scene_write(const hy_scene *s, FILE *f, int defaults);
+
+/* The path or display name the scene was parsed from (owned by the scene). */
+const char *hy_scene_source(const hy_scene *s);
+
+#endif

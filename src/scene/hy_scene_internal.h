@@ -1,0 +1,93 @@
+/* hy_scene_internal.h: private structures shared by the scene parser, values and getters. */
+#ifndef HY_SCENE_INTERNAL_H
+#define HY_SCENE_INTERNAL_H
+
+#include <stdio.h>
+
+#include "hy_scene.h"
+
+enum { HY__UNIT_PT, HY__UNIT_CM, HY__UNIT_MM, HY__UNIT_IN, HY__UNIT_PX };
+
+/* One typed value; which fields are used depends on kind. */
+typedef struct hy__value {
+    hy_scene_kind kind;
+    double num;           /* NUMBER, INTEGER                                   */
+    long ival;            /* INTEGER, BOOL, ENUM (index)                       */
+    char *str;            /* STRING, NAME, PATH (owned)                        */
+    double *list;         /* *_LIST (owned); ENUM_LIST holds enum indices      */
+    size_t n;
+    double a[2];          /* LENGTH (a[0]), LENGTH_PAIR, PAIR, LIMITS          */
+    int unit[2];          /* LENGTH, LENGTH_PAIR                               */
+    int is_auto;          /* LIMITS                                            */
+    hy_scene_color color; /* COLOR                                             */
+} hy__value;
+
+/* One key of one section instance. */
+typedef struct hy__slot {
+    int set;
+    int inst; /* index in scene->files of the file (or override) that wrote it */
+    hy__value v;
+    hy_scene_loc loc;
+} hy__slot;
+
+/* One [section] or [section NAME] of the scene (merged over all files). */
+typedef struct hy__section {
+    int spec;
+    char *name;
+    hy_scene_loc loc;
+    hy__slot *slots; /* one per key of the spec */
+} hy__section;
+
+struct hy_scene {
+    char **files; /* display names of every file read and every override, in order */
+    size_t nfiles, capfiles;
+    hy__section *secs;
+    size_t nsecs, capsecs;
+    hy__value *defaults;  /* flattened: defoff[sec] + key */
+    size_t *defoff;
+    uint64_t hash;
+};
+
+/* Writes the value of key spec parsed from text[0..len) (the text after '=',
+ * possibly followed by a comment) into *out.  col0 is the column of text[0];
+ * dir (may be NULL) resolves relative PATH values; where names the section in
+ * messages ("[model]").  On error returns nonzero, sets *errcol and writes a
+ * message without location into msg. */
+int hy__value_parse(const hy_scene_key_spec *spec, const char *where, const char *dir,
+                    const char *text, size_t len, int col0, hy__value *out, int *errcol,
+                    char *msg, size_t msgsz);
+
+/* Writes the value as scene text that parses back to the same value. */
+void hy__value_write(const hy_scene_key_spec *k, const hy__value *v, FILE *f);
+
+/* Frees what the value owns and zeroes it. */
+void hy__value_clear(hy__value *v);
+
+/* True if text at p starts a comment ('#' not opening a #rrggbb colour). */
+int hy__is_comment(const char *p, const char *end);
+
+/* Writes ch as it should appear in a message: itself if printable, else \xNN. */
+const char *hy__char_text(int ch, char buf[8]);
+
+/* Optimal-string-alignment edit distance (typos, transpositions). */
+size_t hy__edit_distance(const char *a, const char *b);
+
+/* The candidate closest to word if close enough to be a likely typo, else NULL. */
+const char *hy__suggest(const char *word, const char *const *cands, size_t n);
+
+/* Appends a new file/override display name to the scene; returns its index or -1. */
+int hy__scene_add_file(hy_scene *s, const char *name);
+
+/* Finds the instance of section spec sec labelled name (NULL for unnamed). */
+hy__section *hy__scene_find(const hy_scene *s, int sec, const char *name);
+
+/* Finds or creates that instance; NULL on allocation failure. */
+hy__section *hy__scene_touch(hy_scene *s, int sec, const char *name, hy_scene_loc loc);
+
+/* Folds bytes into the FNV-1a hash. */
+void hy__scene_hash_bytes(hy_scene *s, const void *p, size_t n);
+
+/* A fresh scene with defaults prepared; NULL and err on failure. */
+hy_scene *hy__scene_new(hy_error *err);
+
+#endif

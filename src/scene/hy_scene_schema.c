@@ -1,0 +1,228 @@
+/* hy_scene_schema.c: the scene vocabulary, one static table (models and inputs of seed 000, Sections 2-4). */
+#include "hy_scene_schema.h"
+
+#include <stdio.h>
+#include <string.h>
+
+/* NOLIM, POS and NONNEG stand for the three fields flags, min, max; K expands
+ * them before splitting its arguments. */
+#define NOLIM 0u, 0.0, 0.0
+#define POS (HY_SPEC_MIN | HY_SPEC_MIN_EXCL), 0.0, 0.0
+#define NONNEG HY_SPEC_MIN, 0.0, 0.0
+#define K(...) K_(__VA_ARGS__)
+#define K_(name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
+    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc }
+#define NKEYS(a) (sizeof(a) / sizeof((a)[0]))
+
+static const char *const model_kinds[] = {"dahl", "lugre", "dahl-filter", NULL};
+static const char *const input_kinds[] = {"bimodal", "multimodal", "triangle", "sine",
+                                          "pwl", "file", NULL};
+static const char *const input_shapes[] = {"linear", "cosine", NULL};
+static const char *const solvers[] = {"exact", "rkf45", "rk8pd", "rk4imp", "bsimp", "msbdf",
+                                      "rk2", "rk4", "rkck", "rk1imp", "rk2imp", "msadams",
+                                      NULL};
+static const char *const figure_kinds[] = {"timeseries", "loop", "input", "g", "psi", NULL};
+static const char *const legends[] = {"none", "best", "top-left", "top-right",
+                                      "bottom-left", "bottom-right", NULL};
+static const char *const series_data[] = {"input", "psi", "g", "ystar", "ysteady", "ygamma",
+                                          "yk", "transient", "minor", "major", "boucwen",
+                                          NULL};
+static const char *const line_styles[] = {"solid", "dashed", "dotted", "dashdot", "none",
+                                          NULL};
+static const char *const markers[] = {"none", "circle", "square", NULL};
+static const char *const formats[] = {"svg", "pdf", "png", NULL};
+static const char *const easings[] = {"linear", "smooth", NULL};
+static const char *const qualities[] = {"480p15", "720p30", "1080p60", "2160p60", NULL};
+
+static const hy_scene_key_spec model_keys[] = {
+    K("kind", HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, "lugre",
+      "friction model: Dahl, LuGre (Eq. 3), or the Example-1 filter system"),
+    K("sigma0", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
+    K("sigma1", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
+    K("sigma2", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
+      "viscous friction sigma2; f(v) = sigma2 v (the paper takes f = 0)"),
+    K("fc", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Coulomb friction force Fc"),
+    K("fs", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "stiction force Fs"),
+    K("vs", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck velocity vs"),
+    K("beta", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck exponent beta of g(v)"),
+    K("rho", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "constant g of the Dahl model"),
+    K("x0", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "initial state x(0)"),
+    K("tau", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "time constant of the dahl-filter system"),
+};
+
+static const hy_scene_key_spec input_keys[] = {
+    K("kind", HY_KIND_ENUM, input_kinds, NOLIM, 0, 0, "bimodal",
+      "input family: bimodal (Eq. 10), multimodal, triangle, sine, pwl, or samples from a file"),
+    K("umin1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "bimodal input: first minimum u_min,1"),
+    K("umin2", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.2", "bimodal input: second minimum u_min,2"),
+    K("umax1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "bimodal input: first maximum u_max,1"),
+    K("umax2", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1.5", "bimodal input: second maximum u_max,2"),
+    K("t", HY_KIND_NUMBER_LIST, NULL, NONNEG, 4, 4, NULL,
+      "bimodal input: times t1, t2, t3, t4 of the extrema (default: normalised, t = rho)"),
+    K("shape", HY_KIND_ENUM, input_shapes, NOLIM, 0, 0, "linear",
+      "how a monotone piece goes from one extremum to the next"),
+    K("extrema", HY_KIND_NUMBER_LIST, NULL, NOLIM, 2, 0, NULL,
+      "multimodal input: the successive extrema of one period"),
+    K("times", HY_KIND_NUMBER_LIST, NULL, NONNEG, 2, 0, NULL,
+      "multimodal input: the times of the extrema (default: normalised)"),
+    K("amp", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "triangle or sine input: amplitude"),
+    K("offset", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "triangle or sine input: mean value"),
+    K("period", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "triangle or sine input: period T"),
+    K("min", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+      "triangle input: minimum (instead of amp and offset)"),
+    K("max", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+      "triangle input: maximum (instead of amp and offset)"),
+    K("points", HY_KIND_NUMBER_LIST, NULL, HY_SPEC_EVEN, 0, 0, 4, 0, NULL,
+      "pwl input: one period as t0, u0, t1, u1, ..."),
+    K("file", HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
+      "file input: two-column text file t u, relative to the scene file"),
+};
+
+static const hy_scene_key_spec compute_keys[] = {
+    K("gamma", HY_KIND_NUMBER_LIST, NULL, POS, 1, 0, "1, 10, 100",
+      "time scales gamma for y_gamma (Figs. 4, 7, 11)"),
+    K("k", HY_KIND_INTEGER_LIST, NULL, NONNEG, 1, 0, "0, 1, 2, 3",
+      "periods k for `y*_{u,k}` (Figs. 8, 12, 13)"),
+    K("cycles", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 100000, 0, 0, "1",
+      "number of input periods simulated"),
+    K("solver", HY_KIND_ENUM, solvers, NOLIM, 0, 0, "exact",
+      "integrator: exact (piecewise exponential) or a GSL odeiv2 stepper"),
+    K("rtol", HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MIN_EXCL | HY_SPEC_MAX, 0, 1, 0, 0,
+      "1e-8", "relative tolerance of adaptive solvers"),
+    K("atol", HY_KIND_NUMBER, NULL, POS, 0, 0, "1e-10", "absolute tolerance of adaptive solvers"),
+    K("tspan", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
+      "time interval computed and drawn (default: the periods simulated)"),
+    K("points", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 10000000, 0, 0, "2000",
+      "number of output samples per curve"),
+};
+
+static const hy_scene_key_spec figure_keys[] = {
+    K("kind", HY_KIND_ENUM, figure_kinds, NOLIM, 0, 0, "timeseries",
+      "what the axes show: signals versus t, an output-versus-input loop, u(t), g(v), psi_u"),
+    K("title", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"", "title above the axes (empty: none)"),
+    K("xlabel", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
+      "x-axis label; TeX-like markup such as `y^\\circ_u` passes through (default: from kind)"),
+    K("ylabel", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "y-axis label (default: from kind)"),
+    K("xlim", HY_KIND_LIMITS, NULL, NOLIM, 0, 0, "auto", "x-axis range, or auto"),
+    K("ylim", HY_KIND_LIMITS, NULL, NOLIM, 0, 0, "auto", "y-axis range, or auto"),
+    K("xlog", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "logarithmic x axis"),
+    K("ylog", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "logarithmic y axis"),
+    K("size", HY_KIND_LENGTH_PAIR, NULL, POS, 0, 0, "12cm, 9cm", "width, height of the figure"),
+    K("dpi", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 36, 2400, 0, 0, "300",
+      "raster resolution of PNG output and of px lengths"),
+    K("legend", HY_KIND_ENUM, legends, NOLIM, 0, 0, "best", "where the legend goes"),
+    K("font", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"serif\"", "font family of all text"),
+    K("fontsize", HY_KIND_LENGTH, NULL, POS, 0, 0, "9pt", "size of axis labels and legend text"),
+    K("grid", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "draw grid lines at the ticks"),
+    K("shade", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
+      "x interval highlighted in grey (e.g. the minor loop's time span)"),
+};
+
+static const hy_scene_key_spec series_keys[] = {
+    K("data", HY_KIND_ENUM, series_data, NOLIM, 0, 0, NULL, "which computed signal is drawn"),
+    K("gamma", HY_KIND_NUMBER, NULL, POS, 0, 0, NULL, "time scale of a ygamma curve"),
+    K("k", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, NULL, "period index of a yk curve"),
+    K("style", HY_KIND_ENUM, line_styles, NOLIM, 0, 0, "solid", "line dash pattern"),
+    K("color", HY_KIND_COLOR, NULL, NOLIM, 0, 0, NULL,
+      "line colour (default: next Okabe-Ito colour)"),
+    K("width", HY_KIND_LENGTH, NULL, POS, 0, 0, "1pt", "line width"),
+    K("marker", HY_KIND_ENUM, markers, NOLIM, 0, 0, "none", "marker drawn at the point 'at'"),
+    K("label", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "legend entry (default: none)"),
+    K("at", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+      "parameter value (e.g. t1) where the marker is placed"),
+};
+
+static const hy_scene_key_spec annotation_keys[] = {
+    K("text", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "text drawn at (x, y)"),
+    K("x", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "x position in data coordinates"),
+    K("y", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y position in data coordinates"),
+};
+
+static const hy_scene_key_spec output_keys[] = {
+    K("name", HY_KIND_NAME, NULL, NOLIM, 0, 0, NULL,
+      "base name of the output files (default: the scene file's name)"),
+    K("formats", HY_KIND_ENUM_LIST, formats, NOLIM, 1, 0, "svg", "output formats written"),
+    K("dir", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\".\"", "output directory"),
+};
+
+static const hy_scene_key_spec animation_keys[] = {
+    K("duration", HY_KIND_NUMBER, NULL, POS, 0, 0, "5", "length of the animation in seconds"),
+    K("fps", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 240, 0, 0, "30",
+      "frames per second"),
+    K("easing", HY_KIND_ENUM, easings, NOLIM, 0, 0, "smooth", "how the animated parameter moves"),
+    K("quality", HY_KIND_ENUM, qualities, NOLIM, 0, 0, "720p30", "frame size and rate preset"),
+};
+
+#define S(name, named, rep, keys, doc) { name, named, rep, keys, NKEYS(keys), doc }
+
+static const hy_scene_section_spec sections[] = {
+    S("model", 0, 0, model_keys, "the hysteresis model and its parameters"),
+    S("input", 0, 0, input_keys, "the periodic input u(t)"),
+    S("compute", 0, 0, compute_keys, "what is integrated and how"),
+    S("figure", 0, 0, figure_keys, "the axes: kind, labels, ranges, size, fonts"),
+    S("series", 1, 1, series_keys, "one curve per section, drawn in file order"),
+    S("annotation", 1, 1, annotation_keys, "one text label per section"),
+    S("output", 0, 0, output_keys, "where the figure is written"),
+    S("animation", 0, 0, animation_keys, "frame timing of an animation"),
+};
+
+const hy_scene_section_spec *hy_scene_schema(size_t *n)
+{
+    if (n)
+        *n = NKEYS(sections);
+    return sections;
+}
+
+int hy_scene_schema_section(const char *name)
+{
+    for (size_t i = 0; i < NKEYS(sections); i++)
+        if (strcmp(sections[i].name, name) == 0)
+            return (int)i;
+    return -1;
+}
+
+int hy_scene_schema_key(int sec, const char *key)
+{
+    if (sec < 0 || (size_t)sec >= NKEYS(sections))
+        return -1;
+    for (size_t j = 0; j < sections[sec].nkeys; j++)
+        if (strcmp(sections[sec].keys[j].name, key) == 0)
+            return (int)j;
+    return -1;
+}
+
+const char *hy_scene_kind_name(hy_scene_kind kind)
+{
+    switch (kind) {
+    case HY_KIND_NUMBER: return "number";
+    case HY_KIND_INTEGER: return "integer";
+    case HY_KIND_BOOL: return "bool";
+    case HY_KIND_ENUM: return "identifier";
+    case HY_KIND_STRING: return "string";
+    case HY_KIND_NAME: return "name";
+    case HY_KIND_PATH: return "path";
+    case HY_KIND_NUMBER_LIST: return "list of numbers";
+    case HY_KIND_INTEGER_LIST: return "list of integers";
+    case HY_KIND_ENUM_LIST: return "list of identifiers";
+    case HY_KIND_LENGTH: return "length";
+    case HY_KIND_LENGTH_PAIR: return "pair of lengths";
+    case HY_KIND_COLOR: return "colour";
+    case HY_KIND_PAIR: return "pair of numbers";
+    case HY_KIND_LIMITS: return "limits";
+    }
+    return "value";
+}
+
+void hy_scene_range_text(const hy_scene_key_spec *k, char *buf, size_t n)
+{
+    int lo = (k->flags & HY_SPEC_MIN) != 0, hi = (k->flags & HY_SPEC_MAX) != 0;
+    int lox = (k->flags & HY_SPEC_MIN_EXCL) != 0, hix = (k->flags & HY_SPEC_MAX_EXCL) != 0;
+    if (lo && hi)
+        snprintf(buf, n, "in %c%.15g, %.15g%c", lox ? '(' : '[', k->min, k->max, hix ? ')' : ']');
+    else if (lo)
+        snprintf(buf, n, "%s %.15g", lox ? ">" : ">=", k->min);
+    else if (hi)
+        snprintf(buf, n, "%s %.15g", hix ? "<" : "<=", k->max);
+    else if (n)
+        buf[0] = '\0';
+}

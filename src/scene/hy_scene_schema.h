@@ -1,0 +1,88 @@
+/* hy_scene_schema.h: the table of scene sections and keys (kinds, ranges, defaults, docs).
+ *
+ * The whole scene vocabulary lives in one static table (hy_scene_schema.c).
+ * The parser validates against it, the getters fall back to its defaults, and
+ * the reference in docs/SCENES.md is generated from it.  Read it like this:
+ *
+ *     size_t n;
+ *     const hy_scene_section_spec *sec = hy_scene_schema(&n);
+ *     for (size_t i = 0; i < n; i++)
+ *         for (size_t j = 0; j < sec[i].nkeys; j++)
+ *             printf("%s.%s\n", sec[i].name, sec[i].keys[j].name);
+ */
+#ifndef HY_SCENE_SCHEMA_H
+#define HY_SCENE_SCHEMA_H
+
+#include <stddef.h>
+
+/* What a value must look like. */
+typedef enum hy_scene_kind {
+    HY_KIND_NUMBER,       /* finite decimal number: 1, -2.5, 3e-4               */
+    HY_KIND_INTEGER,      /* decimal integer: 12, -3                            */
+    HY_KIND_BOOL,         /* true | false                                       */
+    HY_KIND_ENUM,         /* one identifier from the key's list                 */
+    HY_KIND_STRING,       /* "quoted text" (or one bare word)                   */
+    HY_KIND_NAME,         /* identifier-like text: letters, digits, _ - .      */
+    HY_KIND_PATH,         /* file path, resolved relative to the defining file  */
+    HY_KIND_NUMBER_LIST,  /* 1, 10, 100                                         */
+    HY_KIND_INTEGER_LIST, /* 0, 1, 2                                            */
+    HY_KIND_ENUM_LIST,    /* svg, pdf                                           */
+    HY_KIND_LENGTH,       /* 9pt, 0.4cm, 1in, 12px (bare number = pt)           */
+    HY_KIND_LENGTH_PAIR,  /* 12cm, 9cm                                          */
+    HY_KIND_COLOR,        /* Okabe-Ito index 1-8, its name, or #rrggbb          */
+    HY_KIND_PAIR,         /* two numbers, first < second: 0, 4.6                */
+    HY_KIND_LIMITS        /* a pair as above, or auto                           */
+} hy_scene_kind;
+
+/* Flags of a key spec: which bounds apply and whether they are strict. */
+enum {
+    HY_SPEC_MIN = 1u << 0,      /* value >= min (or > min with MIN_EXCL)   */
+    HY_SPEC_MAX = 1u << 1,      /* value <= max (or < max with MAX_EXCL)   */
+    HY_SPEC_MIN_EXCL = 1u << 2,
+    HY_SPEC_MAX_EXCL = 1u << 3,
+    HY_SPEC_EVEN = 1u << 4      /* a list must hold an even count (pairs)  */
+};
+
+/* One key: its name, kind, allowed identifiers (NULL-terminated, for ENUM and
+ * ENUM_LIST), bounds (for numbers, integers, list elements and lengths, whose
+ * bound applies to the number before the unit), list length limits (0 = no
+ * limit), default written as scene text (NULL = none) and a one-line doc. */
+typedef struct hy_scene_key_spec {
+    const char *name;
+    hy_scene_kind kind;
+    const char *const *enums;
+    unsigned flags;
+    double min, max;
+    unsigned min_len, max_len;
+    const char *def;
+    const char *doc;
+} hy_scene_key_spec;
+
+/* One section: [name] or, when takes_name, [name LABEL]; repeatable sections
+ * may occur once per distinct label. */
+typedef struct hy_scene_section_spec {
+    const char *name;
+    int takes_name;
+    int repeatable;
+    const hy_scene_key_spec *keys;
+    size_t nkeys;
+    const char *doc;
+} hy_scene_section_spec;
+
+/* Returns the static table of sections and stores its length in *n. */
+const hy_scene_section_spec *hy_scene_schema(size_t *n);
+
+/* Returns the index of the section called name, or -1. */
+int hy_scene_schema_section(const char *name);
+
+/* Returns the index of key in section sec, or -1. */
+int hy_scene_schema_key(int sec, const char *key);
+
+/* Returns the human name of a kind ("number", "list of integers", ...). */
+const char *hy_scene_kind_name(hy_scene_kind kind);
+
+/* Writes the numeric range of k as text ("> 0", "in [36, 2400]", "in (0, 1]");
+ * an empty string if unbounded. */
+void hy_scene_range_text(const hy_scene_key_spec *k, char *buf, size_t n);
+
+#endif

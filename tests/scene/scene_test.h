@@ -1,0 +1,117 @@
+/* scene_test.h: a tiny check harness and temp-dir helpers for the scene tests. */
+#ifndef SCENE_TEST_H
+#define SCENE_TEST_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <sys/stat.h>
+
+#include "hy_scene.h"
+
+static int st_failures;
+
+#define CHECK(cond)                                                              \
+    do {                                                                         \
+        if (!(cond)) {                                                           \
+            fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
+            st_failures++;                                                       \
+        }                                                                        \
+    } while (0)
+
+#define CHECK_NEAR(a, b, tol)                                                    \
+    do {                                                                         \
+        double a_ = (a), b_ = (b);                                               \
+        if (!(fabs(a_ - b_) <= (tol))) {                                         \
+            fprintf(stderr, "%s:%d: %s = %.17g, expected %.17g\n", __FILE__, __LINE__, #a, a_, b_); \
+            st_failures++;                                                       \
+        }                                                                        \
+    } while (0)
+
+#define CHECK_STR(a, b)                                                          \
+    do {                                                                         \
+        const char *a_ = (a), *b_ = (b);                                         \
+        if (!a_ || strcmp(a_, b_) != 0) {                                        \
+            fprintf(stderr, "%s:%d: %s = \"%s\"\n    expected \"%s\"\n", __FILE__, __LINE__, #a, \
+                    a_ ? a_ : "(null)", b_);                                      \
+            st_failures++;                                                       \
+        }                                                                        \
+    } while (0)
+
+/* Parses text named name; returns the scene or NULL, printing an unexpected error. */
+static inline hy_scene *st_parse_ok(const char *name, const char *text, int line)
+{
+    hy_scene *s = NULL;
+    hy_error err = {0, ""};
+    if (hy_scene_parse_buffer(name, text, strlen(text), &s, &err)) {
+        fprintf(stderr, "line %d: unexpected error: %s\n", line, err.msg);
+        st_failures++;
+        return NULL;
+    }
+    return s;
+}
+#define PARSE_OK(name, text) st_parse_ok(name, text, __LINE__)
+
+/* Parses text expecting failure with exactly the message want. */
+static inline void st_parse_fails(const char *name, const char *text, const char *want, int line)
+{
+    hy_scene *s = NULL;
+    hy_error err = {0, ""};
+    int rc = hy_scene_parse_buffer(name, text, strlen(text), &s, &err);
+    if (rc == 0 || s != NULL) {
+        fprintf(stderr, "line %d: parse succeeded, expected: %s\n", line, want);
+        st_failures++;
+        hy_scene_free(s);
+        return;
+    }
+    if (strcmp(err.msg, want) != 0) {
+        fprintf(stderr, "line %d: message\n    \"%s\"\n expected\n    \"%s\"\n", line, err.msg, want);
+        st_failures++;
+    }
+}
+#define PARSE_FAILS(text, want) st_parse_fails("t.scene", text, want, __LINE__)
+
+/* Creates a fresh temp directory; path in buf. */
+static inline void st_tempdir(char *buf, size_t n)
+{
+    const char *t = getenv("TMPDIR");
+    snprintf(buf, n, "%s/hyscene.XXXXXX", t && *t ? t : "/tmp");
+    if (!mkdtemp(buf)) {
+        perror("mkdtemp");
+        exit(1);
+    }
+}
+
+/* Writes text to dir/name. */
+static inline void st_write(const char *dir, const char *name, const char *text)
+{
+    char p[1024];
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+    FILE *f = fopen(p, "wb");
+    if (!f || fputs(text, f) < 0 || fclose(f) != 0) {
+        perror(p);
+        exit(1);
+    }
+}
+
+/* Removes dir/name for each name, then dir. */
+static inline void st_cleanup(const char *dir, const char *const *names)
+{
+    char p[1024];
+    for (; *names; names++) {
+        snprintf(p, sizeof p, "%s/%s", dir, *names);
+        unlink(p);
+    }
+    rmdir(dir);
+}
+
+static inline int st_result(const char *what)
+{
+    if (st_failures)
+        fprintf(stderr, "%s: %d check(s) failed\n", what, st_failures);
+    return st_failures ? 1 : 0;
+}
+
+#endif
