@@ -6,6 +6,7 @@
 
 #include "cmd_boucwen.h"
 #include "cmd_loop.h"
+#include "cmd_render.h"
 
 static const char usage[] =
     "usage: hystviz COMMAND [OPTIONS]\n"
@@ -14,6 +15,8 @@ static const char usage[] =
     "Bouc-Wen) from declarative scene files, with exact reference solutions.\n"
     "\n"
     "commands:\n"
+    "  render    draw scene files into SVG, PDF and PNG figures\n"
+    "  data      print every series a scene draws as CSV\n"
     "  loop      print a steady hysteresis loop, y*_{u,k} or y_gamma as CSV\n"
     "  loops     print the major and minor loops of an input with their areas\n"
     "  boucwen   the Bouc-Wen benchmark: Table 2, synthetic data sets as CSV\n"
@@ -32,6 +35,8 @@ typedef struct command {
 } command;
 
 static const command commands[] = {
+    {"render", hy_cmd_render},
+    {"data", hy_cmd_render},
     {"loop", hy_cmd_loop},
     {"loops", hy_cmd_loop},
     {"boucwen", hy_cmd_boucwen},

@@ -1,0 +1,281 @@
+/* scene_draw.c: computed scene series → hy_figure (styles, markers, labels,
+ * annotations with loop-area placeholders) → SVG/PDF/PNG files and CSV data. */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "hy_plot.h"
+#include "scene_run.h"
+
+static const char *const default_xlabel[] = {"t", "u", "t", "v", "\\varrho"};
+static const char *const default_ylabel[] = {"y", "y", "u(t)", "g(v)", "\\psi_u(\\varrho)"};
+
+void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size)
+{
+    const char *name;
+    if (hy_scene_get_str(r->scene, "output", NULL, "name", &name) >= 0 && name[0]) {
+        snprintf(buf, size, "%s", name);
+        return;
+    }
+    const char *base = strrchr(r->path, '/');
+    base = base ? base + 1 : r->path;
+    snprintf(buf, size, "%s", base);
+    char *dot = strrchr(buf, '.');
+    if (dot && !strcmp(dot, ".scene"))
+        *dot = '\0';
+}
+
+/* Replaces {major.area}, {energy}, {minorN.area}, {minorN.own}, {minorN.ystart},
+ * {minorN.yclose}, {nminor} in text by their values (%.4g). */
+static int expand(const hy_scene_run *r, const char *name, const char *text, char *out, size_t size, hy_error *err)
+{
+    size_t o = 0;
+    for (const char *c = text; *c && o + 1 < size;) {
+        if (*c != '{') {
+            out[o++] = *c++;
+            continue;
+        }
+        const char *e = strchr(c, '}');
+        if (!e || e - c > 40)
+            return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL, "unterminated '{' in annotation text");
+        char key[48];
+        snprintf(key, sizeof key, "%.*s", (int)(e - c - 1), c + 1);
+        double v = NAN;
+        unsigned idx;
+        char field[16];
+        const hy_loops *L = &r->loops;
+        if (!strcmp(key, "major.area") || !strcmp(key, "energy"))
+            v = L->area_period;
+        else if (!strcmp(key, "major.own"))
+            v = L->major.own_area;
+        else if (!strcmp(key, "nminor"))
+            v = (double)L->nminor;
+        else if (sscanf(key, "minor%u.%15s", &idx, field) == 2 && idx >= 1 && idx <= L->nminor) {
+            const hy_loop *m = &L->minor[idx - 1];
+            v = !strcmp(field, "area") ? m->area : !strcmp(field, "own") ? m->own_area : !strcmp(field, "ystart") ? m->y_start
+                : !strcmp(field, "yclose") ? m->y_close : NAN;
+        }
+        if (isnan(v))
+            return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
+                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.own, minorN.ystart, minorN.yclose; this input has %zu minor loops)",
+                                     key, L->nminor);
+        int w = snprintf(out + o, size - o, "%.4g", v);
+        o += (size_t)(w > 0 ? w : 0);
+        c = e + 1;
+    }
+    out[o < size ? o : size - 1] = '\0';
+    return HY_OK;
+}
+
+static hy_range range_of(const hy_scene *s, const char *key, const char *logkey)
+{
+    hy_range rg = {0, 0, 0, 0};
+    double v[2];
+    int is_auto = 1, lg = 0;
+    if (hy_scene_get_pair(s, "figure", NULL, key, v, &is_auto) >= 0 && !is_auto) {
+        rg.lo = v[0];
+        rg.hi = v[1];
+    }
+    hy_scene_get_bool(s, "figure", NULL, logkey, &lg);
+    rg.log = lg;
+    return rg;
+}
+
+typedef struct fig_store {
+    hy_series *series;
+    hy_mark *marks;
+    hy_text *texts;
+    char (*textbuf)[256];
+    hy_axes ax;
+    hy_figure fig;
+} fig_store;
+
+static void store_free(fig_store *st)
+{
+    free(st->series);
+    free(st->marks);
+    free(st->texts);
+    free(st->textbuf);
+}
+
+static int build_figure(const hy_scene_run *r, fig_store *st, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    size_t na = hy_scene_count(s, "annotation");
+    memset(st, 0, sizeof *st);
+    st->series = calloc(r->nseries + 1, sizeof *st->series);
+    st->marks = calloc(r->nseries + 1, sizeof *st->marks);
+    st->texts = calloc(na + 1, sizeof *st->texts);
+    st->textbuf = calloc(na + 1, sizeof *st->textbuf);
+    if (!st->series || !st->marks || !st->texts || !st->textbuf)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    size_t nm = 0;
+    for (size_t i = 0; i < r->nseries; i++) {
+        const hy_run_series *rs = &r->series[i];
+        hy_series *se = &st->series[i];
+        int idx = 0;
+        const char *t;
+        se->x = rs->x;
+        se->y = rs->y;
+        se->n = rs->n;
+        hy_scene_get_enum(s, "series", rs->name, "style", &idx, &t);
+        se->style = idx;
+        hy_scene_color c;
+        if (hy_scene_get_color(s, "series", rs->name, "color", &c) == HY_SCENE_SET)
+            se->colour = (hy_colour){HY_RGB_EXPLICIT, {c.r, c.g, c.b}};
+        else
+            se->colour = (hy_colour){(int)(i % HY_PALETTE_SIZE), {0, 0, 0}};
+        double w = 1;
+        hy_scene_get_length_pt(s, "series", rs->name, "width", &w);
+        se->width = w;
+        const char *label;
+        if (hy_scene_get_str(s, "series", rs->name, "label", &label) >= 0 && label[0])
+            se->label = label;
+        int mk = 0;
+        hy_scene_get_enum(s, "series", rs->name, "marker", &mk, &t);
+        if (mk && rs->has_mark) {
+            hy_mark *m = &st->marks[nm++];
+            m->x = rs->mark_x;
+            m->y = rs->mark_y;
+            m->marker = mk;
+            m->size = 6;
+            m->filled = 0;
+            m->colour = se->colour;
+        } else if (mk)
+            se->marker = mk;
+    }
+    for (size_t i = 0; i < na; i++) {
+        const char *name = hy_scene_name_at(s, "annotation", i), *text = "";
+        hy_scene_get_str(s, "annotation", name, "text", &text);
+        int rc = expand(r, name, text, st->textbuf[i], sizeof st->textbuf[i], err);
+        if (rc)
+            return rc;
+        double x, y;
+        if (hy_scene_get_num(s, "annotation", name, "x", &x) < 0 || hy_scene_get_num(s, "annotation", name, "y", &y) < 0)
+            return hy_scene_error_at(s, "annotation", name, NULL, err, HY_EINVAL, "annotation '%s' needs x and y", name);
+        st->texts[i] = (hy_text){x, y, st->textbuf[i], HY_ANCHOR_LEFT, 0, 0, {0, {0, 0, 0}}};
+    }
+    hy_axes *ax = &st->ax;
+    ax->series = st->series;
+    ax->nseries = r->nseries;
+    ax->marks = st->marks;
+    ax->nmarks = nm;
+    ax->texts = st->texts;
+    ax->ntexts = na;
+    const char *xl = default_xlabel[r->figure_kind], *yl = default_ylabel[r->figure_kind], *title = NULL;
+    hy_scene_get_str(s, "figure", NULL, "xlabel", &xl);
+    hy_scene_get_str(s, "figure", NULL, "ylabel", &yl);
+    if (hy_scene_get_str(s, "figure", NULL, "title", &title) >= 0 && !title[0])
+        title = NULL;
+    ax->xlabel = xl;
+    ax->ylabel = yl;
+    ax->title = title;
+    ax->x = range_of(s, "xlim", "xlog");
+    ax->y = range_of(s, "ylim", "ylog");
+    int idx = 1, grid = 0;
+    const char *t;
+    hy_scene_get_enum(s, "figure", NULL, "legend", &idx, &t);
+    ax->legend = idx;
+    hy_scene_get_bool(s, "figure", NULL, "grid", &grid);
+    ax->grid = grid;
+    double band[2];
+    int is_auto = 1;
+    if (hy_scene_get_pair(s, "figure", NULL, "shade", band, &is_auto) == HY_SCENE_SET && !is_auto) {
+        ax->band = 1;
+        ax->band_lo = band[0];
+        ax->band_hi = band[1];
+    }
+    hy_figure *f = &st->fig;
+    double size[2] = {hy_cm(12), hy_cm(9)}, fs = 9;
+    long dpi = 300;
+    hy_scene_get_length_pair_pt(s, "figure", NULL, "size", size);
+    hy_scene_get_int(s, "figure", NULL, "dpi", &dpi);
+    hy_scene_get_length_pt(s, "figure", NULL, "fontsize", &fs);
+    const char *font = "DejaVu Sans";
+    hy_scene_get_str(s, "figure", NULL, "font", &font);
+    f->width = size[0];
+    f->height = size[1];
+    f->dpi = (double)dpi;
+    f->font = font;
+    f->font_size = fs;
+    f->axes = ax;
+    f->nrows = f->ncols = 1;
+    return HY_OK;
+}
+
+static int mkdir_p(const char *dir, hy_error *err)
+{
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (char *p = buf + 1; *p; p++) {
+        if (*p != '/')
+            continue;
+        *p = '\0';
+        if (mkdir(buf, 0755) && errno != EEXIST)
+            return hy_error_set(err, HY_EIO, "%s: cannot create directory: %s", buf, strerror(errno));
+        *p = '/';
+    }
+    if (mkdir(buf, 0755) && errno != EEXIST)
+        return hy_error_set(err, HY_EIO, "%s: cannot create directory: %s", buf, strerror(errno));
+    return HY_OK;
+}
+
+int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *formats, char *written, size_t written_size,
+                       hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    if (!dir && hy_scene_get_str(s, "output", NULL, "dir", &dir) < 0)
+        dir = ".";
+    char name[256];
+    hy_scene_run_name(r, name, sizeof name);
+    const char *fmts[3];
+    size_t nf = 0;
+    char fbuf[64];
+    if (formats) {
+        snprintf(fbuf, sizeof fbuf, "%s", formats);
+        for (char *tok = strtok(fbuf, ","); tok && nf < 3; tok = strtok(NULL, ","))
+            fmts[nf++] = tok;
+    } else {
+        size_t n = 0;
+        const char *t;
+        for (size_t i = 0; hy_scene_get_enum_at(s, "output", NULL, "formats", i, &t, &n) >= 0 && i < n && nf < 3; i++)
+            fmts[nf++] = t;
+    }
+    for (size_t i = 0; i < nf; i++)
+        if (strcmp(fmts[i], "svg") && strcmp(fmts[i], "pdf") && strcmp(fmts[i], "png"))
+            return hy_error_set(err, HY_EINVAL, "--format: unknown format '%s' (svg, pdf, png)", fmts[i]);
+    fig_store st;
+    int rc = build_figure(r, &st, err);
+    if (!rc)
+        rc = mkdir_p(dir, err);
+    for (size_t i = 0; i < nf && !rc; i++) {
+        char path[4400];
+        snprintf(path, sizeof path, "%s/%s.%s", dir, name, fmts[i]);
+        int fmt = !strcmp(fmts[i], "svg") ? HY_FORMAT_SVG : !strcmp(fmts[i], "pdf") ? HY_FORMAT_PDF : HY_FORMAT_PNG;
+        rc = hy_figure_write(&st.fig, path, fmt, err);
+        if (!rc && written) {
+            size_t len = strlen(written);
+            snprintf(written + len, written_size - len, "%s\n", path);
+        }
+    }
+    store_free(&st);
+    return rc;
+}
+
+int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err)
+{
+    fprintf(out, "series,x,y\n");
+    for (size_t i = 0; i < r->nseries; i++) {
+        const hy_run_series *se = &r->series[i];
+        for (size_t j = 0; j < se->n; j++)
+            if (!isnan(se->x[j]))
+                fprintf(out, "%s,%.17g,%.17g\n", se->name, se->x[j], se->y[j]);
+        if (se->has_mark)
+            fprintf(out, "%s@marker,%.17g,%.17g\n", se->name, se->mark_x, se->mark_y);
+    }
+    if (ferror(out))
+        return hy_error_set(err, HY_EIO, "error writing the data: %s", strerror(errno));
+    return HY_OK;
+}

@@ -1,0 +1,631 @@
+/* scene_run.c: scene → plan → computed series → hy_figure → files (DESIGN.md
+ * data flow); the series are those of seed 000's figures: u, ψ_u, g, y*_u,
+ * y°_u, y_γ, y*_{u,k}, transients, major and minor loops. */
+#include "scene_run.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "hy_gamma.h"
+#include "hy_ode.h"
+#include "hy_plot.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static const char *const data_names[] = {"input", "psi", "g", "ystar", "ysteady", "ygamma",
+                                         "yk", "transient", "minor", "major", "boucwen"};
+enum { FIG_TIMESERIES, FIG_LOOP, FIG_INPUT, FIG_G, FIG_PSI };
+
+static double num(const hy_scene *s, const char *sec, const char *name, const char *key, double dflt)
+{
+    double v;
+    return hy_scene_get_num(s, sec, name, key, &v) >= 0 ? v : dflt;
+}
+
+/* Re-raises a core message at the scene location of the key it names. */
+static int located(const hy_scene *s, const char *sec, const char *const *keys, hy_error *err)
+{
+    char msg[sizeof err->msg];
+    memcpy(msg, err->msg, sizeof msg);
+    for (size_t i = 0; keys[i]; i++) {
+        size_t n = strlen(keys[i]);
+        if (!strncmp(msg, keys[i], n) && (msg[n] == ' ' || msg[n] == '['))
+            return hy_scene_error_at(s, sec, NULL, keys[i], err, err->code, "%s", msg);
+    }
+    return hy_scene_error_at(s, sec, NULL, NULL, err, err->code, "%s", msg);
+}
+
+static int build_model(hy_scene_run *r, hy_error *err)
+{
+    static const char *const keys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
+    const hy_scene *s = r->scene;
+    const char *kind = "lugre";
+    int idx;
+    hy_scene_get_enum(s, "model", NULL, "kind", &idx, &kind);
+    hy_model *m = &r->model;
+    if (!strcmp(kind, "dahl"))
+        hy_model_dahl_init(m, num(s, "model", NULL, "rho", 1), num(s, "model", NULL, "fc", 1));
+    else if (!strcmp(kind, "dahl-filter"))
+        hy_model_dahl_filter_init(m, num(s, "model", NULL, "rho", 1), num(s, "model", NULL, "fc", 1),
+                                  num(s, "model", NULL, "tau", 1));
+    else {
+        hy_model_lugre_init(m, num(s, "model", NULL, "sigma0", 1), num(s, "model", NULL, "sigma1", 1),
+                            num(s, "model", NULL, "fc", 1), num(s, "model", NULL, "fs", 2),
+                            num(s, "model", NULL, "vs", 1), num(s, "model", NULL, "beta", 1));
+        m->sigma2 = num(s, "model", NULL, "sigma2", 0);
+    }
+    m->x0 = num(s, "model", NULL, "x0", 0);
+    if (hy_model_validate(m, err))
+        return located(s, "model", keys, err);
+    return HY_OK;
+}
+
+static int build_input(hy_scene_run *r, hy_error *err)
+{
+    static const char *const keys[] = {"umin1", "umin2", "umax1", "umax2", "extrema", "times", "amp", "period",
+                                       "offset", "points", "file", NULL};
+    const hy_scene *s = r->scene;
+    const char *kind = "bimodal", *shape_s = "linear";
+    int idx, rc;
+    hy_scene_get_enum(s, "input", NULL, "kind", &idx, &kind);
+    hy_scene_get_enum(s, "input", NULL, "shape", &idx, &shape_s);
+    int shape = strcmp(shape_s, "cosine") ? HY_SHAPE_LINEAR : HY_SHAPE_COSINE;
+    const double *v;
+    size_t n;
+    if (!strcmp(kind, "bimodal")) {
+        int have_t = hy_scene_get_list(s, "input", NULL, "t", &v, &n) >= 0 && n == 4;
+        rc = hy_input_bimodal(&r->input, num(s, "input", NULL, "umin1", 0), num(s, "input", NULL, "umin2", 0.2),
+                              num(s, "input", NULL, "umax1", 1), num(s, "input", NULL, "umax2", 1.5), have_t ? v : NULL,
+                              shape, err);
+        if (rc && strstr(err->msg, "t1 < t2"))
+            return hy_scene_error_at(s, "input", NULL, "t", err, rc, "%s", err->msg);
+    } else if (!strcmp(kind, "multimodal")) {
+        if (hy_scene_get_list(s, "input", NULL, "extrema", &v, &n) < 0)
+            return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL, "a multimodal input needs 'extrema'");
+        const double *tm = NULL;
+        size_t nt = 0;
+        if (hy_scene_get_list(s, "input", NULL, "times", &tm, &nt) >= 0 && nt != n + 1)
+            return hy_scene_error_at(s, "input", NULL, "times", err, HY_EINVAL,
+                                     "'times' needs %zu values (0, then the time of each extremum after the first, then the period), got %zu",
+                                     n + 1, nt);
+        rc = hy_input_multimodal(&r->input, v, n, tm, shape, err);
+    } else if (!strcmp(kind, "triangle")) {
+        double amp = num(s, "input", NULL, "amp", 1), off = num(s, "input", NULL, "offset", 0);
+        rc = hy_input_triangle(&r->input, num(s, "input", NULL, "min", off - amp), num(s, "input", NULL, "max", off + amp),
+                               num(s, "input", NULL, "period", 2), err);
+    } else if (!strcmp(kind, "sine"))
+        rc = hy_input_sine(&r->input, num(s, "input", NULL, "amp", 1), num(s, "input", NULL, "period", 2),
+                           num(s, "input", NULL, "offset", 0), err);
+    else if (!strcmp(kind, "pwl")) {
+        if (hy_scene_get_list(s, "input", NULL, "points", &v, &n) < 0)
+            return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL, "a pwl input needs 'points = t0, u0, t1, u1, ...'");
+        double *t = malloc(n * sizeof *t);
+        if (!t)
+            return hy_error_set(err, HY_ENOMEM, "out of memory");
+        for (size_t i = 0; i < n / 2; i++) {
+            t[i] = v[2 * i];
+            t[n / 2 + i] = v[2 * i + 1];
+        }
+        rc = hy_input_pwl(&r->input, t, t + n / 2, n / 2, err);
+        free(t);
+    } else { /* file */
+        const char *path;
+        if (hy_scene_get_str(s, "input", NULL, "file", &path) < 0)
+            return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL, "a file input needs 'file = \"PATH\"'");
+        rc = hy_input_file(&r->input, path, err);
+        if (rc)
+            return hy_scene_error_at(s, "input", NULL, "file", err, rc, "%s", err->msg);
+    }
+    if (rc)
+        return located(s, "input", keys, err);
+    r->have_input = 1;
+    return HY_OK;
+}
+
+int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->path = path;
+    int rc = hy_scene_parse_file(path, &r->scene, err);
+    for (size_t i = 0; !rc && i < nsets; i++)
+        rc = hy_scene_set(r->scene, sets[i], err);
+    if (!rc) {
+        int idx = 0;
+        const char *t;
+        hy_scene_get_enum(r->scene, "figure", NULL, "kind", &idx, &t);
+        r->figure_kind = idx;
+        rc = build_model(r, err);
+    }
+    if (!rc)
+        rc = build_input(r, err);
+    if (rc)
+        hy_scene_run_free(r);
+    return rc;
+}
+
+void hy_scene_run_free(hy_scene_run *r)
+{
+    for (size_t i = 0; i < r->nseries; i++) {
+        free(r->series[i].x);
+        free(r->series[i].y);
+    }
+    free(r->series);
+    if (r->have_loops)
+        hy_loops_free(&r->loops);
+    if (r->have_steady)
+        hy_steady_free(&r->steady);
+    if (r->have_input)
+        hy_input_free(&r->input);
+    hy_scene_free(r->scene);
+    memset(r, 0, sizeof *r);
+}
+
+/* ---- planning -------------------------------------------------------- */
+
+typedef struct gamma_solve {
+    double gamma;
+    double *y;         /* on the shared grid */
+    double err;        /* against the exact solution, or NaN */
+    const char *ref;
+    double seconds;
+} gamma_solve;
+
+typedef struct plan {
+    double t0, t1;     /* the time span of every t-grid */
+    size_t npts;       /* grid points over [t0, t1] */
+    double *t;         /* the grid */
+    long cycles;
+    size_t per_period; /* points per period */
+    gamma_solve *solves;
+    size_t nsolves;
+    int verbose;
+} plan;
+
+static void plan_line(hy_scene_run *r, const char *fmt, double a, const char *b)
+{
+    size_t len = strlen(r->plan);
+    if (len + 200 < sizeof r->plan)
+        snprintf(r->plan + len, sizeof r->plan - len, fmt, a, b);
+}
+
+static int series_data(const hy_scene *s, const char *name, int *data)
+{
+    int idx;
+    const char *text;
+    if (hy_scene_get_enum(s, "series", name, "data", &idx, &text) < 0)
+        return -1;
+    for (int i = 0; i < (int)(sizeof data_names / sizeof *data_names); i++)
+        if (!strcmp(text, data_names[i]))
+            *data = i;
+    return 0;
+}
+
+static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    int idx;
+    const char *solver = "exact";
+    hy_scene_get_enum(s, "compute", NULL, "solver", &idx, &solver);
+    g->y = malloc(p->npts * sizeof *g->y);
+    if (!g->y)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu points", p->npts);
+    g->err = NAN;
+    double t0 = now();
+    int rc;
+    int exact_ok = hy_gamma_exact_applies(&r->model, &r->input);
+    if (!strcmp(solver, "exact") && exact_ok) {
+        rc = hy_gamma_exact(&r->model, &r->input, g->gamma, p->t, p->npts, g->y, NULL, err);
+        g->err = 0;
+        g->ref = "exact piecewise-exponential solution";
+    } else {
+        hy_ode_opts o = hy_ode_defaults();
+        o.stepper = strcmp(solver, "exact") ? solver : "rk8pd";
+        o.rtol = num(s, "compute", NULL, "rtol", 1e-8);
+        o.atol = num(s, "compute", NULL, "atol", 1e-10);
+        rc = hy_ode_solve(&r->model, &r->input, g->gamma, &o, p->t, p->npts, g->y, NULL, err);
+        if (!rc && exact_ok && p->verbose) { /* the error, measured only when asked */
+            double *ye = malloc(p->npts * sizeof *ye);
+            if (ye && !hy_gamma_exact(&r->model, &r->input, g->gamma, p->t, p->npts, ye, NULL, err)) {
+                g->err = 0;
+                for (size_t i = 0; i < p->npts; i++)
+                    g->err = fmax(g->err, fabs(ye[i] - g->y[i]));
+                g->ref = "exact piecewise-exponential solution";
+            }
+            free(ye);
+        }
+        if (rc)
+            return hy_scene_error_at(s, "compute", NULL, "solver", err, rc, "gamma = %g: %s", g->gamma, err->msg);
+    }
+    g->seconds = now() - t0;
+    return rc;
+}
+
+static gamma_solve *find_solve(plan *p, double gamma)
+{
+    for (size_t i = 0; i < p->nsolves; i++)
+        if (p->solves[i].gamma == gamma)
+            return &p->solves[i];
+    return NULL;
+}
+
+/* Decides the grid and the shared computations; solves each distinct γ once. */
+static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    long pts = 2000;
+    hy_scene_get_int(s, "compute", NULL, "points", &pts);
+    p->cycles = 1;
+    hy_scene_get_int(s, "compute", NULL, "cycles", &p->cycles);
+    double span[2];
+    int is_auto = 1;
+    double T = r->input.period;
+    if (hy_scene_get_pair(s, "compute", NULL, "tspan", span, &is_auto) == HY_SCENE_SET && !is_auto) {
+        p->t0 = span[0];
+        p->t1 = span[1];
+        if (p->t0 < 0)
+            return hy_scene_error_at(s, "compute", NULL, "tspan", err, HY_EINVAL, "tspan must start at t >= 0 (got %g)", p->t0);
+    } else {
+        p->t0 = 0;
+        p->t1 = (double)p->cycles * T;
+    }
+    double periods = (p->t1 - p->t0) / T;
+    double np = (double)pts * fmax(1.0, periods);
+    if (np > 2e7)
+        return hy_scene_error_at(s, "compute", NULL, "points", err, HY_EINVAL,
+                                 "%g points per period over %g periods is more than 2e7 points", (double)pts, periods);
+    p->npts = (size_t)np + 1;
+    p->per_period = (size_t)pts;
+    p->t = malloc(p->npts * sizeof *p->t);
+    size_t ns = hy_scene_count(s, "series");
+    p->solves = calloc(ns ? ns : 1, sizeof *p->solves);
+    if (!p->t || !p->solves)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu points", p->npts);
+    for (size_t i = 0; i < p->npts; i++)
+        p->t[i] = p->t0 + (p->t1 - p->t0) * (double)i / (double)(p->npts - 1);
+    int need_steady = 0, need_loops = 0;
+    for (size_t i = 0; i < ns; i++) {
+        const char *name = hy_scene_name_at(s, "series", i);
+        int d = -1;
+        if (series_data(s, name, &d))
+            return hy_scene_error_at(s, "series", name, NULL, err, HY_EINVAL, "series '%s' needs 'data = ...' (%s)", name,
+                                     "input, psi, g, ystar, ysteady, ygamma, yk, transient, minor, major");
+        if (d == HY_DATA_BOUCWEN)
+            return hy_scene_error_at(s, "series", name, "data", err, HY_EUNSUP,
+                                     "data = boucwen is drawn by the Bouc-Wen scenes' own kind, not in a %s figure",
+                                     data_names[0]);
+        if (d == HY_DATA_YSTAR || d == HY_DATA_YSTEADY || d == HY_DATA_YK)
+            need_steady = 1;
+        if (d == HY_DATA_MINOR || d == HY_DATA_MAJOR)
+            need_steady = need_loops = 1;
+        if (d == HY_DATA_YGAMMA || d == HY_DATA_TRANSIENT) {
+            double g;
+            if (hy_scene_get_num(s, "series", name, "gamma", &g) < 0)
+                return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL, "series '%s' (data = %s) needs 'gamma'",
+                                         name, data_names[d]);
+            if (!find_solve(p, g))
+                p->solves[p->nsolves++].gamma = g;
+        }
+        if (d == HY_DATA_YK) {
+            long k;
+            if (hy_scene_get_int(s, "series", name, "k", &k) < 0)
+                return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL, "series '%s' (data = yk) needs 'k'", name);
+        }
+    }
+    for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
+        const char *text;
+        if (hy_scene_get_str(s, "annotation", hy_scene_name_at(s, "annotation", i), "text", &text) >= 0 && strchr(text, '{'))
+            need_steady = need_loops = 1;
+    }
+    if (need_steady) {
+        double t0 = now();
+        int rc = hy_steady_init(&r->steady, &r->model, &r->input, err);
+        if (rc)
+            return rc;
+        r->have_steady = 1;
+        plan_line(r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms%s\n", 1e3 * (now() - t0), "");
+    }
+    if (need_loops) {
+        double t0 = now();
+        int rc = hy_loops_find(&r->steady, &r->loops, err);
+        if (rc)
+            return rc;
+        r->have_loops = 1;
+        plan_line(r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms%s\n", 1e3 * (now() - t0), "");
+    }
+    for (size_t i = 0; i < p->nsolves; i++) {
+        int rc = solve_gamma(r, p, &p->solves[i], err);
+        if (rc)
+            return rc;
+        char what[160];
+        snprintf(what, sizeof what, " for gamma = %g over %zu points%s", p->solves[i].gamma, p->npts,
+                 p->solves[i].err == 0 ? " (exact)" : "");
+        plan_line(r, "y_gamma solve: %.3f ms%s\n", 1e3 * p->solves[i].seconds, what);
+    }
+    if (!need_steady && !p->nsolves)
+        plan_line(r, "analytic only: no steady state, no ODE solve%s%s\n", 0, "");
+    return HY_OK;
+}
+
+/* ---- series ---------------------------------------------------------- */
+
+static double interp(const plan *p, const double *y, double t)
+{
+    double f = (t - p->t0) / (p->t1 - p->t0) * (double)(p->npts - 1);
+    if (!(f > 0))
+        return y[0];
+    size_t i = (size_t)f;
+    if (i >= p->npts - 1)
+        return y[p->npts - 1];
+    double w = f - (double)i;
+    return y[i] * (1 - w) + y[i + 1] * w;
+}
+
+/* y of the series at time t (ϱ for psi, minor, major; v for g) */
+static double series_y(const hy_scene_run *r, const plan *p, const hy_run_series *se, double t)
+{
+    switch (se->data) {
+    case HY_DATA_INPUT: return hy_input_u(&r->input, t);
+    case HY_DATA_PSI: return hy_input_psi(&r->input, t);
+    case HY_DATA_G: return hy_model_g(&r->model, t);
+    case HY_DATA_YSTAR: return hy_ystar_at(&r->steady, r->model.x0, t);
+    case HY_DATA_YSTEADY: return hy_steady_at(&r->steady, t);
+    case HY_DATA_YK: return hy_ystar_k(&r->steady, r->model.x0, (double)se->k, fmod(t, r->input.period));
+    case HY_DATA_MINOR:
+    case HY_DATA_MAJOR: return hy_steady_at_rho(&r->steady, t);
+    default: {
+        gamma_solve *g = find_solve((plan *)p, se->gamma);
+        return g ? interp(p, g->y, t) : NAN;
+    }
+    }
+}
+
+/* x of the series at parameter t: u in loop figures, else t itself */
+static double series_x(const hy_scene_run *r, const hy_run_series *se, double t)
+{
+    if (r->figure_kind != FIG_LOOP)
+        return t;
+    if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR || se->data == HY_DATA_PSI)
+        return hy_input_psi(&r->input, t);
+    return hy_input_u(&r->input, t);
+}
+
+static int alloc_series(hy_run_series *se, size_t n, hy_error *err)
+{
+    se->x = malloc(n * sizeof *se->x);
+    se->y = malloc(n * sizeof *se->y);
+    se->n = n;
+    if (!se->x || !se->y)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for series '%s'", se->name);
+    return HY_OK;
+}
+
+/* Samples the series over [a, b] of its parameter with n points. */
+static void sample(const hy_scene_run *r, const plan *p, hy_run_series *se, size_t off, size_t n, double a, double b)
+{
+    for (size_t i = 0; i < n; i++) {
+        double t = n > 1 ? a + (b - a) * (double)i / (double)(n - 1) : a;
+        se->x[off + i] = series_x(r, se, t);
+        se->y[off + i] = series_y(r, p, se, t);
+    }
+}
+
+/* ϱ intervals of the minor loops (minor) or of the rest of the period (major) */
+static int loop_intervals(const hy_scene_run *r, int major, double *a, double *b, size_t max)
+{
+    const hy_loops *L = &r->loops;
+    size_t n = 0;
+    if (!major) {
+        for (size_t i = 0; i < L->nminor && n < max; i++, n++) {
+            a[n] = L->minor[i].rho_start;
+            b[n] = L->minor[i].rho_close;
+        }
+        return (int)n;
+    }
+    /* the period from the major loop's start, minus the top-level minor loops */
+    double rT = r->input.rho_T, cur = L->major.rho_start, end = cur + rT;
+    while (cur < end && n < max) {
+        double next = end, skip_to = end;
+        for (size_t i = 0; i < L->nminor; i++) {
+            const hy_loop *m = &L->minor[i];
+            if (m->depth != 1)
+                continue;
+            for (int w = -1; w <= 1; w++) {
+                double s0 = m->rho_start + w * rT, s1 = m->rho_close + w * rT;
+                if (s0 >= cur - 1e-12 && s0 < next) {
+                    next = s0;
+                    skip_to = s1;
+                }
+            }
+        }
+        if (next > cur) {
+            a[n] = cur;
+            b[n] = next;
+            n++;
+        }
+        cur = skip_to;
+    }
+    return (int)n;
+}
+
+static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    size_t per = p->per_period;
+    double T = r->input.period;
+    double t0 = now();
+    int rc = HY_OK;
+    se->err = NAN;
+    se->err_ref = NULL;
+    if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
+        double a[64], b[64];
+        int k = loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64);
+        size_t total = 0;
+        for (int i = 0; i < k; i++)
+            total += per + 1;
+        if ((rc = alloc_series(se, total ? total : 1, err)))
+            return rc;
+        size_t off = 0;
+        for (int i = 0; i < k; i++) {
+            sample(r, p, se, off, per, a[i], b[i]);
+            se->x[off + per] = se->y[off + per] = NAN; /* gap */
+            off += per + 1;
+        }
+        se->n = total;
+        se->err = 0;
+        se->err_ref = "closed form (Eqs. 11-14 generalised)";
+    } else if (se->data == HY_DATA_G) {
+        double lim[2];
+        int is_auto = 1;
+        if (hy_scene_get_pair(s, "figure", NULL, "xlim", lim, &is_auto) < 0 || is_auto) {
+            lim[0] = -4 * r->model.vs;
+            lim[1] = 4 * r->model.vs;
+        }
+        if ((rc = alloc_series(se, per + 1, err)))
+            return rc;
+        sample(r, p, se, 0, per + 1, lim[0], lim[1]);
+    } else if (se->data == HY_DATA_PSI) {
+        if ((rc = alloc_series(se, per + 1, err)))
+            return rc;
+        sample(r, p, se, 0, per + 1, 0, r->input.rho_T);
+    } else if (se->data == HY_DATA_YSTEADY || se->data == HY_DATA_YK) {
+        if ((rc = alloc_series(se, per + 1, err)))
+            return rc;
+        sample(r, p, se, 0, per + 1, 0, T);
+        se->y[per] = se->data == HY_DATA_YSTEADY ? r->steady.y_run[r->input.nruns]
+                                                 : hy_ystar_k(&r->steady, r->model.x0, (double)se->k, T);
+        se->err = 0;
+        se->err_ref = "closed form";
+    } else if ((se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) && r->figure_kind == FIG_LOOP) {
+        /* loop figures: the last period is the steady state at this γ, the rest the transient */
+        gamma_solve *g = find_solve(p, se->gamma);
+        double split = p->t1 - T;
+        size_t i0 = 0, i1 = p->npts;
+        for (size_t i = 0; i < p->npts; i++)
+            if (p->t[i] < split - 1e-12 * T)
+                i0 = i + 1;
+        if (p->cycles > 1) {
+            if (se->data == HY_DATA_YGAMMA)
+                i0 = i0 ? i0 - 1 : 0;
+            else {
+                i1 = i0;
+                i0 = 0;
+            }
+        } else
+            i0 = 0;
+        if ((rc = alloc_series(se, i1 - i0, err)))
+            return rc;
+        for (size_t i = i0; i < i1; i++) {
+            se->x[i - i0] = hy_input_u(&r->input, p->t[i]);
+            se->y[i - i0] = g->y[i];
+        }
+        se->err = g->err;
+        se->err_ref = g->ref;
+    } else if (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) {
+        gamma_solve *g = find_solve(p, se->gamma);
+        if ((rc = alloc_series(se, p->npts, err)))
+            return rc;
+        memcpy(se->x, p->t, p->npts * sizeof *se->x);
+        memcpy(se->y, g->y, p->npts * sizeof *se->y);
+        se->err = g->err;
+        se->err_ref = g->ref;
+    } else { /* input, ystar over the time span */
+        if ((rc = alloc_series(se, p->npts, err)))
+            return rc;
+        for (size_t i = 0; i < p->npts; i++) {
+            se->x[i] = series_x(r, se, p->t[i]);
+            se->y[i] = series_y(r, p, se, p->t[i]);
+        }
+        if (se->data == HY_DATA_YSTAR) {
+            se->err = 0;
+            se->err_ref = "closed form (Eq. 4)";
+        }
+    }
+    double at;
+    if (hy_scene_get_num(s, "series", se->name, "at", &at) == HY_SCENE_SET) {
+        se->has_mark = 1;
+        se->mark_x = series_x(r, se, at);
+        se->mark_y = series_y(r, p, se, at);
+    }
+    se->seconds = now() - t0;
+    return rc;
+}
+
+static int check_series_kind(const hy_scene_run *r, const hy_run_series *se, hy_error *err)
+{
+    static const int ok_loop[] = {0, 1, 0, 1, 1, 1, 1, 1, 1, 1};
+    const char *kinds[] = {"timeseries", "loop", "input", "g", "psi"};
+    int bad = 0;
+    if (r->figure_kind == FIG_LOOP)
+        bad = !ok_loop[se->data];
+    else if (r->figure_kind == FIG_G)
+        bad = se->data != HY_DATA_G;
+    else if (r->figure_kind == FIG_PSI)
+        bad = se->data != HY_DATA_PSI;
+    else if (r->figure_kind == FIG_INPUT)
+        bad = se->data != HY_DATA_INPUT;
+    else
+        bad = se->data == HY_DATA_G || se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR;
+    if (bad)
+        return hy_scene_error_at(r->scene, "series", se->name, "data", err, HY_EINVAL,
+                                 "data = %s cannot be drawn in a figure of kind %s", data_names[se->data],
+                                 kinds[r->figure_kind]);
+    return HY_OK;
+}
+
+int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
+{
+    double t_start = now();
+    plan p;
+    memset(&p, 0, sizeof p);
+    p.verbose = log != NULL;
+    const hy_scene *s = r->scene;
+    size_t ns = hy_scene_count(s, "series");
+    r->series = calloc(ns ? ns : 1, sizeof *r->series);
+    if (!r->series)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t i = 0; i < ns; i++) {
+        hy_run_series *se = &r->series[i];
+        se->name = hy_scene_name_at(s, "series", i);
+        if (series_data(s, se->name, &se->data))
+            se->data = HY_DATA_INPUT;
+        hy_scene_get_num(s, "series", se->name, "gamma", &se->gamma);
+        hy_scene_get_int(s, "series", se->name, "k", &se->k);
+    }
+    r->nseries = ns;
+    int rc = HY_OK;
+    for (size_t i = 0; i < ns && !rc; i++)
+        rc = check_series_kind(r, &r->series[i], err);
+    if (!rc)
+        rc = make_plan(r, &p, err);
+    for (size_t i = 0; i < ns && !rc; i++)
+        rc = compute_series(r, &p, &r->series[i], err);
+    r->seconds_compute = now() - t_start;
+    if (!rc && log) {
+        fprintf(log, "%s: plan\n%s", r->path, r->plan);
+        for (size_t i = 0; i < ns; i++) {
+            const hy_run_series *se = &r->series[i];
+            fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms", se->name, data_names[se->data], se->n,
+                    1e3 * se->seconds);
+            if (se->err_ref)
+                fprintf(log, "  error %.3g vs %s", se->err, se->err_ref);
+            else if (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT)
+                fprintf(log, "  error unknown (no exact solution for this input)");
+            fputc('\n', log);
+        }
+        fprintf(log, "  compute total %.3f ms\n", 1e3 * r->seconds_compute);
+    }
+    for (size_t i = 0; i < p.nsolves; i++)
+        free(p.solves[i].y);
+    free(p.solves);
+    free(p.t);
+    return rc;
+}

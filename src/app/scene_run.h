@@ -1,0 +1,82 @@
+/* scene_run.h: from a parsed scene to computed series, a figure and its files
+ * (DESIGN.md: parse → plan → compute → draw → write).
+ *
+ * The plan reads what the scene draws and computes only that: the steady
+ * state and loops only if a series or annotation needs them, one y_γ solve per
+ * distinct γ (shared by its transient and steady-state series), no ODE solver
+ * for an analytic figure, never a GL context.
+ *
+ *     hy_scene_run r;
+ *     if (hy_scene_run_load(&r, "scenes/fig15.scene", sets, nsets, &err)) ...
+ *     if (hy_scene_run_compute(&r, verbose_stream, &err)) ...
+ *     hy_scene_run_write(&r, outdir, formats_or_NULL, written, &err);
+ *     hy_scene_run_free(&r);
+ */
+#ifndef HY_SCENE_RUN_H
+#define HY_SCENE_RUN_H
+
+#include <stdio.h>
+
+#include "hy_input.h"
+#include "hy_limit.h"
+#include "hy_loops.h"
+#include "hy_model.h"
+#include "hy_scene.h"
+
+enum { HY_DATA_INPUT, HY_DATA_PSI, HY_DATA_G, HY_DATA_YSTAR, HY_DATA_YSTEADY, HY_DATA_YGAMMA,
+       HY_DATA_YK, HY_DATA_TRANSIENT, HY_DATA_MINOR, HY_DATA_MAJOR, HY_DATA_BOUCWEN };
+
+typedef struct hy_run_series {
+    const char *name;         /* the [series NAME]                                */
+    int data;                 /* HY_DATA_*                                         */
+    double gamma;             /* for ygamma/transient                              */
+    long k;                   /* for yk                                            */
+    double *x, *y;            /* n points (NaN separates pieces)                  */
+    size_t n;
+    double err;               /* max error against the exact answer, or NaN       */
+    const char *err_ref;      /* what err was measured against                    */
+    double seconds;           /* compute time                                     */
+    int has_mark;             /* a marker at 'at'                                 */
+    double mark_x, mark_y;
+} hy_run_series;
+
+typedef struct hy_scene_run {
+    hy_scene *scene;
+    const char *path;
+    hy_model model;
+    hy_input input;
+    int have_input;
+    int figure_kind;          /* index in the schema's figure kinds               */
+    hy_steady steady;
+    int have_steady;
+    hy_loops loops;
+    int have_loops;
+    hy_run_series *series;
+    size_t nseries;
+    char plan[2048];          /* the plan, one step a line (render -v)            */
+    double seconds_compute;
+} hy_scene_run;
+
+/* Parses the scene, applies the overrides ("section.key=value") and builds the
+ * model and input.  Errors name file:line:col.  On error r is freed. */
+int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err);
+
+/* Plans and computes every series; log (may be NULL) receives the plan and
+ * per-step times, errors against exact answers where they exist. */
+int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err);
+
+/* Writes the figure in the scene's formats (or the comma-separated formats
+ * override) into dir (NULL: the scene's [output] dir); the paths written are
+ * appended to written (may be NULL), one per line. */
+int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *formats, char *written,
+                       size_t written_size, hy_error *err);
+
+/* Prints every series as CSV: header "series,x,y", values %.17g. */
+int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err);
+
+/* The output base name: [output] name, or the scene file's name without .scene. */
+void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size);
+
+void hy_scene_run_free(hy_scene_run *r);
+
+#endif
