@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -41,6 +42,21 @@ static int located(const hy_scene *s, const char *sec, const char *const *keys, 
         if (!strncmp(msg, keys[i], n) && (msg[n] == ' ' || msg[n] == '['))
             return hy_scene_error_at(s, sec, NULL, keys[i], err, err->code, "%s", msg);
     }
+    /* Definition 1 messages name u_min,1 ... u_max,2: point at the first one named */
+    static const char *const paper[] = {"u_min,1", "u_min,2", "u_max,1", "u_max,2"};
+    static const char *const key_of[] = {"umin1", "umin2", "umax1", "umax2"};
+    const char *first = NULL;
+    int which = -1;
+    for (int i = 0; i < 4; i++) {
+        const char *at = strstr(msg, paper[i]);
+        if (at && (!first || at < first)) {
+            first = at;
+            which = i;
+        }
+    }
+    hy_scene_loc loc;
+    if (which >= 0 && hy_scene_get_loc(s, sec, NULL, key_of[which], &loc) == 1)
+        return hy_scene_error_at(s, sec, NULL, key_of[which], err, err->code, "%s", msg);
     return hy_scene_error_at(s, sec, NULL, NULL, err, err->code, "%s", msg);
 }
 
@@ -190,11 +206,15 @@ typedef struct plan {
     int verbose;
 } plan;
 
-static void plan_line(hy_scene_run *r, const char *fmt, double a, const char *b)
+static void plan_line(hy_scene_run *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void plan_line(hy_scene_run *r, const char *fmt, ...)
 {
     size_t len = strlen(r->plan);
-    if (len + 200 < sizeof r->plan)
-        snprintf(r->plan + len, sizeof r->plan - len, fmt, a, b);
+    va_list ap;
+    va_start(ap, fmt);
+    if (len + 1 < sizeof r->plan)
+        vsnprintf(r->plan + len, sizeof r->plan - len, fmt, ap);
+    va_end(ap);
 }
 
 static int series_data(const hy_scene *s, const char *name, int *data)
@@ -331,7 +351,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         if (rc)
             return rc;
         r->have_steady = 1;
-        plan_line(r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms%s\n", 1e3 * (now() - t0), "");
+        plan_line(r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
     }
     if (need_loops) {
         double t0 = now();
@@ -339,7 +359,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         if (rc)
             return rc;
         r->have_loops = 1;
-        plan_line(r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms%s\n", 1e3 * (now() - t0), "");
+        plan_line(r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (now() - t0));
     }
     for (size_t i = 0; i < p->nsolves; i++) {
         int rc = solve_gamma(r, p, &p->solves[i], err);
@@ -351,7 +371,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         plan_line(r, "y_gamma solve: %.3f ms%s\n", 1e3 * p->solves[i].seconds, what);
     }
     if (!need_steady && !p->nsolves)
-        plan_line(r, "analytic only: no steady state, no ODE solve%s%s\n", 0, "");
+        plan_line(r, "analytic only: no steady state, no ODE solve\n");
     return HY_OK;
 }
 
