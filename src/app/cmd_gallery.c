@@ -1,0 +1,869 @@
+/* cmd_gallery.c: `hystviz gallery`: renders every figure scene of a directory
+ * with a pool of POSIX threads, skips scenes whose content hash (hy_scene_hash,
+ * includes and program version folded in) matches the manifest, and writes a
+ * static index.html (DESIGN.md: "gallery index"). */
+#include "cmd_gallery.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <gsl/gsl_errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "hy_config.h"
+#include "scene_run.h"
+
+static const char gallery_help[] =
+    "usage: hystviz gallery [-j N] [--scenes DIR] [-o DIR] [--force] [--data] [--no-times] [--quiet]\n"
+    "\n"
+    "Renders every figure scene DIR/*.scene (files without a [series] section,\n"
+    "such as style.scene, are includes, not figures) into the gallery directory,\n"
+    "in the formats each scene asks for (its [output] dir is ignored), and writes\n"
+    "an index.html there.  A scene whose text, included files and hystviz version\n"
+    "are unchanged since the last run (gallery/.manifest) and whose outputs exist\n"
+    "is not rendered again.  A failing scene is reported as file:line:col, keeps\n"
+    "its previous outputs, is retried next time and makes the exit status 1.\n"
+    "\n"
+    "  -j, --jobs N       worker threads (default: the number of online CPUs)\n"
+    "  --scenes DIR       where the scenes are (default: scenes)\n"
+    "  -o, --output DIR   the gallery directory (default: gallery)\n"
+    "  --force            render every scene, changed or not\n"
+    "  --data             also write NAME.csv (hystviz data) per figure\n"
+    "  --no-times         leave render times out of index.html (byte-stable index)\n"
+    "  -q, --quiet        print only errors (no progress, no summary)\n"
+    "  -h, --help         this text\n";
+
+enum { J_SKIP, J_UNCHANGED, J_TODO, J_RENDERED, J_FAILED };
+
+typedef struct opts {
+    const char *scenes, *out;
+    long jobs;
+    int force, data, times, quiet, progress;
+} opts;
+
+/* One manifest line: what the last good render of a scene produced. */
+typedef struct entry {
+    char *scene;    /* scene file name                               */
+    char key[17];   /* hex hash of scene text, includes, version     */
+    int failed;     /* the last attempt failed: render again         */
+    double seconds; /* render time of the last good render           */
+    double err;     /* max error against the exact answer, or NaN    */
+    char *ref;      /* what err was measured against, or NULL        */
+    char *outputs;  /* space-separated file names                    */
+} entry;
+
+typedef struct job {
+    char *file;     /* scene file name                               */
+    char *path;     /* DIR/file                                      */
+    char name[256]; /* output base name                              */
+    int state;      /* J_*                                           */
+    entry *old;     /* manifest entry, or NULL                       */
+    entry now;      /* what the new manifest says (if have_now)      */
+    int have_now;
+    char msg[sizeof ((hy_error *)0)->msg + 64];
+} job;
+
+typedef struct pool {
+    const opts *o;
+    job *jobs;
+    size_t *todo, ntodo, next, done;
+    pthread_mutex_t mu;
+} pool;
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static char *dupstr(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    return d ? memcpy(d, s, n) : NULL;
+}
+
+static char *join(const char *dir, const char *file)
+{
+    size_t a = strlen(dir), b = strlen(file);
+    char *p = malloc(a + b + 2);
+    if (p) {
+        memcpy(p, dir, a);
+        p[a] = '/';
+        memcpy(p + a + 1, file, b + 1);
+    }
+    return p;
+}
+
+static void entry_free(entry *e)
+{
+    free(e->scene);
+    free(e->ref);
+    free(e->outputs);
+    memset(e, 0, sizeof *e);
+}
+
+static int entry_copy(entry *d, const entry *s)
+{
+    *d = *s;
+    d->scene = dupstr(s->scene);
+    d->ref = s->ref ? dupstr(s->ref) : NULL;
+    d->outputs = dupstr(s->outputs);
+    if (!d->scene || !d->outputs || (s->ref && !d->ref)) {
+        entry_free(d);
+        return -1;
+    }
+    return 0;
+}
+
+/* ---- atomic files ---------------------------------------------------- */
+
+/* Opens a temporary file next to path (PATH.tmp.XXXXXX); *tmp receives its
+ * name, freed by atomic_close.  NULL with errno set on failure. */
+static FILE *atomic_open(const char *path, char **tmp)
+{
+    size_t n = strlen(path);
+    *tmp = malloc(n + 12);
+    if (!*tmp)
+        return NULL;
+    memcpy(*tmp, path, n);
+    memcpy(*tmp + n, ".tmp.XXXXXX", 12);
+    int fd = mkstemp(*tmp);
+    FILE *f = fd >= 0 ? (fchmod(fd, 0644), fdopen(fd, "w")) : NULL;
+    if (!f) {
+        int e = errno;
+        if (fd >= 0) {
+            close(fd);
+            unlink(*tmp);
+        }
+        free(*tmp);
+        *tmp = NULL;
+        errno = e;
+    }
+    return f;
+}
+
+/* Closes f and renames the temporary file onto path; on any error removes
+ * it and returns -1 with errno set. */
+static int atomic_close(FILE *f, char *tmp, const char *path)
+{
+    int bad = ferror(f) != 0, e = bad ? EIO : 0;
+    if (fclose(f) && !bad) {
+        bad = 1;
+        e = errno;
+    }
+    if (!bad && rename(tmp, path)) {
+        bad = 1;
+        e = errno;
+    }
+    if (bad)
+        unlink(tmp);
+    free(tmp);
+    errno = e;
+    return bad ? -1 : 0;
+}
+
+/* ---- manifest -------------------------------------------------------- */
+
+static const char manifest_head[] = "# hystviz gallery manifest 1: scene, key, status, seconds, error, reference, outputs\n";
+
+static char *field(char **s)
+{
+    char *f = *s, *t = f ? strchr(f, '\t') : NULL;
+    if (t)
+        *t = '\0';
+    *s = t ? t + 1 : NULL;
+    return f;
+}
+
+/* Parses one manifest line into e; 0 on success, -1 if malformed. */
+static int entry_parse(char *line, entry *e)
+{
+    memset(e, 0, sizeof *e);
+    line[strcspn(line, "\n")] = '\0';
+    char *s = line;
+    char *f[7];
+    for (int i = 0; i < 7; i++)
+        if (!(f[i] = field(&s)))
+            return -1;
+    if (s || strlen(f[1]) != 16 || (strcmp(f[2], "ok") && strcmp(f[2], "failed")))
+        return -1;
+    memcpy(e->key, f[1], 17);
+    e->failed = !strcmp(f[2], "failed");
+    e->seconds = strtod(f[3], NULL);
+    e->err = strcmp(f[4], "-") ? strtod(f[4], NULL) : NAN;
+    e->scene = dupstr(f[0]);
+    e->ref = strcmp(f[5], "-") ? dupstr(f[5]) : NULL;
+    e->outputs = dupstr(f[6]);
+    if (!e->scene || !e->outputs || (strcmp(f[5], "-") && !e->ref)) {
+        entry_free(e);
+        return -1;
+    }
+    return 0;
+}
+
+/* Reads DIR/.manifest (missing: no entries; malformed lines are dropped, so
+ * their scenes are rendered again). */
+static entry *manifest_read(const char *path, size_t *n)
+{
+    *n = 0;
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return NULL;
+    entry *v = NULL;
+    size_t cap = 0;
+    char *line = NULL;
+    size_t lsz = 0;
+    while (getline(&line, &lsz, f) > 0) {
+        entry e;
+        if (line[0] == '#' || entry_parse(line, &e))
+            continue;
+        if (*n == cap) {
+            entry *nv = realloc(v, (cap = cap ? 2 * cap : 32) * sizeof *v);
+            if (!nv) {
+                entry_free(&e);
+                break;
+            }
+            v = nv;
+        }
+        v[(*n)++] = e;
+    }
+    free(line);
+    fclose(f);
+    return v;
+}
+
+static int manifest_write(const char *path, const job *jobs, size_t n)
+{
+    char *tmp;
+    FILE *f = atomic_open(path, &tmp);
+    if (!f)
+        return -1;
+    fputs(manifest_head, f);
+    for (size_t i = 0; i < n; i++) {
+        const entry *e = &jobs[i].now;
+        if (!jobs[i].have_now)
+            continue;
+        fprintf(f, "%s\t%s\t%s\t%.6f\t", e->scene, e->key, e->failed ? "failed" : "ok", e->seconds);
+        if (isnan(e->err))
+            fputs("-", f);
+        else
+            fprintf(f, "%.17g", e->err);
+        fprintf(f, "\t%s\t%s\n", e->ref ? e->ref : "-", e->outputs);
+    }
+    return atomic_close(f, tmp, path);
+}
+
+/* ---- planning: which scenes, which of them changed -------------------- */
+
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The sorted names of DIR's *.scene files; NULL (message printed) on error. */
+static char **list_scenes(const char *dir, size_t *n)
+{
+    DIR *d = opendir(dir);
+    if (!d) {
+        fprintf(stderr, "hystviz gallery: %s: cannot open the scenes directory: %s\n", dir, strerror(errno));
+        return NULL;
+    }
+    char **v = NULL;
+    size_t cap = 0;
+    *n = 0;
+    for (struct dirent *de; (de = readdir(d));) {
+        size_t len = strlen(de->d_name);
+        if (len <= 6 || strcmp(de->d_name + len - 6, ".scene") || de->d_name[0] == '.')
+            continue;
+        if (*n == cap) {
+            char **nv = realloc(v, (cap = cap ? 2 * cap : 64) * sizeof *v);
+            if (!nv)
+                break;
+            v = nv;
+        }
+        if (!(v[*n] = dupstr(de->d_name)))
+            break;
+        (*n)++;
+    }
+    closedir(d);
+    if (*n)
+        qsort(v, *n, sizeof *v, by_name);
+    if (!v)
+        v = calloc(1, sizeof *v);
+    return v;
+}
+
+/* The manifest key: the scene hash, then the program version and the gallery
+ * options that change the outputs, folded in with the same FNV-1a. */
+static void scene_key(const hy_scene *s, int data, char key[17])
+{
+    uint64_t h = hy_scene_hash(s);
+    char extra[64];
+    snprintf(extra, sizeof extra, "\nhystviz %s%s", HY_VERSION, data ? " data" : "");
+    for (const char *c = extra; *c; c++) {
+        h ^= (unsigned char)*c;
+        h *= UINT64_C(0x100000001b3);
+    }
+    snprintf(key, 17, "%016" PRIx64, h);
+}
+
+/* Every output of e exists in dir. */
+static int outputs_exist(const char *dir, const entry *e)
+{
+    char *list = dupstr(e->outputs);
+    int ok = list && *list;
+    char *save = NULL;
+    for (char *t = list ? strtok_r(list, " ", &save) : NULL; t && ok; t = strtok_r(NULL, " ", &save)) {
+        char *p = join(dir, t);
+        struct stat st;
+        ok = p && stat(p, &st) == 0 && S_ISREG(st.st_mode);
+        free(p);
+    }
+    free(list);
+    return ok;
+}
+
+static void job_fail(job *j, const char *msg)
+{
+    j->state = J_FAILED;
+    size_t n = strlen(j->path);
+    if (strncmp(msg, j->path, n) || msg[n] != ':')
+        snprintf(j->msg, sizeof j->msg, "%s: %s", j->path, msg);
+    else
+        snprintf(j->msg, sizeof j->msg, "%s", msg);
+}
+
+/* Parses j's scene (cheap: no computing) to learn whether it is a figure,
+ * its output name and key, and whether the manifest says it is up to date. */
+static void job_plan(const opts *o, job *jobs, size_t i, entry *man, size_t nman)
+{
+    job *j = &jobs[i];
+    for (size_t k = 0; k < nman; k++)
+        if (!strcmp(man[k].scene, j->file))
+            j->old = &man[k];
+    snprintf(j->name, sizeof j->name, "%.*s", (int)(strlen(j->file) - 6), j->file);
+    j->state = J_TODO;
+    if (strpbrk(j->file, "\t\n\r")) {
+        job_fail(j, "a scene file name with a tab or a line break is not supported");
+        return;
+    }
+    hy_scene_run probe;
+    hy_error err;
+    memset(&probe, 0, sizeof probe);
+    probe.path = j->path;
+    if (hy_scene_parse_file(j->path, &probe.scene, &err)) {
+        job_fail(j, err.msg);
+        return;
+    }
+    if (hy_scene_count(probe.scene, "series") == 0)
+        j->state = J_SKIP;
+    hy_scene_run_name(&probe, j->name, sizeof j->name);
+    char key[17];
+    scene_key(probe.scene, o->data, key);
+    hy_scene_free(probe.scene);
+    for (size_t k = 0; k < i && j->state != J_SKIP; k++)
+        if (jobs[k].state != J_SKIP && !strcmp(jobs[k].name, j->name)) {
+            snprintf(err.msg, sizeof err.msg, "its output name '%s' is also the output name of %s", j->name, jobs[k].file);
+            job_fail(j, err.msg);
+            return;
+        }
+    if (j->state == J_TODO && !o->force && j->old && !j->old->failed && !strcmp(j->old->key, key) &&
+        outputs_exist(o->out, j->old))
+        j->state = J_UNCHANGED;
+}
+
+/* ---- rendering ------------------------------------------------------- */
+
+static int write_csv(const hy_scene_run *r, const char *dir, const char *name, hy_error *err)
+{
+    char file[300];
+    snprintf(file, sizeof file, "%s.csv", name);
+    char *path = join(dir, file), *tmp = NULL;
+    FILE *f = path ? atomic_open(path, &tmp) : NULL;
+    int rc = f ? hy_scene_run_data(r, f, err) : hy_error_set(err, HY_EIO, "cannot write '%s/%s': %s", dir, file, strerror(errno));
+    if (f && rc) {
+        fclose(f);
+        unlink(tmp);
+        free(tmp);
+    } else if (f && atomic_close(f, tmp, path))
+        rc = hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, strerror(errno));
+    free(path);
+    return rc;
+}
+
+/* The manifest entry of a good render: outputs from the written paths. */
+static int entry_of_run(entry *e, const job *j, const hy_scene_run *r, const char *written, int data, double seconds)
+{
+    memset(e, 0, sizeof *e);
+    scene_key(r->scene, data, e->key);
+    e->seconds = seconds;
+    e->err = NAN;
+    const char *ref = NULL;
+    for (size_t i = 0; i < r->nseries; i++)
+        if (r->series[i].err_ref && !isnan(r->series[i].err) && !(r->series[i].err <= e->err)) {
+            e->err = r->series[i].err;
+            ref = r->series[i].err_ref;
+        }
+    e->ref = ref ? dupstr(ref) : NULL;
+    e->scene = dupstr(j->file);
+    size_t cap = strlen(written) + 320, len = 0;
+    e->outputs = calloc(1, cap);
+    if (!e->scene || !e->outputs || (!isnan(e->err) && !e->ref)) {
+        entry_free(e);
+        return -1;
+    }
+    for (const char *l = written; *l;) {
+        const char *nl = strchr(l, '\n'), *end = nl ? nl : l + strlen(l), *b = end;
+        while (b > l && b[-1] != '/')
+            b--;
+        len += (size_t)snprintf(e->outputs + len, cap - len, "%s%.*s", len ? " " : "", (int)(end - b), b);
+        l = nl ? nl + 1 : end;
+    }
+    if (data)
+        snprintf(e->outputs + len, cap - len, "%s%s.csv", len ? " " : "", j->name);
+    return 0;
+}
+
+/* Loads, computes and writes one scene into the gallery dir; fills j. */
+static void render_one(const opts *o, job *j)
+{
+    double t0 = now();
+    char *logbuf = NULL;
+    size_t loglen = 0;
+    FILE *log = open_memstream(&logbuf, &loglen); /* asks compute to measure every error it can */
+    hy_scene_run run;
+    hy_error err;
+    char written[4096] = "";
+    int rc = hy_scene_run_load(&run, j->path, NULL, 0, &err);
+    if (!rc) {
+        hy_scene_run_name(&run, j->name, sizeof j->name);
+        rc = hy_scene_run_compute(&run, log, &err);
+        if (!rc)
+            rc = hy_scene_run_write(&run, o->out, NULL, written, sizeof written, &err);
+        if (!rc && o->data)
+            rc = write_csv(&run, o->out, j->name, &err);
+        if (!rc && entry_of_run(&j->now, j, &run, written, o->data, now() - t0))
+            rc = hy_error_set(&err, HY_ENOMEM, "out of memory");
+        hy_scene_run_free(&run);
+    }
+    if (log)
+        fclose(log);
+    free(logbuf);
+    if (rc)
+        job_fail(j, err.msg);
+    else {
+        j->state = J_RENDERED;
+        j->have_now = 1;
+    }
+}
+
+static void *worker(void *arg)
+{
+    pool *p = arg;
+    for (;;) {
+        pthread_mutex_lock(&p->mu);
+        size_t k = p->next < p->ntodo ? p->todo[p->next++] : SIZE_MAX;
+        pthread_mutex_unlock(&p->mu);
+        if (k == SIZE_MAX)
+            return NULL;
+        job *j = &p->jobs[k];
+        double t0 = now();
+        render_one(p->o, j);
+        double dt = now() - t0;
+        char what[32] = "failed";
+        if (j->state != J_FAILED)
+            snprintf(what, sizeof what, "%.3f s", dt);
+        pthread_mutex_lock(&p->mu);
+        p->done++;
+        if (p->o->progress)
+            fprintf(stderr, "[%zu/%zu] %s (%s)\n", p->done, p->ntodo, j->name, what);
+        pthread_mutex_unlock(&p->mu);
+    }
+}
+
+/* Renders the J_TODO jobs with o->jobs threads (fewer if fewer jobs). */
+static int run_pool(const opts *o, job *jobs, size_t n)
+{
+    pool p;
+    memset(&p, 0, sizeof p);
+    p.o = o;
+    p.jobs = jobs;
+    p.todo = malloc((n ? n : 1) * sizeof *p.todo);
+    if (!p.todo)
+        return -1;
+    for (size_t i = 0; i < n; i++)
+        if (jobs[i].state == J_TODO)
+            p.todo[p.ntodo++] = i;
+    size_t nt = (size_t)o->jobs < p.ntodo ? (size_t)o->jobs : p.ntodo;
+    pthread_t *th = calloc(nt ? nt : 1, sizeof *th);
+    pthread_mutex_init(&p.mu, NULL);
+    size_t started = 0;
+    while (th && started < nt && pthread_create(&th[started], NULL, worker, &p) == 0)
+        started++;
+    if (started == 0)
+        worker(&p); /* no thread could be started: render here */
+    for (size_t i = 0; i < started; i++)
+        pthread_join(th[i], NULL);
+    pthread_mutex_destroy(&p.mu);
+    free(th);
+    free(p.todo);
+    return 0;
+}
+
+/* ---- index.html ------------------------------------------------------ */
+
+static void html(FILE *f, const char *s, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        switch (s[i]) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        case '\'': fputs("&#39;", f); break;
+        case '\0': fputs("\xef\xbf\xbd", f); break;
+        default: fputc(s[i], f);
+        }
+    }
+}
+
+static void htmls(FILE *f, const char *s)
+{
+    html(f, s, strlen(s));
+}
+
+/* A file name as a relative URL: unreserved bytes kept, the rest %XX. */
+static void url(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || strchr("-._~", c))
+            fputc(c, f);
+        else
+            fprintf(f, "%%%02X", c);
+    }
+}
+
+/* The pixel size of a PNG (IHDR) or the viewBox of an SVG; 0 if unknown. */
+static int image_size(const char *path, int svg, unsigned *w, unsigned *h)
+{
+    unsigned char b[2048];
+    FILE *f = fopen(path, "rb");
+    size_t n = f ? fread(b, 1, sizeof b - 1, f) : 0;
+    if (f)
+        fclose(f);
+    b[n] = '\0';
+    if (!svg) {
+        if (n < 24 || memcmp(b, "\x89PNG\r\n\x1a\n", 8) || memcmp(b + 12, "IHDR", 4))
+            return 0;
+        *w = (unsigned)b[16] << 24 | (unsigned)b[17] << 16 | (unsigned)b[18] << 8 | b[19];
+        *h = (unsigned)b[20] << 24 | (unsigned)b[21] << 16 | (unsigned)b[22] << 8 | b[23];
+        return *w > 0 && *h > 0;
+    }
+    const char *vb = strstr((const char *)b, "viewBox=\"");
+    double x, y, vw, vh;
+    if (!vb || sscanf(vb + 9, "%lf %lf %lf %lf", &x, &y, &vw, &vh) != 4 || !(vw > 0 && vh > 0 && vw < 1e6 && vh < 1e6))
+        return 0;
+    *w = (unsigned)lround(vw);
+    *h = (unsigned)lround(vh);
+    return *w > 0 && *h > 0;
+}
+
+static char *read_text(const char *path, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    size_t cap = 1 << 18;
+    char *b = malloc(cap);
+    *n = b ? fread(b, 1, cap, f) : 0;
+    fclose(f);
+    return b;
+}
+
+static const char index_css[] =
+    "body{font-family:'DejaVu Sans',Helvetica,Arial,sans-serif;margin:1.5em auto;max-width:90em;padding:0 1em;color:#222}\n"
+    "main{display:grid;grid-template-columns:repeat(auto-fill,minmax(26em,1fr));gap:1.2em}\n"
+    ".fig{border:1px solid #ccc;border-radius:4px;padding:.8em;background:#fff}\n"
+    ".fig h2{font-size:1.05em;margin:0 0 .5em}\n"
+    ".fig img{max-width:100%;height:auto;border:1px solid #eee}\n"
+    ".links a{margin-right:.6em}\n"
+    ".err{font-size:.9em;color:#444}\n"
+    ".failed{color:#a00;font-size:.9em}\n"
+    "pre{font-size:.8em;background:#f6f6f6;padding:.5em;overflow-x:auto}\n"
+    "table{border-collapse:collapse}td,th{padding:.15em .8em;text-align:left}td.t{text-align:right}\n";
+
+/* The thumbnail: the PNG if there is one, else the SVG, with its size scaled to 400 px wide. */
+static void index_thumb(FILE *f, const char *dir, const char *outputs)
+{
+    char *list = dupstr(outputs), *save = NULL, *img = NULL;
+    for (char *t = list ? strtok_r(list, " ", &save) : NULL; t; t = strtok_r(NULL, " ", &save)) {
+        size_t n = strlen(t);
+        if (n > 4 && !strcmp(t + n - 4, ".png"))
+            img = t;
+        else if (n > 4 && !strcmp(t + n - 4, ".svg") && !img)
+            img = t;
+    }
+    unsigned w = 0, h = 0;
+    char *p = img ? join(dir, img) : NULL;
+    if (p && image_size(p, !strcmp(img + strlen(img) - 4, ".svg"), &w, &h)) {
+        unsigned tw = 400, th = (unsigned)lround(400.0 * h / w);
+        fputs("<a href=\"", f);
+        url(f, img);
+        fputs("\"><img src=\"", f);
+        url(f, img);
+        fprintf(f, "\" width=\"%u\" height=\"%u\" alt=\"", tw, th ? th : 1);
+        htmls(f, img);
+        fputs("\"></a>\n", f);
+    }
+    free(p);
+    free(list);
+}
+
+static void index_links(FILE *f, const char *outputs)
+{
+    char *list = dupstr(outputs), *save = NULL;
+    fputs("<p class=\"links\">", f);
+    int first = 1;
+    for (char *t = list ? strtok_r(list, " ", &save) : NULL; t; t = strtok_r(NULL, " ", &save), first = 0) {
+        const char *dot = strrchr(t, '.');
+        fputs(first ? "<a href=\"" : " <a href=\"", f);
+        url(f, t);
+        fputs("\">", f);
+        for (const char *c = dot ? dot + 1 : t; *c; c++)
+            fputc(*c >= 'a' && *c <= 'z' ? *c - 'a' + 'A' : *c, f);
+        fputs("</a>", f);
+    }
+    fputs("</p>\n", f);
+    free(list);
+}
+
+static void index_figure(FILE *f, const opts *o, const job *j)
+{
+    fputs("<section class=\"fig\" id=\"", f);
+    url(f, j->file);
+    fputs("\">\n<h2>", f);
+    htmls(f, j->name);
+    fputs("</h2>\n", f);
+    if (j->state == J_FAILED) {
+        fputs("<p class=\"failed\">render failed: ", f);
+        htmls(f, j->msg);
+        fputs(j->have_now ? " (the files below are from the last good render)</p>\n" : "</p>\n", f);
+    }
+    if (j->have_now) {
+        index_thumb(f, o->out, j->now.outputs);
+        index_links(f, j->now.outputs);
+        if (!isnan(j->now.err)) {
+            fprintf(f, "<p class=\"err\">max error %.3g against the ", j->now.err);
+            htmls(f, j->now.ref ? j->now.ref : "exact answer");
+            fputs("</p>\n", f);
+        } else
+            fputs("<p class=\"err\">no exact answer to compare with</p>\n", f);
+    }
+    size_t n = 0;
+    char *text = read_text(j->path, &n);
+    fputs("<details><summary>scene ", f);
+    htmls(f, j->file);
+    fputs("</summary>\n<pre>", f);
+    if (text)
+        html(f, text, n);
+    fputs("</pre></details>\n</section>\n", f);
+    free(text);
+}
+
+static void index_times(FILE *f, const job *jobs, size_t n, const size_t count[5], double total)
+{
+    fprintf(f, "<section id=\"times\">\n<h2>Render times</h2>\n<p>Last run: %zu rendered, %zu unchanged, %zu failed in %.2f s.</p>\n",
+            count[J_RENDERED], count[J_UNCHANGED], count[J_FAILED], total);
+    fputs("<table>\n<tr><th>figure</th><th>last render</th><th>this run</th></tr>\n", f);
+    for (size_t i = 0; i < n; i++) {
+        const job *j = &jobs[i];
+        if (j->state == J_SKIP)
+            continue;
+        fputs("<tr><td><a href=\"#", f);
+        url(f, j->file);
+        fputs("\">", f);
+        htmls(f, j->name);
+        if (j->have_now)
+            fprintf(f, "</a></td><td class=\"t\">%.3f s</td>", j->now.seconds);
+        else
+            fputs("</a></td><td class=\"t\">-</td>", f);
+        fprintf(f, "<td>%s</td></tr>\n", j->state == J_RENDERED ? "rendered" : j->state == J_UNCHANGED ? "unchanged" : "failed");
+    }
+    fputs("</table>\n</section>\n", f);
+}
+
+static int index_write(const opts *o, const job *jobs, size_t n, const size_t count[5], double total)
+{
+    char *path = join(o->out, "index.html"), *tmp = NULL;
+    FILE *f = path ? atomic_open(path, &tmp) : NULL;
+    if (!f) {
+        free(path);
+        return -1;
+    }
+    size_t nfig = count[J_RENDERED] + count[J_UNCHANGED] + count[J_FAILED];
+    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+               "<meta name=\"generator\" content=\"hystviz %s\">\n<title>hystviz gallery</title>\n<style>\n%s</style>\n"
+               "</head>\n<body>\n<h1>hystviz gallery</h1>\n<p>%zu figures of hysteresis models (Dahl, LuGre), "
+               "rendered by hystviz %s from scene files.",
+            HY_VERSION, index_css, nfig, HY_VERSION);
+    if (o->times)
+        fputs(" Render times are <a href=\"#times\">at the end</a>.", f);
+    fputs("</p>\n<main>\n", f);
+    for (size_t i = 0; i < n; i++)
+        if (jobs[i].state != J_SKIP)
+            index_figure(f, o, &jobs[i]);
+    fputs("</main>\n", f);
+    if (o->times)
+        index_times(f, jobs, n, count, total);
+    fputs("</body>\n</html>\n", f);
+    int rc = atomic_close(f, tmp, path);
+    free(path);
+    return rc;
+}
+
+/* ---- the command ----------------------------------------------------- */
+
+static int parse_opts(int argc, char **argv, opts *o)
+{
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    *o = (opts){"scenes", "gallery", ncpu > 0 ? ncpu : 1, 0, 0, 1, 0, 0};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            fputs(gallery_help, stdout);
+            return 1;
+        } else if ((!strcmp(a, "-j") || !strcmp(a, "--jobs")) && v) {
+            char *end;
+            errno = 0;
+            o->jobs = strtol(argv[++i], &end, 10);
+            if (errno || *end || end == v || o->jobs < 1 || o->jobs > 1024) {
+                fprintf(stderr, "hystviz gallery: -j '%s': give a number of threads from 1 to 1024\n", v);
+                return 2;
+            }
+        } else if (!strcmp(a, "--scenes") && v)
+            o->scenes = argv[++i];
+        else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
+            o->out = argv[++i];
+        else if (!strcmp(a, "--force"))
+            o->force = 1;
+        else if (!strcmp(a, "--data"))
+            o->data = 1;
+        else if (!strcmp(a, "--no-times"))
+            o->times = 0;
+        else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
+            o->quiet = 1;
+        else {
+            fprintf(stderr, "hystviz gallery: unknown or incomplete option '%s' (see hystviz gallery --help)\n", a);
+            return 2;
+        }
+    }
+    o->progress = !o->quiet && isatty(STDERR_FILENO);
+    return 0;
+}
+
+static int make_dir(const char *dir)
+{
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(buf, 0755) && errno != EEXIST)
+                return -1;
+            *p = '/';
+        }
+    return mkdir(buf, 0755) && errno != EEXIST ? -1 : 0;
+}
+
+/* Plans, renders, writes the manifest and the index; returns the exit status. */
+static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
+{
+    double t0 = now();
+    for (size_t i = 0; i < n; i++)
+        job_plan(o, jobs, i, man, nman);
+    if (run_pool(o, jobs, n)) {
+        fprintf(stderr, "hystviz gallery: out of memory\n");
+        return 2;
+    }
+    size_t count[5] = {0};
+    int rc = 0;
+    for (size_t i = 0; i < n; i++) {
+        job *j = &jobs[i];
+        count[j->state]++;
+        if (j->state == J_UNCHANGED)
+            j->have_now = !entry_copy(&j->now, j->old);
+        if (j->state == J_FAILED) {
+            fprintf(stderr, "hystviz gallery: %s\n", j->msg);
+            j->have_now = j->old && !entry_copy(&j->now, j->old);
+            j->now.failed = 1;
+            rc = 1;
+        }
+    }
+    char *mpath = join(o->out, ".manifest");
+    if (!mpath || manifest_write(mpath, jobs, n)) {
+        fprintf(stderr, "hystviz gallery: cannot write '%s/.manifest': %s\n", o->out, strerror(errno));
+        rc = 2;
+    }
+    free(mpath);
+    double total = now() - t0;
+    if (index_write(o, jobs, n, count, total)) {
+        fprintf(stderr, "hystviz gallery: cannot write '%s/index.html': %s\n", o->out, strerror(errno));
+        rc = 2;
+    }
+    if (!o->quiet)
+        fprintf(stderr, "gallery: %zu rendered, %zu unchanged, %zu failed in %.2f s\n", count[J_RENDERED],
+                count[J_UNCHANGED], count[J_FAILED], now() - t0);
+    return rc;
+}
+
+int hy_cmd_gallery(int argc, char **argv)
+{
+    opts o;
+    int rc = parse_opts(argc, argv, &o);
+    if (rc)
+        return rc == 1 ? 0 : rc;
+    size_t n = 0, nman = 0;
+    char **names = list_scenes(o.scenes, &n);
+    if (!names)
+        return 2;
+    if (make_dir(o.out)) {
+        fprintf(stderr, "hystviz gallery: %s: cannot create the gallery directory: %s\n", o.out, strerror(errno));
+        rc = 2;
+    }
+    char *mpath = join(o.out, ".manifest");
+    entry *man = mpath && !rc ? manifest_read(mpath, &nman) : NULL;
+    free(mpath);
+    job *jobs = calloc(n ? n : 1, sizeof *jobs);
+    for (size_t i = 0; jobs && i < n; i++) {
+        jobs[i].file = names[i];
+        if (!(jobs[i].path = join(o.scenes, names[i])))
+            rc = 2;
+    }
+    if (!jobs)
+        rc = 2;
+    gsl_set_error_handler_off();
+    if (!rc)
+        rc = gallery(&o, jobs, n, man, nman);
+    for (size_t i = 0; jobs && i < n; i++) {
+        free(jobs[i].path);
+        entry_free(&jobs[i].now);
+    }
+    for (size_t i = 0; i < n; i++)
+        free(names[i]);
+    for (size_t i = 0; i < nman; i++)
+        entry_free(&man[i]);
+    free(man);
+    free(jobs);
+    free(names);
+    return rc;
+}
