@@ -1,0 +1,190 @@
+#!/bin/sh
+# Tests of `hystviz gallery` on small scenes written here: a second run renders
+# nothing; a changed scene or included style re-renders exactly what depends on
+# it; a failing scene is reported as file:line, exits non-zero and keeps its
+# previous files byte for byte; -j 1 and -j 2 give identical files; index.html
+# links every figure and its tags nest.
+# usage: test_gallery.sh HYSTVIZ   (HYSTVIZ gallery ... must run the command)
+set -u
+hv=$1
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+S=$tmp/scenes
+G=$tmp/gallery
+mkdir "$S"
+
+cat > "$S/look.scene" <<'EOF'
+# shared look: an include, not a figure
+[figure]
+size = 8cm, 6cm
+dpi = 72
+font = "DejaVu Sans"
+[output]
+formats = svg, png
+dir = "elsewhere"
+EOF
+cat > "$S/a_loop.scene" <<'EOF'
+include "look.scene"
+[model]
+kind = dahl
+[input]
+kind = triangle
+[compute]
+points = 200
+[figure]
+kind = loop
+[series ystar]
+data = ystar
+EOF
+cat > "$S/b_input.scene" <<'EOF'
+include "look.scene"
+[input]
+kind = bimodal
+[compute]
+points = 200
+[figure]
+kind = input
+[series u]
+data = input
+EOF
+cat > "$S/c_gamma.scene" <<'EOF'
+include "look.scene"
+[model]
+kind = lugre
+[input]
+kind = triangle
+[compute]
+points = 200
+[figure]
+kind = timeseries
+[series g10]
+data = ygamma
+gamma = 10
+EOF
+cat > "$S/d_psi.scene" <<'EOF'
+# no include: its own formats
+[input]
+kind = bimodal
+[figure]
+kind = psi
+[series p]
+data = psi
+[output]
+name = psi_plot
+formats = svg
+EOF
+
+# run NAME ARGS...: runs the gallery into $G, stderr in $tmp/NAME.err, status in $st
+run() {
+    name=$1
+    shift
+    "$hv" gallery --scenes "$S" -o "$G" --no-times "$@" > "$tmp/$name.out" 2> "$tmp/$name.err"
+    st=$?
+}
+summary() { # NAME "R rendered, S unchanged, F failed"
+    grep -q "^gallery: $2 in " "$tmp/$1.err" && ok || bad "$1: want '$2', got: $(cat "$tmp/$1.err")"
+}
+inode() { ls -i "$1" | cut -d' ' -f1; }
+
+# 1. from scratch: four figures, the include skipped, the scenes' [output] dir ignored
+run first -j 2
+[ $st -eq 0 ] && ok || bad "first run status $st: $(cat "$tmp/first.err")"
+summary first "4 rendered, 0 unchanged, 0 failed"
+for f in a_loop.svg a_loop.png b_input.svg b_input.png c_gamma.svg c_gamma.png psi_plot.svg index.html .manifest; do
+    [ -s "$G/$f" ] && ok || bad "missing $f"
+done
+[ ! -e "$G/look.svg" ] && [ ! -e "$G/psi_plot.png" ] && [ ! -e "$S/elsewhere" ] && [ ! -e elsewhere ] && ok ||
+    bad "include-only scene rendered, extra format, or [output] dir used"
+ls "$G" | grep -q '\.tmp\.' && bad "temporary files left" || ok
+
+# 2. nothing changed: nothing rendered, no file rewritten, index byte-identical
+cp "$G/index.html" "$tmp/index1.html"
+ia=$(inode "$G/a_loop.png")
+run second
+summary second "0 rendered, 4 unchanged, 0 failed"
+[ "$(inode "$G/a_loop.png")" = "$ia" ] && ok || bad "unchanged a_loop.png rewritten"
+cmp -s "$G/index.html" "$tmp/index1.html" && ok || bad "index.html differs after a run with nothing changed"
+
+# 3. one scene changed: only it is rendered
+ib=$(inode "$G/b_input.png")
+printf '# a comment changes the text\n' >> "$S/b_input.scene"
+run third
+summary third "1 rendered, 3 unchanged, 0 failed"
+[ "$(inode "$G/a_loop.png")" = "$ia" ] && [ "$(inode "$G/b_input.png")" != "$ib" ] && ok || bad "wrong scene re-rendered"
+
+# 4. the included style changed: the three that include it are rendered, not d
+sed -i 's/dpi = 72/dpi = 80/' "$S/look.scene"
+ipsi=$(inode "$G/psi_plot.svg")
+run fourth
+summary fourth "3 rendered, 1 unchanged, 0 failed"
+[ "$(inode "$G/psi_plot.svg")" = "$ipsi" ] && [ "$(inode "$G/a_loop.png")" != "$ia" ] && ok || bad "include change"
+
+# 5. a failing scene: reported with file:line:col, the others still rendered,
+#    status non-zero, its previous files intact, retried on the next run
+cp "$G/c_gamma.svg" "$tmp/c.svg"
+cp "$G/c_gamma.png" "$tmp/c.png"
+sed -i 's/^gamma = 10$/gama = 10/' "$S/c_gamma.scene"
+printf '# changed\n' >> "$S/a_loop.scene"
+run fifth
+[ $st -ne 0 ] && ok || bad "failing scene: status 0"
+grep -q "c_gamma.scene:12:1: unknown key" "$tmp/fifth.err" && ok || bad "no file:line:col in: $(cat "$tmp/fifth.err")"
+summary fifth "1 rendered, 2 unchanged, 1 failed"
+cmp -s "$G/c_gamma.svg" "$tmp/c.svg" && cmp -s "$G/c_gamma.png" "$tmp/c.png" && ok || bad "previous outputs of the failed scene changed"
+grep -q "^c_gamma.scene	[0-9a-f]*	failed	" "$G/.manifest" && ok || bad "manifest lost the failed scene's entry"
+grep -q 'render failed' "$G/index.html" && grep -q 'href="c_gamma.png"' "$G/index.html" && ok || bad "index: failed figure"
+run sixth
+[ $st -ne 0 ] && ok || bad "failed scene not retried"
+summary sixth "0 rendered, 3 unchanged, 1 failed"
+sed -i 's/^gama = 10$/gamma = 10/' "$S/c_gamma.scene"
+run seventh
+[ $st -eq 0 ] && ok || bad "fixed scene: status $st"
+summary seventh "1 rendered, 3 unchanged, 0 failed"
+cmp -s "$G/c_gamma.svg" "$tmp/c.svg" && ok || bad "fixed scene renders differently from before"
+
+# 6. -j 1 and -j 2 from scratch give byte-identical figures and index
+"$hv" gallery --scenes "$S" -o "$tmp/j1" -j 1 --no-times -q 2> "$tmp/j1.err" &&
+    "$hv" gallery --scenes "$S" -o "$tmp/j2" -j 2 --no-times -q 2> "$tmp/j2.err" && ok || bad "-j runs failed"
+[ ! -s "$tmp/j1.err" ] && ok || bad "--quiet printed: $(cat "$tmp/j1.err")"
+for f in a_loop.svg a_loop.png b_input.svg b_input.png c_gamma.svg c_gamma.png psi_plot.svg index.html; do
+    cmp -s "$tmp/j1/$f" "$tmp/j2/$f" && ok || bad "-j 1 and -j 2 differ: $f"
+done
+cmp -s "$tmp/j1/c_gamma.png" "$G/c_gamma.png" && ok || bad "from scratch differs from incremental"
+
+# 7. index.html: every figure linked, tags nest, scene text escaped
+for n in a_loop b_input c_gamma; do
+    grep -q "<img src=\"$n.png\" width=\"400\" height=\"300\"" "$G/index.html" && ok || bad "index: no thumbnail of $n"
+    grep -q "href=\"$n.svg\"" "$G/index.html" && ok || bad "index: no link to $n.svg"
+done
+grep -q '<img src="psi_plot.svg" width="400" height="300"' "$G/index.html" && ok || bad "index: svg thumbnail"
+grep -q 'include &quot;look.scene&quot;' "$G/index.html" && ok || bad "index: scene text not escaped"
+grep -q 'max error 0 against the exact piecewise-exponential solution' "$G/index.html" && ok || bad "index: error of c_gamma"
+grep -q 'look' "$G/index.html" && ! grep -q '<h2>look</h2>' "$G/index.html" && ok || bad "index lists the include"
+grep -o '<[^>]*>' "$G/index.html" | awk '
+    /^<!/ || /^<(meta|img|br|link)[ >]/ { next }
+    /^<\// { t = substr($0, 3); sub(/>.*/, "", t); if (n == 0 || st[n] != t) { print "unbalanced </" t ">"; bad = 1; exit } n--; next }
+    { t = substr($0, 2); sub(/[ >].*/, "", t); st[++n] = t }
+    END { if (!bad && n != 0) { print n " tags not closed"; bad = 1 } exit bad }' && ok || bad "index.html tags do not nest"
+"$hv" gallery --scenes "$S" -o "$tmp/t" -q && grep -q '<section id="times">' "$tmp/t/index.html" && ok || bad "index: times"
+
+# 8. an output name used twice is an error for the second scene only; --data; options
+printf 'include "look.scene"\n[figure]\nkind = input\n[series u]\ndata = input\n[output]\nname = a_loop\n' > "$S/e_dup.scene"
+run dup
+[ $st -ne 0 ] && grep -q "e_dup.scene: its output name 'a_loop' is also the output name of a_loop.scene" "$tmp/dup.err" && ok ||
+    bad "duplicate output name: $(cat "$tmp/dup.err")"
+rm "$S/e_dup.scene"
+run data --data
+[ $st -eq 0 ] && head -1 "$G/a_loop.csv" | grep -q '^series,x,y$' && grep -q 'href="a_loop.csv"' "$G/index.html" && ok || bad "--data"
+"$hv" gallery --bogus > /dev/null 2> "$tmp/opt.err"
+[ $? -eq 2 ] && grep -q "unknown or incomplete option '--bogus'" "$tmp/opt.err" && ok || bad "unknown option"
+"$hv" gallery -j 0 > /dev/null 2>&1
+[ $? -eq 2 ] && ok || bad "-j 0 accepted"
+"$hv" gallery --scenes "$tmp/none" -o "$tmp/x" > /dev/null 2> "$tmp/none.err"
+[ $? -eq 2 ] && grep -q "cannot open the scenes directory" "$tmp/none.err" && ok || bad "missing scenes dir"
+"$hv" gallery --help | grep -q 'usage: hystviz gallery' && ok || bad "--help"
+
+echo "gallery: $pass passed, $fail failed"
+[ $fail -eq 0 ]
