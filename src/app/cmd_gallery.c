@@ -852,6 +852,7 @@ int hy_cmd_gallery(int argc, char **argv)
     if (!jobs)
         rc = 2;
     gsl_set_error_handler_off();
+    tzset(); /* cairo's PDF writer reads the time zone: set it up before the threads */
     if (!rc)
         rc = gallery(&o, jobs, n, man, nman);
     for (size_t i = 0; jobs && i < n; i++) {

@@ -235,7 +235,8 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     char fbuf[64];
     if (formats) {
         snprintf(fbuf, sizeof fbuf, "%s", formats);
-        for (char *tok = strtok(fbuf, ","); tok && nf < 3; tok = strtok(NULL, ","))
+        char *save = NULL; /* strtok_r: the gallery calls this from several threads */
+        for (char *tok = strtok_r(fbuf, ",", &save); tok && nf < 3; tok = strtok_r(NULL, ",", &save))
             fmts[nf++] = tok;
     } else {
         size_t n = 0;
