@@ -623,7 +623,7 @@ static void index_thumb(FILE *f, const char *dir, const char *outputs)
         url(f, img);
         fprintf(f, "\" width=\"%u\" height=\"%u\" alt=\"", tw, th ? th : 1);
         htmls(f, img);
-        fputs("\"></a>\n", f);
+        fputs("\" /></a>\n", f);
     }
     free(p);
     free(list);
@@ -711,8 +711,8 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
         return -1;
     }
     size_t nfig = count[J_RENDERED] + count[J_UNCHANGED] + count[J_FAILED];
-    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-               "<meta name=\"generator\" content=\"hystviz %s\">\n<title>hystviz gallery</title>\n<style>\n%s</style>\n"
+    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\" />\n"
+               "<meta name=\"generator\" content=\"hystviz %s\" />\n<title>hystviz gallery</title>\n<style>\n%s</style>\n"
                "</head>\n<body>\n<h1>hystviz gallery</h1>\n<p>%zu figures of hysteresis models (Dahl, LuGre), "
                "rendered by hystviz %s from scene files.",
             HY_VERSION, index_css, nfig, HY_VERSION);

@@ -164,10 +164,13 @@ grep -q 'include &quot;look.scene&quot;' "$G/index.html" && ok || bad "index: sc
 grep -q 'max error 0 against the exact piecewise-exponential solution' "$G/index.html" && ok || bad "index: error of c_gamma"
 grep -q 'look' "$G/index.html" && ! grep -q '<h2>look</h2>' "$G/index.html" && ok || bad "index lists the include"
 grep -o '<[^>]*>' "$G/index.html" | awk '
-    /^<!/ || /^<(meta|img|br|link)[ >]/ { next }
+    /^<!/ || /\/>$/ || /^<(meta|img|br|link)[ >]/ { next }
     /^<\// { t = substr($0, 3); sub(/>.*/, "", t); if (n == 0 || st[n] != t) { print "unbalanced </" t ">"; bad = 1; exit } n--; next }
     { t = substr($0, 2); sub(/[ >].*/, "", t); st[++n] = t }
     END { if (!bad && n != 0) { print n " tags not closed"; bad = 1 } exit bad }' && ok || bad "index.html tags do not nest"
+if command -v xmllint > /dev/null 2>&1; then # the index is also well-formed XML
+    xmllint --noout "$G/index.html" && ok || bad "index.html is not well-formed"
+fi
 "$hv" gallery --scenes "$S" -o "$tmp/t" -q && grep -q '<section id="times">' "$tmp/t/index.html" && ok || bad "index: times"
 
 # 8. an output name used twice is an error for the second scene only; --data; options
