@@ -123,6 +123,12 @@ run fourth
 summary fourth "3 rendered, 1 unchanged, 0 failed"
 [ "$(inode "$G/psi_plot.svg")" = "$ipsi" ] && [ "$(inode "$G/a_loop.png")" != "$ia" ] && ok || bad "include change"
 
+# 4b. a deleted output: that scene is rendered again
+rm "$G/b_input.png"
+run fourthb
+summary fourthb "1 rendered, 3 unchanged, 0 failed"
+[ -s "$G/b_input.png" ] && ok || bad "deleted output not rendered again"
+
 # 5. a failing scene: reported with file:line:col, the others still rendered,
 #    status non-zero, its previous files intact, retried on the next run
 cp "$G/c_gamma.svg" "$tmp/c.svg"
@@ -187,6 +193,12 @@ run data --data
 [ $? -eq 2 ] && ok || bad "-j 0 accepted"
 "$hv" gallery --scenes "$tmp/none" -o "$tmp/x" > /dev/null 2> "$tmp/none.err"
 [ $? -eq 2 ] && grep -q "cannot open the scenes directory" "$tmp/none.err" && ok || bad "missing scenes dir"
+if command -v script > /dev/null 2>&1; then # progress lines on a terminal only
+    script -qec "$hv gallery --scenes $S -o $tmp/tty --no-times -j 1" /dev/null > "$tmp/tty.out" 2>&1
+    grep -q '^\[1/4\] a_loop (' "$tmp/tty.out" && grep -q '^\[4/4\] psi_plot (' "$tmp/tty.out" && ok ||
+        bad "no progress on a terminal: $(cat "$tmp/tty.out")"
+    grep -q '^\[' "$tmp/first.err" && bad "progress lines when stderr is not a terminal" || ok
+fi
 "$hv" gallery --help | grep -q 'usage: hystviz gallery' && ok || bad "--help"
 
 echo "gallery: $pass passed, $fail failed"
