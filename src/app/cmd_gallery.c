@@ -592,6 +592,7 @@ static char *read_text(const char *path, size_t *n)
 
 static const char index_css[] =
     "body{font-family:'DejaVu Sans',Helvetica,Arial,sans-serif;margin:1.5em auto;max-width:90em;padding:0 1em;color:#222}\n"
+    "nav{margin:0 0 1.2em;line-height:1.7}nav a{margin-right:1em;white-space:nowrap}\n"
     "main{display:grid;grid-template-columns:repeat(auto-fill,minmax(26em,1fr));gap:1.2em}\n"
     ".fig{border:1px solid #ccc;border-radius:4px;padding:.8em;background:#fff}\n"
     ".fig h2{font-size:1.05em;margin:0 0 .5em}\n"
@@ -718,7 +719,16 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
             HY_VERSION, index_css, nfig, HY_VERSION);
     if (o->times)
         fputs(" Render times are <a href=\"#times\">at the end</a>.", f);
-    fputs("</p>\n<main>\n", f);
+    fputs("</p>\n<nav>\n", f);
+    for (size_t i = 0; i < n; i++)
+        if (jobs[i].state != J_SKIP) {
+            fputs("<a href=\"#", f);
+            url(f, jobs[i].file);
+            fputs("\">", f);
+            htmls(f, jobs[i].name);
+            fputs("</a>\n", f);
+        }
+    fputs("</nav>\n<main>\n", f);
     for (size_t i = 0; i < n; i++)
         if (jobs[i].state != J_SKIP)
             index_figure(f, o, &jobs[i]);
@@ -785,6 +795,38 @@ static int make_dir(const char *dir)
     return mkdir(buf, 0755) && errno != EEXIST ? -1 : 0;
 }
 
+/* word is one of the space-separated words of list. */
+static int has_word(const char *list, const char *word)
+{
+    size_t n = strlen(word);
+    for (const char *p = list; (p = strstr(p, word)); p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
+            return 1;
+    return 0;
+}
+
+/* Removes what a re-rendered scene wrote last time and no longer writes (a
+ * format dropped, a new output name), unless another figure writes it now. */
+static void remove_stale(const opts *o, const job *jobs, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        const job *j = &jobs[i];
+        if (j->state != J_RENDERED || !j->old)
+            continue;
+        char *list = dupstr(j->old->outputs), *save = NULL;
+        for (char *t = list ? strtok_r(list, " ", &save) : NULL; t; t = strtok_r(NULL, " ", &save)) {
+            int claimed = 0;
+            for (size_t k = 0; k < n && !claimed; k++)
+                claimed = jobs[k].have_now && has_word(jobs[k].now.outputs, t);
+            char *p = claimed ? NULL : join(o->out, t);
+            if (p)
+                unlink(p);
+            free(p);
+        }
+        free(list);
+    }
+}
+
 /* Plans, renders, writes the manifest and the index; returns the exit status. */
 static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
 {
@@ -809,6 +851,7 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
             rc = 1;
         }
     }
+    remove_stale(o, jobs, n);
     char *mpath = join(o->out, ".manifest");
     if (!mpath || manifest_write(mpath, jobs, n)) {
         fprintf(stderr, "hystviz gallery: cannot write '%s/.manifest': %s\n", o->out, strerror(errno));

@@ -129,6 +129,17 @@ run fourthb
 summary fourthb "1 rendered, 3 unchanged, 0 failed"
 [ -s "$G/b_input.png" ] && ok || bad "deleted output not rendered again"
 
+# 4c. a dropped format or a new output name: the old files go, the new ones come
+sed -i 's/^formats = svg$/formats = svg, png/' "$S/d_psi.scene"
+run fourthc
+[ -s "$G/psi_plot.png" ] && ok || bad "added format not written"
+sed -i 's/^formats = svg, png$/formats = svg/; s/^name = psi_plot$/name = psi_map/' "$S/d_psi.scene"
+run fourthd
+[ ! -e "$G/psi_plot.png" ] && [ ! -e "$G/psi_plot.svg" ] && [ -s "$G/psi_map.svg" ] && ok || bad "stale outputs kept: $(ls "$G")"
+sed -i 's/^name = psi_map$/name = psi_plot/' "$S/d_psi.scene"
+run fourthe
+[ ! -e "$G/psi_map.svg" ] && [ -s "$G/psi_plot.svg" ] && ok || bad "stale outputs after rename back"
+
 # 5. a failing scene: reported with file:line:col, the others still rendered,
 #    status non-zero, its previous files intact, retried on the next run
 cp "$G/c_gamma.svg" "$tmp/c.svg"
