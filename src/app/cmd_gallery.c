@@ -714,7 +714,7 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
     size_t nfig = count[J_RENDERED] + count[J_UNCHANGED] + count[J_FAILED];
     fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\" />\n"
                "<meta name=\"generator\" content=\"hystviz %s\" />\n<title>hystviz gallery</title>\n<style>\n%s</style>\n"
-               "</head>\n<body>\n<h1>hystviz gallery</h1>\n<p>%zu figures of hysteresis models (Dahl, LuGre), "
+               "</head>\n<body>\n<h1>hystviz gallery</h1>\n<p>%zu figures "
                "rendered by hystviz %s from scene files.",
             HY_VERSION, index_css, nfig, HY_VERSION);
     if (o->times)
