@@ -109,7 +109,11 @@ summary second "0 rendered, 4 unchanged, 0 failed"
 [ "$(inode "$G/a_loop.png")" = "$ia" ] && ok || bad "unchanged a_loop.png rewritten"
 cmp -s "$G/index.html" "$tmp/index1.html" && ok || bad "index.html differs after a run with nothing changed"
 
-# 3. one scene changed: only it is rendered
+# 3. a touched but unchanged scene is not rendered (content hash, not mtime);
+#    one scene changed: only it is rendered
+touch "$S/a_loop.scene" "$S/look.scene"
+run touched
+summary touched "0 rendered, 4 unchanged, 0 failed"
 ib=$(inode "$G/b_input.png")
 printf '# a comment changes the text\n' >> "$S/b_input.scene"
 run third
@@ -204,7 +208,7 @@ run data --data
 [ $? -eq 2 ] && ok || bad "-j 0 accepted"
 "$hv" gallery --scenes "$tmp/none" -o "$tmp/x" > /dev/null 2> "$tmp/none.err"
 [ $? -eq 2 ] && grep -q "cannot open the scenes directory" "$tmp/none.err" && ok || bad "missing scenes dir"
-if command -v script > /dev/null 2>&1; then # progress lines on a terminal only
+if script -qec true /dev/null > /dev/null 2>&1; then # progress lines on a terminal only
     script -qec "$hv gallery --scenes $S -o $tmp/tty --no-times -j 1" /dev/null > "$tmp/tty.out" 2>&1
     grep -q '^\[1/4\] a_loop (' "$tmp/tty.out" && grep -q '^\[4/4\] psi_plot (' "$tmp/tty.out" && ok ||
         bad "no progress on a terminal: $(cat "$tmp/tty.out")"
