@@ -442,9 +442,9 @@ static void render_one(const opts *o, job *j)
     FILE *log = open_memstream(&logbuf, &loglen); /* asks compute to measure every error it can */
     hy_scene_run run;
     hy_error err;
-    char written[4096] = "";
     int rc = hy_scene_run_load(&run, j->path, NULL, 0, &err);
     if (!rc) {
+        char written[4096] = "";
         hy_scene_run_name(&run, j->name, sizeof j->name);
         rc = hy_scene_run_compute(&run, log, &err);
         if (!rc)
