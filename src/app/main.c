@@ -1,6 +1,7 @@
 /* main.c: the hystviz command; wires subcommands, owns no numerics. */
 #include "hy_config.h"
 
+#include <gsl/gsl_errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -44,6 +45,7 @@ static const command commands[] = {
 
 int main(int argc, char **argv)
 {
+    gsl_set_error_handler_off(); /* every GSL status is checked where it is returned */
     if (argc < 2) {
         fputs(usage, stderr);
         return 2;
