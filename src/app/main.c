@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cmd_boucwen.h"
+#include "cmd_gallery.h"
 #include "cmd_loop.h"
 #include "cmd_render.h"
 
@@ -18,6 +19,7 @@ static const char usage[] =
     "commands:\n"
     "  render    draw scene files into SVG, PDF and PNG figures\n"
     "  data      print every series a scene draws as CSV\n"
+    "  gallery   render every scene into gallery/ (parallel, skips unchanged) with an index page\n"
     "  loop      print a steady hysteresis loop, y*_{u,k} or y_gamma as CSV\n"
     "  loops     print the major and minor loops of an input with their areas\n"
     "  boucwen   the Bouc-Wen benchmark: Table 2, synthetic data sets as CSV\n"
@@ -38,6 +40,7 @@ typedef struct command {
 static const command commands[] = {
     {"render", hy_cmd_render},
     {"data", hy_cmd_render},
+    {"gallery", hy_cmd_gallery},
     {"loop", hy_cmd_loop},
     {"loops", hy_cmd_loop},
     {"boucwen", hy_cmd_boucwen},
