@@ -72,6 +72,15 @@ static const char *enum_text(const hy_scene *s, const char *sec, const char *nam
     return t;
 }
 
+/* Re-raises the core message in err at the scene location of key (copied
+ * first: hy_scene_error_at writes into the same buffer). */
+static int relocate(const hy_scene *s, const char *sec, const char *key, hy_error *err, int code, const char *what)
+{
+    char msg[sizeof err->msg];
+    memcpy(msg, err->msg, sizeof msg);
+    return hy_scene_error_at(s, sec, NULL, key, err, code, "%s%s", what, msg);
+}
+
 int hy_scene_is_boucwen(const hy_scene *s)
 {
     return !strcmp(enum_text(s, "model", NULL, "kind"), "boucwen");
@@ -96,7 +105,7 @@ static int read_params(const hy_scene *s, hy_boucwen_params *p, hy_error *err)
                                  "k + alpha (the linearised stiffness of Table 2) must be > 0, got k = %g, alpha = %g",
                                  p->k, p->alpha);
     if (hy_boucwen_params_validate(p, err))
-        return hy_scene_error_at(s, "model", NULL, NULL, err, HY_EINVAL, "%s", err->msg);
+        return relocate(s, "model", NULL, err, HY_EINVAL, "");
     return HY_OK;
 }
 
@@ -128,7 +137,7 @@ static int read_multisine(const hy_scene *s, bw_setup *b, hy_error *err)
     b->ms.rms = num(s, "input", "rms", 50);
     b->ms.seed = (uint64_t)integer(s, "input", "seed", 1);
     if (hy_multisine_lines(&b->ms, &kmin, &kmax, err))
-        return hy_scene_error_at(s, "input", NULL, "band", err, HY_EINVAL, "%s", err->msg);
+        return relocate(s, "input", "band", err, HY_EINVAL, "");
     b->nd = b->ms.n;
     return HY_OK;
 }
@@ -151,7 +160,7 @@ static int read_sweep(const hy_scene *s, bw_setup *b, hy_error *err)
     b->nd = hy_sweep_length(&b->sw, b->fs);
     if (b->nd == 0) {
         hy_sweep_fill(&b->sw, b->fs, NULL, 0, err);
-        return hy_scene_error_at(s, "input", NULL, "band", err, HY_EINVAL, "%s", err->msg);
+        return relocate(s, "input", "band", err, HY_EINVAL, "");
     }
     if (b->nd < 16)
         return hy_scene_error_at(s, "input", NULL, "band", err, HY_EINVAL,
@@ -341,7 +350,7 @@ static int make_record(const hy_scene *s, const bw_setup *b, bw_record *rec, hy_
     int rc = make_force(b, &u, &nu, err);
     if (rc) {
         free(u);
-        return hy_scene_error_at(s, "input", NULL, "kind", err, rc, "%s", err->msg);
+        return relocate(s, "input", "kind", err, rc, "");
     }
     int sweep = b->input == IN_SWEEP;
     size_t nout = sweep ? (nu + step - 1) / step : nu / step; /* per period, or all */
@@ -369,7 +378,7 @@ static int make_record(const hy_scene *s, const bw_setup *b, bw_record *rec, hy_
         rc = simulate(b, u, nu, yall, err);
         rec->sim_seconds = now() - t0;
         if (rc)
-            rc = hy_scene_error_at(s, "model", NULL, NULL, err, rc, "Bouc-Wen integration failed: %s", err->msg);
+            rc = relocate(s, "model", NULL, err, rc, "Bouc-Wen integration failed: ");
         else
             memcpy(rec->y, yall + skip, nkeep * sizeof *rec->y);
     }
