@@ -522,10 +522,14 @@ static void plan_text(hy_scene_run *r, const bw_setup *b, const bw_record *rec)
         snprintf(r->plan + len, sizeof r->plan - len, "Bouc-Wen: %s input only, no integration\n", inputs[b->input]);
         return;
     }
+    char span[96];
+    if (b->input == IN_SWEEP)
+        snprintf(span, sizeof span, "the whole sweep (%zu samples at %g Hz)", b->nd, b->fs);
+    else
+        snprintf(span, sizeof span, "%ld period(s) kept after %ld settling", b->cycles, b->settle);
     snprintf(r->plan + len, sizeof r->plan - len,
-             "Bouc-Wen: %s force, Newmark + Newton at %g Hz (%g Hz x %zu), %ld period(s) kept after %ld settling, "
-             "%s to %g Hz: %.3f ms\n",
-             inputs[b->input], b->fs * (double)b->r, b->fs, b->r, b->cycles, b->settle, decs[b->dec], rec->fs_out,
+             "Bouc-Wen: %s force, Newmark + Newton at %g Hz (%g Hz x %zu), %s, %s to %g Hz: %.3f ms\n",
+             inputs[b->input], b->fs * (double)b->r, b->fs, b->r, span, decs[b->dec], rec->fs_out,
              1e3 * rec->sim_seconds);
 }
 
