@@ -30,6 +30,8 @@ typedef struct bw_setup {
     size_t r;             /* integration rate = fs * r                       */
     int dec;              /* DEC_*                                           */
     long cycles, settle;  /* periods kept, periods discarded before them     */
+    double noise;         /* output noise RMS, m                             */
+    uint64_t seed;        /* [input] seed: multisine phases, and the noise   */
     double amp, period, offset;
     hy_multisine ms;
     hy_sweep sw;
@@ -135,7 +137,7 @@ static int read_multisine(const hy_scene *s, bw_setup *b, hy_error *err)
     b->ms.fmin = band[0];
     b->ms.fmax = band[1];
     b->ms.rms = num(s, "input", "rms", 50);
-    b->ms.seed = (uint64_t)integer(s, "input", "seed", 1);
+    b->ms.seed = b->seed;
     if (hy_multisine_lines(&b->ms, &kmin, &kmax, err))
         return relocate(s, "input", "band", err, HY_EINVAL, "");
     b->nd = b->ms.n;
@@ -177,6 +179,8 @@ static int read_signal(const hy_scene *s, bw_setup *b, hy_error *err)
     b->dec = enum_index(s, "compute", NULL, "decimate");
     b->cycles = integer(s, "compute", "cycles", 1);
     b->settle = integer(s, "compute", "settle", 0);
+    b->noise = 1e-3 * num(s, "compute", "noise", 0);
+    b->seed = (uint64_t)integer(s, "input", "seed", 1);
     int rc;
     if (!strcmp(kind, "sine")) {
         b->input = IN_SINE;
@@ -381,6 +385,10 @@ static int make_record(const hy_scene *s, const bw_setup *b, bw_record *rec, hy_
             rc = relocate(s, "model", NULL, err, rc, "Bouc-Wen integration failed: ");
         else
             memcpy(rec->y, yall + skip, nkeep * sizeof *rec->y);
+        /* as `hystviz boucwen data`: the noise stream is seeded apart from the phases */
+        if (!rc && b->noise > 0)
+            rc = hy_signal_add_noise(rec->y, nkeep, b->noise, rec->fs_out / 2, rec->fs_out,
+                                     b->seed ^ 0x6e6f697365ULL, err);
     }
     free(u);
     free(yall);

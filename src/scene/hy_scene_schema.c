@@ -99,7 +99,7 @@ static const hy_scene_key_spec input_keys[] = {
       "multisine input: excited band in Hz; sweep input: start and end frequency in Hz"),
     K("rms", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "50",
       "multisine input: standard deviation (RMS) in N"),
-    K("seed", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases"),
+    K("seed", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
     K("rate", HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute"),
 };
 
@@ -125,6 +125,8 @@ static const hy_scene_key_spec compute_keys[] = {
       "boucwen: Newmark integration rate as a multiple of the input's fs (15000 Hz = 20 x 750 Hz)"),
     K("decimate", HY_KIND_ENUM, decimations, NOLIM, 0, 0, "staged",
       "boucwen: back to fs like MATLAB decimate(y, r, 'fir') in prime-factor stages or one stage, or none (keep fs x upsample)"),
+    K("noise", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
+      "boucwen: RMS in mm of Gaussian noise added to y, white up to half the output rate (the benchmark's data: 8e-3)"),
 };
 
 static const hy_scene_key_spec figure_keys[] = {

@@ -173,6 +173,21 @@ static void test_transient(void)
     col_free(&tr);
 }
 
+/* [compute] noise: the output moves by noise of exactly that RMS (in mm). */
+static void test_noise(void)
+{
+    col a, b;
+    const char *noisy[] = {"compute.noise=8e-3"};
+    CHECK(data_of(SCENES "bw_fig2a_output_periods.scene", NULL, 0, "y", &a) == 0, "fig2a");
+    CHECK(data_of(SCENES "bw_fig2a_output_periods.scene", noisy, 1, "y", &b) == 0, "fig2a with noise");
+    CHECK(a.n == b.n && a.n == 5 * 8192, "%zu and %zu samples", a.n, b.n);
+    if (a.n == b.n && a.n)
+        CHECK(fabs(hy_signal_erms(a.y, b.y, a.n) - 8e-3) < 1e-12, "noise RMS %.17g mm",
+              hy_signal_erms(a.y, b.y, a.n));
+    col_free(&a);
+    col_free(&b);
+}
+
 /* Writes text to dir/name and expects hy_scene_run_load to fail with a
  * message starting "dir/name:want_loc: " and containing want. */
 static void refused(const char *dir, const char *text, const char *want_loc, const char *want)
@@ -241,6 +256,7 @@ int main(void)
 {
     test_linear();
     test_transient();
+    test_noise();
     test_refused();
     if (bw_failures)
         fprintf(stderr, "test_scenes: %d check(s) failed\n", bw_failures);
