@@ -46,7 +46,9 @@ static const char usage[] =
     "                       't,u' lines (uniform t gives fs); upsampled by a\n"
     "                       Kaiser-windowed sinc; t is written from 0\n"
     "  --input FILE         input force file (implies --signal file)\n"
-    "  --data-dir DIR       folder of uval_multisine.txt (validation)\n"
+    "  --data-dir DIR       folder of uval_multisine.txt (validation; default\n"
+    "                       $HY_BOUCWEN_DATA, then shared/data/boucwen next to\n"
+    "                       the source tree)\n"
     "  --periods P          number of periods written (periodic signals)\n"
     "  --noise RMS          output noise RMS in metres, Gaussian band-limited\n"
     "                       to 0-fs/2 (default 8e-6 = 8e-3 mm; 0 = none;\n"
@@ -58,7 +60,12 @@ static const char usage[] =
     "  --set-param N=V      change a parameter: m c k alpha beta gamma delta nu\n"
     "                       (Table 1: 2 10 5e4 5e4 1e3 0.8 -1.1 1)\n"
     "  -o FILE              output file (written to a temporary name, then\n"
-    "                       renamed); default standard output\n";
+    "                       renamed); default standard output\n"
+    "  -h, --help           this text\n"
+    "\n"
+    "Options take their value as the next argument or after '=' (--fs=750).\n"
+    "Exit status: 0 done, 1 computation or output failed, 2 usage error (nothing\n"
+    "written).  Scenes draw the same system: [model] kind = boucwen (docs/SCENES.md).\n";
 
 typedef struct opts {
     const char *signal, *input, *data_dir, *out;

@@ -14,6 +14,7 @@
 #include "hy_gamma.h"
 #include "hy_ode.h"
 #include "hy_plot.h"
+#include "scene_boucwen.h"
 
 static double now(void)
 {
@@ -159,9 +160,11 @@ int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size
         const char *t;
         hy_scene_get_enum(r->scene, "figure", NULL, "kind", &idx, &t);
         r->figure_kind = idx;
-        rc = build_model(r, err);
+        rc = hy_scene_boucwen_load(r, err);
+        if (!rc && !hy_scene_is_boucwen(r->scene))
+            rc = build_model(r, err);
     }
-    if (!rc)
+    if (!rc && !hy_scene_is_boucwen(r->scene))
         rc = build_input(r, err);
     if (rc)
         hy_scene_run_free(r);
@@ -603,6 +606,8 @@ static int check_series_kind(const hy_scene_run *r, const hy_run_series *se, hy_
 
 int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
+    if (hy_scene_is_boucwen(r->scene))
+        return hy_scene_boucwen_compute(r, log, err);
     double t_start = now();
     plan p;
     memset(&p, 0, sizeof p);

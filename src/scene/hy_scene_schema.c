@@ -1,4 +1,5 @@
-/* hy_scene_schema.c: the scene vocabulary, one static table (models and inputs of seed 000, Sections 2-4). */
+/* hy_scene_schema.c: the scene vocabulary, one static table (models and inputs of seed 000,
+ * Sections 2-4; the Bouc-Wen benchmark of seed 001, Tables 1-2 and Sections 4-5). */
 #include "hy_scene_schema.h"
 
 #include <stdio.h>
@@ -14,9 +15,9 @@
     { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc }
 #define NKEYS(a) (sizeof(a) / sizeof((a)[0]))
 
-static const char *const model_kinds[] = {"dahl", "lugre", "dahl-filter", NULL};
+static const char *const model_kinds[] = {"dahl", "lugre", "dahl-filter", "boucwen", NULL};
 static const char *const input_kinds[] = {"bimodal", "multimodal", "triangle", "sine",
-                                          "pwl", "file", NULL};
+                                          "pwl", "file", "multisine", "sweep", NULL};
 static const char *const input_shapes[] = {"linear", "cosine", NULL};
 static const char *const solvers[] = {"exact", "rkf45", "rk8pd", "rk4imp", "bsimp", "msbdf",
                                       "rk2", "rk4", "rkck", "rk1imp", "rk2imp", "msadams",
@@ -29,6 +30,9 @@ static const char *const series_data[] = {"input", "psi", "g", "ystar", "ysteady
                                           NULL};
 static const char *const line_styles[] = {"solid", "dashed", "dotted", "dashdot", "none",
                                           NULL};
+static const char *const bw_quantities[] = {"output", "input", "output-db", "transient-db",
+                                            "spectrum", NULL};
+static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {"none", "circle", "square", NULL};
 static const char *const formats[] = {"svg", "pdf", "png", NULL};
 static const char *const easings[] = {"linear", "smooth", NULL};
@@ -36,7 +40,7 @@ static const char *const qualities[] = {"480p15", "720p30", "1080p60", "2160p60"
 
 static const hy_scene_key_spec model_keys[] = {
     K("kind", HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, "lugre",
-      "friction model: Dahl, LuGre (Eq. 3), or the Example-1 filter system"),
+      "hysteresis model: Dahl, LuGre (Eq. 3), the Example-1 filter system, or the Bouc-Wen benchmark oscillator"),
     K("sigma0", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
     K("sigma1", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
     K("sigma2", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
@@ -48,11 +52,21 @@ static const hy_scene_key_spec model_keys[] = {
     K("rho", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "constant g of the Dahl model"),
     K("x0", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "initial state x(0)"),
     K("tau", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "time constant of the dahl-filter system"),
+    K("m", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "boucwen: mass m_L in kg (Table 1)"),
+    K("c", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "10", "boucwen: viscous damping c_L in N s/m"),
+    K("k", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4", "boucwen: linear stiffness k_L in N/m"),
+    K("alpha", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4",
+      "boucwen: alpha of Eq. (3) in N/m (k + alpha > 0: the linearised stiffness of Table 2)"),
+    K("bw_beta", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1e3",
+      "boucwen: beta of Eq. (3) in 1/m^nu; 0 gives the linear oscillator of Fig. 1(b)"),
+    K("bw_gamma", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen: gamma of Eq. (3)"),
+    K("delta", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen: delta of Eq. (3)"),
+    K("nu", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen: exponent nu of Eq. (3)"),
 };
 
 static const hy_scene_key_spec input_keys[] = {
     K("kind", HY_KIND_ENUM, input_kinds, NOLIM, 0, 0, "bimodal",
-      "input family: bimodal (Eq. 10), multimodal, triangle, sine, pwl, or samples from a file"),
+      "input family: bimodal (Eq. 10), multimodal, triangle, sine, pwl, samples from a file; boucwen models take sine, multisine or sweep"),
     K("umin1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "bimodal input: first minimum u_min,1"),
     K("umin2", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.2", "bimodal input: second minimum u_min,2"),
     K("umax1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "bimodal input: first maximum u_max,1"),
@@ -65,7 +79,8 @@ static const hy_scene_key_spec input_keys[] = {
       "multimodal input: the successive extrema of one period"),
     K("times", HY_KIND_NUMBER_LIST, NULL, NONNEG, 2, 0, NULL,
       "multimodal input: the times of the extrema (default: normalised)"),
-    K("amp", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "triangle or sine input: amplitude"),
+    K("amp", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1",
+      "triangle, sine or sweep input: amplitude (a force in N for a boucwen model)"),
     K("offset", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "triangle or sine input: mean value"),
     K("period", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "triangle or sine input: period T"),
     K("min", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
@@ -76,6 +91,16 @@ static const hy_scene_key_spec input_keys[] = {
       "pwl input: one period as t0, u0, t1, u1, ..."),
     K("file", HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
       "file input: two-column text file t u, relative to the scene file"),
+    K("fs", HY_KIND_NUMBER, NULL, POS, 0, 0, "750",
+      "boucwen inputs: working sampling rate in Hz (the figures' samples; a sine needs period x fs whole)"),
+    K("samples", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 64, 10000000, 0, 0, "8192",
+      "multisine input: samples per period at fs (frequency resolution fs / samples)"),
+    K("band", HY_KIND_PAIR, NULL, NOLIM, 0, 0, "5, 150",
+      "multisine input: excited band in Hz; sweep input: start and end frequency in Hz"),
+    K("rms", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "50",
+      "multisine input: standard deviation (RMS) in N"),
+    K("seed", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
+    K("rate", HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute"),
 };
 
 static const hy_scene_key_spec compute_keys[] = {
@@ -94,6 +119,14 @@ static const hy_scene_key_spec compute_keys[] = {
       "time interval computed and drawn (default: the periods simulated)"),
     K("points", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 10000000, 0, 0, "2000",
       "number of output samples per curve"),
+    K("settle", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 0, 100000, 0, 0, "0",
+      "boucwen: input periods integrated from rest and discarded before the 'cycles' drawn"),
+    K("upsample", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 1000, 0, 0, "20",
+      "boucwen: Newmark integration rate as a multiple of the input's fs (15000 Hz = 20 x 750 Hz)"),
+    K("decimate", HY_KIND_ENUM, decimations, NOLIM, 0, 0, "staged",
+      "boucwen: back to fs like MATLAB decimate(y, r, 'fir') in prime-factor stages or one stage, or none (keep fs x upsample)"),
+    K("noise", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
+      "boucwen: RMS in mm of Gaussian noise added to y, white up to half the output rate (the benchmark's data: 8e-3)"),
 };
 
 static const hy_scene_key_spec figure_keys[] = {
@@ -130,6 +163,10 @@ static const hy_scene_key_spec series_keys[] = {
     K("label", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "legend entry (default: none)"),
     K("at", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "parameter value (e.g. t1) where the marker is placed"),
+    K("quantity", HY_KIND_ENUM, bw_quantities, NOLIM, 0, 0, "output",
+      "data = boucwen: y in mm, u in N, |y| in dB re 1 mm, transient y - y(last period) in dB, or the last period's spectrum"),
+    K("floor", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+      "data = boucwen, dB quantities: values below it and exact zeros are drawn at this level (default: zeros leave gaps)"),
 };
 
 static const hy_scene_key_spec annotation_keys[] = {

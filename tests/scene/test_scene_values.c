@@ -94,9 +94,9 @@ static void bools_enums_strings(void)
 
     PARSE_FAILS("[figure]\nxlog = yes\n", "t.scene:2:8: 'xlog' in [figure] expects true or false, got 'yes'");
     PARSE_FAILS("[model]\nkind = lugr\n",
-                "t.scene:2:8: 'kind' in [model] must be one of dahl, lugre, dahl-filter, got 'lugr'; did you mean 'lugre'?");
+                "t.scene:2:8: 'kind' in [model] must be one of dahl, lugre, dahl-filter, boucwen, got 'lugr'; did you mean 'lugre'?");
     PARSE_FAILS("[model]\nkind = coulomb\n",
-                "t.scene:2:8: 'kind' in [model] must be one of dahl, lugre, dahl-filter, got 'coulomb'");
+                "t.scene:2:8: 'kind' in [model] must be one of dahl, lugre, dahl-filter, boucwen, got 'coulomb'");
     PARSE_FAILS("[figure]\ntitle = \"abc\n", "t.scene:2:9: unterminated string (missing closing '\"')");
     PARSE_FAILS("[figure]\ntitle = Hello world\n",
                 "t.scene:2:15: unexpected 'w' after the value of 'title' (quote text that contains spaces)");

@@ -1,0 +1,576 @@
+/* scene_boucwen.c: Bouc-Wen scenes (seeds/001, Figs. 1-2): Table 1 from [model], a
+ * sine, multisine or sweep force, Newmark at fs x upsample (Eqs. 1-5), MATLAB-style
+ * decimation back to fs (Section 4), then the series y, u, |y| dB, transient dB, spectrum. */
+#include "scene_boucwen.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "hy_boucwen.h"
+#include "hy_signal.h"
+
+enum { IN_SINE, IN_MULTISINE, IN_SWEEP };
+enum { Q_OUTPUT, Q_INPUT, Q_OUTPUT_DB, Q_TRANSIENT_DB, Q_SPECTRUM };
+enum { DEC_STAGED, DEC_SINGLE, DEC_NONE };
+enum { FIG_TIMESERIES = 0, FIG_LOOP = 1 };
+
+/* Integration samples allowed in one scene (u, y and decimation scratch: ~32 B each). */
+#define BW_MAX_SAMPLES 40000000.0
+
+static const char *const quantity_names[] = {"output", "input", "output-db", "transient-db",
+                                             "spectrum"};
+
+/* Everything a boucwen scene asks for, read and checked once. */
+typedef struct bw_setup {
+    hy_boucwen_params p;
+    int input;            /* IN_*                                            */
+    double fs;            /* working rate, Hz                                */
+    size_t r;             /* integration rate = fs * r                       */
+    int dec;              /* DEC_*                                           */
+    long cycles, settle;  /* periods kept, periods discarded before them     */
+    double noise;         /* output noise RMS, m                             */
+    uint64_t seed;        /* [input] seed: multisine phases, and the noise   */
+    double amp, period, offset;
+    hy_multisine ms;
+    hy_sweep sw;
+    size_t nd;            /* samples at fs: one period, or the whole sweep   */
+    int need_output;      /* some series needs the simulated y               */
+} bw_setup;
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static double num(const hy_scene *s, const char *sec, const char *key, double dflt)
+{
+    double v;
+    return hy_scene_get_num(s, sec, NULL, key, &v) >= 0 ? v : dflt;
+}
+
+static long integer(const hy_scene *s, const char *sec, const char *key, long dflt)
+{
+    long v;
+    return hy_scene_get_int(s, sec, NULL, key, &v) >= 0 ? v : dflt;
+}
+
+static int enum_index(const hy_scene *s, const char *sec, const char *name, const char *key)
+{
+    int idx = 0;
+    const char *t;
+    hy_scene_get_enum(s, sec, name, key, &idx, &t);
+    return idx;
+}
+
+static const char *enum_text(const hy_scene *s, const char *sec, const char *name, const char *key)
+{
+    int idx;
+    const char *t = "";
+    hy_scene_get_enum(s, sec, name, key, &idx, &t);
+    return t;
+}
+
+/* Re-raises the core message in err at the scene location of key (copied
+ * first: hy_scene_error_at writes into the same buffer). */
+static int relocate(const hy_scene *s, const char *sec, const char *key, hy_error *err, int code, const char *what)
+{
+    char msg[sizeof err->msg];
+    memcpy(msg, err->msg, sizeof msg);
+    return hy_scene_error_at(s, sec, NULL, key, err, code, "%s%s", what, msg);
+}
+
+int hy_scene_is_boucwen(const hy_scene *s)
+{
+    return !strcmp(enum_text(s, "model", NULL, "kind"), "boucwen");
+}
+
+/* Table 1 from [model]; the schema has checked each value's own range. */
+static int read_params(const hy_scene *s, hy_boucwen_params *p, hy_error *err)
+{
+    hy_boucwen_params_default(p);
+    p->m = num(s, "model", "m", p->m);
+    p->c = num(s, "model", "c", p->c);
+    p->k = num(s, "model", "k", p->k);
+    p->alpha = num(s, "model", "alpha", p->alpha);
+    p->beta = num(s, "model", "bw_beta", p->beta);
+    p->gamma = num(s, "model", "bw_gamma", p->gamma);
+    p->delta = num(s, "model", "delta", p->delta);
+    p->nu = num(s, "model", "nu", p->nu);
+    hy_scene_loc loc;
+    if (!(p->k + p->alpha > 0))
+        return hy_scene_error_at(s, "model", NULL, hy_scene_get_loc(s, "model", NULL, "k", &loc) ? "k" : "alpha",
+                                 err, HY_EINVAL,
+                                 "k + alpha (the linearised stiffness of Table 2) must be > 0, got k = %g, alpha = %g",
+                                 p->k, p->alpha);
+    if (hy_boucwen_params_validate(p, err))
+        return relocate(s, "model", NULL, err, HY_EINVAL, "");
+    return HY_OK;
+}
+
+static int read_sine(const hy_scene *s, bw_setup *b, hy_error *err)
+{
+    b->amp = num(s, "input", "amp", 1);
+    b->period = num(s, "input", "period", 2);
+    b->offset = num(s, "input", "offset", 0);
+    double nd = b->period * b->fs;
+    if (fabs(nd - nearbyint(nd)) > 1e-9 * nd || nearbyint(nd) < 4)
+        return hy_scene_error_at(s, "input", NULL, "period", err, HY_EINVAL,
+                                 "a Bouc-Wen sine needs a whole number (>= 4) of samples per period: "
+                                 "period x fs = %g x %g = %.10g",
+                                 b->period, b->fs, nd);
+    b->nd = (size_t)nearbyint(nd);
+    return HY_OK;
+}
+
+static int read_multisine(const hy_scene *s, bw_setup *b, hy_error *err)
+{
+    double band[2] = {5, 150};
+    size_t kmin, kmax;
+    hy_scene_get_pair(s, "input", NULL, "band", band, NULL);
+    hy_multisine_default(&b->ms);
+    b->ms.fs = b->fs;
+    b->ms.n = (size_t)integer(s, "input", "samples", 8192);
+    b->ms.fmin = band[0];
+    b->ms.fmax = band[1];
+    b->ms.rms = num(s, "input", "rms", 50);
+    b->ms.seed = b->seed;
+    if (hy_multisine_lines(&b->ms, &kmin, &kmax, err))
+        return relocate(s, "input", "band", err, HY_EINVAL, "");
+    b->nd = b->ms.n;
+    return HY_OK;
+}
+
+static int read_sweep(const hy_scene *s, bw_setup *b, hy_error *err)
+{
+    static const char *const periodic[] = {"cycles", "settle"};
+    double band[2] = {5, 150};
+    for (size_t i = 0; i < 2; i++)
+        if (hy_scene_get_int(s, "compute", NULL, periodic[i], &b->cycles) == HY_SCENE_SET)
+            return hy_scene_error_at(s, "compute", NULL, periodic[i], err, HY_EINVAL,
+                                     "'%s' counts input periods, and a sweep is not periodic", periodic[i]);
+    b->cycles = 1;
+    hy_scene_get_pair(s, "input", NULL, "band", band, NULL);
+    hy_sweep_default(&b->sw);
+    b->sw.amp = num(s, "input", "amp", 1);
+    b->sw.f0 = band[0];
+    b->sw.f1 = band[1];
+    b->sw.rate = num(s, "input", "rate", 10) / 60.0;
+    b->nd = hy_sweep_length(&b->sw, b->fs);
+    if (b->nd == 0) {
+        hy_sweep_fill(&b->sw, b->fs, NULL, 0, err);
+        return relocate(s, "input", "band", err, HY_EINVAL, "");
+    }
+    if (b->nd < 16)
+        return hy_scene_error_at(s, "input", NULL, "band", err, HY_EINVAL,
+                                 "the sweep lasts %zu samples at fs = %g Hz; at least 16 are needed", b->nd, b->fs);
+    return HY_OK;
+}
+
+/* [input] and [compute]; the memory bound is checked here, before any allocation. */
+static int read_signal(const hy_scene *s, bw_setup *b, hy_error *err)
+{
+    const char *kind = enum_text(s, "input", NULL, "kind");
+    b->fs = num(s, "input", "fs", 750);
+    b->r = (size_t)integer(s, "compute", "upsample", 20);
+    b->dec = enum_index(s, "compute", NULL, "decimate");
+    b->cycles = integer(s, "compute", "cycles", 1);
+    b->settle = integer(s, "compute", "settle", 0);
+    b->noise = 1e-3 * num(s, "compute", "noise", 0);
+    b->seed = (uint64_t)integer(s, "input", "seed", 1);
+    int rc;
+    if (!strcmp(kind, "sine")) {
+        b->input = IN_SINE;
+        rc = read_sine(s, b, err);
+    } else if (!strcmp(kind, "multisine")) {
+        b->input = IN_MULTISINE;
+        rc = read_multisine(s, b, err);
+    } else if (!strcmp(kind, "sweep")) {
+        b->input = IN_SWEEP;
+        rc = read_sweep(s, b, err);
+    } else
+        return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL,
+                                 "a boucwen model takes [input] kind = sine, multisine or sweep, not %s", kind);
+    if (rc)
+        return rc;
+    /* the periodic synthesis integrates one extra period for the filter's edge */
+    double periods = b->input == IN_SWEEP ? 1.0 : (double)(b->cycles + b->settle + (b->dec != DEC_NONE));
+    double total = periods * (double)b->nd * (double)b->r;
+    if (total > BW_MAX_SAMPLES)
+        return hy_scene_error_at(s, "compute", NULL, b->input == IN_SWEEP ? "upsample" : "cycles", err, HY_EINVAL,
+                                 "%.0f integration samples (%g periods of %zu samples at %g Hz x %zu) "
+                                 "is more than %.0f",
+                                 total, periods, b->nd, b->fs, b->r, BW_MAX_SAMPLES);
+    return HY_OK;
+}
+
+/* Figure kind, series and annotations of a boucwen scene. */
+static int check_series(const hy_scene_run *r, bw_setup *b, hy_error *err)
+{
+    static const char *const kinds[] = {"timeseries", "loop", "input", "g", "psi"};
+    const hy_scene *s = r->scene;
+    if (r->figure_kind != FIG_TIMESERIES && r->figure_kind != FIG_LOOP)
+        return hy_scene_error_at(s, "figure", NULL, "kind", err, HY_EINVAL,
+                                 "a boucwen scene draws a figure of kind timeseries or loop, not %s",
+                                 r->figure_kind >= 0 && r->figure_kind < 5 ? kinds[r->figure_kind] : "this");
+    b->need_output = 0;
+    for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
+        const char *name = hy_scene_name_at(s, "series", i), *data;
+        int idx, q = enum_index(s, "series", name, "quantity");
+        if (hy_scene_get_enum(s, "series", name, "data", &idx, &data) < 0)
+            return hy_scene_error_at(s, "series", name, NULL, err, HY_EINVAL,
+                                     "series '%s' needs 'data = boucwen' (and a 'quantity')", name);
+        if (strcmp(data, "boucwen"))
+            return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL,
+                                     "a boucwen model draws 'data = boucwen' series (with a 'quantity'), not %s", data);
+        if ((q == Q_TRANSIENT_DB || q == Q_SPECTRUM) && b->input == IN_SWEEP)
+            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
+                                     "quantity = %s needs a periodic input (sine or multisine), not a sweep",
+                                     quantity_names[q]);
+        if (q == Q_TRANSIENT_DB && b->cycles < 2)
+            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
+                                     "quantity = transient-db subtracts the last period: it needs [compute] cycles >= 2, got %ld",
+                                     b->cycles);
+        if (q == Q_SPECTRUM && r->figure_kind == FIG_LOOP)
+            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
+                                     "quantity = spectrum is drawn against frequency, not in a loop figure");
+        b->need_output |= q != Q_INPUT;
+    }
+    for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
+        const char *name = hy_scene_name_at(s, "annotation", i), *text;
+        if (hy_scene_get_str(s, "annotation", name, "text", &text) >= 0 && strchr(text, '{'))
+            return hy_scene_error_at(s, "annotation", name, "text", err, HY_EINVAL,
+                                     "{...} placeholders measure Dahl/LuGre loops; a boucwen scene has none");
+    }
+    return HY_OK;
+}
+
+static int read_setup(const hy_scene_run *r, bw_setup *b, hy_error *err)
+{
+    memset(b, 0, sizeof *b);
+    int rc = read_params(r->scene, &b->p, err);
+    if (!rc)
+        rc = read_signal(r->scene, b, err);
+    if (!rc)
+        rc = check_series(r, b, err);
+    return rc;
+}
+
+/* Other models: the boucwen-only input kinds and series are refused here, by name. */
+static int refuse_boucwen_parts(const hy_scene *s, hy_error *err)
+{
+    const char *kind = enum_text(s, "input", NULL, "kind");
+    if (!strcmp(kind, "multisine") || !strcmp(kind, "sweep"))
+        return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL,
+                                 "input kind %s is a force for [model] kind = boucwen, not for %s", kind,
+                                 enum_text(s, "model", NULL, "kind"));
+    for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
+        const char *name = hy_scene_name_at(s, "series", i);
+        if (!strcmp(enum_text(s, "series", name, "data"), "boucwen"))
+            return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL,
+                                     "data = boucwen needs [model] kind = boucwen (this model is %s)",
+                                     enum_text(s, "model", NULL, "kind"));
+    }
+    return HY_OK;
+}
+
+int hy_scene_boucwen_load(hy_scene_run *r, hy_error *err)
+{
+    if (!hy_scene_is_boucwen(r->scene))
+        return refuse_boucwen_parts(r->scene, err);
+    bw_setup b;
+    return read_setup(r, &b, err);
+}
+
+/* ---- compute ------------------------------------------------------------ */
+
+/* The simulated record at the output rate: the kept samples only. */
+typedef struct bw_record {
+    double *t, *u, *y;   /* n samples (y NULL if no series needs it)            */
+    size_t n;
+    size_t nper;         /* samples per period at the output rate (periodic)    */
+    double fs_out;
+    double sim_seconds;
+} bw_record;
+
+static void record_free(bw_record *rec)
+{
+    free(rec->t);
+    free(rec->u);
+    free(rec->y);
+}
+
+/* One period (or the whole sweep) of the force at the integration rate fs * r. */
+static int make_force(const bw_setup *b, double **u, size_t *n, hy_error *err)
+{
+    double fint = b->fs * (double)b->r;
+    *n = b->input == IN_SWEEP ? (b->nd - 1) * b->r + 1 : b->nd * b->r;
+    *u = malloc(*n * sizeof **u);
+    if (!*u)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu input samples", *n);
+    int rc;
+    if (b->input == IN_SINE) {
+        rc = hy_sine_fill(b->amp, 1.0 / b->period, fint, *u, *n, err);
+        for (size_t i = 0; !rc && i < *n; i++)
+            (*u)[i] += b->offset;
+    } else if (b->input == IN_MULTISINE)
+        rc = hy_multisine_design(&b->ms, b->r, *u, err);
+    else
+        rc = hy_sweep_fill(&b->sw, fint, *u, *n, err);
+    return rc;
+}
+
+/* Integrates the whole record (settle + cycles periods, or the sweep) into y. */
+static int simulate(const bw_setup *b, const double *u, size_t nu, double *y, hy_error *err)
+{
+    hy_newmark_opts o;
+    hy_newmark_opts_default(&o);
+    size_t P = (size_t)(b->cycles + b->settle);
+    int staged = b->dec == DEC_STAGED;
+    if (b->input == IN_SWEEP && b->dec != DEC_NONE)
+        return hy_boucwen_synth(&b->p, &o, b->fs, b->r, staged, u, nu, y, err);
+    if (b->input == IN_SWEEP)
+        return hy_boucwen_simulate(&b->p, &o, 1.0 / (b->fs * (double)b->r), u, nu, NULL, y, NULL, err);
+    if (b->dec != DEC_NONE)
+        return hy_boucwen_synth_periodic(&b->p, &o, b->fs, b->r, staged, u, nu, P, y, err);
+    double *ua = malloc(P * nu * sizeof *ua);
+    if (!ua)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu input samples", P * nu);
+    for (size_t q = 0; q < P; q++)
+        memcpy(ua + q * nu, u, nu * sizeof *ua);
+    int rc = hy_boucwen_simulate(&b->p, &o, 1.0 / (b->fs * (double)b->r), ua, P * nu, NULL, y, NULL, err);
+    free(ua);
+    return rc;
+}
+
+static int make_record(const hy_scene *s, const bw_setup *b, bw_record *rec, hy_error *err)
+{
+    double *u = NULL, *yall = NULL;
+    size_t nu, step = b->dec == DEC_NONE ? 1 : b->r;
+    memset(rec, 0, sizeof *rec);
+    int rc = make_force(b, &u, &nu, err);
+    if (rc) {
+        free(u);
+        return relocate(s, "input", "kind", err, rc, "");
+    }
+    int sweep = b->input == IN_SWEEP;
+    size_t nout = sweep ? (nu + step - 1) / step : nu / step; /* per period, or all */
+    size_t skip = sweep ? 0 : (size_t)b->settle * nout, nkeep = sweep ? nout : (size_t)b->cycles * nout;
+    rec->fs_out = b->fs * (double)b->r / (double)step;
+    rec->nper = sweep ? 0 : nout;
+    rec->n = nkeep;
+    rec->t = malloc(nkeep * sizeof *rec->t);
+    rec->u = malloc(nkeep * sizeof *rec->u);
+    if (b->need_output) {
+        rec->y = malloc(nkeep * sizeof *rec->y);
+        yall = malloc((skip + nkeep) * sizeof *yall);
+    }
+    if (!rec->t || !rec->u || (b->need_output && (!rec->y || !yall))) {
+        free(u);
+        free(yall);
+        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu samples", skip + nkeep);
+    }
+    for (size_t i = 0; i < nkeep; i++) {
+        rec->t[i] = (double)(skip + i) / rec->fs_out;
+        rec->u[i] = u[(sweep ? i : i % nout) * step];
+    }
+    if (b->need_output) {
+        double t0 = now();
+        rc = simulate(b, u, nu, yall, err);
+        rec->sim_seconds = now() - t0;
+        if (rc)
+            rc = relocate(s, "model", NULL, err, rc, "Bouc-Wen integration failed: ");
+        else
+            memcpy(rec->y, yall + skip, nkeep * sizeof *rec->y);
+        /* as `hystviz boucwen data`: the noise stream is seeded apart from the phases */
+        if (!rc && b->noise > 0)
+            rc = hy_signal_add_noise(rec->y, nkeep, b->noise, rec->fs_out / 2, rec->fs_out,
+                                     b->seed ^ 0x6e6f697365ULL, err);
+    }
+    free(u);
+    free(yall);
+    return rc;
+}
+
+/* 20 log10(|y| / 1 mm) for y in metres; NaN (a gap in the curve) for y = 0. */
+static double db_mm(double y)
+{
+    double a = fabs(1e3 * y);
+    return a > 0 ? 20.0 * log10(a) : NAN;
+}
+
+/* The last period's one-sided amplitude spectrum in dB re 1 mm, f in Hz. */
+static int spectrum(const bw_record *rec, hy_run_series *se, hy_error *err)
+{
+    size_t N = rec->nper, nf = N / 2 + 1;
+    double *X = malloc(N * sizeof *X);
+    se->x = malloc(nf * sizeof *se->x);
+    se->y = malloc(nf * sizeof *se->y);
+    se->n = nf;
+    if (!X || !se->x || !se->y) {
+        free(X);
+        return hy_error_set(err, HY_ENOMEM, "out of memory for series '%s'", se->name);
+    }
+    memcpy(X, rec->y + rec->n - N, N * sizeof *X);
+    int rc = hy_signal_fft_forward(X, N, err);
+    for (size_t k = 0; !rc && k < nf; k++) {
+        double re = k == 0 ? X[0] : (2 * k == N ? X[N - 1] : X[2 * k - 1]);
+        double im = k == 0 || 2 * k == N ? 0.0 : X[2 * k];
+        double amp = (k == 0 || 2 * k == N ? 1.0 : 2.0) * hypot(re, im) / (double)N;
+        se->x[k] = (double)k * rec->fs_out / (double)N;
+        se->y[k] = db_mm(amp);
+    }
+    free(X);
+    return rc;
+}
+
+/* Largest |y - y_exact| in mm against the linear oscillator's exact steady
+ * state (bw_beta = 0 and a sine force); NaN otherwise. */
+static double linear_error(const bw_setup *b, const bw_record *rec)
+{
+    if (b->p.beta != 0 || b->input != IN_SINE || !rec->y)
+        return NAN;
+    double w = 2 * M_PI / b->period, K = b->p.k + b->p.alpha;
+    double re = K - b->p.m * w * w, im = b->p.c * w, d = re * re + im * im;
+    double hr = re / d, hi = -im / d, e = 0;
+    for (size_t i = 0; i < rec->n; i++) {
+        double wt = w * rec->t[i];
+        double ye = b->amp * (hr * sin(wt) + hi * cos(wt)) + b->offset / K;
+        e = fmax(e, fabs(rec->y[i] - ye));
+    }
+    return 1e3 * e;
+}
+
+/* dB series: values below [series] floor and the gaps of exact zeros drawn at it. */
+static void apply_floor(const hy_scene *s, hy_run_series *se)
+{
+    double floor_db;
+    int q = enum_index(s, "series", se->name, "quantity");
+    if (q == Q_OUTPUT || q == Q_INPUT || hy_scene_get_num(s, "series", se->name, "floor", &floor_db) != HY_SCENE_SET)
+        return;
+    for (size_t i = 0; i < se->n && se->y; i++)
+        if (!(se->y[i] >= floor_db))
+            se->y[i] = floor_db;
+}
+
+static int fill_series(const hy_scene_run *r, const bw_setup *b, const bw_record *rec, hy_run_series *se,
+                       hy_error *err)
+{
+    int q = enum_index(r->scene, "series", se->name, "quantity");
+    se->err = NAN;
+    se->err_ref = NULL;
+    if (q == Q_SPECTRUM) {
+        int rc = spectrum(rec, se, err);
+        apply_floor(r->scene, se);
+        return rc;
+    }
+    size_t n = q == Q_TRANSIENT_DB ? rec->n - rec->nper : rec->n;
+    se->x = malloc(n * sizeof *se->x);
+    se->y = malloc(n * sizeof *se->y);
+    se->n = n;
+    if (!se->x || !se->y)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for series '%s'", se->name);
+    const double *last = q == Q_TRANSIENT_DB ? rec->y + rec->n - rec->nper : NULL;
+    for (size_t i = 0; i < n; i++) {
+        se->x[i] = r->figure_kind == FIG_LOOP ? rec->u[i] : rec->t[i];
+        switch (q) {
+        case Q_INPUT: se->y[i] = rec->u[i]; break;
+        case Q_OUTPUT_DB: se->y[i] = db_mm(rec->y[i]); break;
+        case Q_TRANSIENT_DB: se->y[i] = db_mm(rec->y[i] - last[i % rec->nper]); break;
+        default: se->y[i] = 1e3 * rec->y[i]; break;
+        }
+    }
+    apply_floor(r->scene, se);
+    if (q == Q_OUTPUT) {
+        se->err = linear_error(b, rec);
+        if (!isnan(se->err))
+            se->err_ref = "exact steady state of the linear oscillator (mm)";
+    }
+    return HY_OK;
+}
+
+/* A marker at the sample nearest to t = at (f = at for a spectrum). */
+static void place_marker(const hy_scene_run *r, const bw_record *rec, hy_run_series *se)
+{
+    double at;
+    if (se->n == 0 || hy_scene_get_num(r->scene, "series", se->name, "at", &at) != HY_SCENE_SET)
+        return;
+    int spec = enum_index(r->scene, "series", se->name, "quantity") == Q_SPECTRUM;
+    double f = spec ? at * (double)rec->nper / rec->fs_out : (at - rec->t[0]) * rec->fs_out;
+    size_t i = f > 0 ? (size_t)fmin(nearbyint(f), (double)(se->n - 1)) : 0;
+    se->has_mark = 1;
+    se->mark_x = se->x[i];
+    se->mark_y = se->y[i];
+}
+
+static void log_run(const hy_scene_run *r, FILE *log)
+{
+    fprintf(log, "%s: plan\n%s", r->path, r->plan);
+    for (size_t i = 0; i < r->nseries; i++) {
+        const hy_run_series *se = &r->series[i];
+        fprintf(log, "  series %-12s data=boucwen quantity=%-12s %7zu points %8.3f ms", se->name,
+                enum_text(r->scene, "series", se->name, "quantity"), se->n, 1e3 * se->seconds);
+        if (se->err_ref)
+            fprintf(log, "  error %.3g vs %s", se->err, se->err_ref);
+        fputc('\n', log);
+    }
+    fprintf(log, "  compute total %.3f ms\n", 1e3 * r->seconds_compute);
+}
+
+static void plan_text(hy_scene_run *r, const bw_setup *b, const bw_record *rec)
+{
+    static const char *const inputs[] = {"sine", "multisine", "sweep"};
+    static const char *const decs[] = {"in prime-factor stages (decimate 'fir')", "in one stage (decimate 'fir')",
+                                       "not decimated"};
+    size_t len = strlen(r->plan);
+    if (!b->need_output) {
+        snprintf(r->plan + len, sizeof r->plan - len, "Bouc-Wen: %s input only, no integration\n", inputs[b->input]);
+        return;
+    }
+    char span[96];
+    if (b->input == IN_SWEEP)
+        snprintf(span, sizeof span, "the whole sweep (%zu samples at %g Hz)", b->nd, b->fs);
+    else
+        snprintf(span, sizeof span, "%ld period(s) kept after %ld settling", b->cycles, b->settle);
+    snprintf(r->plan + len, sizeof r->plan - len,
+             "Bouc-Wen: %s force, Newmark + Newton at %g Hz (%g Hz x %zu), %s, %s to %g Hz: %.3f ms\n",
+             inputs[b->input], b->fs * (double)b->r, b->fs, b->r, span, decs[b->dec], rec->fs_out,
+             1e3 * rec->sim_seconds);
+}
+
+int hy_scene_boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
+{
+    double t_start = now();
+    bw_setup b;
+    bw_record rec;
+    int rc = read_setup(r, &b, err);
+    if (rc)
+        return rc;
+    size_t ns = hy_scene_count(r->scene, "series");
+    r->series = calloc(ns ? ns : 1, sizeof *r->series);
+    if (!r->series)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    r->nseries = ns;
+    for (size_t i = 0; i < ns; i++) {
+        r->series[i].name = hy_scene_name_at(r->scene, "series", i);
+        r->series[i].data = HY_DATA_BOUCWEN;
+    }
+    rc = make_record(r->scene, &b, &rec, err);
+    for (size_t i = 0; i < ns && !rc; i++) {
+        double t0 = now();
+        rc = fill_series(r, &b, &rec, &r->series[i], err);
+        if (!rc)
+            place_marker(r, &rec, &r->series[i]);
+        r->series[i].seconds = now() - t0;
+    }
+    if (!rc)
+        plan_text(r, &b, &rec);
+    record_free(&rec);
+    r->seconds_compute = now() - t_start;
+    if (!rc && log)
+        log_run(r, log);
+    return rc;
+}
