@@ -301,6 +301,46 @@ static void draw_marker(const hy_canvas *cv, int marker, double x, double y, dou
     cv->ops->marker(cv->ctx, shape, x, y, size, &pen, filled ? &c : NULL);
 }
 
+/* Device coordinates of a dense solid series, thinned: consecutive points
+ * falling in one 0.25 pt column are replaced by the first, lowest, highest and
+ * last of them in their original order (M4 aggregation), which draws the same
+ * pixels.  NaN breaks survive.  Returns the count, or 0 (caller draws all). */
+static size_t thin_series(const panel *p, const hy_series *s, double *dx, double *dy)
+{
+    size_t m = 0, i = 0;
+    while (i < s->n) {
+        if (!usable(s->x[i], p->xlog) || !usable(s->y[i], p->ylog)) {
+            dx[m] = dy[m] = NAN;
+            m++, i++;
+            continue;
+        }
+        double x0 = map_x(p, s->x[i]);
+        double col = floor(x0 * 4.0);
+        size_t first = i, lo = i, hi = i, last = i;
+        double ylo = map_y(p, s->y[i]), yhi = ylo;
+        for (i++; i < s->n && usable(s->x[i], p->xlog) && usable(s->y[i], p->ylog); i++) {
+            double x = map_x(p, s->x[i]);
+            if (floor(x * 4.0) != col)
+                break;
+            double y = map_y(p, s->y[i]);
+            if (y < ylo)
+                ylo = y, lo = i;
+            if (y > yhi)
+                yhi = y, hi = i;
+            last = i;
+        }
+        size_t keep[4] = {first, lo < hi ? lo : hi, lo < hi ? hi : lo, last};
+        for (int k = 0; k < 4; k++) {
+            if (k && keep[k] == keep[k - 1])
+                continue;
+            dx[m] = map_x(p, s->x[keep[k]]);
+            dy[m] = map_y(p, s->y[keep[k]]);
+            m++;
+        }
+    }
+    return m;
+}
+
 static void draw_series(const panel *p, const hy_series *s)
 {
     const hy_canvas *cv = p->dv;
@@ -308,16 +348,37 @@ static void draw_series(const panel *p, const hy_series *s)
     hy_pen pen = series_pen(s, dash);
     double xa = p->x0 - 2 * lw, xb = p->x0 + p->w + 2 * lw;
     double ya = p->y0 - 2 * lw, yb = p->y0 + p->h + 2 * lw;
+    /* dense solid lines (more than 20 points per point of width) are thinned */
+    double *dx = NULL, *dy = NULL;
+    size_t nd = 0;
+    if (s->style == HY_LINE_SOLID && s->x && s->y && (double)s->n > 20.0 * p->w) {
+        dx = malloc(s->n * sizeof *dx);
+        dy = malloc(s->n * sizeof *dy);
+        if (dx && dy)
+            nd = thin_series(p, s, dx, dy);
+    }
     if (s->style != HY_LINE_NONE && s->x && s->y) {
         int have_prev = 0, open = 0;
         double px = 0, py = 0, ex = NAN, ey = NAN;
+        size_t count = nd ? nd : s->n;
         cv->ops->begin_path(cv->ctx);
-        for (size_t i = 0; i < s->n; i++) {
-            if (!usable(s->x[i], p->xlog) || !usable(s->y[i], p->ylog)) {
-                have_prev = 0;
-                continue;
+        for (size_t i = 0; i < count; i++) {
+            double x, y;
+            if (nd) {
+                x = dx[i];
+                y = dy[i];
+                if (isnan(x)) {
+                    have_prev = 0;
+                    continue;
+                }
+            } else {
+                if (!usable(s->x[i], p->xlog) || !usable(s->y[i], p->ylog)) {
+                    have_prev = 0;
+                    continue;
+                }
+                x = map_x(p, s->x[i]);
+                y = map_y(p, s->y[i]);
             }
-            double x = map_x(p, s->x[i]), y = map_y(p, s->y[i]);
             if (have_prev) {
                 double x1 = px, y1 = py, x2 = x, y2 = y;
                 if (clip_segment(&x1, &y1, &x2, &y2, xa, ya, xb, yb)) {
@@ -332,6 +393,8 @@ static void draw_series(const panel *p, const hy_series *s)
         }
         cv->ops->stroke(cv->ctx, &pen);
     }
+    free(dx);
+    free(dy);
     if (s->marker != HY_MARKER_NONE && s->x && s->y) {
         double ms = s->marker_size > 0 ? s->marker_size : 4.0;
         for (size_t i = 0; i < s->n; i++) {
