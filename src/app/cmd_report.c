@@ -35,7 +35,7 @@ static const char usage[] =
     "  --solvers LIST   comma-separated: exact rk2 rk4 rkf45 rkck rk8pd rk1imp\n"
     "                   rk2imp rk4imp bsimp msadams msbdf newmark (default all)\n"
     "  --repeats N      timed repeats per run, median reported (default 5)\n"
-    "  --max-steps N    ODE step cap per segment (default 200000)\n"
+    "  --max-steps N    ODE step cap per output interval (default 2e5)\n"
     "  --time-cap S     a run slower than S seconds is not repeated and tighter\n"
     "                   tolerances of that solver are skipped (default 2)\n"
     "\n"
@@ -188,12 +188,23 @@ static int run_series(const hy_wp_problem *p, const char *solver, int restart, c
     return 0;
 }
 
+static char *all_solvers[] = {"exact", "rk2", "rk4", "rkf45", "rkck", "rk8pd", "rk1imp", "rk2imp",
+                              "rk4imp", "bsimp", "msadams", "msbdf", "newmark"};
+
+/* Position of a solver in all_solvers (its colour and marker in every plot). */
+static int solver_index(const char *name)
+{
+    for (int i = 0; i < (int)(sizeof all_solvers / sizeof all_solvers[0]); i++)
+        if (!strcmp(all_solvers[i], name))
+            return i;
+    return 0;
+}
+
 static int run_problem(const hy_wp_problem *p, const ropts *o, runlist *L)
 {
-    static char *all[] = {"exact", "rk2", "rk4", "rkf45", "rkck", "rk8pd", "rk1imp", "rk2imp",
-                          "rk4imp", "bsimp", "msadams", "msbdf", "newmark"};
+    char *const *all = all_solvers;
     char *const *sv = o->nsolvers ? o->solvers : all;
-    int ns = o->nsolvers ? o->nsolvers : (int)(sizeof all / sizeof all[0]);
+    int ns = o->nsolvers ? o->nsolvers : (int)(sizeof all_solvers / sizeof all_solvers[0]);
     for (int i = 0; i < ns; i++) {
         if (!hy_wp_solver_applies(p, sv[i]))
             continue;
@@ -267,7 +278,7 @@ static int write_md(const ropts *o, const hy_wp_problem *P, int np, const runlis
     if (!f)
         return -1;
     fprintf(f, "# hystviz work-precision report%s\n\n", o->quick ? " (--quick)" : "");
-    fprintf(f, "%zu runs in %.1f s; %d timed repeats (median), step cap %lu per segment, time cap %g s.\n"
+    fprintf(f, "%zu runs in %.1f s; %d timed repeats (median), step cap %lu per output interval, time cap %g s.\n"
                "Error: max norm over a 300-point grid against the reference (absolute, in N; Bouc-Wen in m).\n"
                "GSL steppers: atol = rtol * 1e-2 * g(0)/sigma0 (the scale of z); 'tol' of newmark is h in s.\n"
                "Full data: report.csv.\n",
@@ -316,7 +327,7 @@ static int plot_problem(const ropts *o, const hy_wp_problem *p, const runlist *L
             j++;
         int panel = L->r[i].restart == 0;
         if (!strcmp(L->r[i].problem, p->name) && ns[panel] < 16) {
-            fill_series(L, i, j, &ps[panel][ns[panel]], &ser[panel][ns[panel]], (int)ns[panel]);
+            fill_series(L, i, j, &ps[panel][ns[panel]], &ser[panel][ns[panel]], solver_index(L->r[i].solver));
             ns[panel]++;
         }
         i = j;

@@ -46,7 +46,7 @@ typedef struct hy_wp_problem {
 
 typedef struct hy_wp_cfg {
     int repeats;              /* timed repeats (median), >= 1                 */
-    unsigned long max_steps;  /* ODE step cap per segment                     */
+    unsigned long max_steps;  /* ODE step cap per output interval (hy_ode) */
     double time_cap;          /* seconds: a run slower than this is not repeated
                                  and tighter tolerances of its solver are skipped */
 } hy_wp_cfg;
