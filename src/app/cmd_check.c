@@ -34,6 +34,8 @@ static const char usage[] =
     "  --quick     fewer sweep points and smaller inputs (a second or two)\n"
     "  --verbose   print the message of every refusal and failure\n";
 
+enum { CASE_TIME_CAP = 30 }; /* seconds: a slower case fails (a hang would be caught by the test timeout) */
+
 typedef struct ccase {
     char name[28], params[112], result[24], note[640];
     double error, bound, time;
@@ -70,7 +72,9 @@ static void case_start(ccase *c, const char *name, double bound)
 static void case_end(cctx *cx, ccase *c, int failed)
 {
     c->time = hy_wp_now() - c->time;
-    c->pass = !failed && isfinite(c->error) && c->error <= c->bound;
+    c->pass = !failed && isfinite(c->error) && c->error <= c->bound && c->time <= CASE_TIME_CAP;
+    if (c->time > CASE_TIME_CAP)
+        snprintf(c->note, sizeof c->note, "too slow: %.1f s > %g s", c->time, (double)CASE_TIME_CAP);
     report_case(cx, c);
 }
 
@@ -263,7 +267,6 @@ static void cases_cycles(cctx *cx)
         hy_model m;
         hy_steady st;
         hy_model_lugre_init(&m, s0s[si], 0, 1, 2, 1, 1);
-        m.x0 = 0.7 / s0s[si] * 0; /* z(0) = 0 as in the paper */
         hy_steady_init(&st, &m, &in, NULL);
         double prev = INFINITY;
         for (int i = 0; i < 7; i++) {
@@ -378,10 +381,6 @@ static void case_many_extrema(cctx *cx)
     }
     free(e);
     case_end(cx, &c, bad);
-    if (c.time > 30) {
-        cx->nfail++;
-        printf("    too slow: %.1f s > 30 s\n", c.time);
-    }
 }
 
 /* Theorem A (stable evaluation) against the long-double steady state, where
@@ -395,7 +394,7 @@ static void cases_theorem_a(cctx *cx)
         hy_input in;
         hy_error err;
         case_start(&c, "theorem A", 1e-12);
-        snprintf(c.params, sizeof c.params, "sigma0=%g g0=2 0,0.5,1,1.5 (printed: %s)", s0s[i], "");
+        snprintf(c.params, sizeof c.params, "sigma0=%g g0=2 0,0.5,1,1.5", s0s[i]);
         hy_input_bimodal(&in, 0, 0.5, 1, 1.5, NULL, HY_SHAPE_LINEAR, NULL);
         int bad = hy_theorem_a_init(&th, s0s[i], 2, 0, 0.5, 1, 1.5, &err);
         if (!bad) {

@@ -228,10 +228,31 @@ static int write_csv(const char *dir, const runlist *L)
     return cli_out_close(f, path, tmp);
 }
 
+/* The plot title as plain text: the markup names \gamma and \sigma_0 as letters. */
+static void plain_title(const char *in, char *out, size_t size)
+{
+    static const char *const from[] = {"\\gamma", "\\sigma_0"}, *const to[] = {"γ", "σ0"};
+    size_t j = 0;
+    while (*in && j + 4 < size) {
+        int hit = 0;
+        for (int k = 0; k < 2 && !hit; k++)
+            if (!strncmp(in, from[k], strlen(from[k]))) {
+                j += (size_t)snprintf(out + j, size - j, "%s", to[k]);
+                in += strlen(from[k]);
+                hit = 1;
+            }
+        if (!hit)
+            out[j++] = *in++;
+    }
+    out[j] = 0;
+}
+
 /* Markdown summary of one problem: a row per solver and restart mode. */
 static void md_problem(FILE *f, const hy_wp_problem *p, const runlist *L)
 {
-    fprintf(f, "\n## %s\n\n%s; reference: %s.\n\n![work-precision %s](wp-%s.svg)\n\n", p->name, p->title,
+    char title[160];
+    plain_title(p->title, title, sizeof title);
+    fprintf(f, "\n## %s\n\n%s; reference: %s.\n\n![work-precision %s](wp-%s.png)\n\n", p->name, title,
             p->ref_method, p->name, p->name);
     fputs("| solver | restarts | ok/runs | smallest max error | its tol | its time (ms) | its RHS evals "
           "| time to 1e-6 (ms) | not ok |\n|---|---|---|---|---|---|---|---|---|\n", f);
@@ -383,7 +404,7 @@ static int run_all(ropts *o, hy_wp_problem *P, int np)
     double t0 = hy_wp_now();
     int rc = 0;
     for (int i = 0; i < np && !rc; i++) {
-        fprintf(stderr, "hystviz report: %s ...\n", P[i].name);
+        fprintf(stderr, "hystviz report: %s (reference: %s) ...\n", P[i].name, P[i].ref_method);
         if (run_problem(&P[i], o, &L)) {
             fprintf(stderr, "hystviz report: out of memory\n");
             rc = 1;

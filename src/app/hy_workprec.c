@@ -362,7 +362,7 @@ void hy_wp_csv_row(FILE *f, const hy_wp_run *r)
     for (const char *s = r->msg; *s && j + 1 < sizeof msg; s++)
         msg[j++] = (*s == ',' || *s == '"' || *s == '\n') ? ';' : *s;
     msg[j] = 0;
-    fprintf(f, "%s,%s,%s,%.3g,%s,%.6e,%.6e,%.6e,%.6e,%.6e,%d,%lu,%lu,%lu,%lu,%s\n", r->problem, r->solver,
+    fprintf(f, "%s,%s,%s,%.6g,%s,%.6e,%.6e,%.6e,%.6e,%.6e,%d,%lu,%lu,%lu,%lu,%s\n", r->problem, r->solver,
             r->restart < 0 ? "" : r->restart ? "on" : "off", r->tol, hy_wp_status_name(r->status), r->err_max,
             r->err_l2, r->t_med, r->t_min, r->t_max, r->repeats, r->nfev, r->njev, r->steps, r->fails, msg);
 }
