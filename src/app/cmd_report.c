@@ -354,15 +354,28 @@ static int plot_problem(const ropts *o, const hy_wp_problem *p, const runlist *L
         i = j;
     }
     int npanels = ns[1] ? 2 : 1;
+    /* shared time range, stretched upwards by 80 % of its decades: room for the legend */
+    double tlo = INFINITY, thi = 0;
+    for (int k = 0; k < 2; k++)
+        for (size_t i = 0; i < ns[k]; i++)
+            for (size_t j = 0; j < ser[k][i].n; j++) {
+                tlo = fmin(tlo, ser[k][i].y[j]);
+                thi = fmax(thi, ser[k][i].y[j]);
+            }
+    hy_range yr = {.log = 1};
+    if (thi > 0 && tlo < thi) {
+        yr.lo = tlo / 1.5;
+        yr.hi = thi * 1.5 * pow(thi / tlo, 0.8);
+    }
     char title[2][200];
     hy_axes ax[2];
     for (int k = 0; k < npanels; k++) {
         snprintf(title[k], sizeof title[k], "%s%s", p->title,
                  npanels == 1 ? "" : k ? ": straight through" : ": restarts at breakpoints");
         ax[k] = (hy_axes){.series = ser[k], .nseries = ns[k], .xlabel = "max error", .ylabel = "time (s)",
-                          .title = title[k], .x = {.log = 1}, .y = {.log = 1}, .legend = HY_LEGEND_BEST, .grid = 1};
+                          .title = title[k], .x = {.log = 1}, .y = yr, .legend = HY_LEGEND_BEST, .grid = 1};
     }
-    hy_figure fig = {.width = hy_cm(npanels * 11.0), .height = hy_cm(9), .dpi = 150, .axes = ax, .nrows = 1,
+    hy_figure fig = {.width = hy_cm(npanels * 11.0), .height = hy_cm(10), .dpi = 150, .axes = ax, .nrows = 1,
                      .ncols = npanels, .font_size = 8};
     const char *ext[2] = {"svg", "png"};
     int fmt[2] = {HY_FORMAT_SVG, HY_FORMAT_PNG};
