@@ -52,7 +52,7 @@ static void report_case(cctx *cx, ccase *c)
     if (!c->result[0])
         snprintf(c->result, sizeof c->result, "%s", c->pass ? "ok" : "FAIL");
     printf("%-24s %-44s %-9s %9.2e %8.1e %8.3f\n", c->name, c->params, c->result, c->error, c->bound, c->time);
-    if (c->note[0] && (cx->verbose || !c->pass))
+    if (c->note[0] && (cx->verbose || !c->pass || !strcmp(c->result, "refused")))
         printf("    %s\n", c->note);
     cx->ncase++;
     cx->nfail += !c->pass;
