@@ -6,9 +6,11 @@
 #include <string.h>
 
 #include "cmd_boucwen.h"
+#include "cmd_check.h"
 #include "cmd_gallery.h"
 #include "cmd_loop.h"
 #include "cmd_render.h"
+#include "cmd_report.h"
 
 static const char usage[] =
     "usage: hystviz COMMAND [OPTIONS]\n"
@@ -23,6 +25,8 @@ static const char usage[] =
     "  loop      print a steady hysteresis loop, y*_{u,k} or y_gamma as CSV\n"
     "  loops     print the major and minor loops of an input with their areas\n"
     "  boucwen   the Bouc-Wen benchmark: Table 2, synthetic data sets as CSV\n"
+    "  report    work-precision of every solver on the paper's problems (CSV, Markdown, plots)\n"
+    "  check     stiff and extreme cases: finite, invariants, errors within bounds\n"
     "\n"
     "options:\n"
     "  -h, --help     this text (COMMAND --help: that command's options)\n"
@@ -44,6 +48,8 @@ static const command commands[] = {
     {"loop", hy_cmd_loop},
     {"loops", hy_cmd_loop},
     {"boucwen", hy_cmd_boucwen},
+    {"report", hy_cmd_report},
+    {"check", hy_cmd_check},
 };
 
 int main(int argc, char **argv)

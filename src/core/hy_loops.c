@@ -133,10 +133,43 @@ static double close_point(const tp *seq, size_t q, size_t last, double u)
     return seq[last].rho;
 }
 
+/* By start; among equal starts the longer loop first (it contains the others). */
 static int cmp_loop(const void *a, const void *b)
 {
-    double x = ((const hy_loop *)a)->rho_start, y = ((const hy_loop *)b)->rho_start;
-    return (x > y) - (x < y);
+    const hy_loop *p = a, *q = b;
+    if (p->rho_start != q->rho_start)
+        return (p->rho_start > q->rho_start) - (p->rho_start < q->rho_start);
+    double lp = p->rho_close - p->rho_start, lq = q->rho_close - q->rho_start;
+    return (lp < lq) - (lp > lq);
+}
+
+/* Nesting of the minor loops (sorted by cmp_loop), in O(n) with a stack of
+ * open loops: rainflow loops are nested or disjoint, so the loops containing
+ * one are exactly those still open when it starts.  depth = 1 + how many
+ * minor loops strictly contain it; own_area = area minus direct children
+ * (loops no minor loop contains are children of the major loop).
+ * stack needs nminor entries. */
+static void nest_loops(hy_loops *out, size_t *stack)
+{
+    size_t sp = 0;
+    out->major.own_area = out->major.area;
+    for (size_t i = 0; i < out->nminor; i++) {
+        hy_loop *L = &out->minor[i];
+        while (sp) {
+            const hy_loop *M = &out->minor[stack[sp - 1]];
+            if (M->rho_start <= L->rho_start && L->rho_close <= M->rho_close &&
+                M->rho_close - M->rho_start > L->rho_close - L->rho_start)
+                break;
+            sp--;
+        }
+        L->depth = 1 + (int)sp;
+        L->own_area = L->area;
+        if (sp)
+            out->minor[stack[sp - 1]].own_area -= L->area;
+        else
+            out->major.own_area -= L->area;
+        stack[sp++] = i;
+    }
 }
 
 int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
@@ -204,33 +237,7 @@ int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
         L->rho_close -= shift;
     }
     qsort(out->minor, out->nminor, sizeof *out->minor, cmp_loop);
-    /* nesting: depth = 1 + number of minor loops strictly containing it */
-    out->major.own_area = out->major.area;
-    for (size_t i = 0; i < out->nminor; i++) {
-        hy_loop *L = &out->minor[i];
-        L->depth = 1;
-        L->own_area = L->area;
-        for (size_t j = 0; j < out->nminor; j++) {
-            const hy_loop *M = &out->minor[j];
-            if (j != i && M->rho_start <= L->rho_start && L->rho_close <= M->rho_close &&
-                M->rho_close - M->rho_start > L->rho_close - L->rho_start)
-                L->depth++;
-        }
-    }
-    for (size_t i = 0; i < out->nminor; i++) { /* subtract direct children */
-        const hy_loop *L = &out->minor[i];
-        int parent_found = 0;
-        for (size_t j = 0; j < out->nminor; j++) {
-            hy_loop *M = &out->minor[j];
-            if (M->depth == L->depth - 1 && M->rho_start <= L->rho_start && L->rho_close <= M->rho_close) {
-                M->own_area -= L->area;
-                parent_found = 1;
-                break;
-            }
-        }
-        if (!parent_found)
-            out->major.own_area -= L->area;
-    }
+    nest_loops(out, stack);
     out->area_period = hy_steady_area(st, 0, st->in->rho_T);
     free(seq);
     free(stack);

@@ -1,0 +1,483 @@
+/* cmd_report.c: `hystviz report`: work-precision diagrams (error vs time,
+ * log-log, one line per solver, DiffEqDevTools conventions) for the problems
+ * of hy_workprec.h, written as CSV, a Markdown summary and SVG+PNG plots. */
+#include "cmd_report.h"
+
+#include "cli_util.h"
+#include "hy_ode.h"
+#include "hy_plot.h"
+#include "hy_workprec.h"
+
+#include <errno.h>
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static const char usage[] =
+    "usage: hystviz report [-o DIR] [--quick] [--problems LIST] [--solvers LIST]\n"
+    "                      [--repeats N] [--max-steps N] [--time-cap S]\n"
+    "\n"
+    "Work-precision benchmark: every solver at tolerances 1e-2 ... 1e-13 (GSL\n"
+    "steppers with and without restarts at the input's breakpoints; the exact\n"
+    "solver; Newmark at h = 1/750 ... 1/(750*2^8) s for Bouc-Wen), error against\n"
+    "a reference (max norm and RMS on a 300-point grid), median wall time.\n"
+    "\n"
+    "  -o DIR           output folder (default gallery/report): report.csv,\n"
+    "                   report.md, wp-PROBLEM.svg and .png\n"
+    "  --quick          tolerances 1e-2, 1e-4, 1e-6, 2 repeats, caps 2e4 steps\n"
+    "                   and 0.2 s (a few seconds in all; for tests)\n"
+    "  --problems LIST  comma-separated: ex2-g1 ex2-g10 ex2-g100 ex2-g1e4\n"
+    "                   ex3-g1 ex3-g10 ex3-g100 ex3-g1e4 ex1 lugre-stiff boucwen\n"
+    "                   (default all)\n"
+    "  --solvers LIST   comma-separated: exact rk2 rk4 rkf45 rkck rk8pd rk1imp\n"
+    "                   rk2imp rk4imp bsimp msadams msbdf newmark (default all)\n"
+    "  --repeats N      timed repeats per run, median reported (default 5)\n"
+    "  --max-steps N    ODE step cap per output interval (default 2e5)\n"
+    "  --time-cap S     a run slower than S seconds is not repeated and tighter\n"
+    "                   tolerances of that solver are skipped (default 2)\n"
+    "\n"
+    "Runs that fail or hit a cap are rows with status fail/stepcap/timecap/\n"
+    "skipped; the report goes on.  Exit status 0 when the report is written.\n";
+
+#define MAX_LIST 32
+
+typedef struct ropts {
+    const char *dir;
+    int quick;
+    char *problems[MAX_LIST], *solvers[MAX_LIST];
+    int nproblems, nsolvers;
+    hy_wp_cfg cfg;
+    int set_repeats, set_steps, set_cap;
+    char buf_p[1024], buf_s[1024];
+} ropts;
+
+typedef struct runlist {
+    hy_wp_run *r;
+    size_t n, cap;
+} runlist;
+
+static int split_list(const char *s, char *buf, size_t bufsz, char **out, int *n)
+{
+    snprintf(buf, bufsz, "%s", s);
+    *n = 0;
+    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ","))
+        if (*n < MAX_LIST && *tok)
+            out[(*n)++] = tok;
+    return *n ? 0 : -1;
+}
+
+static int usage_error(const char *what, const char *arg)
+{
+    fprintf(stderr, "hystviz report: %s '%s' (try hystviz report --help)\n", what, arg);
+    return 2;
+}
+
+/* Parses the options; returns 0, 1 for --help, or 2 (message printed). */
+static int parse_opts(int argc, char **argv, ropts *o)
+{
+    long v;
+    double d;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help"))
+            return 1;
+        if (!strcmp(a, "--quick")) {
+            o->quick = 1;
+            continue;
+        }
+        if (!val)
+            return usage_error("unknown option or missing value for", a);
+        i++;
+        if (!strcmp(a, "-o")) {
+            o->dir = val;
+        } else if (!strcmp(a, "--problems")) {
+            if (split_list(val, o->buf_p, sizeof o->buf_p, o->problems, &o->nproblems))
+                return usage_error("empty problem list", val);
+        } else if (!strcmp(a, "--solvers")) {
+            if (split_list(val, o->buf_s, sizeof o->buf_s, o->solvers, &o->nsolvers))
+                return usage_error("empty solver list", val);
+        } else if (!strcmp(a, "--repeats")) {
+            if (cli_long(a, val, 1, 64, &v))
+                return 2;
+            o->cfg.repeats = (int)v;
+            o->set_repeats = 1;
+        } else if (!strcmp(a, "--max-steps")) {
+            if (cli_long(a, val, 1, 1000000000L, &v))
+                return 2;
+            o->cfg.max_steps = (unsigned long)v;
+            o->set_steps = 1;
+        } else if (!strcmp(a, "--time-cap")) {
+            if (cli_num(a, val, &d) || !(d > 0))
+                return usage_error("--time-cap needs seconds > 0, not", val);
+            o->cfg.time_cap = d;
+            o->set_cap = 1;
+        } else {
+            return usage_error("unknown option", a);
+        }
+    }
+    for (int i = 0; i < o->nsolvers; i++)
+        if (strcmp(o->solvers[i], "exact") && strcmp(o->solvers[i], "newmark") &&
+            !hy_ode_stepper_known(o->solvers[i]))
+            return usage_error("unknown solver", o->solvers[i]);
+    return 0;
+}
+
+static int push_run(runlist *L, const hy_wp_run *r)
+{
+    if (L->n == L->cap) {
+        size_t cap = L->cap ? 2 * L->cap : 256;
+        hy_wp_run *p = realloc(L->r, cap * sizeof *p);
+        if (!p)
+            return -1;
+        L->r = p;
+        L->cap = cap;
+    }
+    L->r[L->n++] = *r;
+    return 0;
+}
+
+/* Tolerances of a solver on a problem: rtol decades, or Newmark steps. */
+static int tolerances(const hy_wp_problem *p, const char *solver, int quick, double *tol)
+{
+    int n = 0;
+    if (!strcmp(solver, "exact")) {
+        tol[0] = 0;
+        return 1;
+    }
+    if (p->kind == HY_WP_BOUCWEN) {
+        for (int k = 0; k <= (quick ? 4 : 8); k++)
+            tol[n++] = 1.0 / (750.0 * (double)(1 << k));
+        return n;
+    }
+    if (quick) {
+        tol[0] = 1e-2, tol[1] = 1e-4, tol[2] = 1e-6;
+        return 3;
+    }
+    for (int e = 2; e <= 13; e++)
+        tol[n++] = pow(10, -e);
+    return n;
+}
+
+/* Every tolerance of one solver (one restart mode); after a step or time cap
+ * the tighter tolerances are recorded as skipped. */
+static int run_series(const hy_wp_problem *p, const char *solver, int restart, const ropts *o, runlist *L)
+{
+    double tol[16];
+    int nt = tolerances(p, solver, o->quick, tol), stop = 0;
+    hy_wp_run r;
+    for (int k = 0; k < nt; k++) {
+        if (stop) {
+            r.tol = tol[k];
+            r.status = HY_WP_SKIPPED;
+            snprintf(r.msg, sizeof r.msg, "skipped: a looser tolerance hit the %s",
+                     stop == HY_WP_STEPCAP ? "step cap" : "time cap");
+            r.repeats = 0;
+            r.err_max = r.err_l2 = r.t_med = r.t_min = r.t_max = NAN;
+            r.nfev = r.njev = r.steps = r.fails = 0;
+        } else {
+            hy_wp_run_solver(p, solver, restart, tol[k], &o->cfg, &r);
+            if (r.status == HY_WP_STEPCAP || r.status == HY_WP_TIMECAP)
+                stop = r.status;
+        }
+        if (push_run(L, &r))
+            return -1;
+    }
+    return 0;
+}
+
+static char *all_solvers[] = {"exact", "rk2", "rk4", "rkf45", "rkck", "rk8pd", "rk1imp", "rk2imp",
+                              "rk4imp", "bsimp", "msadams", "msbdf", "newmark"};
+
+/* Position of a solver in all_solvers (its colour and marker in every plot). */
+static int solver_index(const char *name)
+{
+    for (int i = 0; i < (int)(sizeof all_solvers / sizeof all_solvers[0]); i++)
+        if (!strcmp(all_solvers[i], name))
+            return i;
+    return 0;
+}
+
+static int run_problem(const hy_wp_problem *p, const ropts *o, runlist *L)
+{
+    char *const *all = all_solvers;
+    char *const *sv = o->nsolvers ? o->solvers : all;
+    int ns = o->nsolvers ? o->nsolvers : (int)(sizeof all_solvers / sizeof all_solvers[0]);
+    for (int i = 0; i < ns; i++) {
+        if (!hy_wp_solver_applies(p, sv[i]))
+            continue;
+        int ode = hy_ode_stepper_known(sv[i]);
+        if (run_series(p, sv[i], 1, o, L) || (ode && run_series(p, sv[i], 0, o, L)))
+            return -1;
+    }
+    return 0;
+}
+
+static int write_csv(const char *dir, const runlist *L)
+{
+    char path[1100], tmp[1200];
+    snprintf(path, sizeof path, "%s/report.csv", dir);
+    FILE *f = cli_out_open(path, tmp, sizeof tmp);
+    if (!f)
+        return -1;
+    hy_wp_csv_header(f);
+    for (size_t i = 0; i < L->n; i++)
+        hy_wp_csv_row(f, &L->r[i]);
+    return cli_out_close(f, path, tmp);
+}
+
+/* The plot title as plain text: the markup names \gamma and \sigma_0 as letters. */
+static void plain_title(const char *in, char *out, size_t size)
+{
+    static const char *const from[] = {"\\gamma", "\\sigma_0"}, *const to[] = {"γ", "σ0"};
+    size_t j = 0;
+    while (*in && j + 4 < size) {
+        int hit = 0;
+        for (int k = 0; k < 2 && !hit; k++)
+            if (!strncmp(in, from[k], strlen(from[k]))) {
+                j += (size_t)snprintf(out + j, size - j, "%s", to[k]);
+                in += strlen(from[k]);
+                hit = 1;
+            }
+        if (!hit)
+            out[j++] = *in++;
+    }
+    out[j] = 0;
+}
+
+/* Markdown summary of one problem: a row per solver and restart mode. */
+static void md_problem(FILE *f, const hy_wp_problem *p, const runlist *L)
+{
+    char title[160];
+    plain_title(p->title, title, sizeof title);
+    fprintf(f, "\n## %s\n\n%s; reference: %s.\n\n![work-precision %s](wp-%s.png)\n\n", p->name, title,
+            p->ref_method, p->name, p->name);
+    fputs("| solver | restarts | ok/runs | smallest max error | its tol | its time (ms) | its RHS evals "
+          "| time to 1e-6 (ms) | not ok |\n|---|---|---|---|---|---|---|---|---|\n", f);
+    for (size_t i = 0; i < L->n;) {
+        size_t j = i, ok = 0;
+        const hy_wp_run *best = NULL, *to6 = NULL;
+        char bad[96] = "";
+        for (; j < L->n && !strcmp(L->r[j].problem, L->r[i].problem) && !strcmp(L->r[j].solver, L->r[i].solver) &&
+               L->r[j].restart == L->r[i].restart;
+             j++) {
+            const hy_wp_run *r = &L->r[j];
+            if (r->status == HY_WP_OK || r->status == HY_WP_TIMECAP) {
+                ok += r->status == HY_WP_OK;
+                if (!best || r->err_max < best->err_max)
+                    best = r;
+                if (r->err_max <= 1e-6 && (!to6 || r->t_med < to6->t_med))
+                    to6 = r;
+            }
+            if (r->status != HY_WP_OK && strlen(bad) < 60)
+                snprintf(bad + strlen(bad), sizeof bad - strlen(bad), "%s%s@%.0e", bad[0] ? " " : "",
+                         hy_wp_status_name(r->status), r->tol);
+        }
+        if (!strcmp(L->r[i].problem, p->name)) {
+            const hy_wp_run *r = &L->r[i];
+            fprintf(f, "| %s | %s | %zu/%zu | ", r->solver, r->restart < 0 ? "-" : r->restart ? "on" : "off", ok, j - i);
+            if (best)
+                fprintf(f, "%.2e | %.0e | %.3f | %lu | ", best->err_max, best->tol, 1e3 * best->t_med, best->nfev);
+            else
+                fputs("- | - | - | - | ", f);
+            if (to6)
+                fprintf(f, "%.3f | %s |\n", 1e3 * to6->t_med, bad[0] ? bad : "-");
+            else
+                fprintf(f, "- | %s |\n", bad[0] ? bad : "-");
+        }
+        i = j;
+    }
+}
+
+static int write_md(const ropts *o, const hy_wp_problem *P, int np, const runlist *L, double total)
+{
+    char path[1100], tmp[1200];
+    snprintf(path, sizeof path, "%s/report.md", o->dir);
+    FILE *f = cli_out_open(path, tmp, sizeof tmp);
+    if (!f)
+        return -1;
+    fprintf(f, "# hystviz work-precision report%s\n\n", o->quick ? " (--quick)" : "");
+    fprintf(f, "%zu runs in %.1f s; %d timed repeats (median), step cap %lu per output interval, time cap %g s.\n"
+               "Error: max norm over a 300-point grid against the reference (absolute, in N; Bouc-Wen in m).\n"
+               "GSL steppers: atol = rtol * 1e-2 * g(0)/sigma0 (the scale of z); 'tol' of newmark is h in s.\n"
+               "Full data: report.csv.\n",
+            L->n, total, o->cfg.repeats, o->cfg.max_steps, o->cfg.time_cap);
+    for (int i = 0; i < np; i++)
+        md_problem(f, &P[i], L);
+    return cli_out_close(f, path, tmp);
+}
+
+/* Plot data: x (error) and y (time) of the OK runs of one series. */
+typedef struct pseries {
+    double x[16], y[16];
+    char label[32];
+} pseries;
+
+static void fill_series(const runlist *L, size_t i0, size_t i1, pseries *ps, hy_series *s, int idx)
+{
+    size_t n = 0;
+    for (size_t i = i0; i < i1 && n < 16; i++)
+        if (L->r[i].status == HY_WP_OK || L->r[i].status == HY_WP_TIMECAP) {
+            ps->x[n] = fmax(L->r[i].err_max, 1e-17);
+            ps->y[n++] = L->r[i].t_med;
+        }
+    snprintf(ps->label, sizeof ps->label, "%s", L->r[i0].solver);
+    memset(s, 0, sizeof *s);
+    s->x = ps->x;
+    s->y = ps->y;
+    s->n = n;
+    s->colour.palette = idx % HY_PALETTE_SIZE;
+    s->style = n == 1 ? HY_LINE_NONE : idx / HY_PALETTE_SIZE ? HY_LINE_DASHED : HY_LINE_SOLID;
+    s->marker = idx % 2 ? HY_MARKER_SQUARE : HY_MARKER_CIRCLE;
+    s->marker_filled = idx / HY_PALETTE_SIZE == 0;
+    s->marker_size = 3;
+    s->label = ps->label;
+}
+
+static int plot_problem(const ropts *o, const hy_wp_problem *p, const runlist *L)
+{
+    pseries ps[2][16];
+    hy_series ser[2][16];
+    size_t ns[2] = {0, 0};
+    for (size_t i = 0; i < L->n;) {
+        size_t j = i;
+        while (j < L->n && !strcmp(L->r[j].solver, L->r[i].solver) && L->r[j].restart == L->r[i].restart &&
+               !strcmp(L->r[j].problem, L->r[i].problem))
+            j++;
+        int panel = L->r[i].restart == 0;
+        if (!strcmp(L->r[i].problem, p->name) && ns[panel] < 16) {
+            fill_series(L, i, j, &ps[panel][ns[panel]], &ser[panel][ns[panel]], solver_index(L->r[i].solver));
+            ns[panel]++;
+        }
+        i = j;
+    }
+    int npanels = ns[1] ? 2 : 1;
+    /* shared time range, stretched upwards by 80 % of its decades: room for the legend */
+    double tlo = INFINITY, thi = 0;
+    for (int k = 0; k < 2; k++)
+        for (size_t i = 0; i < ns[k]; i++)
+            for (size_t j = 0; j < ser[k][i].n; j++) {
+                tlo = fmin(tlo, ser[k][i].y[j]);
+                thi = fmax(thi, ser[k][i].y[j]);
+            }
+    hy_range yr = {.log = 1};
+    if (thi > 0 && tlo < thi) {
+        yr.lo = tlo / 1.5;
+        yr.hi = thi * 1.5 * pow(thi / tlo, 0.8);
+    }
+    char title[2][200];
+    hy_axes ax[2];
+    for (int k = 0; k < npanels; k++) {
+        snprintf(title[k], sizeof title[k], "%s%s", p->title,
+                 npanels == 1 ? "" : k ? ": straight through" : ": restarts at breakpoints");
+        ax[k] = (hy_axes){.series = ser[k], .nseries = ns[k], .xlabel = "max error", .ylabel = "time (s)",
+                          .title = title[k], .x = {.log = 1}, .y = yr, .legend = HY_LEGEND_BEST, .grid = 1};
+    }
+    hy_figure fig = {.width = hy_cm(npanels * 11.0), .height = hy_cm(10), .dpi = 150, .axes = ax, .nrows = 1,
+                     .ncols = npanels, .font_size = 8};
+    const char *ext[2] = {"svg", "png"};
+    int fmt[2] = {HY_FORMAT_SVG, HY_FORMAT_PNG};
+    for (int k = 0; k < 2; k++) {
+        char path[1100];
+        hy_error err;
+        snprintf(path, sizeof path, "%s/wp-%s.%s", o->dir, p->name, ext[k]);
+        if (hy_figure_write(&fig, path, fmt[k], &err)) {
+            fprintf(stderr, "hystviz report: %s\n", err.msg);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* mkdir -p for dir. */
+static int make_dir(const char *dir)
+{
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (char *s = buf + 1;; s++) {
+        char c = *s;
+        if (c == '/' || c == 0) {
+            *s = 0;
+            if (mkdir(buf, 0777) && errno != EEXIST) {
+                fprintf(stderr, "hystviz report: cannot create %s: %s\n", buf, strerror(errno));
+                return -1;
+            }
+            *s = c;
+            if (!c)
+                return 0;
+        }
+    }
+}
+
+static int run_all(ropts *o, hy_wp_problem *P, int np)
+{
+    runlist L = {0};
+    double t0 = hy_wp_now();
+    int rc = 0;
+    for (int i = 0; i < np && !rc; i++) {
+        fprintf(stderr, "hystviz report: %s (reference: %s) ...\n", P[i].name, P[i].ref_method);
+        if (run_problem(&P[i], o, &L)) {
+            fprintf(stderr, "hystviz report: out of memory\n");
+            rc = 1;
+        }
+    }
+    double total = hy_wp_now() - t0;
+    if (!rc && (write_csv(o->dir, &L) || write_md(o, P, np, &L, total)))
+        rc = 1;
+    for (int i = 0; i < np && !rc; i++)
+        if (plot_problem(o, &P[i], &L))
+            rc = 1;
+    size_t bad = 0;
+    for (size_t i = 0; i < L.n; i++)
+        bad += L.r[i].status != HY_WP_OK;
+    if (!rc)
+        printf("report: %zu runs (%zu not ok) on %d problems in %.1f s; wrote %s/report.csv, report.md, wp-*.svg/png\n",
+               L.n, bad, np, total, o->dir);
+    free(L.r);
+    return rc;
+}
+
+int hy_cmd_report(int argc, char **argv)
+{
+    gsl_set_error_handler_off();
+    ropts o = {.dir = "gallery/report", .cfg = hy_wp_cfg_defaults()};
+    int rc = parse_opts(argc, argv, &o);
+    if (rc == 1) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    if (rc)
+        return rc;
+    if (o.quick) {
+        o.cfg.repeats = o.set_repeats ? o.cfg.repeats : 2;
+        o.cfg.max_steps = o.set_steps ? o.cfg.max_steps : 20000;
+        o.cfg.time_cap = o.set_cap ? o.cfg.time_cap : 0.2;
+    }
+    const char *const *names = hy_wp_problem_names();
+    int np = 0;
+    if (!o.nproblems)
+        for (; names[o.nproblems]; o.nproblems++)
+            o.problems[o.nproblems] = (char *)names[o.nproblems];
+    hy_wp_problem *P = calloc((size_t)o.nproblems, sizeof *P);
+    if (!P || make_dir(o.dir)) {
+        free(P);
+        return 1;
+    }
+    for (; np < o.nproblems; np++) {
+        hy_error err;
+        if (hy_wp_problem_init(&P[np], o.problems[np], o.quick, &err)) {
+            fprintf(stderr, "hystviz report: %s\n", err.msg);
+            rc = err.code == HY_EINVAL ? 2 : 1;
+            np++;
+            break;
+        }
+    }
+    if (!rc)
+        rc = run_all(&o, P, np);
+    for (int i = 0; i < np; i++)
+        hy_wp_problem_free(&P[i]);
+    free(P);
+    return rc;
+}

@@ -1,0 +1,368 @@
+/* hy_workprec.c: work-precision runs (DiffEqDevTools conventions: L∞ and RMS
+ * error on a fixed grid, median wall time) for Examples 1-3 of seed 000, the
+ * stiff LuGre of Åström & Canudas de Wit (2008) and the Bouc-Wen benchmark of
+ * seed 001 (Newmark at several h against a fine-h reference). */
+#include "hy_workprec.h"
+
+#include "hy_gamma.h"
+#include "hy_ode.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const char *const problem_names[] = {
+    "ex2-g1", "ex2-g10", "ex2-g100", "ex2-g1e4",
+    "ex3-g1", "ex3-g10", "ex3-g100", "ex3-g1e4",
+    "ex1", "lugre-stiff", "boucwen", NULL,
+};
+
+hy_wp_cfg hy_wp_cfg_defaults(void)
+{
+    hy_wp_cfg c = {.repeats = 5, .max_steps = 200000, .time_cap = 2.0};
+    return c;
+}
+
+double hy_wp_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void hy_wp_error(const double *y, const double *yref, size_t n, double *emax, double *el2)
+{
+    double mx = 0, s2 = 0;
+    for (size_t i = 0; i < n; i++) {
+        double e = fabs(y[i] - yref[i]);
+        if (!isfinite(e)) {
+            mx = s2 = INFINITY;
+            break;
+        }
+        mx = fmax(mx, e);
+        s2 += e * e;
+    }
+    if (emax)
+        *emax = mx;
+    if (el2)
+        *el2 = n ? sqrt(s2 / (double)n) : 0;
+}
+
+const char *hy_wp_status_name(int status)
+{
+    static const char *const names[] = {"ok", "fail", "stepcap", "timecap", "skipped"};
+    return status >= 0 && status <= HY_WP_SKIPPED ? names[status] : "?";
+}
+
+const char *const *hy_wp_problem_names(void)
+{
+    return problem_names;
+}
+
+/* g(v) in long double, from the model's fields (not hy_model_g). */
+static long double g_ld(const hy_model *m, long double v)
+{
+    if (m->type != hy_model_lugre)
+        return m->fc;
+    long double r = fabsl(v / m->vs);
+    return m->fc + ((long double)m->fs - m->fc) * expl(-powl(r, m->beta));
+}
+
+int hy_wp_exact_ld(const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n,
+                   double *y, hy_error *err)
+{
+    if (m->type->has_filter || !in->all_linear)
+        return hy_error_set(err, HY_EUNSUP, "long-double reference needs a piecewise-linear input and no filter");
+    long double z = m->x0, base = 0; /* z at the start of piece p of period base */
+    size_t p = 0;
+    for (size_t i = 0; i < n; i++) {
+        const hy_piece *pc = &in->pieces[p];
+        /* advance while t[i] is at or past the end of the current piece */
+        while ((long double)t[i] >= base + pc->t1) {
+            long double v = ((long double)pc->u1 - pc->u0) / ((long double)pc->t1 - pc->t0);
+            long double lam = m->sigma0 * fabsl(v) / g_ld(m, v / gamma);
+            if (v != 0)
+                z = v / lam + (z - v / lam) * expl(-lam * ((long double)pc->t1 - pc->t0));
+            if (++p == in->npieces) {
+                p = 0;
+                base += in->period;
+            }
+            pc = &in->pieces[p];
+        }
+        long double v = ((long double)pc->u1 - pc->u0) / ((long double)pc->t1 - pc->t0);
+        long double zz = z, zd = 0;
+        if (v != 0) {
+            long double lam = m->sigma0 * fabsl(v) / g_ld(m, v / gamma), zeq = v / lam;
+            zz = zeq + (z - zeq) * expl(-lam * ((long double)t[i] - base - pc->t0));
+            zd = -lam * (zz - zeq);
+        }
+        y[i] = (double)(m->sigma0 * zz + (long double)m->sigma1 / gamma * zd + (long double)m->sigma2 * v / gamma);
+    }
+    return HY_OK;
+}
+
+/* Output grid of n points over [0, span], offset so no point sits on a breakpoint. */
+static int grid_alloc(hy_wp_problem *p, size_t n, double span)
+{
+    p->n = n;
+    p->t = malloc(n * sizeof *p->t);
+    p->yref = malloc(n * sizeof *p->yref);
+    if (!p->t || !p->yref)
+        return HY_ENOMEM;
+    for (size_t i = 0; i < n; i++)
+        p->t[i] = span * ((double)i + 0.3711) / (double)n;
+    return HY_OK;
+}
+
+/* Examples 2 and 3: LuGre σ0 = σ1 = Fc = vs = β = 1, Fs = 2; 3 periods. */
+static int init_example(hy_wp_problem *p, int ex, double gamma, hy_error *err)
+{
+    hy_model_lugre_init(&p->model, 1, 1, 1, 2, 1, 1);
+    int rc = ex == 2 ? hy_input_triangle(&p->input, 0, 1, 2, err)
+                     : hy_input_bimodal(&p->input, 0, 0.2, 1, 1.5, NULL, HY_SHAPE_LINEAR, err);
+    if (rc)
+        return rc;
+    p->gamma = gamma;
+    snprintf(p->title, sizeof p->title, "Example %d, \\gamma = %g", ex, gamma);
+    return grid_alloc(p, 300, 3 * p->input.period);
+}
+
+/* Stiff LuGre (Åström & Canudas de Wit 2008), 0.1 mm bimodal input at 1 mm/s. */
+static int init_stiff(hy_wp_problem *p, hy_error *err)
+{
+    hy_model_lugre_init(&p->model, 1e5, sqrt(1e5), 1, 1.5, 1e-3, 2);
+    const double tm[4] = {0.1, 0.18, 0.31, 0.46};
+    int rc = hy_input_bimodal(&p->input, 0, 0.2e-4, 1e-4, 1.5e-4, tm, HY_SHAPE_LINEAR, err);
+    if (rc)
+        return rc;
+    p->gamma = 1;
+    snprintf(p->title, sizeof p->title, "stiff LuGre, \\sigma_0 = 10^5, 0.1 mm at 1 mm/s");
+    return grid_alloc(p, 300, 3 * p->input.period);
+}
+
+/* Example 1: system (16), Dahl ρ = Fc = 1, τ = 1, sine input, γ = 20, 3 periods;
+ * reference rk8pd at rtol 1e-14 (quick: 1e-12), checked against bsimp. */
+static int init_ex1(hy_wp_problem *p, int quick, hy_error *err)
+{
+    hy_model_dahl_filter_init(&p->model, 1, 1, 1);
+    int rc = hy_input_sine(&p->input, 1, 1, 0, err);
+    if (rc)
+        return rc;
+    p->gamma = 20;
+    snprintf(p->title, sizeof p->title, "Example 1 (Dahl + filter), \\gamma = 20");
+    if ((rc = grid_alloc(p, 300, 3 * p->input.period)))
+        return rc;
+    hy_ode_opts o = hy_ode_defaults();
+    o.stepper = "rk8pd";
+    o.rtol = quick ? 1e-12 : 1e-14;
+    o.atol = o.rtol * 1e-2;
+    o.max_steps = 10000000;
+    if ((rc = hy_ode_solve(&p->model, &p->input, p->gamma, &o, p->t, p->n, p->yref, NULL, err)))
+        return rc;
+    double *y2 = malloc(p->n * sizeof *y2), d = NAN;
+    o.stepper = "bsimp";
+    o.rtol = quick ? 1e-11 : 1e-13;
+    o.atol = o.rtol * 1e-2;
+    if (y2 && !hy_ode_solve(&p->model, &p->input, p->gamma, &o, p->t, p->n, y2, NULL, err))
+        hy_wp_error(y2, p->yref, p->n, &d, NULL);
+    free(y2);
+    snprintf(p->ref_method, sizeof p->ref_method,
+             "rk8pd rtol %.0e atol %.0e with restarts (bsimp rtol %.0e differs by %.1e)",
+             quick ? 1e-12 : 1e-14, quick ? 1e-14 : 1e-16, quick ? 1e-11 : 1e-13, d);
+    return HY_OK;
+}
+
+/* Bouc-Wen force: 100 sin(2π 5 t) + 50 sin(2π 23 t) N. */
+static double bw_force(double t)
+{
+    return 100 * sin(2 * M_PI * 5 * t) + 50 * sin(2 * M_PI * 23 * t);
+}
+
+/* Newmark at h = span/(n-1)/2^k, sampled on the n-point grid t_j = j span/(n-1). */
+static int bw_solve(const hy_wp_problem *p, double h, double *y_out, hy_error *err)
+{
+    double dt = p->t[1] - p->t[0];
+    size_t r = (size_t)llround(dt / h), nn = (p->n - 1) * r + 1;
+    double *u = malloc(nn * sizeof *u), *y = malloc(nn * sizeof *y);
+    int rc = HY_ENOMEM;
+    if (u && y) {
+        for (size_t i = 0; i < nn; i++)
+            u[i] = bw_force((double)i * h);
+        hy_newmark_opts o;
+        hy_newmark_opts_default(&o);
+        rc = hy_boucwen_simulate(&p->bw, &o, h, u, nn, NULL, y, NULL, err);
+        for (size_t j = 0; rc == HY_OK && j < p->n; j++)
+            y_out[j] = y[j * r];
+    } else {
+        hy_error_set(err, HY_ENOMEM, "out of memory for %zu Newmark samples", nn);
+    }
+    free(u);
+    free(y);
+    return rc;
+}
+
+/* Bouc-Wen benchmark (Table 1), 0.4 s at 750 Hz; reference h = 1/(750·2^12). */
+static int init_boucwen(hy_wp_problem *p, int quick, hy_error *err)
+{
+    p->kind = HY_WP_BOUCWEN;
+    hy_boucwen_params_default(&p->bw);
+    snprintf(p->title, sizeof p->title, "Bouc-Wen benchmark (Newmark), 5 + 23 Hz force");
+    p->n = 301;
+    p->t = malloc(p->n * sizeof *p->t);
+    p->yref = malloc(p->n * sizeof *p->yref);
+    if (!p->t || !p->yref)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t j = 0; j < p->n; j++)
+        p->t[j] = (double)j / 750.0;
+    int k = quick ? 9 : 12;
+    p->bw_h_ref = 1.0 / (750.0 * (double)(1 << k));
+    snprintf(p->ref_method, sizeof p->ref_method, "Newmark at h = 1/(750*2^%d) s", k);
+    return bw_solve(p, p->bw_h_ref, p->yref, err);
+}
+
+int hy_wp_problem_init(hy_wp_problem *p, const char *name, int quick, hy_error *err)
+{
+    memset(p, 0, sizeof *p);
+    snprintf(p->name, sizeof p->name, "%s", name);
+    int rc;
+    if (!strncmp(name, "ex2-g", 5) || !strncmp(name, "ex3-g", 5)) {
+        char *end;
+        double g = strtod(name + 5, &end);
+        if (*end || !(g > 0))
+            return hy_error_set(err, HY_EINVAL, "problem '%s': bad gamma", name);
+        rc = init_example(p, name[2] - '0', g, err);
+    } else if (!strcmp(name, "lugre-stiff")) {
+        rc = init_stiff(p, err);
+    } else if (!strcmp(name, "ex1")) {
+        return init_ex1(p, quick, err);
+    } else if (!strcmp(name, "boucwen")) {
+        return init_boucwen(p, quick, err);
+    } else {
+        return hy_error_set(err, HY_EINVAL,
+                            "unknown problem '%s' (ex2-gG, ex3-gG, ex1, lugre-stiff, boucwen)", name);
+    }
+    if (rc)
+        return rc == HY_ENOMEM ? hy_error_set(err, rc, "out of memory") : rc;
+    snprintf(p->ref_method, sizeof p->ref_method, "exact exponential formula in long double");
+    return hy_wp_exact_ld(&p->model, &p->input, p->gamma, p->t, p->n, p->yref, err);
+}
+
+void hy_wp_problem_free(hy_wp_problem *p)
+{
+    if (p->kind == HY_WP_LUGRE && p->input.pieces)
+        hy_input_free(&p->input);
+    free(p->t);
+    free(p->yref);
+    p->t = p->yref = NULL;
+}
+
+int hy_wp_solver_applies(const hy_wp_problem *p, const char *solver)
+{
+    if (p->kind == HY_WP_BOUCWEN)
+        return !strcmp(solver, "newmark");
+    if (!strcmp(solver, "exact"))
+        return hy_gamma_exact_applies(&p->model, &p->input);
+    return hy_ode_stepper_known(solver);
+}
+
+/* One call of the solver; fills y and the run's counters. */
+static int solve_once(const hy_wp_problem *p, hy_wp_run *r, const hy_wp_cfg *cfg, double *y, hy_error *err)
+{
+    if (p->kind == HY_WP_BOUCWEN)
+        return bw_solve(p, r->tol, y, err);
+    if (!strcmp(r->solver, "exact"))
+        return hy_gamma_exact(&p->model, &p->input, p->gamma, p->t, p->n, y, NULL, err);
+    hy_ode_opts o = hy_ode_defaults();
+    o.stepper = r->solver;
+    o.rtol = r->tol;
+    o.atol = r->tol * 1e-2 * hy_model_g0(&p->model) / p->model.sigma0; /* |z| <= g/σ0 */
+    o.restart = r->restart;
+    o.max_steps = cfg->max_steps;
+    hy_ode_stats s = {0};
+    int rc = hy_ode_solve(&p->model, &p->input, p->gamma, &o, p->t, p->n, y, &s, err);
+    r->nfev = s.nfev;
+    r->njev = s.njev;
+    r->steps = s.steps;
+    r->fails = s.fails;
+    return rc;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Records a failed call in r (status from the message: step cap or failure). */
+static void run_failed(hy_wp_run *r, const hy_error *err)
+{
+    r->status = strstr(err->msg, "step cap") ? HY_WP_STEPCAP : HY_WP_FAIL;
+    snprintf(r->msg, sizeof r->msg, "%.150s", err->msg);
+}
+
+int hy_wp_run_solver(const hy_wp_problem *p, const char *solver, int restart, double tol,
+                     const hy_wp_cfg *cfg, hy_wp_run *r)
+{
+    memset(r, 0, sizeof *r);
+    snprintf(r->problem, sizeof r->problem, "%s", p->name);
+    snprintf(r->solver, sizeof r->solver, "%s", solver);
+    r->restart = hy_ode_stepper_known(solver) ? restart : -1;
+    r->tol = tol;
+    r->err_max = r->err_l2 = r->t_med = r->t_min = r->t_max = NAN;
+    double *y = malloc(p->n * sizeof *y), times[64];
+    int nrep = cfg->repeats < 1 ? 1 : cfg->repeats > 64 ? 64 : cfg->repeats;
+    hy_error err = {0};
+    if (!y) {
+        r->status = HY_WP_FAIL;
+        snprintf(r->msg, sizeof r->msg, "out of memory");
+        return r->status;
+    }
+    for (int k = 0; k < nrep; k++) {
+        double t0 = hy_wp_now();
+        int rc = solve_once(p, r, cfg, y, &err);
+        times[k] = hy_wp_now() - t0;
+        r->repeats = k + 1;
+        if (rc) {
+            run_failed(r, &err);
+            break;
+        }
+        if (times[k] > cfg->time_cap) {
+            r->status = HY_WP_TIMECAP;
+            snprintf(r->msg, sizeof r->msg, "run took %.3g s > time cap %.3g s: not repeated", times[k],
+                     cfg->time_cap);
+            break;
+        }
+    }
+    if (r->status != HY_WP_FAIL && r->status != HY_WP_STEPCAP) {
+        hy_wp_error(y, p->yref, p->n, &r->err_max, &r->err_l2);
+        if (!isfinite(r->err_max)) {
+            r->status = HY_WP_FAIL;
+            snprintf(r->msg, sizeof r->msg, "non-finite output");
+        }
+    }
+    qsort(times, (size_t)r->repeats, sizeof *times, cmp_double);
+    r->t_min = times[0];
+    r->t_max = times[r->repeats - 1];
+    r->t_med = times[r->repeats / 2];
+    free(y);
+    return r->status;
+}
+
+void hy_wp_csv_header(FILE *f)
+{
+    fputs("problem,solver,restart,tol,status,err_max,err_l2,time_med_s,time_min_s,time_max_s,"
+          "repeats,nfev,njev,steps,fails,message\n", f);
+}
+
+void hy_wp_csv_row(FILE *f, const hy_wp_run *r)
+{
+    char msg[sizeof r->msg];
+    size_t j = 0;
+    for (const char *s = r->msg; *s && j + 1 < sizeof msg; s++)
+        msg[j++] = (*s == ',' || *s == '"' || *s == '\n') ? ';' : *s;
+    msg[j] = 0;
+    fprintf(f, "%s,%s,%s,%.6g,%s,%.6e,%.6e,%.6e,%.6e,%.6e,%d,%lu,%lu,%lu,%lu,%s\n", r->problem, r->solver,
+            r->restart < 0 ? "" : r->restart ? "on" : "off", r->tol, hy_wp_status_name(r->status), r->err_max,
+            r->err_l2, r->t_med, r->t_min, r->t_max, r->repeats, r->nfev, r->njev, r->steps, r->fails, msg);
+}

@@ -1,0 +1,14 @@
+#!/bin/sh
+# test_check.sh RUN_CMD [OPTIONS]: `check` exits 0, prints the header, one row
+# per case and a summary whose case count matches the rows.
+set -u
+RUN=$1
+shift
+out=$("$RUN" check "$@") || { echo "$out"; echo "FAIL: check exited non-zero"; exit 1; }
+echo "$out"
+echo "$out" | head -1 | grep -q '^case  *parameters  *result  *error  *bound  *time_s$' || { echo "FAIL: header"; exit 1; }
+rows=$(echo "$out" | grep -c -E ' (ok|refused) +[-0-9.e+]+ +[0-9.e+-]+ +[0-9.]+$')
+n=$(echo "$out" | sed -n 's/^check: \([0-9]*\) cases, 0 failed.*/\1/p')
+[ -n "$n" ] && [ "$n" = "$rows" ] && [ "$n" -ge 40 ] || { echo "FAIL: $rows rows for '$n' cases"; exit 1; }
+"$RUN" check --bogus >/dev/null 2>&1; [ $? = 2 ] || { echo "FAIL: bad option not refused"; exit 1; }
+echo "check tests passed ($n cases)"

@@ -1,0 +1,60 @@
+#!/bin/sh
+# test_report.sh RUN_CMD BUILDDIR: `report --quick` writes CSV, Markdown and
+# plots with the expected columns and rows; errors fall with the tolerance for
+# adaptive steppers on Example 3; the exact solver is within 1e-13; a step cap
+# of 1 step per output interval is recorded (stepcap, then skipped) without aborting the report.
+set -u
+RUN=$1
+OUT=$2/report-test
+rm -rf "$OUT"
+fail() { echo "FAIL: $*"; exit 1; }
+
+"$RUN" report --quick -o "$OUT/q" >"$OUT.log" 2>&1 || { cat "$OUT.log"; fail "report --quick exited $?"; }
+CSV=$OUT/q/report.csv
+[ -s "$CSV" ] || fail "no report.csv"
+[ -s "$OUT/q/report.md" ] || fail "no report.md"
+head -1 "$CSV" | grep -qx 'problem,solver,restart,tol,status,err_max,err_l2,time_med_s,time_min_s,time_max_s,repeats,nfev,njev,steps,fails,message' \
+    || fail "CSV header: $(head -1 "$CSV")"
+# every row has 16 fields
+awk -F, 'NF != 16 { print "bad row " NR ": " $0; bad = 1 } END { exit bad }' "$CSV" || fail "CSV field count"
+for p in ex2-g1 ex2-g10 ex2-g100 ex2-g1e4 ex3-g1 ex3-g10 ex3-g100 ex3-g1e4 ex1 lugre-stiff boucwen; do
+    for ext in svg png; do
+        [ -s "$OUT/q/wp-$p.$ext" ] || fail "missing plot wp-$p.$ext"
+    done
+    grep -q '<svg' "$OUT/q/wp-$p.svg" || fail "wp-$p.svg is not SVG"
+    grep -q "^## $p\$" "$OUT/q/report.md" || fail "no Markdown section for $p"
+done
+# 3 tolerances x 2 restart modes for every GSL stepper on every LuGre problem
+for s in rk2 rk4 rkf45 rkck rk8pd rk1imp rk2imp rk4imp bsimp msadams msbdf; do
+    for p in ex2-g1 ex3-g10 ex1 lugre-stiff; do
+        for r in on off; do
+            n=$(grep -c "^$p,$s,$r," "$CSV")
+            [ "$n" = 3 ] || fail "$p $s restart $r: $n rows, expected 3"
+        done
+    done
+done
+grep -q '^boucwen,newmark,,' "$CSV" || fail "no Newmark rows"
+# exact solver: error <= 1e-13 on every problem it applies to (at least the 9 pwl ones)
+n=$(awk -F, '$2 == "exact" { if ($5 != "ok" || $6 + 0 > 1e-13) { print "exact: " $0; bad = 1 } n++ }
+             END { print n; exit bad }' "$CSV") || fail "exact error > 1e-13: $n"
+[ "$n" -ge 9 ] || fail "exact rows: $n"
+# errors decrease with tolerance (1e-2, 1e-4, 1e-6) for adaptive steppers on Example 3
+for sr in rkf45,off rk8pd,off msbdf,on msbdf,off; do
+    grep "^ex3-g10,$sr," "$CSV" | awk -F, '$5 != "ok" { bad = 1 } NR > 1 && $6 + 0 >= prev { bad = 1 } { prev = $6 + 0 }
+        END { exit bad }' || fail "ex3-g10 $sr: error does not fall with tol: $(grep "^ex3-g10,$sr," "$CSV" | cut -d, -f4-6)"
+done
+
+# a deliberately impossible run: 1 step per output interval
+"$RUN" report --quick --problems ex3-g10 --solvers rk4,rkf45,exact --max-steps 1 -o "$OUT/cap" >"$OUT.log" 2>&1 \
+    || { cat "$OUT.log"; fail "capped report exited non-zero"; }
+C=$OUT/cap/report.csv
+grep -q '^ex3-g10,rk4,on,0.01,stepcap,.*step cap' "$C" || fail "rk4 under a 10-step cap not recorded as stepcap"
+grep -q '^ex3-g10,rk4,on,0.0001,skipped,' "$C" || fail "tighter tolerance after the cap not recorded as skipped"
+grep -q '^ex3-g10,exact,,0,ok,' "$C" || fail "exact run missing after failed runs"
+[ -s "$OUT/cap/wp-ex3-g10.svg" ] || fail "plot missing after failed runs"
+
+# usage errors
+"$RUN" report --solvers nosuch -o "$OUT/x" >/dev/null 2>&1; [ $? = 2 ] || fail "unknown solver not a usage error"
+"$RUN" report --problems nosuch --quick -o "$OUT/x" >/dev/null 2>&1; [ $? = 2 ] || fail "unknown problem not a usage error"
+"$RUN" report --help | grep -q 'usage: hystviz report' || fail "--help"
+echo "report tests passed"
