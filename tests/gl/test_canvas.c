@@ -1,0 +1,92 @@
+/* test_canvas.c: the GL data layer plus cairo overlay against the all-cairo
+ * rendering of the render tests' figures (same size, 1 pt = 1 px): the two
+ * must agree up to anti-aliasing differences along edges. */
+#include <cairo.h>
+#include <math.h>
+#include <string.h>
+
+#include "figures.h"
+#include "gltest.h"
+#include "hy_cairo.h"
+#include "hy_frame.h"
+
+#define W 640
+#define H 480
+
+static void render_gl(hy_gl *g, const hy_figure *fig, unsigned char *rgb)
+{
+    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H);
+    cairo_t *cr = cairo_create(s);
+    hy_cairo_canvas cc;
+    hy_canvas ov = hy_canvas_cairo(&cc, cr, NULL), data = hy_gl_canvas(g, 1.0);
+    hy_error err;
+    hy_gl_begin(g, (hy_rgb){1, 1, 1});
+    CHECK(hy_figure_draw_layers(fig, &data, &ov, &err) == 0, "draw_layers: %s", err.msg);
+    cairo_destroy(cr);
+    cairo_surface_flush(s);
+    unsigned char *rgba = malloc(W * H * 4);
+    CHECK(hy_gl_read(g, rgba, &err) == 0, "read: %s", err.msg);
+    hy_frame_composite(W, H, rgba, cairo_image_surface_get_data(s), cairo_image_surface_get_stride(s), rgb);
+    free(rgba);
+    cairo_surface_destroy(s);
+}
+
+static void render_cairo(const hy_figure *fig, unsigned char *rgb)
+{
+    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H);
+    cairo_t *cr = cairo_create(s);
+    hy_cairo_canvas cc;
+    hy_canvas cv = hy_canvas_cairo(&cc, cr, NULL);
+    hy_error err;
+    CHECK(hy_figure_draw(fig, &cv, &err) == 0, "draw: %s", err.msg);
+    cairo_destroy(cr);
+    cairo_surface_flush(s);
+    unsigned char *d = cairo_image_surface_get_data(s);
+    int stride = cairo_image_surface_get_stride(s);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            unsigned p = ((const unsigned *)(const void *)(d + y * stride))[x];
+            rgb[3 * (y * W + x)] = (unsigned char)(p >> 16);
+            rgb[3 * (y * W + x) + 1] = (unsigned char)(p >> 8);
+            rgb[3 * (y * W + x) + 2] = (unsigned char)p;
+        }
+    cairo_surface_destroy(s);
+}
+
+int main(void)
+{
+    hy_gl *g = gl_or_skip(W, H);
+    printf("context: %s\n", hy_gl_describe(g));
+    unsigned char *a = malloc(W * H * 3), *b = malloc(W * H * 3);
+    for (int i = 0; i < FIG_COUNT; i++) {
+        hy_figure fig;
+        const char *name = fig_build(i, &fig);
+        fig.width = W, fig.height = H, fig.dpi = 72;
+        render_gl(g, &fig, a);
+        render_cairo(&fig, b);
+        /* Tolerance: the mean channel difference stays below 1.5 levels and
+         * fewer than 1.5 % of pixels differ by more than 64 (edges only). */
+        double sum = 0;
+        long big = 0;
+        for (long k = 0; k < W * H * 3; k++) {
+            int d = abs(a[k] - b[k]);
+            sum += d;
+            big += d > 64;
+        }
+        double mean = sum / (W * H * 3.0), frac = big / (W * H * 3.0);
+        printf("%-8s mean |gl - cairo| %.3f levels, %.3f %% of channels off by > 64\n", name, mean, 100 * frac);
+        CHECK(mean < 1.5 && frac < 0.015, "%s: GL frame differs from the cairo figure", name);
+        if (getenv("HY_GL_DUMP")) {
+            char path[256];
+            hy_error err;
+            snprintf(path, sizeof path, "gl_%s.png", name);
+            hy_png_write_rgb(path, W, H, a, NULL, &err);
+            snprintf(path, sizeof path, "cairo_%s.png", name);
+            hy_png_write_rgb(path, W, H, b, NULL, &err);
+        }
+    }
+    free(a);
+    free(b);
+    hy_gl_free(g);
+    return fails ? 1 : 0;
+}
