@@ -193,10 +193,12 @@ static int render_one(run *r, worker *w, long i, hy_error *err)
     cairo_set_operator(cr, CAIRO_OPERATOR_CLEAR);
     cairo_paint(cr);
     cairo_set_operator(cr, CAIRO_OPERATOR_OVER);
+    double k = p->scale > 0 ? p->scale : H / 360.0;
+    cairo_scale(cr, k, k);
     hy_cairo_canvas cc;
     hy_anim_frame f = {i, r->nframes, (double)i / p->fps, p->duration,
-                       r->nframes > 1 ? (double)i / (double)(r->nframes - 1) : 0.0, W, H, 1.0, w->gl,
-                       hy_gl_canvas(w->gl, 1.0), hy_canvas_cairo(&cc, cr, NULL)};
+                       r->nframes > 1 ? (double)i / (double)(r->nframes - 1) : 0.0, W, H, k, w->gl,
+                       hy_gl_canvas(w->gl, k), hy_canvas_cairo(&cc, cr, NULL)};
     hy_gl_begin(w->gl, (hy_rgb){1, 1, 1});
     int st = r->draw(r->state, &f, err);
     cairo_destroy(cr);

@@ -78,6 +78,7 @@ typedef struct hy_anim_params {
     const char *outdir;       /* frames go to outdir/name/ (created) */
     const char *name;
     int width, height;
+    double scale;             /* pixels per point; 0 -> height / 360 (figures ~640 x 360 pt) */
     double fps, duration;     /* frames = round(duration * fps), at least 1 */
     long first, last;         /* frames [first, last); last < 0: to the end */
     int jobs;                 /* threads, each with its own GL context; 0 -> 1 */
