@@ -271,6 +271,7 @@ long anim_scene_solves(void *state) { return ((sweep *)state)->solves; }
 typedef struct kcycle {
     sweep base;               /* first member: anim_scene_solves and describe work on it */
     int which, kmax;
+    double ylo, yhi;
     double u[KMAX_PTS], y[KMAX_PTS], dist[8];
 } kcycle;
 
@@ -301,6 +302,11 @@ static int kcycle_prepare(void **state, const hy_anim_params *p, int which, hy_e
         }
     }
     hy_steady_sample(&k->base.ex.st, NPTS, k->base.uss, k->base.yss);
+    k->ylo = INFINITY, k->yhi = -INFINITY;
+    extent(k->y, KMAX_PTS, &k->ylo, &k->yhi);
+    extent(k->base.yss, NPTS, &k->ylo, &k->yhi);
+    double pad = 0.06 * (k->yhi - k->ylo);
+    k->ylo -= pad, k->yhi += pad;
     *state = k;
     return HY_OK;
 }
@@ -329,7 +335,7 @@ static int kcycle_draw(void *state, const hy_anim_frame *f, hy_error *err)
     snprintf(title, sizeof title, "Example %d:  k = %d   \\|y^*_{u,k} - y^\\circ_u\\|_\\infty = %.3g",
              k->which, c, k->dist[c]);
     hy_axes ax = {.series = sr, .nseries = 2, .marks = &mk, .nmarks = 1, .xlabel = "u", .ylabel = "y",
-                  .title = title, .y = {-2.2, 2.2, 0, 0}, .legend = HY_LEGEND_BOTTOM_RIGHT};
+                  .title = title, .y = {k->ylo, k->yhi, 0, 0}, .legend = HY_LEGEND_BOTTOM_RIGHT};
     hy_figure fig = one_panel(f, &ax);
     return hy_figure_draw_layers(&fig, &f->data, &f->overlay, err);
 }
@@ -497,7 +503,7 @@ static int ribbon_draw(void *state, const hy_anim_frame *f, hy_error *err)
     const hy_canvas *o = &f->overlay;
     double W = f->width / f->scale, H = f->height / f->scale;
     hy_rgb ink = {0.1, 0.1, 0.1};
-    o->ops->text(o->ctx, 16, 26, "Example 3: loops (u, y_\xce\xb3) for \xce\xb3 = 1 \xe2\x80\xa6 1000", 13, 0, 0, ink);
+    o->ops->text(o->ctx, 16, 26, "Example 3: loops of y against u for \xce\xb3 = 1 \xe2\x80\xa6 1000", 13, 0, 0, ink);
     o->ops->text(o->ctx, 16, 44, "stacked along log \xce\xb3 (front: \xce\xb3 = 1, purple; back: \xce\xb3 = 1000, yellow)",
                  10, 0, 0, ink);
     o->ops->text(o->ctx, 16, H - 14, "lit with depth; camera orbiting", 9, 1, 0, (hy_rgb){0.4, 0.4, 0.4});
