@@ -315,8 +315,8 @@ static int open_video(run *r, hy_error *err)
     if (!hy_anim_on_path("ffmpeg"))
         return hy_error_set(err, HY_EUNSUP, "--video %s needs ffmpeg, which is not on PATH: install it "
                             "(Debian: apt-get install ffmpeg), or render the PNG frames and encode them "
-                            "later with: ffmpeg -framerate %g -i %s/%s/frame_%%05d.png %s.%s",
-                            v, p->fps, p->outdir, p->name, p->name, v);
+                            "later with: ffmpeg -framerate %g -i %s/%s/frame_%%05d.png %s/%s.%s",
+                            v, p->fps, p->outdir, p->name, p->outdir, p->name, v);
     const char *codec = !strcmp(v, "mp4") ? "-c:v libx264 -pix_fmt yuv420p"
                         : !strcmp(v, "webm") ? "-c:v libvpx-vp9 -pix_fmt yuv420p" : "";
     char cmd[8800];
