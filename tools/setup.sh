@@ -2,7 +2,7 @@
 # tools/setup.sh: one command from a fresh Debian 12 (as root) to a built hystviz.
 #   sh tools/setup.sh gallery   install what is missing, build, render the gallery
 #   sh tools/setup.sh test      install what is missing, build, run every test suite
-#                               (and the core suite again under ASan+UBSan)
+#                               (and the core and gl suites again under ASan+UBSan)
 # With CI=true the build uses -Dwerror=true.
 set -eu
 cd "$(dirname "$0")/.."
@@ -46,7 +46,7 @@ test)
     meson test -C build --print-errorlogs --num-processes 2
     configure build-san -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug
     UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
-        meson test -C build-san --suite core --print-errorlogs --num-processes 2
+        meson test -C build-san --suite core --suite gl --print-errorlogs --num-processes 2
     ;;
 bench)
     configure build
