@@ -11,7 +11,8 @@ uniform float u_dash[8];
 uniform float u_dash_total;
 out vec4 o_colour;
 
-// Distance along the path from arc length s to the nearest "on" interval.
+// Signed distance along the path from arc length s to the nearest "on"
+// interval of the dash pattern: negative inside one.
 float dash_gap(float s)
 {
     float p = mod(s, u_dash_total), best = 1e9, acc = 0.0;
@@ -19,7 +20,7 @@ float dash_gap(float s)
         float a = acc, b = acc + u_dash[i];
         for (int k = -1; k <= 1; k++) {
             float q = p + float(k) * u_dash_total;
-            best = min(best, max(max(a - q, q - b), 0.0));
+            best = min(best, max(a - q, q - b));
         }
         acc += u_dash[i] + u_dash[i + 1];
     }
@@ -46,7 +47,7 @@ void main()
         if (u_ndash > 0) {
             float g = dash_gap(v_w.y + s);
             if ((flags & 4) != 0)
-                cov = min(cov, clamp(hw + 0.5 - length(vec2(g, perp)), 0.0, 1.0));
+                cov = min(cov, clamp(hw + 0.5 - length(vec2(max(g, 0.0), perp)), 0.0, 1.0));
             else
                 cov = min(cov, clamp(0.5 - g, 0.0, 1.0));
         }

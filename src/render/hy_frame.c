@@ -12,6 +12,13 @@
 #include <unistd.h>
 #include <zlib.h>
 
+/* x / 255 rounded to nearest for x in [0, 255 * 255] (exact, no division). */
+static inline unsigned div255(unsigned x)
+{
+    x += 128;
+    return (x + (x >> 8)) >> 8;
+}
+
 void hy_frame_composite(int w, int h, const unsigned char *gl, const unsigned char *argb, int stride,
                         unsigned char *rgb)
 {
@@ -22,9 +29,13 @@ void hy_frame_composite(int w, int h, const unsigned char *gl, const unsigned ch
         for (int x = 0; x < w; x++) {
             uint32_t p = ov ? ov[x] : 0;
             unsigned a = p >> 24, k = 255 - a;
-            unsigned c[3] = {(p >> 16) & 255, (p >> 8) & 255, p & 255};
-            for (int i = 0; i < 3; i++)
-                dst[3 * x + i] = (unsigned char)(c[i] + (src[4 * x + i] * k + 127) / 255);
+            if (a == 0) {             /* most pixels: the GL layer shows through */
+                dst[3 * x] = src[4 * x], dst[3 * x + 1] = src[4 * x + 1], dst[3 * x + 2] = src[4 * x + 2];
+                continue;
+            }
+            dst[3 * x] = (unsigned char)(((p >> 16) & 255) + div255(src[4 * x] * k));
+            dst[3 * x + 1] = (unsigned char)(((p >> 8) & 255) + div255(src[4 * x + 1] * k));
+            dst[3 * x + 2] = (unsigned char)((p & 255) + div255(src[4 * x + 2] * k));
         }
     }
 }

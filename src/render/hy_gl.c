@@ -19,6 +19,15 @@ typedef struct inst {
     float p[4], c0[4], c1[4], w[4];
 } inst;
 
+/* A recorded draw: instances [first, first + count) with a dash pattern and clip. */
+typedef struct cmd {
+    int clear;                /* 1: clear the clip rectangle to colour (an opaque pixel-aligned fill) */
+    float colour[4];
+    size_t first, count;
+    float dash[8], total;
+    int ndash, clipped, clip[4];
+} cmd;
+
 struct hy_gl {
     OSMesaContext ctx;
     unsigned char *fb;                 /* OSMesa's colour buffer */
@@ -31,7 +40,9 @@ struct hy_gl {
     size_t *starts;                    /* subpath start indices */
     size_t nstarts, scap;
     inst *buf;
-    size_t nbuf, bcap;
+    size_t nbuf, bcap, cmd_start;
+    cmd *cmds;
+    size_t ncmds, ccap;
     hy_gl_effect effects[MAX_EFFECTS];
     int neffects;
     int clip[MAX_CLIP][4], nclip;
@@ -242,6 +253,7 @@ void hy_gl_free(hy_gl *g)
     free(g->pts);
     free(g->starts);
     free(g->buf);
+    free(g->cmds);
     free(g);
 }
 
@@ -251,6 +263,8 @@ void hy_gl_begin(hy_gl *g, hy_rgb c)
 {
     g->neffects = 0;
     g->nclip = 0;
+    g->ncmds = 0;
+    g->nbuf = g->cmd_start = 0;
     glDisable(GL_SCISSOR_TEST);
     glViewport(0, 0, g->w, g->h);
     glClearColor((float)c.r, (float)c.g, (float)c.b, 1.0f);
@@ -287,32 +301,85 @@ static void set4(float *d, double a, double b, double c, double e)
     d[0] = (float)a, d[1] = (float)b, d[2] = (float)c, d[3] = (float)e;
 }
 
-/* Draws the batch with the given dash pattern (pixels) and empties it. */
+/* Closes the primitives pushed since the last command into a draw command
+ * with this dash pattern (pixels) and the current clip.  Nothing reaches GL
+ * until submit: one upload and a few draw calls per frame keep llvmpipe from
+ * synchronising on every stroke. */
 static void flush(hy_gl *g, const double *dash, int ndash)
 {
-    if (!g->nbuf)
+    if (g->nbuf == g->cmd_start)
         return;
-    float d[8] = {0}, total = 0;
+    if (g->ncmds == g->ccap) {
+        size_t cap = g->ccap ? 2 * g->ccap : 64;
+        cmd *nc = realloc(g->cmds, cap * sizeof *nc);
+        if (!nc) {
+            g->nbuf = g->cmd_start;   /* dropped; frames stay well-formed */
+            return;
+        }
+        g->cmds = nc, g->ccap = cap;
+    }
+    cmd *c = &g->cmds[g->ncmds++];
+    memset(c, 0, sizeof *c);
+    c->first = g->cmd_start, c->count = g->nbuf - g->cmd_start;
     int nd = ndash > 8 ? 8 : ndash;
     nd -= nd % 2;
     for (int i = 0; i < nd; i++)
-        d[i] = (float)(dash[i] * g->scale), total += d[i];
-    if (!(total > 0))
-        nd = 0;
+        c->dash[i] = (float)(dash[i] * g->scale), c->total += c->dash[i];
+    c->ndash = c->total > 0 ? nd : 0;
+    if (g->nclip)
+        memcpy(c->clip, g->clip[g->nclip - 1], sizeof c->clip), c->clipped = 1;
+    g->cmd_start = g->nbuf;
+}
+
+static void set_scissor(const hy_gl *g, const cmd *c)
+{
+    if (!c->clipped) {
+        glDisable(GL_SCISSOR_TEST);
+        return;
+    }
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(c->clip[0], g->h - c->clip[3], c->clip[2] - c->clip[0], c->clip[3] - c->clip[1]);
+}
+
+/* Sends every recorded command to GL: one buffer upload, one draw per command. */
+static void submit(hy_gl *g)
+{
+    if (!g->ncmds)
+        return;
     glUseProgram(g->stroke_prog);
     glUniform2f(g->u_size, (float)g->w, (float)g->h);
-    glUniform1i(g->u_ndash, nd);
-    glUniform1fv(g->u_dash, 8, d);
-    glUniform1f(g->u_dash_total, total > 0 ? total : 1.0f);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(g->vao);
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(g->nbuf * sizeof(inst)), g->buf, GL_STREAM_DRAW);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)g->nbuf);
+    int last_nd = -1;
+    float last_dash[8] = {0};
+    for (size_t k = 0; k < g->ncmds; k++) {
+        const cmd *c = &g->cmds[k];
+        if (c->ndash != last_nd || memcmp(c->dash, last_dash, sizeof last_dash)) {
+            glUniform1i(g->u_ndash, c->ndash);
+            glUniform1fv(g->u_dash, 8, c->dash);
+            glUniform1f(g->u_dash_total, c->total > 0 ? c->total : 1.0f);
+            last_nd = c->ndash;
+            memcpy(last_dash, c->dash, sizeof last_dash);
+        }
+        for (GLuint i = 0; i < 4; i++)
+            glVertexAttribPointer(i, 4, GL_FLOAT, GL_FALSE, sizeof(inst),
+                                  (const void *)(c->first * sizeof(inst) + i * 4 * sizeof(float)));
+        set_scissor(g, c);
+        if (c->clear) {
+            glClearColor(c->colour[0], c->colour[1], c->colour[2], 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT);
+            continue;
+        }
+        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)c->count);
+    }
+    glDisable(GL_SCISSOR_TEST);
     glBindVertexArray(0);
-    g->nbuf = 0;
+    g->ncmds = 0;
+    g->nbuf = g->cmd_start = 0;
 }
 
 /* ---- canvas operations ---- */
@@ -371,24 +438,61 @@ static void colour_at(const hy_pen *pen, const hy_gl_effect *e, double s, float 
     set4(out, c.r, c.g, c.b, a);
 }
 
+/* Whether every point strictly between a and b lies within tol pixels of the chord a-b. */
+static int chord_ok(const double *p, size_t a, size_t b, double tol)
+{
+    double dx = p[2 * b] - p[2 * a], dy = p[2 * b + 1] - p[2 * a + 1], len = hypot(dx, dy);
+    if (!(len > 0))
+        return 0;
+    for (size_t i = a + 1; i < b; i++) {
+        double qx = p[2 * i] - p[2 * a], qy = p[2 * i + 1] - p[2 * a + 1], t = qx * dx + qy * dy;
+        if (fabs(qx * dy - qy * dx) > tol * len || t < 0 || t > len * len)
+            return 0;
+    }
+    return 1;
+}
+
+/* Drops points of [i0, i1) that lie within 0.1 px of the chord that skips
+ * them (dense curves become fewer, longer segments: llvmpipe pays per
+ * triangle); keeps the ends.  Returns the kept indices' count in keep. */
+static size_t simplify(const double *p, size_t i0, size_t i1, size_t *keep)
+{
+    size_t n = 0, a = i0;
+    keep[n++] = i0;
+    while (a + 1 < i1) {
+        size_t b = a + 1;
+        while (b + 1 < i1 && b + 1 - a <= 32 && chord_ok(p, a, b + 1, 0.1))
+            b++;
+        keep[n++] = b;
+        a = b;
+    }
+    return n;
+}
+
 static void stroke_subpath(hy_gl *g, size_t i0, size_t i1, const hy_pen *pen, const hy_gl_effect *e)
 {
     const double *p = g->pts;
+    size_t *keep = malloc((i1 - i0) * sizeof *keep);
+    if (!keep)
+        return;
+    size_t n = simplify(p, i0, i1, keep);
     double total = 0, s = 0, hw = 0.5 * pen->width * g->scale;
-    for (size_t i = i0 + 1; i < i1; i++)
-        total += hypot(p[2 * i] - p[2 * i - 2], p[2 * i + 1] - p[2 * i - 1]);
-    for (size_t i = i0 + 1; i < i1; i++) {
-        double len = hypot(p[2 * i] - p[2 * i - 2], p[2 * i + 1] - p[2 * i - 1]);
+    for (size_t k = 1; k < n; k++)   /* arc length along the drawn chords, as the shader measures it */
+        total += hypot(p[2 * keep[k]] - p[2 * keep[k - 1]], p[2 * keep[k] + 1] - p[2 * keep[k - 1] + 1]);
+    for (size_t k = 1; k < n; k++) {
+        size_t a = keep[k - 1], b = keep[k];
+        double len = hypot(p[2 * b] - p[2 * a], p[2 * b + 1] - p[2 * a + 1]);
         inst *q = push(g);
         if (!q)
-            return;
-        int flags = pen->round_caps ? 4 : (i == i0 + 1 ? 1 : 0) | (i + 1 == i1 ? 2 : 0);
-        set4(q->p, p[2 * i - 2], p[2 * i - 1], p[2 * i], p[2 * i + 1]);
+            break;
+        int flags = pen->round_caps ? 4 : (k == 1 ? 1 : 0) | (k + 1 == n ? 2 : 0);
+        set4(q->p, p[2 * a], p[2 * a + 1], p[2 * b], p[2 * b + 1]);
         colour_at(pen, e, total > 0 ? s / total : 0, q->c0);
         colour_at(pen, e, total > 0 ? (s + len) / total : 1, q->c1);
         set4(q->w, hw, s, 0, flags);
         s += len;
     }
+    free(keep);
 }
 
 static void g_stroke(void *ctx, const hy_pen *pen)
@@ -415,10 +519,45 @@ static void box(hy_gl *g, double x0, double y0, double x1, double y1, hy_rgb c, 
     set4(q->w, 0, 0, 1, 0);
 }
 
+/* An opaque fill on whole pixels inside the clip becomes a scissored clear
+ * (llvmpipe clears far faster than it shades a full-frame quad). */
+static int fill_as_clear(hy_gl *g, double x0, double y0, double x1, double y1, hy_rgb c)
+{
+    if (x0 != floor(x0) || y0 != floor(y0) || x1 != floor(x1) || y1 != floor(y1) || x1 <= x0 || y1 <= y0)
+        return 0;
+    int r[4] = {(int)x0, (int)y0, (int)x1, (int)y1};
+    if (g->nclip) {
+        const int *cl = g->clip[g->nclip - 1];
+        r[0] = r[0] > cl[0] ? r[0] : cl[0], r[1] = r[1] > cl[1] ? r[1] : cl[1];
+        r[2] = r[2] < cl[2] ? r[2] : cl[2], r[3] = r[3] < cl[3] ? r[3] : cl[3];
+        if (r[2] <= r[0] || r[3] <= r[1])
+            return 1;
+    }
+    r[0] = r[0] < 0 ? 0 : r[0], r[1] = r[1] < 0 ? 0 : r[1];
+    r[2] = r[2] > g->w ? g->w : r[2], r[3] = r[3] > g->h ? g->h : r[3];
+    flush(g, NULL, 0);
+    int saved = g->nclip;
+    if (g->nclip < MAX_CLIP) {
+        memcpy(g->clip[g->nclip++], r, sizeof r);
+        if (!push(g)) {                /* a placeholder instance so flush records a command */
+            g->nclip = saved;
+            return 0;
+        }
+        flush(g, NULL, 0);
+        cmd *cm = &g->cmds[g->ncmds - 1];
+        cm->clear = 1;
+        cm->colour[0] = (float)c.r, cm->colour[1] = (float)c.g, cm->colour[2] = (float)c.b;
+    }
+    g->nclip = saved;
+    return 1;
+}
+
 static void g_fill_rect(void *ctx, double x, double y, double w, double h, hy_rgb c, double alpha)
 {
     hy_gl *g = ctx;
     double k = g->scale;
+    if ((alpha <= 0 || alpha >= 1) && fill_as_clear(g, x * k, y * k, (x + w) * k, (y + h) * k, c))
+        return;
     box(g, x * k, y * k, (x + w) * k, (y + h) * k, c, alpha > 0 ? alpha : 1.0);
     flush(g, NULL, 0);
 }
@@ -468,17 +607,6 @@ static void g_measure(void *ctx, const char *utf8, double size, int italic, hy_t
     ext->ascent = 0.8 * size, ext->descent = 0.2 * size;
 }
 
-static void apply_clip(hy_gl *g)
-{
-    if (!g->nclip) {
-        glDisable(GL_SCISSOR_TEST);
-        return;
-    }
-    const int *c = g->clip[g->nclip - 1];
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(c[0], g->h - c[3], c[2] - c[0], c[3] - c[1]);
-}
-
 static void g_clip(void *ctx, double x, double y, double w, double h)
 {
     hy_gl *g = ctx;
@@ -497,7 +625,6 @@ static void g_clip(void *ctx, double x, double y, double w, double h)
         int *c = g->clip[g->nclip++];
         c[0] = x0, c[1] = y0, c[2] = x1, c[3] = y1;
     }
-    apply_clip(g);
 }
 
 static void g_unclip(void *ctx)
@@ -505,7 +632,6 @@ static void g_unclip(void *ctx)
     hy_gl *g = ctx;
     if (g->nclip)
         g->nclip--;
-    apply_clip(g);
 }
 
 static const hy_canvas_ops gl_ops = {
@@ -618,6 +744,7 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
             memcpy(idx + k, q, sizeof q);
             k += 6;
         }
+    submit(g);                        /* 2-D data drawn so far stays underneath */
     double vx = r->vx, vy = r->vy, vw = r->vw > 0 ? r->vw : g->w, vh = r->vh > 0 ? r->vh : g->h;
     if (r->vw <= 0)
         vx = vy = 0;
@@ -650,6 +777,7 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
 
 int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err)
 {
+    submit(g);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, g->w, g->h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     GLenum e = glGetError();
