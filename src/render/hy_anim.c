@@ -157,7 +157,7 @@ static void progress(run *r, int final)
     for (int i = 0; i < width; i++)
         bar[i] = i < fill ? '#' : '.';
     bar[width] = '\0';
-    fprintf(stderr, "\r%s [%s] %ld/%ld frames  %.1f frames/s  %.0f s left ", r->p->name, bar, r->done, total,
+    fprintf(stderr, "\r%s [%s] %ld/%ld frames  %.1f frames/s  %.1f s left ", r->p->name, bar, r->done, total,
             fps, left);
     if (final)
         fputc('\n', stderr);

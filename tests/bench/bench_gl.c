@@ -59,22 +59,25 @@ static int frame(one *o, const anim_scene *sc, void *st, long index, long nframe
 static void bench_png(const one *o)
 {
     static const char *fname[] = {"none", "sub", "up", "paeth", "all"};
-    const int levels[] = {1, 2, 3, 6};
+    const int levels[] = {1, 2, 3, 6}, strategies[] = {0, 3};
     printf("libpng writing that 1920x1080 frame (mean of 5):\n");
     for (size_t l = 0; l < sizeof levels / sizeof levels[0]; l++)
-        for (int fl = 0; fl < 5; fl++) {
-            hy_png_opts po = {levels[l], fl, 0};
-            hy_error err;
-            double t0 = now();
-            for (int r = 0; r < 5; r++)
-                hy_png_write_rgb("bench_frame.png", o->w, o->h, o->rgb, &po, &err);
-            double t = (now() - t0) / 5;
-            struct stat sb;
-            stat("bench_frame.png", &sb);
-            printf("  level %d filter %-5s %7.2f ms  %8ld bytes\n", levels[l], fname[fl], 1e3 * t, (long)sb.st_size);
-        }
+        for (int sg = 0; sg < 2; sg++)
+            for (int fl = 0; fl < 5; fl++) {
+                hy_png_opts po = {levels[l], fl, strategies[sg]};
+                hy_error err;
+                double t0 = now();
+                for (int r = 0; r < 5; r++)
+                    hy_png_write_rgb("bench_frame.png", o->w, o->h, o->rgb, &po, &err);
+                double t = (now() - t0) / 5;
+                struct stat sb;
+                stat("bench_frame.png", &sb);
+                printf("  level %d %-7s filter %-5s %7.2f ms  %8ld bytes\n", levels[l], sg ? "RLE" : "default",
+                       fname[fl], 1e3 * t, (long)sb.st_size);
+            }
     hy_png_opts d = hy_png_frame_defaults();
-    printf("  (frame default: level %d filter %s)\n", d.level, fname[d.filter]);
+    printf("  (frame default: level %d, strategy %s, filter %s)\n", d.level, d.strategy == 3 ? "RLE" : "default",
+           fname[d.filter]);
 }
 
 static int bench_frame(void)
