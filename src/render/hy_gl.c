@@ -33,7 +33,8 @@ struct hy_gl {
     unsigned char *fb;                 /* OSMesa's colour buffer */
     int w, h;
     double scale;
-    GLuint stroke_prog, ribbon_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
+    GLuint stroke_prog, ribbon_prog, blit_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
+    GLuint ms_fbo, ms_rb[2], rs_fbo, rs_tex, blit_vao;    /* 4x MSAA target of the 3-D pass */
     GLint u_size, u_ndash, u_dash, u_dash_total, u_mvp, u_mv, u_light;
     double *pts;                       /* current path: x, y pairs (pixels) */
     size_t npts, cap;
@@ -171,7 +172,12 @@ static int build_programs(hy_gl *g, hy_error *err)
         {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert},
         {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag},
     };
-    if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(ribbon, 2, &g->ribbon_prog, err))
+    const hy_gl_stage blit[2] = {
+        {hy_shader_blit_vert_file, GL_VERTEX_SHADER, hy_shader_blit_vert},
+        {hy_shader_blit_frag_file, GL_FRAGMENT_SHADER, hy_shader_blit_frag},
+    };
+    if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(ribbon, 2, &g->ribbon_prog, err) ||
+        hy_gl_program(blit, 2, &g->blit_prog, err))
         return HY_ENUM;
     g->u_size = glGetUniformLocation(g->stroke_prog, "u_size");
     g->u_ndash = glGetUniformLocation(g->stroke_prog, "u_ndash");
@@ -721,6 +727,56 @@ static void ribbon_vertex(const hy_gl_ribbon *r, int i, int j, float *v)
         v[k] = (float)vals[k];
 }
 
+/* The 4x multisampled colour + depth target of the 3-D pass and its resolve
+ * texture, made on first use.  HY_EUNSUP if the framebuffer is incomplete. */
+static int msaa_target(hy_gl *g, hy_error *err)
+{
+    if (g->ms_fbo)
+        return HY_OK;
+    glGenFramebuffers(1, &g->ms_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
+    glGenRenderbuffers(2, g->ms_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, g->ms_rb[0]);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, 4, GL_RGBA8, g->w, g->h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g->ms_rb[0]);
+    glBindRenderbuffer(GL_RENDERBUFFER, g->ms_rb[1]);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, 4, GL_DEPTH_COMPONENT24, g->w, g->h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g->ms_rb[1]);
+    int ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glGenFramebuffers(1, &g->rs_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, g->rs_fbo);
+    glGenTextures(1, &g->rs_tex);
+    glBindTexture(GL_TEXTURE_2D, g->rs_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, g->w, g->h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, g->rs_tex, 0);
+    ok = ok && glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glGenVertexArrays(1, &g->blit_vao);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return ok ? HY_OK : hy_error_set(err, HY_EUNSUP, "the 4x multisampled framebuffer of the 3-D pass is incomplete");
+}
+
+/* Resolves the multisampled layer and blends it (premultiplied) over the frame. */
+static void msaa_composite(hy_gl *g)
+{
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g->ms_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, g->rs_fbo);
+    glBlitFramebuffer(0, 0, g->w, g->h, 0, 0, g->w, g->h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, g->w, g->h);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(g->blit_prog);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, g->rs_tex);
+    glUniform1i(glGetUniformLocation(g->blit_prog, "u_tex"), 0);
+    glBindVertexArray(g->blit_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+}
+
 int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
 {
     if (!r->pts || r->nloops < 2 || r->npts < 2 || (size_t)r->nloops * (size_t)r->npts > 4000000)
@@ -729,9 +785,10 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
     size_t nv = (size_t)r->nloops * (size_t)r->npts, ni = (size_t)(r->nloops - 1) * (size_t)(r->npts - 1) * 6;
     float *v = malloc(nv * 9 * sizeof *v);
     unsigned *idx = malloc(ni * sizeof *idx);
-    if (!v || !idx) {
+    if (!v || !idx || msaa_target(g, err)) {
         free(v), free(idx);
-        return hy_error_set(err, HY_ENOMEM, "out of memory for a %d x %d ribbon", r->nloops, r->npts);
+        return v && idx ? HY_EUNSUP : hy_error_set(err, HY_ENOMEM, "out of memory for a %d x %d ribbon",
+                                                   r->nloops, r->npts);
     }
     for (int i = 0; i < r->nloops; i++)
         for (int j = 0; j < r->npts; j++)
@@ -754,6 +811,11 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
     float fm[16], fmv[16];
     to_float(&mvp, fm);
     to_float(&mv, fmv);
+    glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
+    glDisable(GL_SCISSOR_TEST);
+    glViewport(0, 0, g->w, g->h);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glViewport((GLint)lround(vx), (GLint)lround(g->h - vy - vh), (GLsizei)lround(vw), (GLsizei)lround(vh));
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -768,8 +830,7 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ni * sizeof *idx), idx, GL_STREAM_DRAW);
     glDrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, NULL);
     glBindVertexArray(0);
-    glDisable(GL_DEPTH_TEST);
-    glViewport(0, 0, g->w, g->h);
+    msaa_composite(g);
     free(v);
     free(idx);
     return HY_OK;
