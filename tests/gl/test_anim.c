@@ -2,7 +2,8 @@
  * and presets, frame count and size, --frames ranges, byte-identical frames
  * across runs and across -j 1 / -j 2, the γ cache (one solve per distinct γ),
  * reference frames (tests/reference/gl_*.png, max channel difference 8), the
- * ffmpeg message, errors from a scene and bad parameters. */
+ * ffmpeg message and ordered piping (to a stand-in ffmpeg), errors from a
+ * scene and bad parameters. */
 #include "hy_config.h"
 
 #include <cairo.h>
@@ -225,6 +226,35 @@ static void test_errors(void)
     free(old);
 }
 
+/* A stand-in ffmpeg on PATH that stores its stdin in its last argument:
+ * the raw frames must arrive complete and in order for any -j. */
+static void test_video_pipe(void)
+{
+    mkdir("fakebin", 0755);
+    FILE *f = fopen("fakebin/ffmpeg", "w");
+    fputs("#!/bin/sh\nfor a; do last=$a; done\ncat > \"$last\"\n", f);
+    fclose(f);
+    chmod("fakebin/ffmpeg", 0755);
+    char cwd[900], path[2000];
+    CHECK(getcwd(cwd, sizeof cwd) != NULL, "getcwd");
+    char *old = getenv("PATH") ? strdup(getenv("PATH")) : NULL;
+    snprintf(path, sizeof path, "%s/fakebin:%s", cwd, old ? old : "/usr/bin:/bin");
+    setenv("PATH", path, 1);
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid1", "--size", "64x48", "--fps", "10", "--duration", "2",
+                  "--video", "mp4", "--quiet", "-j", "1", NULL) == 0, "video run -j 1");
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid2", "--size", "64x48", "--fps", "10", "--duration", "2",
+                  "--video", "mp4", "--quiet", "-j", "2", NULL) == 0, "video run -j 2");
+    size_t n1 = 0, n2 = 0;
+    unsigned char *a = slurp("out_vid1/k-cycle-ex2.mp4", &n1), *b = slurp("out_vid2/k-cycle-ex2.mp4", &n2);
+    CHECK(a && n1 == 20 * 64 * 48 * 3, "ffmpeg got %zu bytes, expected %d", n1, 20 * 64 * 48 * 3);
+    CHECK(a && b && n1 == n2 && !memcmp(a, b, n1), "piped frames differ between -j 1 and -j 2 (order)");
+    free(a);
+    free(b);
+    if (old)
+        setenv("PATH", old, 1);
+    free(old);
+}
+
 int main(void)
 {
     hy_gl_free(gl_or_skip(64, 64));
@@ -233,5 +263,6 @@ int main(void)
     test_identical();
     test_references();
     test_errors();
+    test_video_pipe();
     return fails ? 1 : 0;
 }
