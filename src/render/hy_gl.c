@@ -16,7 +16,7 @@
 #define MAX_CLIP 8
 
 typedef struct inst {
-    float p[4], c0[4], c1[4], w[4];
+    float p[4], c0[4], c1[4], w[4], m[4];   /* m: miter plane normals at p0, p1 */
 } inst;
 
 /* A recorded draw: instances [first, first + count) with a dash pattern and clip. */
@@ -195,7 +195,7 @@ static void setup_buffers(hy_gl *g)
     glBindVertexArray(g->vao);
     glGenBuffers(1, &g->vbo);
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo);
-    for (GLuint i = 0; i < 4; i++) {
+    for (GLuint i = 0; i < 5; i++) {
         glEnableVertexAttribArray(i);
         glVertexAttribPointer(i, 4, GL_FLOAT, GL_FALSE, sizeof(inst), (const void *)(i * 4 * sizeof(float)));
         glVertexAttribDivisor(i, 1);
@@ -371,7 +371,7 @@ static void submit(hy_gl *g)
             last_nd = c->ndash;
             memcpy(last_dash, c->dash, sizeof last_dash);
         }
-        for (GLuint i = 0; i < 4; i++)
+        for (GLuint i = 0; i < 5; i++)
             glVertexAttribPointer(i, 4, GL_FLOAT, GL_FALSE, sizeof(inst),
                                   (const void *)(c->first * sizeof(inst) + i * 4 * sizeof(float)));
         set_scissor(g, c);
@@ -475,6 +475,45 @@ static size_t simplify(const double *p, size_t i0, size_t i1, size_t *keep)
     return n;
 }
 
+/* The miter plane between directions (dx0, dy0) and (dx1, dy1) (unit): its
+ * normal, pointing forward, in n.  Returns 0 when the miter would pass
+ * cairo's default limit (10 half-widths): that joint is drawn round. */
+static int miter(double dx0, double dy0, double dx1, double dy1, double *n)
+{
+    double bx = dx0 + dx1, by = dy0 + dy1, bl = hypot(bx, by);
+    if (!(bl > 0.2))                  /* 2 / |d0 + d1| is the miter ratio */
+        return 0;
+    n[0] = bx / bl, n[1] = by / bl;
+    return 1;
+}
+
+static void unit(const double *p, size_t a, size_t b, double *d)
+{
+    double dx = p[2 * b] - p[2 * a], dy = p[2 * b + 1] - p[2 * a + 1], l = hypot(dx, dy);
+    d[0] = l > 0 ? dx / l : 1.0, d[1] = l > 0 ? dy / l : 0.0;
+}
+
+/* Flags and miter normals of segment k (of n kept points) for pen. */
+static int joint_flags(const double *p, const size_t *keep, size_t k, size_t n, const hy_pen *pen, float *m)
+{
+    if (pen->round_caps)
+        return 4;
+    int flags = (k == 1 ? 1 : 0) | (k + 1 == n ? 2 : 0);
+    double d[2], e[2], nm[2];
+    unit(p, keep[k - 1], keep[k], d);
+    if (k > 1) {
+        unit(p, keep[k - 2], keep[k - 1], e);
+        if (miter(e[0], e[1], d[0], d[1], nm))
+            flags |= 8, m[0] = (float)nm[0], m[1] = (float)nm[1];
+    }
+    if (k + 1 < n) {
+        unit(p, keep[k], keep[k + 1], e);
+        if (miter(d[0], d[1], e[0], e[1], nm))
+            flags |= 16, m[2] = (float)nm[0], m[3] = (float)nm[1];
+    }
+    return flags;
+}
+
 static void stroke_subpath(hy_gl *g, size_t i0, size_t i1, const hy_pen *pen, const hy_gl_effect *e)
 {
     const double *p = g->pts;
@@ -491,7 +530,7 @@ static void stroke_subpath(hy_gl *g, size_t i0, size_t i1, const hy_pen *pen, co
         inst *q = push(g);
         if (!q)
             break;
-        int flags = pen->round_caps ? 4 : (k == 1 ? 1 : 0) | (k + 1 == n ? 2 : 0);
+        int flags = joint_flags(p, keep, k, n, pen, q->m);
         set4(q->p, p[2 * a], p[2 * a + 1], p[2 * b], p[2 * b + 1]);
         colour_at(pen, e, total > 0 ? s / total : 0, q->c0);
         colour_at(pen, e, total > 0 ? (s + len) / total : 1, q->c1);

@@ -77,6 +77,11 @@ static void test_primitives(hy_gl *g)
     c.ops->fill_rect(c.ctx, 10, 60, 20, 10, (hy_rgb){1, 0, 0}, 1.0);
     hy_rgb fill = {0, 0, 1};
     c.ops->marker(c.ctx, HY_SHAPE_CIRCLE, 60, 65, 10, &solid, &fill);
+    hy_pen half = {{0, 0, 0}, 0.5, 8.0, NULL, 0, 0};   /* a translucent V: mitred, no double blending */
+    c.ops->move_to(c.ctx, 20, 150);
+    c.ops->line_to(c.ctx, 60, 110);
+    c.ops->line_to(c.ctx, 100, 150);
+    c.ops->stroke(c.ctx, &half);
     c.ops->clip(c.ctx, 100, 50, 20, 30);
     c.ops->fill_rect(c.ctx, 90, 55, 50, 10, (hy_rgb){0, 1, 0}, 0.5);
     c.ops->unclip(c.ctx);
@@ -90,6 +95,9 @@ static void test_primitives(hy_gl *g)
     CHECK(b[0] == 0 && b[1] == 0 && b[2] == 255, "marker fill %d %d %d", b[0], b[1], b[2]);
     CHECK(gr[0] >= 127 && gr[0] <= 128 && gr[1] == 255, "half-transparent fill %d %d", gr[0], gr[1]);
     CHECK(out[0] == 255 && out[1] == 255, "clipping: %d %d", out[0], out[1]);
+    CHECK(abs(px(rgba, 60, 112)[0] - 128) <= 1, "join blended twice: %d", px(rgba, 60, 112)[0]);
+    CHECK(abs(px(rgba, 40, 130)[0] - 128) <= 1, "translucent segment: %d", px(rgba, 40, 130)[0]);
+    CHECK(px(rgba, 60, 105)[0] < 160, "no miter tip: %d", px(rgba, 60, 105)[0]);
     free(rgba);
 }
 
