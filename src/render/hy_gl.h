@@ -4,10 +4,13 @@
  * current on the thread that created it (one per thread: contexts are never
  * shared).  Its canvas draws the DATA layer of a figure (polylines, markers,
  * filled rectangles, clipping) with GLSL shaders from shaders/NAME.glsl embedded
- * at build time: thick polylines as instanced capsules with coverage AA
- * (round joins; butt or round caps), dash patterns, and per-vertex colour
+ * at build time: thick polylines as instanced segments with coverage AA
+ * (miter joins, or round joins and caps for round pens, as cairo draws them;
+ * dense polylines are first simplified to 0.1 px), dash patterns, per-vertex colour
  * from a colour map with alpha fading by age ("effects", keyed by the pen
- * colour).  A separate 3-D pass draws a lit ribbon with depth.  Text is not
+ * colour).  A separate 3-D pass draws a lit ribbon with depth into a 4x
+ * multisampled target blended over the frame.  Drawing is recorded and sent
+ * to GL in one batch at hy_gl_read or before the 3-D pass.  Text is not
  * drawn here: use hy_figure_draw_layers with a cairo overlay, then
  * hy_gl_read (bottom-up rows) and hy_frame_composite (hy_frame.h).
  *
