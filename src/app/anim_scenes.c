@@ -501,13 +501,21 @@ static int ribbon_draw(void *state, const hy_anim_frame *f, hy_error *err)
     if (st)
         return st;
     const hy_canvas *o = &f->overlay;
-    double W = f->width / f->scale, H = f->height / f->scale;
+    double H = f->height / f->scale;
     hy_rgb ink = {0.1, 0.1, 0.1};
+    /* a γ axis: labels along the ribbon's depth below its right edge,
+     * projected by the ribbon's camera */
+    for (int d = 0; d <= 3; d++) {
+        char lab[32];
+        double px, py, q[3] = {1.1, -1.0, 1.6 * (d / 3.0 - 0.5)};
+        snprintf(lab, sizeof lab, "\xce\xb3 = %g", pow(10.0, d));
+        if (hy_gl_ribbon_project(f->gl, &r, q, &px, &py))
+            o->ops->text(o->ctx, px / f->scale, py / f->scale, lab, 10, 0, 0, ink);
+    }
     o->ops->text(o->ctx, 16, 26, "Example 3: loops of y against u for \xce\xb3 = 1 \xe2\x80\xa6 1000", 13, 0, 0, ink);
-    o->ops->text(o->ctx, 16, 44, "stacked along log \xce\xb3 (front: \xce\xb3 = 1, purple; back: \xce\xb3 = 1000, yellow)",
+    o->ops->text(o->ctx, 16, 44, "stacked along log \xce\xb3 (purple: \xce\xb3 = 1, yellow: \xce\xb3 = 1000)",
                  10, 0, 0, ink);
     o->ops->text(o->ctx, 16, H - 14, "lit with depth; camera orbiting", 9, 1, 0, (hy_rgb){0.4, 0.4, 0.4});
-    (void)W;
     return HY_OK;
 }
 

@@ -744,6 +744,30 @@ static void camera(const hy_gl_ribbon *r, double aspect, mat4 *mv, mat4 *proj)
     proj->m[14] = 2 * zf * zn / (zn - zf);
 }
 
+/* The ribbon's viewport in pixels (y down). */
+static void ribbon_viewport(const hy_gl *g, const hy_gl_ribbon *r, double *v)
+{
+    int all = !(r->vw > 0 && r->vh > 0);
+    v[0] = all ? 0 : r->vx, v[1] = all ? 0 : r->vy, v[2] = all ? g->w : r->vw, v[3] = all ? g->h : r->vh;
+}
+
+int hy_gl_ribbon_project(const hy_gl *g, const hy_gl_ribbon *r, const double xyz[3], double *px, double *py)
+{
+    double v[4];
+    ribbon_viewport(g, r, v);
+    mat4 mv, proj;
+    camera(r, v[2] / v[3], &mv, &proj);
+    mat4 mvp = mat_mul(&proj, &mv);
+    double c[4];
+    for (int i = 0; i < 4; i++)
+        c[i] = mvp.m[i] * xyz[0] + mvp.m[4 + i] * xyz[1] + mvp.m[8 + i] * xyz[2] + mvp.m[12 + i];
+    if (!(c[3] > 1e-9))
+        return 0;
+    *px = v[0] + (0.5 + 0.5 * c[0] / c[3]) * v[2];
+    *py = v[1] + (0.5 - 0.5 * c[1] / c[3]) * v[3];
+    return 1;
+}
+
 static const double *rp(const hy_gl_ribbon *r, int i, int j)
 {
     i = i < 0 ? 0 : i >= r->nloops ? r->nloops - 1 : i;
@@ -841,9 +865,9 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
             k += 6;
         }
     submit(g);                        /* 2-D data drawn so far stays underneath */
-    double vx = r->vx, vy = r->vy, vw = r->vw > 0 ? r->vw : g->w, vh = r->vh > 0 ? r->vh : g->h;
-    if (r->vw <= 0)
-        vx = vy = 0;
+    double vp[4];
+    ribbon_viewport(g, r, vp);
+    double vx = vp[0], vy = vp[1], vw = vp[2], vh = vp[3];
     mat4 mv, proj;
     camera(r, vw / vh, &mv, &proj);
     mat4 mvp = mat_mul(&proj, &mv);

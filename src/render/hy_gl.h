@@ -73,6 +73,9 @@ typedef struct hy_gl_ribbon {
 } hy_gl_ribbon;
 /* Draws r with depth test and lighting; HY_EINVAL for a bad ribbon, HY_ENOMEM. */
 int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err);
+/* Where the point xyz of r's space lands in the frame (pixels, y down), for
+ * labels drawn by the overlay.  Returns 0 when it is behind the camera. */
+int hy_gl_ribbon_project(const hy_gl *g, const hy_gl_ribbon *r, const double xyz[3], double *px, double *py);
 
 /* Finishes drawing and reads the frame (glReadPixels) as RGBA8, rows
  * bottom-up as GL stores them; rgba holds width * height * 4 bytes. */
