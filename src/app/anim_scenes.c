@@ -454,7 +454,8 @@ static const char *ex4_describe(void *state)
 
 /* ---- ribbon (d): loops of a γ sweep along log γ, camera orbiting ---- */
 
-#define RIBBON_LOOPS 48
+#define RIBBON_LOOPS 32
+#define RIBBON_PTS (NPTS / 6)    /* every other point of the last period: llvmpipe pays per triangle */
 
 static int ribbon_prepare(void **state, const hy_anim_params *p, hy_error *err)
 {
@@ -464,7 +465,7 @@ static int ribbon_prepare(void **state, const hy_anim_params *p, hy_error *err)
     if (st)
         return st;
     s->nloops = RIBBON_LOOPS;
-    if (!(s->ribbon = malloc((size_t)RIBBON_LOOPS * NPTS / 3 * 3 * sizeof(double)))) {
+    if (!(s->ribbon = malloc((size_t)RIBBON_LOOPS * RIBBON_PTS * 3 * sizeof(double)))) {
         sweep_release(s);
         return hy_error_set(err, HY_ENOMEM, "out of memory for the ribbon");
     }
@@ -476,10 +477,11 @@ static int ribbon_prepare(void **state, const hy_anim_params *p, hy_error *err)
             st = err ? err->code : HY_ENUM;
             break;
         }
-        for (size_t j = 0; j < last; j++) {
-            double *q = s->ribbon + 3 * ((size_t)i * last + j);
-            q[0] = (s->u[off + j] - 0.75) / 0.75;
-            q[1] = 0.45 * y[off + j];
+        for (size_t j = 0; j < RIBBON_PTS; j++) {
+            double *q = s->ribbon + 3 * ((size_t)i * RIBBON_PTS + j);
+            size_t jj = off + (j * (last - 1)) / (RIBBON_PTS - 1);
+            q[0] = (s->u[jj] - 0.75) / 0.75;
+            q[1] = 0.45 * y[jj];
             q[2] = 1.6 * ((double)i / (RIBBON_LOOPS - 1) - 0.5);
         }
     }
@@ -494,7 +496,7 @@ static int ribbon_prepare(void **state, const hy_anim_params *p, hy_error *err)
 static int ribbon_draw(void *state, const hy_anim_frame *f, hy_error *err)
 {
     sweep *s = state;
-    hy_gl_ribbon r = {.pts = s->ribbon, .nloops = s->nloops, .npts = NPTS / 3, .cmap = HY_CMAP_VIRIDIS,
+    hy_gl_ribbon r = {.pts = s->ribbon, .nloops = s->nloops, .npts = RIBBON_PTS, .cmap = HY_CMAP_VIRIDIS,
                       .azimuth = -0.9 + 1.8 * hy_ease(HY_EASE_SMOOTH, f->progress), .elevation = 0.45,
                       .distance = 3.6};
     int st = hy_gl_draw_ribbon(f->gl, &r, err);

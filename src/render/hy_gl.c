@@ -14,6 +14,7 @@
 
 #define MAX_EFFECTS 8
 #define MAX_CLIP 8
+#define RIBBON_SAMPLES 4      /* multisampling of the 3-D pass */
 
 typedef struct inst {
     float p[4], c0[4], c1[4], w[4], m[4];   /* m: miter plane normals at p0, p1 */
@@ -800,10 +801,10 @@ static int msaa_target(hy_gl *g, hy_error *err)
     glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
     glGenRenderbuffers(2, g->ms_rb);
     glBindRenderbuffer(GL_RENDERBUFFER, g->ms_rb[0]);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, 4, GL_RGBA8, g->w, g->h);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, RIBBON_SAMPLES, GL_RGBA8, g->w, g->h);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g->ms_rb[0]);
     glBindRenderbuffer(GL_RENDERBUFFER, g->ms_rb[1]);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, 4, GL_DEPTH_COMPONENT24, g->w, g->h);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, RIBBON_SAMPLES, GL_DEPTH_COMPONENT24, g->w, g->h);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g->ms_rb[1]);
     int ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     glGenFramebuffers(1, &g->rs_fbo);
@@ -820,12 +821,14 @@ static int msaa_target(hy_gl *g, hy_error *err)
     return ok ? HY_OK : hy_error_set(err, HY_EUNSUP, "the 4x multisampled framebuffer of the 3-D pass is incomplete");
 }
 
-/* Resolves the multisampled layer and blends it (premultiplied) over the frame. */
-static void msaa_composite(hy_gl *g)
+/* Resolves the multisampled layer inside box (GL pixels x0 y0 x1 y1, the
+ * scissor) and blends it, premultiplied, over the frame. */
+static void msaa_composite(hy_gl *g, const int *box)
 {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, g->ms_fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, g->rs_fbo);
-    glBlitFramebuffer(0, 0, g->w, g->h, 0, 0, g->w, g->h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBlitFramebuffer(box[0], box[1], box[2], box[3], box[0], box[1], box[2], box[3], GL_COLOR_BUFFER_BIT,
+                      GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, g->w, g->h);
     glDisable(GL_DEPTH_TEST);
@@ -838,20 +841,18 @@ static void msaa_composite(hy_gl *g)
     glBindVertexArray(g->blit_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
+    glDisable(GL_SCISSOR_TEST);
 }
 
-int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
+/* The ribbon's vertices (position, normal, colour) and triangle indices. */
+static int ribbon_mesh(const hy_gl_ribbon *r, float **vout, unsigned **iout, size_t *nv, size_t *ni)
 {
-    if (!r->pts || r->nloops < 2 || r->npts < 2 || (size_t)r->nloops * (size_t)r->npts > 4000000)
-        return hy_error_set(err, HY_EINVAL, "a ribbon needs 2+ loops of 2+ points (got %d x %d)",
-                            r->nloops, r->npts);
-    size_t nv = (size_t)r->nloops * (size_t)r->npts, ni = (size_t)(r->nloops - 1) * (size_t)(r->npts - 1) * 6;
-    float *v = malloc(nv * 9 * sizeof *v);
-    unsigned *idx = malloc(ni * sizeof *idx);
-    if (!v || !idx || msaa_target(g, err)) {
+    *nv = (size_t)r->nloops * (size_t)r->npts, *ni = (size_t)(r->nloops - 1) * (size_t)(r->npts - 1) * 6;
+    float *v = malloc(*nv * 9 * sizeof *v);
+    unsigned *idx = malloc(*ni * sizeof *idx);
+    if (!v || !idx) {
         free(v), free(idx);
-        return v && idx ? HY_EUNSUP : hy_error_set(err, HY_ENOMEM, "out of memory for a %d x %d ribbon",
-                                                   r->nloops, r->npts);
+        return -1;
     }
     for (int i = 0; i < r->nloops; i++)
         for (int j = 0; j < r->npts; j++)
@@ -864,22 +865,45 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
             memcpy(idx + k, q, sizeof q);
             k += 6;
         }
-    submit(g);                        /* 2-D data drawn so far stays underneath */
-    double vp[4];
-    ribbon_viewport(g, r, vp);
-    double vx = vp[0], vy = vp[1], vw = vp[2], vh = vp[3];
+    *vout = v, *iout = idx;
+    return 0;
+}
+
+/* The pixels the ribbon can touch (GL coordinates, 2 px margin, inside the
+ * viewport): the 3-D pass clears, resolves and blends only there. */
+static void ribbon_box(const hy_gl *g, const hy_gl_ribbon *r, const double *vp, int *box)
+{
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300, px, py;
+    for (size_t i = 0; i < (size_t)r->nloops * (size_t)r->npts; i++)
+        if (hy_gl_ribbon_project(g, r, r->pts + 3 * i, &px, &py)) {
+            x0 = fmin(x0, px), x1 = fmax(x1, px), y0 = fmin(y0, py), y1 = fmax(y1, py);
+        } else {                      /* behind the camera: take the whole viewport */
+            x0 = vp[0], y0 = vp[1], x1 = vp[0] + vp[2], y1 = vp[1] + vp[3];
+            break;
+        }
+    x0 = fmax(x0 - 2, vp[0]), y0 = fmax(y0 - 2, vp[1]);
+    x1 = fmin(x1 + 2, vp[0] + vp[2]), y1 = fmin(y1 + 2, vp[1] + vp[3]);
+    if (!(x1 > x0 && y1 > y0))
+        x0 = x1 = y0 = y1 = 0;
+    box[0] = (int)floor(x0), box[2] = (int)ceil(x1);
+    box[1] = g->h - (int)ceil(y1), box[3] = g->h - (int)floor(y0);
+}
+
+static void ribbon_pass(hy_gl *g, const hy_gl_ribbon *r, const double *vp, const int *box)
+{
     mat4 mv, proj;
-    camera(r, vw / vh, &mv, &proj);
+    camera(r, vp[2] / vp[3], &mv, &proj);
     mat4 mvp = mat_mul(&proj, &mv);
     float fm[16], fmv[16];
     to_float(&mvp, fm);
     to_float(&mv, fmv);
     glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
-    glDisable(GL_SCISSOR_TEST);
-    glViewport(0, 0, g->w, g->h);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(box[0], box[1], box[2] - box[0], box[3] - box[1]);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glViewport((GLint)lround(vx), (GLint)lround(g->h - vy - vh), (GLsizei)lround(vw), (GLsizei)lround(vh));
+    glViewport((GLint)lround(vp[0]), (GLint)lround(g->h - vp[1] - vp[3]), (GLsizei)lround(vp[2]),
+               (GLsizei)lround(vp[3]));
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDisable(GL_BLEND);
@@ -887,13 +911,37 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
     glUniformMatrix4fv(g->u_mvp, 1, GL_FALSE, fm);
     glUniformMatrix4fv(g->u_mv, 1, GL_FALSE, fmv);
     glUniform3f(g->u_light, 0.4f, 0.8f, 0.6f);
-    glBindVertexArray(g->ribbon_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * 9 * sizeof *v), v, GL_STREAM_DRAW);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ni * sizeof *idx), idx, GL_STREAM_DRAW);
-    glDrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, NULL);
-    glBindVertexArray(0);
-    msaa_composite(g);
+}
+
+int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
+{
+    if (!r->pts || r->nloops < 2 || r->npts < 2 || (size_t)r->nloops * (size_t)r->npts > 4000000)
+        return hy_error_set(err, HY_EINVAL, "a ribbon needs 2+ loops of 2+ points (got %d x %d)",
+                            r->nloops, r->npts);
+    float *v;
+    unsigned *idx;
+    size_t nv, ni;
+    if (ribbon_mesh(r, &v, &idx, &nv, &ni))
+        return hy_error_set(err, HY_ENOMEM, "out of memory for a %d x %d ribbon", r->nloops, r->npts);
+    if (msaa_target(g, err)) {
+        free(v), free(idx);
+        return HY_EUNSUP;
+    }
+    submit(g);                        /* 2-D data drawn so far stays underneath */
+    double vp[4];
+    int box[4];
+    ribbon_viewport(g, r, vp);
+    ribbon_box(g, r, vp, box);
+    if (box[2] > box[0] && box[3] > box[1]) {
+        ribbon_pass(g, r, vp, box);
+        glBindVertexArray(g->ribbon_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
+        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * 9 * sizeof *v), v, GL_STREAM_DRAW);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ni * sizeof *idx), idx, GL_STREAM_DRAW);
+        glDrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, NULL);
+        glBindVertexArray(0);
+        msaa_composite(g, box);
+    }
     free(v);
     free(idx);
     return HY_OK;
