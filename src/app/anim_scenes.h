@@ -9,6 +9,8 @@
  *     sc->release(st);
  *
  * The draw functions run on several threads; their caches are locked.
+ * gamma-sweep-ex1 integrates with GSL (hy_ode.h): callers turn GSL's
+ * aborting error handler off first (gsl_set_error_handler_off).
  */
 #ifndef HY_ANIM_SCENES_H
 #define HY_ANIM_SCENES_H
