@@ -276,6 +276,32 @@ static void test_video_pipe(void)
     free(old);
 }
 
+static int ok_draw(void *state, const hy_anim_frame *f, hy_error *err)
+{
+    (void)state, (void)f, (void)err;
+    return HY_OK;
+}
+
+/* Without --quiet the engine still prints nothing when stderr is not a terminal. */
+static void test_silent(void)
+{
+    hy_anim_params p = hy_anim_defaults();
+    p.outdir = "out_silent", p.name = "quiet", p.width = 32, p.height = 32, p.fps = 10, p.duration = 0.5;
+    fflush(stderr);
+    int saved = dup(2);
+    FILE *f = fopen("out_silent_stderr.txt", "w");
+    dup2(fileno(f), 2);
+    hy_error err;
+    int rc = hy_anim_run(&p, ok_draw, NULL, NULL, &err);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    fclose(f);
+    size_t n = 0;
+    free(slurp("out_silent_stderr.txt", &n));
+    CHECK(rc == 0 && n == 0, "progress output on a non-terminal stderr (%zu bytes)", n);
+}
+
 int main(void)
 {
     hy_gl_free(gl_or_skip(64, 64));
@@ -285,5 +311,6 @@ int main(void)
     test_references();
     test_errors();
     test_video_pipe();
+    test_silent();
     return fails ? 1 : 0;
 }
