@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -337,9 +338,10 @@ static int start(run *r, hy_error *err)
         return HY_EINVAL;
     if (snprintf(r->dir, sizeof r->dir, "%s/%s", p->outdir, p->name) >= (int)sizeof r->dir)
         return hy_error_set(err, HY_EINVAL, "output directory name is too long");
-    if (p->video && open_video(r, err))
-        return err ? err->code : HY_EINVAL;
-    return make_dir(r->dir, err);
+    int st = make_dir(r->dir, err);   /* before ffmpeg, which writes next to it */
+    if (!st && p->video && open_video(r, err))
+        st = err ? err->code : HY_EINVAL;
+    return st;
 }
 
 int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_anim_stats *stats,
@@ -351,10 +353,19 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
     r.nframes = hy_anim_nframes(p);
     r.first = r.next = r.piped = p->first;
     r.last = p->last < 0 ? r.nframes : p->last;
+    /* An ffmpeg that exits early must not kill the process with SIGPIPE: the
+     * write fails (EPIPE) and the run reports it.  Restored on return. */
+    struct sigaction ign, old_pipe;
+    memset(&ign, 0, sizeof ign);
+    ign.sa_handler = SIG_IGN;
+    if (p->video)
+        sigaction(SIGPIPE, &ign, &old_pipe);
     int st = start(&r, err);
     if (st) {
         if (r.video)
             pclose(r.video);
+        if (p->video)
+            sigaction(SIGPIPE, &old_pipe, NULL);
         return st;
     }
     pthread_mutex_init(&r.mu, NULL);
@@ -378,6 +389,8 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
     if (r.video && pclose(r.video) != 0 && !r.failed)
         hy_error_set(&r.err, HY_EIO, "ffmpeg failed to encode '%s/%s.%s'", p->outdir, p->name, p->video),
             r.failed = 1;
+    if (p->video)
+        sigaction(SIGPIPE, &old_pipe, NULL);
     pthread_mutex_destroy(&r.mu);
     pthread_cond_destroy(&r.cv);
     if (stats)

@@ -103,7 +103,9 @@ long hy_anim_nframes(const hy_anim_params *p);
 /* Renders frames [first, last) through draw.  Returns HY_OK; HY_EINVAL for bad
  * parameters; HY_EUNSUP when GL (or ffmpeg for video) is unavailable, before
  * anything is written; HY_EIO naming the file; the first error of draw.
- * Frames written before a failure stay (each is complete). stats may be NULL. */
+ * Frames written before a failure stay (each is complete). stats may be NULL.
+ * With video, SIGPIPE is ignored during the run (an ffmpeg that dies gives
+ * HY_EIO, not a killed process) and restored afterwards. */
 int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_anim_stats *stats,
                 hy_error *err);
 

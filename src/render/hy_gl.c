@@ -34,8 +34,10 @@ struct hy_gl {
     unsigned char *fb;                 /* OSMesa's colour buffer */
     int w, h;
     double scale;
-    GLuint stroke_prog, ribbon_prog, blit_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
-    GLuint ms_fbo, ms_rb[2], rs_fbo, rs_tex, blit_vao;    /* 4x MSAA target of the 3-D pass */
+    GLuint stroke_prog, ribbon_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
+    GLuint ms_fbo, ms_rb[2];          /* 4x multisampled frame, used once a frame has 3-D */
+    int in_ms;                        /* this frame draws into ms_fbo (resolved at hy_gl_read) */
+    hy_rgb bg;                        /* the frame's clear colour */
     GLint u_size, u_ndash, u_dash, u_dash_total, u_mvp, u_mv, u_light;
     double *pts;                       /* current path: x, y pairs (pixels) */
     size_t npts, cap;
@@ -173,12 +175,7 @@ static int build_programs(hy_gl *g, hy_error *err)
         {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert},
         {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag},
     };
-    const hy_gl_stage blit[2] = {
-        {hy_shader_blit_vert_file, GL_VERTEX_SHADER, hy_shader_blit_vert},
-        {hy_shader_blit_frag_file, GL_FRAGMENT_SHADER, hy_shader_blit_frag},
-    };
-    if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(ribbon, 2, &g->ribbon_prog, err) ||
-        hy_gl_program(blit, 2, &g->blit_prog, err))
+    if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(ribbon, 2, &g->ribbon_prog, err))
         return HY_ENUM;
     g->u_size = glGetUniformLocation(g->stroke_prog, "u_size");
     g->u_ndash = glGetUniformLocation(g->stroke_prog, "u_ndash");
@@ -272,6 +269,9 @@ void hy_gl_begin(hy_gl *g, hy_rgb c)
     g->nclip = 0;
     g->ncmds = 0;
     g->nbuf = g->cmd_start = 0;
+    g->in_ms = 0;
+    g->bg = c;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
     glViewport(0, 0, g->w, g->h);
     glClearColor((float)c.r, (float)c.g, (float)c.b, 1.0f);
@@ -791,8 +791,10 @@ static void ribbon_vertex(const hy_gl_ribbon *r, int i, int j, float *v)
         v[k] = (float)vals[k];
 }
 
-/* The 4x multisampled colour + depth target of the 3-D pass and its resolve
- * texture, made on first use.  HY_EUNSUP if the framebuffer is incomplete. */
+/* The 4x multisampled colour + depth framebuffer, made on first use.  A
+ * frame that draws 3-D moves into it (2-D commands included, so the ribbon
+ * lies over what was drawn before it) and is resolved by a blit at
+ * hy_gl_read: no texture sampling.  HY_EUNSUP if it is incomplete. */
 static int msaa_target(hy_gl *g, hy_error *err)
 {
     if (g->ms_fbo)
@@ -807,41 +809,35 @@ static int msaa_target(hy_gl *g, hy_error *err)
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, RIBBON_SAMPLES, GL_DEPTH_COMPONENT24, g->w, g->h);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g->ms_rb[1]);
     int ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    glGenFramebuffers(1, &g->rs_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, g->rs_fbo);
-    glGenTextures(1, &g->rs_tex);
-    glBindTexture(GL_TEXTURE_2D, g->rs_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, g->w, g->h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, g->rs_tex, 0);
-    ok = ok && glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    glGenVertexArrays(1, &g->blit_vao);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return ok ? HY_OK : hy_error_set(err, HY_EUNSUP, "the 4x multisampled framebuffer of the 3-D pass is incomplete");
 }
 
-/* Resolves the multisampled layer inside box (GL pixels x0 y0 x1 y1, the
- * scissor) and blends it, premultiplied, over the frame. */
-static void msaa_composite(hy_gl *g, const int *box)
+/* Moves the frame into the multisampled framebuffer (cleared to the frame's
+ * colour; nothing was sent to GL yet but the clear of hy_gl_begin). */
+static void enter_msaa(hy_gl *g)
 {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, g->ms_fbo);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, g->rs_fbo);
-    glBlitFramebuffer(box[0], box[1], box[2], box[3], box[0], box[1], box[2], box[3], GL_COLOR_BUFFER_BIT,
-                      GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, g->w, g->h);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    glUseProgram(g->blit_prog);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, g->rs_tex);
-    glUniform1i(glGetUniformLocation(g->blit_prog, "u_tex"), 0);
-    glBindVertexArray(g->blit_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
+    if (g->in_ms)
+        return;
+    g->in_ms = 1;
+    glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
     glDisable(GL_SCISSOR_TEST);
+    glViewport(0, 0, g->w, g->h);
+    glClearColor((float)g->bg.r, (float)g->bg.g, (float)g->bg.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+/* Resolves the multisampled frame into the default framebuffer. */
+static void leave_msaa(hy_gl *g)
+{
+    if (!g->in_ms)
+        return;
+    glDisable(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g->ms_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glBlitFramebuffer(0, 0, g->w, g->h, 0, 0, g->w, g->h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    g->in_ms = 0;
 }
 
 /* The ribbon's vertices (position, normal, colour) and triangle indices. */
@@ -869,27 +865,7 @@ static int ribbon_mesh(const hy_gl_ribbon *r, float **vout, unsigned **iout, siz
     return 0;
 }
 
-/* The pixels the ribbon can touch (GL coordinates, 2 px margin, inside the
- * viewport): the 3-D pass clears, resolves and blends only there. */
-static void ribbon_box(const hy_gl *g, const hy_gl_ribbon *r, const double *vp, int *box)
-{
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300, px, py;
-    for (size_t i = 0; i < (size_t)r->nloops * (size_t)r->npts; i++)
-        if (hy_gl_ribbon_project(g, r, r->pts + 3 * i, &px, &py)) {
-            x0 = fmin(x0, px), x1 = fmax(x1, px), y0 = fmin(y0, py), y1 = fmax(y1, py);
-        } else {                      /* behind the camera: take the whole viewport */
-            x0 = vp[0], y0 = vp[1], x1 = vp[0] + vp[2], y1 = vp[1] + vp[3];
-            break;
-        }
-    x0 = fmax(x0 - 2, vp[0]), y0 = fmax(y0 - 2, vp[1]);
-    x1 = fmin(x1 + 2, vp[0] + vp[2]), y1 = fmin(y1 + 2, vp[1] + vp[3]);
-    if (!(x1 > x0 && y1 > y0))
-        x0 = x1 = y0 = y1 = 0;
-    box[0] = (int)floor(x0), box[2] = (int)ceil(x1);
-    box[1] = g->h - (int)ceil(y1), box[3] = g->h - (int)floor(y0);
-}
-
-static void ribbon_pass(hy_gl *g, const hy_gl_ribbon *r, const double *vp, const int *box)
+static void ribbon_pass(hy_gl *g, const hy_gl_ribbon *r, const double *vp)
 {
     mat4 mv, proj;
     camera(r, vp[2] / vp[3], &mv, &proj);
@@ -897,11 +873,8 @@ static void ribbon_pass(hy_gl *g, const hy_gl_ribbon *r, const double *vp, const
     float fm[16], fmv[16];
     to_float(&mvp, fm);
     to_float(&mv, fmv);
-    glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(box[0], box[1], box[2] - box[0], box[3] - box[1]);
-    glClearColor(0, 0, 0, 0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+    glClear(GL_DEPTH_BUFFER_BIT);
     glViewport((GLint)lround(vp[0]), (GLint)lround(g->h - vp[1] - vp[3]), (GLsizei)lround(vp[2]),
                (GLsizei)lround(vp[3]));
     glEnable(GL_DEPTH_TEST);
@@ -927,21 +900,19 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
         free(v), free(idx);
         return HY_EUNSUP;
     }
+    enter_msaa(g);
     submit(g);                        /* 2-D data drawn so far stays underneath */
     double vp[4];
-    int box[4];
     ribbon_viewport(g, r, vp);
-    ribbon_box(g, r, vp, box);
-    if (box[2] > box[0] && box[3] > box[1]) {
-        ribbon_pass(g, r, vp, box);
-        glBindVertexArray(g->ribbon_vao);
-        glBindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
-        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * 9 * sizeof *v), v, GL_STREAM_DRAW);
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ni * sizeof *idx), idx, GL_STREAM_DRAW);
-        glDrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, NULL);
-        glBindVertexArray(0);
-        msaa_composite(g, box);
-    }
+    ribbon_pass(g, r, vp);
+    glBindVertexArray(g->ribbon_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * 9 * sizeof *v), v, GL_STREAM_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ni * sizeof *idx), idx, GL_STREAM_DRAW);
+    glDrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, NULL);
+    glBindVertexArray(0);
+    glDisable(GL_DEPTH_TEST);
+    glViewport(0, 0, g->w, g->h);
     free(v);
     free(idx);
     return HY_OK;
@@ -950,6 +921,7 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
 int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err)
 {
     submit(g);
+    leave_msaa(g);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, g->w, g->h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     GLenum e = glGetError();

@@ -8,8 +8,8 @@
  * (miter joins, or round joins and caps for round pens, as cairo draws them;
  * dense polylines are first simplified to 0.1 px), dash patterns, per-vertex colour
  * from a colour map with alpha fading by age ("effects", keyed by the pen
- * colour).  A separate 3-D pass draws a lit ribbon with depth into a 4x
- * multisampled target blended over the frame.  Drawing is recorded and sent
+ * colour).  A separate 3-D pass draws a lit ribbon with depth; a frame
+ * with 3-D is drawn into a 4x multisampled framebuffer, resolved at hy_gl_read.  Drawing is recorded and sent
  * to GL in one batch at hy_gl_read or before the 3-D pass.  Text is not
  * drawn here: use hy_figure_draw_layers with a cairo overlay, then
  * hy_gl_read (bottom-up rows) and hy_frame_composite (hy_frame.h).
