@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cmd_animate.h"
 #include "cmd_boucwen.h"
 #include "cmd_check.h"
 #include "cmd_gallery.h"
@@ -21,6 +22,7 @@ static const char usage[] =
     "commands:\n"
     "  render    draw scene files into SVG, PDF and PNG figures\n"
     "  data      print every series a scene draws as CSV\n"
+    "  animate   render an animation (OpenGL through OSMesa) as PNG frames or a video\n"
     "  gallery   render every scene into gallery/ (parallel, skips unchanged) with an index page\n"
     "  loop      print a steady hysteresis loop, y*_{u,k} or y_gamma as CSV\n"
     "  loops     print the major and minor loops of an input with their areas\n"
@@ -45,6 +47,7 @@ static const command commands[] = {
     {"render", hy_cmd_render},
     {"data", hy_cmd_render},
     {"gallery", hy_cmd_gallery},
+    {"animate", hy_cmd_animate},
     {"loop", hy_cmd_loop},
     {"loops", hy_cmd_loop},
     {"boucwen", hy_cmd_boucwen},

@@ -1,0 +1,222 @@
+/* cmd_animate.c: `hystviz animate NAME`: option parsing and the run of one
+ * built-in animation (anim_scenes.c) through the engine (hy_anim.c). */
+#include "cmd_animate.h"
+
+#include "hy_config.h"
+
+#include <gsl/gsl_errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_util.h"
+
+#if HY_HAVE_OSMESA
+#include "anim_scenes.h"
+
+#endif
+
+static const char animate_help[] =
+    "usage: hystviz animate NAME [-o DIR] [--quality Q] [--size WxH] [--fps F] [--duration S]\n"
+    "                            [--frames A:B] [-j N] [--quiet] [--video mp4|webm|gif]\n"
+    "       hystviz animate --list\n"
+    "\n"
+    "Renders animation NAME as PNG frames DIR/NAME/frame_00000.png ... (OpenGL through\n"
+    "OSMesa for the data, cairo for text and axes) and a poster DIR/NAME.png (the last frame).\n"
+    "\n"
+    "  -o, --output DIR   output directory (default: frames)\n"
+    "  --quality Q        480p15 (854x480@15), 480p30, 720p30 (default), 720p60, 1080p30,\n"
+    "                     1080p60, 1440p60, 2160p60\n"
+    "  --size WxH         frame size in pixels (overrides the preset's)\n"
+    "  --fps F            frames per second (overrides the preset's)\n"
+    "  --duration S       seconds (default: the animation's, 6)\n"
+    "  --frames A:B       render only frames A .. B-1 (B may be empty: to the end)\n"
+    "  -j, --jobs N       threads, each with its own GL context (frames are identical for any N)\n"
+    "  --quiet            no progress bar (it is shown only when stderr is a terminal)\n"
+    "  --video FMT        also encode DIR/NAME.FMT by piping frames to ffmpeg (must be on PATH)\n"
+    "  --list             the animations and what they show\n"
+    "\n"
+    "example:\n"
+    "  hystviz animate gamma-sweep-ex2 -o frames --quality 480p15 -j 2\n";
+
+#if HY_HAVE_OSMESA
+
+typedef struct anim_args {
+    hy_anim_params p;
+    const char *name, *quality;
+    int w, h, have_size, have_fps, have_duration, list;
+    double fps, duration;
+} anim_args;
+
+static int parse_range(const char *v, long *a, long *b)
+{
+    char *end;
+    if (!v)
+        return -1;
+    *a = strtol(v, &end, 10);
+    if (end == v || *end != ':' || *a < 0)
+        return -1;
+    const char *s = end + 1;
+    if (!*s) {
+        *b = -1;
+        return 0;
+    }
+    *b = strtol(s, &end, 10);
+    return (*end || *b <= *a) ? -1 : 0;
+}
+
+static int parse_size(const char *v, int *w, int *h)
+{
+    char *end;
+    long a = v ? strtol(v, &end, 10) : 0;
+    if (!v || end == v || (*end != 'x' && *end != 'X'))
+        return -1;
+    const char *s = end + 1;
+    long b = strtol(s, &end, 10);
+    if (end == s || *end || a < 16 || b < 16 || a > 8192 || b > 8192)
+        return -1;
+    *w = (int)a, *h = (int)b;
+    return 0;
+}
+
+/* One option at argv[*i]; 0 handled, 1 help printed, 2 usage error. */
+static int parse_one(anim_args *a, int argc, char **argv, int *i)
+{
+    const char *s = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    long n;
+    if (!strcmp(s, "-h") || !strcmp(s, "--help"))
+        return fputs(animate_help, stdout), 1;
+    if (!strcmp(s, "--list"))
+        return a->list = 1, 0;
+    if (!strcmp(s, "--quiet") || !strcmp(s, "-q"))
+        return a->p.quiet = 1, 0;
+    if (s[0] != '-')
+        return fprintf(stderr, "hystviz animate: one animation at a time ('%s' and '%s')\n", a->name, s), 2;
+    if (!v)
+        return fprintf(stderr, "hystviz animate: unknown option '%s' or it needs a value (see --help)\n", s), 2;
+    (*i)++;
+    if (!strcmp(s, "-o") || !strcmp(s, "--output"))
+        a->p.outdir = v;
+    else if (!strcmp(s, "--quality"))
+        a->quality = v;
+    else if (!strcmp(s, "--video"))
+        a->p.video = v;
+    else if (!strcmp(s, "--size")) {
+        if (parse_size(v, &a->w, &a->h))
+            return fprintf(stderr, "hystviz animate: --size '%s' is not WxH with 16 <= W, H <= 8192\n", v), 2;
+        a->have_size = 1;
+    } else if (!strcmp(s, "--fps")) {
+        if (cli_num(s, v, &a->fps) || !(a->fps > 0 && a->fps <= 240))
+            return fprintf(stderr, "hystviz animate: --fps must be in (0, 240]\n"), 2;
+        a->have_fps = 1;
+    } else if (!strcmp(s, "--duration")) {
+        if (cli_num(s, v, &a->duration) || !(a->duration > 0 && a->duration <= 3600))
+            return fprintf(stderr, "hystviz animate: --duration must be in (0, 3600] seconds\n"), 2;
+        a->have_duration = 1;
+    } else if (!strcmp(s, "--frames")) {
+        if (parse_range(v, &a->p.first, &a->p.last))
+            return fprintf(stderr, "hystviz animate: --frames '%s' is not A:B with 0 <= A < B (or A:)\n", v), 2;
+    } else if (!strcmp(s, "-j") || !strcmp(s, "--jobs")) {
+        if (cli_long(s, v, 1, 64, &n))
+            return 2;
+        a->p.jobs = (int)n;
+    } else
+        return fprintf(stderr, "hystviz animate: unknown option '%s' (see hystviz animate --help)\n", s), 2;
+    return 0;
+}
+
+static int parse_args(int argc, char **argv, anim_args *a)
+{
+    memset(a, 0, sizeof *a);
+    a->p = hy_anim_defaults();
+    a->p.outdir = "frames";
+    a->quality = "720p30";
+    for (int i = 1; i < argc; i++) {
+        if (argv[i][0] != '-' && !a->name) {
+            a->name = argv[i];
+            continue;
+        }
+        int r = parse_one(a, argc, argv, &i);
+        if (r)
+            return r;
+    }
+    return 0;
+}
+
+static void list_scenes(void)
+{
+    for (const anim_scene *const *s = anim_scene_list(); *s; s++)
+        printf("%-16s %s\n", (*s)->name, (*s)->summary);
+}
+
+static int settle(anim_args *a, const anim_scene *sc)
+{
+    hy_error err;
+    double fps;
+    if (hy_anim_quality(a->quality, &a->p.width, &a->p.height, &fps, &err)) {
+        fprintf(stderr, "hystviz animate: %s\n", err.msg);
+        return 2;
+    }
+    a->p.fps = a->have_fps ? a->fps : fps;
+    if (a->have_size)
+        a->p.width = a->w, a->p.height = a->h;
+    a->p.duration = a->have_duration ? a->duration : sc->duration;
+    a->p.name = sc->name;
+    long nf = hy_anim_nframes(&a->p);
+    if (a->p.first >= nf || a->p.last > nf) {
+        fprintf(stderr, "hystviz animate: --frames %ld:%ld is outside the %ld frames of %s (0:%ld)\n",
+                a->p.first, a->p.last, nf, sc->name, nf);
+        return 2;
+    }
+    return 0;
+}
+
+static int animate(int argc, char **argv)
+{
+    anim_args a;
+    int r = parse_args(argc, argv, &a);
+    if (r)
+        return r == 1 ? 0 : 2;
+    if (a.list)
+        return list_scenes(), 0;
+    const anim_scene *sc = anim_scene_find(a.name);
+    if (!sc) {
+        fprintf(stderr, "hystviz animate: %s%s%s (hystviz animate --list shows them)\n",
+                a.name ? "unknown animation '" : "which animation?", a.name ? a.name : "", a.name ? "'" : "");
+        return 2;
+    }
+    if ((r = settle(&a, sc)))
+        return r;
+    gsl_set_error_handler_off();
+    hy_error err;
+    void *state = NULL;
+    hy_anim_stats stats;
+    int st = sc->prepare(&state, &a.p, &err);
+    if (!st)
+        st = hy_anim_run(&a.p, sc->draw, state, &stats, &err);
+    if (st)
+        fprintf(stderr, "hystviz animate: %s\n", err.msg);
+    else if (!a.p.quiet)
+        fprintf(stderr, "%s: %ld frames %dx%d in %.2f s (%.1f frames/s, %d jobs) -> %s/%s/; %s\n", sc->name,
+                stats.frames, a.p.width, a.p.height, stats.seconds, stats.frames / (stats.seconds + 1e-9),
+                a.p.jobs, a.p.outdir, sc->name, sc->describe(state));
+    if (state)
+        sc->release(state);
+    return st == HY_EUNSUP ? 3 : st ? 1 : 0;
+}
+
+int hy_cmd_animate(int argc, char **argv) { return animate(argc, argv); }
+
+#else /* built without OSMesa */
+
+int hy_cmd_animate(int argc, char **argv)
+{
+    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        fputs(animate_help, stdout);
+        return 0;
+    }
+    fprintf(stderr, "hystviz animate: this hystviz was built without OSMesa, so it cannot render "
+            "animations (install libosmesa6-dev and reconfigure with -Dosmesa=enabled)\n");
+    return 3;
+}
+#endif

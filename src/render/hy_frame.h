@@ -1,0 +1,44 @@
+/* hy_frame.h: animation frames: compositing a cairo overlay over a GL layer,
+ * and writing 8-bit RGB PNG frames with libpng at frame-friendly settings.
+ *
+ * The GL layer comes from hy_gl_read (RGBA, rows bottom-up); the overlay is a
+ * cairo ARGB32 image surface of the same size (premultiplied, native-endian
+ * 32-bit pixels, rows top-down).  The result is packed RGB, rows top-down:
+ *     out = overlay + (1 - overlay_alpha) * gl      (per channel, rounded)
+ * Frames are written to "PATH.tmp.XXXXXX" and renamed, so a crash never
+ * leaves a truncated frame under the final name.
+ *
+ *     hy_frame_composite(w, h, gl_rgba, argb, stride, rgb);
+ *     hy_png_opts o = hy_png_frame_defaults();
+ *     if (hy_png_write_rgb("out/frame_00000.png", w, h, rgb, &o, &err)) ...
+ *
+ * No GL needed: this part builds without OSMesa.
+ */
+#ifndef HY_FRAME_H
+#define HY_FRAME_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "hy_status.h"
+
+/* Composites the overlay (may be NULL) over the GL layer into rgb (w*h*3). */
+void hy_frame_composite(int w, int h, const unsigned char *gl_rgba_bottom_up, const unsigned char *argb,
+                        int argb_stride, unsigned char *rgb);
+
+typedef struct hy_png_opts {
+    int level;        /* zlib level 0..9 */
+    int filter;       /* HY_PNG_FILTER_* */
+    int strategy;     /* zlib strategy: 0 default, 1 filtered, 3 RLE */
+} hy_png_opts;
+enum { HY_PNG_FILTER_NONE = 0, HY_PNG_FILTER_SUB, HY_PNG_FILTER_UP, HY_PNG_FILTER_PAETH, HY_PNG_FILTER_ALL };
+
+/* Settings measured for flat-colour plot frames (tests/bench/bench_gl). */
+hy_png_opts hy_png_frame_defaults(void);
+
+/* Writes rgb (w*h*3, top-down) to path atomically.  HY_EIO names the path;
+ * on failure no file is left at path or at the temporary name. */
+int hy_png_write_rgb(const char *path, int w, int h, const unsigned char *rgb, const hy_png_opts *o,
+                     hy_error *err);
+
+#endif

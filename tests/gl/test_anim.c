@@ -1,0 +1,316 @@
+/* test_anim.c: the animation engine and `hystviz animate` in-process: timeline
+ * and presets, frame count and size, --frames ranges, byte-identical frames
+ * across runs and across -j 1 / -j 2, the γ cache (one solve per distinct γ),
+ * reference frames (tests/reference/gl_*.png, max channel difference 8), the
+ * ffmpeg message and ordered piping (to a stand-in ffmpeg), errors from a
+ * scene and bad parameters. */
+#include "hy_config.h"
+
+#include <cairo.h>
+#include <dirent.h>
+#include <math.h>
+#include <stdarg.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "anim_scenes.h"
+#include "cmd_animate.h"
+#include "gltest.h"
+
+#define TOL 8                 /* largest channel difference allowed against a reference */
+
+static int run_cmd(const char *first, ...)
+{
+    char *argv[32];
+    int argc = 0;
+    va_list ap;
+    va_start(ap, first);
+    for (const char *s = first; s && argc < 31; s = va_arg(ap, const char *))
+        argv[argc++] = (char *)s;
+    va_end(ap);
+    argv[argc] = NULL;
+    return hy_cmd_animate(argc, argv);
+}
+
+static long count_frames(const char *dir)
+{
+    DIR *d = opendir(dir);
+    long n = 0;
+    for (struct dirent *e; d && (e = readdir(d));)
+        n += !strncmp(e->d_name, "frame_", 6) && strstr(e->d_name, ".png") && !strstr(e->d_name, ".tmp");
+    if (d)
+        closedir(d);
+    return n;
+}
+
+static unsigned char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    unsigned char *b = malloc((size_t)n + 1);
+    if (b && fread(b, 1, (size_t)n, f) != (size_t)n)
+        free(b), b = NULL;
+    fclose(f);
+    *len = (size_t)n;
+    return b;
+}
+
+static int same_file(const char *a, const char *b)
+{
+    size_t la, lb;
+    unsigned char *x = slurp(a, &la), *y = slurp(b, &lb);
+    int same = x && y && la == lb && !memcmp(x, y, la);
+    free(x);
+    free(y);
+    return same;
+}
+
+static void test_timeline(void)
+{
+    CHECK(hy_ease(HY_EASE_LINEAR, 0.25) == 0.25 && hy_ease(HY_EASE_SMOOTH, 0.5) == 0.5, "ease midpoints");
+    CHECK(fabs(hy_ease(HY_EASE_SMOOTH, 0.25) - 0.15625) < 1e-15 && hy_ease(HY_EASE_SMOOTH, 2) == 1, "smoothstep");
+    hy_key k[3] = {{1, 1, 0}, {2, 100, HY_EASE_LINEAR}, {3, 50, HY_EASE_SMOOTH}};
+    hy_track lin = {k, 3, 0}, lg = {k, 2, 1};
+    CHECK(hy_track_eval(&lin, 0) == 1 && hy_track_eval(&lin, 9) == 50, "hold outside the keys");
+    CHECK(fabs(hy_track_eval(&lin, 1.5) - 50.5) < 1e-12, "linear key segment");
+    CHECK(fabs(hy_track_eval(&lg, 1.5) - 10) < 1e-12, "log track: geometric midpoint, got %g", hy_track_eval(&lg, 1.5));
+    CHECK(fabs(hy_track_eval(&lin, 2.5) - 75) < 1e-12, "smooth segment midpoint");
+    int w, h;
+    double fps;
+    hy_error err;
+    CHECK(!hy_anim_quality("480p15", &w, &h, &fps, &err) && w == 854 && h == 480 && fps == 15, "480p15");
+    CHECK(!hy_anim_quality("2160p60", &w, &h, &fps, &err) && w == 3840 && h == 2160 && fps == 60, "2160p60");
+    CHECK(hy_anim_quality("999p1", &w, &h, &fps, &err) == HY_EINVAL && strstr(err.msg, "720p30"), "bad preset");
+}
+
+static void test_counts(void)
+{
+    CHECK(run_cmd("animate", "--list", NULL) == 0, "--list");
+    CHECK(run_cmd("animate", "no-such-animation", NULL) == 2, "unknown animation");
+    CHECK(run_cmd("animate", "ribbon", "--frames", "9:3", NULL) == 2, "bad range");
+    CHECK(run_cmd("animate", "ribbon", "--size", "12x9000", NULL) == 2, "bad size");
+    CHECK(run_cmd("animate", "gamma-sweep-ex2", "-o", "out_count", "--size", "320x180", "--fps", "10", "--duration",
+                  "1.5", "--quiet", "-j", "2", NULL) == 0, "count run");
+    CHECK(count_frames("out_count/gamma-sweep-ex2") == 15, "15 frames expected, got %ld",
+          count_frames("out_count/gamma-sweep-ex2"));
+    cairo_surface_t *s = cairo_image_surface_create_from_png("out_count/gamma-sweep-ex2/frame_00014.png");
+    CHECK(cairo_surface_status(s) == CAIRO_STATUS_SUCCESS && cairo_image_surface_get_width(s) == 320 &&
+          cairo_image_surface_get_height(s) == 180, "frame size");
+    cairo_surface_destroy(s);
+    CHECK(same_file("out_count/gamma-sweep-ex2/frame_00014.png", "out_count/gamma-sweep-ex2.png"),
+          "the poster is the last frame");
+    CHECK(run_cmd("animate", "k-cycle-ex3", "-o", "out_range", "--quality", "480p15", "--size", "320x180",
+                  "--frames", "5:8", "--quiet", NULL) == 0, "range run");
+    CHECK(count_frames("out_range/k-cycle-ex3") == 3 && access("out_range/k-cycle-ex3/frame_00005.png", F_OK) == 0 &&
+          access("out_range/k-cycle-ex3/frame_00007.png", F_OK) == 0, "--frames 5:8 renders frames 5, 6, 7");
+    CHECK(access("out_range/k-cycle-ex3.png", F_OK) != 0, "no poster without the last frame");
+}
+
+/* Runs scene name at 320x180, 8 fps for 3 s into dir with jobs threads; returns solves. */
+static long run_scene(const char *name, const char *dir, int jobs)
+{
+    const anim_scene *sc = anim_scene_find(name);
+    hy_anim_params p = hy_anim_defaults();
+    p.outdir = dir, p.name = name, p.width = 320, p.height = 180, p.fps = 8, p.duration = 3;
+    p.jobs = jobs, p.quiet = 1;
+    void *st = NULL;
+    hy_error err;
+    long solves = -1;
+    int rc = sc->prepare(&st, &p, &err);
+    if (!rc)
+        rc = hy_anim_run(&p, sc->draw, st, NULL, &err);
+    CHECK(rc == 0, "%s: %s", name, err.msg);
+    if (!rc && strstr(name, "sweep"))
+        solves = anim_scene_solves(st);
+    if (st)
+        sc->release(st);
+    return solves;
+}
+
+/* Distinct γ of the sweeps' schedule (anim_scenes.c: log-interpolated from
+ * 1 at 8 % to 1000 at 88 % of the duration, smooth) over 24 frames at 8 fps,
+ * plus the γ = 1 that prepare solves. */
+static long distinct_gammas(void)
+{
+    hy_key k[2] = {{0.08 * 3, 1.0, HY_EASE_LINEAR}, {0.88 * 3, 1000.0, HY_EASE_SMOOTH}};
+    hy_track tr = {k, 2, 1};
+    double g[25];
+    long n = 0;
+    g[n++] = 1.0;
+    for (int i = 0; i < 24; i++) {
+        double v = hy_track_eval(&tr, i / 8.0);
+        int seen = 0;
+        for (long j = 0; j < n; j++)
+            seen |= g[j] == v;
+        if (!seen)
+            g[n++] = v;
+    }
+    return n;
+}
+
+static void test_identical(void)
+{
+    const char *names[] = {"gamma-sweep-ex3", "minor-loop-ex4", "ribbon", "k-cycle-ex2"};
+    for (int i = 0; i < 4; i++) {
+        long s1 = run_scene(names[i], "out_j1", 1), s2 = run_scene(names[i], "out_j2", 2);
+        long s3 = run_scene(names[i], "out_j2b", 2);
+        CHECK(s1 == s2 && s2 == s3, "%s: solves differ between runs (%ld, %ld, %ld)", names[i], s1, s2, s3);
+        if (s1 >= 0)
+            CHECK(s1 == distinct_gammas(), "%s: %ld solves for %ld distinct gamma", names[i], s1, distinct_gammas());
+        for (int f = 0; f < 24; f++) {
+            char a[256], b[256], c[256];
+            snprintf(a, sizeof a, "out_j1/%s/frame_%05d.png", names[i], f);
+            snprintf(b, sizeof b, "out_j2/%s/frame_%05d.png", names[i], f);
+            snprintf(c, sizeof c, "out_j2b/%s/frame_%05d.png", names[i], f);
+            CHECK(same_file(a, b), "%s differs between -j 1 and -j 2", a);
+            CHECK(same_file(b, c), "%s differs between two -j 2 runs", b);
+        }
+    }
+}
+
+/* Compares frame path with tests/reference/ref (or writes it with HY_UPDATE_REFERENCE=1). */
+static void compare_reference(const char *path, const char *ref)
+{
+    char refpath[1024];
+    snprintf(refpath, sizeof refpath, "%s/tests/reference/%s", HY_SOURCE_DIR, ref);
+    cairo_surface_t *a = cairo_image_surface_create_from_png(path);
+    if (getenv("HY_UPDATE_REFERENCE")) {
+        CHECK(cairo_surface_write_to_png(a, refpath) == CAIRO_STATUS_SUCCESS, "writing %s", refpath);
+        cairo_surface_destroy(a);
+        return;
+    }
+    cairo_surface_t *b = cairo_image_surface_create_from_png(refpath);
+    int w = cairo_image_surface_get_width(a), h = cairo_image_surface_get_height(a);
+    int ok = cairo_surface_status(a) == 0 && cairo_surface_status(b) == 0 && w == cairo_image_surface_get_width(b) &&
+             h == cairo_image_surface_get_height(b);
+    CHECK(ok, "%s or %s unreadable or of another size", path, refpath);
+    int maxd = 0;
+    long ndiff = 0;
+    for (int y = 0; ok && y < h; y++) {
+        const unsigned *ra = (const void *)(cairo_image_surface_get_data(a) + y * cairo_image_surface_get_stride(a));
+        const unsigned *rb = (const void *)(cairo_image_surface_get_data(b) + y * cairo_image_surface_get_stride(b));
+        for (int x = 0; x < w; x++)
+            for (int sh = 0; sh < 24; sh += 8) {
+                int d = abs((int)((ra[x] >> sh) & 255) - (int)((rb[x] >> sh) & 255));
+                maxd = d > maxd ? d : maxd;
+                ndiff += d > 0;
+            }
+    }
+    printf("%-22s vs reference: %ld channels differ, largest difference %d (tolerance %d)\n", ref, ndiff, maxd, TOL);
+    CHECK(maxd <= TOL, "%s differs from %s by %d > %d", path, refpath, maxd, TOL);
+    cairo_surface_destroy(a);
+    cairo_surface_destroy(b);
+}
+
+static void test_references(void)
+{
+    compare_reference("out_j1/gamma-sweep-ex3/frame_00012.png", "gl_gamma_sweep_ex3.png");
+    compare_reference("out_j1/minor-loop-ex4.png", "gl_minor_loop_ex4.png");
+    compare_reference("out_j1/ribbon/frame_00010.png", "gl_ribbon.png");
+    compare_reference("out_j1/k-cycle-ex2/frame_00015.png", "gl_k_cycle_ex2.png");
+}
+
+static int failing_draw(void *state, const hy_anim_frame *f, hy_error *err)
+{
+    (void)state;
+    return f->index == 3 ? hy_error_set(err, HY_ENUM, "scene failed at frame %ld", f->index) : HY_OK;
+}
+
+static void test_errors(void)
+{
+    hy_anim_params p = hy_anim_defaults();
+    p.outdir = "out_err", p.name = "fails", p.width = 64, p.height = 64, p.fps = 10, p.duration = 1, p.quiet = 1;
+    hy_error err;
+    CHECK(hy_anim_run(&p, failing_draw, NULL, NULL, &err) == HY_ENUM && strstr(err.msg, "frame 3"),
+          "scene error not passed on: %s", err.msg);
+    p.first = 20;
+    CHECK(hy_anim_run(&p, failing_draw, NULL, NULL, &err) == HY_EINVAL && strstr(err.msg, "0:10"),
+          "range outside the animation: %s", err.msg);
+    p.first = 0, p.video = "mp4";
+    char *old = getenv("PATH") ? strdup(getenv("PATH")) : NULL;
+    setenv("PATH", "/nonexistent-hystviz-test", 1);
+    int rc = hy_anim_run(&p, failing_draw, NULL, NULL, &err);
+    printf("video without ffmpeg: %s\n", err.msg);
+    CHECK(rc == HY_EUNSUP && strstr(err.msg, "ffmpeg") && strstr(err.msg, "not on PATH") &&
+          strstr(err.msg, "frame_%05d.png"), "ffmpeg message: %s", err.msg);
+    CHECK(run_cmd("animate", "ribbon", "-o", "out_err", "--video", "webm", "--quiet", NULL) == 3,
+          "animate --video without ffmpeg exits 3");
+    p.video = "avi";
+    CHECK(hy_anim_run(&p, failing_draw, NULL, NULL, &err) == HY_EINVAL && strstr(err.msg, "avi"), "bad format");
+    if (old)
+        setenv("PATH", old, 1);
+    free(old);
+}
+
+/* A stand-in ffmpeg on PATH that stores its stdin in its last argument:
+ * the raw frames must arrive complete and in order for any -j. */
+static void test_video_pipe(void)
+{
+    mkdir("fakebin", 0755);
+    FILE *f = fopen("fakebin/ffmpeg", "w");
+    fputs("#!/bin/sh\nfor a; do last=$a; done\ncat > \"$last\"\n", f);
+    fclose(f);
+    chmod("fakebin/ffmpeg", 0755);
+    char cwd[900], path[2000];
+    CHECK(getcwd(cwd, sizeof cwd) != NULL, "getcwd");
+    char *old = getenv("PATH") ? strdup(getenv("PATH")) : NULL;
+    snprintf(path, sizeof path, "%s/fakebin:%s", cwd, old ? old : "/usr/bin:/bin");
+    setenv("PATH", path, 1);
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid1", "--size", "64x48", "--fps", "10", "--duration", "2",
+                  "--video", "mp4", "--quiet", "-j", "1", NULL) == 0, "video run -j 1");
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid2", "--size", "64x48", "--fps", "10", "--duration", "2",
+                  "--video", "mp4", "--quiet", "-j", "2", NULL) == 0, "video run -j 2");
+    size_t n1 = 0, n2 = 0;
+    unsigned char *a = slurp("out_vid1/k-cycle-ex2.mp4", &n1), *b = slurp("out_vid2/k-cycle-ex2.mp4", &n2);
+    CHECK(a && n1 == 20 * 64 * 48 * 3, "ffmpeg got %zu bytes, expected %d", n1, 20 * 64 * 48 * 3);
+    CHECK(a && b && n1 == n2 && !memcmp(a, b, n1), "piped frames differ between -j 1 and -j 2 (order)");
+    free(a);
+    free(b);
+    if (old)
+        setenv("PATH", old, 1);
+    free(old);
+}
+
+static int ok_draw(void *state, const hy_anim_frame *f, hy_error *err)
+{
+    (void)state, (void)f, (void)err;
+    return HY_OK;
+}
+
+/* Without --quiet the engine still prints nothing when stderr is not a terminal. */
+static void test_silent(void)
+{
+    hy_anim_params p = hy_anim_defaults();
+    p.outdir = "out_silent", p.name = "quiet", p.width = 32, p.height = 32, p.fps = 10, p.duration = 0.5;
+    fflush(stderr);
+    int saved = dup(2);
+    FILE *f = fopen("out_silent_stderr.txt", "w");
+    dup2(fileno(f), 2);
+    hy_error err;
+    int rc = hy_anim_run(&p, ok_draw, NULL, NULL, &err);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    fclose(f);
+    size_t n = 0;
+    free(slurp("out_silent_stderr.txt", &n));
+    CHECK(rc == 0 && n == 0, "progress output on a non-terminal stderr (%zu bytes)", n);
+}
+
+int main(void)
+{
+    hy_gl_free(gl_or_skip(64, 64));
+    test_timeline();
+    test_counts();
+    test_identical();
+    test_references();
+    test_errors();
+    test_video_pipe();
+    test_silent();
+    return fails ? 1 : 0;
+}
