@@ -7,16 +7,7 @@
 
 #include "hy_gl.h"
 
-static int fails;
-#define CHECK(c, ...)                                                      \
-    do {                                                                   \
-        if (!(c)) {                                                        \
-            fails++;                                                       \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                    \
-            printf(__VA_ARGS__);                                           \
-            printf("\n");                                                  \
-        }                                                                  \
-    } while (0)
+#include "../render/rcheck.h"
 
 /* Creates a context or exits 77 (SKIP) with the reason. */
 static inline hy_gl *gl_or_skip(int w, int h)

@@ -8,16 +8,7 @@
 #include "figures.h"
 #include "hy_cairo.h"
 
-static int fails;
-#define CHECK(c, ...)                                                      \
-    do {                                                                   \
-        if (!(c)) {                                                        \
-            fails++;                                                       \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                    \
-            printf(__VA_ARGS__);                                           \
-            printf("\n");                                                  \
-        }                                                                  \
-    } while (0)
+#include "rcheck.h"
 
 /* Forwards to cairo (for real text metrics) and records geometry. */
 typedef struct rec {

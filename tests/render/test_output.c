@@ -12,16 +12,7 @@
 #include "figures.h"
 #include "hy_cairo.h"
 
-static int fails;
-#define CHECK(c, ...)                                                      \
-    do {                                                                   \
-        if (!(c)) {                                                        \
-            fails++;                                                       \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                    \
-            printf(__VA_ARGS__);                                           \
-            printf("\n");                                                  \
-        }                                                                  \
-    } while (0)
+#include "rcheck.h"
 
 static char *slurp(const char *path, size_t *len)
 {

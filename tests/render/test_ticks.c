@@ -5,16 +5,7 @@
 
 #include "hy_ticks.h"
 
-static int fails;
-#define CHECK(c, ...)                                                      \
-    do {                                                                   \
-        if (!(c)) {                                                        \
-            fails++;                                                       \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                    \
-            printf(__VA_ARGS__);                                           \
-            printf("\n");                                                  \
-        }                                                                  \
-    } while (0)
+#include "rcheck.h"
 
 static int is_round_step(double s)
 {
