@@ -89,10 +89,11 @@ int main(void)
             o.stepper = *s;
             o.rtol = tol;
             o.atol = tol * 1e-2;
-            o.max_steps = 2000000;
+            o.max_steps = 200000; /* first-order rk1imp would need millions of steps */
             hy_ode_stats stats;
+            double t_try = now();
             int rc = hy_ode_solve(&m, &in, 10, &o, tt, K, yg, &stats, &err);
-            if (rc)
+            if (rc || now() - t_try > 2.0) /* hit the cap, or too slow to chase further */
                 break;
             double e = 0;
             for (int j = 0; j < K; j++)
@@ -108,7 +109,7 @@ int main(void)
             }
         }
         if (!done)
-            printf("  %-8s did not reach 1e-8 down to rtol 1e-14 (or hit the step cap)\n", *s);
+            printf("  %-8s did not reach 1e-8 within 2e5 steps and 2 s per run\n", *s);
     }
     free(t);
     free(yy);
