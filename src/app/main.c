@@ -2,10 +2,12 @@
 #include "hy_config.h"
 
 #include <gsl/gsl_errno.h>
+#include <errno.h>
+#include <limits.h>
 #include <stdio.h>
+#include <unistd.h>
 #include <string.h>
 
-#include "cmd_animate.h"
 #include "cmd_boucwen.h"
 #include "cmd_check.h"
 #include "cmd_gallery.h"
@@ -47,13 +49,33 @@ static const command commands[] = {
     {"render", hy_cmd_render},
     {"data", hy_cmd_render},
     {"gallery", hy_cmd_gallery},
-    {"animate", hy_cmd_animate},
     {"loop", hy_cmd_loop},
     {"loops", hy_cmd_loop},
     {"boucwen", hy_cmd_boucwen},
     {"report", hy_cmd_report},
     {"check", hy_cmd_check},
 };
+
+/* Runs hystviz-animate (next to this executable) with this argv: "animate" ...;
+ * returns only on failure. */
+static int run_animate(char **argv)
+{
+    char self[PATH_MAX], path[PATH_MAX + 32];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (n <= 0) {
+        fprintf(stderr, "hystviz animate: cannot find this program's directory: %s\n", strerror(errno));
+        return 1;
+    }
+    self[n] = '\0';
+    char *slash = strrchr(self, '/');
+    if (slash)
+        *slash = '\0';
+    snprintf(path, sizeof path, "%s/hystviz-animate", self);
+    argv[0] = path;
+    execv(path, argv);
+    fprintf(stderr, "hystviz animate: cannot run %s: %s (it is built next to hystviz)\n", path, strerror(errno));
+    return 1;
+}
 
 int main(int argc, char **argv)
 {
@@ -70,6 +92,8 @@ int main(int argc, char **argv)
         fputs(usage, stdout);
         return 0;
     }
+    if (!strcmp(argv[1], "animate"))
+        return run_animate(argv);
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (!strcmp(argv[1], commands[i].name))
             return commands[i].run(argc - 1, argv + 1);

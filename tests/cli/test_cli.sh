@@ -50,5 +50,11 @@ expect_err "gamma must be a finite number > 0" loop --gamma 0 --input bimodal:0,
 expect_err "cannot write" loop --input bimodal:0,0.5,1,1.5 -o /nonexistent/dir/x.csv
 [ ! -e /nonexistent/dir/x.csv ] && ok || bad "partial file"
 
+# hystviz itself never loads OpenGL (animations run in hystviz-animate)
+if command -v ldd > /dev/null; then
+    ldd "$hv" | grep -qiE 'osmesa|llvm' && bad "hystviz links OpenGL/LLVM" || ok
+fi
+"$hv" animate --help > "$tmp/anim" 2>&1 && grep -q 'animate' "$tmp/anim" && ok || bad "hystviz animate --help: $(cat "$tmp/anim")"
+
 echo "cli: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -1,0 +1,17 @@
+/* animate_main.c: the hystviz-animate program, which `hystviz animate` runs.
+ * Animations live in their own executable so that only they load OpenGL
+ * (OSMesa and LLVM cost ~17 ms at every process start): a cairo figure,
+ * `hystviz render`, never initialises GL.  argv as after "hystviz". */
+#include <gsl/gsl_errno.h>
+
+#include "cmd_animate.h"
+
+int main(int argc, char **argv)
+{
+    gsl_set_error_handler_off();
+    if (argc < 2) {
+        static char name[] = "animate", *args[] = {name, NULL};
+        return hy_cmd_animate(1, args);
+    }
+    return hy_cmd_animate(argc - 1, argv + 1);
+}
