@@ -2,7 +2,7 @@
 # tools/setup.sh: one command from a fresh Debian 12 (as root) to a built hystviz.
 #   sh tools/setup.sh gallery   install what is missing, build, render the gallery
 #   sh tools/setup.sh test      install what is missing, build, run every test suite
-#                               (and again under ASan+UBSan)
+#                               (again without OSMesa, and again under ASan+UBSan)
 # With CI=true the build uses -Dwerror=true.
 set -eu
 cd "$(dirname "$0")/.."
@@ -44,6 +44,9 @@ gallery)
 test)
     configure build
     meson test -C build --print-errorlogs --num-processes 2
+    # the build without OSMesa: cairo figures work, GL tests report SKIP
+    configure build-noosm -Dosmesa=disabled
+    meson test -C build-noosm --no-suite check --print-errorlogs --num-processes 2
     configure build-san -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug
     # every suite but the benchmarks-like ones again under ASan + UBSan
     # (fontconfig keeps a process-lifetime cache: suppressed in tests/render/lsan.supp)
