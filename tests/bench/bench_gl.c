@@ -99,7 +99,8 @@ static int bench_frame(void)
     if (sc->prepare(&st, &p, &err))
         return fprintf(stderr, "%s\n", err.msg), 1;
     double td = 0, tr = 0;
-    frame(&o, sc, st, 60, 120, 30, &td, &tr);   /* warm-up, solves this gamma */
+    for (int i = 0; i < 3; i++) /* warm-up: solves this gamma; llvmpipe compiles its shaders on first use */
+        frame(&o, sc, st, 60, 120, 30, &td, &tr);
     td = tr = 0;
     for (int i = 0; i < 10; i++)
         frame(&o, sc, st, 60, 120, 30, &td, &tr);
