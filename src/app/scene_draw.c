@@ -83,16 +83,9 @@ static hy_range range_of(const hy_scene *s, const char *key, const char *logkey)
     return rg;
 }
 
-typedef struct fig_store {
-    hy_series *series;
-    hy_mark *marks;
-    hy_text *texts;
-    char (*textbuf)[256];
-    hy_axes ax;
-    hy_figure fig;
-} fig_store;
+typedef hy_scene_fig fig_store;
 
-static void store_free(fig_store *st)
+void hy_scene_fig_free(hy_scene_fig *st)
 {
     free(st->series);
     free(st->marks);
@@ -100,7 +93,7 @@ static void store_free(fig_store *st)
     free(st->textbuf);
 }
 
-static int build_figure(const hy_scene_run *r, fig_store *st, hy_error *err)
+int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
 {
     const hy_scene *s = r->scene;
     size_t na = hy_scene_count(s, "annotation");
@@ -248,7 +241,7 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
         if (strcmp(fmts[i], "svg") && strcmp(fmts[i], "pdf") && strcmp(fmts[i], "png"))
             return hy_error_set(err, HY_EINVAL, "--format: unknown format '%s' (svg, pdf, png)", fmts[i]);
     fig_store st;
-    int rc = build_figure(r, &st, err);
+    int rc = hy_scene_run_figure(r, &st, err);
     if (!rc)
         rc = mkdir_p(dir, err);
     for (size_t i = 0; i < nf && !rc; i++) {
@@ -261,7 +254,7 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
             snprintf(written + len, written_size - len, "%s\n", path);
         }
     }
-    store_free(&st);
+    hy_scene_fig_free(&st);
     return rc;
 }
 
