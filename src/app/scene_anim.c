@@ -46,7 +46,7 @@ static int resolve_key(const hy_scene *s, scene_kf *k, const char *text, hy_erro
     hy_scene_kind kind = spec[si].keys[ki].kind;
     if (kind != HY_KIND_NUMBER && kind != HY_KIND_INTEGER)
         return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL,
-                                 "keyframe '%s': \"%s\" is a %s, not a number; only numeric keys can be animated", k->label,
+                                 "keyframe '%s': \"%s\" is not numeric (its kind: %s); only numbers and integers can be animated", k->label,
                                  text, hy_scene_kind_name(kind));
     k->integer = kind == HY_KIND_INTEGER;
     snprintf(k->target, sizeof k->target, "%s", text);
