@@ -206,6 +206,14 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
                                        sets[i], why ? why : "");
             }
         }
+        hy_scene_run r;
+        hy_error e3;
+        if (!rc && a->nkf && hy_scene_run_load(&r, a->path, sets, a->nkf, &e3))
+            rc = hy_scene_error_at(a->scene, "keyframe", a->kf[0].label, NULL, err, e3.code,
+                                   "at frame %ld (t = %g s) the keyframe values give an invalid scene: %s", f, t,
+                                   e3.msg);
+        else if (!rc && a->nkf)
+            hy_scene_run_free(&r);
     }
     hy_scene_free(s);
     return rc;

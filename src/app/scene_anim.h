@@ -72,9 +72,9 @@ double scene_anim_time(long index, long nframes, double duration);
  * buf and points sets[0..nkf) at them; returns 0, or -1 if buf is too small. */
 int scene_anim_sets(const scene_anim *a, double t, char *buf, size_t size, char **sets);
 
-/* Applies every frame's overrides to a copy of the scene and reports the
- * first that is refused (out of range) at its keyframe's values, as
- * file:line:col.  Call before rendering. */
+/* Checks every frame before rendering: applies its overrides to a copy of the
+ * scene (a refused value is reported at its keyframe's values, file:line:col)
+ * and builds its model and input (a refused combination: at the first keyframe). */
 int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_error *err);
 
 /* Frees the scene, the keyframes and the per-thread caches. */

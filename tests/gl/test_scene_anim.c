@@ -2,7 +2,8 @@
  * frame count and size, byte-identical frames for -j 1 and -j 2, first and
  * last frames equal to the still rendered through the same GL path with the
  * start and end values given as --set overrides, one run per distinct set of
- * values, keyframe errors with file:line:col (and no frames written), and
+ * values, keyframe errors with file:line:col (and no frames written; also a
+ * combination of values the model refuses at some frame), and
  * interpolation that hits the key values exactly at the key times. */
 #include "hy_config.h"
 
@@ -256,6 +257,7 @@ static void test_errors(void)
     bad("key = \"model.sigma0\"\ntimes = 0, 1, 1\nvalues = 1, 2, 3\n", "kf_bad.scene:15:1:", "ascending");
     bad("key = \"model.sigma0\"\ntimes = 0, 1\nvalues = 1, -1\n", "kf_bad.scene:16:1:", "at frame 2");
     bad("key = \"series.g.gamma\"\ntimes = 0, 1\nvalues = 0, 10\nlog = true\n", "kf_bad.scene:16:1:", "values > 0");
+    bad("key = \"input.umin2\"\ntimes = 0, 1\nvalues = 0.2, 1.2\n", "kf_bad.scene:13:1:", "u_min,2 < u_max,1");
     CHECK(run_cmd("animate", "no_such.scene", "--quiet", NULL) == 1, "a missing scene file");
 }
 
