@@ -221,15 +221,14 @@ static int animate_scene(anim_args *a)
         return scene_anim_free(&sa), r;
     int st = scene_anim_check(&sa, hy_anim_nframes(&a->p), a->p.duration, &err);
     hy_anim_stats stats;
-    sa.jobs = a->p.jobs > 0 ? a->p.jobs : 1;
     if (!st)
         st = hy_anim_run(&a->p, scene_anim_draw, &sa, &stats, &err);
     if (st)
         fprintf(stderr, "hystviz animate: %s\n", err.msg);
     else if (!a->p.quiet)
         fprintf(stderr, "%s: %ld frames %dx%d in %.2f s (%.1f frames/s, %d jobs) -> %s/%s/; %zu keyframes, "
-                "%ld runs computed, %ld from the cache\n", sa.name, stats.frames, a->p.width, a->p.height,
-                stats.seconds, stats.frames / (stats.seconds + 1e-9), sa.jobs, a->p.outdir, sa.name, sa.nkf,
+                "%ld runs computed, %ld frames reused one\n", sa.name, stats.frames, a->p.width, a->p.height,
+                stats.seconds, stats.frames / (stats.seconds + 1e-9), a->p.jobs > 0 ? a->p.jobs : 1, a->p.outdir, sa.name, sa.nkf,
                 sa.computes, sa.hits);
     scene_anim_free(&sa);
     return st == HY_EUNSUP ? 3 : st ? 1 : 0;

@@ -1,15 +1,15 @@
 /* scene_anim.c: scene-file animations: [keyframe NAME] tracks (linear or
  * smoothstep easing, optionally in log(value)) applied as overrides per frame,
- * the scene pipeline per frame with a per-thread run cache, GL drawing. */
+ * the scene pipeline once per distinct set of values (shared cache), GL drawing. */
 #include "scene_anim.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "scene_run.h"
 
-#define CACHE_RUNS 4          /* runs kept per thread (least recently used goes) */
 
 /* ---- keyframes ---- */
 
@@ -129,6 +129,7 @@ int scene_anim_load(scene_anim *a, const char *path, hy_error *err)
         tmp.scene = a->scene;
         hy_scene_run_name(&tmp, a->name, sizeof a->name);
         pthread_mutex_init(&a->mu, NULL);
+        pthread_cond_init(&a->cv, NULL);
         return HY_OK;
     }
     hy_scene_free(a->scene);
@@ -219,116 +220,124 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
     return rc;
 }
 
-/* ---- per-thread run cache ---- */
+/* ---- the shared run cache ---- */
 
-typedef struct cache_run {
-    char *key;                /* the joined overrides, NULL if unused */
+/* One distinct set of overrides: its run, computed by the first thread that
+ * needs it (others wait), then lent to one drawing thread at a time under
+ * `use`, and freed after its last frame. */
+struct scene_entry {
+    char *key;                /* the joined overrides */
+    uint64_t hash;
     hy_scene_run run;
-    unsigned long used;
-} cache_run;
-
-struct scene_cache {
-    const void *owner;        /* the thread's GL context */
-    cache_run runs[CACHE_RUNS];
-    unsigned long clock;
+    int state;                /* 0 computing, 1 ready, 2 failed */
+    hy_error err;             /* why it failed */
+    long uses_left;           /* frames still to draw with it */
+    pthread_mutex_t use;
 };
 
-static void cache_free(scene_cache *c)
+static void entry_free(scene_entry *e)
 {
-    for (int i = 0; i < CACHE_RUNS; i++)
-        if (c->runs[i].key) {
-            hy_scene_run_free(&c->runs[i].run);
-            free(c->runs[i].key);
-        }
+    if (e->state == 1)
+        hy_scene_run_free(&e->run);
+    pthread_mutex_destroy(&e->use);
+    free(e->key);
+    free(e);
 }
 
 void scene_anim_free(scene_anim *a)
 {
     if (!a->scene)
         return;
-    for (size_t i = 0; i < a->ncache; i++)
-        cache_free(&a->cache[i]);
-    free(a->cache);
+    for (size_t i = 0; i < a->nentries; i++)
+        entry_free(a->entries[i]);
+    free(a->entries);
+    free(a->frame_hash);
     free(a->kf);
     hy_scene_free(a->scene);
     pthread_mutex_destroy(&a->mu);
+    pthread_cond_destroy(&a->cv);
     memset(a, 0, sizeof *a);
 }
 
 #if HY_HAVE_OSMESA
 
-/* The cache of the thread drawing on gl (one slot per thread, made once). */
-static scene_cache *thread_cache(scene_anim *a, const void *gl, hy_error *err)
+/* 64-bit FNV-1a of a frame's override text. */
+static uint64_t fnv1a(const char *s)
 {
-    scene_cache *c = NULL;
-    pthread_mutex_lock(&a->mu);
-    if (!a->cache) {
-        size_t n = a->jobs > 0 ? (size_t)a->jobs : 1;
-        a->cache = calloc(n, sizeof *a->cache);
-        a->ncache = a->cache ? n : 0;
-    }
-    for (size_t i = 0; i < a->ncache && !c; i++)
-        if (a->cache[i].owner == gl || !a->cache[i].owner) {
-            a->cache[i].owner = gl;
-            c = &a->cache[i];
-        }
-    pthread_mutex_unlock(&a->mu);
-    if (!c)
-        hy_error_set(err, HY_EINVAL, "more drawing threads than scene_anim.jobs");
-    return c;
+    uint64_t h = 1469598103934665603ull;
+    for (; *s; s++)
+        h = (h ^ (unsigned char)*s) * 1099511628211ull;
+    return h;
 }
 
-/* The computed run for the overrides sets (joined in key), from c or new. */
-static const hy_scene_run *run_for(scene_anim *a, scene_cache *c, char **sets, const char *key, hy_error *err)
+/* The joined overrides of frame `index` of nframes into key (size bytes). */
+static int frame_key(const scene_anim *a, long index, long nframes, double duration, char *key, size_t size,
+                     char **sets, char *buf, size_t bufsize)
 {
-    cache_run *slot = &c->runs[0];
-    for (int i = 0; i < CACHE_RUNS; i++) {
-        cache_run *e = &c->runs[i];
-        if (e->key && !strcmp(e->key, key)) {
-            e->used = ++c->clock;
-            pthread_mutex_lock(&a->mu);
-            a->hits++;
-            pthread_mutex_unlock(&a->mu);
-            return &e->run;
-        }
-        if (!e->key || (slot->key && e->used < slot->used))
-            slot = e;
-    }
-    if (slot->key) {
-        hy_scene_run_free(&slot->run);
-        free(slot->key);
-        slot->key = NULL;
-    }
-    int rc = hy_scene_run_load(&slot->run, a->path, sets, a->nkf, err);
-    if (rc)
-        return NULL;
-    if ((rc = hy_scene_run_compute(&slot->run, NULL, err)) || !(slot->key = strdup(key))) {
-        if (!rc)
-            hy_error_set(err, HY_ENOMEM, "out of memory");
-        hy_scene_run_free(&slot->run);
-        return NULL;
-    }
-    slot->used = ++c->clock;
-    pthread_mutex_lock(&a->mu);
-    a->computes++;
-    pthread_mutex_unlock(&a->mu);
-    return &slot->run;
-}
-
-int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err)
-{
-    scene_anim *a = state;
-    char buf[4096], key[4096], *sets[64];
-    if (a->nkf > 64 || scene_anim_sets(a, scene_anim_time(f->index, f->nframes, f->duration), buf, sizeof buf, sets))
-        return hy_error_set(err, HY_EINVAL, "%s: too many keyframe overrides", a->path);
+    if (a->nkf > 64 || scene_anim_sets(a, scene_anim_time(index, nframes, duration), buf, bufsize, sets))
+        return -1;
     size_t o = 0;
     key[0] = '\0';
-    for (size_t i = 0; i < a->nkf && o < sizeof key; i++)
-        o += (size_t)snprintf(key + o, sizeof key - o, "%s;", sets[i]);
-    scene_cache *c = thread_cache(a, f->gl, err);
-    const hy_scene_run *r = c ? run_for(a, c, sets, key, err) : NULL;
-    if (!r)
-        return err->code ? err->code : HY_EINVAL;
+    for (size_t i = 0; i < a->nkf && o < size; i++)
+        o += (size_t)snprintf(key + o, size - o, "%s;", sets[i]);
+    return o < size ? 0 : -1;
+}
+
+/* With a->mu held: the hash of every frame's key, made once. */
+static int frame_hashes(scene_anim *a, long nframes, double duration)
+{
+    if (a->frame_hash)
+        return a->nhash == nframes ? 0 : -1;
+    a->frame_hash = malloc((size_t)nframes * sizeof *a->frame_hash);
+    if (!a->frame_hash)
+        return -1;
+    char buf[4096], key[4096], *sets[64];
+    for (long i = 0; i < nframes; i++) {
+        if (frame_key(a, i, nframes, duration, key, sizeof key, sets, buf, sizeof buf))
+            return free(a->frame_hash), a->frame_hash = NULL, -1;
+        a->frame_hash[i] = fnv1a(key);
+    }
+    a->nhash = nframes;
+    return 0;
+}
+
+/* With a->mu held: the entry of key, a new one (*fresh = 1) or NULL. */
+static scene_entry *entry_get(scene_anim *a, const char *key, uint64_t h, int *fresh)
+{
+    *fresh = 0;
+    for (size_t i = 0; i < a->nentries; i++)
+        if (a->entries[i]->hash == h && !strcmp(a->entries[i]->key, key))
+            return a->entries[i];
+    scene_entry **grown = realloc(a->entries, (a->nentries + 1) * sizeof *grown);
+    scene_entry *e = calloc(1, sizeof *e);
+    if (grown)
+        a->entries = grown;
+    if (!grown || !e || !(e->key = strdup(key)))
+        return free(e), NULL;
+    e->hash = h;
+    for (long i = 0; i < a->nhash; i++)
+        e->uses_left += a->frame_hash[i] == h;
+    pthread_mutex_init(&e->use, NULL);
+    a->entries[a->nentries++] = e;
+    *fresh = 1;
+    return e;
+}
+
+/* With a->mu held: one frame of e drawn; frees e after its last frame. */
+static void entry_done(scene_anim *a, scene_entry *e)
+{
+    if (--e->uses_left > 0)
+        return;
+    for (size_t i = 0; i < a->nentries; i++)
+        if (a->entries[i] == e) {
+            a->entries[i] = a->entries[--a->nentries];
+            break;
+        }
+    entry_free(e);
+}
+
+static int draw_run(const hy_scene_run *r, const hy_anim_frame *f, hy_error *err)
+{
     hy_scene_fig fig;
     int rc = hy_scene_run_figure(r, &fig, err);
     if (!rc) {
@@ -338,6 +347,48 @@ int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err)
         rc = hy_figure_draw_layers(&fig.fig, &f->data, &f->overlay, err);
     }
     hy_scene_fig_free(&fig);
+    return rc;
+}
+
+int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err)
+{
+    scene_anim *a = state;
+    char buf[4096], key[4096], *sets[64];
+    if (frame_key(a, f->index, f->nframes, f->duration, key, sizeof key, sets, buf, sizeof buf))
+        return hy_error_set(err, HY_EINVAL, "%s: too many keyframe overrides", a->path);
+    uint64_t h = fnv1a(key);
+    int fresh = 0;
+    pthread_mutex_lock(&a->mu);
+    scene_entry *e = frame_hashes(a, f->nframes, f->duration) ? NULL : entry_get(a, key, h, &fresh);
+    if (e && !fresh) {
+        while (e->state == 0)
+            pthread_cond_wait(&a->cv, &a->mu);
+        a->hits++;
+    }
+    pthread_mutex_unlock(&a->mu);
+    if (!e)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    if (fresh) {
+        int rc = hy_scene_run_load(&e->run, a->path, sets, a->nkf, &e->err);
+        if (!rc && (rc = hy_scene_run_compute(&e->run, NULL, &e->err)))
+            hy_scene_run_free(&e->run);
+        pthread_mutex_lock(&a->mu);
+        e->state = rc ? 2 : 1;
+        a->computes += !rc;
+        pthread_cond_broadcast(&a->cv);
+        pthread_mutex_unlock(&a->mu);
+    }
+    int rc;
+    if (e->state == 2)
+        rc = hy_error_set(err, e->err.code ? e->err.code : HY_EINVAL, "%s", e->err.msg);
+    else {
+        pthread_mutex_lock(&e->use);      /* one thread at a time draws from a run */
+        rc = draw_run(&e->run, f, err);
+        pthread_mutex_unlock(&e->use);
+    }
+    pthread_mutex_lock(&a->mu);
+    entry_done(a, e);
+    pthread_mutex_unlock(&a->mu);
     return rc;
 }
 

@@ -5,14 +5,15 @@
  * (every error names file:line:col), check every frame's overrides before a
  * frame is written, then hand scene_anim_draw to hy_anim_run.  Each frame
  * applies the interpolated keyframe values as overrides to a freshly parsed
- * scene and runs the normal pipeline (hy_scene_run_load/compute); runs are
- * cached per drawing thread by their override text, so frames that resolve to
- * the same values are computed once per thread (scenes never cross threads).
+ * scene and runs the normal pipeline (hy_scene_run_load/compute).  Frames
+ * that resolve to the same override text share one run, computed once by the
+ * first thread that needs it; a run is lent to one drawing thread at a time
+ * (under its own mutex, so no scene is used by two threads at once) and freed
+ * after its last frame.
  *
  *     scene_anim a;
  *     if (scene_anim_load(&a, "scenes/anim_gamma_sweep_ex3.scene", &err)) ...
  *     if (scene_anim_check(&a, nframes, &err)) ...
- *     a.jobs = p.jobs;
  *     hy_anim_run(&p, scene_anim_draw, &a, &stats, &err);   (OSMesa only)
  *     scene_anim_free(&a);
  */
@@ -21,6 +22,7 @@
 
 #include <pthread.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "hy_scene.h"
 #include "hy_status.h"
@@ -36,7 +38,7 @@ typedef struct scene_kf {
     int log;                  /* interpolate log(v)                           */
 } scene_kf;
 
-typedef struct scene_cache scene_cache;
+typedef struct scene_entry scene_entry;
 
 typedef struct scene_anim {
     const char *path;
@@ -47,11 +49,13 @@ typedef struct scene_anim {
     int fps_set, quality_set; /* whether the scene set them                   */
     const char *quality;
     char name[256];           /* output base name                             */
-    int jobs;                 /* drawing threads (cache slots); set before run */
-    pthread_mutex_t mu;
-    scene_cache *cache;       /* one per thread, created on first draw        */
-    size_t ncache;
-    long computes, hits;      /* runs computed / frames served from a cache   */
+    pthread_mutex_t mu;       /* guards everything below                     */
+    pthread_cond_t cv;        /* a run finished computing                     */
+    scene_entry **entries;    /* runs in use, one per distinct override text  */
+    size_t nentries;
+    uint64_t *frame_hash;     /* per frame: hash of its override text         */
+    long nhash;
+    long computes, hits;      /* runs computed / frames that reused a run     */
 } scene_anim;
 
 /* Parses the scene at path, reads [animation] and every [keyframe NAME] and
@@ -77,14 +81,14 @@ int scene_anim_sets(const scene_anim *a, double t, char *buf, size_t size, char 
  * and builds its model and input (a refused combination: at the first keyframe). */
 int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_error *err);
 
-/* Frees the scene, the keyframes and the per-thread caches. */
+/* Frees the scene, the keyframes and the cached runs. */
 void scene_anim_free(scene_anim *a);
 
 #include "hy_config.h"
 #if HY_HAVE_OSMESA
 #include "hy_anim.h"
-/* hy_anim_draw_fn: computes (or takes from this thread's cache) the run of
- * frame f's overrides and draws its figure on f->data and f->overlay. */
+/* hy_anim_draw_fn: computes (or waits for, or reuses) the run of frame f's
+ * overrides and draws its figure on f->data and f->overlay. */
 int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err);
 #endif
 

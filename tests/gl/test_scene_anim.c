@@ -193,7 +193,6 @@ static void test_cache(void)
     hy_anim_params p = hy_anim_defaults();
     p.outdir = "out_cache", p.name = "kf", p.width = 160, p.height = 90, p.fps = 10, p.duration = 1;
     p.quiet = 1, p.jobs = 1;
-    a.jobs = 1;
     /* distinct override sets over the 10 frames */
     char seen[10][512], buf[512], *sets[2];
     long distinct = 0;
@@ -217,11 +216,17 @@ static void test_cache(void)
                                 "[keyframe g]\nkey = \"series.g.gamma\"\ntimes = 0, 0.3, 0.7, 1\n"
                                 "values = 1, 1, 100, 100\nlog = true\n");
     CHECK(scene_anim_load(&a, "kf_hold.scene", &err) == 0, "load: %s", err.msg);
-    a.jobs = 1;
     p.name = "kf_hold";
     CHECK(hy_anim_run(&p, scene_anim_draw, &a, NULL, &err) == 0, "run: %s", err.msg);
     /* frames at t = 0, 1/9, 2/9 hold γ = 1, 7/9, 8/9, 1 hold γ = 100: 10 - 2 - 2 distinct */
     CHECK(a.computes == 6 && a.hits == 4, "held γ: %ld solves, %ld hits (want 6, 4)", a.computes, a.hits);
+    CHECK(a.nentries == 0, "every run freed after its last frame (%zu left)", a.nentries);
+    scene_anim_free(&a);
+    /* the same with 2 threads: still one solve per distinct γ */
+    CHECK(scene_anim_load(&a, "kf_hold.scene", &err) == 0, "load: %s", err.msg);
+    p.name = "kf_hold2", p.jobs = 2;
+    CHECK(hy_anim_run(&p, scene_anim_draw, &a, NULL, &err) == 0, "run: %s", err.msg);
+    CHECK(a.computes == 6 && a.hits == 4, "held γ, -j 2: %ld solves, %ld hits (want 6, 4)", a.computes, a.hits);
     scene_anim_free(&a);
 }
 
