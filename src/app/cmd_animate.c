@@ -13,23 +13,27 @@
 
 #if HY_HAVE_OSMESA
 #include "anim_scenes.h"
+#include "scene_anim.h"
 
 #endif
 
 static const char animate_help[] =
-    "usage: hystviz animate NAME [-o DIR] [--quality Q] [--size WxH] [--fps F] [--duration S]\n"
+    "usage: hystviz animate NAME|SCENE.scene [-o DIR] [--quality Q] [--size WxH] [--fps F] [--duration S]\n"
     "                            [--frames A:B] [-j N] [--quiet] [--video mp4|webm|gif]\n"
     "       hystviz animate --list\n"
     "\n"
     "Renders animation NAME as PNG frames DIR/NAME/frame_00000.png ... (OpenGL through\n"
     "OSMesa for the data, cairo for text and axes) and a poster DIR/NAME.png (the last frame).\n"
+    "A path ending in .scene animates that scene: its [keyframe NAME] sections set numeric\n"
+    "keys per frame, its [animation] section gives duration, fps, easing and quality (the\n"
+    "options below beat it); NAME is then the scene's output name (docs/SCENES.md).\n"
     "\n"
     "  -o, --output DIR   output directory (default: frames)\n"
     "  --quality Q        480p15 (854x480@15), 480p30, 720p30 (default), 720p60, 1080p30,\n"
     "                     1080p60, 1440p60, 2160p60\n"
     "  --size WxH         frame size in pixels (overrides the preset's)\n"
     "  --fps F            frames per second (overrides the preset's)\n"
-    "  --duration S       seconds (default: the animation's, 6)\n"
+    "  --duration S       seconds (default: the animation's, 6, or the scene's)\n"
     "  --frames A:B       render only frames A .. B-1 (B may be empty: to the end)\n"
     "  -j, --jobs N       threads, each with its own GL context (frames are identical for any N)\n"
     "  --quiet            no progress bar (it is shown only when stderr is a terminal)\n"
@@ -44,7 +48,7 @@ static const char animate_help[] =
 typedef struct anim_args {
     hy_anim_params p;
     const char *name, *quality;
-    int w, h, have_size, have_fps, have_duration, list;
+    int w, h, have_size, have_fps, have_duration, have_quality, list;
     double fps, duration;
 } anim_args;
 
@@ -98,7 +102,7 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
     if (!strcmp(s, "-o") || !strcmp(s, "--output"))
         a->p.outdir = v;
     else if (!strcmp(s, "--quality"))
-        a->quality = v;
+        a->quality = v, a->have_quality = 1;
     else if (!strcmp(s, "--video"))
         a->p.video = v;
     else if (!strcmp(s, "--size")) {
@@ -171,6 +175,65 @@ static int settle(anim_args *a, const anim_scene *sc)
     return 0;
 }
 
+/* Options beat the scene's [animation] values; the frame range must fit. */
+static int settle_scene(anim_args *a, const scene_anim *sa)
+{
+    hy_error err;
+    double fps;
+    const char *q = a->have_quality ? a->quality : sa->quality;
+    if (hy_anim_quality(q, &a->p.width, &a->p.height, &fps, &err)) {
+        fprintf(stderr, "hystviz animate: %s\n", err.msg);
+        return 2;
+    }
+    /* --fps, else --quality's rate, else [animation] fps, else its quality's rate */
+    a->p.fps = a->have_fps ? a->fps : a->have_quality ? fps : sa->fps_set || !sa->quality_set ? sa->fps : fps;
+    if (a->have_size)
+        a->p.width = a->w, a->p.height = a->h;
+    a->p.duration = a->have_duration ? a->duration : sa->duration;
+    a->p.name = sa->name;
+    long nf = hy_anim_nframes(&a->p);
+    if (a->p.first >= nf || a->p.last > nf) {
+        fprintf(stderr, "hystviz animate: --frames %ld:%ld is outside the %ld frames of %s (0:%ld)\n",
+                a->p.first, a->p.last, nf, sa->name, nf);
+        return 2;
+    }
+    return 0;
+}
+
+static int ends_with(const char *s, const char *tail)
+{
+    size_t n = strlen(s), m = strlen(tail);
+    return n > m && !strcmp(s + n - m, tail);
+}
+
+/* `hystviz animate SCENE.scene ...`: validate every frame, then render. */
+static int animate_scene(anim_args *a)
+{
+    hy_error err;
+    scene_anim sa;
+    gsl_set_error_handler_off();
+    if (scene_anim_load(&sa, a->name, &err)) {
+        fprintf(stderr, "hystviz animate: %s\n", err.msg);
+        return 1;
+    }
+    int r = settle_scene(a, &sa);
+    if (r)
+        return scene_anim_free(&sa), r;
+    int st = scene_anim_check(&sa, hy_anim_nframes(&a->p), a->p.duration, &err);
+    hy_anim_stats stats;
+    if (!st)
+        st = hy_anim_run(&a->p, scene_anim_draw, &sa, &stats, &err);
+    if (st)
+        fprintf(stderr, "hystviz animate: %s\n", err.msg);
+    else if (!a->p.quiet)
+        fprintf(stderr, "%s: %ld frames %dx%d in %.2f s (%.1f frames/s, %d jobs) -> %s/%s/; %zu keyframes, "
+                "%ld runs computed, %ld frames reused one\n", sa.name, stats.frames, a->p.width, a->p.height,
+                stats.seconds, stats.frames / (stats.seconds + 1e-9), a->p.jobs > 0 ? a->p.jobs : 1, a->p.outdir, sa.name, sa.nkf,
+                sa.computes, sa.hits);
+    scene_anim_free(&sa);
+    return st == HY_EUNSUP ? 3 : st ? 1 : 0;
+}
+
 static int animate(int argc, char **argv)
 {
     anim_args a;
@@ -179,6 +242,8 @@ static int animate(int argc, char **argv)
         return r == 1 ? 0 : 2;
     if (a.list)
         return list_scenes(), 0;
+    if (a.name && ends_with(a.name, ".scene"))
+        return animate_scene(&a);
     const anim_scene *sc = anim_scene_find(a.name);
     if (!sc) {
         fprintf(stderr, "hystviz animate: %s%s%s (hystviz animate --list shows them)\n",

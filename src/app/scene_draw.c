@@ -28,7 +28,8 @@ void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size)
 }
 
 /* Replaces {major.area}, {energy}, {minorN.area}, {minorN.own}, {minorN.ystart},
- * {minorN.yclose}, {nminor} in text by their values (%.4g). */
+ * {minorN.yclose}, {nminor}, and for a ygamma/transient series NAME {NAME.gamma},
+ * and {NAME.dist} (max |y_γ - y*_u| over its points) in text by their values (%.4g). */
 static int expand(const hy_scene_run *r, const char *name, const char *text, char *out, size_t size, hy_error *err)
 {
     size_t o = 0;
@@ -45,6 +46,7 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
         double v = NAN;
         unsigned idx;
         char field[16];
+        const char *dot;
         const hy_loops *L = &r->loops;
         if (!strcmp(key, "major.area") || !strcmp(key, "energy"))
             v = L->area_period;
@@ -56,10 +58,18 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
             const hy_loop *m = &L->minor[idx - 1];
             v = !strcmp(field, "area") ? m->area : !strcmp(field, "own") ? m->own_area : !strcmp(field, "ystart") ? m->y_start
                 : !strcmp(field, "yclose") ? m->y_close : NAN;
+        } else if ((dot = strrchr(key, '.')) != NULL) { /* SERIES.gamma, SERIES.dist */
+            for (size_t i = 0; i < r->nseries; i++) {
+                const hy_run_series *se = &r->series[i];
+                if (strlen(se->name) != (size_t)(dot - key) || strncmp(se->name, key, (size_t)(dot - key)))
+                    continue;
+                int yg = se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT;
+                v = !yg ? NAN : !strcmp(dot + 1, "gamma") ? se->gamma : !strcmp(dot + 1, "dist") ? se->dist : NAN;
+            }
         }
         if (isnan(v))
             return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
-                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.own, minorN.ystart, minorN.yclose; this input has %zu minor loops)",
+                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.own, minorN.ystart, minorN.yclose; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series)",
                                      key, L->nminor);
         int w = snprintf(out + o, size - o, "%.4g", v);
         o += (size_t)(w > 0 ? w : 0);
@@ -83,16 +93,9 @@ static hy_range range_of(const hy_scene *s, const char *key, const char *logkey)
     return rg;
 }
 
-typedef struct fig_store {
-    hy_series *series;
-    hy_mark *marks;
-    hy_text *texts;
-    char (*textbuf)[256];
-    hy_axes ax;
-    hy_figure fig;
-} fig_store;
+typedef hy_scene_fig fig_store;
 
-static void store_free(fig_store *st)
+void hy_scene_fig_free(hy_scene_fig *st)
 {
     free(st->series);
     free(st->marks);
@@ -100,7 +103,7 @@ static void store_free(fig_store *st)
     free(st->textbuf);
 }
 
-static int build_figure(const hy_scene_run *r, fig_store *st, hy_error *err)
+int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
 {
     const hy_scene *s = r->scene;
     size_t na = hy_scene_count(s, "annotation");
@@ -248,7 +251,7 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
         if (strcmp(fmts[i], "svg") && strcmp(fmts[i], "pdf") && strcmp(fmts[i], "png"))
             return hy_error_set(err, HY_EINVAL, "--format: unknown format '%s' (svg, pdf, png)", fmts[i]);
     fig_store st;
-    int rc = build_figure(r, &st, err);
+    int rc = hy_scene_run_figure(r, &st, err);
     if (!rc)
         rc = mkdir_p(dir, err);
     for (size_t i = 0; i < nf && !rc; i++) {
@@ -261,7 +264,7 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
             snprintf(written + len, written_size - len, "%s\n", path);
         }
     }
-    store_free(&st);
+    hy_scene_fig_free(&st);
     return rc;
 }
 

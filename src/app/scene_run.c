@@ -479,6 +479,18 @@ static int loop_intervals(const hy_scene_run *r, int major, double *a, double *b
     return (int)n;
 }
 
+/* max |y_γ(t) - y*_u(t)| over the plan's points i0 .. i1-1 (the {NAME.dist}
+ * placeholder), or NaN when the limit was not computed */
+static double distance_to_limit(const hy_scene_run *r, const plan *p, const gamma_solve *g, size_t i0, size_t i1)
+{
+    if (!r->have_steady)
+        return NAN;
+    double d = 0;
+    for (size_t i = i0; i < i1; i++)
+        d = fmax(d, fabs(g->y[i] - hy_ystar_at(&r->steady, r->model.x0, p->t[i])));
+    return d;
+}
+
 static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error *err)
 {
     const hy_scene *s = r->scene;
@@ -488,6 +500,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     int rc = HY_OK;
     se->err = NAN;
     se->err_ref = NULL;
+    se->dist = NAN;
     if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
         double a[64], b[64];
         int k = loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64);
@@ -552,6 +565,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         }
         se->err = g->err;
         se->err_ref = g->ref;
+        se->dist = distance_to_limit(r, p, g, i0, i1);
     } else if (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) {
         gamma_solve *g = find_solve(p, se->gamma);
         if ((rc = alloc_series(se, p->npts, err)))
@@ -560,6 +574,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         memcpy(se->y, g->y, p->npts * sizeof *se->y);
         se->err = g->err;
         se->err_ref = g->ref;
+        se->dist = distance_to_limit(r, p, g, 0, p->npts);
     } else { /* input, ystar over the time span */
         if ((rc = alloc_series(se, p->npts, err)))
             return rc;

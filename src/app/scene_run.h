@@ -21,6 +21,7 @@
 #include "hy_limit.h"
 #include "hy_loops.h"
 #include "hy_model.h"
+#include "hy_plot.h"
 #include "hy_scene.h"
 
 enum { HY_DATA_INPUT, HY_DATA_PSI, HY_DATA_G, HY_DATA_YSTAR, HY_DATA_YSTEADY, HY_DATA_YGAMMA,
@@ -34,6 +35,8 @@ typedef struct hy_run_series {
     double *x, *y;            /* n points (NaN separates pieces)                  */
     size_t n;
     double err;               /* max error against the exact answer, or NaN       */
+    double dist;              /* ygamma/transient: max |y_γ - y*_u| over the series'
+                               * points when the limit is computed, else NaN       */
     const char *err_ref;      /* what err was measured against                    */
     double seconds;           /* compute time                                     */
     int has_mark;             /* a marker at 'at'                                 */
@@ -78,5 +81,24 @@ int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err);
 void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size);
 
 void hy_scene_run_free(hy_scene_run *r);
+
+/* The figure of a computed run and the arrays it points into; fig points
+ * into this struct and into r's series, so both must outlive it. */
+typedef struct hy_scene_fig {
+    hy_series *series;
+    hy_mark *marks;
+    hy_text *texts;
+    char (*textbuf)[256];
+    hy_axes ax;
+    hy_figure fig;
+} hy_scene_fig;
+
+/* Builds the scene's figure (styles, markers, labels, annotations with their
+ * placeholders expanded, size and fonts) into *st.  On error (a bad
+ * placeholder, out of memory) returns a status; call hy_scene_fig_free anyway. */
+int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err);
+
+/* Frees what hy_scene_run_figure allocated (not r's series). */
+void hy_scene_fig_free(hy_scene_fig *st);
 
 #endif

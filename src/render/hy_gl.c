@@ -6,11 +6,21 @@
 #include <GL/osmesa.h>
 #include <GL/glext.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "hy_shaders.h"
+
+/* One OpenGL call sequence at a time in the whole process.  Each thread has
+ * its own context, which OpenGL allows, but Mesa 22.3's llvmpipe under OSMesa
+ * crashed (SIGSEGV inside glReadPixels of one context while another context
+ * drew, about 1 run in 10 of the -j 2 ribbon test on a loaded machine; see
+ * tests/gl/test_anim.c).  Only the GL part of a frame is serialised: the
+ * caller's cairo overlay, compositing and PNG encoding still run in parallel,
+ * and llvmpipe rasterises each frame with its own threads. */
+static pthread_mutex_t gl_mu = PTHREAD_MUTEX_INITIALIZER;
 
 #define MAX_EFFECTS 8
 #define MAX_CLIP 8
@@ -213,7 +223,9 @@ static void setup_buffers(hy_gl *g)
 
 /* ---- context ---- */
 
-int hy_gl_create(hy_gl **out, int width, int height, hy_error *err)
+static void gl_free_unlocked(hy_gl *g);
+
+static int gl_create_unlocked(hy_gl **out, int width, int height, hy_error *err)
 {
     if (width < 16 || height < 16 || width > 8192 || height > 8192)
         return hy_error_set(err, HY_EINVAL, "frame size %d x %d is outside 16..8192 pixels", width, height);
@@ -228,17 +240,17 @@ int hy_gl_create(hy_gl **out, int width, int height, hy_error *err)
                            OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
     g->ctx = OSMesaCreateContextAttribs(attribs, NULL);
     if (!g->ctx) {
-        hy_gl_free(g);
+        gl_free_unlocked(g);
         return hy_error_set(err, HY_EUNSUP, "OSMesa could not create an OpenGL 3.3 core-profile context");
     }
     if (!OSMesaMakeCurrent(g->ctx, g->fb, GL_UNSIGNED_BYTE, width, height)) {
-        hy_gl_free(g);
+        gl_free_unlocked(g);
         return hy_error_set(err, HY_EUNSUP, "OSMesa could not make a %d x %d context current", width, height);
     }
     snprintf(g->desc, sizeof g->desc, "%s / %s", (const char *)glGetString(GL_VERSION),
              (const char *)glGetString(GL_RENDERER));
     if (build_programs(g, err)) {
-        hy_gl_free(g);
+        gl_free_unlocked(g);
         return HY_ENUM;
     }
     setup_buffers(g);
@@ -247,7 +259,15 @@ int hy_gl_create(hy_gl **out, int width, int height, hy_error *err)
     return HY_OK;
 }
 
-void hy_gl_free(hy_gl *g)
+int hy_gl_create(hy_gl **out, int width, int height, hy_error *err)
+{
+    pthread_mutex_lock(&gl_mu);
+    int rc = gl_create_unlocked(out, width, height, err);
+    pthread_mutex_unlock(&gl_mu);
+    return rc;
+}
+
+static void gl_free_unlocked(hy_gl *g)
 {
     if (!g)
         return;
@@ -261,9 +281,16 @@ void hy_gl_free(hy_gl *g)
     free(g);
 }
 
+void hy_gl_free(hy_gl *g)
+{
+    pthread_mutex_lock(&gl_mu);
+    gl_free_unlocked(g);
+    pthread_mutex_unlock(&gl_mu);
+}
+
 const char *hy_gl_describe(const hy_gl *g) { return g->desc; }
 
-void hy_gl_begin(hy_gl *g, hy_rgb c)
+static void gl_begin_unlocked(hy_gl *g, hy_rgb c)
 {
     g->neffects = 0;
     g->nclip = 0;
@@ -277,6 +304,13 @@ void hy_gl_begin(hy_gl *g, hy_rgb c)
     glClearColor((float)c.r, (float)c.g, (float)c.b, 1.0f);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void hy_gl_begin(hy_gl *g, hy_rgb c)
+{
+    pthread_mutex_lock(&gl_mu);
+    gl_begin_unlocked(g, c);
+    pthread_mutex_unlock(&gl_mu);
 }
 
 int hy_gl_set_effect(hy_gl *g, const hy_gl_effect *e, hy_error *err)
@@ -886,7 +920,7 @@ static void ribbon_pass(hy_gl *g, const hy_gl_ribbon *r, const double *vp)
     glUniform3f(g->u_light, 0.4f, 0.8f, 0.6f);
 }
 
-int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
+static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
 {
     if (!r->pts || r->nloops < 2 || r->npts < 2 || (size_t)r->nloops * (size_t)r->npts > 4000000)
         return hy_error_set(err, HY_EINVAL, "a ribbon needs 2+ loops of 2+ points (got %d x %d)",
@@ -918,7 +952,15 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
     return HY_OK;
 }
 
-int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err)
+int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
+{
+    pthread_mutex_lock(&gl_mu);
+    int rc = gl_draw_ribbon_unlocked(g, r, err);
+    pthread_mutex_unlock(&gl_mu);
+    return rc;
+}
+
+static int gl_read_unlocked(hy_gl *g, unsigned char *rgba, hy_error *err)
 {
     submit(g);
     leave_msaa(g);
@@ -928,4 +970,12 @@ int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err)
     if (e != GL_NO_ERROR)
         return hy_error_set(err, HY_ENUM, "OpenGL error 0x%04x while drawing or reading the frame", e);
     return HY_OK;
+}
+
+int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err)
+{
+    pthread_mutex_lock(&gl_mu);
+    int rc = gl_read_unlocked(g, rgba, err);
+    pthread_mutex_unlock(&gl_mu);
+    return rc;
 }

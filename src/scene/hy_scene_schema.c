@@ -190,6 +190,19 @@ static const hy_scene_key_spec animation_keys[] = {
     K("quality", HY_KIND_ENUM, qualities, NOLIM, 0, 0, "720p30", "frame size and rate preset"),
 };
 
+static const hy_scene_key_spec keyframe_keys[] = {
+    K("key", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
+      "the numeric scene key animated, written as for --set: \"model.sigma0\", \"input.umin2\", \"series.g.gamma\""),
+    K("times", HY_KIND_NUMBER_LIST, NULL, NONNEG, 1, 0, NULL,
+      "times of the keys in seconds, strictly ascending"),
+    K("values", HY_KIND_NUMBER_LIST, NULL, NOLIM, 1, 0, NULL,
+      "the key's value at each time (as many as times); held before the first and after the last"),
+    K("easing", HY_KIND_ENUM, easings, NOLIM, 0, 0, NULL,
+      "how the value moves between two keys (default: the [animation] easing)"),
+    K("log", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false",
+      "interpolate log(value) (values > 0), e.g. for a time scale gamma"),
+};
+
 #define S(name, named, rep, keys, doc) { name, named, rep, keys, NKEYS(keys), doc }
 
 static const hy_scene_section_spec sections[] = {
@@ -201,6 +214,7 @@ static const hy_scene_section_spec sections[] = {
     S("annotation", 1, 1, annotation_keys, "one text label per section"),
     S("output", 0, 0, output_keys, "where the figure is written"),
     S("animation", 0, 0, animation_keys, "frame timing of an animation"),
+    S("keyframe", 1, 1, keyframe_keys, "one animated numeric key per section (hystviz animate SCENE.scene)"),
 };
 
 const hy_scene_section_spec *hy_scene_schema(size_t *n)

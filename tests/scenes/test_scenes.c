@@ -298,6 +298,46 @@ static void data_fig11(void)
     hy_scene_run_free(&r);
 }
 
+/* {g.gamma} and {g.dist} of the γ-sweep scene: the text carries the keyed γ,
+ * and the distance to y*_u falls like 1/γ (Theorem 2; the core's convergence
+ * test checks the rate, here the factor per decade is only required to lie in
+ * [5, 20], loose enough for the O(1/γ²) terms at γ = 10) */
+static void dist_placeholder(void)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/scenes/anim_gamma_sweep_ex3.scene", SRC);
+    double prev = NAN;
+    const double gammas[] = {10, 100, 1000, 10000};
+    for (size_t k = 0; k < 4; k++) {
+        char set[64];
+        snprintf(set, sizeof set, "series.g.gamma=%g", gammas[k]);
+        char *sets[] = {set};
+        hy_scene_run r;
+        if (run_scene(path, sets, 1, NULL, NULL, &r))
+            return;
+        hy_scene_fig st;
+        hy_error err;
+        int rc = hy_scene_run_figure(&r, &st, &err);
+        CHECK(rc == 0, "figure: %s", rc ? err.msg : "");
+        double g = NAN, d = NAN;
+        const char *t = rc ? NULL : st.texts[0].text;
+        const char *eq = t ? strstr(t, "= ") : NULL;
+        const char *eq2 = eq ? strstr(eq + 2, "= ") : NULL;
+        if (eq && eq2) {
+            g = strtod(eq + 2, NULL);
+            d = strtod(eq2 + 2, NULL);
+        }
+        CHECK(g == gammas[k], "caption gamma %g, want %g (text '%s')", g, gammas[k], t ? t : "");
+        CHECK(d > 0 && d < 1, "caption distance %g at gamma %g", d, gammas[k]);
+        if (k)
+            CHECK(prev / d > 5 && prev / d < 20, "distance per decade of gamma fell by %g (%g -> %g)", prev / d, prev, d);
+        printf("anim_gamma_sweep_ex3: gamma %g, max|y_gamma - y*| = %g\n", gammas[k], d);
+        prev = d;
+        hy_scene_fig_free(&st);
+        hy_scene_run_free(&r);
+    }
+}
+
 static void scene_error(const char *text, const char *want)
 {
     char path[1200];
@@ -326,6 +366,8 @@ static void errors(void)
     scene_error("[model]\nkind = lugre\nfs = 2\nsigma0 = 1e-400\n", "bad.scene:4:");
     scene_error("[figure]\nkind = loop\n[series a]\ndata = ysteady\n[annotation t]\ntext = \"{minor7.area}\"\nx = 0\ny = 0\n",
                 "bad.scene:6:1: unknown placeholder {minor7.area}");
+    scene_error("[figure]\nkind = loop\n[series a]\ndata = ysteady\n[annotation t]\ntext = \"{a.dist}\"\nx = 0\ny = 0\n",
+                "bad.scene:6:1: unknown placeholder {a.dist}");
     scene_error("[input]\nkind = multimodal\nextrema = 0, 1, 0.5\n[series a]\ndata = input\n", "even number");
 }
 
@@ -343,6 +385,7 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < 4; i++)
         compare_reference(refs[i]);
     plans();
+    dist_placeholder();
     data_fig15();
     data_fig11();
     errors();

@@ -1,0 +1,395 @@
+/* scene_anim.c: scene-file animations: [keyframe NAME] tracks (linear or
+ * smoothstep easing, optionally in log(value)) applied as overrides per frame,
+ * the scene pipeline once per distinct set of values (shared cache), GL drawing. */
+#include "scene_anim.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_run.h"
+
+
+/* ---- keyframes ---- */
+
+/* Splits "section.key" / "section.NAME.key" and checks it against the schema
+ * and the scene; fills k->target and k->integer. */
+static int resolve_key(const hy_scene *s, scene_kf *k, const char *text, hy_error *err)
+{
+    const char *d1 = strchr(text, '.'), *d2 = strrchr(text, '.');
+    char sec[64] = "", name[96] = "", key[64] = "";
+    if (!d1 || d1 == text || !d2[1] || (size_t)(d1 - text) >= sizeof sec || strlen(d2 + 1) >= sizeof key)
+        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL,
+                                 "keyframe '%s': key \"%s\" is not section.key or section.NAME.key", k->label, text);
+    memcpy(sec, text, (size_t)(d1 - text));
+    strcpy(key, d2 + 1);
+    if (d2 > d1) {
+        if ((size_t)(d2 - d1 - 1) >= sizeof name)
+            return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL, "keyframe '%s': name too long", k->label);
+        memcpy(name, d1 + 1, (size_t)(d2 - d1 - 1));
+    }
+    int si = hy_scene_schema_section(sec), ki = hy_scene_schema_key(si, key);
+    size_t nsec;
+    const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
+    if (si < 0 || ki < 0 || !strcmp(sec, "keyframe") || !strcmp(sec, "animation"))
+        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL,
+                                 "keyframe '%s': unknown key \"%s\" (write it as for --set: model.sigma0, series.NAME.gamma)",
+                                 k->label, text);
+    if (spec[si].takes_name != (name[0] != '\0'))
+        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL, "keyframe '%s': [%s] sections %s a name (\"%s\")",
+                                 k->label, sec, spec[si].takes_name ? "need" : "take no", text);
+    hy_scene_loc loc;
+    if (name[0] && !hy_scene_get_loc(s, sec, name, NULL, &loc))
+        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL,
+                                 "keyframe '%s': the scene has no [%s %s]", k->label, sec, name);
+    hy_scene_kind kind = spec[si].keys[ki].kind;
+    if (kind != HY_KIND_NUMBER && kind != HY_KIND_INTEGER)
+        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL,
+                                 "keyframe '%s': \"%s\" is not numeric (its kind: %s); only numbers and integers can be animated", k->label,
+                                 text, hy_scene_kind_name(kind));
+    k->integer = kind == HY_KIND_INTEGER;
+    snprintf(k->target, sizeof k->target, "%s", text);
+    return HY_OK;
+}
+
+/* Reads and validates one [keyframe NAME]; ease0 is the [animation] easing. */
+static int load_kf(const hy_scene *s, scene_kf *k, int ease0, hy_error *err)
+{
+    const char *text, *lb = k->label;
+    size_t nv;
+    if (hy_scene_get_str(s, "keyframe", lb, "key", &text) < 0)
+        return hy_scene_error_at(s, "keyframe", lb, NULL, err, HY_EINVAL, "keyframe '%s' needs a key", lb);
+    int rc = resolve_key(s, k, text, err);
+    if (rc)
+        return rc;
+    if (hy_scene_get_list(s, "keyframe", lb, "times", &k->t, &k->n) < 0 ||
+        hy_scene_get_list(s, "keyframe", lb, "values", &k->v, &nv) < 0)
+        return hy_scene_error_at(s, "keyframe", lb, NULL, err, HY_EINVAL, "keyframe '%s' needs times and values", lb);
+    if (nv != k->n)
+        return hy_scene_error_at(s, "keyframe", lb, "values", err, HY_EINVAL,
+                                 "keyframe '%s': %zu values for %zu times (they must be as many)", lb, nv, k->n);
+    for (size_t i = 1; i < k->n; i++)
+        if (!(k->t[i] > k->t[i - 1]))
+            return hy_scene_error_at(s, "keyframe", lb, "times", err, HY_EINVAL,
+                                     "keyframe '%s': times must be strictly ascending (%g after %g)", lb, k->t[i], k->t[i - 1]);
+    k->ease = ease0;
+    const char *et;
+    hy_scene_get_enum(s, "keyframe", lb, "easing", &k->ease, &et);
+    hy_scene_get_bool(s, "keyframe", lb, "log", &k->log);
+    for (size_t i = 0; k->log && i < k->n; i++)
+        if (!(k->v[i] > 0))
+            return hy_scene_error_at(s, "keyframe", lb, "values", err, HY_EINVAL,
+                                     "keyframe '%s': log = true needs values > 0 (value %zu is %g)", lb, i + 1, k->v[i]);
+    return HY_OK;
+}
+
+static void read_timing(scene_anim *a)
+{
+    const hy_scene *s = a->scene;
+    long fps = 30;
+    a->duration = 5;
+    hy_scene_get_num(s, "animation", NULL, "duration", &a->duration);
+    a->fps_set = hy_scene_get_int(s, "animation", NULL, "fps", &fps) == HY_SCENE_SET;
+    a->fps = (double)fps;
+    a->quality = "720p30";
+    a->quality_set = hy_scene_get_enum(s, "animation", NULL, "quality", NULL, &a->quality) == HY_SCENE_SET;
+}
+
+int scene_anim_load(scene_anim *a, const char *path, hy_error *err)
+{
+    memset(a, 0, sizeof *a);
+    a->path = path;
+    int rc = hy_scene_parse_file(path, &a->scene, err);
+    if (rc)
+        return rc;
+    read_timing(a);
+    int ease0 = 1;
+    const char *et;
+    hy_scene_get_enum(a->scene, "animation", NULL, "easing", &ease0, &et);
+    a->nkf = hy_scene_count(a->scene, "keyframe");
+    a->kf = calloc(a->nkf + 1, sizeof *a->kf);
+    if (!a->kf)
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t i = 0; !rc && i < a->nkf; i++) {
+        a->kf[i].label = hy_scene_name_at(a->scene, "keyframe", i);
+        rc = load_kf(a->scene, &a->kf[i], ease0, err);
+    }
+    for (size_t i = 0; !rc && i < a->nkf; i++)
+        for (size_t j = 0; j < i; j++)
+            if (!strcmp(a->kf[i].target, a->kf[j].target)) {
+                rc = hy_scene_error_at(a->scene, "keyframe", a->kf[i].label, "key", err, HY_EINVAL,
+                                       "keyframe '%s' animates %s, as keyframe '%s' does", a->kf[i].label, a->kf[i].target,
+                                       a->kf[j].label);
+                break;
+            }
+    if (!rc) {
+        hy_scene_run tmp = {0};
+        tmp.path = path;
+        tmp.scene = a->scene;
+        hy_scene_run_name(&tmp, a->name, sizeof a->name);
+        pthread_mutex_init(&a->mu, NULL);
+        pthread_cond_init(&a->cv, NULL);
+        return HY_OK;
+    }
+    hy_scene_free(a->scene);
+    free(a->kf);
+    memset(a, 0, sizeof *a);
+    return rc;
+}
+
+double scene_kf_eval(const scene_kf *k, double t)
+{
+    if (t <= k->t[0])
+        return k->v[0];
+    size_t i = 1;
+    while (i < k->n && k->t[i] < t)
+        i++;
+    if (i == k->n)
+        return k->v[k->n - 1];
+    if (t == k->t[i])
+        return k->v[i];
+    double a = k->v[i - 1], b = k->v[i], x = (t - k->t[i - 1]) / (k->t[i] - k->t[i - 1]);
+    double f = k->ease ? x * x * (3.0 - 2.0 * x) : x;
+    if (a == b)
+        return a;
+    if (k->log)
+        return exp(log(a) + f * (log(b) - log(a)));
+    return a + f * (b - a);
+}
+
+double scene_anim_time(long index, long nframes, double duration)
+{
+    if (nframes <= 1)
+        return 0.0;
+    if (index >= nframes - 1)
+        return duration;
+    return duration * (double)index / (double)(nframes - 1);
+}
+
+int scene_anim_sets(const scene_anim *a, double t, char *buf, size_t size, char **sets)
+{
+    size_t o = 0;
+    for (size_t i = 0; i < a->nkf; i++) {
+        const scene_kf *k = &a->kf[i];
+        double v = scene_kf_eval(k, t);
+        int w = k->integer ? snprintf(buf + o, size - o, "%s=%.0f", k->target, floor(v + 0.5))
+                           : snprintf(buf + o, size - o, "%s=%.17g", k->target, v);
+        if (w < 0 || (size_t)w + 1 >= size - o)
+            return -1;
+        sets[i] = buf + o;
+        o += (size_t)w + 1;
+    }
+    return 0;
+}
+
+int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_error *err)
+{
+    hy_scene *s;
+    int rc = hy_scene_parse_file(a->path, &s, err);
+    if (rc)
+        return rc;
+    char buf[4096], *sets[64];
+    if (a->nkf > 64)
+        rc = hy_scene_error_at(a->scene, "keyframe", a->kf[64].label, NULL, err, HY_EINVAL, "at most 64 keyframe sections");
+    for (long f = 0; !rc && f < nframes; f++) {
+        double t = scene_anim_time(f, nframes, duration);
+        if (scene_anim_sets(a, t, buf, sizeof buf, sets)) {
+            rc = hy_error_set(err, HY_EINVAL, "%s: keyframe overrides too long", a->path);
+            break;
+        }
+        for (size_t i = 0; i < a->nkf && !rc; i++) {
+            hy_error e2;
+            if (hy_scene_set(s, sets[i], &e2)) {
+                const char *why = strstr(e2.msg, ": ");
+                rc = hy_scene_error_at(a->scene, "keyframe", a->kf[i].label, "values", err, HY_EINVAL,
+                                       "keyframe '%s': at frame %ld (t = %g s) %s is refused%s", a->kf[i].label, f, t,
+                                       sets[i], why ? why : "");
+            }
+        }
+        hy_scene_run r;
+        hy_error e3;
+        if (!rc && a->nkf && hy_scene_run_load(&r, a->path, sets, a->nkf, &e3))
+            rc = hy_scene_error_at(a->scene, "keyframe", a->kf[0].label, NULL, err, e3.code,
+                                   "at frame %ld (t = %g s) the keyframe values give an invalid scene: %s", f, t,
+                                   e3.msg);
+        else if (!rc && a->nkf)
+            hy_scene_run_free(&r);
+    }
+    hy_scene_free(s);
+    return rc;
+}
+
+/* ---- the shared run cache ---- */
+
+/* One distinct set of overrides: its run, computed by the first thread that
+ * needs it (others wait), then lent to one drawing thread at a time under
+ * `use`, and freed after its last frame. */
+struct scene_entry {
+    char *key;                /* the joined overrides */
+    uint64_t hash;
+    hy_scene_run run;
+    int state;                /* 0 computing, 1 ready, 2 failed */
+    hy_error err;             /* why it failed */
+    long uses_left;           /* frames still to draw with it */
+    pthread_mutex_t use;
+};
+
+static void entry_free(scene_entry *e)
+{
+    if (e->state == 1)
+        hy_scene_run_free(&e->run);
+    pthread_mutex_destroy(&e->use);
+    free(e->key);
+    free(e);
+}
+
+void scene_anim_free(scene_anim *a)
+{
+    if (!a->scene)
+        return;
+    for (size_t i = 0; i < a->nentries; i++)
+        entry_free(a->entries[i]);
+    free(a->entries);
+    free(a->frame_hash);
+    free(a->kf);
+    hy_scene_free(a->scene);
+    pthread_mutex_destroy(&a->mu);
+    pthread_cond_destroy(&a->cv);
+    memset(a, 0, sizeof *a);
+}
+
+#if HY_HAVE_OSMESA
+
+/* 64-bit FNV-1a of a frame's override text. */
+static uint64_t fnv1a(const char *s)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (; *s; s++)
+        h = (h ^ (unsigned char)*s) * 1099511628211ull;
+    return h;
+}
+
+/* The joined overrides of frame `index` of nframes into key (size bytes). */
+static int frame_key(const scene_anim *a, long index, long nframes, double duration, char *key, size_t size,
+                     char **sets, char *buf, size_t bufsize)
+{
+    if (a->nkf > 64 || scene_anim_sets(a, scene_anim_time(index, nframes, duration), buf, bufsize, sets))
+        return -1;
+    size_t o = 0;
+    key[0] = '\0';
+    for (size_t i = 0; i < a->nkf && o < size; i++)
+        o += (size_t)snprintf(key + o, size - o, "%s;", sets[i]);
+    return o < size ? 0 : -1;
+}
+
+/* With a->mu held: the hash of every frame's key, made once. */
+static int frame_hashes(scene_anim *a, long nframes, double duration)
+{
+    if (a->frame_hash)
+        return a->nhash == nframes ? 0 : -1;
+    a->frame_hash = malloc((size_t)nframes * sizeof *a->frame_hash);
+    if (!a->frame_hash)
+        return -1;
+    char buf[4096], key[4096], *sets[64];
+    for (long i = 0; i < nframes; i++) {
+        if (frame_key(a, i, nframes, duration, key, sizeof key, sets, buf, sizeof buf))
+            return free(a->frame_hash), a->frame_hash = NULL, -1;
+        a->frame_hash[i] = fnv1a(key);
+    }
+    a->nhash = nframes;
+    return 0;
+}
+
+/* With a->mu held: the entry of key, a new one (*fresh = 1) or NULL. */
+static scene_entry *entry_get(scene_anim *a, const char *key, uint64_t h, int *fresh)
+{
+    *fresh = 0;
+    for (size_t i = 0; i < a->nentries; i++)
+        if (a->entries[i]->hash == h && !strcmp(a->entries[i]->key, key))
+            return a->entries[i];
+    scene_entry **grown = realloc(a->entries, (a->nentries + 1) * sizeof *grown);
+    scene_entry *e = calloc(1, sizeof *e);
+    if (grown)
+        a->entries = grown;
+    if (!grown || !e || !(e->key = strdup(key)))
+        return free(e), NULL;
+    e->hash = h;
+    for (long i = 0; i < a->nhash; i++)
+        e->uses_left += a->frame_hash[i] == h;
+    pthread_mutex_init(&e->use, NULL);
+    a->entries[a->nentries++] = e;
+    *fresh = 1;
+    return e;
+}
+
+/* With a->mu held: one frame of e drawn; frees e after its last frame. */
+static void entry_done(scene_anim *a, scene_entry *e)
+{
+    if (--e->uses_left > 0)
+        return;
+    for (size_t i = 0; i < a->nentries; i++)
+        if (a->entries[i] == e) {
+            a->entries[i] = a->entries[--a->nentries];
+            break;
+        }
+    entry_free(e);
+}
+
+static int draw_run(const hy_scene_run *r, const hy_anim_frame *f, hy_error *err)
+{
+    hy_scene_fig fig;
+    int rc = hy_scene_run_figure(r, &fig, err);
+    if (!rc) {
+        fig.fig.width = f->width / f->scale;
+        fig.fig.height = f->height / f->scale;
+        fig.fig.dpi = 72.0 * f->scale;
+        rc = hy_figure_draw_layers(&fig.fig, &f->data, &f->overlay, err);
+    }
+    hy_scene_fig_free(&fig);
+    return rc;
+}
+
+int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err)
+{
+    scene_anim *a = state;
+    char buf[4096], key[4096], *sets[64];
+    if (frame_key(a, f->index, f->nframes, f->duration, key, sizeof key, sets, buf, sizeof buf))
+        return hy_error_set(err, HY_EINVAL, "%s: too many keyframe overrides", a->path);
+    uint64_t h = fnv1a(key);
+    int fresh = 0;
+    pthread_mutex_lock(&a->mu);
+    scene_entry *e = frame_hashes(a, f->nframes, f->duration) ? NULL : entry_get(a, key, h, &fresh);
+    if (e && !fresh) {
+        while (e->state == 0)
+            pthread_cond_wait(&a->cv, &a->mu);
+        a->hits++;
+    }
+    pthread_mutex_unlock(&a->mu);
+    if (!e)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    if (fresh) {
+        int rc = hy_scene_run_load(&e->run, a->path, sets, a->nkf, &e->err);
+        if (!rc && (rc = hy_scene_run_compute(&e->run, NULL, &e->err)))
+            hy_scene_run_free(&e->run);
+        pthread_mutex_lock(&a->mu);
+        e->state = rc ? 2 : 1;
+        a->computes += !rc;
+        pthread_cond_broadcast(&a->cv);
+        pthread_mutex_unlock(&a->mu);
+    }
+    int rc;
+    if (e->state == 2)
+        rc = hy_error_set(err, e->err.code ? e->err.code : HY_EINVAL, "%s", e->err.msg);
+    else {
+        pthread_mutex_lock(&e->use);      /* one thread at a time draws from a run */
+        rc = draw_run(&e->run, f, err);
+        pthread_mutex_unlock(&e->use);
+    }
+    pthread_mutex_lock(&a->mu);
+    entry_done(a, e);
+    pthread_mutex_unlock(&a->mu);
+    return rc;
+}
+
+#endif
