@@ -1,0 +1,79 @@
+/* test_composite.c: hy_frame_composite (the word-at-a-time RGBA -> RGB
+ * conversion and the skip of transparent overlay pixels) against the
+ * definition, pixel by pixel: out = overlay + gl * (1 - alpha), premultiplied
+ * "over" rounded to nearest, GL rows flipped.  Exact: both are integer. */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hy_frame.h"
+#include "rcheck.h"
+
+static uint32_t rnd_state = 12345u;
+static uint32_t rnd(void)
+{
+    rnd_state = rnd_state * 1664525u + 1013904223u;
+    return rnd_state >> 8;
+}
+
+static unsigned char ref_channel(unsigned ov, unsigned g, unsigned a)
+{
+    /* ov + round(g * (255 - a) / 255): computed in double, independent of div255 */
+    double v = (double)g * (double)(255 - a) / 255.0;
+    return (unsigned char)(ov + (unsigned)(v + 0.5));
+}
+
+static void one(int w, int h, int density)
+{
+    int stride = 4 * w + 4 * (int)(rnd() % 3); /* cairo strides may be wider than the row */
+    unsigned char *gl = malloc((size_t)w * h * 4), *ov = calloc((size_t)stride * h, 1), *out = malloc((size_t)w * h * 3);
+    for (size_t i = 0; i < (size_t)w * h * 4; i++)
+        gl[i] = (unsigned char)rnd();
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            if ((int)(rnd() % 100) >= density)
+                continue;                 /* transparent: all four bytes zero */
+            unsigned a = rnd() % 256, r = a ? rnd() % (a + 1) : 0, g = a ? rnd() % (a + 1) : 0,
+                     b = a ? rnd() % (a + 1) : 0;
+            uint32_t p = (a << 24) | (r << 16) | (g << 8) | b;
+            memcpy(ov + (size_t)y * stride + 4 * (size_t)x, &p, 4);
+        }
+    hy_frame_composite(w, h, gl, ov, stride, out);
+    int bad = 0;
+    for (int y = 0; y < h && bad < 3; y++)
+        for (int x = 0; x < w && bad < 3; x++) {
+            const unsigned char *s = gl + ((size_t)(h - 1 - y) * w + x) * 4;
+            uint32_t p;
+            memcpy(&p, ov + (size_t)y * stride + 4 * (size_t)x, 4);
+            unsigned a = p >> 24;
+            unsigned char want[3] = {ref_channel((p >> 16) & 255, s[0], a), ref_channel((p >> 8) & 255, s[1], a),
+                                     ref_channel(p & 255, s[2], a)};
+            const unsigned char *o = out + ((size_t)y * w + x) * 3;
+            if (memcmp(o, want, 3)) {
+                bad++;
+                CHECK(0, "%dx%d density %d: pixel (%d,%d) = %u,%u,%u, want %u,%u,%u", w, h, density, x, y, o[0], o[1],
+                      o[2], want[0], want[1], want[2]);
+            }
+        }
+    /* without an overlay: the GL layer, flipped */
+    hy_frame_composite(w, h, gl, NULL, 0, out);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            if (memcmp(out + ((size_t)y * w + x) * 3, gl + ((size_t)(h - 1 - y) * w + x) * 4, 3)) {
+                CHECK(0, "%dx%d no overlay: pixel (%d,%d) differs", w, h, x, y);
+                y = h;
+                break;
+            }
+    free(gl), free(ov), free(out);
+}
+
+int main(void)
+{
+    const int widths[] = {1, 2, 3, 4, 5, 7, 8, 9, 17, 64, 333};
+    const int dens[] = {0, 3, 50, 100};
+    for (size_t i = 0; i < sizeof widths / sizeof *widths; i++)
+        for (size_t d = 0; d < 4; d++)
+            one(widths[i], 1 + (int)(rnd() % 7), dens[d]);
+    printf("composite: %zu sizes x 4 overlay densities, %d failed\n", sizeof widths / sizeof *widths, fails);
+    return fails != 0;
+}
