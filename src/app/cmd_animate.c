@@ -19,7 +19,7 @@
 
 static const char animate_help[] =
     "usage: hystviz animate NAME|SCENE.scene [-o DIR] [--quality Q] [--size WxH] [--fps F] [--duration S]\n"
-    "                            [--frames A:B] [-j N] [--quiet] [--video mp4|webm|gif]\n"
+    "                            [--frames A:B] [-j N] [--quiet] [--video mp4|webm|gif [--no-frames]]\n"
     "       hystviz animate --list\n"
     "\n"
     "Renders animation NAME as PNG frames DIR/NAME/frame_00000.png ... (OpenGL through\n"
@@ -37,7 +37,9 @@ static const char animate_help[] =
     "  --frames A:B       render only frames A .. B-1 (B may be empty: to the end)\n"
     "  -j, --jobs N       threads, each with its own GL context (frames are identical for any N)\n"
     "  --quiet            no progress bar (it is shown only when stderr is a terminal)\n"
-    "  --video FMT        also encode DIR/NAME.FMT by piping frames to ffmpeg (must be on PATH)\n"
+    "  --video FMT        also encode DIR/NAME.FMT by piping frames to ffmpeg (must be on PATH);\n"
+    "                     the file appears only when the whole clip is encoded\n"
+    "  --no-frames        with --video: write the video (and poster) but no PNG frames\n"
     "  --list             the animations and what they show\n"
     "\n"
     "example:\n"
@@ -94,6 +96,8 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
         return a->list = 1, 0;
     if (!strcmp(s, "--quiet") || !strcmp(s, "-q"))
         return a->p.quiet = 1, 0;
+    if (!strcmp(s, "--no-frames"))
+        return a->p.no_frames = 1, 0;
     if (s[0] != '-')
         return fprintf(stderr, "hystviz animate: one animation at a time ('%s' and '%s')\n", a->name, s), 2;
     if (!v)

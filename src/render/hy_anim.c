@@ -119,6 +119,7 @@ typedef struct run {
     long nframes, first, last, next, done, piped;
     char dir[4096];
     FILE *video;
+    char video_tmp[4200], video_path[4200];
     pthread_mutex_t mu;
     pthread_cond_t cv;
     int failed;
@@ -212,7 +213,7 @@ static int render_one(run *r, worker *w, long i, hy_error *err)
                            cairo_image_surface_get_stride(w->surf), w->rgb);
     double t2 = now();
     char path[4200];
-    if (!st) {
+    if (!st && !p->no_frames) {
         snprintf(path, sizeof path, "%s/frame_%05ld.png", r->dir, i);
         st = hy_png_write_rgb(path, W, H, w->rgb, &p->png, err);
     }
@@ -304,6 +305,8 @@ static int check_params(const hy_anim_params *p, long nframes, hy_error *err)
                             "(0:%ld)", p->first, last, nframes, nframes);
     if (p->jobs < 0 || p->jobs > 64)
         return hy_error_set(err, HY_EINVAL, "jobs %d must be in 1..64", p->jobs);
+    if (p->no_frames && !p->video)
+        return hy_error_set(err, HY_EINVAL, "no PNG frames and no video: nothing to write (--no-frames needs --video)");
     return HY_OK;
 }
 
@@ -321,10 +324,14 @@ static int open_video(run *r, hy_error *err)
     const char *codec = !strcmp(v, "mp4") ? "-c:v libx264 -pix_fmt yuv420p"
                         : !strcmp(v, "webm") ? "-c:v libvpx-vp9 -pix_fmt yuv420p" : "";
     char cmd[8800];
-    snprintf(cmd, sizeof cmd, "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -s %dx%d -r %g -i - "
-             "%s '%s/%s.%s'", p->width, p->height, p->fps, codec, p->outdir, p->name, v);
     if (strchr(p->outdir, '\'') || strchr(p->name, '\''))
         return hy_error_set(err, HY_EINVAL, "output names for --video may not contain a quote");
+    if (snprintf(r->video_tmp, sizeof r->video_tmp, "%s/.%s.%s.part", p->outdir, p->name, v) >= (int)sizeof r->video_tmp ||
+        snprintf(r->video_path, sizeof r->video_path, "%s/%s.%s", p->outdir, p->name, v) >= (int)sizeof r->video_path)
+        return hy_error_set(err, HY_EINVAL, "output directory name is too long");
+    /* the container named with -f: the temporary name has no telling extension */
+    snprintf(cmd, sizeof cmd, "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -s %dx%d -r %g -i - "
+             "%s -f %s '%s'", p->width, p->height, p->fps, codec, v, r->video_tmp);
     r->video = popen(cmd, "w");
     if (!r->video)
         return hy_error_set(err, HY_EIO, "cannot start ffmpeg: %s", strerror(errno));
@@ -338,7 +345,7 @@ static int start(run *r, hy_error *err)
         return HY_EINVAL;
     if (snprintf(r->dir, sizeof r->dir, "%s/%s", p->outdir, p->name) >= (int)sizeof r->dir)
         return hy_error_set(err, HY_EINVAL, "output directory name is too long");
-    int st = make_dir(r->dir, err);   /* before ffmpeg, which writes next to it */
+    int st = make_dir(p->no_frames ? p->outdir : r->dir, err); /* before ffmpeg, which writes next to it */
     if (!st && p->video && open_video(r, err))
         st = err ? err->code : HY_EINVAL;
     return st;
@@ -362,8 +369,10 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
         sigaction(SIGPIPE, &ign, &old_pipe);
     int st = start(&r, err);
     if (st) {
-        if (r.video)
+        if (r.video) {
             pclose(r.video);
+            unlink(r.video_tmp);
+        }
         if (p->video)
             sigaction(SIGPIPE, &old_pipe, NULL);
         return st;
@@ -387,8 +396,12 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
     progress(&r, 1);
     pthread_mutex_unlock(&r.mu);
     if (r.video && pclose(r.video) != 0 && !r.failed)
-        hy_error_set(&r.err, HY_EIO, "ffmpeg failed to encode '%s/%s.%s'", p->outdir, p->name, p->video),
+        hy_error_set(&r.err, HY_EIO, "ffmpeg failed to encode '%s'", r.video_path), r.failed = 1;
+    if (r.video && !r.failed && rename(r.video_tmp, r.video_path) != 0)
+        hy_error_set(&r.err, HY_EIO, "cannot rename '%s' to '%s': %s", r.video_tmp, r.video_path, strerror(errno)),
             r.failed = 1;
+    if (r.video && r.failed)
+        unlink(r.video_tmp);          /* no half-written video */
     if (p->video)
         sigaction(SIGPIPE, &old_pipe, NULL);
     pthread_mutex_destroy(&r.mu);

@@ -84,7 +84,10 @@ typedef struct hy_anim_params {
     int jobs;                 /* threads, each with its own GL context; 0 -> 1 */
     int quiet;                /* no progress bar even on a terminal */
     int poster;               /* also write outdir/name.png (the last frame) */
-    const char *video;        /* NULL, "mp4", "webm" or "gif": pipe frames to ffmpeg */
+    const char *video;        /* NULL, "mp4", "webm" or "gif": pipe frames to ffmpeg, which
+                               * writes outdir/.name.FMT.part, renamed to outdir/name.FMT
+                               * only when every frame went and ffmpeg succeeded */
+    int no_frames;            /* with video: no PNG frames, only the video (and poster) */
     hy_png_opts png;
 } hy_anim_params;
 

@@ -271,6 +271,28 @@ static void test_video_pipe(void)
     CHECK(a && b && n1 == n2 && !memcmp(a, b, n1), "piped frames differ between -j 1 and -j 2 (order)");
     free(a);
     free(b);
+    struct stat sb;
+    CHECK(stat("out_vid1/.k-cycle-ex2.mp4.part", &sb) != 0, "the temporary video was renamed");
+    /* --no-frames: the video and the poster, no frame directory */
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid3", "--size", "64x48", "--fps", "10", "--duration", "2",
+                  "--video", "mp4", "--no-frames", "--quiet", NULL) == 0, "video run --no-frames");
+    size_t n3 = 0;
+    unsigned char *c = slurp("out_vid3/k-cycle-ex2.mp4", &n3);
+    CHECK(c && n3 == n1, "--no-frames: ffmpeg got %zu bytes, expected %zu", n3, n1);
+    free(c);
+    CHECK(stat("out_vid3/k-cycle-ex2", &sb) != 0, "--no-frames wrote a frame directory");
+    CHECK(stat("out_vid3/k-cycle-ex2.png", &sb) == 0, "--no-frames still writes the poster");
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid4", "--no-frames", "--quiet", NULL) != 0 &&
+              stat("out_vid4", &sb) != 0,
+          "--no-frames without --video is refused before anything is written");
+    /* an ffmpeg that fails: no video file and no temporary left, status non-zero */
+    f = fopen("fakebin/ffmpeg", "w");
+    fputs("#!/bin/sh\nfor a; do last=$a; done\nhead -c 100 > \"$last\"\ncat > /dev/null\nexit 1\n", f);
+    fclose(f);
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid5", "--size", "64x48", "--fps", "10", "--duration", "2",
+                  "--video", "mp4", "--quiet", NULL) != 0, "a failing ffmpeg fails the run");
+    CHECK(stat("out_vid5/k-cycle-ex2.mp4", &sb) != 0 && stat("out_vid5/.k-cycle-ex2.mp4.part", &sb) != 0,
+          "a failing ffmpeg leaves no video and no temporary");
     if (old)
         setenv("PATH", old, 1);
     free(old);
