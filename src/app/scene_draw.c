@@ -29,7 +29,8 @@ void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size)
 
 /* Replaces {major.area}, {energy}, {minorN.area}, {minorN.own}, {minorN.ystart},
  * {minorN.yclose}, {nminor}, and for a ygamma/transient series NAME {NAME.gamma},
- * and {NAME.dist} (max |y_γ - y*_u| over its points) in text by their values (%.4g). */
+ * and {NAME.dist} (max |y_γ - y*_u| over its points), and {SECTION.key} (a numeric
+ * key, set or by default, e.g. {model.sigma0}) in text by their values (%.4g). */
 static int expand(const hy_scene_run *r, const char *name, const char *text, char *out, size_t size, hy_error *err)
 {
     size_t o = 0;
@@ -43,6 +44,15 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
             return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL, "unterminated '{' in annotation text");
         char key[48];
         snprintf(key, sizeof key, "%.*s", (int)(e - c - 1), c + 1);
+        if (!hy_scene_is_placeholder(key)) { /* a markup group such as u_{min,2}: kept */
+            size_t n = (size_t)(e - c + 1);
+            if (o + n >= size)
+                break;
+            memcpy(out + o, c, n);
+            o += n;
+            c = e + 1;
+            continue;
+        }
         double v = NAN;
         unsigned idx;
         char field[16];
@@ -66,10 +76,17 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
                 int yg = se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT;
                 v = !yg ? NAN : !strcmp(dot + 1, "gamma") ? se->gamma : !strcmp(dot + 1, "dist") ? se->dist : NAN;
             }
+            if (isnan(v) && dot - key < 16) { /* SECTION.key: a numeric key, set or default */
+                char sect[16];
+                snprintf(sect, sizeof sect, "%.*s", (int)(dot - key), key);
+                double x;
+                if (hy_scene_get_num(r->scene, sect, NULL, dot + 1, &x) >= 0)
+                    v = x;
+            }
         }
         if (isnan(v))
             return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
-                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.own, minorN.ystart, minorN.yclose; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series)",
+                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.own, minorN.ystart, minorN.yclose; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key of a numeric key)",
                                      key, L->nminor);
         int w = snprintf(out + o, size - o, "%.4g", v);
         o += (size_t)(w > 0 ? w : 0);

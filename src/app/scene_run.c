@@ -345,7 +345,8 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
     }
     for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
         const char *text;
-        if (hy_scene_get_str(s, "annotation", hy_scene_name_at(s, "annotation", i), "text", &text) >= 0 && strchr(text, '{'))
+        if (hy_scene_get_str(s, "annotation", hy_scene_name_at(s, "annotation", i), "text", &text) >= 0 &&
+            hy_scene_text_has_placeholder(text))
             need_steady = need_loops = 1;
     }
     if (need_steady) {
@@ -477,6 +478,25 @@ static int loop_intervals(const hy_scene_run *r, int major, double *a, double *b
         cur = skip_to;
     }
     return (int)n;
+}
+
+int hy_scene_is_placeholder(const char *inner)
+{
+    return strchr(inner, '.') || !strcmp(inner, "energy") || !strcmp(inner, "nminor");
+}
+
+int hy_scene_text_has_placeholder(const char *text)
+{
+    for (const char *c = strchr(text, '{'); c; c = strchr(c + 1, '{')) {
+        const char *e = strchr(c, '}');
+        char inner[48];
+        if (!e || e - c > 40)
+            return 1;                 /* malformed: let the expansion report it */
+        snprintf(inner, sizeof inner, "%.*s", (int)(e - c - 1), c + 1);
+        if (hy_scene_is_placeholder(inner))
+            return 1;
+    }
+    return 0;
 }
 
 /* max |y_γ(t) - y*_u(t)| over the plan's points i0 .. i1-1 (the {NAME.dist}

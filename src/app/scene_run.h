@@ -98,6 +98,13 @@ typedef struct hy_scene_fig {
  * placeholder, out of memory) returns a status; call hy_scene_fig_free anyway. */
 int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err);
 
+/* Whether the text between an annotation's braces is a placeholder ({energy},
+ * {nminor} or anything with a '.') rather than a markup group (u_{min,2}). */
+int hy_scene_is_placeholder(const char *inner);
+
+/* Whether an annotation text holds a placeholder. */
+int hy_scene_text_has_placeholder(const char *text);
+
 /* Frees what hy_scene_run_figure allocated (not r's series). */
 void hy_scene_fig_free(hy_scene_fig *st);
 

@@ -338,6 +338,41 @@ static void dist_placeholder(void)
     }
 }
 
+/* {SECTION.key} gives a number the scene sets; a brace group without '.' is
+ * markup and stays; neither kind makes the scene compute anything extra */
+static void key_placeholder(void)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/keys.scene", BLD);
+    FILE *f = fopen(path, "w");
+    fputs("[model]\nkind = lugre\nsigma0 = 6\nsigma1 = 1\nfc = 1\nfs = 2\nvs = 1\nbeta = 1\n"
+          "[input]\nkind = bimodal\numin1 = 0\numin2 = 0.5\numax1 = 1\numax2 = 1.5\n"
+          "[figure]\nkind = timeseries\n[series u]\ndata = input\n"
+          "[annotation a]\ntext = \"\\sigma_0 = {model.sigma0}, u_{min,2} = {input.umin2}\"\nx = 0\ny = 0\n"
+          "[annotation b]\ntext = \"u_{max,1}\"\nx = 0\ny = 0\n", f);
+    fclose(f);
+    char set[] = "input.umin2=0.25";
+    char *sets[] = {set};
+    hy_scene_run r;
+    if (run_scene(path, sets, 1, NULL, NULL, &r))
+        return;
+    hy_scene_fig st;
+    hy_error err;
+    int rc = hy_scene_run_figure(&r, &st, &err);
+    CHECK(rc == 0, "figure: %s", rc ? err.msg : "");
+    if (!rc) {
+        CHECK(!strcmp(st.texts[0].text, "\\sigma_0 = 6, u_{min,2} = 0.25"), "expanded: '%s'", st.texts[0].text);
+        CHECK(!strcmp(st.texts[1].text, "u_{max,1}"), "markup only: '%s'", st.texts[1].text);
+    }
+    /* placeholders made it compute the steady state; a text of markup only would not */
+    CHECK(r.have_steady, "a placeholder computes the steady state");
+    hy_scene_fig_free(&st);
+    hy_scene_run_free(&r);
+    CHECK(hy_scene_text_has_placeholder("u_{max,1} and y^{*}") == 0, "markup groups are not placeholders");
+    CHECK(hy_scene_text_has_placeholder("area {minor1.area}") == 1 && hy_scene_text_has_placeholder("{energy}") == 1,
+          "placeholders are found");
+}
+
 static void scene_error(const char *text, const char *want)
 {
     char path[1200];
@@ -368,6 +403,9 @@ static void errors(void)
                 "bad.scene:6:1: unknown placeholder {minor7.area}");
     scene_error("[figure]\nkind = loop\n[series a]\ndata = ysteady\n[annotation t]\ntext = \"{a.dist}\"\nx = 0\ny = 0\n",
                 "bad.scene:6:1: unknown placeholder {a.dist}");
+    scene_error("[model]\nkind = lugre\nfs = 2\n[figure]\nkind = loop\n[series a]\ndata = ysteady\n[annotation t]\n"
+                "text = \"{model.sigma1} {model.nosuch}\"\nx = 0\ny = 0\n",
+                "bad.scene:9:1: unknown placeholder {model.nosuch}");
     scene_error("[input]\nkind = multimodal\nextrema = 0, 1, 0.5\n[series a]\ndata = input\n", "even number");
 }
 
@@ -386,6 +424,7 @@ int main(int argc, char **argv)
         compare_reference(refs[i]);
     plans();
     dist_placeholder();
+    key_placeholder();
     data_fig15();
     data_fig11();
     errors();
