@@ -111,6 +111,12 @@ static int bench_frame(void)
     printf("1920x1080 gamma-sweep-ex3 frame (mean of 10, solve cached): draw (GL + cairo overlay) %.2f ms, "
            "readback + composite %.2f ms (GL rasterisation + glReadPixels %.2f, composite %.2f), total %.2f ms\n",
            1e2 * td, 1e2 * tr, 1e2 * t_gl_read, 1e2 * t_composite, 1e2 * (td + tr));
+    double te = now();              /* the floor: clear and read back an empty frame */
+    for (int i = 0; i < 10; i++) {
+        hy_gl_begin(o.gl, (hy_rgb){1, 1, 1});
+        hy_gl_read(o.gl, o.rgba, &err);
+    }
+    printf("  empty 1920x1080 GL frame (clear + glReadPixels, nothing drawn): %.2f ms\n", 1e2 * (now() - te));
     bench_png(&o);
     sc->release(st);
     cairo_surface_destroy(o.surf);
