@@ -157,6 +157,18 @@ static void list_scenes(void)
         printf("%-16s %s\n", (*s)->name, (*s)->summary);
 }
 
+/* --frames A:B must lie within the animation's frames; 2 (usage) if not. */
+static int check_range(const anim_args *a)
+{
+    long nf = hy_anim_nframes(&a->p);
+    if (a->p.first >= nf || a->p.last > nf) {
+        fprintf(stderr, "hystviz animate: --frames %ld:%ld is outside the %ld frames of %s (0:%ld)\n",
+                a->p.first, a->p.last, nf, a->p.name, nf);
+        return 2;
+    }
+    return 0;
+}
+
 static int settle(anim_args *a, const anim_scene *sc)
 {
     hy_error err;
@@ -170,13 +182,7 @@ static int settle(anim_args *a, const anim_scene *sc)
         a->p.width = a->w, a->p.height = a->h;
     a->p.duration = a->have_duration ? a->duration : sc->duration;
     a->p.name = sc->name;
-    long nf = hy_anim_nframes(&a->p);
-    if (a->p.first >= nf || a->p.last > nf) {
-        fprintf(stderr, "hystviz animate: --frames %ld:%ld is outside the %ld frames of %s (0:%ld)\n",
-                a->p.first, a->p.last, nf, sc->name, nf);
-        return 2;
-    }
-    return 0;
+    return check_range(a);
 }
 
 /* Options beat the scene's [animation] values; the frame range must fit. */
@@ -195,13 +201,7 @@ static int settle_scene(anim_args *a, const scene_anim *sa)
         a->p.width = a->w, a->p.height = a->h;
     a->p.duration = a->have_duration ? a->duration : sa->duration;
     a->p.name = sa->name;
-    long nf = hy_anim_nframes(&a->p);
-    if (a->p.first >= nf || a->p.last > nf) {
-        fprintf(stderr, "hystviz animate: --frames %ld:%ld is outside the %ld frames of %s (0:%ld)\n",
-                a->p.first, a->p.last, nf, sa->name, nf);
-        return 2;
-    }
-    return 0;
+    return check_range(a);
 }
 
 static int ends_with(const char *s, const char *tail)

@@ -15,60 +15,10 @@
 #include <unistd.h>
 
 #include "anim_scenes.h"
-#include "cmd_animate.h"
+#include "animtest.h"
 #include "gltest.h"
 
 #define TOL 8                 /* largest channel difference allowed against a reference */
-
-static int run_cmd(const char *first, ...)
-{
-    char *argv[32];
-    int argc = 0;
-    va_list ap;
-    va_start(ap, first);
-    for (const char *s = first; s && argc < 31; s = va_arg(ap, const char *))
-        argv[argc++] = (char *)s;
-    va_end(ap);
-    argv[argc] = NULL;
-    return hy_cmd_animate(argc, argv);
-}
-
-static long count_frames(const char *dir)
-{
-    DIR *d = opendir(dir);
-    long n = 0;
-    for (struct dirent *e; d && (e = readdir(d));)
-        n += !strncmp(e->d_name, "frame_", 6) && strstr(e->d_name, ".png") && !strstr(e->d_name, ".tmp");
-    if (d)
-        closedir(d);
-    return n;
-}
-
-static unsigned char *slurp(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    unsigned char *b = malloc((size_t)n + 1);
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n)
-        free(b), b = NULL;
-    fclose(f);
-    *len = (size_t)n;
-    return b;
-}
-
-static int same_file(const char *a, const char *b)
-{
-    size_t la, lb;
-    unsigned char *x = slurp(a, &la), *y = slurp(b, &lb);
-    int same = x && y && la == lb && !memcmp(x, y, la);
-    free(x);
-    free(y);
-    return same;
-}
 
 static void test_timeline(void)
 {

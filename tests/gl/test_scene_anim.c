@@ -15,7 +15,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cmd_animate.h"
+#include "animtest.h"
 #include "gltest.h"
 #include "scene_anim.h"
 #include "scene_run.h"
@@ -61,56 +61,6 @@ static void write_file(const char *path, const char *text)
         printf("cannot write %s\n", path);
         exit(1);
     }
-}
-
-static int run_cmd(const char *first, ...)
-{
-    char *argv[32];
-    int argc = 0;
-    va_list ap;
-    va_start(ap, first);
-    for (const char *s = first; s && argc < 31; s = va_arg(ap, const char *))
-        argv[argc++] = (char *)s;
-    va_end(ap);
-    argv[argc] = NULL;
-    return hy_cmd_animate(argc, argv);
-}
-
-static long count_frames(const char *dir)
-{
-    DIR *d = opendir(dir);
-    long n = 0;
-    for (struct dirent *e; d && (e = readdir(d));)
-        n += !strncmp(e->d_name, "frame_", 6) && strstr(e->d_name, ".png") != NULL;
-    if (d)
-        closedir(d);
-    return n;
-}
-
-static unsigned char *slurp(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    unsigned char *b = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n)
-        free(b), b = NULL;
-    fclose(f);
-    *len = (size_t)n;
-    return b;
-}
-
-static int same_file(const char *a, const char *b)
-{
-    size_t la = 0, lb = 0;
-    unsigned char *x = slurp(a, &la), *y = slurp(b, &lb);
-    int same = x && y && la == lb && !memcmp(x, y, la);
-    free(x);
-    free(y);
-    return same;
 }
 
 static void test_frames(void)
