@@ -44,11 +44,11 @@ struct hy_gl {
     unsigned char *fb;                 /* OSMesa's colour buffer */
     int w, h;
     double scale;
-    GLuint stroke_prog, ribbon_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
+    GLuint stroke_prog, stroke_dash_prog, ribbon_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
     GLuint ms_fbo, ms_rb[2];          /* 4x multisampled frame, used once a frame has 3-D */
     int in_ms;                        /* this frame draws into ms_fbo (resolved at hy_gl_read) */
     hy_rgb bg;                        /* the frame's clear colour */
-    GLint u_size, u_ndash, u_dash, u_dash_total, u_mvp, u_mv, u_light;
+    GLint u_size, u_size_dash, u_ndash, u_dash, u_dash_total, u_mvp, u_mv, u_light;
     double *pts;                       /* current path: x, y pairs (pixels) */
     size_t npts, cap;
     size_t *starts;                    /* subpath start indices */
@@ -125,7 +125,14 @@ static GLuint compile_stage(const hy_gl_stage *s, hy_error *err)
         hy_error_set(err, HY_ENUM, "%s (%s shader): glCreateShader failed", s->file, stage_name(s->stage));
         return 0;
     }
-    glShaderSource(sh, 1, &s->src, NULL);
+    const char *ver = s->defines ? strstr(s->src, "#version") : NULL;
+    const char *eol = ver ? strchr(ver, '\n') : NULL;
+    if (eol) {                        /* head through the #version line, the defines, the rest */
+        const char *parts[3] = {s->src, s->defines, eol + 1};
+        const GLint lens[3] = {(GLint)(eol + 1 - s->src), -1, -1};
+        glShaderSource(sh, 3, parts, lens);
+    } else
+        glShaderSource(sh, 1, &s->src, NULL);
     glCompileShader(sh);
     GLint ok = 0;
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
@@ -178,19 +185,25 @@ int hy_gl_program(const hy_gl_stage *stages, int n, unsigned *program, hy_error 
 static int build_programs(hy_gl *g, hy_error *err)
 {
     const hy_gl_stage stroke[2] = {
-        {hy_shader_stroke_vert_file, GL_VERTEX_SHADER, hy_shader_stroke_vert},
-        {hy_shader_stroke_frag_file, GL_FRAGMENT_SHADER, hy_shader_stroke_frag},
+        {hy_shader_stroke_vert_file, GL_VERTEX_SHADER, hy_shader_stroke_vert, NULL},
+        {hy_shader_stroke_frag_file, GL_FRAGMENT_SHADER, hy_shader_stroke_frag, NULL},
+    };
+    const hy_gl_stage stroke_dash[2] = {
+        {hy_shader_stroke_vert_file, GL_VERTEX_SHADER, hy_shader_stroke_vert, NULL},
+        {hy_shader_stroke_frag_file, GL_FRAGMENT_SHADER, hy_shader_stroke_frag, "#define HY_DASHES 1\n"},
     };
     const hy_gl_stage ribbon[2] = {
-        {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert},
-        {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag},
+        {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert, NULL},
+        {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag, NULL},
     };
-    if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(ribbon, 2, &g->ribbon_prog, err))
+    if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(stroke_dash, 2, &g->stroke_dash_prog, err) ||
+        hy_gl_program(ribbon, 2, &g->ribbon_prog, err))
         return HY_ENUM;
     g->u_size = glGetUniformLocation(g->stroke_prog, "u_size");
-    g->u_ndash = glGetUniformLocation(g->stroke_prog, "u_ndash");
-    g->u_dash = glGetUniformLocation(g->stroke_prog, "u_dash");
-    g->u_dash_total = glGetUniformLocation(g->stroke_prog, "u_dash_total");
+    g->u_size_dash = glGetUniformLocation(g->stroke_dash_prog, "u_size");
+    g->u_ndash = glGetUniformLocation(g->stroke_dash_prog, "u_ndash");
+    g->u_dash = glGetUniformLocation(g->stroke_dash_prog, "u_dash");
+    g->u_dash_total = glGetUniformLocation(g->stroke_dash_prog, "u_dash_total");
     g->u_mvp = glGetUniformLocation(g->ribbon_prog, "u_mvp");
     g->u_mv = glGetUniformLocation(g->ribbon_prog, "u_mv");
     g->u_light = glGetUniformLocation(g->ribbon_prog, "u_light");
@@ -387,8 +400,11 @@ static void submit(hy_gl *g)
 {
     if (!g->ncmds)
         return;
-    glUseProgram(g->stroke_prog);
+    glUseProgram(g->stroke_dash_prog);
+    glUniform2f(g->u_size_dash, (float)g->w, (float)g->h);
+    glUseProgram(g->stroke_prog);     /* solid strokes: the variant without dash code */
     glUniform2f(g->u_size, (float)g->w, (float)g->h);
+    GLuint current = g->stroke_prog;
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDisable(GL_DEPTH_TEST);
@@ -399,7 +415,10 @@ static void submit(hy_gl *g)
     float last_dash[8] = {0};
     for (size_t k = 0; k < g->ncmds; k++) {
         const cmd *c = &g->cmds[k];
-        if (c->ndash != last_nd || memcmp(c->dash, last_dash, sizeof last_dash)) {
+        GLuint want = c->ndash > 0 ? g->stroke_dash_prog : g->stroke_prog;
+        if (want != current)
+            glUseProgram(current = want);
+        if (c->ndash > 0 && (c->ndash != last_nd || memcmp(c->dash, last_dash, sizeof last_dash))) {
             glUniform1i(g->u_ndash, c->ndash);
             glUniform1fv(g->u_dash, 8, c->dash);
             glUniform1f(g->u_dash_total, c->total > 0 ? c->total : 1.0f);

@@ -82,11 +82,13 @@ int hy_gl_ribbon_project(const hy_gl *g, const hy_gl_ribbon *r, const double xyz
 int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err);
 
 /* One stage of a program: its file name (for messages), GL stage enum
- * (GL_VERTEX_SHADER = 0x8B31, GL_FRAGMENT_SHADER = 0x8B30) and source. */
+ * (GL_VERTEX_SHADER = 0x8B31, GL_FRAGMENT_SHADER = 0x8B30), source, and
+ * optional preprocessor lines inserted after its #version line (NULL: none). */
 typedef struct hy_gl_stage {
     const char *file;
     unsigned stage;
     const char *src;
+    const char *defines;
 } hy_gl_stage;
 /* Compiles and links a program in the current context; on failure HY_ENUM
  * with "FILE (STAGE shader): LOG" or "program FILES: link: LOG". */

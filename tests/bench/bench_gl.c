@@ -28,6 +28,14 @@ typedef struct one {
 
 /* Draws frame index of scene sc into o (as the engine does); returns the seconds of draw, read+composite. */
 static double t_gl_read, t_composite; /* the two parts of *t_read */
+static double frame_log[64];           /* whole render times of the timed frames */
+static int n_frame_log;
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
 
 static int frame(one *o, const anim_scene *sc, void *st, long index, long nframes, double fps, double *t_draw,
                  double *t_read)
@@ -54,6 +62,8 @@ static int frame(one *o, const anim_scene *sc, void *st, long index, long nframe
                        cairo_image_surface_get_stride(o->surf), o->rgb);
     double t2 = now();
     t_gl_read += t1b - t1, t_composite += t2 - t1b;
+    if (n_frame_log < 64)
+        frame_log[n_frame_log++] = (t1 - t0) + (t2 - t1);
     *t_draw += t1 - t0, *t_read += t2 - t1;
     if (rc)
         fprintf(stderr, "bench_gl: %s\n", err.msg);
@@ -106,8 +116,12 @@ static int bench_frame(void)
     for (int i = 0; i < 3; i++) /* warm-up: solves this gamma; llvmpipe compiles its shaders on first use */
         frame(&o, sc, st, 60, 120, 30, &td, &tr);
     td = tr = t_gl_read = t_composite = 0;
+    n_frame_log = 0;
     for (int i = 0; i < 10; i++)
         frame(&o, sc, st, 60, 120, 30, &td, &tr);
+    qsort(frame_log, (size_t)n_frame_log, sizeof *frame_log, cmp_double);
+    printf("  render time per frame over %d frames: min %.2f ms, median %.2f ms\n", n_frame_log, 1e3 * frame_log[0],
+           1e3 * frame_log[n_frame_log / 2]);
     printf("1920x1080 gamma-sweep-ex3 frame (mean of 10, solve cached): draw (GL + cairo overlay) %.2f ms, "
            "readback + composite %.2f ms (GL rasterisation + glReadPixels %.2f, composite %.2f), total %.2f ms\n",
            1e2 * td, 1e2 * tr, 1e2 * t_gl_read, 1e2 * t_composite, 1e2 * (td + tr));
