@@ -8,6 +8,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -181,20 +182,32 @@ static int pipe_frame(run *r, long i, const unsigned char *rgb, size_t n)
 
 typedef struct worker {
     hy_gl *gl;
-    cairo_surface_t *surf;
-    unsigned char *rgba, *rgb;
+    cairo_surface_t *frame;   /* the GL context's own buffer as a cairo RGB24 image */
     double draw_s, read_s, png_s;
 } worker;
 
+/* Whether uint32 words are stored low byte first (cairo RGB24 = B, G, R, x). */
+static int little_endian(void)
+{
+    const uint32_t probe = 1;
+    unsigned char first;
+    memcpy(&first, &probe, 1);
+    return first;
+}
+
+/* One frame: the draw function records the overlay (text, axes) while it
+ * gives the GL canvas the data; GL finishes into its own buffer, which is a
+ * cairo RGB24 image; the recorded overlay is painted over it there, and the
+ * frame goes to libpng (and ffmpeg) as it is: no readback copy, no separate
+ * compositing or RGB conversion pass. */
 static int render_one(run *r, worker *w, long i, hy_error *err)
 {
     const hy_anim_params *p = r->p;
-    int W = p->width, H = p->height;
+    int W = p->width, H = p->height, stride = 4 * W;
     double t0 = now();
-    cairo_t *cr = cairo_create(w->surf);
-    cairo_set_operator(cr, CAIRO_OPERATOR_CLEAR);
-    cairo_paint(cr);
-    cairo_set_operator(cr, CAIRO_OPERATOR_OVER);
+    cairo_rectangle_t ext = {0, 0, W, H};
+    cairo_surface_t *rec = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &ext);
+    cairo_t *cr = cairo_create(rec);
     double k = p->scale > 0 ? p->scale : H / 360.0;
     cairo_scale(cr, k, k);
     hy_cairo_canvas cc;
@@ -204,24 +217,38 @@ static int render_one(run *r, worker *w, long i, hy_error *err)
     hy_gl_begin(w->gl, (hy_rgb){1, 1, 1});
     int st = r->draw(r->state, &f, err);
     cairo_destroy(cr);
-    cairo_surface_flush(w->surf);
+    if (!st && cairo_surface_status(rec))
+        st = hy_error_set(err, HY_ENOMEM, "cairo could not record the frame's overlay: %s",
+                          cairo_status_to_string(cairo_surface_status(rec)));
     double t1 = now();
-    if (!st)
-        st = hy_gl_read(w->gl, w->rgba, err);
-    if (!st)
-        hy_frame_composite(W, H, w->rgba, cairo_image_surface_get_data(w->surf),
-                           cairo_image_surface_get_stride(w->surf), w->rgb);
+    const unsigned char *fb = st ? NULL : hy_gl_finish(w->gl, err);
+    if (!st && !fb)
+        st = err && err->code ? err->code : HY_ENUM;
+    if (!st && !w->frame) {
+        w->frame = cairo_image_surface_create_for_data((unsigned char *)fb, CAIRO_FORMAT_RGB24, W, H, stride);
+        if (cairo_surface_status(w->frame))
+            st = hy_error_set(err, HY_ENOMEM, "out of memory for %d x %d frames", W, H);
+    }
+    if (!st) {
+        cairo_surface_mark_dirty(w->frame);
+        cairo_t *c2 = cairo_create(w->frame);
+        cairo_set_source_surface(c2, rec, 0, 0);
+        cairo_paint(c2);
+        cairo_destroy(c2);
+        cairo_surface_flush(w->frame);
+    }
+    cairo_surface_destroy(rec);
     double t2 = now();
     char path[4200];
     if (!st && !p->no_frames) {
         snprintf(path, sizeof path, "%s/frame_%05ld.png", r->dir, i);
-        st = hy_png_write_rgb(path, W, H, w->rgb, &p->png, err);
+        st = hy_png_write_xrgb(path, W, H, fb, stride, &p->png, err);
     }
     if (!st && p->poster && i == r->nframes - 1) {
         snprintf(path, sizeof path, "%s/%s.png", p->outdir, p->name);
-        st = hy_png_write_rgb(path, W, H, w->rgb, &p->png, err);
+        st = hy_png_write_xrgb(path, W, H, fb, stride, &p->png, err);
     }
-    if (!st && r->video && pipe_frame(r, i, w->rgb, (size_t)W * (size_t)H * 3))
+    if (!st && r->video && pipe_frame(r, i, fb, (size_t)stride * (size_t)H))
         st = hy_error_set(err, HY_EIO, "ffmpeg stopped reading frames (see its messages above)");
     double t3 = now();
     w->draw_s += t1 - t0, w->read_s += t2 - t1, w->png_s += t3 - t2;
@@ -240,13 +267,6 @@ static void *work(void *arg)
     pthread_mutex_lock(&create_mu);    /* OSMesa context creation, one at a time */
     int st = hy_gl_create(&w.gl, p->width, p->height, &err);
     pthread_mutex_unlock(&create_mu);
-    if (!st) {
-        w.surf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, p->width, p->height);
-        w.rgba = malloc((size_t)p->width * (size_t)p->height * 4);
-        w.rgb = malloc((size_t)p->width * (size_t)p->height * 3);
-        if (cairo_surface_status(w.surf) || !w.rgba || !w.rgb)
-            st = hy_error_set(&err, HY_ENOMEM, "out of memory for %d x %d frames", p->width, p->height);
-    }
     while (!st) {
         pthread_mutex_lock(&r->mu);
         long i = r->failed ? r->last : r->next++;
@@ -264,10 +284,8 @@ static void *work(void *arg)
     pthread_mutex_lock(&r->mu);
     r->draw_s += w.draw_s, r->read_s += w.read_s, r->png_s += w.png_s;
     pthread_mutex_unlock(&r->mu);
-    if (w.surf)
-        cairo_surface_destroy(w.surf);
-    free(w.rgba);
-    free(w.rgb);
+    if (w.frame)
+        cairo_surface_destroy(w.frame);
     hy_gl_free(w.gl);
     return NULL;
 }
@@ -330,8 +348,8 @@ static int open_video(run *r, hy_error *err)
         snprintf(r->video_path, sizeof r->video_path, "%s/%s.%s", p->outdir, p->name, v) >= (int)sizeof r->video_path)
         return hy_error_set(err, HY_EINVAL, "output directory name is too long");
     /* the container named with -f: the temporary name has no telling extension */
-    snprintf(cmd, sizeof cmd, "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -s %dx%d -r %g -i - "
-             "%s -f %s '%s'", p->width, p->height, p->fps, codec, v, r->video_tmp);
+    snprintf(cmd, sizeof cmd, "ffmpeg -loglevel error -y -f rawvideo -pix_fmt %s -s %dx%d -r %g -i - "
+             "%s -f %s '%s'", little_endian() ? "bgr0" : "0rgb", p->width, p->height, p->fps, codec, v, r->video_tmp);
     r->video = popen(cmd, "w");
     if (!r->video)
         return hy_error_set(err, HY_EIO, "cannot start ffmpeg: %s", strerror(errno));

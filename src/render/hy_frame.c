@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <png.h>
 #include <setjmp.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,7 +67,10 @@ static int filter_flags(int f)
     }
 }
 
-static int encode(FILE *fp, int w, int h, const unsigned char *rgb, const hy_png_opts *o)
+/* Pixels: packed RGB (stride 3w) when xrgb_stride is 0, else cairo RGB24
+ * words (0x00RRGGBB in native byte order) with that stride, converted by
+ * libpng row by row as it encodes. */
+static int encode(FILE *fp, int w, int h, const unsigned char *rgb, int xrgb_stride, const hy_png_opts *o)
 {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, png_fail, NULL);
     png_infop info = png ? png_create_info_struct(png) : NULL;
@@ -86,15 +90,26 @@ static int encode(FILE *fp, int w, int h, const unsigned char *rgb, const hy_png
     png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
+    if (xrgb_stride) {
+        const uint32_t probe = 1;
+        unsigned char first;
+        memcpy(&first, &probe, 1);
+        if (first) {                  /* little-endian: bytes B, G, R, x */
+            png_set_bgr(png);
+            png_set_filler(png, 0, PNG_FILLER_AFTER);
+        } else                        /* big-endian: bytes x, R, G, B */
+            png_set_filler(png, 0, PNG_FILLER_BEFORE);
+    }
+    size_t row = xrgb_stride ? (size_t)xrgb_stride : (size_t)w * 3;
     for (int y = 0; y < h; y++)
-        png_write_row(png, rgb + (size_t)y * (size_t)w * 3);
+        png_write_row(png, rgb + (size_t)y * row);
     png_write_end(png, info);
     png_destroy_write_struct(&png, &info);
     return 0;
 }
 
-int hy_png_write_rgb(const char *path, int w, int h, const unsigned char *rgb, const hy_png_opts *o,
-                     hy_error *err)
+static int write_png(const char *path, int w, int h, const unsigned char *rgb, int xrgb_stride,
+                     const hy_png_opts *o, hy_error *err)
 {
     hy_png_opts def = hy_png_frame_defaults();
     size_t n = strlen(path);
@@ -111,7 +126,7 @@ int hy_png_write_rgb(const char *path, int w, int h, const unsigned char *rgb, c
     }
     fchmod(fd, 0644);
     FILE *fp = fdopen(fd, "wb");
-    int bad = !fp || encode(fp, w, h, rgb, o ? o : &def) != 0;
+    int bad = !fp || encode(fp, w, h, rgb, xrgb_stride, o ? o : &def) != 0;
     int e = errno;
     if (fp && fclose(fp) != 0 && !bad)
         bad = 1, e = errno;
@@ -125,4 +140,18 @@ int hy_png_write_rgb(const char *path, int w, int h, const unsigned char *rgb, c
     if (bad)
         return hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, e ? strerror(e) : "PNG encoding failed");
     return HY_OK;
+}
+
+int hy_png_write_rgb(const char *path, int w, int h, const unsigned char *rgb, const hy_png_opts *o,
+                     hy_error *err)
+{
+    return write_png(path, w, h, rgb, 0, o, err);
+}
+
+int hy_png_write_xrgb(const char *path, int w, int h, const unsigned char *xrgb, int stride, const hy_png_opts *o,
+                      hy_error *err)
+{
+    if (stride < 4 * w)
+        return hy_error_set(err, HY_EINVAL, "cannot write '%s': stride %d is less than 4 x %d", path, stride, w);
+    return write_png(path, w, h, xrgb, stride, o, err);
 }

@@ -41,4 +41,10 @@ hy_png_opts hy_png_frame_defaults(void);
 int hy_png_write_rgb(const char *path, int w, int h, const unsigned char *rgb, const hy_png_opts *o,
                      hy_error *err);
 
+/* The same from cairo RGB24 pixels (one native-endian 0x00RRGGBB word per
+ * pixel, rows stride bytes apart, top row first): libpng drops the unused
+ * byte and orders the channels while it encodes, so no conversion pass. */
+int hy_png_write_xrgb(const char *path, int w, int h, const unsigned char *xrgb, int stride, const hy_png_opts *o,
+                      hy_error *err);
+
 #endif

@@ -7,6 +7,7 @@
 #include <GL/glext.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -248,7 +249,13 @@ static int gl_create_unlocked(hy_gl **out, int width, int height, hy_error *err)
         return hy_error_set(err, HY_ENOMEM, "out of memory for a %d x %d GL frame", width, height);
     }
     g->w = width, g->h = height, g->scale = 1.0;
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
+    /* Bytes B, G, R, A (little-endian hosts) or A, R, G, B (big-endian), top
+     * row first: OSMesa's buffer is then a cairo RGB24 image, and the overlay
+     * is drawn straight onto the frame (hy_gl_finish) */
+    const uint32_t probe = 1;
+    unsigned char little;
+    memcpy(&little, &probe, 1);
+    const int attribs[] = {OSMESA_FORMAT, little ? OSMESA_BGRA : OSMESA_ARGB, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
                            OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
                            OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
     g->ctx = OSMesaCreateContextAttribs(attribs, NULL);
@@ -260,6 +267,7 @@ static int gl_create_unlocked(hy_gl **out, int width, int height, hy_error *err)
         gl_free_unlocked(g);
         return hy_error_set(err, HY_EUNSUP, "OSMesa could not make a %d x %d context current", width, height);
     }
+    OSMesaPixelStore(OSMESA_Y_UP, 0);
     snprintf(g->desc, sizeof g->desc, "%s / %s", (const char *)glGetString(GL_VERSION),
              (const char *)glGetString(GL_RENDERER));
     if (build_programs(g, err)) {
@@ -989,6 +997,27 @@ static int gl_read_unlocked(hy_gl *g, unsigned char *rgba, hy_error *err)
     if (e != GL_NO_ERROR)
         return hy_error_set(err, HY_ENUM, "OpenGL error 0x%04x while drawing or reading the frame", e);
     return HY_OK;
+}
+
+static const unsigned char *gl_finish_unlocked(hy_gl *g, hy_error *err)
+{
+    submit(g);
+    leave_msaa(g);
+    glFinish();                       /* OSMesa copies the frame into g->fb */
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        hy_error_set(err, HY_ENUM, "OpenGL error 0x%04x while drawing the frame", e);
+        return NULL;
+    }
+    return g->fb;
+}
+
+const unsigned char *hy_gl_finish(hy_gl *g, hy_error *err)
+{
+    pthread_mutex_lock(&gl_mu);
+    const unsigned char *fb = gl_finish_unlocked(g, err);
+    pthread_mutex_unlock(&gl_mu);
+    return fb;
 }
 
 int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err)

@@ -77,6 +77,12 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err);
  * labels drawn by the overlay.  Returns 0 when it is behind the camera. */
 int hy_gl_ribbon_project(const hy_gl *g, const hy_gl_ribbon *r, const double xyz[3], double *px, double *py);
 
+/* Finishes drawing and returns the frame in the context's own buffer, laid
+ * out as a cairo RGB24 image (a native-endian 0x??RRGGBB word per pixel,
+ * stride 4 * width, top row first), valid until the next drawing on this
+ * context.  NULL (and err) on a GL error. */
+const unsigned char *hy_gl_finish(hy_gl *g, hy_error *err);
+
 /* Finishes drawing and reads the frame (glReadPixels) as RGBA8, rows
  * bottom-up as GL stores them; rgba holds width * height * 4 bytes. */
 int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err);

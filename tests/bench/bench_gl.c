@@ -3,6 +3,7 @@
  * several settings, then a 120-frame 1280x720 γ sweep with -j 2.  Prints
  * figures; asserts nothing (exits 77 without a GL context). */
 #include <cairo.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,12 +22,12 @@ static double now(void)
 
 typedef struct one {
     hy_gl *gl;
-    cairo_surface_t *surf;
-    unsigned char *rgba, *rgb;
+    cairo_surface_t *frame;   /* the context's buffer as a cairo RGB24 image */
+    const unsigned char *fb;
+    unsigned char *rgb;       /* the same frame packed as RGB, for the RGB encode figures */
     int w, h;
 } one;
 
-/* Draws frame index of scene sc into o (as the engine does); returns the seconds of draw, read+composite. */
 static double t_gl_read, t_composite; /* the two parts of *t_read */
 static double frame_log[64];           /* whole render times of the timed frames */
 static int n_frame_log;
@@ -37,15 +38,17 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* Draws frame index of scene sc into o exactly as hy_anim.c's render_one does
+ * (overlay recorded, GL finished into its own buffer, overlay painted onto
+ * it); adds the seconds of drawing and of finishing + overlay. */
 static int frame(one *o, const anim_scene *sc, void *st, long index, long nframes, double fps, double *t_draw,
                  double *t_read)
 {
     hy_error err;
     double t0 = now(), k = o->h / 360.0;
-    cairo_t *cr = cairo_create(o->surf);
-    cairo_set_operator(cr, CAIRO_OPERATOR_CLEAR);
-    cairo_paint(cr);
-    cairo_set_operator(cr, CAIRO_OPERATOR_OVER);
+    cairo_rectangle_t ext = {0, 0, o->w, o->h};
+    cairo_surface_t *rec = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &ext);
+    cairo_t *cr = cairo_create(rec);
     cairo_scale(cr, k, k);
     hy_cairo_canvas cc;
     hy_anim_frame f = {index, nframes, index / fps, nframes / fps, (double)index / (nframes - 1), o->w, o->h, k,
@@ -53,17 +56,26 @@ static int frame(one *o, const anim_scene *sc, void *st, long index, long nframe
     hy_gl_begin(o->gl, (hy_rgb){1, 1, 1});
     int rc = sc->draw(st, &f, &err);
     cairo_destroy(cr);
-    cairo_surface_flush(o->surf);
     double t1 = now();
-    if (!rc)
-        rc = hy_gl_read(o->gl, o->rgba, &err);
+    const unsigned char *fb = rc ? NULL : hy_gl_finish(o->gl, &err);
     double t1b = now();
-    hy_frame_composite(o->w, o->h, o->rgba, cairo_image_surface_get_data(o->surf),
-                       cairo_image_surface_get_stride(o->surf), o->rgb);
+    if (fb) {
+        if (!o->frame)
+            o->frame = cairo_image_surface_create_for_data((unsigned char *)fb, CAIRO_FORMAT_RGB24, o->w, o->h, 4 * o->w);
+        cairo_surface_mark_dirty(o->frame);
+        cairo_t *c2 = cairo_create(o->frame);
+        cairo_set_source_surface(c2, rec, 0, 0);
+        cairo_paint(c2);
+        cairo_destroy(c2);
+        cairo_surface_flush(o->frame);
+        o->fb = fb;
+    } else
+        rc = rc ? rc : HY_ENUM;
+    cairo_surface_destroy(rec);
     double t2 = now();
     t_gl_read += t1b - t1, t_composite += t2 - t1b;
     if (n_frame_log < 64)
-        frame_log[n_frame_log++] = (t1 - t0) + (t2 - t1);
+        frame_log[n_frame_log++] = t2 - t0;
     *t_draw += t1 - t0, *t_read += t2 - t1;
     if (rc)
         fprintf(stderr, "bench_gl: %s\n", err.msg);
@@ -74,7 +86,7 @@ static void bench_png(const one *o)
 {
     static const char *fname[] = {"none", "sub", "up", "paeth", "all"};
     const int levels[] = {1, 2, 3, 6}, strategies[] = {0, 3};
-    printf("libpng writing that 1920x1080 frame (mean of 5):\n");
+    printf("libpng writing that frame from packed RGB at other settings (mean of 5):\n");
     for (size_t l = 0; l < sizeof levels / sizeof levels[0]; l++)
         for (int sg = 0; sg < 2; sg++)
             for (int fl = 0; fl < 5; fl++) {
@@ -94,6 +106,8 @@ static void bench_png(const one *o)
            fname[d.filter]);
 }
 
+#define NTIMED 20
+
 static int bench_frame(void)
 {
     one o = {.w = 1920, .h = 1080};
@@ -103,8 +117,6 @@ static int bench_frame(void)
         return 77;
     }
     printf("context: %s\n", hy_gl_describe(o.gl));
-    o.surf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o.w, o.h);
-    o.rgba = malloc((size_t)o.w * o.h * 4);
     o.rgb = malloc((size_t)o.w * o.h * 3);
     const anim_scene *sc = anim_scene_find("gamma-sweep-ex3");
     hy_anim_params p = hy_anim_defaults();
@@ -117,24 +129,41 @@ static int bench_frame(void)
         frame(&o, sc, st, 60, 120, 30, &td, &tr);
     td = tr = t_gl_read = t_composite = 0;
     n_frame_log = 0;
-    for (int i = 0; i < 10; i++)
+    for (int i = 0; i < NTIMED; i++)
         frame(&o, sc, st, 60, 120, 30, &td, &tr);
     qsort(frame_log, (size_t)n_frame_log, sizeof *frame_log, cmp_double);
-    printf("  render time per frame over %d frames: min %.2f ms, median %.2f ms\n", n_frame_log, 1e3 * frame_log[0],
-           1e3 * frame_log[n_frame_log / 2]);
-    printf("1920x1080 gamma-sweep-ex3 frame (mean of 10, solve cached): draw (GL + cairo overlay) %.2f ms, "
-           "readback + composite %.2f ms (GL rasterisation + glReadPixels %.2f, composite %.2f), total %.2f ms\n",
-           1e2 * td, 1e2 * tr, 1e2 * t_gl_read, 1e2 * t_composite, 1e2 * (td + tr));
-    double te = now();              /* the floor: clear and read back an empty frame */
+    double r_min = frame_log[0], r_med = frame_log[n_frame_log / 2];
+    printf("1920x1080 gamma-sweep-ex3 frame, %d frames (solve cached): render min %.2f ms, median %.2f ms; "
+           "mean parts: draw (GL commands + recorded overlay) %.2f, GL finish %.2f, overlay painted on the frame %.2f\n",
+           NTIMED, 1e3 * r_min, 1e3 * r_med, 1e3 * td / NTIMED, 1e3 * t_gl_read / NTIMED, 1e3 * t_composite / NTIMED);
+    /* the encoder, as the engine calls it on that frame */
+    hy_png_opts d = hy_png_frame_defaults();
+    double enc[NTIMED];
+    for (int i = 0; i < NTIMED; i++) {
+        double t0 = now();
+        hy_png_write_xrgb("bench_frame.png", o.w, o.h, o.fb, 4 * o.w, &d, &err);
+        enc[i] = now() - t0;
+    }
+    qsort(enc, NTIMED, sizeof *enc, cmp_double);
+    printf("libpng alone writing that frame (hy_png_write_xrgb, frame settings), %d writes: min %.2f ms, median %.2f ms\n",
+           NTIMED, 1e3 * enc[0], 1e3 * enc[NTIMED / 2]);
+    printf("render / encode: %.2f (minima), %.2f (medians); target <= 0.5\n", r_min / enc[0], r_med / enc[NTIMED / 2]);
+    double te = now();              /* the floor: clear and finish an empty frame */
     for (int i = 0; i < 10; i++) {
         hy_gl_begin(o.gl, (hy_rgb){1, 1, 1});
-        hy_gl_read(o.gl, o.rgba, &err);
+        hy_gl_finish(o.gl, &err);
     }
-    printf("  empty 1920x1080 GL frame (clear + glReadPixels, nothing drawn): %.2f ms\n", 1e2 * (now() - te));
+    printf("  empty 1920x1080 GL frame (clear + finish, nothing drawn): %.2f ms\n", 1e2 * (now() - te));
+    for (size_t i = 0; i < (size_t)o.w * o.h; i++) { /* packed RGB for the settings table */
+        uint32_t px;
+        memcpy(&px, o.fb + 4 * i, 4);
+        o.rgb[3 * i] = (unsigned char)(px >> 16), o.rgb[3 * i + 1] = (unsigned char)(px >> 8),
+                  o.rgb[3 * i + 2] = (unsigned char)px;
+    }
     bench_png(&o);
     sc->release(st);
-    cairo_surface_destroy(o.surf);
-    free(o.rgba);
+    if (o.frame)
+        cairo_surface_destroy(o.frame);
     free(o.rgb);
     hy_gl_free(o.gl);
     return 0;

@@ -217,7 +217,7 @@ static void test_video_pipe(void)
                   "--video", "mp4", "--quiet", "-j", "2", NULL) == 0, "video run -j 2");
     size_t n1 = 0, n2 = 0;
     unsigned char *a = slurp("out_vid1/k-cycle-ex2.mp4", &n1), *b = slurp("out_vid2/k-cycle-ex2.mp4", &n2);
-    CHECK(a && n1 == 20 * 64 * 48 * 3, "ffmpeg got %zu bytes, expected %d", n1, 20 * 64 * 48 * 3);
+    CHECK(a && n1 == 20 * 64 * 48 * 4, "ffmpeg got %zu bytes, expected %d (20 frames of 64 x 48, 4 bytes a pixel)", n1, 20 * 64 * 48 * 4);
     CHECK(a && b && n1 == n2 && !memcmp(a, b, n1), "piped frames differ between -j 1 and -j 2 (order)");
     free(a);
     free(b);
