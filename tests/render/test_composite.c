@@ -1,10 +1,13 @@
-/* test_composite.c: hy_frame_composite (the word-at-a-time RGBA -> RGB
- * conversion and the skip of transparent overlay pixels) against the
- * definition, pixel by pixel: out = overlay + gl * (1 - alpha), premultiplied
- * "over" rounded to nearest, GL rows flipped.  Exact: both are integer. */
+/* test_composite.c: hy_frame_composite against the definition, pixel by
+ * pixel: out = overlay + gl * (1 - alpha), premultiplied "over" rounded to
+ * nearest, GL rows flipped (exact: both are integer); and hy_png_write_xrgb
+ * (the animation frames' writer, cairo RGB24 words in) read back by cairo's
+ * own PNG reader equal to its input in every pixel. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <cairo.h>
 
 #include "hy_frame.h"
 #include "rcheck.h"
@@ -67,8 +70,45 @@ static void one(int w, int h, int density)
     free(gl), free(ov), free(out);
 }
 
+static void xrgb_png(int w, int h)
+{
+    int stride = 4 * w + 8;           /* wider than the row, as cairo may make it */
+    unsigned char *px = malloc((size_t)stride * h);
+    for (size_t i = 0; i < (size_t)stride * h; i++)
+        px[i] = (unsigned char)rnd();
+    hy_error err;
+    hy_png_opts o = hy_png_frame_defaults();
+    int rc = hy_png_write_xrgb("composite_xrgb.png", w, h, px, stride, &o, &err);
+    CHECK(rc == 0, "write: %s", rc ? err.msg : "");
+    cairo_surface_t *s = cairo_image_surface_create_from_png("composite_xrgb.png");
+    CHECK(cairo_surface_status(s) == CAIRO_STATUS_SUCCESS && cairo_image_surface_get_width(s) == w &&
+              cairo_image_surface_get_height(s) == h, "read back %dx%d", w, h);
+    if (cairo_surface_status(s) == CAIRO_STATUS_SUCCESS) {
+        const unsigned char *d = cairo_image_surface_get_data(s);
+        int ds = cairo_image_surface_get_stride(s), bad = 0;
+        for (int y = 0; y < h && !bad; y++)
+            for (int x = 0; x < w && !bad; x++) {
+                uint32_t a, b;
+                memcpy(&a, px + (size_t)y * stride + 4 * (size_t)x, 4);
+                memcpy(&b, d + (size_t)y * ds + 4 * (size_t)x, 4);
+                if ((a & 0xFFFFFFu) != (b & 0xFFFFFFu)) {
+                    bad = 1;
+                    CHECK(0, "xrgb %dx%d: pixel (%d,%d) %06x read back as %06x", w, h, x, y, a & 0xFFFFFFu,
+                          b & 0xFFFFFFu);
+                }
+            }
+    }
+    cairo_surface_destroy(s);
+    CHECK(hy_png_write_xrgb("composite_bad.png", w, h, px, 4 * w - 1, &o, &err) != 0 && strstr(err.msg, "stride"),
+          "a stride below 4 w is refused");
+    free(px);
+}
+
 int main(void)
 {
+    xrgb_png(1, 1);
+    xrgb_png(7, 5);
+    xrgb_png(333, 17);
     const int widths[] = {1, 2, 3, 4, 5, 7, 8, 9, 17, 64, 333};
     const int dens[] = {0, 3, 50, 100};
     for (size_t i = 0; i < sizeof widths / sizeof *widths; i++)
