@@ -40,7 +40,7 @@ static const char gallery_help[] =
     "  -q, --quiet        print only errors (no progress, no summary)\n"
     "  -h, --help         this text\n";
 
-enum { J_SKIP, J_UNCHANGED, J_TODO, J_RENDERED, J_FAILED };
+enum { J_SKIP, J_UNCHANGED, J_PENDING, J_RENDERED, J_FAILED };
 
 typedef struct opts {
     const char *scenes, *out;
@@ -73,7 +73,7 @@ typedef struct job {
 typedef struct pool {
     const opts *o;
     job *jobs;
-    size_t *todo, ntodo, next, done;
+    size_t *queue, nqueue, next, done;
     pthread_mutex_t mu;
 } pool;
 
@@ -351,7 +351,7 @@ static void job_plan(const opts *o, job *jobs, size_t i, entry *man, size_t nman
         if (!strcmp(man[k].scene, j->file))
             j->old = &man[k];
     snprintf(j->name, sizeof j->name, "%.*s", (int)(strlen(j->file) - 6), j->file);
-    j->state = J_TODO;
+    j->state = J_PENDING;
     if (strpbrk(j->file, "\t\n\r")) {
         job_fail(j, "a scene file name with a tab or a line break is not supported");
         return;
@@ -376,7 +376,7 @@ static void job_plan(const opts *o, job *jobs, size_t i, entry *man, size_t nman
             job_fail(j, err.msg);
             return;
         }
-    if (j->state == J_TODO && !o->force && j->old && !j->old->failed && !strcmp(j->old->key, key) &&
+    if (j->state == J_PENDING && !o->force && j->old && !j->old->failed && !strcmp(j->old->key, key) &&
         outputs_exist(o->out, j->old))
         j->state = J_UNCHANGED;
 }
@@ -471,7 +471,7 @@ static void *worker(void *arg)
     pool *p = arg;
     for (;;) {
         pthread_mutex_lock(&p->mu);
-        size_t k = p->next < p->ntodo ? p->todo[p->next++] : SIZE_MAX;
+        size_t k = p->next < p->nqueue ? p->queue[p->next++] : SIZE_MAX;
         pthread_mutex_unlock(&p->mu);
         if (k == SIZE_MAX)
             return NULL;
@@ -485,25 +485,25 @@ static void *worker(void *arg)
         pthread_mutex_lock(&p->mu);
         p->done++;
         if (p->o->progress)
-            fprintf(stderr, "[%zu/%zu] %s (%s)\n", p->done, p->ntodo, j->name, what);
+            fprintf(stderr, "[%zu/%zu] %s (%s)\n", p->done, p->nqueue, j->name, what);
         pthread_mutex_unlock(&p->mu);
     }
 }
 
-/* Renders the J_TODO jobs with o->jobs threads (fewer if fewer jobs). */
+/* Renders the J_PENDING jobs (queue: their indices) with o->jobs threads (fewer if fewer jobs). */
 static int run_pool(const opts *o, job *jobs, size_t n)
 {
     pool p;
     memset(&p, 0, sizeof p);
     p.o = o;
     p.jobs = jobs;
-    p.todo = malloc((n ? n : 1) * sizeof *p.todo);
-    if (!p.todo)
+    p.queue = malloc((n ? n : 1) * sizeof *p.queue);
+    if (!p.queue)
         return -1;
     for (size_t i = 0; i < n; i++)
-        if (jobs[i].state == J_TODO)
-            p.todo[p.ntodo++] = i;
-    size_t nt = (size_t)o->jobs < p.ntodo ? (size_t)o->jobs : p.ntodo;
+        if (jobs[i].state == J_PENDING)
+            p.queue[p.nqueue++] = i;
+    size_t nt = (size_t)o->jobs < p.nqueue ? (size_t)o->jobs : p.nqueue;
     pthread_t *th = calloc(nt ? nt : 1, sizeof *th);
     pthread_mutex_init(&p.mu, NULL);
     size_t started = 0;
@@ -515,7 +515,7 @@ static int run_pool(const opts *o, job *jobs, size_t n)
         pthread_join(th[i], NULL);
     pthread_mutex_destroy(&p.mu);
     free(th);
-    free(p.todo);
+    free(p.queue);
     return 0;
 }
 
