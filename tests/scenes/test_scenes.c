@@ -298,6 +298,23 @@ static void data_fig11(void)
     hy_scene_run_free(&r);
 }
 
+/* Runs path with one --set override and builds its figure into *st (texts
+ * expanded); 0 on success, else the failure is counted.  Free both after. */
+static int run_figure(const char *path, char *set, hy_scene_run *r, hy_scene_fig *st)
+{
+    char *sets[] = {set};
+    if (run_scene(path, sets, 1, NULL, NULL, r))
+        return 1;
+    hy_error err;
+    int rc = hy_scene_run_figure(r, st, &err);
+    CHECK(rc == 0, "%s: figure: %s", path, rc ? err.msg : "");
+    if (rc) {
+        hy_scene_fig_free(st);
+        hy_scene_run_free(r);
+    }
+    return rc;
+}
+
 /* {g.gamma} and {g.dist} of the γ-sweep scene: the text carries the keyed γ,
  * and the distance to y*_u falls like 1/γ (Theorem 2; the core's convergence
  * test checks the rate, here the factor per decade is only required to lie in
@@ -311,16 +328,12 @@ static void dist_placeholder(void)
     for (size_t k = 0; k < 4; k++) {
         char set[64];
         snprintf(set, sizeof set, "series.g.gamma=%g", gammas[k]);
-        char *sets[] = {set};
         hy_scene_run r;
-        if (run_scene(path, sets, 1, NULL, NULL, &r))
-            return;
         hy_scene_fig st;
-        hy_error err;
-        int rc = hy_scene_run_figure(&r, &st, &err);
-        CHECK(rc == 0, "figure: %s", rc ? err.msg : "");
+        if (run_figure(path, set, &r, &st))
+            return;
         double g = NAN, d = NAN;
-        const char *t = rc ? NULL : st.texts[0].text;
+        const char *t = st.texts[0].text;
         const char *eq = t ? strstr(t, "= ") : NULL;
         const char *eq2 = eq ? strstr(eq + 2, "= ") : NULL;
         if (eq && eq2) {
@@ -352,18 +365,12 @@ static void key_placeholder(void)
           "[annotation b]\ntext = \"u_{max,1}\"\nx = 0\ny = 0\n", f);
     fclose(f);
     char set[] = "input.umin2=0.25";
-    char *sets[] = {set};
     hy_scene_run r;
-    if (run_scene(path, sets, 1, NULL, NULL, &r))
-        return;
     hy_scene_fig st;
-    hy_error err;
-    int rc = hy_scene_run_figure(&r, &st, &err);
-    CHECK(rc == 0, "figure: %s", rc ? err.msg : "");
-    if (!rc) {
-        CHECK(!strcmp(st.texts[0].text, "\\sigma_0 = 6, u_{min,2} = 0.25"), "expanded: '%s'", st.texts[0].text);
-        CHECK(!strcmp(st.texts[1].text, "u_{max,1}"), "markup only: '%s'", st.texts[1].text);
-    }
+    if (run_figure(path, set, &r, &st))
+        return;
+    CHECK(!strcmp(st.texts[0].text, "\\sigma_0 = 6, u_{min,2} = 0.25"), "expanded: '%s'", st.texts[0].text);
+    CHECK(!strcmp(st.texts[1].text, "u_{max,1}"), "markup only: '%s'", st.texts[1].text);
     /* placeholders made it compute the steady state; a text of markup only would not */
     CHECK(r.have_steady, "a placeholder computes the steady state");
     hy_scene_fig_free(&st);
