@@ -186,15 +186,6 @@ typedef struct worker {
     double draw_s, read_s, png_s;
 } worker;
 
-/* Whether uint32 words are stored low byte first (cairo RGB24 = B, G, R, x). */
-static int little_endian(void)
-{
-    const uint32_t probe = 1;
-    unsigned char first;
-    memcpy(&first, &probe, 1);
-    return first;
-}
-
 /* One frame: the draw function records the overlay (text, axes) while it
  * gives the GL canvas the data; GL finishes into its own buffer, which is a
  * cairo RGB24 image; the recorded overlay is painted over it there, and the
@@ -349,7 +340,7 @@ static int open_video(run *r, hy_error *err)
         return hy_error_set(err, HY_EINVAL, "output directory name is too long");
     /* the container named with -f: the temporary name has no telling extension */
     snprintf(cmd, sizeof cmd, "ffmpeg -loglevel error -y -f rawvideo -pix_fmt %s -s %dx%d -r %g -i - "
-             "%s -f %s '%s'", little_endian() ? "bgr0" : "0rgb", p->width, p->height, p->fps, codec, v, r->video_tmp);
+             "%s -f %s '%s'", hy_little_endian() ? "bgr0" : "0rgb", p->width, p->height, p->fps, codec, v, r->video_tmp);
     r->video = popen(cmd, "w");
     if (!r->video)
         return hy_error_set(err, HY_EIO, "cannot start ffmpeg: %s", strerror(errno));

@@ -91,10 +91,7 @@ static int encode(FILE *fp, int w, int h, const unsigned char *rgb, int xrgb_str
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
     if (xrgb_stride) {
-        const uint32_t probe = 1;
-        unsigned char first;
-        memcpy(&first, &probe, 1);
-        if (first) {                  /* little-endian: bytes B, G, R, x */
+        if (hy_little_endian()) {                  /* little-endian: bytes B, G, R, x */
             png_set_bgr(png);
             png_set_filler(png, 0, PNG_FILLER_AFTER);
         } else                        /* big-endian: bytes x, R, G, B */

@@ -19,6 +19,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "hy_status.h"
 
@@ -32,6 +33,17 @@ typedef struct hy_png_opts {
     int strategy;     /* zlib strategy: 0 default, 1 filtered, 3 RLE */
 } hy_png_opts;
 enum { HY_PNG_FILTER_NONE = 0, HY_PNG_FILTER_SUB, HY_PNG_FILTER_UP, HY_PNG_FILTER_PAETH, HY_PNG_FILTER_ALL };
+
+/* Whether the host stores a uint32 low byte first: a cairo RGB24 pixel is
+ * then the bytes B, G, R, x (else x, R, G, B).  Frames are kept in that
+ * layout from OpenGL (hy_gl_finish) through libpng and ffmpeg. */
+static inline int hy_little_endian(void)
+{
+    const uint32_t probe = 1;
+    unsigned char first;
+    memcpy(&first, &probe, 1);
+    return first;
+}
 
 /* Settings measured for flat-colour plot frames (tests/bench/bench_gl). */
 hy_png_opts hy_png_frame_defaults(void);

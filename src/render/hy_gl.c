@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hy_frame.h"
 #include "hy_shaders.h"
 
 /* One OpenGL call sequence at a time in the whole process.  Each thread has
@@ -252,10 +253,7 @@ static int gl_create_unlocked(hy_gl **out, int width, int height, hy_error *err)
     /* Bytes B, G, R, A (little-endian hosts) or A, R, G, B (big-endian), top
      * row first: OSMesa's buffer is then a cairo RGB24 image, and the overlay
      * is drawn straight onto the frame (hy_gl_finish) */
-    const uint32_t probe = 1;
-    unsigned char little;
-    memcpy(&little, &probe, 1);
-    const int attribs[] = {OSMESA_FORMAT, little ? OSMESA_BGRA : OSMESA_ARGB, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
+    const int attribs[] = {OSMESA_FORMAT, hy_little_endian() ? OSMESA_BGRA : OSMESA_ARGB, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
                            OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
                            OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
     g->ctx = OSMesaCreateContextAttribs(attribs, NULL);
