@@ -276,10 +276,16 @@ static int signal_multisine(const opts *o, series *s, hy_error *err)
     hy_multisine_default(&ms);
     ms.fs = o->fs;
     ms.seed = o->seed;
+    size_t kmin, kmax; /* the band against --fs, before any allocation */
+    int rc = hy_multisine_lines(&ms, &kmin, &kmax, err);
+    if (rc) {
+        hy_error_prefix(err, "--fs %g", o->fs);
+        return rc;
+    }
     double *u = malloc(ms.n * r * sizeof *u);
     if (!u)
         return hy_error_set(err, HY_ENOMEM, "out of memory for the multisine");
-    int rc = hy_multisine_design(&ms, r, u, err);
+    rc = hy_multisine_design(&ms, r, u, err);
     if (!rc)
         rc = synth_periodic(o, u, ms.n * r, o->periods ? o->periods : 5, 0, s, err);
     free(u);

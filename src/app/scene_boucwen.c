@@ -74,13 +74,22 @@ static const char *enum_text(const hy_scene *s, const char *sec, const char *nam
     return t;
 }
 
-/* Re-raises the core message in err at the scene location of key (copied
- * first: hy_scene_error_at writes into the same buffer). */
+/* The first of keys (NULL-terminated) written in [sec], or NULL (the section):
+ * where a message about several keys points. */
+static const char *first_set(const hy_scene *s, const char *sec, const char *const *keys)
+{
+    hy_scene_loc loc;
+    for (size_t i = 0; keys[i]; i++)
+        if (hy_scene_get_loc(s, sec, NULL, keys[i], &loc))
+            return keys[i];
+    return NULL;
+}
+
+/* Re-raises the core message in err at the scene location of key (NULL: the
+ * section), prefixed with what. */
 static int relocate(const hy_scene *s, const char *sec, const char *key, hy_error *err, int code, const char *what)
 {
-    char msg[sizeof err->msg];
-    memcpy(msg, err->msg, sizeof msg);
-    return hy_scene_error_at(s, sec, NULL, key, err, code, "%s%s", what, msg);
+    return hy_scene_error_at(s, sec, NULL, key, err, code, "%s%s", what, err->msg);
 }
 
 int hy_scene_is_boucwen(const hy_scene *s)
@@ -117,6 +126,12 @@ static int read_sine(const hy_scene *s, bw_setup *b, hy_error *err)
     b->period = num(s, "input", "period", 2);
     b->offset = num(s, "input", "offset", 0);
     double nd = b->period * b->fs;
+    hy_scene_loc loc;
+    if (!(nd <= BW_MAX_SAMPLES)) /* before the conversion below: fs may be 1e300 */
+        return hy_scene_error_at(s, "input", NULL, hy_scene_get_loc(s, "input", NULL, "fs", &loc) ? "fs" : "period",
+                                 err, HY_EINVAL,
+                                 "a Bouc-Wen sine of period x fs = %g x %g = %.3g samples is more than the %.0f "
+                                 "integration samples a scene may use", b->period, b->fs, nd, BW_MAX_SAMPLES);
     if (fabs(nd - nearbyint(nd)) > 1e-9 * nd || nearbyint(nd) < 4)
         return hy_scene_error_at(s, "input", NULL, "period", err, HY_EINVAL,
                                  "a Bouc-Wen sine needs a whole number (>= 4) of samples per period: "
@@ -138,8 +153,9 @@ static int read_multisine(const hy_scene *s, bw_setup *b, hy_error *err)
     b->ms.fmax = band[1];
     b->ms.rms = num(s, "input", "rms", 50);
     b->ms.seed = b->seed;
+    static const char *const culprits[] = {"band", "fs", "samples", NULL};
     if (hy_multisine_lines(&b->ms, &kmin, &kmax, err))
-        return relocate(s, "input", "band", err, HY_EINVAL, "");
+        return relocate(s, "input", first_set(s, "input", culprits), err, HY_EINVAL, "");
     b->nd = b->ms.n;
     return HY_OK;
 }
@@ -161,8 +177,9 @@ static int read_sweep(const hy_scene *s, bw_setup *b, hy_error *err)
     b->sw.rate = num(s, "input", "rate", 10) / 60.0;
     b->nd = hy_sweep_length(&b->sw, b->fs);
     if (b->nd == 0) {
+        static const char *const culprits[] = {"rate", "band", "fs", "amp", NULL};
         hy_sweep_fill(&b->sw, b->fs, NULL, 0, err);
-        return relocate(s, "input", "band", err, HY_EINVAL, "");
+        return relocate(s, "input", first_set(s, "input", culprits), err, HY_EINVAL, "");
     }
     if (b->nd < 16)
         return hy_scene_error_at(s, "input", NULL, "band", err, HY_EINVAL,

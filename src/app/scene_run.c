@@ -386,9 +386,9 @@ static double interp(const plan *p, const double *y, double t)
     double f = (t - p->t0) / (p->t1 - p->t0) * (double)(p->npts - 1);
     if (!(f > 0))
         return y[0];
-    size_t i = (size_t)f;
-    if (i >= p->npts - 1)
+    if (!(f < (double)(p->npts - 1))) /* before the cast: f may be any size */
         return y[p->npts - 1];
+    size_t i = (size_t)f;
     double w = f - (double)i;
     return y[i] * (1 - w) + y[i + 1] * w;
 }
@@ -464,7 +464,7 @@ static int loop_intervals(const hy_scene_run *r, int major, double *a, double *b
                 continue;
             for (int w = -1; w <= 1; w++) {
                 double s0 = m->rho_start + w * rT, s1 = m->rho_close + w * rT;
-                if (s0 >= cur - 1e-12 && s0 < next) {
+                if (s0 >= cur - 1e-12 * rT && s0 < next) {
                     next = s0;
                     skip_to = s1;
                 }
@@ -475,6 +475,8 @@ static int loop_intervals(const hy_scene_run *r, int major, double *a, double *b
             b[n] = next;
             n++;
         }
+        if (!(skip_to > cur)) /* a loop narrower than an ulp of ϱ: no progress possible */
+            break;
         cur = skip_to;
     }
     return (int)n;

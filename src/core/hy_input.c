@@ -64,6 +64,38 @@ static double piece_ddu(const hy_piece *p, double t)
 
 static int sgn(double x) { return (x > 0) - (x < 0); }
 
+/* Smallest excursion an input given by its extrema may have, relative to its
+ * scale S = max(largest |u|, total variation ρ_T): the loops are found and
+ * sampled in ρ, whose values reach S, so an excursion w spans w / ulp(S) =
+ * (w / S) 2^52 representable values: 1e-10 S leaves about 450,000, enough for
+ * the points of a curve and for loop areas to ~1e-6 relative.  Narrower
+ * excursions vanish in rounding (umin1 = -1e19 made a minor loop of width 0.8
+ * narrower than one ulp of ρ). */
+#define HY_EXCURSION_MIN_REL 1e-10
+
+/* Checks the cyclic extrema e[0..n-1] against HY_EXCURSION_MIN_REL: returns 0,
+ * or 1 with *big (the extremum of largest magnitude), *small (the start of
+ * the narrowest excursion e[small] -> e[small+1]) and *scale set. */
+static int excursion_too_small(const double *e, size_t n, size_t *big, size_t *small, double *scale)
+{
+    double var = 0, umax = 0, wmin = INFINITY;
+    *big = *small = 0;
+    for (size_t i = 0; i < n; i++) {
+        double w = fabs(e[(i + 1) % n] - e[i]);
+        var += w;
+        if (fabs(e[i]) > umax) {
+            umax = fabs(e[i]);
+            *big = i;
+        }
+        if (w < wmin) {
+            wmin = w;
+            *small = i;
+        }
+    }
+    *scale = fmax(umax, var);
+    return wmin < HY_EXCURSION_MIN_REL * *scale;
+}
+
 /* Computes ρ at every piece start, the runs, T and ρ_T; takes ownership of pcs. */
 static int finish(hy_input *in, hy_piece *pcs, size_t n, hy_error *err)
 {
@@ -180,6 +212,15 @@ int hy_input_multimodal(hy_input *in, const double *e, size_t n, const double *t
             return hy_error_set(err, HY_EINVAL, "extrema must alternate between maxima and minima: extrema[%zu] = %g is not an extremum",
                                 (i + 1) % n, e[(i + 1) % n]);
     }
+    size_t big, small;
+    double scale;
+    if (excursion_too_small(e, n, &big, &small, &scale))
+        return hy_error_set(err, HY_EINVAL,
+                            "extrema[%zu] = %g makes the input's scale %g (largest |u| or total variation), and "
+                            "the excursion extrema[%zu] -> extrema[%zu] of %g is below %g of it: its loop cannot be "
+                            "resolved in double precision",
+                            big, e[big], scale, small, (small + 1) % n, fabs(e[(small + 1) % n] - e[small]),
+                            HY_EXCURSION_MIN_REL);
     if (tm) {
         if (tm[0] != 0)
             return hy_error_set(err, HY_EINVAL, "times[0] must be 0 (got %g)", tm[0]);
@@ -238,6 +279,16 @@ int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, dou
     /* alternation may degenerate when u_min,1 == u_min,2: the extrema list is
        still min1, max1, min2, max2 with nonzero steps, so build it directly */
     const double e[4] = {umin1, umax1, umin2, umax2};
+    const char *en[4] = {"u_min,1", "u_max,1", "u_min,2", "u_max,2"};
+    size_t big, small;
+    double scale;
+    if (excursion_too_small(e, 4, &big, &small, &scale))
+        return hy_error_set(err, HY_EINVAL,
+                            "%s = %g makes the input's scale %g (largest |u| or total variation), and the "
+                            "excursion from %s to %s of %g is below %g of it: its loop cannot be resolved in "
+                            "double precision",
+                            en[big], e[big], scale, en[small], en[(small + 1) % 4],
+                            fabs(e[(small + 1) % 4] - e[small]), HY_EXCURSION_MIN_REL);
     hy_piece *p = malloc(4 * sizeof *p);
     if (!p)
         return hy_error_set(err, HY_ENOMEM, "out of memory");

@@ -35,6 +35,8 @@ static size_t for_each_arc(const hy_steady *st, double rho0, double rho1,
         }
         if (end > rho1)
             end = rho1;
+        if (!(end > rho)) /* runs narrower than an ulp of ϱ (hy_input refuses such extrema) */
+            break;
         hy_arc arc;
         arc.rho0 = rho;
         arc.rho1 = end;

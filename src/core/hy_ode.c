@@ -124,8 +124,12 @@ static int advance(gsl_odeiv2_driver *d, double *tc, double target, double y[], 
     if (st == GSL_EMAXITER)
         return hy_error_set(err, HY_ENUM, "ODE step cap reached at t = %.17g before t = %.17g (raise max_steps or loosen the tolerance)",
                             *tc, target);
-    if (st != GSL_SUCCESS || !isfinite(y[0]))
+    if (st != GSL_SUCCESS)
         return hy_error_set(err, HY_ENUM, "ODE integration failed at t = %.17g: %s", *tc, gsl_strerror(st));
+    for (size_t i = 0; i < d->sys->dimension; i++)
+        if (!isfinite(y[i])) /* GSL reports success: say what went wrong instead */
+            return hy_error_set(err, HY_ENUM, "ODE solution became non-finite (y[%zu] = %g) by t = %.17g",
+                                i, y[i], *tc);
     return HY_OK;
 }
 

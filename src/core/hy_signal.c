@@ -77,15 +77,24 @@ int hy_multisine_lines(const hy_multisine *ms, size_t *kmin, size_t *kmax,
         return hy_error_set(err, HY_EINVAL, "multisine fmax = %g must be finite and >= fmin", ms->fmax);
     if (!(isfinite(ms->rms) && ms->rms >= 0))
         return hy_error_set(err, HY_EINVAL, "multisine rms = %g must be finite and >= 0", ms->rms);
-    /* lines in units of f0 = fs/n; the tiny slack keeps exact integers */
-    double lo = ms->fmin * (double)ms->n / ms->fs;
-    double hi = ms->fmax * (double)ms->n / ms->fs;
-    *kmin = (size_t)ceil(lo - 1e-9);
-    *kmax = (size_t)ceil(hi - 1e-9);
-    if (2 * *kmax >= ms->n)
+    /* lines in units of f0 = fs/n; the tiny slack keeps exact integers.  The
+       bounds are checked in double before any conversion (fs may be 1e-20 or
+       1e308), and DC (line 0, which has no phase) is never excited. */
+    double lo = ceil(ms->fmin * (double)ms->n / ms->fs - 1e-9);
+    double hi = ceil(ms->fmax * (double)ms->n / ms->fs - 1e-9);
+    if (!(2 * hi < (double)ms->n))
         return hy_error_set(err, HY_EINVAL,
                             "multisine fmax = %g Hz must stay below fs/2 = %g Hz",
                             ms->fmax, ms->fs / 2);
+    if (lo < 1)
+        lo = 1;
+    if (!(hi >= lo))
+        return hy_error_set(err, HY_EINVAL,
+                            "multisine band %g .. %g Hz holds no DFT line: the lines of a period "
+                            "of %zu samples at fs = %g Hz are %g Hz apart",
+                            ms->fmin, ms->fmax, ms->n, ms->fs, ms->fs / (double)ms->n);
+    *kmin = (size_t)lo;
+    *kmax = (size_t)hi;
     return HY_OK;
 }
 
@@ -96,8 +105,9 @@ int hy_multisine_design(const hy_multisine *ms, size_t r, double *u,
     int rc = hy_multisine_lines(ms, &kmin, &kmax, err);
     if (rc)
         return rc;
-    if (r < 1)
-        return hy_error_set(err, HY_EINVAL, "upsampling factor r must be >= 1");
+    if (r < 1 || ms->n > SIZE_MAX / sizeof *u / r)
+        return hy_error_set(err, HY_EINVAL, "upsampling factor r = %zu must be >= 1 and n r samples "
+                            "must fit in memory", r);
     size_t L = ms->n * r;
     memset(u, 0, L * sizeof *u);
     hy_rng g;
@@ -139,6 +149,13 @@ static int sweep_check(const hy_sweep *sw, double fs, hy_error *err)
         return hy_error_set(err, HY_EINVAL, "sweep rate %g Hz/s must be finite and > 0", sw->rate);
     if (!(isfinite(fs) && fs > 2 * sw->f1))
         return hy_error_set(err, HY_EINVAL, "sampling rate fs = %g must exceed twice the sweep's f1", fs);
+    /* checked in double before hy_sweep_length converts it (rate may be 1e-300) */
+    double dur = (sw->f1 - sw->f0) / sw->rate;
+    if (!(dur * fs < HY_SWEEP_MAX_SAMPLES))
+        return hy_error_set(err, HY_EINVAL,
+                            "a sweep from %g to %g Hz at %g Hz/s lasts %g s: %.3g samples at fs = %g Hz, "
+                            "more than the %.0f a sweep may hold", sw->f0, sw->f1, sw->rate, dur,
+                            dur * fs, fs, HY_SWEEP_MAX_SAMPLES);
     return HY_OK;
 }
 

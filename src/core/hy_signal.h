@@ -56,8 +56,9 @@ double hy_rng_normal(hy_rng *r);
 void hy_multisine_default(hy_multisine *ms);
 
 /* First and last excited DFT line of a period: ceil(fmin/f0) .. ceil(fmax/f0),
- * f0 = fs/n (the official signal holds lines 55..1639).  HY_EINVAL if the
- * band is empty or reaches fs/2. */
+ * f0 = fs/n (the official signal holds lines 55..1639); the first is at least
+ * line 1 (DC is never excited).  HY_EINVAL if the band holds no line or
+ * reaches fs/2, for any finite fs, fmin, fmax. */
 int hy_multisine_lines(const hy_multisine *ms, size_t *kmin, size_t *kmax,
                        hy_error *err);
 
@@ -69,6 +70,10 @@ int hy_multisine_design(const hy_multisine *ms, size_t r, double *u,
 
 /* Sets sw to the benchmark's 40 N, 20 -> 50 Hz, 10 Hz/min. */
 void hy_sweep_default(hy_sweep *sw);
+
+/* Most samples a sweep may have (2^40: 8 TiB of doubles, beyond any machine;
+ * the bound keeps the count representable before the memory caps apply). */
+#define HY_SWEEP_MAX_SAMPLES 1099511627776.0
 
 /* Number of samples of the sweep at rate fs: floor(duration fs) + 1; 0 if the
  * parameters are invalid (then hy_sweep_fill refuses them with a message). */

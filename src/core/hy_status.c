@@ -8,11 +8,14 @@
 int hy_error_set(hy_error *e, int code, const char *fmt, ...)
 {
     if (e) {
+        /* formatted apart first: an argument may be e->msg itself */
+        char msg[sizeof e->msg];
         va_list ap;
         va_start(ap, fmt);
-        e->code = code;
-        vsnprintf(e->msg, sizeof e->msg, fmt, ap);
+        vsnprintf(msg, sizeof msg, fmt, ap);
         va_end(ap);
+        e->code = code;
+        memcpy(e->msg, msg, sizeof msg);
     }
     return code;
 }

@@ -27,14 +27,17 @@ typedef struct hy_error {
     char msg[512];
 } hy_error;
 
-/* Formats the message into e (if e is not NULL) and returns code. */
+/* Formats the message into e (if e is not NULL) and returns code.  The
+ * arguments may include e->msg itself (the old message is read before the new
+ * one is written). */
 int hy_error_set(hy_error *e, int code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
-/* Prefixes an existing message with "prefix: " (used to add file:line). */
+/* Prefixes an existing message with "prefix: " (used to add file:line); the
+ * arguments may include e->msg. */
 void hy_error_prefix(hy_error *e, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))

@@ -568,9 +568,10 @@ static size_t points_inside(const panel *p, double rx, double ry, double rw, dou
             int k = 1;
             if (isfinite(px) && se->style != HY_LINE_NONE) {
                 double len = hypot(x - px, y - py);
-                k = len > 3.0 ? (int)(len / 3.0) + 1 : 1;
-                if (k > 400)
-                    k = 400;
+                /* a point every 3 units, at most 400: compared as a double
+                   first, since len may be huge (or inf) on a tiny axis range */
+                double kk = len / 3.0 + 1.0;
+                k = len > 3.0 ? (kk < 400.0 ? (int)kk : 400) : 1;
             }
             for (int j = 1; j <= k; j++) {
                 double f = (double)j / k;

@@ -22,10 +22,20 @@ double hy_ticks_nice_step(double lo, double hi, int target)
     return 10.0 * mag;
 }
 
+/* floor(log10(x)) as an int for any x: clamped to the doubles' range of
+ * exponents before the conversion (0 for 0, inf or NaN). */
+static int decade_of(double x)
+{
+    double e = floor(log10(x) + 1e-9);
+    if (!isfinite(e))
+        return 0;
+    return (int)fmax(-400.0, fmin(400.0, e));
+}
+
 /* Decimals needed to tell apart multiples of step = m x 10^e. */
 static int step_decimals(double step)
 {
-    int e = (int)floor(log10(step) + 1e-9);
+    int e = decade_of(step);
     double m = step / pow(10.0, e);
     int d = -e + (fabs(m - 2.5) < 1e-6 ? 1 : 0);
     return d > 0 ? d : 0;
@@ -38,7 +48,7 @@ static void label_linear(hy_ticks *t)
         if (fabs(t->v[i]) > amax)
             amax = fabs(t->v[i]);
     int sci = amax >= 1e5 || (amax > 0.0 && amax < 1e-3);
-    int e = sci ? (int)floor(log10(amax) + 1e-9) : 0;
+    int e = sci ? decade_of(amax) : 0;
     double scale = pow(10.0, e);
     int d = step_decimals(t->step / scale);
     for (int i = 0; i < t->n; i++) {
@@ -63,7 +73,7 @@ static void fill_linear(double lo, double hi, double step, hy_ticks *t)
     t->step = step;
     for (int i = 0; i < HY_TICKS_MAX; i++) {
         double v = (k0 + i) * step;
-        if (v > hi + 1e-9 * step)
+        if (v > hi + 1e-9 * step || !isfinite(v)) /* hi + slack may be inf near DBL_MAX */
             break;
         if (fabs(v) < 1e-9 * step)
             v = 0.0;

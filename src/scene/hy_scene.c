@@ -393,11 +393,13 @@ int hy_scene_error_at(const hy_scene *s, const char *section, const char *name,
     hy_scene_loc loc = {hy_scene_source(s), 0, 0};
     if (!hy_scene_get_loc(s, section, name, key, &loc))
         hy_scene_get_loc(s, section, name, NULL, &loc);
+    char msg[sizeof err->msg]; /* an argument may be err->msg itself */
     va_list ap;
     va_start(ap, fmt);
-    err->code = code;
-    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+    vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    err->code = code;
+    memcpy(err->msg, msg, sizeof msg);
     if (loc.line > 0)
         hy_error_prefix(err, "%s:%d:%d", loc.file, loc.line, loc.col);
     else

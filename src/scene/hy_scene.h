@@ -143,7 +143,8 @@ int hy_scene_get_loc(const hy_scene *s, const char *section, const char *name,
 
 /* For semantic checks after parsing: writes "file:line:col: <message>" at the
  * location of the key (or section, or the scene file if neither was written)
- * into err and returns code. */
+ * into err and returns code.  The arguments may include err->msg (a core
+ * error re-raised at its scene location). */
 int hy_scene_error_at(const hy_scene *s, const char *section, const char *name,
                       const char *key, hy_error *err, int code, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -454,6 +454,24 @@ static int list_value(vctx *c, const lexed *l, hy__value *out)
     return rc;
 }
 
+/* An axis range the plot can draw: a finite width, and at least
+ * HY_LIMITS_MIN_REL of its magnitude (about 4500 ulps), so that the axis map
+ * (v - lo) / (hi - lo) and the tick labels (at most 13 significant digits
+ * apart) can tell its points apart. */
+#define HY_LIMITS_MIN_REL 1e-12
+static int limits_drawable(vctx *c, const lexed *l, double lo, double hi)
+{
+    double mag = fmax(fabs(lo), fabs(hi));
+    if (!isfinite(hi - lo))
+        return fail(c, l->it[1].col, "'%s' in %s spans %s to %s, a width beyond the largest double: "
+                    "the axis cannot be drawn", c->spec->name, c->where, l->it[0].text, l->it[1].text);
+    if (hi - lo < HY_LIMITS_MIN_REL * mag)
+        return fail(c, l->it[1].col, "'%s' in %s spans %s to %s, a width of %.3g, below %g of its magnitude "
+                    "%.3g: the axis cannot be drawn (widen the range)", c->spec->name, c->where,
+                    l->it[0].text, l->it[1].text, hi - lo, HY_LIMITS_MIN_REL, mag);
+    return HY_OK;
+}
+
 static int pair_value(vctx *c, const lexed *l, hy__value *out)
 {
     hy_scene_kind k = c->spec->kind;
@@ -472,6 +490,8 @@ static int pair_value(vctx *c, const lexed *l, hy__value *out)
     if (!rc && k != HY_KIND_LENGTH_PAIR && !(out->a[0] < out->a[1]))
         return fail(c, l->it[1].col, "'%s' in %s needs first < second, got %s, %s",
                     c->spec->name, c->where, l->it[0].text, l->it[1].text);
+    if (!rc && k == HY_KIND_LIMITS)
+        return limits_drawable(c, l, out->a[0], out->a[1]);
     return rc;
 }
 
