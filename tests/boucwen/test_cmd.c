@@ -101,6 +101,9 @@ int main(void)
     CHECK(run("boucwen", "data", "--signal", "sine", "--set-param", "m=-1", "-o", out, NULL) == 2, "m < 0");
     CHECK(run("boucwen", "data", "--signal", "sine", "--periods", "0", "-o", out, NULL) == 2, "0 periods");
     CHECK(run("boucwen", "frobnicate", NULL) == 2, "bad subcommand");
+    /* issue 10 item 1: --fs 1e-20 overflowed the multisine's line index */
+    CHECK(run("boucwen", "data", "--signal", "multisine", "--fs", "1e-20", "-o", out, NULL) == 2, "--fs 1e-20");
+    CHECK(run("boucwen", "data", "--signal", "multisine", "--fs", "1e308", "-o", out, NULL) == 2, "--fs 1e308");
     CHECK(access(out, F_OK) != 0, "a refused run left %s", out);
 
     /* a sine run with noise: rows = P periods, noise RMS as asked */

@@ -243,10 +243,35 @@ static void test_refused(void)
     BAD("[input]\nkind = sweep\nband = 20, 50\n[compute]\ncycles = 3\n", "7:1", "a sweep is not periodic");
     BAD("[input]\nkind = multisine\nband = 5, 400\n", "5:1", "below fs/2");
     BAD("[input]\nkind = sine\nperiod = 1\n[figure]\nkind = psi\n", "7:1", "timeseries or loop");
+    /* issue 10 items 1 and 4: rates at the ends of the doubles, before any cast */
+    BAD("[input]\nkind = multisine\nfs = 1e-15\n", "5:1", "multisine fmax = 150 Hz must stay below fs/2 = 5e-16 Hz");
+    BAD("[input]\nkind = multisine\nfs = 1e308\n", "5:1", "band 5 .. 150 Hz holds no DFT line");
+    BAD("[input]\nkind = multisine\nband = 1e299, 1e300\n", "5:1", "must stay below fs/2");
+    BAD("[input]\nkind = sine\nfs = 1e300\n", "5:1", "period x fs = 2 x 1e+300 = 2e+300 samples is more than");
+    BAD("[input]\nkind = sweep\nrate = 1e-300\n", "5:1", "more than the 1099511627776 a sweep may hold");
     BAD("[input]\nkind = sine\nperiod = 1\n[compute]\ncycles = 100000\n", "7:1", "integration samples");
     BAD("[input]\nkind = sine\nperiod = 1\n[annotation a]\ntext = \"{energy}\"\nx = 0\ny = 0\n", "7:1",
         "placeholders");
     refused(dir, "[model]\nkind = lugre\n[input]\nkind = multisine\n", "4:1", "kind = boucwen");
+    /* band = 1e-12, 150 excited line 0 and wrote u[-1]: now lines 1 .. 1639 */
+    snprintf(t, sizeof t, "%s[input]\nkind = multisine\nband = 1e-12, 150\n[series u]\ndata = boucwen\n"
+             "quantity = input\n", bw);
+    hy_scene_run r;
+    hy_error err = {0, ""};
+    char path[512];
+    snprintf(path, sizeof path, "%s/band.scene", dir);
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fputs(t, f);
+        fclose(f);
+    }
+    int rc = hy_scene_run_load(&r, path, NULL, 0, &err);
+    if (!rc) {
+        rc = hy_scene_run_compute(&r, NULL, &err);
+        hy_scene_run_free(&r);
+    }
+    CHECK(rc == 0, "band = 1e-12, 150: %s", err.msg);
+    remove(path);
     refused(dir, "[model]\nkind = lugre\n[series y]\ndata = boucwen\n", "4:1", "needs [model] kind = boucwen");
     rmdir(dir);
 #undef BAD

@@ -172,8 +172,56 @@ static void test_sweep(void)
     CHECK(fabs(hy_signal_erms(a, b, 3) - 2 / sqrt(3.0)) < 1e-15, "erms");
 }
 
+/* issue 10 items 1 and 4: rates and bands at the ends of the doubles are
+ * refused before any float -> size_t conversion or any write; a band reaching
+ * below the first line starts at line 1 (kmin = 0 wrote u[-1]). */
+static void test_extreme_signals(void)
+{
+    hy_multisine ms;
+    hy_error e;
+    size_t kmin = 99, kmax = 99, r = 2;
+    hy_multisine_default(&ms);
+    ms.n = 64;
+    ms.fs = 64; /* lines 1 Hz apart */
+    ms.fmin = 1e-12;
+    ms.fmax = 3;
+    CHECK(hy_multisine_lines(&ms, &kmin, &kmax, &e) == HY_OK && kmin == 1 && kmax == 3, "lines %zu..%zu", kmin,
+          kmax);
+    /* exactly n r samples: ASan reports a write outside them */
+    double *u = malloc(ms.n * r * sizeof *u);
+    CHECK(hy_multisine_design(&ms, r, u, &e) == HY_OK, "%s", e.msg);
+    /* lines 1..3 hold the power, DC none: the mean is 0 to rounding (std 50) */
+    double mean = 0;
+    for (size_t i = 0; i < ms.n * r; i++)
+        mean += u[i] / (double)(ms.n * r);
+    CHECK(fabs(mean) < 1e-12, "mean %g: DC excited", mean);
+    free(u);
+    hy_multisine_default(&ms);
+    ms.fs = 1e-20;
+    CHECK(hy_multisine_lines(&ms, &kmin, &kmax, &e) == HY_EINVAL && strstr(e.msg, "below fs/2"), "%s", e.msg);
+    ms.fs = 1e-15;
+    CHECK(hy_multisine_lines(&ms, &kmin, &kmax, &e) == HY_EINVAL && strstr(e.msg, "below fs/2"), "%s", e.msg);
+    ms.fs = 1e308;
+    CHECK(hy_multisine_lines(&ms, &kmin, &kmax, &e) == HY_EINVAL && strstr(e.msg, "holds no DFT line"), "%s",
+          e.msg);
+    ms.fs = 750;
+    ms.fmin = 1e300;
+    ms.fmax = 1e300;
+    CHECK(hy_multisine_lines(&ms, &kmin, &kmax, &e) == HY_EINVAL && strstr(e.msg, "below fs/2"), "%s", e.msg);
+    /* a sweep of 1e-300 Hz/s would last ~1e302 s: refused, length 0 */
+    hy_sweep sw;
+    hy_sweep_default(&sw);
+    sw.rate = 1e-300;
+    CHECK(hy_sweep_length(&sw, 750) == 0, "length %zu", hy_sweep_length(&sw, 750));
+    CHECK(hy_sweep_fill(&sw, 750, NULL, 0, &e) == HY_EINVAL && strstr(e.msg, "more than the 1099511627776"), "%s",
+          e.msg);
+    hy_sweep_default(&sw);
+    CHECK(hy_sweep_length(&sw, 1e300) == 0, "length at fs = 1e300");
+}
+
 int main(void)
 {
+    test_extreme_signals();
     test_multisine();
     test_upsample();
     test_decimate();

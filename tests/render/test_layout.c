@@ -162,6 +162,15 @@ int main(void)
     CHECK(r.legend[0] > r.clip[0] + 0.5 * r.clip[2] && r.legend[1] < r.clip[1] + 0.5 * r.clip[3],
           "best legend at (%g, %g), want the top-right quarter", r.legend[0], r.legend[1]);
 
+    /* issue 10 item 4: on a y range of one ulp a segment is ~1e15 pt long, and
+       legend placement converted len / 3 to int (undefined; a hang at -O3) */
+    static double ux[2] = {0, 1}, uy[2] = {1, 1.0000000000000002};
+    hy_series us = {.x = ux, .y = uy, .n = 2, .label = "one ulp"};
+    hy_axes ua = {.series = &us, .nseries = 1, .legend = HY_LEGEND_BEST, .x = {.lo = 0, .hi = 1},
+                  .y = {.lo = 1, .hi = 1.0000000000000002}};
+    fig.axes = &ua;
+    CHECK(draw(&fig, &r) == 0 && r.white_rects == 2, "a one-ulp y range with a legend failed");
+
     /* Invalid input is refused with a message, not drawn. */
     hy_axes bad = {.series = &diag, .nseries = 1, .x = {.lo = -1, .hi = 1, .log = 1}};
     fig.axes = &bad;

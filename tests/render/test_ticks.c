@@ -85,6 +85,13 @@ int main(void)
         for (int target = 2; target <= 10; target++)
             check_linear(ranges[i][0], ranges[i][1], target);
 
+    /* issue 10 item 4: near DBL_MAX the last multiple overflowed to inf (and
+       its decade, converted to int, to INT_MIN before a negation) */
+    CHECK(hy_ticks_linear(-0.1, 1.7976931348623157e308, 5, &t) == 0 && t.n >= 2, "ticks up to DBL_MAX: %d", t.n);
+    for (int i = 0; i < t.n; i++)
+        CHECK(isfinite(t.v[i]) && t.v[i] <= 1.7976931348623157e308 && t.label[i][0] && !strstr(t.label[i], "inf"),
+              "tick %d = %g '%s'", i, t.v[i], t.label[i]);
+
     hy_ticks_log(1e-4, 0.2, 10, &t);
     expect_labels(&t, (const char *const[]){"10^{-4}", "10^{-3}", "10^{-2}", "10^{-1}"}, 4, "log decades");
     hy_ticks_log(1e-19, 1e-2, 6, &t);

@@ -414,6 +414,67 @@ static void errors(void)
                 "text = \"{model.sigma1} {model.nosuch}\"\nx = 0\ny = 0\n",
                 "bad.scene:9:1: unknown placeholder {model.nosuch}");
     scene_error("[input]\nkind = multimodal\nextrema = 0, 1, 0.5\n[series a]\ndata = input\n", "even number");
+    /* issue 10 item 3: a core message re-raised at its key was formatted into
+       itself and reached the user empty (file input, bimodal t) or garbled (ODE) */
+    scene_error("[input]\nkind = file\nfile = \"no-such-input.txt\"\n[series a]\ndata = input\n",
+                "bad.scene:3:1: ");
+    scene_error("[input]\nkind = file\nfile = \"no-such-input.txt\"\n[series a]\ndata = input\n",
+                "no-such-input.txt: cannot open input file: No such file or directory");
+    scene_error("[input]\nkind = bimodal\nt = 1, 0.5, 3, 4\n[series a]\ndata = input\n",
+                "bad.scene:3:1: Definition 1 needs 0 < t1 < t2 < t3 < t4 (t2 = 0.5)");
+    scene_error("[model]\nkind = lugre\nsigma0 = 1e300\n[input]\nkind = bimodal\n[compute]\nsolver = rk4\n"
+                "[series g]\ndata = ygamma\ngamma = 5\n",
+                "bad.scene:7:1: gamma = 5: ODE solution became non-finite (y[0] = ");
+    /* item 5: an excursion below an ulp of rho looped forever in loop_intervals */
+    scene_error("[input]\nkind = bimodal\numin1 = -1e19\n[figure]\nkind = loop\n[series m]\ndata = major\n",
+                "bad.scene:3:1: u_min,1 = -1e+19 makes the input's scale 2e+19 (largest |u| or total variation), "
+                "and the excursion from u_max,1 to u_min,2 of 0.8 is below 1e-10 of it");
+    scene_error("[input]\nkind = multimodal\nextrema = 0, 1, 0.5, 1e12\n[series a]\ndata = input\n",
+                "bad.scene:3:1: extrema[3] = 1e+12 makes the input's scale 2e+12 (largest |u| or total variation), and the excursion extrema[1] -> extrema[2] of 0.5");
+    /* item 4: axis ranges the plot cannot draw */
+    scene_error("[figure]\nylim = 1, 1.0000000000000002\n[series a]\ndata = input\n",
+                "bad.scene:2:11: 'ylim' in [figure] spans 1 to 1.0000000000000002, a width of 2.22e-16, below 1e-12");
+    scene_error("[figure]\nxlim = -1e308, 1e308\n[series a]\ndata = input\n",
+                "bad.scene:2:16: 'xlim' in [figure] spans -1e308 to 1e308, a width beyond the largest double");
+}
+
+/* Scenes at the edge of what is drawable: they compute and draw (before issue
+ * 10 each made an undefined float -> integer conversion, which the sanitizer
+ * build reports and aborts on). */
+static void extreme_ok(void)
+{
+    static const char *const texts[] = {
+        /* a marker far past the end of a y_gamma series (scene_run.c interp) */
+        "[model]\nkind = lugre\n[input]\nkind = bimodal\n[figure]\nkind = timeseries\n"
+        "[series g]\ndata = ygamma\ngamma = 1\nat = 1e308\n",
+        /* ticks up to the largest double (hy_ticks.c) */
+        "[figure]\nkind = loop\nxlim = -0.1, 1.7976931348623157e308\n[series m]\ndata = major\n",
+        /* the narrowest drawable range, with a legend placed over the data (hy_layout.c) */
+        "[figure]\nkind = loop\nylim = 1, 1.000000000001\nlegend = best\n[series m]\ndata = major\n"
+        "label = \"major\"\n",
+    };
+    for (size_t i = 0; i < sizeof texts / sizeof *texts; i++) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/edge.scene", BLD);
+        FILE *f = fopen(path, "w");
+        fputs(texts[i], f);
+        fclose(f);
+        hy_scene_run r;
+        hy_error err = {0, ""};
+        int rc = hy_scene_run_load(&r, path, NULL, 0, &err);
+        if (!rc) {
+            rc = hy_scene_run_compute(&r, NULL, &err);
+            if (!rc)
+                rc = hy_scene_run_write(&r, BLD, "svg", NULL, 0, &err);
+            if (!rc && i == 0) {
+                const hy_run_series *se = &r.series[0];
+                CHECK(se->has_mark && se->mark_y == se->y[se->n - 1],
+                      "a marker past the end sits on the last point (%g vs %g)", se->mark_y, se->y[se->n - 1]);
+            }
+            hy_scene_run_free(&r);
+        }
+        CHECK(rc == 0, "edge scene %zu draws: %s", i, err.msg);
+    }
 }
 
 int main(int argc, char **argv)
@@ -435,5 +496,6 @@ int main(int argc, char **argv)
     data_fig15();
     data_fig11();
     errors();
+    extreme_ok();
     return tu_finish("scenes");
 }
