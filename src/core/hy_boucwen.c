@@ -202,7 +202,16 @@ int hy_boucwen_step(const hy_boucwen_params *p, const hy_newmark_opts *o,
         double fscale = fabs(u1) + fabs(p->m * A) + fabs(p->c * V) +
                         fabs(p->k * Y) + fabs(Z) + DBL_MIN;
         double zscale = fabs(Zd) + fabs(p->alpha * V) + DBL_MIN;
-        if (fabs(dA) * j11 <= o->tol * fscale && fabs(dZ) <= o->tol * zscale) {
+        /* Absolute floor: the updates rounding alone produces.  R1 sums five
+           terms of size <= fscale: a few ulps of fscale.  V = vp + ah A and
+           Z = zp + ch Zd carry a few ulps of their terms, which cancel near a
+           velocity reversal (|V| << |vp|), and f passes that on times fv and
+           fz.  4 ulps each: the Newton update then flips A by one ulp forever
+           (-7.1e-15 N at u = 40 N) unless it stops here. */
+        double ffloor = 4 * DBL_EPSILON * fscale;
+        double zfloor = 4 * DBL_EPSILON * (fabs(Zd) + fabs(fv) * (fabs(vp) + fabs(ah * A)) +
+                                           fabs(fz) * (fabs(zp) + fabs(ch * Zd)));
+        if (fabs(dA) * j11 <= o->tol * fscale + ffloor && fabs(dZ) <= o->tol * zscale + zfloor) {
             s->t += h;
             s->a = A;
             s->zd = Zd;

@@ -46,7 +46,8 @@ typedef struct hy_boucwen_modal {
 /* Newmark constants of Eqs. (4)-(5) and the Newton-Raphson stopping rule. */
 typedef struct hy_newmark_opts {
     double a, b, c; /* 0.5, 0.25, 0.5 in the benchmark                     */
-    double tol;     /* relative size of the last Newton update to stop at  */
+    double tol;     /* relative size of the last Newton update to stop at
+                       (plus a floor of 4 ulps of each equation's terms)   */
     int max_iter;   /* Newton iterations allowed per step                  */
 } hy_newmark_opts;
 

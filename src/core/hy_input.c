@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/types.h>
 
 #define HY_PI 3.14159265358979323846
 
@@ -355,12 +356,23 @@ static int read_samples(const char *path, double **pt, double **pu, size_t *pn, 
     FILE *f = fopen(path, "r");
     if (!f)
         return hy_error_set(err, HY_EIO, "%s: cannot open input file: %s", path, strerror(errno));
-    size_t n = 0, cap = 0, line = 0;
+    size_t n = 0, cap = 0, line = 0, bufcap = 0;
     double *t = NULL, *u = NULL;
-    char buf[512];
+    char *buf = NULL;
     int rc = HY_OK;
-    while (fgets(buf, sizeof buf, f)) {
+    ssize_t len;
+    while ((len = getline(&buf, &bufcap, f)) >= 0) {
         line++;
+        const char *nul = memchr(buf, '\0', (size_t)len);
+        if (nul) { /* strtod would stop there and drop the rest of the line */
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu:%zu: NUL byte in the line (is this a text file?)", path, line,
+                              (size_t)(nul - buf) + 1);
+            break;
+        }
+        if (len > 4095) {
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: line too long", path, line);
+            break;
+        }
         char *s = buf;
         while (isspace((unsigned char)*s))
             s++;
@@ -415,6 +427,7 @@ static int read_samples(const char *path, double **pt, double **pu, size_t *pn, 
         u[n] = b;
         n++;
     }
+    free(buf);
     if (!rc && ferror(f))
         rc = hy_error_set(err, HY_EIO, "%s: read error: %s", path, strerror(errno));
     fclose(f);
@@ -438,8 +451,8 @@ static int read_samples(const char *path, double **pt, double **pu, size_t *pn, 
 
 int hy_input_file(hy_input *in, const char *path, hy_error *err)
 {
-    double *t, *u;
-    size_t n;
+    double *t = NULL, *u = NULL;
+    size_t n = 0;
     int rc = read_samples(path, &t, &u, &n, err);
     if (rc)
         return rc;

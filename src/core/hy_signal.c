@@ -4,10 +4,12 @@
 #include "hy_signal.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/types.h>
 
 static uint64_t splitmix64(uint64_t *x)
 {
@@ -193,8 +195,35 @@ int hy_sine_fill(double amp, double f, double fs, double *u, size_t n,
     return HY_OK;
 }
 
-/* Parses up to 2 numbers separated by ',' or blanks; returns the count or -1. */
-static int parse_line(char *s, double v[2], char **bad)
+/* The digits a number was printed with: *sig significant digits (from the
+ * first nonzero one, trailing zeros included) and *dec the decimal place of
+ * its last digit ("3720.00133" -> 9, 5; "1.23457e+01" -> 6, 4; "47" -> 2, 0).
+ * Hexadecimal numbers are exact: 17 and 1074 (as fine as a double gets). */
+static void printed_digits(const char *s, const char *end, double *sig, double *dec)
+{
+    const char *p = s + (*s == '+' || *s == '-');
+    *sig = 17;
+    *dec = 1074;
+    if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X'))
+        return;
+    double nsig = 0, frac = 0;
+    int point = 0;
+    for (; p < end && ((*p >= '0' && *p <= '9') || *p == '.'); p++) {
+        if (*p == '.') {
+            point = 1;
+            continue;
+        }
+        nsig += nsig > 0 || *p != '0';
+        frac += point;
+    }
+    double e = p < end && (*p == 'e' || *p == 'E') ? strtod(p + 1, NULL) : 0.0;
+    *sig = nsig;
+    *dec = fmax(-400.0, fmin(1074.0, frac - e));
+}
+
+/* Parses up to 2 numbers separated by ',' or blanks; returns the count or -1.
+ * sig, dec: the digits the first was printed with (printed_digits). */
+static int parse_line(char *s, double v[2], double *sig, double *dec, char **bad)
 {
     int n = 0;
     for (;;) {
@@ -213,6 +242,8 @@ static int parse_line(char *s, double v[2], char **bad)
             *bad = s;
             return -1;
         }
+        if (n == 0)
+            printed_digits(s, end, sig, dec);
         n++;
         s = end;
         while (*s == ' ' || *s == '\t')
@@ -237,53 +268,143 @@ static int push(double **a, size_t *n, size_t *cap, double v)
     return 0;
 }
 
-static int read_lines(FILE *f, const char *path, double **t, double **u,
+/* The time column of a "t,u" file as read: times, line numbers, and the most
+ * significant digits and decimals any time was printed with. */
+typedef struct time_col {
+    double *t, *line;
+    size_t n, nl, cap_t, cap_l;
+    double sig, dec;
+} time_col;
+
+static void time_col_free(time_col *c)
+{
+    free(c->t);
+    free(c->line);
+}
+
+/* Resolution of a time t of the file: the place value of the last digit it
+ * was printed with, whether to d significant digits (%.6g, trailing zeros
+ * dropped: "3720" may be 3720.00) or to D decimals (%.6f), d and D the most
+ * seen in the file: max(10^(floor(log10|t|) - d + 1), 10^-D). */
+static double time_resolution(const time_col *c, double t)
+{
+    double e = t != 0 ? floor(log10(fabs(t))) - c->sig + 1 : -1074.0;
+    return pow(10.0, fmax(e, -c->dec));
+}
+
+/* Uniform times, to the precision they were printed with.  With q[i] the
+ * resolution of t[i] (time_resolution: the printed time is within q[i]/2 of
+ * the true one), each step t[i] - t[i-1] is within (q[i] + q[i-1] + q[0] +
+ * q[1]) / 2 of the first one, and with dt = (t[n-1] - t[0]) / (n - 1), the
+ * grid through the first and last times (which bounds a slow drift), the
+ * true times being uniform means
+ *     |t[i] - (t[0] + i dt)| <= (q[i] + max(q[0], q[n-1])) / 2,
+ * to which 1e-6 dt and 8 ulps of t are added for the arithmetic.  Times must
+ * increase, and every q[i] <= dt / 2, so that a missing or repeated sample
+ * (off by dt) never passes.  Sets *dt. */
+static int check_uniform(const time_col *c, const char *path, double *dt, hy_error *err)
+{
+    size_t n = c->n;
+    for (size_t i = 1; i < n; i++)
+        if (!(c->t[i] > c->t[i - 1]))
+            return hy_error_set(err, HY_EINVAL, "%s:%zu: time %.17g is not after the previous time %.17g",
+                                path, (size_t)c->line[i], c->t[i], c->t[i - 1]);
+    /* first, each step against the first one (to name where the spacing
+       changes): both are differences of printed times, each off by q/2 */
+    double d01 = c->t[1] - c->t[0], q01 = time_resolution(c, c->t[0]) + time_resolution(c, c->t[1]);
+    for (size_t i = 2; i < n; i++) {
+        double di = c->t[i] - c->t[i - 1];
+        double tol = 0.5 * (q01 + time_resolution(c, c->t[i]) + time_resolution(c, c->t[i - 1])) + 1e-6 * d01 +
+                     8 * DBL_EPSILON * fabs(c->t[i]);
+        if (!(fabs(di - d01) <= tol))
+            return hy_error_set(err, HY_EINVAL,
+                                "%s:%zu: time %.17g breaks the uniform spacing %.17g of the first two lines "
+                                "(by %.3g, more than the %.3g their printed digits allow)",
+                                path, (size_t)c->line[i], c->t[i], d01, di - d01, tol);
+    }
+    *dt = (c->t[n - 1] - c->t[0]) / (double)(n - 1);
+    double qend = fmax(time_resolution(c, c->t[0]), time_resolution(c, c->t[n - 1]));
+    for (size_t i = 0; i < n; i++) {
+        size_t line = (size_t)c->line[i];
+        double q = time_resolution(c, c->t[i]);
+        if (!(q <= 0.5 * *dt))
+            return hy_error_set(err, HY_EINVAL,
+                                "%s:%zu: time %.17g is printed to a resolution of %g, too coarse for the "
+                                "spacing %g of the samples (print more digits)", path, line, c->t[i], q,
+                                *dt);
+        double off = c->t[i] - (c->t[0] + (double)i * *dt);
+        double tol = 0.5 * (q + qend) + 1e-6 * *dt +
+                     8 * DBL_EPSILON * fmax(fabs(c->t[0]), fabs(c->t[i]));
+        if (!(fabs(off) <= tol))
+            return hy_error_set(err, HY_EINVAL,
+                                "%s:%zu: time %.17g is %.3g off the uniform spacing %.17g of the file's "
+                                "first and last times (more than the %.3g its printed digits allow)",
+                                path, line, c->t[i], off, *dt, tol);
+    }
+    return HY_OK;
+}
+
+/* One line of at most 4095 bytes into *buf (getline): 1, or 0 at the end, or
+ * minus a status with err set (an over-long line, a NUL byte, no memory). */
+static int next_line(FILE *f, const char *path, size_t lineno, char **buf, size_t *cap, hy_error *err)
+{
+    errno = 0;
+    ssize_t len = getline(buf, cap, f);
+    if (len < 0)
+        return errno == ENOMEM ? -hy_error_set(err, HY_ENOMEM, "%s:%zu: out of memory", path, lineno) : 0;
+    if (len > 4095)
+        return -hy_error_set(err, HY_EINVAL, "%s:%zu: line too long", path, lineno);
+    const char *nul = memchr(*buf, '\0', (size_t)len);
+    if (nul)
+        return -hy_error_set(err, HY_EINVAL, "%s:%zu:%zu: NUL byte in the line (is this a text file?)", path,
+                             lineno, (size_t)(nul - *buf) + 1);
+    return 1;
+}
+
+static int read_lines(FILE *f, const char *path, time_col *tc, double **u,
                       size_t *n, int *ncol, hy_error *err)
 {
-    char line[4096];
-    size_t cap_t = 0, cap_u = 0, nt = 0, lineno = 0;
+    char *line = NULL;
+    size_t cap_u = 0, lineno = 0, cap = 0;
+    int got, rc = HY_OK;
     *ncol = 0;
-    while (fgets(line, sizeof line, f)) {
+    while (!rc && (got = next_line(f, path, lineno + 1, &line, &cap, err)) != 0) {
         lineno++;
-        size_t len = strlen(line);
-        if (len == sizeof line - 1 && line[len - 1] != '\n' && !feof(f))
-            return hy_error_set(err, HY_EINVAL, "%s:%zu: line too long", path, lineno);
+        if (got < 0) {
+            rc = -got;
+            break;
+        }
         char *s = line;
         while (*s == ' ' || *s == '\t')
             s++;
         if (*s == '#' || *s == '\n' || *s == '\r' || *s == '\0')
             continue;
-        double v[2];
+        double v[2], sig = 0, dec = 0;
         char *bad = NULL;
-        int c = parse_line(s, v, &bad);
+        int c = parse_line(s, v, &sig, &dec, &bad);
         if (c < 0) {
             bad[strcspn(bad, "\r\n")] = '\0';
-            return hy_error_set(err, HY_EINVAL,
-                                "%s:%zu: expected one value or 't,u', got '%.40s'",
-                                path, lineno, bad);
-        }
-        if (*ncol && c != *ncol)
-            return hy_error_set(err, HY_EINVAL,
-                                "%s:%zu: %d column(s) where earlier lines have %d",
-                                path, lineno, c, *ncol);
-        *ncol = c;
-        if ((c == 2 && push(t, &nt, &cap_t, v[0])) || push(u, n, &cap_u, v[c - 1]))
-            return hy_error_set(err, HY_ENOMEM, "%s:%zu: out of memory", path, lineno);
-        if (c == 2 && nt >= 2) { /* uniform, increasing time */
-            double dt = (*t)[1] - (*t)[0];
-            double expect = (*t)[0] + (double)(nt - 1) * dt;
-            if (!(dt > 0) || fabs(v[0] - expect) > 1e-6 * dt)
-                return hy_error_set(err, HY_EINVAL,
-                                    "%s:%zu: time %g breaks the uniform spacing "
-                                    "%g of the first two lines", path, lineno,
-                                    v[0], dt);
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: expected one value or 't,u', got '%.40s'", path, lineno,
+                              bad);
+        } else if (*ncol && c != *ncol)
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: %d column(s) where earlier lines have %d", path,
+                              lineno, c, *ncol);
+        else {
+            *ncol = c;
+            tc->sig = fmax(tc->sig, sig);
+            tc->dec = fmax(tc->dec, dec);
+            if ((c == 2 && (push(&tc->t, &tc->n, &tc->cap_t, v[0]) ||
+                            push(&tc->line, &tc->nl, &tc->cap_l, (double)lineno))) ||
+                push(u, n, &cap_u, v[c - 1]))
+                rc = hy_error_set(err, HY_ENOMEM, "%s:%zu: out of memory", path, lineno);
         }
     }
-    if (ferror(f))
-        return hy_error_set(err, HY_EIO, "%s: read error", path);
-    if (*n == 0)
-        return hy_error_set(err, HY_EINVAL, "%s:%zu: no samples (empty file)", path, lineno);
-    return HY_OK;
+    free(line);
+    if (!rc && ferror(f))
+        rc = hy_error_set(err, HY_EIO, "%s: read error", path);
+    if (!rc && *n == 0)
+        rc = hy_error_set(err, HY_EINVAL, "%s:%zu: no samples (empty file)", path, lineno);
+    return rc;
 }
 
 int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
@@ -292,18 +413,20 @@ int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
     FILE *f = fopen(path, "r");
     if (!f)
         return hy_error_set(err, HY_EIO, "%s: cannot open: %s", path, strerror(errno));
-    double *t = NULL, *v = NULL;
+    time_col tc = {0};
+    double *v = NULL, dt = 0;
     size_t nv = 0;
     int ncol;
-    int rc = read_lines(f, path, &t, &v, &nv, &ncol, err);
+    int rc = read_lines(f, path, &tc, &v, &nv, &ncol, err);
     fclose(f);
+    if (!rc && ncol == 2 && nv >= 2)
+        rc = check_uniform(&tc, path, &dt, err);
+    time_col_free(&tc);
     if (rc) {
-        free(t);
         free(v);
         return rc;
     }
-    *fs = (ncol == 2 && nv >= 2) ? 1.0 / (t[1] - t[0]) : 0.0;
-    free(t);
+    *fs = dt > 0 ? 1.0 / dt : 0.0;
     *u = v;
     *n = nv;
     return HY_OK;

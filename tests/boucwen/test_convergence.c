@@ -5,6 +5,7 @@
 #include "hy_boucwen.h"
 #include "hy_signal.h"
 
+#include <float.h>
 #include <math.h>
 
 /* y at t = i / 1000 s, i = 0 .. 500, integrated at rate 1000 * m. */
@@ -28,8 +29,38 @@ static int run(const hy_boucwen_params *p, size_t m, double *out)
     return rc;
 }
 
+/* issue 10 item 17: a step 8 samples past a velocity reversal (v = 7.4e-8
+ * m/s from vp = 0.003 and ah a = -0.003) of the force 40 sin(2π(18t + t²/12)),
+ * samples 2,790,000 on at 750 Hz, sinc-upsampled by 5: Newton flipped ÿ by one
+ * ulp forever (residual ∓7.1e-15 N) and declared failure after 50 iterations.
+ * The state is the one hystviz reached there, bit for bit. */
+static void test_reversal_step(void)
+{
+    hy_boucwen_params p;
+    hy_newmark_opts o;
+    hy_error err;
+    hy_boucwen_params_default(&p);
+    hy_newmark_opts_default(&o);
+    hy_boucwen_state s = {0x1.f5e353f7d5a6ap+4, 0x1.9ae5411aa12aap-15, 0x1.866e3cc4f0c42p-8,
+                          -0x1.628b2a388676fp+4, 0x1.41fbe4e2d691p+1, 0x1.2e5ee92a921e5p+8};
+    double h = 0x1.179ec9cbd821ep-12, u1 = -0x1.3ffd6f29b8495p+5;
+    int rc = hy_boucwen_step(&p, &o, h, u1, &s, &err);
+    CHECK(rc == HY_OK, "reversal step: %s", rc ? err.msg : "");
+    /* Eq. (1) at the accepted state, to a few ulps of its terms (~90 N) */
+    double fscale = fabs(u1) + fabs(p.m * s.a) + fabs(p.c * s.v) + fabs(p.k * s.y) + fabs(s.z);
+    double r1 = p.m * s.a + p.c * s.v + p.k * s.y + s.z - u1;
+    CHECK(fabs(r1) <= 8 * DBL_EPSILON * fscale, "residual %g N vs scale %g N", r1, fscale);
+    /* the floor does not accept a step that has not converged: one iteration
+       from ÿ = 0 leaves an update of ~22 m/s² */
+    hy_boucwen_state s2 = {0x1.f5e353f7d5a6ap+4, 0x1.9ae5411aa12aap-15, 0x1.866e3cc4f0c42p-8,
+                           -0x1.628b2a388676fp+4, 0x1.41fbe4e2d691p+1, 0x1.2e5ee92a921e5p+8};
+    o.max_iter = 1;
+    CHECK(hy_boucwen_step(&p, &o, h, u1, &s2, &err) == HY_ENUM, "one Newton iteration accepted");
+}
+
 int main(void)
 {
+    test_reversal_step();
     hy_boucwen_params p;
     hy_boucwen_params_default(&p);
     p.gamma = 0.0;

@@ -49,8 +49,83 @@ static void bad_file(const char *text, const char *needle)
     unlink(path);
 }
 
+/* Writes len bytes to a temporary file; returns its path in path. */
+static int temp_file(char path[32], const char *bytes, size_t len)
+{
+    strcpy(path, "/tmp/hy_bw_file_XXXXXX");
+    int fd = mkstemp(path);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f)
+        return -1;
+    fwrite(bytes, 1, len, f);
+    fclose(f);
+    return 0;
+}
+
+/* issue 10 item 17: times printed to 6 or 10 significant digits are uniform
+ * to their printed precision (they were refused); a sample missing from them
+ * is not; a NUL byte (which cut the line short unseen) is refused. */
+static void printed_times(void)
+{
+    struct { const char *fmt; long i0, n; } cases[] = {
+        {"%.6g,%.17g\n", 0, 7500},             /* 0 .. 9.99867 s, resolution 1e-5 s       */
+        {"%.10g,%.17g\n", 2790000, 35600},     /* 3720 .. 3767.5 s, resolution 1e-6 s     */
+        {"%.6f,%.17g\n", 0, 7500},             /* fixed decimals: resolution 1e-6 s       */
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        size_t cap = (size_t)cases[k].n * 48, len = 0;
+        char *text = malloc(cap), path[32];
+        for (long i = cases[k].i0; i < cases[k].i0 + cases[k].n; i++) {
+            double t = (double)i / 750;
+            len += (size_t)snprintf(text + len, cap - len, cases[k].fmt, t, 40 * sin(2 * M_PI * (18 * t + t * t / 12)));
+        }
+        double *u = NULL, fs = 0;
+        size_t n = 0;
+        hy_error e = {0, ""};
+        CHECK(temp_file(path, text, len) == 0, "temp file");
+        int rc = hy_signal_read(path, &u, &n, &fs, &e);
+        /* fs from the first and last times: each within half their resolution q,
+           so 1/fs is within q / (n - 1) of 1/750 */
+        CHECK(rc == HY_OK && n == (size_t)cases[k].n && fabs(fs - 750) < 1e-6 * 750,
+              "%s: rc %d, %zu samples, fs %.17g: %s", cases[k].fmt, rc, n, fs, e.msg);
+        free(u);
+        u = NULL;
+        /* drop the 101st line: a gap of one sample is refused at its line */
+        char *l100 = text;
+        for (int j = 0; j < 100; j++)
+            l100 = strchr(l100, '\n') + 1;
+        char *l101 = strchr(l100, '\n') + 1;
+        memmove(l100, l101, len - (size_t)(l101 - text) + 0);
+        len -= (size_t)(l101 - l100);
+        temp_file(path, text, len);
+        rc = hy_signal_read(path, &u, &n, &fs, &e);
+        CHECK(rc == HY_EINVAL && strstr(e.msg, ":101: time") && strstr(e.msg, "breaks the uniform spacing"),
+              "%s with a gap: %s", cases[k].fmt, e.msg);
+        CHECK(u == NULL, "output set on failure");
+        unlink(path);
+        free(text);
+    }
+    /* times too coarse for the spacing: 6 digits at 3720 s are 0.01 s apart */
+    char path[32], want[64];
+    const char coarse[] = "3720,1\n3720,2\n3720.01,3\n";
+    double *u = NULL, fs;
+    size_t n;
+    hy_error e = {0, ""};
+    temp_file(path, coarse, sizeof coarse - 1);
+    CHECK(hy_signal_read(path, &u, &n, &fs, &e) == HY_EINVAL && strstr(e.msg, ":2: time 3720 is not after"), "%s",
+          e.msg);
+    unlink(path);
+    const char nul[] = "1.0\n2.0\0 junk\n3.0\n";
+    temp_file(path, nul, sizeof nul - 1);
+    snprintf(want, sizeof want, "%s:2:4: NUL byte", path);
+    CHECK(hy_signal_read(path, &u, &n, &fs, &e) == HY_EINVAL && strstr(e.msg, want), "%s", e.msg);
+    CHECK(u == NULL, "output set on failure");
+    unlink(path);
+}
+
 int main(void)
 {
+    printed_times();
     bad_param("m", NAN, "parameter m = nan");
     bad_param("m", 0.0, "parameter m = 0 must be finite and > 0");
     bad_param("m", -2.0, "parameter m = -2");

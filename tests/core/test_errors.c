@@ -79,6 +79,13 @@ static void input_errors(void)
     f = fopen(path, "w");
     fclose(f);
     CHECK_MSG(hy_input_file(&in, path, &err), err, HY_EINVAL, "needs at least 2 samples");
+    /* issue 10 item 17: a NUL byte ended the line for strtod, and the rest
+       ("9 junk") was dropped without a word */
+    f = fopen(path, "w");
+    fwrite("0 0\n1 1\0 9 junk\n2 0\n", 1, 22, f);
+    fclose(f);
+    snprintf(want, sizeof want, "%s:2:4: NUL byte in the line", path);
+    CHECK_MSG(hy_input_file(&in, path, &err), err, HY_EINVAL, want);
     remove(path);
 }
 
