@@ -90,7 +90,15 @@ int hy_sine_fill(double amp, double f, double fs, double *u, size_t n,
 /* Reads an input file: one value a line, or "t,u" a line (uniform t).  Blank
  * lines and lines starting with '#' are skipped.  On success *u (allocated,
  * free() it) holds *n >= 1 values and *fs is 1/Δt, or 0 for one-column files.
- * A missing, empty or malformed file is HY_EIO / HY_EINVAL with "file:line". */
+ * A missing, empty or malformed file is HY_EIO / HY_EINVAL with "file:line".
+ * Times are uniform to the precision they are printed with: a time printed
+ * to d significant digits or D decimals (the most any time of the file has)
+ * has resolution q = max(10^(floor(log10|t|) - d + 1), 10^-D) and is within
+ * q/2 of the true time; each step must match the first within those halves,
+ * each time the grid through the first and last times (Δt = (t[n-1] - t[0])
+ * / (n - 1)) within (q + the coarser end's q) / 2, and q <= Δt/2 so that a
+ * missing sample is always seen.  Lines are at most 4095 bytes; a NUL byte
+ * is refused with file:line:col. */
 int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
                    hy_error *err);
 
