@@ -302,7 +302,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
     }
     double periods = (p->t1 - p->t0) / T;
     double np = (double)pts * fmax(1.0, periods);
-    if (np > 2e7)
+    if (!(np <= 2e7)) /* NaN too: np is converted below */
         return hy_scene_error_at(s, "compute", NULL, "points", err, HY_EINVAL,
                                  "%g points per period over %g periods is more than 2e7 points", (double)pts, periods);
     p->npts = (size_t)np + 1;
