@@ -81,8 +81,9 @@ static void input_errors(void)
     CHECK_MSG(hy_input_file(&in, path, &err), err, HY_EINVAL, "needs at least 2 samples");
     /* issue 10 item 17: a NUL byte ended the line for strtod, and the rest
        ("9 junk") was dropped without a word */
+    static const char nul[] = "0 0\n1 1\0 9 junk\n2 0\n";
     f = fopen(path, "w");
-    fwrite("0 0\n1 1\0 9 junk\n2 0\n", 1, 22, f);
+    fwrite(nul, 1, sizeof nul - 1, f);
     fclose(f);
     snprintf(want, sizeof want, "%s:2:4: NUL byte in the line", path);
     CHECK_MSG(hy_input_file(&in, path, &err), err, HY_EINVAL, want);
