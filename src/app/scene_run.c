@@ -442,7 +442,8 @@ static void sample(const hy_scene_run *r, const plan *p, hy_run_series *se, size
     }
 }
 
-/* ϱ intervals of the minor loops (minor) or of the rest of the period (major) */
+/* ϱ intervals of the minor loops (minor) or of the rest of the period (major);
+ * -1 if a minor loop is too narrow for ϱ at the input's scale to step past it */
 static int loop_intervals(const hy_scene_run *r, int major, double *a, double *b, size_t max)
 {
     const hy_loops *L = &r->loops;
@@ -476,7 +477,7 @@ static int loop_intervals(const hy_scene_run *r, int major, double *a, double *b
             n++;
         }
         if (!(skip_to > cur)) /* a loop narrower than an ulp of ϱ: no progress possible */
-            break;
+            return -1;
         cur = skip_to;
     }
     return (int)n;
@@ -526,6 +527,16 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
         double a[64], b[64];
         int k = loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64);
+        static const char *const inkeys[] = {"points", "file", "extrema", NULL};
+        const char *key = NULL;
+        hy_scene_loc loc;
+        for (size_t i = 0; inkeys[i] && !key; i++)
+            if (hy_scene_get_loc(s, "input", NULL, inkeys[i], &loc))
+                key = inkeys[i];
+        if (k < 0)
+            return hy_scene_error_at(s, "input", NULL, key, err, HY_EINVAL,
+                                     "a minor loop of this input is narrower than the resolution of ϱ at its "
+                                     "scale (ρ_T = %g): the major loop cannot be computed", r->input.rho_T);
         size_t total = 0;
         for (int i = 0; i < k; i++)
             total += per + 1;

@@ -429,6 +429,9 @@ static void errors(void)
     scene_error("[input]\nkind = bimodal\numin1 = -1e19\n[figure]\nkind = loop\n[series m]\ndata = major\n",
                 "bad.scene:3:1: u_min,1 = -1e+19 makes the input's scale 2e+19 (largest |u| or total variation), "
                 "and the excursion from u_max,1 to u_min,2 of 0.8 is below 1e-10 of it");
+    scene_error("[input]\nkind = pwl\npoints = 0, -1e19, 1, 1, 2, 0.2, 3, 1.5, 4, -1e19\n[figure]\nkind = loop\n"
+                "[series m]\ndata = major\n",
+                "bad.scene:3:1: a minor loop of this input is narrower than the resolution of ϱ");
     scene_error("[input]\nkind = multimodal\nextrema = 0, 1, 0.5, 1e12\n[series a]\ndata = input\n",
                 "bad.scene:3:1: extrema[3] = 1e+12 makes the input's scale 2e+12 (largest |u| or total variation), and the excursion extrema[1] -> extrema[2] of 0.5");
     /* item 4: axis ranges the plot cannot draw */
