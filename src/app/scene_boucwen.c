@@ -150,17 +150,23 @@ static int read_sweep(const hy_scene *s, bw_setup *b, hy_error *err)
 {
     static const char *const periodic[] = {"cycles", "settle"};
     hy_sweep_default(&b->sw); /* the defaults of `hystviz boucwen data --signal sweep` too */
-    double band[2] = {b->sw.f0, b->sw.f1};
+    double band[2];
     for (size_t i = 0; i < 2; i++)
         if (hy_scene_get_int(s, "compute", NULL, periodic[i], &b->cycles) == HY_SCENE_SET)
             return hy_scene_error_at(s, "compute", NULL, periodic[i], err, HY_EINVAL,
                                      "'%s' counts input periods, and a sweep is not periodic", periodic[i]);
     b->cycles = 1;
-    hy_scene_get_pair(s, "input", NULL, "band", band, NULL);
-    b->sw.amp = num(s, "input", "amp", b->sw.amp);
+    /* keys the scene leaves unset keep hy_sweep_default (the schema's defaults
+     * of amp and band are the triangle's and the multisine's) */
+    double v;
+    if (hy_scene_get_pair(s, "input", NULL, "band", band, NULL) != HY_SCENE_SET)
+        band[0] = b->sw.f0, band[1] = b->sw.f1;
+    if (hy_scene_get_num(s, "input", NULL, "amp", &v) == HY_SCENE_SET)
+        b->sw.amp = v;
+    if (hy_scene_get_num(s, "input", NULL, "rate", &v) == HY_SCENE_SET)
+        b->sw.rate = v / 60.0;
     b->sw.f0 = band[0];
     b->sw.f1 = band[1];
-    b->sw.rate = num(s, "input", "rate", 60.0 * b->sw.rate) / 60.0;
     b->nd = hy_sweep_length(&b->sw, b->fs);
     if (b->nd == 0) {
         hy_sweep_fill(&b->sw, b->fs, NULL, 0, err);
