@@ -31,20 +31,48 @@ static const char usage[] =
     "table2      print Table 2 (natural frequency and damping ratio from the\n"
     "            linearised stiffness k + alpha)\n"
     "data        write CSV 't,u,y' (s, N, m) at the working rate, %.17g\n"
-    "\n"
+    "\n";
+
+/* The data options (apart from the text above: C99's 4095-character limit). */
+static const char usage_data[] =
     "data options:\n"
     "  --signal multisine   random-phase multisine 5-150 Hz, 8192 samples a\n"
     "                       period at 750 Hz, std 50 N (set at the integration\n"
     "                       rate); P periods from rest (default 5), the first\n"
-    "                       holds the transient\n"
+    "                       holds the transient; decimated in stages 2, 2, 5\n"
     "  --signal validation  the official validation input uval_multisine.txt,\n"
     "                       P steady-state periods (default 1; comparable with\n"
-    "                       yval_multisine.txt); noiseless unless --noise\n"
-    "  --signal sweep       40 N sine sweep 20 -> 50 Hz at 10 Hz/min (180 s)\n"
-    "  --signal sine        120 N at 1 Hz, P periods from rest (default 10)\n"
+    "                       yval_multisine.txt); noiseless unless --noise;\n"
+    "                       decimated in stages 2, 2, 5 (as the data set)\n"
+    "  --signal validation-sweep\n"
+    "                       the benchmark's validation sine sweep, the data\n"
+    "                       set yval_sinesweep (BoucWenFiles.zip, folder Test\n"
+    "                       signals/Validation signals/, nonlinearbenchmark.org):\n"
+    "                       u = 40 sin(2 pi (18 t + t^2/12)), t = n/750,\n"
+    "                       n = 0..152999: 18 -> 52 Hz at 10 Hz/min over 204 s;\n"
+    "                       made at 15000 Hz, decimated in ONE stage as the\n"
+    "                       data set was (MATLAB decimate(y, 20, 'fir'));\n"
+    "                       noiseless unless --noise; 153000 rows\n"
+    "  --signal sweep       linear sine sweep from rest, t in [0, T): defaults\n"
+    "                       the paper's 40 N, 20 -> 50 Hz at 10 Hz/min (180 s,\n"
+    "                       135000 rows; the scene's [input] kind = sweep has\n"
+    "                       the same); made at the integration rate; decimated\n"
+    "                       in stages 2, 2, 5 unless --single-stage\n"
+    "  --band F1,F2         sweep: start and end frequency in Hz (20,50)\n"
+    "  --rate HZ_PER_MIN    sweep: frequency rate in Hz per minute (10)\n"
+    "  --amp N              sweep: force amplitude in N (40)\n"
+    "  --signal sine        120 N at 1 Hz, P periods from rest (default 10);\n"
+    "                       decimated in stages 2, 2, 5\n"
     "  --signal file        the force in --input FILE: one value a line or\n"
-    "                       't,u' lines (uniform t gives fs); upsampled by a\n"
-    "                       Kaiser-windowed sinc; t is written from 0\n"
+    "                       't,u' lines (uniform t gives fs); n samples are\n"
+    "                       upsampled by a Kaiser-windowed sinc to n x UPSAMPLE\n"
+    "                       and decimated back to one row per input sample\n"
+    "                       (its limit on the validation sweep: y within 5e-8 m,\n"
+    "                       1.3e-8 m RMS; scenes/bw_sinc_upsampling_error.scene);\n"
+    "                       with --upsample 1 the 't,u' file is at the\n"
+    "                       integration rate and is decimated to --fs (its rate\n"
+    "                       / fs a whole number); decimated in stages unless\n"
+    "                       --single-stage; t is written from 0\n"
     "  --input FILE         input force file (implies --signal file)\n"
     "  --data-dir DIR       folder of uval_multisine.txt (validation; default\n"
     "                       $HY_BOUCWEN_DATA, then shared/data/boucwen next to\n"
@@ -52,11 +80,13 @@ static const char usage[] =
     "  --periods P          number of periods written (periodic signals)\n"
     "  --noise RMS          output noise RMS in metres, Gaussian band-limited\n"
     "                       to 0-fs/2 (default 8e-6 = 8e-3 mm; 0 = none;\n"
-    "                       validation: 0)\n"
+    "                       validation and validation-sweep: 0)\n"
     "  --seed S             seed of the multisine phases and the noise (1)\n"
-    "  --fs HZ              working sampling rate (750; file: from t if given)\n"
+    "  --fs HZ              working sampling rate (750; file: from t if given,\n"
+    "                       with --upsample 1 the output rate)\n"
     "  --upsample R         integration rate factor (20)\n"
     "  --single-stage       decimate in one stage instead of prime factors\n"
+    "                       (validation-sweep: always)\n"
     "  --set-param N=V      change a parameter: m c k alpha beta gamma delta nu\n"
     "                       (Table 1: 2 10 5e4 5e4 1e3 0.8 -1.1 1)\n"
     "  -o FILE              output file (written to a temporary name, then\n"
@@ -75,6 +105,7 @@ typedef struct opts {
     double fs;
     size_t upsample;
     int staged;
+    double band[2], rate, amp; /* sweep; NAN: not given (hy_sweep_default) */
     hy_boucwen_params p;
 } opts;
 
@@ -125,6 +156,20 @@ static int parse_double(const char *s, double *out)
     return end == s || *end ? -1 : 0;
 }
 
+/* "F1,F2" with 0 <= F1 < F2, both finite. */
+static int parse_band(const char *s, double band[2])
+{
+    char *end;
+    band[0] = strtod(s, &end);
+    if (end == s || *end != ',')
+        return -1;
+    const char *b = end + 1;
+    band[1] = strtod(b, &end);
+    if (end == b || *end || !isfinite(band[0]) || !isfinite(band[1]))
+        return -1;
+    return band[0] >= 0 && band[1] > band[0] ? 0 : -1;
+}
+
 /* Value of option a[i] ("--x v" or "--x=v"); advances *i; NULL if missing. */
 static const char *optval(int argc, char **argv, int *i, const char *name)
 {
@@ -154,7 +199,8 @@ static int parse_opts(int argc, char **argv, int first, opts *o)
         }
         static const char *valued[] = {"--signal", "--input", "--data-dir", "-o",
                                        "--periods", "--noise", "--seed", "--fs",
-                                       "--upsample", "--set-param"};
+                                       "--upsample", "--set-param", "--band",
+                                       "--rate", "--amp"};
         const char *name = NULL;
         for (size_t k = 0; k < sizeof valued / sizeof *valued; k++)
             if (is_opt(a, valued[k]))
@@ -188,6 +234,15 @@ static int parse_opts(int argc, char **argv, int first, opts *o)
         } else if (strcmp(name, "--upsample") == 0) {
             if (parse_size(v, &o->upsample) || o->upsample < 1 || o->upsample > 1000)
                 return bad_usage("--upsample '%s' must be an integer in 1..1000", v);
+        } else if (strcmp(name, "--band") == 0) {
+            if (parse_band(v, o->band))
+                return bad_usage("--band '%s' must be F1,F2 in Hz with 0 <= F1 < F2", v);
+        } else if (strcmp(name, "--rate") == 0) {
+            if (parse_double(v, &o->rate) || !isfinite(o->rate) || o->rate <= 0)
+                return bad_usage("--rate '%s' must be a positive number of Hz per minute", v);
+        } else if (strcmp(name, "--amp") == 0) {
+            if (parse_double(v, &o->amp) || !isfinite(o->amp) || o->amp < 0)
+                return bad_usage("--amp '%s' must be a finite force >= 0 in N", v);
         } else if (hy_boucwen_params_parse(&o->p, v, &err)) {
             return bad_usage("%s", err.msg);
         }
@@ -252,19 +307,20 @@ static int synth_periodic(const opts *o, const double *u_per, size_t n_per,
     return rc;
 }
 
-/* Non-periodic signals: n_int samples at the integration rate. */
-static int synth_once(const opts *o, const double *u_int, size_t n_int,
-                      series *s, hy_error *err)
+/* Non-periodic signals: n_int samples at the integration rate fs_out * d,
+ * decimated by d to fs_out (the u column: every d-th integration sample). */
+static int synth_once(const opts *o, double fs_out, size_t d, const double *u_int,
+                      size_t n_int, series *s, hy_error *err)
 {
     hy_newmark_opts no;
     hy_newmark_opts_default(&no);
-    size_t r = o->upsample, nd = (n_int + r - 1) / r;
+    size_t nd = (n_int + d - 1) / d;
     if (series_alloc(s, nd))
         return hy_error_set(err, HY_ENOMEM, "out of memory for %zu samples", nd);
-    int rc = hy_boucwen_synth(&o->p, &no, o->fs, r, o->staged, u_int, n_int, s->y, err);
+    int rc = hy_boucwen_synth(&o->p, &no, fs_out, d, o->staged, u_int, n_int, s->y, err);
     for (size_t i = 0; !rc && i < nd; i++) {
-        s->t[i] = (double)i / o->fs;
-        s->u[i] = u_int[i * r];
+        s->t[i] = (double)i / fs_out;
+        s->u[i] = u_int[i * d];
     }
     return rc;
 }
@@ -331,25 +387,74 @@ static int signal_sine(const opts *o, series *s, hy_error *err)
     return rc;
 }
 
-static int signal_sweep(const opts *o, series *s, hy_error *err)
+/* Integration samples a non-periodic run may take (u, y and the decimation
+ * scratch: 32 bytes each), as the scenes allow. */
+#define MAX_INT_SAMPLES 40000000.0
+
+/* The sweep: --band/--rate/--amp over hy_sweep_default (validation-sweep:
+ * hy_sweep_validation, one-stage decimation), made at the integration rate,
+ * nd x r samples for the nd rows at fs. */
+static int signal_sweep(opts *o, series *s, hy_error *err)
 {
     size_t r = o->upsample;
     hy_sweep sw;
-    hy_sweep_default(&sw);
+    if (strcmp(o->signal, "validation-sweep") == 0) {
+        hy_sweep_validation(&sw);
+        o->staged = 0;
+    } else {
+        hy_sweep_default(&sw);
+        if (!isnan(o->band[0])) {
+            sw.f0 = o->band[0];
+            sw.f1 = o->band[1];
+        }
+        if (!isnan(o->rate))
+            sw.rate = o->rate / 60.0;
+        if (!isnan(o->amp))
+            sw.amp = o->amp;
+    }
     size_t nd = hy_sweep_length(&sw, o->fs);
     if (nd == 0)
-        return hy_error_set(err, HY_EINVAL, "sweep: fs = %g Hz must exceed 100 Hz", o->fs);
-    size_t n = (nd - 1) * r + 1; /* generated at the integration rate */
+        return hy_sweep_fill(&sw, o->fs, NULL, 0, err);
+    if ((double)nd * (double)r > MAX_INT_SAMPLES || nd < 16)
+        return hy_error_set(err, HY_EINVAL,
+                            "sweep: %zu rows at %g Hz x %zu is %.0f integration samples; "
+                            "16 rows to %.0f samples are allowed (see --band, --rate, --upsample)",
+                            nd, o->fs, r, (double)nd * (double)r, MAX_INT_SAMPLES);
+    size_t n = nd * r; /* generated at the integration rate */
     double *u = malloc(n * sizeof *u);
     if (!u)
         return hy_error_set(err, HY_ENOMEM, "out of memory for the sweep");
     int rc = hy_sweep_fill(&sw, o->fs * (double)r, u, n, err);
     if (!rc)
-        rc = synth_once(o, u, n, s, err);
+        rc = synth_once(o, o->fs, r, u, n, s, err);
     free(u);
     return rc;
 }
 
+/* --upsample 1: the file's rate (from t) is the integration rate, decimated
+ * by the whole number d = rate / --fs. */
+static int file_at_integration_rate(opts *o, const double *uf, size_t n, double fsf,
+                                    series *s, hy_error *err)
+{
+    if (!(fsf > 0))
+        return hy_error_set(err, HY_EINVAL,
+                            "%s: with --upsample 1 the file is at the integration rate: give 't,u' lines",
+                            o->input);
+    double q = fsf / o->fs;
+    size_t d = (size_t)llround(q);
+    if (!(q >= 0.5 && q < 1e9) || d < 1 || fabs((double)d - q) > 1e-9 * q)
+        return hy_error_set(err, HY_EINVAL,
+                            "%s: its rate %.17g Hz / --fs %g Hz = %.10g must be a whole number >= 1",
+                            o->input, fsf, o->fs, q);
+    if (d > 1 && n < 16)
+        return hy_error_set(err, HY_EINVAL, "%s: decimation needs at least 16 samples, got %zu",
+                            o->input, n);
+    return synth_once(o, o->fs, d, uf, n, s, err);
+}
+
+/* The force in --input: n samples upsampled by the windowed sinc to n x r
+ * (every input sample's interval, so the last row is not a filter edge), or
+ * at the integration rate already (--upsample 1). */
 static int signal_file(opts *o, series *s, hy_error *err)
 {
     size_t r = o->upsample, n;
@@ -357,16 +462,24 @@ static int signal_file(opts *o, series *s, hy_error *err)
     if (!o->input)
         return hy_error_set(err, HY_EINVAL, "--signal file needs --input FILE");
     int rc = hy_signal_read(o->input, &uf, &n, &fsf, err);
+    if (!rc && r == 1) {
+        rc = file_at_integration_rate(o, uf, n, fsf, s, err);
+        free(uf);
+        return rc;
+    }
     if (!rc && fsf > 0)
         o->fs = fsf;
     if (!rc && n < 2)
         rc = hy_error_set(err, HY_EINVAL, "%s: needs at least 2 samples", o->input);
-    if (!rc && !(u = malloc(((n - 1) * r + 1) * sizeof *u)))
+    if (!rc && (double)n * (double)r > MAX_INT_SAMPLES)
+        rc = hy_error_set(err, HY_EINVAL, "%s: %zu samples x %zu is more than %.0f integration samples",
+                          o->input, n, r, MAX_INT_SAMPLES);
+    if (!rc && !(u = malloc(n * r * sizeof *u)))
         rc = hy_error_set(err, HY_ENOMEM, "out of memory for %s", o->input);
     if (!rc)
         rc = hy_signal_upsample_sinc(uf, n, r, u, err);
     if (!rc)
-        rc = synth_once(o, u, (n - 1) * r + 1, s, err);
+        rc = synth_once(o, o->fs, r, u, n * r, s, err);
     free(uf);
     free(u);
     return rc;
@@ -380,12 +493,12 @@ static int make_signal(opts *o, series *s, hy_error *err)
         return signal_validation(o, s, err);
     if (strcmp(o->signal, "sine") == 0)
         return signal_sine(o, s, err);
-    if (strcmp(o->signal, "sweep") == 0)
+    if (strcmp(o->signal, "sweep") == 0 || strcmp(o->signal, "validation-sweep") == 0)
         return signal_sweep(o, s, err);
     if (strcmp(o->signal, "file") == 0)
         return signal_file(o, s, err);
     return hy_error_set(err, HY_EINVAL,
-                        "unknown signal '%s' (multisine, validation, sweep, sine, file)",
+                        "unknown signal '%s' (multisine, validation, validation-sweep, sweep, sine, file)",
                         o->signal);
 }
 
@@ -437,16 +550,20 @@ static int cmd_data(opts *o)
     if (!o->signal)
         o->signal = o->input ? "file" : NULL;
     if (!o->signal)
-        return bad_usage("%s", "data needs --signal multisine|validation|sweep|sine|file");
-    if (strcmp(o->signal, "sweep") == 0 && o->periods)
-        return bad_usage("%s", "--periods does not apply to the sweep");
+        return bad_usage("%s", "data needs --signal multisine|validation|validation-sweep|sweep|sine|file");
+    int sweep = strcmp(o->signal, "sweep") == 0, vsweep = strcmp(o->signal, "validation-sweep") == 0;
+    if ((sweep || vsweep) && o->periods)
+        return bad_usage("--periods does not apply to the %s", o->signal);
+    if (!sweep && !(isnan(o->band[0]) && isnan(o->rate) && isnan(o->amp)))
+        return bad_usage("--band, --rate and --amp go with --signal sweep, not '%s'", o->signal);
     if (o->input && strcmp(o->signal, "file") != 0)
         return bad_usage("--input goes with --signal file, not '%s'", o->signal);
     int rc = hy_boucwen_params_validate(&o->p, &err);
     if (!rc)
         rc = make_signal(o, &s, &err);
     if (!rc) {
-        double rms = isnan(o->noise) ? (strcmp(o->signal, "validation") == 0 ? 0.0 : 8e-6) : o->noise;
+        int exact = strcmp(o->signal, "validation") == 0 || vsweep; /* the data sets: noiseless */
+        double rms = isnan(o->noise) ? (exact ? 0.0 : 8e-6) : o->noise;
         /* the noise stream is seeded apart from the multisine phases */
         rc = hy_signal_add_noise(s.y, s.n, rms, o->fs / 2, o->fs,
                                  o->seed ^ 0x6e6f697365ULL, &err);
@@ -465,13 +582,14 @@ int hy_cmd_boucwen(int argc, char **argv)
 {
     opts o = {.signal = NULL, .input = NULL, .data_dir = NULL, .out = NULL,
               .periods = 0, .noise = NAN, .seed = 1, .fs = 750.0,
-              .upsample = 20, .staged = 1};
+              .upsample = 20, .staged = 1, .band = {NAN, NAN}, .rate = NAN, .amp = NAN};
     hy_boucwen_params_default(&o.p);
     if (argc < 2)
         return bad_usage("%s", "needs 'table2', 'data' or '--help'");
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {
         fputs(usage, stdout);
+        fputs(usage_data, stdout);
         return 0;
     }
     int is_table = strcmp(argv[1], "table2") == 0;
@@ -480,6 +598,7 @@ int hy_cmd_boucwen(int argc, char **argv)
     for (int i = 2; i < argc; i++)
         if (strcmp(argv[i], "--help") == 0) {
             fputs(usage, stdout);
+            fputs(usage_data, stdout);
             return 0;
         }
     int rc = parse_opts(argc, argv, 2, &o);

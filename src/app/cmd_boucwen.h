@@ -1,7 +1,7 @@
 /* cmd_boucwen.h: the `hystviz boucwen` subcommand (the Bouc-Wen benchmark).
  *
  *     hystviz boucwen table2 [--set-param name=value]...
- *     hystviz boucwen data --signal multisine|validation|sweep|sine|file ... [-o FILE]
+ *     hystviz boucwen data --signal multisine|validation|validation-sweep|sweep|sine|file ... [-o FILE]
  *     hystviz boucwen --help
  *
  * main() calls hy_cmd_boucwen(argc - 1, argv + 1) so that argv[0] is

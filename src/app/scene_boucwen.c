@@ -12,7 +12,7 @@
 #include "hy_signal.h"
 
 enum { IN_SINE, IN_MULTISINE, IN_SWEEP };
-enum { Q_OUTPUT, Q_INPUT, Q_OUTPUT_DB, Q_TRANSIENT_DB, Q_SPECTRUM };
+enum { Q_OUTPUT, Q_INPUT, Q_OUTPUT_DB, Q_TRANSIENT_DB, Q_SPECTRUM, Q_ENVELOPE, Q_SINC_INPUT, Q_SINC_OUTPUT };
 enum { DEC_STAGED, DEC_SINGLE, DEC_NONE };
 enum { FIG_TIMESERIES = 0, FIG_LOOP = 1 };
 
@@ -20,7 +20,8 @@ enum { FIG_TIMESERIES = 0, FIG_LOOP = 1 };
 #define BW_MAX_SAMPLES 40000000.0
 
 static const char *const quantity_names[] = {"output", "input", "output-db", "transient-db",
-                                             "spectrum"};
+                                             "spectrum", "envelope", "sinc-input-error",
+                                             "sinc-output-error"};
 
 /* Everything a boucwen scene asks for, read and checked once. */
 typedef struct bw_setup {
@@ -37,6 +38,7 @@ typedef struct bw_setup {
     hy_sweep sw;
     size_t nd;            /* samples at fs: one period, or the whole sweep   */
     int need_output;      /* some series needs the simulated y               */
+    int need_sinc;        /* bits: 1 the sinc-upsampled force, 2 its output  */
 } bw_setup;
 
 static double now(void)
@@ -163,18 +165,24 @@ static int read_multisine(const hy_scene *s, bw_setup *b, hy_error *err)
 static int read_sweep(const hy_scene *s, bw_setup *b, hy_error *err)
 {
     static const char *const periodic[] = {"cycles", "settle"};
-    double band[2] = {5, 150};
+    hy_sweep_default(&b->sw); /* the defaults of `hystviz boucwen data --signal sweep` too */
+    double band[2];
     for (size_t i = 0; i < 2; i++)
         if (hy_scene_get_int(s, "compute", NULL, periodic[i], &b->cycles) == HY_SCENE_SET)
             return hy_scene_error_at(s, "compute", NULL, periodic[i], err, HY_EINVAL,
                                      "'%s' counts input periods, and a sweep is not periodic", periodic[i]);
     b->cycles = 1;
-    hy_scene_get_pair(s, "input", NULL, "band", band, NULL);
-    hy_sweep_default(&b->sw);
-    b->sw.amp = num(s, "input", "amp", 1);
+    /* keys the scene leaves unset keep hy_sweep_default (the schema's defaults
+     * of amp and band are the triangle's and the multisine's) */
+    double v;
+    if (hy_scene_get_pair(s, "input", NULL, "band", band, NULL) != HY_SCENE_SET)
+        band[0] = b->sw.f0, band[1] = b->sw.f1;
+    if (hy_scene_get_num(s, "input", NULL, "amp", &v) == HY_SCENE_SET)
+        b->sw.amp = v;
+    if (hy_scene_get_num(s, "input", NULL, "rate", &v) == HY_SCENE_SET)
+        b->sw.rate = v / 60.0;
     b->sw.f0 = band[0];
     b->sw.f1 = band[1];
-    b->sw.rate = num(s, "input", "rate", 10) / 60.0;
     b->nd = hy_sweep_length(&b->sw, b->fs);
     if (b->nd == 0) {
         static const char *const culprits[] = {"rate", "band", "fs", "amp", NULL};
@@ -243,6 +251,14 @@ static int check_series(const hy_scene_run *r, bw_setup *b, hy_error *err)
         if (strcmp(data, "boucwen"))
             return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL,
                                      "a boucwen model draws 'data = boucwen' series (with a 'quantity'), not %s", data);
+        if ((q == Q_SINC_INPUT || q == Q_SINC_OUTPUT) && b->input != IN_SWEEP)
+            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
+                                     "quantity = %s compares the sinc-upsampled sweep with the exact one: "
+                                     "it needs [input] kind = sweep", quantity_names[q]);
+        if (q >= Q_ENVELOPE && r->figure_kind == FIG_LOOP)
+            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
+                                     "quantity = %s is a value a second, drawn against t, not in a loop figure",
+                                     quantity_names[q]);
         if ((q == Q_TRANSIENT_DB || q == Q_SPECTRUM) && b->input == IN_SWEEP)
             return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
                                      "quantity = %s needs a periodic input (sine or multisine), not a sweep",
@@ -254,7 +270,8 @@ static int check_series(const hy_scene_run *r, bw_setup *b, hy_error *err)
         if (q == Q_SPECTRUM && r->figure_kind == FIG_LOOP)
             return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
                                      "quantity = spectrum is drawn against frequency, not in a loop figure");
-        b->need_output |= q != Q_INPUT;
+        b->need_output |= q != Q_INPUT && q != Q_SINC_INPUT;
+        b->need_sinc |= q == Q_SINC_OUTPUT ? 2 : q == Q_SINC_INPUT;
     }
     for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
         const char *name = hy_scene_name_at(s, "annotation", i), *text;
@@ -308,6 +325,9 @@ int hy_scene_boucwen_load(hy_scene_run *r, hy_error *err)
 typedef struct bw_record {
     double *t, *u, *y;   /* n samples (y NULL if no series needs it)            */
     size_t n;
+    double *du;          /* sinc: |u_sinc - u| at the integration rate (ndu)    */
+    size_t ndu;
+    double *ysinc;       /* sinc: y of the sinc-upsampled force (n samples)     */
     size_t nper;         /* samples per period at the output rate (periodic)    */
     double fs_out;
     double sim_seconds;
@@ -318,13 +338,15 @@ static void record_free(bw_record *rec)
     free(rec->t);
     free(rec->u);
     free(rec->y);
+    free(rec->du);
+    free(rec->ysinc);
 }
 
 /* One period (or the whole sweep) of the force at the integration rate fs * r. */
 static int make_force(const bw_setup *b, double **u, size_t *n, hy_error *err)
 {
     double fint = b->fs * (double)b->r;
-    *n = b->input == IN_SWEEP ? (b->nd - 1) * b->r + 1 : b->nd * b->r;
+    *n = b->nd * b->r; /* a sweep: every one of its nd intervals at fs */
     *u = malloc(*n * sizeof **u);
     if (!*u)
         return hy_error_set(err, HY_ENOMEM, "out of memory for %zu input samples", *n);
@@ -363,6 +385,35 @@ static int simulate(const bw_setup *b, const double *u, size_t nu, double *y, hy
     return rc;
 }
 
+/* The route of `hystviz boucwen data --signal file`: the sweep sampled at fs
+ * and brought to fs x r by the Kaiser-windowed sinc; rec->du its distance to
+ * the exact force u, and with need_sinc & 2 rec->ysinc its decimated output. */
+static int sinc_route(const bw_setup *b, const double *u, size_t nu, bw_record *rec, size_t skip, hy_error *err)
+{
+    double *lo = malloc(b->nd * sizeof *lo), *us = malloc(nu * sizeof *us), *ys = NULL;
+    rec->du = malloc(nu * sizeof *rec->du);
+    rec->ndu = nu;
+    int rc = lo && us && rec->du ? HY_OK : hy_error_set(err, HY_ENOMEM, "out of memory for the sinc route");
+    if (!rc)
+        rc = hy_sweep_fill(&b->sw, b->fs, lo, b->nd, err);
+    if (!rc)
+        rc = hy_signal_upsample_sinc(lo, b->nd, b->r, us, err);
+    for (size_t i = 0; !rc && i < nu; i++)
+        rec->du[i] = fabs(us[i] - u[i]);
+    if (!rc && (b->need_sinc & 2)) {
+        rec->ysinc = malloc(rec->n * sizeof *rec->ysinc);
+        ys = malloc((skip + rec->n) * sizeof *ys);
+        rc = rec->ysinc && ys ? simulate(b, us, nu, ys, err)
+                              : hy_error_set(err, HY_ENOMEM, "out of memory for the sinc route");
+        if (!rc)
+            memcpy(rec->ysinc, ys + skip, rec->n * sizeof *ys);
+    }
+    free(lo);
+    free(us);
+    free(ys);
+    return rc;
+}
+
 static int make_record(const hy_scene *s, const bw_setup *b, bw_record *rec, hy_error *err)
 {
     double *u = NULL, *yall = NULL;
@@ -394,18 +445,26 @@ static int make_record(const hy_scene *s, const bw_setup *b, bw_record *rec, hy_
         rec->t[i] = (double)(skip + i) / rec->fs_out;
         rec->u[i] = u[(sweep ? i : i % nout) * step];
     }
-    if (b->need_output) {
+    if (b->need_output || b->need_sinc) {
         double t0 = now();
-        rc = simulate(b, u, nu, yall, err);
-        rec->sim_seconds = now() - t0;
+        rc = b->need_output ? simulate(b, u, nu, yall, err) : HY_OK;
         if (rc)
             rc = relocate(s, "model", NULL, err, rc, "Bouc-Wen integration failed: ");
-        else
+        else if (b->need_output)
             memcpy(rec->y, yall + skip, nkeep * sizeof *rec->y);
+        if (!rc && b->need_sinc) {
+            rc = sinc_route(b, u, nu, rec, skip, err);
+            if (rc)
+                rc = relocate(s, "model", NULL, err, rc, "the sinc route's integration failed: ");
+        }
         /* as `hystviz boucwen data`: the noise stream is seeded apart from the phases */
-        if (!rc && b->noise > 0)
+        if (!rc && b->noise > 0 && b->need_output)
             rc = hy_signal_add_noise(rec->y, nkeep, b->noise, rec->fs_out / 2, rec->fs_out,
                                      b->seed ^ 0x6e6f697365ULL, err);
+        if (!rc && b->noise > 0 && rec->ysinc) /* the same noise: the routes' difference stays noiseless */
+            rc = hy_signal_add_noise(rec->ysinc, nkeep, b->noise, rec->fs_out / 2, rec->fs_out,
+                                     b->seed ^ 0x6e6f697365ULL, err);
+        rec->sim_seconds = now() - t0;
     }
     free(u);
     free(yall);
@@ -461,6 +520,28 @@ static double linear_error(const bw_setup *b, const bw_record *rec)
     return 1e3 * e;
 }
 
+/* One point a second: the largest |a| (|a - b| if b) over each block of
+ * round(rate) samples, times scale, at the block's middle (t0: time of a[0]). */
+static int per_second(const double *a, const double *b, size_t n, double rate, double t0, double scale,
+                      hy_run_series *se, hy_error *err)
+{
+    size_t B = rate >= 1.5 ? (size_t)llround(rate) : 1, nb = (n + B - 1) / B;
+    se->x = malloc((nb ? nb : 1) * sizeof *se->x);
+    se->y = malloc((nb ? nb : 1) * sizeof *se->y);
+    se->n = nb;
+    if (!se->x || !se->y)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for series '%s'", se->name);
+    for (size_t k = 0; k < nb; k++) {
+        size_t i0 = k * B, len = n - i0 < B ? n - i0 : B;
+        double m = 0;
+        for (size_t i = i0; i < i0 + len; i++)
+            m = fmax(m, fabs(b ? a[i] - b[i] : a[i]));
+        se->x[k] = t0 + ((double)i0 + 0.5 * (double)(len - 1)) / rate;
+        se->y[k] = scale * m;
+    }
+    return HY_OK;
+}
+
 /* dB series: values below [series] floor and the gaps of exact zeros drawn at it. */
 static void apply_floor(const hy_scene *s, hy_run_series *se)
 {
@@ -484,6 +565,12 @@ static int fill_series(const hy_scene_run *r, const bw_setup *b, const bw_record
         apply_floor(r->scene, se);
         return rc;
     }
+    if (q == Q_ENVELOPE)
+        return per_second(rec->y, NULL, rec->n, rec->fs_out, rec->t[0], 1e3, se, err);
+    if (q == Q_SINC_INPUT)
+        return per_second(rec->du, NULL, rec->ndu, b->fs * (double)b->r, rec->t[0], 1.0, se, err);
+    if (q == Q_SINC_OUTPUT)
+        return per_second(rec->ysinc, rec->y, rec->n, rec->fs_out, rec->t[0], 1e3, se, err);
     size_t n = q == Q_TRANSIENT_DB ? rec->n - rec->nper : rec->n;
     se->x = malloc(n * sizeof *se->x);
     se->y = malloc(n * sizeof *se->y);
@@ -515,9 +602,13 @@ static void place_marker(const hy_scene_run *r, const bw_record *rec, hy_run_ser
     double at;
     if (se->n == 0 || hy_scene_get_num(r->scene, "series", se->name, "at", &at) != HY_SCENE_SET)
         return;
-    int spec = enum_index(r->scene, "series", se->name, "quantity") == Q_SPECTRUM;
-    double f = spec ? at * (double)rec->nper / rec->fs_out : (at - rec->t[0]) * rec->fs_out;
+    int q = enum_index(r->scene, "series", se->name, "quantity");
+    double f = q == Q_SPECTRUM ? at * (double)rec->nper / rec->fs_out : (at - rec->t[0]) * rec->fs_out;
     size_t i = f > 0 ? (size_t)fmin(nearbyint(f), (double)(se->n - 1)) : 0;
+    if (q >= Q_ENVELOPE) /* a point a second: the nearest */
+        for (size_t k = i = 0; k < se->n; k++)
+            if (fabs(se->x[k] - at) < fabs(se->x[i] - at))
+                i = k;
     se->has_mark = 1;
     se->mark_x = se->x[i];
     se->mark_y = se->y[i];
@@ -543,7 +634,7 @@ static void plan_text(hy_scene_run *r, const bw_setup *b, const bw_record *rec)
     static const char *const decs[] = {"in prime-factor stages (decimate 'fir')", "in one stage (decimate 'fir')",
                                        "not decimated"};
     size_t len = strlen(r->plan);
-    if (!b->need_output) {
+    if (!b->need_output && !b->need_sinc) {
         snprintf(r->plan + len, sizeof r->plan - len, "Bouc-Wen: %s input only, no integration\n", inputs[b->input]);
         return;
     }

@@ -124,9 +124,8 @@ int hy_signal_upsample_sinc(const double *x, size_t n, size_t r, double *y,
             w[j * 2 * K + m] = s * kaiser(d / K, beta);
         }
     }
-    size_t ny = (n - 1) * r + 1;
     for (size_t i = 0; i < n; i++) {
-        for (size_t j = 0; j < r && i * r + j < ny; j++) {
+        for (size_t j = 0; j < r; j++) {
             if (j == 0) { /* sinc zeros: exact samples */
                 y[i * r] = x[i];
                 continue;

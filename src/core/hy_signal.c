@@ -139,6 +139,14 @@ void hy_sweep_default(hy_sweep *sw)
     sw->rate = 10.0 / 60.0;
 }
 
+void hy_sweep_validation(hy_sweep *sw)
+{
+    sw->amp = 40.0;
+    sw->f0 = 18.0;
+    sw->f1 = 52.0;
+    sw->rate = 10.0 / 60.0;
+}
+
 static int sweep_check(const hy_sweep *sw, double fs, hy_error *err)
 {
     if (!(isfinite(sw->amp)))
@@ -165,7 +173,8 @@ size_t hy_sweep_length(const hy_sweep *sw, double fs)
 {
     if (sweep_check(sw, fs, NULL))
         return 0;
-    return (size_t)floor((sw->f1 - sw->f0) / sw->rate * fs + 1e-9) + 1;
+    /* the slack keeps whole products whole: 204 s x 750 Hz is 153000 */
+    return (size_t)ceil((sw->f1 - sw->f0) / sw->rate * fs - 1e-9);
 }
 
 int hy_sweep_fill(const hy_sweep *sw, double fs, double *u, size_t n,

@@ -32,7 +32,9 @@ typedef struct hy_multisine {
     uint64_t seed;
 } hy_multisine;
 
-/* Linear sine sweep u = A sin(2π (f0 t + rate t²/2)), t in [0, (f1-f0)/rate]. */
+/* Linear sine sweep u = A sin(2π (f0 t + rate t²/2)), sampled at t = i / fs
+ * for t in [0, T), T = (f1 - f0) / rate: the instantaneous frequency f0 +
+ * rate t reaches f1 one sample after the last (as the published sweep). */
 typedef struct hy_sweep {
     double amp;  /* N (40)             */
     double f0;   /* Hz (20)            */
@@ -68,15 +70,24 @@ int hy_multisine_lines(const hy_multisine *ms, size_t *kmin, size_t *kmax,
 int hy_multisine_design(const hy_multisine *ms, size_t r, double *u,
                         hy_error *err);
 
-/* Sets sw to the benchmark's 40 N, 20 -> 50 Hz, 10 Hz/min. */
+/* Sets sw to the paper's sweep (seeds/001, Section 5): 40 N, 20 -> 50 Hz at
+ * 10 Hz/min (180 s).  The defaults of both `hystviz boucwen data --signal
+ * sweep` and the scene's [input] kind = sweep: the one table of them. */
 void hy_sweep_default(hy_sweep *sw);
 
 /* Most samples a sweep may have (2^40: 8 TiB of doubles, beyond any machine;
  * the bound keeps the count representable before the memory caps apply). */
 #define HY_SWEEP_MAX_SAMPLES 1099511627776.0
 
-/* Number of samples of the sweep at rate fs: floor(duration fs) + 1; 0 if the
- * parameters are invalid (then hy_sweep_fill refuses them with a message). */
+/* Sets sw to the benchmark's published validation sweep: 40 N, 18 -> 52 Hz at
+ * 10 Hz/min (204 s, the paper's 20-50 Hz with 2 Hz either side), that is
+ * u = 40 sin(2π (18 t + t²/12)); at 750 Hz, 153000 samples.  The data set
+ * was decimated in one stage (MATLAB decimate(y, 20, 'fir')). */
+void hy_sweep_validation(hy_sweep *sw);
+
+/* Number of samples of the sweep at rate fs: ceil(T fs), the samples with
+ * t = i / fs < T (135000 for the paper's at 750 Hz); 0 if the parameters are
+ * invalid (then hy_sweep_fill refuses them with a message). */
 size_t hy_sweep_length(const hy_sweep *sw, double fs);
 
 /* Writes n samples of the sweep at rate fs (sample i at t = i / fs). */
@@ -111,7 +122,10 @@ int hy_signal_upsample_fft(const double *x, size_t n, size_t r, double *y,
 /* Band-limited interpolation of a non-periodic signal: Kaiser-windowed sinc
  * (β 8, 16 input samples each side, cutoff at the input Nyquist), with the
  * signal continued past its ends by point reflection (2 x[0] - x[i]).
- * x (n >= 2 samples) -> y ((n - 1) r + 1 samples), y[r i] = x[i] exactly. */
+ * x (n >= 2 samples) -> y (n r samples: every input sample's interval, the
+ * last one extrapolated from the reflection), y[r i] = x[i] exactly.  Its
+ * accuracy limit (the window's, worst near fs/2 and at the ends) is drawn by
+ * scenes/bw_sinc_upsampling_error.scene. */
 int hy_signal_upsample_sinc(const double *x, size_t n, size_t r, double *y,
                             hy_error *err);
 

@@ -31,7 +31,8 @@ static const char *const series_data[] = {"input", "psi", "g", "ystar", "ysteady
 static const char *const line_styles[] = {"solid", "dashed", "dotted", "dashdot", "none",
                                           NULL};
 static const char *const bw_quantities[] = {"output", "input", "output-db", "transient-db",
-                                            "spectrum", NULL};
+                                            "spectrum", "envelope", "sinc-input-error",
+                                            "sinc-output-error", NULL};
 static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {"none", "circle", "square", NULL};
 static const char *const formats[] = {"svg", "pdf", "png", NULL};
@@ -80,7 +81,8 @@ static const hy_scene_key_spec input_keys[] = {
     K("times", HY_KIND_NUMBER_LIST, NULL, NONNEG, 2, 0, NULL,
       "multimodal input: the times of the extrema (default: normalised)"),
     K("amp", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1",
-      "triangle, sine or sweep input: amplitude (a force in N for a boucwen model)"),
+      "triangle or sine input: amplitude (a force in N for a boucwen model); sweep input: force in N, default 40 "
+      "(the paper's sweep, as `hystviz boucwen data --signal sweep`)"),
     K("offset", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "triangle or sine input: mean value"),
     K("period", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "triangle or sine input: period T"),
     K("min", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
@@ -96,11 +98,11 @@ static const hy_scene_key_spec input_keys[] = {
     K("samples", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 64, 10000000, 0, 0, "8192",
       "multisine input: samples per period at fs (frequency resolution fs / samples)"),
     K("band", HY_KIND_PAIR, NULL, NOLIM, 0, 0, "5, 150",
-      "multisine input: excited band in Hz; sweep input: start and end frequency in Hz"),
+      "multisine input: excited band in Hz; sweep input: start and end frequency in Hz, default 20, 50 (the paper's)"),
     K("rms", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "50",
       "multisine input: standard deviation (RMS) in N"),
     K("seed", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
-    K("rate", HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute"),
+    K("rate", HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute (the paper's 10)"),
 };
 
 static const hy_scene_key_spec compute_keys[] = {
@@ -164,7 +166,8 @@ static const hy_scene_key_spec series_keys[] = {
     K("at", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "parameter value (e.g. t1) where the marker is placed"),
     K("quantity", HY_KIND_ENUM, bw_quantities, NOLIM, 0, 0, "output",
-      "data = boucwen: y in mm, u in N, |y| in dB re 1 mm, transient y - y(last period) in dB, or the last period's spectrum"),
+      "data = boucwen: y in mm, u in N, |y| in dB re 1 mm, transient y - y(last period) in dB, the last period's spectrum, "
+      "the largest |y| in mm each second, or (sweep) the windowed-sinc route's largest error each second in u (N) or y (mm)"),
     K("floor", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "data = boucwen, dB quantities: values below it and exact zeros are drawn at this level (default: zeros leave gaps)"),
 };

@@ -90,7 +90,8 @@ int main(void)
     static const char *const documented[] = {
         "--signal", "--input", "--data-dir", "-o FILE", "--periods", "--noise", "--seed", "--fs",
         "--upsample", "--single-stage", "--set-param", "--help", "table2", "data",
-        "multisine", "validation", "sweep", "sine", "file", "HY_BOUCWEN_DATA"};
+        "multisine", "validation", "sweep", "sine", "file", "HY_BOUCWEN_DATA", "validation-sweep",
+        "yval_sinesweep", "--band", "--rate", "--amp", "ONE stage"};
     CHECK(rc == 0, "--help status %d", rc);
     for (size_t i = 0; i < sizeof documented / sizeof *documented; i++)
         CHECK(strstr(help, documented[i]) != NULL, "--help does not mention %s", documented[i]);

@@ -241,6 +241,10 @@ static void test_refused(void)
     BAD("[input]\nkind = sweep\nband = 20, 50\n[series s]\ndata = boucwen\nquantity = spectrum\n", "8:1",
         "periodic input");
     BAD("[input]\nkind = sweep\nband = 20, 50\n[compute]\ncycles = 3\n", "7:1", "a sweep is not periodic");
+    BAD("[input]\nkind = sine\nperiod = 1\n[series e]\ndata = boucwen\nquantity = sinc-output-error\n", "8:1",
+        "it needs [input] kind = sweep");
+    BAD("[input]\nkind = sweep\n[figure]\nkind = loop\n[series e]\ndata = boucwen\nquantity = envelope\n", "9:1",
+        "not in a loop figure");
     BAD("[input]\nkind = multisine\nband = 5, 400\n", "5:1", "below fs/2");
     BAD("[input]\nkind = sine\nperiod = 1\n[figure]\nkind = psi\n", "7:1", "timeseries or loop");
     /* issue 10 items 1 and 4: rates at the ends of the doubles, before any cast */

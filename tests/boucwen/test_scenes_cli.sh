@@ -1,6 +1,6 @@
 #!/bin/sh
 # The Bouc-Wen scenes through the hystviz command: `hystviz data` of Fig. 1(b),
-# `hystviz render` of all four, and a malformed scene refused with
+# `hystviz render` of all six, and a malformed scene refused with
 # file:line:col, exit status 1 and no output file.
 set -u
 hv=$1
@@ -20,7 +20,8 @@ awk -F, 'NR > 1 { d = $3 - $2 / 100; if (d < 0) d = -d; if (d > m) m = d } END {
     "$tmp/f1b.csv" && ok || bad "fig1b is not y = u / (k + alpha)"
 
 "$hv" render "$scenes"/bw_*.scene -o "$tmp/out" --format svg && ok || bad "render bw scenes"
-for s in bw_fig1a_quasistatic_loop bw_fig1b_linear_loop bw_fig2a_output_periods bw_fig2b_transient_db; do
+for s in bw_fig1a_quasistatic_loop bw_fig1b_linear_loop bw_fig2a_output_periods bw_fig2b_transient_db \
+         bw_validation_sweep bw_sinc_upsampling_error; do
     [ -s "$tmp/out/$s.svg" ] && ok || bad "no $s.svg"
 done
 

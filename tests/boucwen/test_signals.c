@@ -52,7 +52,7 @@ static void test_multisine(void)
 static void test_upsample(void)
 {
     enum { N = 64, R = 5 };
-    double x[N], y[N * R], ys[(N - 1) * R + 1];
+    double x[N], y[N * R], ys[N * R];
     hy_error e;
     /* DFT zero-padding is exact for a band-limited periodic signal, including
      * an even-n Nyquist line (split evenly: cos(π i) -> cos(π j / R)) */
@@ -72,7 +72,7 @@ static void test_upsample(void)
         x[i] = sin(2 * M_PI * 0.02 * i);
     CHECK(hy_signal_upsample_sinc(x, N, R, ys, &e) == HY_OK, "%s", e.msg);
     err = 0;
-    for (int j = 0; j < (N - 1) * R + 1; j++) {
+    for (int j = 0; j < N * R; j++) {
         if (j % R == 0)
             CHECK(ys[j] == x[j / R], "sample %d moved", j / R);
         if (j < 16 * R || j > (N - 17) * R)
@@ -161,8 +161,16 @@ static void test_sweep(void)
     hy_sweep sw;
     hy_error e;
     hy_sweep_default(&sw);
-    /* 20 -> 50 Hz at 10 Hz/min: 180 s, 135001 samples at 750 Hz */
-    CHECK(hy_sweep_length(&sw, 750) == 135001, "length %zu", hy_sweep_length(&sw, 750));
+    /* 20 -> 50 Hz at 10 Hz/min: 180 s, t in [0, 180): 135000 samples at 750 Hz */
+    CHECK(hy_sweep_length(&sw, 750) == 135000, "length %zu", hy_sweep_length(&sw, 750));
+    CHECK(hy_sweep_length(&sw, 15000) == 2700000, "length %zu", hy_sweep_length(&sw, 15000));
+    /* the published validation sweep: n = 0 .. 152999 at 750 Hz */
+    hy_sweep_validation(&sw);
+    CHECK(hy_sweep_length(&sw, 750) == 153000, "validation length %zu", hy_sweep_length(&sw, 750));
+    CHECK(sw.amp == 40 && sw.f0 == 18 && sw.f1 == 52 && fabs(sw.rate * 12 - 2) < 1e-15, "validation sweep");
+    sw.rate = 1e-300; /* refused, not an overflowing length */
+    CHECK(hy_sweep_length(&sw, 750) == 0, "length of a 1e302 s sweep");
+    hy_sweep_default(&sw);
     double u[4];
     CHECK(hy_sweep_fill(&sw, 750, u, 4, &e) == HY_OK, "%s", e.msg);
     CHECK(u[0] == 0 && fabs(u[1] - 40 * sin(2 * M_PI * (20.0 / 750 + 0.5 / 6 / 750 / 750))) < 1e-12, "u1 %g", u[1]);
