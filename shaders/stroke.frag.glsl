@@ -1,7 +1,8 @@
 // stroke.frag: coverage-based anti-aliasing from the exact distance of the
-// pixel centre to the primitive; miter joins by splitting the plane between
-// two segments at their bisector (each pixel belongs to exactly one, so no
-// seam and no double blending); dash patterns along the path's arc length.
+// pixel centre to the primitive; round joins whose two round caps are split
+// at the bisector of the turn (each pixel belongs to exactly one segment, so
+// no seam and no double blending, and no miter spike past a sharp turning
+// point); dash patterns along the path's arc length.
 #version 330 core
 flat in vec4 v_p;
 flat in vec4 v_c0;
@@ -35,19 +36,19 @@ float dash_gap(float s)
 #endif
 
 // Coverage of a segment (flags: 1 butt start, 2 butt end, 4 round dashes,
-// 8 miter start, 16 miter end); t receives the position along it in [0, 1].
+// 8 joint at the start, 16 joint at the end: cut by the split plane in v_m);
+// t receives the position along it in [0, 1].
 float segment(vec2 pos, float hw, int flags, out float t)
 {
     vec2 a = v_p.xy, b = v_p.zw, ab = b - a;
     float len = length(ab);
     vec2 d = len > 0.0 ? ab / len : vec2(1.0, 0.0);
     float s = dot(pos - a, d), perp = abs(dot(pos - a, vec2(-d.y, d.x)));
-    float lo = (flags & 8) != 0 ? -1e9 : 0.0, hi = (flags & 16) != 0 ? 1e9 : len;
     if ((flags & 8) != 0 && dot(pos - a, v_m.xy) < 0.0)
         return 0.0;
     if ((flags & 16) != 0 && dot(pos - b, v_m.zw) >= 0.0)
         return 0.0;
-    float dist = length(pos - (a + d * clamp(s, lo, hi)));
+    float dist = length(pos - (a + d * clamp(s, 0.0, len)));
     float cov = clamp(hw + 0.5 - dist, 0.0, 1.0);
     if ((flags & 1) != 0)
         cov = min(cov, clamp(s + 0.5, 0.0, 1.0) * clamp(hw + 0.5 - perp, 0.0, 1.0));

@@ -9,14 +9,45 @@ static void c_begin_path(void *ctx) { cairo_new_path(cr_of(ctx)); }
 static void c_move_to(void *ctx, double x, double y) { cairo_move_to(cr_of(ctx), x, y); }
 static void c_line_to(void *ctx, double x, double y) { cairo_line_to(cr_of(ctx), x, y); }
 
+#define MAX_DASH 16
+
+/* cairo_set_dash (1.16) folds a zero-length "on" entry that is not the first
+ * into its neighbouring gaps ({5, 2.4, 0, 2.4} becomes {5, 4.8}: dash-dot
+ * draws as plain dashes in every backend), but keeps one in first place.  So
+ * the pattern is rotated to start at its first inner zero "on" entry, with the
+ * offset that keeps the phase; any further inner zero becomes 1e-6 pt (a dot
+ * all the same, drawn by its round caps). */
+static void set_dash(cairo_t *cr, const double *dash, int n)
+{
+    double d[MAX_DASH], total = 0.0, prefix = 0.0;
+    int start = 0;
+    if (!dash || n <= 0 || n > MAX_DASH || n % 2) {
+        cairo_set_dash(cr, dash, dash ? n : 0, 0.0);
+        return;
+    }
+    for (int i = 0; i < n; i++)
+        total += dash[i];
+    for (int i = 2; i < n && !start; i += 2)
+        if (dash[i] == 0.0)
+            start = i;
+    for (int i = 0; i < start; i++)
+        prefix += dash[i];
+    for (int i = 0; i < n; i++) {
+        d[i] = dash[(start + i) % n];
+        if (i > 0 && i % 2 == 0 && d[i] == 0.0)
+            d[i] = 1e-6;
+    }
+    cairo_set_dash(cr, d, n, start ? total - prefix : 0.0);
+}
+
 static void set_pen(cairo_t *cr, const hy_pen *pen)
 {
     double a = pen->alpha > 0 ? pen->alpha : 1.0;
     cairo_set_source_rgba(cr, pen->colour.r, pen->colour.g, pen->colour.b, a);
     cairo_set_line_width(cr, pen->width);
-    cairo_set_dash(cr, pen->dash, pen->dash ? pen->ndash : 0, 0.0);
+    set_dash(cr, pen->dash, pen->dash ? pen->ndash : 0);
     cairo_set_line_cap(cr, pen->round_caps ? CAIRO_LINE_CAP_ROUND : CAIRO_LINE_CAP_BUTT);
-    cairo_set_line_join(cr, pen->round_caps ? CAIRO_LINE_JOIN_ROUND : CAIRO_LINE_JOIN_MITER);
+    cairo_set_line_join(cr, pen->miter_joins ? CAIRO_LINE_JOIN_MITER : CAIRO_LINE_JOIN_ROUND);
 }
 
 static void c_stroke(void *ctx, const hy_pen *pen)
@@ -52,6 +83,7 @@ static void c_marker(void *ctx, int shape, double x, double y, double size, cons
     hy_pen solid = *pen;
     solid.dash = NULL;
     solid.ndash = 0;
+    solid.miter_joins = shape == HY_SHAPE_SQUARE;
     set_pen(cr, &solid);
     cairo_stroke(cr);
 }

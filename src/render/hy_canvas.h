@@ -19,14 +19,18 @@ typedef struct hy_rgb {
     double r, g, b;           /* each in [0, 1] */
 } hy_rgb;
 
-/* How a path or marker outline is stroked. dash == NULL or ndash == 0: solid. */
+/* How a path or marker outline is stroked. dash == NULL or ndash == 0: solid.
+ * A zero-length "on" entry of dash is a dot (round_caps draws it round).
+ * Joins are round unless miter_joins (frames and boxes, whose corners are
+ * right angles): a mitred spike would pass a curve's sharp turning point. */
 typedef struct hy_pen {
     hy_rgb colour;
     double alpha;             /* 0 means opaque (1) */
     double width;             /* points */
     const double *dash;       /* on/off lengths in points */
     int ndash;
-    int round_caps;           /* round caps and joins (dotted lines) */
+    int round_caps;           /* round caps (dotted and dash-dotted lines) */
+    int miter_joins;          /* sharp corners (rectangles) instead of round joins */
 } hy_pen;
 
 /* Text metrics in points for one run at one size. */

@@ -29,7 +29,7 @@ static pthread_mutex_t gl_mu = PTHREAD_MUTEX_INITIALIZER;
 #define RIBBON_SAMPLES 4      /* multisampling of the 3-D pass */
 
 typedef struct inst {
-    float p[4], c0[4], c1[4], w[4], m[4];   /* m: miter plane normals at p0, p1 */
+    float p[4], c0[4], c1[4], w[4], m[4];   /* m: joint split-plane normals at p0, p1 */
 } inst;
 
 /* A recorded draw: instances [first, first + count) with a dash pattern and clip. */
@@ -535,13 +535,16 @@ static size_t simplify(const double *p, size_t i0, size_t i1, size_t *keep)
     return n;
 }
 
-/* The miter plane between directions (dx0, dy0) and (dx1, dy1) (unit): its
- * normal, pointing forward, in n.  Returns 0 when the miter would pass
- * cairo's default limit (10 half-widths): that joint is drawn round. */
-static int miter(double dx0, double dy0, double dx1, double dy1, double *n)
+/* The plane that splits a joint between directions (dx0, dy0) and (dx1, dy1)
+ * (unit) at the bisector of the turn: its normal, pointing forward, in n.
+ * Both segments end in round caps there (a round join, as cairo draws data
+ * strokes), each drawn only on its own side of the plane, so every pixel is
+ * blended once.  Returns 0 for an exact reversal, which has no bisector: the
+ * two caps then overlap. */
+static int split_plane(double dx0, double dy0, double dx1, double dy1, double *n)
 {
     double bx = dx0 + dx1, by = dy0 + dy1, bl = hypot(bx, by);
-    if (!(bl > 0.2))                  /* 2 / |d0 + d1| is the miter ratio */
+    if (!(bl > 1e-9))
         return 0;
     n[0] = bx / bl, n[1] = by / bl;
     return 1;
@@ -553,7 +556,7 @@ static void unit(const double *p, size_t a, size_t b, double *d)
     d[0] = l > 0 ? dx / l : 1.0, d[1] = l > 0 ? dy / l : 0.0;
 }
 
-/* Flags and miter normals of segment k (of n kept points) for pen. */
+/* Flags and split-plane normals of segment k (of n kept points) for pen. */
 static int joint_flags(const double *p, const size_t *keep, size_t k, size_t n, const hy_pen *pen, float *m)
 {
     if (pen->round_caps)
@@ -563,12 +566,12 @@ static int joint_flags(const double *p, const size_t *keep, size_t k, size_t n, 
     unit(p, keep[k - 1], keep[k], d);
     if (k > 1) {
         unit(p, keep[k - 2], keep[k - 1], e);
-        if (miter(e[0], e[1], d[0], d[1], nm))
+        if (split_plane(e[0], e[1], d[0], d[1], nm))
             flags |= 8, m[0] = (float)nm[0], m[1] = (float)nm[1];
     }
     if (k + 1 < n) {
         unit(p, keep[k], keep[k + 1], e);
-        if (miter(d[0], d[1], e[0], e[1], nm))
+        if (split_plane(d[0], d[1], e[0], e[1], nm))
             flags |= 16, m[2] = (float)nm[0], m[3] = (float)nm[1];
     }
     return flags;

@@ -274,7 +274,7 @@ static int clip_segment(double *x1, double *y1, double *x2, double *y2,
 static hy_pen series_pen(const hy_series *s, double dash[4])
 {
     double w = s->width > 0 ? s->width : 1.0, k = w > 0.8 ? w : 0.8;
-    hy_pen pen = {colour_of(s->colour), 1.0, w, dash, 0, 0};
+    hy_pen pen = {colour_of(s->colour), 1.0, w, dash, 0, 0, 0};
     switch (s->style) {
     case HY_LINE_DASHED:
         dash[0] = 5.0 * k, dash[1] = 2.5 * k, pen.ndash = 2;
@@ -296,7 +296,7 @@ static hy_pen series_pen(const hy_series *s, double dash[4])
 static void draw_marker(const hy_canvas *cv, int marker, double x, double y, double size,
                         hy_rgb c, int filled)
 {
-    hy_pen pen = {c, 1.0, 0.7, NULL, 0, 0};
+    hy_pen pen = {c, 1.0, 0.7, NULL, 0, 0, 0};
     int shape = marker == HY_MARKER_SQUARE ? HY_SHAPE_SQUARE : HY_SHAPE_CIRCLE;
     cv->ops->marker(cv->ctx, shape, x, y, size, &pen, filled ? &c : NULL);
 }
@@ -425,7 +425,7 @@ static void draw_band_grid(const panel *p)
     }
     if (!ax->grid)
         return;
-    hy_pen pen = {{0.82, 0.82, 0.82}, 1.0, 0.4, NULL, 0, 0};
+    hy_pen pen = {{0.82, 0.82, 0.82}, 1.0, 0.4, NULL, 0, 0, 0};
     for (int i = 0; i < p->xt.n; i++) {
         double x = map_x(p, p->xt.v[i]);
         line(cv, x, p->y0, x, p->y0 + p->h, &pen);
@@ -464,7 +464,7 @@ static void draw_frame_ticks(const panel *p)
 {
     const hy_canvas *cv = p->cv;
     hy_rgb black = hy_palette[0];
-    hy_pen pen = {black, 1.0, FRAME_W, NULL, 0, 0};
+    hy_pen pen = {black, 1.0, FRAME_W, NULL, 0, 0, 1};
     double x1 = p->x0 + p->w, y1 = p->y0 + p->h;
     cv->ops->begin_path(cv->ctx);
     cv->ops->move_to(cv->ctx, p->x0, p->y0);
@@ -634,7 +634,7 @@ static void draw_legend(const panel *p)
     double bw = 2 * pad + sample + 5.0 + maxw, bh = 2 * pad + rows * rowh - 0.25 * p->fs;
     legend_place(p, bw, bh, &x, &y);
     cv->ops->fill_rect(cv->ctx, x, y, bw, bh, (hy_rgb){1, 1, 1}, 1.0);
-    hy_pen frame = {{0.55, 0.55, 0.55}, 1.0, 0.5, NULL, 0, 0};
+    hy_pen frame = {{0.55, 0.55, 0.55}, 1.0, 0.5, NULL, 0, 0, 1};
     cv->ops->begin_path(cv->ctx);
     cv->ops->move_to(cv->ctx, x, y);
     cv->ops->line_to(cv->ctx, x + bw, y);

@@ -204,6 +204,14 @@ static int write_png(const hy_figure *f, sink *sk, hy_error *err)
         cairo_surface_destroy(img);
         return hy_error_set(err, HY_ENOMEM, "cannot allocate a %d x %d image", pw, ph);
     }
+    /* The figure is W x H points, rarely a whole number of pixels (12 cm at
+     * 200 dpi is 944.9 px): the image is rounded to whole pixels and painted
+     * white first, so its last column and row are background, not a grey
+     * blend of the figure's edge with transparent black. */
+    cairo_t *bg = cairo_create(img);
+    cairo_set_source_rgb(bg, 1.0, 1.0, 1.0);
+    cairo_paint(bg);
+    cairo_destroy(bg);
     int st = draw_on(img, f, dpi / 72.0, err);
     cairo_surface_flush(img);
     if (!st)

@@ -54,10 +54,8 @@ static void label_linear(hy_ticks *t)
     for (int i = 0; i < t->n; i++) {
         char *out = t->label[i];
         double m = t->v[i] / scale;
-        if (t->v[i] == 0.0)
+        if (t->v[i] == 0.0 && sci)
             snprintf(out, HY_TICK_LABEL, "0");
-        else if (sci && fabs(m - 1.0) < 1e-9)
-            snprintf(out, HY_TICK_LABEL, "10^{%d}", e);
         else if (sci)
             snprintf(out, HY_TICK_LABEL, "%.*f\\times10^{%d}", d, m, e);
         else
@@ -96,11 +94,20 @@ int hy_ticks_linear(double lo, double hi, int target, hy_ticks *t)
     return HY_OK;
 }
 
-/* 1-2-5 ticks for a log axis spanning less than two decades. */
+/* 1-2-5 ticks for a log axis spanning less than two decades; the decimal
+ * labels all get the decimals of the smallest (0.05, 0.10, 0.20). */
 static void log_125(double lo, double hi, hy_ticks *t)
 {
     static const double mant[] = {1.0, 2.0, 5.0};
-    int d0 = (int)floor(log10(lo)), d1 = (int)floor(log10(hi));
+    int d0 = (int)floor(log10(lo)), d1 = (int)floor(log10(hi)), dec = 0;
+    for (int d = d0; d <= d1 && dec == 0; d++)
+        for (int j = 0; j < 3; j++) {
+            double v = mant[j] * pow(10.0, d);
+            if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9) && d >= -3 && d <= 4) {
+                dec = d < 0 ? -d : 0;
+                break;
+            }
+        }
     for (int d = d0; d <= d1; d++)
         for (int j = 0; j < 3 && t->n < HY_TICKS_MAX; j++) {
             double v = mant[j] * pow(10.0, d);
@@ -108,7 +115,7 @@ static void log_125(double lo, double hi, hy_ticks *t)
                 continue;
             t->v[t->n] = v;
             if (d >= -3 && d <= 4)
-                snprintf(t->label[t->n], HY_TICK_LABEL, "%.*f", d < 0 ? -d : 0, v);
+                snprintf(t->label[t->n], HY_TICK_LABEL, "%.*f", dec, v);
             else if (j == 0)
                 snprintf(t->label[t->n], HY_TICK_LABEL, "10^{%d}", d);
             else

@@ -65,7 +65,7 @@ static void test_primitives(hy_gl *g)
     hy_canvas c = hy_gl_canvas(g, 1.0);
     hy_error err;
     const double dash[2] = {10, 10};
-    hy_pen solid = {{0, 0, 0}, 0, 2.0, NULL, 0, 0}, dashed = {{0, 0, 0}, 0, 2.0, dash, 2, 0};
+    hy_pen solid = {{0, 0, 0}, 0, 2.0, NULL, 0, 0, 0}, dashed = {{0, 0, 0}, 0, 2.0, dash, 2, 0, 0};
     hy_gl_begin(g, (hy_rgb){1, 1, 1});
     c.ops->begin_path(c.ctx);
     c.ops->move_to(c.ctx, 10, 20);
@@ -77,7 +77,7 @@ static void test_primitives(hy_gl *g)
     c.ops->fill_rect(c.ctx, 10, 60, 20, 10, (hy_rgb){1, 0, 0}, 1.0);
     hy_rgb fill = {0, 0, 1};
     c.ops->marker(c.ctx, HY_SHAPE_CIRCLE, 60, 65, 10, &solid, &fill);
-    hy_pen half = {{0, 0, 0}, 0.5, 8.0, NULL, 0, 0};   /* a translucent V: mitred, no double blending */
+    hy_pen half = {{0, 0, 0}, 0.5, 8.0, NULL, 0, 0, 0};   /* a translucent V: round join, no double blending */
     c.ops->move_to(c.ctx, 20, 150);
     c.ops->line_to(c.ctx, 60, 110);
     c.ops->line_to(c.ctx, 100, 150);
@@ -97,7 +97,11 @@ static void test_primitives(hy_gl *g)
     CHECK(out[0] == 255 && out[1] == 255, "clipping: %d %d", out[0], out[1]);
     CHECK(abs(px(rgba, 60, 112)[0] - 128) <= 1, "join blended twice: %d", px(rgba, 60, 112)[0]);
     CHECK(abs(px(rgba, 40, 130)[0] - 128) <= 1, "translucent segment: %d", px(rgba, 40, 130)[0]);
-    CHECK(px(rgba, 60, 105)[0] < 160, "no miter tip: %d", px(rgba, 60, 105)[0]);
+    /* round join at the V's tip (60, 110), half width 4: covered to y = 106,
+     * where a miter (90 degrees: 4 sqrt 2 = 5.7 past the vertex) would reach 104.3 */
+    CHECK(px(rgba, 60, 106)[0] < 140, "round join drawn: %d", px(rgba, 60, 106)[0]);
+    CHECK(px(rgba, 60, 104)[0] == 255 && px(rgba, 60, 105)[0] == 255, "no miter spike past the tip: %d %d",
+          px(rgba, 60, 104)[0], px(rgba, 60, 105)[0]);
     free(rgba);
 }
 
@@ -115,7 +119,7 @@ int main(void)
         render_cairo(&fig, b);
         /* Tolerance: the mean channel difference stays below 1 level and
          * fewer than 0.1 % of channels differ by more than 64 (edges only;
-         * GL joins are round where cairo's are mitred). */
+         * joins are round in both, but AA differs at edges). */
         double sum = 0;
         long big = 0;
         for (long k = 0; k < W * H * 3; k++) {

@@ -13,6 +13,36 @@ static int is_round_step(double s)
     return fabs(m - 1) < 1e-9 || fabs(m - 2) < 1e-9 || fabs(m - 2.5) < 1e-9 || fabs(m - 5) < 1e-9;
 }
 
+/* Digits after the decimal point of a label's leading number ("0.25" 2, "3" 0,
+ * "2.5\\times10^{5}" 1). */
+static int decimals(const char *label)
+{
+    const char *p = label;
+    while (*p && *p != '.' && *p != '\\')
+        p++;
+    int n = 0;
+    if (*p == '.')
+        for (p++; *p >= '0' && *p <= '9'; p++)
+            n++;
+    return n;
+}
+
+/* Every label of an axis (but a bare "0" among m x 10^k labels) has one decimal count. */
+static void check_decimals(const hy_ticks *t, const char *what)
+{
+    int sci = 0, ref = -1;
+    for (int i = 0; i < t->n; i++)
+        sci |= strstr(t->label[i], "times") != NULL;
+    for (int i = 0; i < t->n; i++) {
+        if (sci && !strcmp(t->label[i], "0"))
+            continue;
+        if (ref < 0)
+            ref = i;
+        CHECK(decimals(t->label[i]) == decimals(t->label[ref]), "%s: \"%s\" and \"%s\" differ in decimals",
+              what, t->label[ref], t->label[i]);
+    }
+}
+
 static void check_linear(double lo, double hi, int target)
 {
     hy_ticks t;
@@ -26,6 +56,7 @@ static void check_linear(double lo, double hi, int target)
         for (int j = 0; j < i; j++)
             CHECK(strcmp(t.label[i], t.label[j]), "labels %d and %d both \"%s\"", i, j, t.label[i]);
     }
+    check_decimals(&t, "linear");
 }
 
 static void expect_labels(const hy_ticks *t, const char *const *want, int n, const char *what)
@@ -71,13 +102,13 @@ int main(void)
     hy_ticks_linear(0, 4.6, 6, &t);
     expect_labels(&t, (const char *const[]){"0", "1", "2", "3", "4"}, 5, "0..4.6");
     hy_ticks_linear(-0.8, 1.0, 8, &t);
-    expect_labels(&t, (const char *const[]){"-0.75", "-0.50", "-0.25", "0", "0.25", "0.50", "0.75", "1.00"},
+    expect_labels(&t, (const char *const[]){"-0.75", "-0.50", "-0.25", "0.00", "0.25", "0.50", "0.75", "1.00"},
                   8, "-0.8..1 step 0.25");
     hy_ticks_linear(-0.83, 1.04, 10, &t);
-    expect_labels(&t, (const char *const[]){"-0.8", "-0.6", "-0.4", "-0.2", "0", "0.2", "0.4", "0.6",
+    expect_labels(&t, (const char *const[]){"-0.8", "-0.6", "-0.4", "-0.2", "0.0", "0.2", "0.4", "0.6",
                                             "0.8", "1.0"}, 10, "-0.83..1.04");
     hy_ticks_linear(0, 3e5, 3, &t);
-    expect_labels(&t, (const char *const[]){"0", "10^{5}", "2\\times10^{5}", "3\\times10^{5}"}, 4, "sci");
+    expect_labels(&t, (const char *const[]){"0", "1\\times10^{5}", "2\\times10^{5}", "3\\times10^{5}"}, 4, "sci");
     hy_ticks_linear(0, 25, 2, &t);
     expect_labels(&t, (const char *const[]){"0", "20"}, 2, "0..25/2");
     double ranges[][2] = {{0, 1}, {-5.3, 17.2}, {1e-6, 3e-6}, {1234, 1267}, {-1e7, 1e7}, {0.001, 0.0013}};
@@ -100,6 +131,18 @@ int main(void)
     hy_ticks_log(2, 9, 5, &t);
     expect_labels(&t, (const char *const[]){"2", "5"}, 2, "log within a decade");
     CHECK(hy_ticks_log(-1, 10, 5, &t) != 0, "log of a negative range accepted");
+    hy_ticks_log(0.04, 0.6, 10, &t);
+    expect_labels(&t, (const char *const[]){"0.05", "0.10", "0.20", "0.50"}, 4, "log 1-2-5 decimals");
+    hy_ticks_linear(0, 1, 4, &t);
+    expect_labels(&t, (const char *const[]){"0.00", "0.25", "0.50", "0.75", "1.00"}, 5, "0..1 by 0.25");
+    /* a sweep of ranges, as the layout picks them: one decimal count per axis */
+    for (int k = 0; k < 400; k++) {
+        double lo = -3.0 + 0.0137 * k * k / 40.0, hi = lo + 0.01 + 0.37 * (k % 23);
+        for (int target = 2; target <= 10; target += 4) {
+            hy_ticks_linear(lo, hi, target, &t);
+            check_decimals(&t, "sweep");
+        }
+    }
 
     check_fit(0, 1, 0, 200, 5.0);
     check_fit(1000.5, 1001.5, 0, 120, 6.0);       /* long labels on a short axis */
