@@ -8,7 +8,7 @@ set -eu
 cd "$(dirname "$0")/.."
 what=${1:-gallery}
 
-pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev libosmesa6-dev fonts-dejavu-core"
+pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev libosmesa6-dev fonts-dejavu-core fonts-stix"
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"

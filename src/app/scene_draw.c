@@ -7,10 +7,11 @@
 #include <sys/stat.h>
 
 #include "hy_plot.h"
+#include "hy_markup.h"
 #include "scene_run.h"
 
-static const char *const default_xlabel[] = {"t", "u", "t", "v", "\\varrho"};
-static const char *const default_ylabel[] = {"y", "y", "u(t)", "g(v)", "\\psi_u(\\varrho)"};
+static const char *const default_xlabel[] = {"t", "u", "t", "\\nu", "\\varrho"};
+static const char *const default_ylabel[] = {"y", "y", "u(t)", "g(\\nu)", "\\psi_u(\\varrho)"};
 
 void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size)
 {
@@ -30,7 +31,8 @@ void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size)
 /* Replaces {major.area}, {energy}, {minorN.area}, {minorN.own}, {minorN.ystart},
  * {minorN.yclose}, {nminor}, and for a ygamma/transient series NAME {NAME.gamma},
  * and {NAME.dist} (max |y_γ - y*_u| over its points), and {SECTION.key} (a numeric
- * key, set or by default, e.g. {model.sigma0}) in text by their values (%.4g). */
+ * key, set or by default, e.g. {model.sigma0}) in text by their values (4 significant
+ * digits, hy_markup_number); {minorN.turn} is the sign of minorN.area as an arrow: ↻ clockwise, ↺ counter-clockwise. */
 static int expand(const hy_scene_run *r, const char *name, const char *text, char *out, size_t size, hy_error *err)
 {
     size_t o = 0;
@@ -54,6 +56,7 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
             continue;
         }
         double v = NAN;
+        int turn = 0;   /* minorN.turn: the loop's net orientation in words */
         unsigned idx;
         char field[16];
         const char *dot;
@@ -66,7 +69,8 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
             v = (double)L->nminor;
         else if (sscanf(key, "minor%u.%15s", &idx, field) == 2 && idx >= 1 && idx <= L->nminor) {
             const hy_loop *m = &L->minor[idx - 1];
-            v = !strcmp(field, "area") ? m->area : !strcmp(field, "own") ? m->own_area : !strcmp(field, "ystart") ? m->y_start
+            turn = !strcmp(field, "turn");
+            v = !strcmp(field, "area") || turn ? m->area : !strcmp(field, "own") ? m->own_area : !strcmp(field, "ystart") ? m->y_start
                 : !strcmp(field, "yclose") ? m->y_close : NAN;
         } else if ((dot = strrchr(key, '.')) != NULL) { /* SERIES.gamma, SERIES.dist */
             for (size_t i = 0; i < r->nseries; i++) {
@@ -86,9 +90,14 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
         }
         if (isnan(v))
             return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
-                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.own, minorN.ystart, minorN.yclose; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key of a numeric key)",
+                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key of a numeric key)",
                                      key, L->nminor);
-        int w = snprintf(out + o, size - o, "%.4g", v);
+        char num[64];
+        if (turn)
+            snprintf(num, sizeof num, "%s", v > 0 ? "\xE2\x86\xBB" : v < 0 ? "\xE2\x86\xBA" : "");   /* ↻ ↺ */
+        else
+            hy_markup_number(num, sizeof num, v, 4);
+        int w = snprintf(out + o, size - o, "%s", num);
         o += (size_t)(w > 0 ? w : 0);
         c = e + 1;
     }
@@ -175,7 +184,15 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
         double x, y;
         if (hy_scene_get_num(s, "annotation", name, "x", &x) < 0 || hy_scene_get_num(s, "annotation", name, "y", &y) < 0)
             return hy_scene_error_at(s, "annotation", name, NULL, err, HY_EINVAL, "annotation '%s' needs x and y", name);
-        st->texts[i] = (hy_text){x, y, st->textbuf[i], HY_ANCHOR_LEFT, 0, 0, {0, {0, 0, 0}}};
+        st->texts[i] = (hy_text){x, y, st->textbuf[i], HY_ANCHOR_LEFT, 0, 0, {0, {0, 0, 0}}, 0, 0, 0};
+        double px, py;
+        int hx = hy_scene_get_num(s, "annotation", name, "point_x", &px) >= 0;
+        int hy = hy_scene_get_num(s, "annotation", name, "point_y", &py) >= 0;
+        if (hx != hy)
+            return hy_scene_error_at(s, "annotation", name, NULL, err, HY_EINVAL,
+                                     "annotation '%s' needs both point_x and point_y, or neither", name);
+        if (hx)
+            st->texts[i].has_point = 1, st->texts[i].px = px, st->texts[i].py = py;
     }
     hy_axes *ax = &st->ax;
     ax->series = st->series;

@@ -19,6 +19,9 @@ const hy_rgb hy_palette[HY_PALETTE_SIZE] = {
 #define GAP 4.0        /* tick labels to axis label */
 #define OUTER 3.0      /* figure edge */
 #define FRAME_W 0.6
+#define LEGEND_PAD 4.0    /* legend box padding */
+#define LEGEND_SAMPLE 22.0 /* length of a legend's line sample */
+#define LEGEND_GAP 6.0    /* frame to a legend placed outside it */
 
 double hy_cm(double cm) { return cm * 72.0 / 2.54; }
 double hy_in(double in) { return in * 72.0; }
@@ -49,6 +52,12 @@ static hy_rgb colour_of(hy_colour c)
     return hy_palette[(c.palette < 0 ? -c.palette : c.palette) % HY_PALETTE_SIZE];
 }
 
+/* Where an annotation went: its baseline start, box and the point it labels. */
+typedef struct text_place {
+    int ok, leader;
+    double x, y, box[4], ax, ay;
+} text_place;
+
 /* One panel being laid out: its frame in points and its axis mappings. */
 typedef struct panel {
     const hy_axes *ax;
@@ -62,6 +71,8 @@ typedef struct panel {
     double ytick_w, xtick_h;
     double cx, cy, cw, ch;               /* the grid cell */
     double ml, mr, mt, mb;               /* margins: frame to cell edges */
+    int legend_outside;                  /* "best" found no free spot inside: right of the frame */
+    text_place *tplace;                  /* ax->ntexts placed annotations */
 } panel;
 
 static double tr(double v, int log_scale) { return log_scale ? log10(v) : v; }
@@ -395,6 +406,15 @@ static void draw_series(const panel *p, const hy_series *s)
     }
     free(dx);
     free(dy);
+}
+
+/* The markers of a series (drawn after every line, so no line covers them). */
+static void draw_series_markers(const panel *p, const hy_series *s)
+{
+    const hy_canvas *cv = p->dv;
+    double lw = s->width > 0 ? s->width : 1.0;
+    double xa = p->x0 - 2 * lw, xb = p->x0 + p->w + 2 * lw;
+    double ya = p->y0 - 2 * lw, yb = p->y0 + p->h + 2 * lw;
     if (s->marker != HY_MARKER_NONE && s->x && s->y) {
         double ms = s->marker_size > 0 ? s->marker_size : 4.0;
         for (size_t i = 0; i < s->n; i++) {
@@ -537,27 +557,167 @@ static void draw_marks(const panel *p)
     }
 }
 
+/* Box (x, y, w, h; y down) of annotation i where it was placed. */
+static int text_box(const panel *p, size_t i, double b[4])
+{
+    if (!p->tplace || !p->tplace[i].ok)
+        return 0;
+    memcpy(b, p->tplace[i].box, sizeof p->tplace[i].box);
+    return 1;
+}
+
+static double overlap(const panel *p, double rx, double ry, double rw, double rh);
+
+/* The point of a box's edge nearest to (x, y). */
+static void nearest_on_box(const double b[4], double x, double y, double *nx, double *ny)
+{
+    *nx = x < b[0] ? b[0] : x > b[0] + b[2] ? b[0] + b[2] : x;
+    *ny = y < b[1] ? b[1] : y > b[1] + b[3] ? b[1] + b[3] : y;
+}
+
+static int segs_cross(double ax, double ay, double bx, double by, double cx, double cy, double dx, double dy)
+{
+    double d1 = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax), d2 = (bx - ax) * (dy - ay) - (by - ay) * (dx - ax);
+    double d3 = (dx - cx) * (ay - cy) - (dy - cy) * (ax - cx), d4 = (dx - cx) * (by - cy) - (dy - cy) * (bx - cx);
+    return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+}
+
+/* Whether a leader line from (x1, y1) to within 2 pt of (x2, y2) crosses a drawn curve. */
+static int leader_crosses(const panel *p, double x1, double y1, double x2, double y2)
+{
+    double len = hypot(x2 - x1, y2 - y1);
+    if (len > 2.0)
+        x2 -= 2.0 * (x2 - x1) / len, y2 -= 2.0 * (y2 - y1) / len;
+    for (size_t s = 0; s < p->ax->nseries; s++) {
+        const hy_series *se = &p->ax->series[s];
+        double px = NAN, py = NAN;
+        for (size_t i = 0; se->style != HY_LINE_NONE && se->x && se->y && i < se->n; i++) {
+            if (!usable(se->x[i], p->xlog) || !usable(se->y[i], p->ylog)) {
+                px = NAN;
+                continue;
+            }
+            double x = map_x(p, se->x[i]), y = map_y(p, se->y[i]);
+            if (isfinite(px) && segs_cross(x1, y1, x2, y2, px, py, x, y))
+                return 1;
+            px = x, py = y;
+        }
+    }
+    return 0;
+}
+
+/* Box (x, y, w, h) of a legend at a fixed place (a corner, or outside), or 0. */
+static int fixed_legend_box(const panel *p, double b[4]);
+
+/* Places every annotation: at its point (x, y) shifted by (dx, dy) when its
+ * box covers no curve, marker, fixed legend or earlier annotation; else at the
+ * nearest free spot inside the frame on rings around it (preferring spots
+ * whose leader line crosses no curve; with none free, the least covering
+ * one), joined to (x, y) by a leader line. */
+static void place_texts(panel *p)
+{
+    const hy_axes *ax = p->ax;
+    double lg[4];
+    int has_lg = fixed_legend_box(p, lg);
+    for (size_t i = 0; i < ax->ntexts; i++)
+        p->tplace[i].ok = 0;
+    for (size_t i = 0; i < ax->ntexts; i++) {
+        const hy_text *t = &ax->texts[i];
+        text_place *tp = &p->tplace[i];
+        hy_markup_box b;
+        if (!t->text || !usable(t->x, p->xlog) || !usable(t->y, p->ylog))
+            continue;
+        hy_markup_text(p->cv, t->text, p->fs, 0, 0, 0, 0, hy_palette[0], &b);
+        double ax0 = map_x(p, t->x), ay0 = map_y(p, t->y);
+        double bx = ax0 + t->dx - 0.5 * t->anchor * b.width, by = ay0 - t->dy;
+        double best_x = bx, best_y = by, least = INFINITY, least_x = bx, least_y = by;
+        double lx = ax0, ly = ay0;   /* where a leader line would go */
+        if (t->has_point && usable(t->px, p->xlog) && usable(t->py, p->ylog))
+            lx = map_x(p, t->px), ly = map_y(p, t->py);
+        int found = 0;
+        for (int pass = 0; pass < 2 && !found; pass++)
+            for (int ring = 0; ring <= 30 && !found; ring++) {
+                double r = ring * 0.5 * p->fs;
+                int dirs = ring ? 24 : 1;
+                for (int k = 0; k < dirs && !found; k++) {
+                    double a = 2.0 * M_PI * k / dirs;
+                    double cx = bx + r * cos(a), cy = by - r * sin(a);
+                    double box[4] = {cx - 1.0, cy - b.ascent - 1.0, b.width + 2.0, b.ascent + b.descent + 2.0};
+                    if (box[0] < p->x0 + 2 || box[1] < p->y0 + 2 || box[0] + box[2] > p->x0 + p->w - 2 ||
+                        box[1] + box[3] > p->y0 + p->h - 2)
+                        continue;
+                    if (has_lg && lg[0] < box[0] + box[2] && lg[0] + lg[2] > box[0] && lg[1] < box[1] + box[3] &&
+                        lg[1] + lg[3] > box[1])
+                        continue;
+                    /* avoids the curves and the annotations placed before it */
+                    double o = overlap(p, box[0], box[1], box[2], box[3]);
+                    if (o < least)
+                        least = o, least_x = cx, least_y = cy;
+                    if (o != 0.0)
+                        continue;
+                    if (pass == 0 && (ring > 0 || t->has_point)) {
+                        double nx, ny;
+                        nearest_on_box(box, lx, ly, &nx, &ny);
+                        if (leader_crosses(p, nx, ny, lx, ly))
+                            continue;
+                    }
+                    found = 1, best_x = cx, best_y = cy;
+                }
+            }
+        if (!found)   /* nowhere free: the least covering spot inside the frame */
+            best_x = least_x, best_y = least_y;
+        tp->ax = ax0, tp->ay = ay0;
+        tp->ok = 1;
+        tp->x = best_x, tp->y = best_y;
+        tp->box[0] = best_x - 1.0, tp->box[1] = best_y - b.ascent - 1.0;
+        tp->box[2] = b.width + 2.0, tp->box[3] = b.ascent + b.descent + 2.0;
+        tp->leader = hypot(best_x - bx, best_y - by) > 1.5 * p->fs;   /* a nudge needs none */
+        if (t->has_point && usable(t->px, p->xlog) && usable(t->py, p->ylog))
+            tp->ax = map_x(p, t->px), tp->ay = map_y(p, t->py), tp->leader = 1;
+    }
+}
+
 static void draw_texts(const panel *p)
 {
     const hy_axes *ax = p->ax;
     for (size_t i = 0; i < ax->ntexts; i++) {
         const hy_text *t = &ax->texts[i];
-        hy_markup_box b;
-        if (!t->text || !usable(t->x, p->xlog) || !usable(t->y, p->ylog))
+        const text_place *tp = &p->tplace[i];
+        if (!tp->ok)
             continue;
-        hy_markup_text(p->cv, t->text, p->fs, 0, 0, 0, 0, hy_palette[0], &b);
-        double x = map_x(p, t->x) + t->dx - 0.5 * t->anchor * b.width;
-        hy_markup_text(p->cv, t->text, p->fs, 1, 0, x, map_y(p, t->y) - t->dy,
-                       colour_of(t->colour), NULL);
+        if (tp->leader) {
+            double nx, ny;
+            hy_pen pen = {{0.35, 0.35, 0.35}, 1.0, 0.5, NULL, 0, 1, 0};
+            nearest_on_box(tp->box, tp->ax, tp->ay, &nx, &ny);
+            line(p->cv, nx, ny, tp->ax, tp->ay, &pen);
+            p->cv->ops->marker(p->cv->ctx, HY_SHAPE_CIRCLE, tp->ax, tp->ay, 1.6, &pen, &pen.colour);
+        }
+        hy_markup_text(p->cv, t->text, p->fs, 1, 0, tp->x, tp->y, colour_of(t->colour), NULL);
     }
 }
 
-/* Number of data points (and points along long segments) inside a rectangle. */
-static size_t points_inside(const panel *p, double rx, double ry, double rw, double rh)
+/* Length (points) of the part of segment (x1, y1)-(x2, y2) inside the
+ * rectangle; a zero-length segment inside counts as 1. */
+static double seg_in_rect(double x1, double y1, double x2, double y2, double rx, double ry, double rw,
+                          double rh)
 {
-    size_t count = 0;
-    for (size_t s = 0; s < p->ax->nseries; s++) {
-        const hy_series *se = &p->ax->series[s];
+    if (!clip_segment(&x1, &y1, &x2, &y2, rx, ry, rx + rw, ry + rh))
+        return 0.0;
+    double len = hypot(x2 - x1, y2 - y1);
+    return len > 0.0 ? len : 1.0;
+}
+
+/* How much of what the panel draws lies inside a rectangle: the length of
+ * every series segment as stroked (vertical jumps included, the rectangle
+ * grown by the pen's half width), markers and annotation boxes as their
+ * sizes.  0 means the rectangle covers nothing. */
+static double overlap(const panel *p, double rx, double ry, double rw, double rh)
+{
+    const hy_axes *ax = p->ax;
+    double sum = 0.0;
+    for (size_t s = 0; s < ax->nseries; s++) {
+        const hy_series *se = &ax->series[s];
+        double hw = 0.5 * (se->width > 0 ? se->width : 1.0) + 1.0;
+        double ms = se->marker != HY_MARKER_NONE ? 0.5 * (se->marker_size > 0 ? se->marker_size : 4.0) : 0;
         double px = NAN, py = NAN;
         for (size_t i = 0; se->x && se->y && i < se->n; i++) {
             if (!usable(se->x[i], p->xlog) || !usable(se->y[i], p->ylog)) {
@@ -565,73 +725,123 @@ static size_t points_inside(const panel *p, double rx, double ry, double rw, dou
                 continue;
             }
             double x = map_x(p, se->x[i]), y = map_y(p, se->y[i]);
-            int k = 1;
-            if (isfinite(px) && se->style != HY_LINE_NONE) {
-                double len = hypot(x - px, y - py);
-                /* a point every 3 units, at most 400: compared as a double
-                   first, since len may be huge (or inf) on a tiny axis range */
-                double kk = len / 3.0 + 1.0;
-                k = len > 3.0 ? (kk < 400.0 ? (int)kk : 400) : 1;
-            }
-            for (int j = 1; j <= k; j++) {
-                double f = (double)j / k;
-                double qx = isfinite(px) ? px + f * (x - px) : x;
-                double qy = isfinite(px) ? py + f * (y - py) : y;
-                count += qx >= rx && qx <= rx + rw && qy >= ry && qy <= ry + rh;
-            }
+            if (se->style != HY_LINE_NONE && isfinite(px))
+                sum += seg_in_rect(px, py, x, y, rx - hw, ry - hw, rw + 2 * hw, rh + 2 * hw);
+            if (ms > 0 && x >= rx - ms && x <= rx + rw + ms && y >= ry - ms && y <= ry + rh + ms)
+                sum += 2 * ms;
             px = x, py = y;
         }
     }
-    return count;
+    for (size_t m = 0; m < ax->nmarks; m++) {
+        const hy_mark *mk = &ax->marks[m];
+        if (!usable(mk->x, p->xlog) || !usable(mk->y, p->ylog))
+            continue;
+        double x = map_x(p, mk->x), y = map_y(p, mk->y), r = 0.5 * (mk->size > 0 ? mk->size : 5.0);
+        if (x >= rx - r && x <= rx + rw + r && y >= ry - r && y <= ry + rh + r)
+            sum += 2 * r;
+    }
+    for (size_t t = 0; t < ax->ntexts; t++) {
+        double b[4];
+        if (text_box(p, t, b) && b[0] < rx + rw && b[0] + b[2] > rx && b[1] < ry + rh &&
+            b[1] + b[3] > ry)
+            sum += b[2];
+    }
+    return sum;
 }
 
-/* Top-left corner of a bw x bh legend box for the panel's legend setting. */
+/* Size of the panel's legend box (0 x 0 when it has none) and its row height. */
+static void legend_size(const panel *p, double *bw, double *bh, double *rowh)
+{
+    const hy_axes *ax = p->ax;
+    double maxw = 0.0;
+    size_t rows = 0;
+    *rowh = 1.25 * p->fs;
+    for (size_t s = 0; s < ax->nseries; s++) {
+        hy_markup_box b;
+        if (!ax->series[s].label)
+            continue;
+        hy_markup_text(p->cv, ax->series[s].label, p->fs, 0, 0, 0, 0, hy_palette[0], &b);
+        maxw = b.width > maxw ? b.width : maxw;
+        *rowh = b.ascent + b.descent + 1.0 > *rowh ? b.ascent + b.descent + 1.0 : *rowh;
+        rows++;
+    }
+    if (!rows || ax->legend == HY_LEGEND_NONE) {
+        *bw = *bh = 0.0;
+        return;
+    }
+    *bw = 2 * LEGEND_PAD + LEGEND_SAMPLE + 5.0 + maxw;
+    *bh = 2 * LEGEND_PAD + (double)rows * *rowh - 0.25 * p->fs;
+}
+
+/* The inside position for a "best" legend that covers nothing, trying the
+ * corners first, then the middles of the sides, then a 5 x 5 grid; returns 0
+ * (and the least covered candidate) when every one covers something. */
+static int legend_free_spot(const panel *p, double bw, double bh, double *x, double *y)
+{
+    const double inset = 5.0;
+    double left = p->x0 + inset, right = p->x0 + p->w - inset - bw;
+    double top = p->y0 + inset, bottom = p->y0 + p->h - inset - bh;
+    static const double order[][2] = {{1, 0}, {0, 0}, {1, 1}, {0, 1}, {0.5, 0}, {0.5, 1}, {1, 0.5}, {0, 0.5}};
+    double cand[8 + 25][2], best = INFINITY;
+    int nc = 0;
+    if (right < left || bottom < top) {
+        *x = left, *y = top;
+        return 0;
+    }
+    for (int i = 0; i < 8; i++, nc++)
+        cand[nc][0] = order[i][0], cand[nc][1] = order[i][1];
+    for (int i = 0; i < 5; i++)
+        for (int j = 0; j < 5; j++, nc++)
+            cand[nc][0] = 0.125 + 0.1875 * j, cand[nc][1] = 0.125 + 0.1875 * i;
+    for (int c = 0; c < nc; c++) {
+        double cx = left + cand[c][0] * (right - left), cy = top + cand[c][1] * (bottom - top);
+        double o = overlap(p, cx - 2, cy - 2, bw + 4, bh + 4);
+        if (o < best)
+            best = o, *x = cx, *y = cy;
+        if (o == 0.0)
+            return 1;
+    }
+    return 0;
+}
+
+/* Top-left corner of the panel's bw x bh legend box. */
 static void legend_place(const panel *p, double bw, double bh, double *x, double *y)
 {
     const double inset = 5.0;
     double left = p->x0 + inset, right = p->x0 + p->w - inset - bw;
     double top = p->y0 + inset, bottom = p->y0 + p->h - inset - bh;
-    /* Candidates in preference order: top-right, top-left, bottom-right, bottom-left. */
-    double cx[4] = {right, left, right, left}, cy[4] = {top, top, bottom, bottom};
-    int pick = 0;
+    if (p->legend_outside) {
+        *x = p->x0 + p->w + LEGEND_GAP;
+        *y = p->y0;
+        return;
+    }
     switch (p->ax->legend) {
-    case HY_LEGEND_TOP_LEFT: pick = 1; break;
-    case HY_LEGEND_BOTTOM_RIGHT: pick = 2; break;
-    case HY_LEGEND_BOTTOM_LEFT: pick = 3; break;
-    case HY_LEGEND_BEST: {
-        size_t best = (size_t)-1;
-        for (int c = 0; c < 4; c++) {
-            size_t n = points_inside(p, cx[c] - 2, cy[c] - 2, bw + 4, bh + 4);
-            if (n < best)
-                best = n, pick = c;
-        }
-        break;
+    case HY_LEGEND_TOP_LEFT: *x = left, *y = top; break;
+    case HY_LEGEND_BOTTOM_RIGHT: *x = right, *y = bottom; break;
+    case HY_LEGEND_BOTTOM_LEFT: *x = left, *y = bottom; break;
+    case HY_LEGEND_BEST: legend_free_spot(p, bw, bh, x, y); break;
+    default: *x = right, *y = top; break;
     }
-    default: break;
-    }
-    *x = cx[pick];
-    *y = cy[pick];
+}
+
+static int fixed_legend_box(const panel *p, double b[4])
+{
+    double rowh;
+    legend_size(p, &b[2], &b[3], &rowh);
+    if (b[2] <= 0.0 || (p->ax->legend == HY_LEGEND_BEST && !p->legend_outside))
+        return 0;
+    legend_place(p, b[2], b[3], &b[0], &b[1]);
+    return 1;
 }
 
 static void draw_legend(const panel *p)
 {
     const hy_axes *ax = p->ax;
     const hy_canvas *cv = p->cv;
-    const double sample = 22.0, pad = 4.0;
-    double maxw = 0.0, rowh = 1.25 * p->fs, x, y;
-    size_t rows = 0;
-    for (size_t s = 0; s < ax->nseries; s++) {
-        hy_markup_box b;
-        if (!ax->series[s].label)
-            continue;
-        hy_markup_text(cv, ax->series[s].label, p->fs, 0, 0, 0, 0, hy_palette[0], &b);
-        maxw = b.width > maxw ? b.width : maxw;
-        rowh = b.ascent + b.descent + 1.0 > rowh ? b.ascent + b.descent + 1.0 : rowh;
-        rows++;
-    }
-    if (!rows || ax->legend == HY_LEGEND_NONE)
+    double bw, bh, rowh, x, y;
+    legend_size(p, &bw, &bh, &rowh);
+    if (bw <= 0.0)
         return;
-    double bw = 2 * pad + sample + 5.0 + maxw, bh = 2 * pad + rows * rowh - 0.25 * p->fs;
     legend_place(p, bw, bh, &x, &y);
     cv->ops->fill_rect(cv->ctx, x, y, bw, bh, (hy_rgb){1, 1, 1}, 1.0);
     hy_pen frame = {{0.55, 0.55, 0.55}, 1.0, 0.5, NULL, 0, 0, 1};
@@ -642,19 +852,20 @@ static void draw_legend(const panel *p)
     cv->ops->line_to(cv->ctx, x, y + bh);
     cv->ops->line_to(cv->ctx, x, y);
     cv->ops->stroke(cv->ctx, &frame);
-    double row_y = y + pad + 0.5 * rowh - 0.125 * p->fs;
+    double row_y = y + LEGEND_PAD + 0.5 * rowh - 0.125 * p->fs;
     for (size_t s = 0; s < ax->nseries; s++) {
         const hy_series *se = &ax->series[s];
         if (!se->label)
             continue;
         double dash[4];
         hy_pen pen = series_pen(se, dash);
+        double x0 = x + LEGEND_PAD;
         if (se->style != HY_LINE_NONE)
-            line(cv, x + pad, row_y, x + pad + sample, row_y, &pen);
+            line(cv, x0, row_y, x0 + LEGEND_SAMPLE, row_y, &pen);
         if (se->marker != HY_MARKER_NONE)
-            draw_marker(cv, se->marker, x + pad + 0.5 * sample, row_y,
+            draw_marker(cv, se->marker, x0 + 0.5 * LEGEND_SAMPLE, row_y,
                         se->marker_size > 0 ? se->marker_size : 4.0, pen.colour, se->marker_filled);
-        hy_markup_text(cv, se->label, p->fs, 1, 0, x + pad + sample + 5.0, row_y + 0.36 * p->fs,
+        hy_markup_text(cv, se->label, p->fs, 1, 0, x0 + LEGEND_SAMPLE + 5.0, row_y + 0.36 * p->fs,
                        hy_palette[0], NULL);
         row_y += rowh;
     }
@@ -667,6 +878,8 @@ static void draw_panel_data(const panel *p)
     dv->ops->clip(dv->ctx, p->x0, p->y0, p->w, p->h);
     for (size_t s = 0; s < p->ax->nseries; s++)
         draw_series(p, &p->ax->series[s]);
+    for (size_t s = 0; s < p->ax->nseries; s++)
+        draw_series_markers(p, &p->ax->series[s]);
     dv->ops->unclip(dv->ctx);
     draw_marks(p);
 }
@@ -683,20 +896,10 @@ static double maxd(double a, double b) { return a > b ? a : b; }
 
 /* Lays out every panel alone, then gives panels in a column the same left and
  * right margins and panels in a row the same top and bottom, so frames align. */
-static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
+/* Gives panels in a column the same left and right margins and panels in a
+ * row the same top and bottom, then places every frame. */
+static int align_frames(panel *ps, int rows, int cols, hy_error *err)
 {
-    for (int i = 0; i < rows * cols; i++) {
-        int st = axis_range(ps[i].ax, 0, &ps[i].xlo, &ps[i].xhi, err);
-        if (!st)
-            st = axis_range(ps[i].ax, 1, &ps[i].ylo, &ps[i].yhi, err);
-        if (!st)
-            st = panel_layout(&ps[i], err);
-        if (st) {
-            if (rows * cols > 1)
-                hy_error_prefix(err, "panel %d", i + 1);
-            return st;
-        }
-    }
     for (int i = 0; i < rows * cols; i++) {
         panel *p = &ps[i];
         int r = i / cols, c = i % cols;
@@ -716,6 +919,44 @@ static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
     return HY_OK;
 }
 
+/* Lays out every panel alone, aligns the frames, then moves each "best"
+ * legend that finds no free spot inside its frame to the right of it (the
+ * frame narrows to make room) and places the annotations. */
+static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
+{
+    for (int i = 0; i < rows * cols; i++) {
+        int st = axis_range(ps[i].ax, 0, &ps[i].xlo, &ps[i].xhi, err);
+        if (!st)
+            st = axis_range(ps[i].ax, 1, &ps[i].ylo, &ps[i].yhi, err);
+        if (!st)
+            st = panel_layout(&ps[i], err);
+        if (st) {
+            if (rows * cols > 1)
+                hy_error_prefix(err, "panel %d", i + 1);
+            return st;
+        }
+    }
+    int st = align_frames(ps, rows, cols, err), moved = 0;
+    for (int i = 0; !st && i < rows * cols; i++) {
+        panel *p = &ps[i];
+        double bw, bh, rowh, x, y;
+        legend_size(p, &bw, &bh, &rowh);
+        if (bw <= 0.0 || p->ax->legend != HY_LEGEND_BEST)
+            continue;
+        place_texts(p);
+        if (legend_free_spot(p, bw, bh, &x, &y))
+            continue;
+        p->legend_outside = 1;
+        p->mr = maxd(p->mr, LEGEND_GAP + bw + OUTER);
+        moved = 1;
+    }
+    if (!st && moved)
+        st = align_frames(ps, rows, cols, err);
+    for (int i = 0; !st && i < rows * cols; i++)
+        place_texts(&ps[i]);
+    return st;
+}
+
 int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *cv,
                           hy_error *err)
 {
@@ -728,11 +969,19 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
     if (!isfinite(W) || !isfinite(H) || W > 1e5 || H > 1e5 || rows * cols > 64 || !(fs < 1000))
         return hy_error_set(err, HY_EINVAL, "figure size %g x %g pt, font %g pt or %d x %d panels "
                             "is not usable", W, H, fs, rows, cols);
+    size_t ntexts = 0;
+    for (int i = 0; i < rows * cols; i++)
+        ntexts += f->axes[i].ntexts;
     panel *ps = calloc((size_t)(rows * cols), sizeof *ps);
-    if (!ps)
+    text_place *tp = calloc(ntexts + 1, sizeof *tp);
+    if (!ps || !tp) {
+        free(ps);
+        free(tp);
         return hy_error_set(err, HY_ENOMEM, "out of memory laying out %d panels", rows * cols);
-    for (int i = 0; i < rows * cols; i++) {
+    }
+    for (size_t i = 0, k = 0; i < (size_t)(rows * cols); k += f->axes[i].ntexts, i++) {
         panel *p = &ps[i];
+        p->tplace = tp + k;
         p->ax = &f->axes[i], p->cv = cv, p->dv = data ? data : cv, p->fs = fs;
         p->xlog = p->ax->x.log, p->ylog = p->ax->y.log;
         p->cx = (i % cols) * W / cols, p->cy = (i / cols) * H / rows;
@@ -750,6 +999,7 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
         for (int i = 0; dv != cv && i < rows * cols; i++)
             draw_panel_overlay(&ps[i]);
     }
+    free(tp);
     free(ps);
     return st;
 }

@@ -1,6 +1,9 @@
 /* hy_markup.c: TeX-subset label markup (Greek, scripts, symbols) parsed into runs and set on a hy_canvas. */
 #include "hy_markup.h"
 
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef struct sym {
@@ -39,6 +42,16 @@ typedef struct parser {
 static int is_alpha(char c)
 {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
+
+/* Whether a UTF-8 sequence starts with a lowercase Greek letter (U+03B1 to
+ * U+03C9, and the variants U+03D1, U+03D5, U+03F1, U+03F5): a variable, set in
+ * italic as TeX and mathtext do (uppercase Greek stays upright). */
+static int is_lower_greek(const char *s)
+{
+    unsigned char a = (unsigned char)s[0], b = (unsigned char)s[1];
+    unsigned cp = (a & 0xE0) == 0xC0 && (b & 0xC0) == 0x80 ? ((a & 0x1Fu) << 6) | (b & 0x3Fu) : 0;
+    return (cp >= 0x3B1 && cp <= 0x3C9) || cp == 0x3D1 || cp == 0x3D5 || cp == 0x3F1 || cp == 0x3F5;
 }
 
 /* Appends UTF-8 bytes with a style, merging with the previous run when possible. */
@@ -106,7 +119,8 @@ static int parse_command(parser *ps, int script, int group)
             return emit(ps, p, len, script, 0, group);   /* operator names: upright */
     for (size_t i = 0; i < sizeof syms / sizeof syms[0]; i++)
         if (strlen(syms[i].name) == len && !strncmp(syms[i].name, p, len))
-            return emit(ps, syms[i].utf8, strlen(syms[i].utf8), script, 0, group);
+            return emit(ps, syms[i].utf8, strlen(syms[i].utf8), script,
+                        !ps->upright && is_lower_greek(syms[i].utf8), group);
     return hy_error_set(ps->err, HY_EINVAL, "label \"%s\": unknown command '\\%.*s'", ps->src,
                         (int)len, p);
 }
@@ -127,6 +141,8 @@ static int parse_char(parser *ps, int script, int group)
     int next_alpha = is_alpha(p[1]);
     if (len == 1 && is_alpha(*p))
         return emit(ps, p, 1, script, !ps->upright && !prev_alpha && !next_alpha, group);
+    if (len == 2 && is_lower_greek(p))
+        return emit(ps, p, 2, script, !ps->upright, group);
     if (*p == '-' && !(prev_alpha && next_alpha))
         return emit(ps, "\xE2\x88\x92", 3, script, 0, group);
     return emit(ps, p, len, script, 0, group);
@@ -209,9 +225,16 @@ int hy_markup_parse(const char *src, hy_mrun *runs, size_t cap, size_t *n, hy_er
 }
 
 typedef struct group_state {
-    int id;
+    int id, sup_used, sub_used;
     double x0, sup_w, sub_w;
 } group_state;
+
+/* Width of a closed script group: the wider of the scripts it holds. */
+static double group_width(const group_state *g)
+{
+    double sup = g->sup_used ? g->sup_w : 0.0, sub = g->sub_used ? g->sub_w : 0.0;
+    return sup > sub ? sup : sub;
+}
 
 static double run_shift(int script, double size)
 {
@@ -223,7 +246,7 @@ void hy_markup_layout(const hy_canvas *cv, const hy_mrun *runs, size_t n, double
                       hy_markup_box *box)
 {
     double pen = 0.0, asc = 0.78 * size, desc = 0.24 * size;
-    group_state g = {0, 0, 0, 0};
+    group_state g = {0, 0, 0, 0, 0, 0};
     int prev_italic = 0;
     for (size_t i = 0; i < n; i++) {
         const hy_mrun *r = &runs[i];
@@ -233,13 +256,18 @@ void hy_markup_layout(const hy_canvas *cv, const hy_mrun *runs, size_t n, double
         cv->ops->measure(cv->ctx, r->text, rs, r->italic, &ext);
         if (r->group != g.id) {          /* close the previous group, open a new one */
             if (g.id)
-                pen = g.x0 + (g.sup_w > g.sub_w ? g.sup_w : g.sub_w);
+                pen = g.x0 + group_width(&g);
             g.id = r->group;
-            g.x0 = pen + (r->group && prev_italic ? 0.06 * size : 0.0);
-            g.sup_w = g.sub_w = 0.0;
+            g.x0 = pen;
+            /* an italic base leans right: its superscript starts a little
+             * later (italic correction), its subscript tucks under it */
+            g.sup_w = r->group && prev_italic ? 0.08 * size : 0.0;
+            g.sub_w = r->group && prev_italic ? -0.03 * size : 0.0;
+            g.sup_used = g.sub_used = 0;
         }
         if (r->group) {
             double *w = r->script == HY_SCRIPT_SUP ? &g.sup_w : &g.sub_w;
+            *(r->script == HY_SCRIPT_SUP ? &g.sup_used : &g.sub_used) = 1;
             at = g.x0 + *w;
             *w += ext.advance;
         } else {
@@ -257,7 +285,7 @@ void hy_markup_layout(const hy_canvas *cv, const hy_mrun *runs, size_t n, double
             desc = 0.24 * rs + off;
     }
     if (g.id)
-        pen = g.x0 + (g.sup_w > g.sub_w ? g.sup_w : g.sub_w);
+        pen = g.x0 + group_width(&g);
     if (box) {
         box->width = pen;
         box->ascent = asc;
@@ -284,4 +312,42 @@ void hy_markup_text(const hy_canvas *cv, const char *src, double size, int draw,
         }
     }
     hy_markup_layout(cv, runs, n, size, draw, vertical, x, y, colour, box);
+}
+
+char *hy_markup_number(char *buf, size_t size, double v, int sig)
+{
+    double a = fabs(v);
+    sig = sig < 1 ? 1 : sig > 17 ? 17 : sig;
+    if (!size)
+        return buf;
+    if (!isfinite(v)) {
+        snprintf(buf, size, "%s", isnan(v) ? "NaN" : v > 0 ? "\\infty" : "-\\infty");
+    } else if (v == floor(v) && a < 1e6) {
+        snprintf(buf, size, "%.0f", v);
+    } else if (a >= 1e-3 && a < 1e5) {
+        snprintf(buf, size, "%#.*g", sig, v);
+        size_t n = strlen(buf);
+        if (n > 0 && buf[n - 1] == '.')
+            buf[n - 1] = '\0';
+    } else {
+        int e = (int)floor(log10(a));
+        double m = v / pow(10.0, e);
+        char mant[40];
+        snprintf(mant, sizeof mant, "%#.*g", sig, m);
+        if (fabs(strtod(mant, NULL)) >= 10.0) {   /* rounding carried into the next decade */
+            m /= 10.0, e++;
+            snprintf(mant, sizeof mant, "%#.*g", sig, m);
+        }
+        size_t n = strlen(mant);
+        if (n > 0 && mant[n - 1] == '.')
+            mant[n - 1] = '\0';
+        double back = strtod(mant, NULL);
+        if (back == 1.0)
+            snprintf(buf, size, "10^{%d}", e);
+        else if (back == -1.0)
+            snprintf(buf, size, "-10^{%d}", e);
+        else
+            snprintf(buf, size, "%s\\times10^{%d}", mant, e);
+    }
+    return buf;
 }

@@ -54,6 +54,12 @@ void hy_markup_layout(const hy_canvas *cv, const hy_mrun *runs, size_t n, double
                       int draw, int vertical, double x, double y, hy_rgb colour,
                       hy_markup_box *box);
 
+/* Writes v as label markup with sig significant digits, as a reader expects
+ * it: whole numbers below 10^6 without decimals ("1000", not "1e+03"), others
+ * in [10^-3, 10^5) as decimals with trailing zeros kept ("0.04300"), the rest
+ * as "m\\times10^{e}" (set as m × 10 with a raised e).  Returns buf. */
+char *hy_markup_number(char *buf, size_t size, double v, int sig);
+
 /* Convenience: parse and measure/draw src; an unparsable label is drawn verbatim. */
 void hy_markup_text(const hy_canvas *cv, const char *src, double size, int draw,
                     int vertical, double x, double y, hy_rgb colour, hy_markup_box *box);

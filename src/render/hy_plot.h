@@ -68,13 +68,19 @@ typedef struct hy_mark {
     hy_colour colour;
 } hy_mark;
 
-/* A text label anchored at a data point, shifted by (dx, dy) points (dy up). */
+/* A text label anchored at a data point, shifted by (dx, dy) points (dy up).
+ * If its box would cover a curve, a marker, the legend or an earlier label, it
+ * moves to the nearest free spot in the frame, with a leader line back to
+ * (x, y); with has_point the leader always goes to (px, py), the point the
+ * label is about, and (x, y) is only where the text would like to be. */
 typedef struct hy_text {
     double x, y;
     const char *text;         /* markup */
     int anchor;               /* HY_ANCHOR_* (vertical: baseline) */
     double dx, dy;
     hy_colour colour;
+    int has_point;
+    double px, py;
 } hy_text;
 
 /* Axis range: explicit when lo < hi, else automatic from the data, padded by

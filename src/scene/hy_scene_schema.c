@@ -135,6 +135,8 @@ static const hy_scene_key_spec figure_keys[] = {
     K("kind", HY_KIND_ENUM, figure_kinds, NOLIM, 0, 0, "timeseries",
       "what the axes show: signals versus t, an output-versus-input loop, u(t), g(v), psi_u"),
     K("title", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"", "title above the axes (empty: none)"),
+    K("caption", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"",
+      "one-line caption of what the figure shows (the gallery page prints it; not drawn)"),
     K("xlabel", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
       "x-axis label; TeX-like markup such as `y^\\circ_u` passes through (default: from kind)"),
     K("ylabel", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "y-axis label (default: from kind)"),
@@ -176,6 +178,9 @@ static const hy_scene_key_spec annotation_keys[] = {
     K("text", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "text drawn at (x, y)"),
     K("x", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "x position in data coordinates"),
     K("y", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y position in data coordinates"),
+    K("point_x", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+      "x of the point the text is about: a leader line joins them (with point_y; default: none)"),
+    K("point_y", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y of that point"),
 };
 
 static const hy_scene_key_spec output_keys[] = {

@@ -69,13 +69,15 @@ int main(void)
     /* U+00B0 degree, U+03B3 gamma, U+03C3 sigma, U+03C8 psi, U+03F1 varrho, U+2016, U+2212, U+221E */
     expect("y^\\circ_u", "[y|Bi|0] [\xC2\xB0|P|1] [u|bi|1]");
     expect("y^*_{u,k}(t)", "[y|Bi|0] [*|P|1] [u|bi|1] [,|b|1] [k|bi|1] [(|B|0] [t|Bi|0] [)|B|0]");
-    expect("\\sigma_0 = 6", "[\xCF\x83|B|0] [0|b|1] [ = 6|B|0]");
-    expect("\\psi_u(\\varrho)", "[\xCF\x88|B|0] [u|bi|1] [(\xCF\xB1)|B|0]");
+    expect("\\sigma_0 = 6", "[\xCF\x83|Bi|0] [0|b|1] [ = 6|B|0]");
+    expect("\\psi_u(\\varrho)", "[\xCF\x88|Bi|0] [u|bi|1] [(|B|0] [\xCF\xB1|Bi|0] [)|B|0]");
+    /* lowercase Greek is a variable (italic), uppercase and \\mathrm Greek upright; UTF-8 Greek too */
+    expect("\\Gamma \\mathrm{\\gamma} \xCE\xBD", "[\xCE\x93 \xCE\xB3 |B|0] [\xCE\xBD|Bi|0]");
     expect("\\|y_\\gamma - y^*_u\\|_\\infty",
-           "[\xE2\x80\x96|B|0] [y|Bi|0] [\xCE\xB3|b|1] [ \xE2\x88\x92 |B|0] [y|Bi|0] [*|P|2] [u|bi|2] "
+           "[\xE2\x80\x96|B|0] [y|Bi|0] [\xCE\xB3|bi|1] [ \xE2\x88\x92 |B|0] [y|Bi|0] [*|P|2] [u|bi|2] "
            "[\xE2\x80\x96|B|0] [\xE2\x88\x9E|b|3]");
     expect("g(v)", "[g|Bi|0] [(|B|0] [v|Bi|0] [)|B|0]");
-    expect("$\\sigma_0$", "[\xCF\x83|B|0] [0|b|1]");
+    expect("$\\sigma_0$", "[\xCF\x83|Bi|0] [0|b|1]");
     expect("area = 0.123", "[area = 0.123|B|0]");
     expect("Bouc-Wen", "[Bouc-Wen|B|0]");
     expect("10^{-3}\\times F_s", "[10|B|0] [\xE2\x88\x92" "3|P|1] [\xC3\x97 |B|0] [F|Bi|0] [s|bi|2]");
@@ -94,9 +96,18 @@ int main(void)
     size_t n;
     hy_markup_parse("y^*_u", r, HY_MARKUP_MAX, &n, NULL);
     hy_markup_layout(&cv, r, n, 10.0, 1, 0, 0, 0, (hy_rgb){0, 0, 0}, &b);
-    double want = 5.0 + 0.6 + 3.5; /* y, italic kern, max(*, u) at 7 pt */
+    double want = 5.0 + 0.8 + 3.5; /* y, italic correction of the superscript, * at 7 pt */
     if (b.width < want - 1e-9 || b.width > want + 1e-9 || ntext != 3) {
         printf("FAIL layout y^*_u: width %g (want %g), %d text calls (want 3)\n", b.width, want, ntext);
+        fails++;
+    }
+    /* a subscript alone tucks under its italic base: no gap before it (u_{min,2}) */
+    hy_markup_parse("u_2", r, HY_MARKUP_MAX, &n, NULL);
+    hy_markup_layout(&cv, r, n, 10.0, 0, 0, 0, 0, (hy_rgb){0, 0, 0}, &b);
+    want = 5.0 - 0.3 + 3.5;
+    if (b.width < want - 1e-9 || b.width > want + 1e-9) {
+        printf("FAIL layout u_2: width %g (want %g: the subscript starts 0.03 em left of the base's advance)\n",
+               b.width, want);
         fails++;
     }
     if (!(b.ascent > 7.8 && b.descent > 2.4)) {
