@@ -324,23 +324,17 @@ char *hy_markup_number(char *buf, size_t size, double v, int sig)
         snprintf(buf, size, "%s", isnan(v) ? "NaN" : v > 0 ? "\\infty" : "-\\infty");
     } else if (v == floor(v) && a < 1e6) {
         snprintf(buf, size, "%.0f", v);
-    } else if (a >= 1e-3 && a < 1e5) {
-        snprintf(buf, size, "%#.*g", sig, v);
-        size_t n = strlen(buf);
-        if (n > 0 && buf[n - 1] == '.')
-            buf[n - 1] = '\0';
+    } else if (a >= 1e-3 && a < pow(10.0, sig)) {   /* %g stays decimal there */
+        snprintf(buf, size, "%.*g", sig, v);
     } else {
         int e = (int)floor(log10(a));
         double m = v / pow(10.0, e);
         char mant[40];
-        snprintf(mant, sizeof mant, "%#.*g", sig, m);
+        snprintf(mant, sizeof mant, "%.*g", sig, m);
         if (fabs(strtod(mant, NULL)) >= 10.0) {   /* rounding carried into the next decade */
             m /= 10.0, e++;
-            snprintf(mant, sizeof mant, "%#.*g", sig, m);
+            snprintf(mant, sizeof mant, "%.*g", sig, m);
         }
-        size_t n = strlen(mant);
-        if (n > 0 && mant[n - 1] == '.')
-            mant[n - 1] = '\0';
         double back = strtod(mant, NULL);
         if (back == 1.0)
             snprintf(buf, size, "10^{%d}", e);

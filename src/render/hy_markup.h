@@ -54,10 +54,11 @@ void hy_markup_layout(const hy_canvas *cv, const hy_mrun *runs, size_t n, double
                       int draw, int vertical, double x, double y, hy_rgb colour,
                       hy_markup_box *box);
 
-/* Writes v as label markup with sig significant digits, as a reader expects
- * it: whole numbers below 10^6 without decimals ("1000", not "1e+03"), others
- * in [10^-3, 10^5) as decimals with trailing zeros kept ("0.04300"), the rest
- * as "m\\times10^{e}" (set as m × 10 with a raised e).  Returns buf. */
+/* Writes v as label markup with at most sig significant digits, as a reader
+ * expects it: whole numbers below 10^6 without decimals ("1000", not
+ * "1e+03"), others in [10^-3, 10^sig) as decimals ("0.043"), the rest as
+ * "m\\times10^{e}" (set as m × 10 with a raised e; "10^{e}" when m is 1).
+ * Returns buf. */
 char *hy_markup_number(char *buf, size_t size, double v, int sig);
 
 /* Convenience: parse and measure/draw src; an unparsable label is drawn verbatim. */

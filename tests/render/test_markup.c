@@ -114,6 +114,20 @@ int main(void)
         printf("FAIL layout y^*_u: ascent %g descent %g do not include the scripts\n", b.ascent, b.descent);
         fails++;
     }
+    /* numbers in labels: as a reader writes them */
+    const struct { double v; const char *want; } nums[] = {
+        {1000, "1000"}, {1e3 + 0.5, "1000"}, {0.25, "0.25"}, {-0.043, "-0.043"}, {6.3341, "6.334"},
+        {1e-4, "10^{-4}"}, {1.424e-4, "1.424\\times10^{-4}"}, {9.99996e-5, "10^{-4}"}, {2.5e7, "2.5\\times10^{7}"},
+        {-3e-6, "-3\\times10^{-6}"}, {0, "0"}, {12345.6, "1.235\\times10^{4}"},
+    };
+    for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++) {
+        char buf[64];
+        hy_markup_number(buf, sizeof buf, nums[i].v, 4);
+        if (strcmp(buf, nums[i].want)) {
+            printf("FAIL number %g: \"%s\", want \"%s\"\n", nums[i].v, buf, nums[i].want);
+            fails++;
+        }
+    }
     printf("%s\n", fails ? "FAILED" : "ok");
     return fails ? 1 : 0;
 }

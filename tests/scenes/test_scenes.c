@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "../core/tutil.h"
+#include "hy_cairo.h"
 #include "hy_gamma.h"
 #include "hy_ode.h"
 #include "scene_run.h"
@@ -82,6 +83,53 @@ static int svg_ok(const char *text)
     return depth == 0;
 }
 
+/* Pixels of a PNG's last column and last row that are not white (-1: unreadable). */
+static long edge_not_white(const char *path)
+{
+    cairo_surface_t *img = cairo_image_surface_create_from_png(path);
+    if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
+        cairo_surface_destroy(img);
+        return -1;
+    }
+    int w = cairo_image_surface_get_width(img), h = cairo_image_surface_get_height(img);
+    int stride = cairo_image_surface_get_stride(img);
+    const unsigned char *d = cairo_image_surface_get_data(img);
+    long bad = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            if (x != w - 1 && y != h - 1)
+                continue;
+            unsigned v = *(const unsigned *)(const void *)(d + (size_t)y * (size_t)stride + 4 * (size_t)x);
+            bad += (v & 0xffffffu) != 0xffffffu;
+        }
+    cairo_surface_destroy(img);
+    return bad;
+}
+
+/* The committed gallery: every PNG's last row and column are background. */
+static void gallery_edges(void)
+{
+    char dir[1100];
+    snprintf(dir, sizeof dir, "%s/gallery", SRC);
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    struct dirent *e;
+    int count = 0;
+    while ((e = readdir(d))) {
+        size_t len = strlen(e->d_name);
+        if (len < 5 || strcmp(e->d_name + len - 4, ".png"))
+            continue;
+        char path[2200];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        long bad = edge_not_white(path);
+        CHECK(bad == 0, "gallery/%s: %ld pixels of its last row and column are not background", e->d_name, bad);
+        count++;
+    }
+    closedir(d);
+    printf("gallery: %d PNGs, last row and column white\n", count);
+}
+
 static void all_scenes(void)
 {
     char sdir[1024], out1[1100], out2[1100];
@@ -122,6 +170,10 @@ static void all_scenes(void)
             CHECK(ta && tb && na == nb && !memcmp(ta, tb, na), "%s: %s output not byte-identical across runs", base, ext[k]);
             if (k == 0 && ta)
                 CHECK(svg_ok(ta), "%s.svg is not well-formed", base);
+            if (k == 1) {   /* 12 cm at 60 dpi is 283.5 px: the partial last pixels are background */
+                long bad = edge_not_white(a);
+                CHECK(bad == 0, "%s.png: %ld pixels of its last row and column are not background", base, bad);
+            }
             free(ta);
             free(tb);
         }
@@ -315,6 +367,19 @@ static int run_figure(const char *path, char *set, hy_scene_run *r, hy_scene_fig
     return rc;
 }
 
+/* The value of a number as hy_markup_number writes it: "0.25", "1000",
+ * "1.4\\times10^{-4}", "10^{5}". */
+static double markup_number(const char *s)
+{
+    char *end;
+    if (!strncmp(s, "10^{", 4))
+        return pow(10.0, strtod(s + 4, NULL));
+    double m = strtod(s, &end);
+    if (!strncmp(end, "\\times10^{", 10))
+        m *= pow(10.0, strtod(end + 10, NULL));
+    return m;
+}
+
 /* {g.gamma} and {g.dist} of the γ-sweep scene: the text carries the keyed γ,
  * and the distance to y*_u falls like 1/γ (Theorem 2; the core's convergence
  * test checks the rate, here the factor per decade is only required to lie in
@@ -337,8 +402,8 @@ static void dist_placeholder(void)
         const char *eq = t ? strstr(t, "= ") : NULL;
         const char *eq2 = eq ? strstr(eq + 2, "= ") : NULL;
         if (eq && eq2) {
-            g = strtod(eq + 2, NULL);
-            d = strtod(eq2 + 2, NULL);
+            g = markup_number(eq + 2);
+            d = markup_number(eq2 + 2);
         }
         CHECK(g == gammas[k], "caption gamma %g, want %g (text '%s')", g, gammas[k], t ? t : "");
         CHECK(d > 0 && d < 1, "caption distance %g at gamma %g", d, gammas[k]);
@@ -480,6 +545,148 @@ static void extreme_ok(void)
     }
 }
 
+/* ---- the legend box against the data, from the layout's own drawing calls ---- */
+
+#define REC_MAX 200000
+typedef struct lrec {
+    hy_canvas inner;
+    int clipped, white;
+    double path[4096][3];        /* x, y, 1 = move */
+    size_t npath;
+    double (*seg)[5];            /* data segments: x1 y1 x2 y2 half-width */
+    size_t nseg;
+    double legend[4];
+    int has_legend;
+} lrec;
+
+static void l_begin(void *c) { lrec *r = c; r->npath = 0; r->inner.ops->begin_path(r->inner.ctx); }
+static void l_point(lrec *r, double x, double y, int move)
+{
+    if (r->npath < 4096)
+        r->path[r->npath][0] = x, r->path[r->npath][1] = y, r->path[r->npath][2] = move, r->npath++;
+}
+static void l_move(void *c, double x, double y) { lrec *r = c; l_point(r, x, y, 1); r->inner.ops->move_to(r->inner.ctx, x, y); }
+static void l_line(void *c, double x, double y) { lrec *r = c; l_point(r, x, y, 0); r->inner.ops->line_to(r->inner.ctx, x, y); }
+static void l_stroke(void *c, const hy_pen *p)
+{
+    lrec *r = c;
+    for (size_t i = 1; r->clipped && i < r->npath; i++)
+        if (!r->path[i][2] && r->nseg < REC_MAX) {
+            double *q = r->seg[r->nseg++];
+            q[0] = r->path[i - 1][0], q[1] = r->path[i - 1][1], q[2] = r->path[i][0], q[3] = r->path[i][1];
+            q[4] = 0.5 * p->width;
+        }
+    r->npath = 0;
+    r->inner.ops->stroke(r->inner.ctx, p);
+}
+static void l_rect(void *c, double x, double y, double w, double h, hy_rgb col, double a)
+{
+    lrec *r = c;
+    if (col.r == 1 && col.g == 1 && col.b == 1 && !r->clipped && r->white++ > 0)
+        r->legend[0] = x, r->legend[1] = y, r->legend[2] = w, r->legend[3] = h, r->has_legend = 1;
+    r->inner.ops->fill_rect(r->inner.ctx, x, y, w, h, col, a);
+}
+static void l_marker(void *c, int s, double x, double y, double sz, const hy_pen *p, const hy_rgb *f)
+{
+    lrec *r = c;
+    if (r->nseg < REC_MAX) {   /* a marker is a zero-length segment as wide as the marker */
+        double *q = r->seg[r->nseg++];
+        q[0] = q[2] = x, q[1] = q[3] = y, q[4] = 0.5 * sz;
+    }
+    r->inner.ops->marker(r->inner.ctx, s, x, y, sz, p, f);
+}
+static void l_text(void *c, double x, double y, const char *s, double sz, int it, int v, hy_rgb col)
+{
+    lrec *r = c;
+    r->inner.ops->text(r->inner.ctx, x, y, s, sz, it, v, col);
+}
+static void l_measure(void *c, const char *s, double sz, int it, hy_text_extents *e)
+{
+    lrec *r = c;
+    r->inner.ops->measure(r->inner.ctx, s, sz, it, e);
+}
+static void l_clip(void *c, double x, double y, double w, double h)
+{
+    lrec *r = c;
+    r->clipped = 1;
+    r->inner.ops->clip(r->inner.ctx, x, y, w, h);
+}
+static void l_unclip(void *c)
+{
+    lrec *r = c;
+    r->clipped = 0;
+    r->inner.ops->unclip(r->inner.ctx);
+}
+static const hy_canvas_ops lrec_ops = {"legend-recorder", l_begin, l_move, l_line, l_stroke, l_rect,
+                                       l_marker, l_text, l_measure, l_clip, l_unclip};
+
+/* Whether segment (x1, y1)-(x2, y2) meets the rectangle [x0, x1] x [y0, y1]
+ * (Liang-Barsky: some part of it lies inside). */
+static int seg_meets_rect(double ax, double ay, double bx, double by, double rx0, double ry0, double rx1, double ry1)
+{
+    double t0 = 0, t1 = 1, dx = bx - ax, dy = by - ay;
+    double pq[4][2] = {{-dx, ax - rx0}, {dx, rx1 - ax}, {-dy, ay - ry0}, {dy, ry1 - ay}};
+    for (int i = 0; i < 4; i++) {
+        double p = pq[i][0], q = pq[i][1];
+        if (p == 0) {
+            if (q < 0)
+                return 0;
+            continue;
+        }
+        double t = q / p;
+        if (p < 0 && t > t0)
+            t0 = t;
+        if (p > 0 && t < t1)
+            t1 = t;
+        if (t0 > t1)
+            return 0;
+    }
+    return 1;
+}
+
+/* The scene's legend box (drawn as the layout drew it) meets none of the
+ * segments and markers it drew as data, each grown by its half width. */
+static void legend_clear(const char *name)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/scenes/%s.scene", SRC, name);
+    hy_scene_run r;
+    hy_scene_fig st;
+    char set[] = "figure.dpi=200";
+    if (run_figure(path, set, &r, &st))
+        return;
+    lrec *lr = calloc(1, sizeof *lr);
+    lr->seg = malloc(REC_MAX * sizeof *lr->seg);
+    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 10, 10);
+    cairo_t *cr = cairo_create(img);
+    hy_cairo_canvas cc;
+    lr->inner = hy_canvas_cairo(&cc, cr, st.fig.font);
+    hy_canvas cv = {&lrec_ops, lr};
+    hy_error err;
+    CHECK(hy_figure_draw(&st.fig, &cv, &err) == 0, "%s: draw: %s", name, err.msg);
+    CHECK(lr->has_legend, "%s: no legend box drawn", name);
+    size_t hits = 0;
+    for (size_t i = 0; lr->has_legend && i < lr->nseg; i++) {
+        const double *q = lr->seg[i], *b = lr->legend;
+        if (seg_meets_rect(q[0], q[1], q[2], q[3], b[0] - q[4], b[1] - q[4], b[0] + b[2] + q[4], b[1] + b[3] + q[4])) {
+            if (!hits)
+                printf("  %s: segment (%.1f, %.1f)-(%.1f, %.1f) meets the legend [%.1f, %.1f] x [%.1f, %.1f]\n", name,
+                       q[0], q[1], q[2], q[3], b[0], b[0] + b[2], b[1], b[1] + b[3]);
+            hits++;
+        }
+    }
+    CHECK(hits == 0, "%s: the legend box covers %zu of %zu drawn data segments", name, hits, lr->nseg);
+    if (!hits)
+        printf("%s: legend [%.1f, %.1f] x [%.1f, %.1f] pt clear of %zu data segments\n", name, lr->legend[0],
+               lr->legend[0] + lr->legend[2], lr->legend[1], lr->legend[1] + lr->legend[3], lr->nseg);
+    cairo_destroy(cr);
+    cairo_surface_destroy(img);
+    free(lr->seg);
+    free(lr);
+    hy_scene_fig_free(&st);
+    hy_scene_run_free(&r);
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -490,12 +697,16 @@ int main(int argc, char **argv)
     BLD = argv[2];
     gsl_set_error_handler_off();
     all_scenes();
+    gallery_edges();
     const char *refs[] = {"fig05_g_stribeck", "fig11_ygamma_ex3", "fig15_minor_loop_ex4", "multimodal_three_minor_loops"};
     for (size_t i = 0; i < 4; i++)
         compare_reference(refs[i]);
     plans();
     dist_placeholder();
     key_placeholder();
+    legend_clear("fig07_ygamma_ex2");
+    legend_clear("fig11_ygamma_ex3");
+    legend_clear("bw_fig2b_transient_db");
     data_fig15();
     data_fig11();
     errors();
