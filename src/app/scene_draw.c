@@ -224,6 +224,20 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
         ax->band_lo = band[0];
         ax->band_hi = band[1];
     }
+    double zx[2], zy[2];
+    int zxa = 1, zya = 1;
+    int hzx = hy_scene_get_pair(s, "figure", NULL, "zoom_x", zx, &zxa) == HY_SCENE_SET && !zxa;
+    int hzy = hy_scene_get_pair(s, "figure", NULL, "zoom_y", zy, &zya) == HY_SCENE_SET && !zya;
+    if (hzx != hzy)
+        return hy_scene_error_at(s, "figure", NULL, hzx ? "zoom_x" : "zoom_y", err, HY_EINVAL,
+                                 "a zoomed inset needs both zoom_x and zoom_y");
+    if (hzx && (!(zx[0] < zx[1]) || !(zy[0] < zy[1])))
+        return hy_scene_error_at(s, "figure", NULL, "zoom_x", err, HY_EINVAL,
+                                 "zoom_x and zoom_y must each be lo, hi with lo < hi");
+    if (hzx) {
+        ax->zoom_x = (hy_range){zx[0], zx[1], ax->x.log, 0};
+        ax->zoom_y = (hy_range){zy[0], zy[1], ax->y.log, 0};
+    }
     hy_figure *f = &st->fig;
     double size[2] = {hy_cm(12), hy_cm(9)}, fs = 9;
     long dpi = 300;

@@ -73,6 +73,10 @@ typedef struct panel {
     double ml, mr, mt, mb;               /* margins: frame to cell edges */
     int legend_outside;                  /* "best" found no free spot inside: right of the frame */
     text_place *tplace;                  /* ax->ntexts placed annotations */
+    int has_inset;                       /* a zoomed inset: its axes, cell and own panel */
+    hy_axes inset_ax;
+    double inset[4];                     /* the inset's cell (frame and tick labels), x y w h */
+    struct panel *inset_panel;
 } panel;
 
 static double tr(double v, int log_scale) { return log_scale ? log10(v) : v; }
@@ -608,11 +612,11 @@ static int leader_crosses(const panel *p, double x1, double y1, double x2, doubl
 /* Box (x, y, w, h) of a legend at a fixed place (a corner, or outside), or 0. */
 static int fixed_legend_box(const panel *p, double b[4]);
 
-/* Places every annotation: at its point (x, y) shifted by (dx, dy) when its
- * box covers no curve, marker, fixed legend or earlier annotation; else at the
- * nearest free spot inside the frame on rings around it (preferring spots
- * whose leader line crosses no curve; with none free, the least covering
- * one), joined to (x, y) by a leader line. */
+/* Places every annotation: at (x, y) shifted by (dx, dy) when its box covers
+ * no curve, marker, inset, fixed legend or earlier annotation; else at the
+ * nearest free spot inside the frame on rings around it (with none free, the
+ * least covering one).  A label with a point gets a leader line to it, and
+ * prefers spots whose leader crosses no curve. */
 static void place_texts(panel *p)
 {
     const hy_axes *ax = p->ax;
@@ -654,7 +658,7 @@ static void place_texts(panel *p)
                         least = o, least_x = cx, least_y = cy;
                     if (o != 0.0)
                         continue;
-                    if (pass == 0 && (ring > 0 || t->has_point)) {
+                    if (pass == 0 && t->has_point) {
                         double nx, ny;
                         nearest_on_box(box, lx, ly, &nx, &ny);
                         if (leader_crosses(p, nx, ny, lx, ly))
@@ -670,7 +674,8 @@ static void place_texts(panel *p)
         tp->x = best_x, tp->y = best_y;
         tp->box[0] = best_x - 1.0, tp->box[1] = best_y - b.ascent - 1.0;
         tp->box[2] = b.width + 2.0, tp->box[3] = b.ascent + b.descent + 2.0;
-        tp->leader = hypot(best_x - bx, best_y - by) > 1.5 * p->fs;   /* a nudge needs none */
+        /* a leader only to a point the label is about, never for a nudge */
+        tp->leader = 0;
         if (t->has_point && usable(t->px, p->xlog) && usable(t->py, p->ylog))
             tp->ax = map_x(p, t->px), tp->ay = map_y(p, t->py), tp->leader = 1;
     }
@@ -740,6 +745,9 @@ static double overlap(const panel *p, double rx, double ry, double rw, double rh
         if (x >= rx - r && x <= rx + rw + r && y >= ry - r && y <= ry + rh + r)
             sum += 2 * r;
     }
+    if (p->has_inset && p->inset[0] < rx + rw && p->inset[0] + p->inset[2] > rx && p->inset[1] < ry + rh &&
+        p->inset[1] + p->inset[3] > ry)
+        sum += p->inset[2] + p->inset[3];
     for (size_t t = 0; t < ax->ntexts; t++) {
         double b[4];
         if (text_box(p, t, b) && b[0] < rx + rw && b[0] + b[2] > rx && b[1] < ry + rh &&
@@ -871,6 +879,116 @@ static void draw_legend(const panel *p)
     }
 }
 
+/* ---- zoomed inset ---- */
+
+static int rects_meet(const double *a, const double *b)
+{
+    return a[0] < b[0] + b[2] && a[0] + a[2] > b[0] && a[1] < b[1] + b[3] && a[1] + a[3] > b[1];
+}
+
+/* The zoomed region on the main axes, as a rectangle x y w h (points). */
+static void zoom_rect(const panel *p, double r[4])
+{
+    double x0 = map_x(p, p->ax->zoom_x.lo), x1 = map_x(p, p->ax->zoom_x.hi);
+    double y0 = map_y(p, p->ax->zoom_y.hi), y1 = map_y(p, p->ax->zoom_y.lo);
+    r[0] = x0, r[1] = y0, r[2] = x1 - x0, r[3] = y1 - y0;
+}
+
+static int fixed_legend_box(const panel *p, double b[4]);
+
+/* Lays out the panel's inset (if its axes ask for one): its own panel with
+ * the zoom ranges and 80 % text, in a cell of 42 % x 45 % of the frame, at
+ * the spot (corners first, then a grid) that covers the least data, text,
+ * fixed legend and zoomed region.  Returns a layout error of the inset. */
+static int place_inset(panel *p, hy_error *err)
+{
+    const hy_axes *ax = p->ax;
+    p->has_inset = 0;
+    if (!p->inset_panel || !(ax->zoom_x.lo < ax->zoom_x.hi) || !(ax->zoom_y.lo < ax->zoom_y.hi) ||
+        !usable(ax->zoom_x.lo, p->xlog) || !usable(ax->zoom_y.lo, p->ylog) || !isfinite(ax->zoom_x.hi) ||
+        !isfinite(ax->zoom_y.hi))
+        return HY_OK;
+    panel *q = p->inset_panel;
+    memset(q, 0, sizeof *q);
+    p->inset_ax = *ax;
+    hy_axes *qa = &p->inset_ax;
+    qa->xlabel = qa->ylabel = qa->title = NULL;
+    qa->texts = NULL, qa->ntexts = 0;
+    qa->legend = HY_LEGEND_NONE;
+    qa->zoom_x.lo = qa->zoom_x.hi = 0;
+    q->ax = qa, q->cv = q->dv = p->cv, q->fs = 0.8 * p->fs;
+    q->xlog = p->xlog, q->ylog = p->ylog;
+    q->xlo = ax->zoom_x.lo, q->xhi = ax->zoom_x.hi, q->ylo = ax->zoom_y.lo, q->yhi = ax->zoom_y.hi;
+    q->cw = 0.42 * p->w, q->ch = 0.45 * p->h;
+    int st = panel_layout(q, err);
+    if (st) {
+        hy_error_prefix(err, "zoomed inset");
+        return st;
+    }
+    const double inset = 4.0;
+    double zr[4], lg[4];
+    zoom_rect(p, zr);
+    int has_lg = fixed_legend_box(p, lg);
+    double best = INFINITY, bx = p->x0 + inset, by = p->y0 + inset;
+    double spanx = p->w - 2 * inset - q->cw, spany = p->h - 2 * inset - q->ch;
+    static const double order[][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, 0}, {0.5, 1}, {0, 0.5}, {1, 0.5}};
+    for (int c = 0; c < 8 + 25 && best > 0.0; c++) {
+        double fx = c < 8 ? order[c][0] : 0.125 + 0.1875 * ((c - 8) % 5);
+        double fy = c < 8 ? order[c][1] : 0.125 + 0.1875 * ((c - 8) / 5);
+        double cell[4] = {p->x0 + inset + fx * spanx, p->y0 + inset + fy * spany, q->cw, q->ch};
+        double o = overlap(p, cell[0], cell[1], cell[2], cell[3]);
+        if (rects_meet(cell, zr))
+            o += 1e6;
+        if (has_lg && rects_meet(cell, lg))
+            o += 1e6;
+        if (o < best)
+            best = o, bx = cell[0], by = cell[1];
+    }
+    q->cx = bx, q->cy = by;
+    if ((st = panel_frame(q, err))) {
+        hy_error_prefix(err, "zoomed inset");
+        return st;
+    }
+    p->has_inset = 1;
+    p->inset[0] = bx, p->inset[1] = by, p->inset[2] = q->cw, p->inset[3] = q->ch;
+    return HY_OK;
+}
+
+static void rect_path(const hy_canvas *cv, const double r[4], const hy_pen *pen)
+{
+    cv->ops->begin_path(cv->ctx);
+    cv->ops->move_to(cv->ctx, r[0], r[1]);
+    cv->ops->line_to(cv->ctx, r[0] + r[2], r[1]);
+    cv->ops->line_to(cv->ctx, r[0] + r[2], r[1] + r[3]);
+    cv->ops->line_to(cv->ctx, r[0], r[1] + r[3]);
+    cv->ops->line_to(cv->ctx, r[0], r[1]);
+    cv->ops->stroke(cv->ctx, pen);
+}
+
+/* The zoomed region outlined on the main axes, then the inset over a white cell. */
+static void draw_inset(const panel *p)
+{
+    if (!p->has_inset)
+        return;
+    const panel *q = p->inset_panel;
+    const hy_canvas *cv = p->cv;
+    hy_pen grey = {{0.45, 0.45, 0.45}, 1.0, 0.5, NULL, 0, 0, 1};
+    double zr[4];
+    zoom_rect(p, zr);
+    cv->ops->clip(cv->ctx, p->x0, p->y0, p->w, p->h);
+    rect_path(cv, zr, &grey);
+    cv->ops->fill_rect(cv->ctx, p->inset[0], p->inset[1], p->inset[2], p->inset[3], (hy_rgb){1, 1, 1}, 1.0);
+    cv->ops->unclip(cv->ctx);
+    cv->ops->clip(cv->ctx, q->x0, q->y0, q->w, q->h);
+    for (size_t s = 0; s < q->ax->nseries; s++)
+        draw_series(q, &q->ax->series[s]);
+    for (size_t s = 0; s < q->ax->nseries; s++)
+        draw_series_markers(q, &q->ax->series[s]);
+    cv->ops->unclip(cv->ctx);
+    draw_marks(q);
+    draw_frame_ticks(q);
+}
+
 static void draw_panel_data(const panel *p)
 {
     const hy_canvas *dv = p->dv;
@@ -886,6 +1004,7 @@ static void draw_panel_data(const panel *p)
 
 static void draw_panel_overlay(const panel *p)
 {
+    draw_inset(p);
     draw_texts(p);
     draw_frame_ticks(p);
     draw_labels(p);
@@ -943,6 +1062,8 @@ static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
         legend_size(p, &bw, &bh, &rowh);
         if (bw <= 0.0 || p->ax->legend != HY_LEGEND_BEST)
             continue;
+        if ((st = place_inset(p, err)))
+            break;
         place_texts(p);
         if (legend_free_spot(p, bw, bh, &x, &y))
             continue;
@@ -952,8 +1073,11 @@ static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
     }
     if (!st && moved)
         st = align_frames(ps, rows, cols, err);
-    for (int i = 0; !st && i < rows * cols; i++)
-        place_texts(&ps[i]);
+    for (int i = 0; !st && i < rows * cols; i++) {
+        st = place_inset(&ps[i], err);
+        if (!st)
+            place_texts(&ps[i]);
+    }
     return st;
 }
 
@@ -972,7 +1096,7 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
     size_t ntexts = 0;
     for (int i = 0; i < rows * cols; i++)
         ntexts += f->axes[i].ntexts;
-    panel *ps = calloc((size_t)(rows * cols), sizeof *ps);
+    panel *ps = calloc((size_t)(2 * rows * cols), sizeof *ps);   /* then one inset panel each */
     text_place *tp = calloc(ntexts + 1, sizeof *tp);
     if (!ps || !tp) {
         free(ps);
@@ -982,6 +1106,7 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
     for (size_t i = 0, k = 0; i < (size_t)(rows * cols); k += f->axes[i].ntexts, i++) {
         panel *p = &ps[i];
         p->tplace = tp + k;
+        p->inset_panel = &ps[(size_t)(rows * cols) + i];
         p->ax = &f->axes[i], p->cv = cv, p->dv = data ? data : cv, p->fs = fs;
         p->xlog = p->ax->x.log, p->ylog = p->ax->y.log;
         p->cx = (i % cols) * W / cols, p->cy = (i / cols) * H / rows;

@@ -69,10 +69,9 @@ typedef struct hy_mark {
 } hy_mark;
 
 /* A text label anchored at a data point, shifted by (dx, dy) points (dy up).
- * If its box would cover a curve, a marker, the legend or an earlier label, it
- * moves to the nearest free spot in the frame, with a leader line back to
- * (x, y); with has_point the leader always goes to (px, py), the point the
- * label is about, and (x, y) is only where the text would like to be. */
+ * If its box would cover a curve, a marker, an inset, the legend or an
+ * earlier label, it moves to the nearest free spot in the frame.  With
+ * has_point a leader line joins it to (px, py), the point it is about. */
 typedef struct hy_text {
     double x, y;
     const char *text;         /* markup */
@@ -104,6 +103,11 @@ typedef struct hy_axes {
     int grid;                 /* light grid lines at the ticks */
     int band;                 /* shade band_lo <= x <= band_hi in light grey */
     double band_lo, band_hi;
+    /* A zoomed inset (when zoom_x.lo < zoom_x.hi and zoom_y.lo < zoom_y.hi):
+     * the same series and marks over these ranges, in a box about 40 % of the
+     * frame placed where it covers the least data, the zoomed region outlined
+     * on the main axes; for a feature too small to see, e.g. a sliver loop. */
+    hy_range zoom_x, zoom_y;
 } hy_axes;
 
 typedef struct hy_figure {

@@ -153,6 +153,9 @@ static const hy_scene_key_spec figure_keys[] = {
     K("grid", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "draw grid lines at the ticks"),
     K("shade", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "x interval highlighted in grey (e.g. the minor loop's time span)"),
+    K("zoom_x", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
+      "x range of a zoomed inset (with zoom_y): the same curves enlarged, placed where they cover least"),
+    K("zoom_y", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL, "y range of the zoomed inset"),
 };
 
 static const hy_scene_key_spec series_keys[] = {
