@@ -1,7 +1,8 @@
 /* anim_scenes.c: the animations of seed 000, Section 4: γ sweeps onto y*_u
  * (Examples 1-3, Figs. 4, 7, 11), the k-cycle approach to y°_u (Figs. 8-9,
- * 12-13), Example 4's minor loop under σ0 and u_min,2 (Figs. 15-17) and a
- * 3-D ribbon of γ-loops.  Each distinct γ is solved once (locked cache). */
+ * 12-13) and Example 4's minor loop under σ0 and u_min,2 (Figs. 15-17).
+ * Each distinct γ is solved once (locked cache).  (The 3-D ribbon of γ-loops
+ * was removed: it had no axes or scale; hy_gl's ribbon pass stays.) */
 #include "anim_scenes.h"
 
 #include <math.h>
@@ -13,10 +14,12 @@
 #include "hy_gamma.h"
 #include "hy_limit.h"
 #include "hy_loops.h"
+#include "hy_markup.h"
 #include "hy_ode.h"
 #include "hy_plot.h"
 
 #define NPTS 720              /* points per plotted time span */
+#define TRAIL 4               /* earlier γ loops shown fading behind the current one */
 
 /* The colour that marks y_γ / the trail for the GL colour-map effect (viridis
  * at 0.5, so the cairo legend sample looks right). */
@@ -70,6 +73,29 @@ static hy_figure one_panel(const hy_anim_frame *f, const hy_axes *ax)
                        .font_size = fig_font(), .axes = ax, .nrows = 1, .ncols = 1};
 }
 
+/* A viridis colour bar for t0..t1 of the map, in the top-left corner of the
+ * figure's frame, with a caption above and end labels beside it, so a frame
+ * says what its colours mean. */
+static void colour_bar(const hy_anim_frame *f, const hy_figure *fig, double t0, double t1, const char *caption,
+                       const char *left, const char *right)
+{
+    const hy_canvas *o = &f->overlay;
+    double fr[4], fs = fig->font_size;
+    if (hy_figure_frame(fig, o, 0, fr, NULL))
+        return;
+    double w = 7.0 * fs, h = 0.55 * fs, x = fr[0] + 0.8 * fs, y = fr[1] + 2.0 * fs;
+    hy_markup_box b;
+    hy_rgb ink = {0, 0, 0};
+    o->ops->fill_rect(o->ctx, x - 0.4 * fs, y - 1.6 * fs, w + 0.8 * fs + 2.0 * fs * 0, 2.9 * fs, (hy_rgb){1, 1, 1}, 0.85);
+    for (int i = 0; i < 48; i++)
+        o->ops->fill_rect(o->ctx, x + w * i / 48.0, y, w / 48.0 + 0.05, h,
+                          hy_cmap(HY_CMAP_VIRIDIS, t0 + (t1 - t0) * (i + 0.5) / 48.0), 1.0);
+    hy_markup_text(o, caption, 0.85 * fs, 1, 0, x, y - 0.4 * fs, ink, NULL);
+    hy_markup_text(o, left, 0.8 * fs, 1, 0, x, y + h + 0.95 * fs, ink, NULL);
+    hy_markup_text(o, right, 0.8 * fs, 0, 0, 0, 0, ink, &b);
+    hy_markup_text(o, right, 0.8 * fs, 1, 0, x + w - b.width, y + h + 0.95 * fs, ink, NULL);
+}
+
 static void extent(const double *v, size_t n, double *lo, double *hi)
 {
     for (size_t i = 0; i < n; i++)
@@ -79,7 +105,7 @@ static void extent(const double *v, size_t n, double *lo, double *hi)
         }
 }
 
-/* ---- γ sweeps (a) and the ribbon (d): y_γ with a γ cache ---- */
+/* ---- γ sweeps (a): y_γ with a γ cache ---- */
 
 typedef struct gentry {
     double gamma;
@@ -102,8 +128,6 @@ typedef struct sweep {
     pthread_mutex_t mu;
     pthread_cond_t cv;
     char desc[200];
-    double *ribbon;           /* ribbon: loops x NPTS x 3 */
-    int nloops;
 } sweep;
 
 static int solve(const sweep *s, double gamma, double *y, hy_error *err)
@@ -161,7 +185,6 @@ static void sweep_release(void *state)
     for (size_t i = 0; i < s->ncache; i++)
         free(s->cache[i].y);
     free(s->cache);
-    free(s->ribbon);
     pthread_mutex_destroy(&s->mu);
     pthread_cond_destroy(&s->cv);
     example_free(&s->ex);
@@ -197,8 +220,9 @@ static int sweep_new(sweep **out, int which, double cycles, size_t cap, hy_error
 
 static int sweep_prepare(void **state, const hy_anim_params *p, int which, hy_error *err)
 {
-    sweep *s;
-    int st = sweep_new(&s, which, which == 3 ? 3.0 : 4.0, (size_t)hy_anim_nframes(p) + 2, err);
+    sweep *s = NULL;
+    /* one solve per frame, plus the trail's γ that fall between frames */
+    int st = sweep_new(&s, which, which == 3 ? 3.0 : 4.0, (size_t)(TRAIL + 1) * ((size_t)hy_anim_nframes(p) + 2), err);
     if (st)
         return st;
     double D = p->duration;
@@ -220,6 +244,10 @@ static int sweep_prepare(void **state, const hy_anim_params *p, int which, hy_er
     return HY_OK;
 }
 
+/* Examples 2 and 3: the current γ's loop (the last period), a fading trail of
+ * the loops of the γ of 0.25, 0.5, ... s earlier, y*_u on that period (what
+ * the distance is measured against) and the limit loop y°_u.  Example 1:
+ * every period of y_γ coloured by time, with a colour bar saying so. */
 static int sweep_draw(void *state, const hy_anim_frame *f, hy_error *err)
 {
     sweep *s = state;
@@ -227,27 +255,57 @@ static int sweep_draw(void *state, const hy_anim_frame *f, hy_error *err)
     const double *y = cache_get(s, gamma, err);
     if (!y)
         return err ? err->code : HY_ENUM;
+    size_t i0 = s->which == 1 ? 0 : (size_t)((s->cycles - 1.0) / s->cycles * (NPTS - 1));
+    size_t n = NPTS - i0;
     double dist = 0;
-    for (size_t i = 0; i < NPTS; i++)
+    for (size_t i = i0; i < NPTS; i++)
         dist = fmax(dist, fabs(y[i] - s->ystar[i]));
-    hy_gl_effect e = {key_rgb, HY_CMAP_VIRIDIS, 0.05, 0.95, 1.0};
-    if (hy_gl_set_effect(f->gl, &e, err))
-        return HY_EINVAL;
-    hy_series sr[3] = {
-        {.x = s->uss, .y = s->yss, .n = NPTS, .colour = {.palette = HY_RGB_EXPLICIT, .rgb = {0.8, 0.8, 0.8}},
-         .width = 5.0, .label = "y^\\circ_u"},
-        {.x = s->u, .y = s->ystar, .n = NPTS, .style = HY_LINE_DASHED, .colour = {.palette = 0},
-         .width = 1.0, .label = "y^*_u"},
-        {.x = s->u, .y = y, .n = NPTS, .colour = {.palette = HY_RGB_EXPLICIT, .rgb = key_rgb}, .width = 1.8,
-         .label = "y_\\gamma (colour: time)"},
-    };
-    char title[160];
-    snprintf(title, sizeof title, "Example %d:  \\gamma = %.3g   \\|y_\\gamma - y^*_u\\|_\\infty = %.3g",
-             s->which, gamma, dist);
-    hy_axes ax = {.series = sr, .nseries = 3, .xlabel = s->which == 1 ? "u_\\gamma" : "u",
+    char title[200], gtxt[64], dtxt[64];
+    hy_markup_number(gtxt, sizeof gtxt, gamma, 3);
+    hy_markup_number(dtxt, sizeof dtxt, dist, 3);
+    hy_series sr[3 + TRAIL];
+    size_t ns = 0;
+    sr[ns++] = (hy_series){.x = s->uss, .y = s->yss, .n = NPTS,
+                           .colour = {.palette = HY_RGB_EXPLICIT, .rgb = {0.8, 0.8, 0.8}}, .width = 5.0,
+                           .label = "y^\\circ_u (limit loop)"};
+    if (s->which == 1) {
+        hy_gl_effect e = {key_rgb, HY_CMAP_VIRIDIS, 0.05, 0.95, 1.0};
+        if (hy_gl_set_effect(f->gl, &e, err))
+            return HY_EINVAL;
+        sr[ns++] = (hy_series){.x = s->u, .y = s->ystar, .n = NPTS, .style = HY_LINE_DASHED,
+                               .colour = {.palette = 0}, .width = 1.0, .label = "y^*_u"};
+        sr[ns++] = (hy_series){.x = s->u, .y = y, .n = NPTS, .colour = {.palette = HY_RGB_EXPLICIT, .rgb = key_rgb},
+                               .width = 1.8, .label = "y_\\gamma (colour: time)"};
+        snprintf(title, sizeof title, "Example 1:  \\gamma = %s   \\|y_\\gamma - y^*_u\\|_\\infty = %s", gtxt, dtxt);
+    } else {
+        /* the trail first (oldest, palest, at the bottom), the current loop on top */
+        static const hy_rgb verm = {0.835, 0.369, 0.0};
+        for (int k = TRAIL; k >= 1; k--) {
+            double tk = f->time - 0.25 * k;
+            if (tk < 0)
+                continue;
+            const double *yk = cache_get(s, hy_track_eval(&s->track, tk), err);
+            if (!yk)
+                return err ? err->code : HY_ENUM;
+            double fade = 0.35 + 0.13 * k;
+            hy_rgb c = {verm.r + fade * (1 - verm.r), verm.g + fade * (1 - verm.g), verm.b + fade * (1 - verm.b)};
+            sr[ns++] = (hy_series){.x = s->u + i0, .y = yk + i0, .n = n, .colour = {.palette = HY_RGB_EXPLICIT, .rgb = c},
+                                   .width = 1.2, .label = k == 2 ? "y_\\gamma of earlier \\gamma (paler: older)" : NULL};
+        }
+        sr[ns++] = (hy_series){.x = s->u + i0, .y = s->ystar + i0, .n = n, .style = HY_LINE_DASHED,
+                               .colour = {.palette = 0}, .width = 1.0, .label = "y^*_u"};
+        sr[ns++] = (hy_series){.x = s->u + i0, .y = y + i0, .n = n, .colour = {.palette = HY_RGB_EXPLICIT, .rgb = verm},
+                               .width = 2.2, .label = "y_\\gamma, current \\gamma"};
+        snprintf(title, sizeof title, "Example %d, last period:  \\gamma = %s   \\|y_\\gamma - y^*_u\\|_\\infty = %s",
+                 s->which, gtxt, dtxt);
+    }
+    hy_axes ax = {.series = sr, .nseries = ns, .xlabel = s->which == 1 ? "u_\\gamma" : "u",
                   .ylabel = "y", .title = title, .y = {s->ylo, s->yhi, 0, 0}, .legend = HY_LEGEND_BOTTOM_RIGHT};
     hy_figure fig = one_panel(f, &ax);
-    return hy_figure_draw_layers(&fig, &f->data, &f->overlay, err);
+    int st = hy_figure_draw_layers(&fig, &f->data, &f->overlay, err);
+    if (!st && s->which == 1)
+        colour_bar(f, &fig, 0.05, 0.95, "colour of y_\\gamma: time", "t = 0", "t = 4T");
+    return st;
 }
 
 static int sweep1_prepare(void **st, const hy_anim_params *p, hy_error *e) { return sweep_prepare(st, p, 1, e); }
@@ -328,7 +386,7 @@ static int kcycle_draw(void *state, const hy_anim_frame *f, hy_error *err)
         {.x = k->base.uss, .y = k->base.yss, .n = NPTS, .colour = {.palette = 0}, .width = 1.2,
          .label = "y^\\circ_u"},
         {.x = k->u + start, .y = k->y + start, .n = n - start, .colour = {.palette = HY_RGB_EXPLICIT, .rgb = key_rgb},
-         .width = 2.6, .label = "y^*_{u,k} (trail)"},
+         .width = 2.6, .label = "y^*_{u,k} (trail, colour: k)"},
     };
     hy_mark mk = {k->u[head], k->y[head], HY_MARKER_CIRCLE, 7, 1, {.palette = 6}};
     char title[160];
@@ -337,7 +395,13 @@ static int kcycle_draw(void *state, const hy_anim_frame *f, hy_error *err)
     hy_axes ax = {.series = sr, .nseries = 2, .marks = &mk, .nmarks = 1, .xlabel = "u", .ylabel = "y",
                   .title = title, .y = {k->ylo, k->yhi, 0, 0}, .legend = HY_LEGEND_BOTTOM_RIGHT};
     hy_figure fig = one_panel(f, &ax);
-    return hy_figure_draw_layers(&fig, &f->data, &f->overlay, err);
+    int st = hy_figure_draw_layers(&fig, &f->data, &f->overlay, err);
+    if (!st) {   /* the trail's colour is the cycle index: 0.15 + 0.8 k / kmax of viridis */
+        char right[32];
+        snprintf(right, sizeof right, "k = %d", k->kmax);
+        colour_bar(f, &fig, 0.15, 0.95, "colour of the trail: cycle k", "k = 0", right);
+    }
+    return st;
 }
 
 static int kcycle2_prepare(void **st, const hy_anim_params *p, hy_error *e) { return kcycle_prepare(st, p, 2, e); }
@@ -433,11 +497,22 @@ static int ex4_draw(void *state, const hy_anim_frame *f, hy_error *err)
     hy_mark mk[2] = {{has ? lp->u_start : 0, has ? lp->y_start : 0, HY_MARKER_CIRCLE, 8, 0, {.palette = 5}},
                      {has ? lp->u_start : 0, has ? lp->y_close : 0, HY_MARKER_SQUARE, 8, 0, {.palette = 5}}};
     char title[200];
-    snprintf(title, sizeof title, "Example 4:  \\sigma_0 = %.2f   u_{min,2} = %.3f   minor-loop area %.4f"
-             "   (major %.4f)", c->sigma0, c->umin2, has ? lp->area : 0.0, c->L.major.area);
+    char area[48], major[48];
+    hy_markup_number(area, sizeof area, has ? lp->area : 0.0, 3);
+    hy_markup_number(major, sizeof major, c->L.major.area, 3);
+    snprintf(title, sizeof title, "Example 4:  \\sigma_0 = %.2f   u_{min,2} = %.3f   minor-loop area %s"
+             "   (major %s)", c->sigma0, c->umin2, area, major);
     hy_axes ax = {.series = sr, .nseries = 2, .marks = mk, .nmarks = has ? 2 : 0, .xlabel = "u",
                   .ylabel = "y^\\circ_u", .title = title, .x = {-0.05, 1.55, 0, 0}, .y = {-2.2, 2.2, 0, 0},
                   .legend = HY_LEGEND_BOTTOM_RIGHT};
+    if (has) {   /* an inset that follows the minor loop (a thick line at full scale when σ0 is small) */
+        double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
+        extent(c->mu, NPTS, &xlo, &xhi);
+        extent(c->my, NPTS, &ylo, &yhi);
+        double px = 0.12 * (xhi - xlo) + 1e-3, py = 0.12 * (yhi - ylo) + 1e-3;
+        ax.zoom_x = (hy_range){xlo - px, xhi + px, 0, 0};
+        ax.zoom_y = (hy_range){ylo - py, yhi + py, 0, 0};
+    }
     hy_figure fig = one_panel(f, &ax);
     st = hy_figure_draw_layers(&fig, &f->data, &f->overlay, err);
     hy_loops_free(&c->L);
@@ -451,77 +526,6 @@ static const char *ex4_describe(void *state)
     snprintf(x->base.desc, sizeof x->base.desc, "closed form (Theorem A) per frame, 0 ODE solves");
     return x->base.desc;
 }
-
-/* ---- ribbon (d): loops of a γ sweep along log γ, camera orbiting ---- */
-
-#define RIBBON_LOOPS 32
-#define RIBBON_PTS (NPTS / 6)    /* every other point of the last period: llvmpipe pays per triangle */
-
-static int ribbon_prepare(void **state, const hy_anim_params *p, hy_error *err)
-{
-    (void)p;
-    sweep *s;
-    int st = sweep_new(&s, 3, 3.0, RIBBON_LOOPS, err);
-    if (st)
-        return st;
-    s->nloops = RIBBON_LOOPS;
-    if (!(s->ribbon = malloc((size_t)RIBBON_LOOPS * RIBBON_PTS * 3 * sizeof(double)))) {
-        sweep_release(s);
-        return hy_error_set(err, HY_ENOMEM, "out of memory for the ribbon");
-    }
-    size_t last = NPTS / 3, off = NPTS - last;  /* the last of three periods */
-    for (int i = 0; i < RIBBON_LOOPS && !st; i++) {
-        double gamma = pow(10.0, 3.0 * i / (RIBBON_LOOPS - 1));
-        const double *y = cache_get(s, gamma, err);
-        if (!y) {
-            st = err ? err->code : HY_ENUM;
-            break;
-        }
-        for (size_t j = 0; j < RIBBON_PTS; j++) {
-            double *q = s->ribbon + 3 * ((size_t)i * RIBBON_PTS + j);
-            size_t jj = off + (j * (last - 1)) / (RIBBON_PTS - 1);
-            q[0] = (s->u[jj] - 0.75) / 0.75;
-            q[1] = 0.45 * y[jj];
-            q[2] = 1.6 * ((double)i / (RIBBON_LOOPS - 1) - 0.5);
-        }
-    }
-    if (st) {
-        sweep_release(s);
-        return st;
-    }
-    *state = s;
-    return HY_OK;
-}
-
-static int ribbon_draw(void *state, const hy_anim_frame *f, hy_error *err)
-{
-    sweep *s = state;
-    hy_gl_ribbon r = {.pts = s->ribbon, .nloops = s->nloops, .npts = RIBBON_PTS, .cmap = HY_CMAP_VIRIDIS,
-                      .azimuth = -0.9 + 1.8 * hy_ease(HY_EASE_SMOOTH, f->progress), .elevation = 0.45,
-                      .distance = 3.6};
-    int st = hy_gl_draw_ribbon(f->gl, &r, err);
-    if (st)
-        return st;
-    const hy_canvas *o = &f->overlay;
-    double H = f->height / f->scale;
-    hy_rgb ink = {0.1, 0.1, 0.1};
-    /* a γ axis: labels along the ribbon's depth below its right edge,
-     * projected by the ribbon's camera */
-    for (int d = 0; d <= 3; d++) {
-        char lab[32];
-        double px, py, q[3] = {1.1, -1.0, 1.6 * (d / 3.0 - 0.5)};
-        snprintf(lab, sizeof lab, "\xce\xb3 = %g", pow(10.0, d));
-        if (hy_gl_ribbon_project(f->gl, &r, q, &px, &py))
-            o->ops->text(o->ctx, px / f->scale, py / f->scale, lab, 10, 0, 0, ink);
-    }
-    o->ops->text(o->ctx, 16, 26, "Example 3: loops of y against u for \xce\xb3 = 1 \xe2\x80\xa6 1000", 13, 0, 0, ink);
-    o->ops->text(o->ctx, 16, 44, "stacked along log \xce\xb3 (purple: \xce\xb3 = 1, yellow: \xce\xb3 = 1000)",
-                 10, 0, 0, ink);
-    o->ops->text(o->ctx, 16, H - 14, "lit with depth; camera orbiting", 9, 1, 0, (hy_rgb){0.4, 0.4, 0.4});
-    return HY_OK;
-}
-
-static const char *ribbon_describe(void *state) { return sweep_describe(state); }
 
 /* ---- the list ---- */
 
@@ -538,8 +542,6 @@ static const anim_scene scenes[] = {
      6.0, kcycle3_prepare, kcycle_draw, kcycle_describe, sweep_release},
     {"minor-loop-ex4", "Example 4 (Figs. 15-17): the minor loop as sigma0 goes 1 -> 6 and u_min,2 0.2 -> 0.5",
      6.0, ex4_prepare, ex4_draw, ex4_describe, sweep_release},
-    {"ribbon", "Example 3: loops of a gamma sweep stacked along log gamma as a lit 3-D ribbon, camera orbiting",
-     6.0, ribbon_prepare, ribbon_draw, ribbon_describe, sweep_release},
 };
 
 const anim_scene *const *anim_scene_list(void)

@@ -199,7 +199,7 @@ static int render_one(run *r, worker *w, long i, hy_error *err)
     cairo_rectangle_t ext = {0, 0, W, H};
     cairo_surface_t *rec = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &ext);
     cairo_t *cr = cairo_create(rec);
-    double k = p->scale > 0 ? p->scale : H / 360.0;
+    double k = p->scale > 0 ? p->scale : H / HY_ANIM_POINTS_HIGH;
     cairo_scale(cr, k, k);
     hy_cairo_canvas cc;
     hy_anim_frame f = {i, r->nframes, (double)i / p->fps, p->duration,

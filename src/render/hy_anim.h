@@ -59,6 +59,11 @@ int hy_anim_quality(const char *name, int *width, int *height, double *fps, hy_e
 /* The preset names, NULL-terminated. */
 const char *const *hy_anim_quality_names(void);
 
+/* Frames are figures HY_ANIM_POINTS_HIGH points high (480 x 270 pt at
+ * 16:9), scaled to the frame: text and line widths grow with the frame
+ * height, and 9 pt text is 1/30 of it (24 px at 720p, readable projected). */
+#define HY_ANIM_POINTS_HIGH 270.0
+
 /* ---- running ---- */
 
 typedef struct hy_anim_frame {
@@ -78,7 +83,7 @@ typedef struct hy_anim_params {
     const char *outdir;       /* frames go to outdir/name/ (created) */
     const char *name;
     int width, height;
-    double scale;             /* pixels per point; 0 -> height / 360 (figures ~640 x 360 pt) */
+    double scale;             /* pixels per point; 0 -> height / HY_ANIM_POINTS_HIGH */
     double fps, duration;     /* frames = round(duration * fps), at least 1 */
     long first, last;         /* frames [first, last); last < 0: to the end */
     int jobs;                 /* threads, each with its own GL context; 0 -> 1 */

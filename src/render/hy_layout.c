@@ -1067,6 +1067,10 @@ static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
         place_texts(p);
         if (legend_free_spot(p, bw, bh, &x, &y))
             continue;
+        /* outside only if the frame keeps most of its width; else the least covering spot inside */
+        double extra = LEGEND_GAP + bw + OUTER - p->mr;
+        if (extra > 0.0 && p->w - extra < maxd(0.55 * p->w, 8.0 * p->fs))
+            continue;
         p->legend_outside = 1;
         p->mr = maxd(p->mr, LEGEND_GAP + bw + OUTER);
         moved = 1;
@@ -1132,4 +1136,38 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
 int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err)
 {
     return hy_figure_draw_layers(f, cv, cv, err);
+}
+
+int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err)
+{
+    double W, H, dpi;
+    hy__figure_size(f, &W, &H, &dpi);
+    int rows = f->nrows > 0 ? f->nrows : 1, cols = f->ncols > 0 ? f->ncols : 1;
+    double fs = f->font_size > 0 ? f->font_size : 9.0;
+    if (!f->axes || index < 0 || index >= rows * cols || rows * cols > 64 || !(fs < 1000))
+        return hy_error_set(err, HY_EINVAL, "no panel %d in a %d x %d figure", index, rows, cols);
+    size_t ntexts = 0;
+    for (int i = 0; i < rows * cols; i++)
+        ntexts += f->axes[i].ntexts;
+    panel *ps = calloc((size_t)(2 * rows * cols), sizeof *ps);
+    text_place *tp = calloc(ntexts + 1, sizeof *tp);
+    int st = HY_OK;
+    if (!ps || !tp)
+        st = hy_error_set(err, HY_ENOMEM, "out of memory laying out %d panels", rows * cols);
+    for (size_t i = 0, k = 0; !st && i < (size_t)(rows * cols); k += f->axes[i].ntexts, i++) {
+        panel *p = &ps[i];
+        p->tplace = tp + k;
+        p->inset_panel = &ps[(size_t)(rows * cols) + i];
+        p->ax = &f->axes[i], p->cv = p->dv = cv, p->fs = fs;
+        p->xlog = p->ax->x.log, p->ylog = p->ax->y.log;
+        p->cx = (double)(i % (size_t)cols) * W / cols, p->cy = (double)(i / (size_t)cols) * H / rows;
+        p->cw = W / cols, p->ch = H / rows;
+    }
+    if (!st)
+        st = layout_grid(ps, rows, cols, err);
+    if (!st)
+        rect[0] = ps[index].x0, rect[1] = ps[index].y0, rect[2] = ps[index].w, rect[3] = ps[index].h;
+    free(tp);
+    free(ps);
+    return st;
 }

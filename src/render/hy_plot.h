@@ -135,6 +135,11 @@ int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err);
 int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *overlay,
                           hy_error *err);
 
+/* The frame (plot area) of panel index as hy_figure_draw would place it on
+ * cv (which measures text): x, y, w, h in points, y down; for drawing beside
+ * the data (a colour bar).  HY_EINVAL for a bad index or figure. */
+int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err);
+
 /* Renders f as HY_FORMAT_SVG, _PDF or _PNG into path, through a temporary
  * file in the same directory renamed on success: on failure (HY_EIO with the
  * path in the message, HY_EINVAL, HY_ENOMEM) no file is left behind.

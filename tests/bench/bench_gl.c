@@ -199,6 +199,6 @@ int main(void)
     bench_run("gamma-sweep-ex3", 1280, 720, 2);
     bench_run("gamma-sweep-ex3", 1280, 720, 1);
     bench_run("minor-loop-ex4", 1280, 720, 2);
-    bench_run("ribbon", 1280, 720, 2);
+    bench_run("gamma-sweep-ex3", 1280, 720, 2);
     return 0;
 }
