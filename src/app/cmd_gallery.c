@@ -21,7 +21,7 @@
 #include "scene_run.h"
 
 static const char gallery_help[] =
-    "usage: hystviz gallery [-j N] [--scenes DIR] [-o DIR] [--force] [--data] [--no-times] [--quiet]\n"
+    "usage: hystviz gallery [-j N] [--scenes DIR] [-o DIR] [--force] [--data] [--times] [--quiet]\n"
     "\n"
     "Renders every figure scene DIR/*.scene (files without a [series] section,\n"
     "such as style.scene, are includes, not figures) into the gallery directory,\n"
@@ -36,7 +36,8 @@ static const char gallery_help[] =
     "  -o, --output DIR   the gallery directory (default: gallery)\n"
     "  --force            render every scene, changed or not\n"
     "  --data             also write NAME.csv (hystviz data) per figure\n"
-    "  --no-times         leave render times out of index.html (byte-stable index)\n"
+    "  --times            add render times to index.html (off by default: the\n"
+    "                     committed page stays byte-stable; --no-times is the default)\n"
     "  -q, --quiet        print only errors (no progress, no summary)\n"
     "  -h, --help         this text\n";
 
@@ -595,7 +596,8 @@ static const char index_css[] =
     "nav{margin:0 0 1.2em;line-height:1.7}nav a{margin-right:1em;white-space:nowrap}\n"
     "main{display:grid;grid-template-columns:repeat(auto-fill,minmax(26em,1fr));gap:1.2em}\n"
     ".fig{border:1px solid #ccc;border-radius:4px;padding:.8em;background:#fff}\n"
-    ".fig h2{font-size:1.05em;margin:0 0 .5em}\n"
+    ".fig h2{font-size:1.05em;margin:0 0 .5em}.fig h2 small{font-weight:normal;color:#666}\n"
+    "h2.part{margin:1.4em 0 .6em}.cap{margin:.2em 0 .6em}\n"
     ".fig img{max-width:100%;height:auto;border:1px solid #eee}\n"
     ".links a{margin-right:.6em}\n"
     ".err{font-size:.9em;color:#444}\n"
@@ -648,13 +650,91 @@ static void index_links(FILE *f, const char *outputs)
     free(list);
 }
 
+/* Where a scene goes in the catalogue, from its file name: the minor-loops
+ * paper's figures (figNN_), the Bouc-Wen benchmark's (bw_figNx_), figures
+ * beyond the papers, then animations (anim_); in file-name order within. */
+static int catalogue_part(const char *file)
+{
+    if (!strncmp(file, "fig", 3) && file[3] >= '0' && file[3] <= '9')
+        return 0;
+    if (!strncmp(file, "bw_fig", 6))
+        return 1;
+    if (!strncmp(file, "anim_", 5))
+        return 3;
+    return 2;
+}
+
+static const char *const part_title[4] = {
+    "Minor loops of the Dahl and LuGre models (Ikhouane, Ma\xc3\xb1osa, Pujol)",
+    "The Bouc-Wen benchmark (No\xc3\xabl, Schoukens)", "Beyond the papers", "Animations"};
+
+/* The heading of a figure: "Fig. 4", "Fig. 1a", or the output name. */
+static void figure_heading(FILE *f, const job *j)
+{
+    const char *p = j->file + (catalogue_part(j->file) == 1 ? 6 : 3);
+    if (catalogue_part(j->file) <= 1) {
+        int num = atoi(p);
+        fprintf(f, "Fig. %d", num);
+        while (*p >= '0' && *p <= '9')
+            p++;
+        if (*p >= 'a' && *p <= 'z' && p[1] == '_')
+            fputc(*p, f);
+        fputs(" <small>", f);
+        htmls(f, j->name);
+        fputs("</small>", f);
+    } else
+        htmls(f, j->name);
+}
+
+/* The scene's [figure] caption (its one-line description), or NULL: read from
+ * the scene text itself (a caption is not inherited from an include). */
+static char *scene_caption(const job *j)
+{
+    size_t n = 0;
+    char *text = read_text(j->path, &n), *cap = NULL;
+    int in_figure = 0;
+    for (char *line = text, *next; line && *line; line = next) {
+        next = strchr(line, '\n');
+        if (next)
+            *next++ = '\0';
+        while (*line == ' ' || *line == '\t')
+            line++;
+        if (*line == '[')
+            in_figure = !strncmp(line, "[figure]", 8);
+        else if (in_figure && !strncmp(line, "caption", 7)) {
+            char *q = strchr(line, '"'), *e = q ? strrchr(q + 1, '"') : NULL;
+            if (q && e && e > q) {
+                *e = '\0';
+                cap = dupstr(q + 1);
+                break;
+            }
+        }
+    }
+    free(text);
+    return cap;
+}
+
 static void index_figure(FILE *f, const opts *o, const job *j)
 {
     fputs("<section class=\"fig\" id=\"", f);
     url(f, j->file);
     fputs("\">\n<h2>", f);
-    htmls(f, j->name);
+    figure_heading(f, j);
     fputs("</h2>\n", f);
+    char *cap = scene_caption(j);
+    if (cap) {
+        fputs("<p class=\"cap\">", f);
+        htmls(f, cap);
+        fputs("</p>\n", f);
+        free(cap);
+    }
+    if (catalogue_part(j->file) == 3) {
+        fputs("<p class=\"err\">Animation: the image is its last frame (the poster). Render the frames or a video "
+              "with <code>hystviz animate scenes/", f);
+        htmls(f, j->file);
+        fputs(" --video mp4</code>; the built-in animations are listed by <code>hystviz animate --list</code>.</p>\n",
+              f);
+    }
     if (j->state == J_FAILED) {
         fputs("<p class=\"failed\">render failed: ", f);
         htmls(f, j->msg);
@@ -720,19 +800,36 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
     if (o->times)
         fputs(" Render times are <a href=\"#times\">at the end</a>.", f);
     fputs("</p>\n<nav>\n", f);
-    for (size_t i = 0; i < n; i++)
-        if (jobs[i].state != J_SKIP) {
-            fputs("<a href=\"#", f);
-            url(f, jobs[i].file);
-            fputs("\">", f);
-            htmls(f, jobs[i].name);
-            fputs("</a>\n", f);
-        }
-    fputs("</nav>\n<main>\n", f);
-    for (size_t i = 0; i < n; i++)
-        if (jobs[i].state != J_SKIP)
-            index_figure(f, o, &jobs[i]);
-    fputs("</main>\n", f);
+    for (int part = 0; part < 4; part++)
+        for (size_t i = 0; i < n; i++)
+            if (jobs[i].state != J_SKIP && catalogue_part(jobs[i].file) == part) {
+                fputs("<a href=\"#", f);
+                url(f, jobs[i].file);
+                fputs("\">", f);
+                htmls(f, jobs[i].name);
+                fputs("</a>\n", f);
+            }
+    fputs("</nav>\n", f);
+    for (int part = 0; part < 4; part++) {
+        int any = 0;
+        for (size_t i = 0; i < n; i++)
+            any |= jobs[i].state != J_SKIP && catalogue_part(jobs[i].file) == part;
+        if (!any)
+            continue;
+        fputs("<h2 class=\"part\">", f);
+        htmls(f, part_title[part]);
+        fputs("</h2>\n", f);
+        if (part == 0)
+            fputs("<p>Fig. 1 of the paper is the hysteresis loop of a magnetic system (from its reference [10]) "
+                  "under the input of Fig. 2: a major loop with a minor loop inside.  hystviz has no magnetic model, "
+                  "so that figure is not redrawn; its message, a minor loop inside the major loop under a bimodal "
+                  "input of Fig. 2's shape, is Figs. 15-17 below (LuGre, Example 4).</p>\n", f);
+        fputs("<main>\n", f);
+        for (size_t i = 0; i < n; i++)
+            if (jobs[i].state != J_SKIP && catalogue_part(jobs[i].file) == part)
+                index_figure(f, o, &jobs[i]);
+        fputs("</main>\n", f);
+    }
     if (o->times)
         index_times(f, jobs, n, count, total);
     fputs("</body>\n</html>\n", f);
@@ -746,7 +843,7 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
 static int parse_opts(int argc, char **argv, opts *o)
 {
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    *o = (opts){"scenes", "gallery", ncpu > 0 ? ncpu : 1, 0, 0, 1, 0, 0};
+    *o = (opts){"scenes", "gallery", ncpu > 0 ? ncpu : 1, 0, 0, 0, 0, 0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -770,6 +867,8 @@ static int parse_opts(int argc, char **argv, opts *o)
             o->data = 1;
         else if (!strcmp(a, "--no-times"))
             o->times = 0;
+        else if (!strcmp(a, "--times"))
+            o->times = 1;
         else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
             o->quiet = 1;
         else {
@@ -827,6 +926,30 @@ static void remove_stale(const opts *o, const job *jobs, size_t n)
     }
 }
 
+/* Removes the outputs the manifest lists for scenes no longer in the scene
+ * directory (a deleted or renamed scene), unless a current figure writes them. */
+static void remove_deleted(const opts *o, const job *jobs, size_t n, const entry *man, size_t nman)
+{
+    for (size_t m = 0; m < nman; m++) {
+        int present = 0;
+        for (size_t i = 0; i < n && !present; i++)
+            present = !strcmp(jobs[i].file, man[m].scene);
+        if (present)
+            continue;
+        char *list = dupstr(man[m].outputs), *save = NULL;
+        for (char *t = list ? strtok_r(list, " ", &save) : NULL; t; t = strtok_r(NULL, " ", &save)) {
+            int claimed = 0;
+            for (size_t k = 0; k < n && !claimed; k++)
+                claimed = jobs[k].have_now && has_word(jobs[k].now.outputs, t);
+            char *path = claimed || strchr(t, '/') ? NULL : join(o->out, t);
+            if (path)
+                unlink(path);
+            free(path);
+        }
+        free(list);
+    }
+}
+
 /* Plans, renders, writes the manifest and the index; returns the exit status. */
 static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
 {
@@ -852,6 +975,7 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
         }
     }
     remove_stale(o, jobs, n);
+    remove_deleted(o, jobs, n, man, nman);
     char *mpath = join(o->out, ".manifest");
     if (!mpath || manifest_write(mpath, jobs, n)) {
         fprintf(stderr, "hystviz gallery: cannot write '%s/.manifest': %s\n", o->out, strerror(errno));

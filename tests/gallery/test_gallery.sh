@@ -192,7 +192,21 @@ grep -o '<[^>]*>' "$G/index.html" | awk '
 if command -v xmllint > /dev/null 2>&1; then # the index is also well-formed XML
     xmllint --noout "$G/index.html" && ok || bad "index.html is not well-formed"
 fi
-"$hv" gallery --scenes "$S" -o "$tmp/t" -q && grep -q '<section id="times">' "$tmp/t/index.html" && ok || bad "index: times"
+"$hv" gallery --scenes "$S" -o "$tmp/t" -q --times && grep -q '<section id="times">' "$tmp/t/index.html" && ok || bad "index: times"
+"$hv" gallery --scenes "$S" -o "$tmp/t2" -q && ! grep -q ' s</td>' "$tmp/t2/index.html" && ok || bad "index: render times by default"
+
+# 7b. the catalogue: a paper's figure is headed by its number, its caption
+#     printed (escaped), and it comes before figures beyond the papers; a
+#     deleted scene's outputs go (the manifest knows them)
+printf 'include "look.scene"\n[figure]\nkind = input\ncaption = "input <u> & more"\n[series u]\ndata = input\n[output]\nname = fig99_gone\n' > "$S/fig99_gone.scene"
+run catalogue
+[ -s "$G/fig99_gone.svg" ] && grep -q '<h2>Fig. 99 <small>fig99_gone</small></h2>' "$G/index.html" && ok || bad "index: no 'Fig. 99' heading"
+grep -q '<p class="cap">input &lt;u&gt; &amp; more</p>' "$G/index.html" && ok || bad "index: caption missing or not escaped"
+[ "$(grep -n 'id="fig99_gone.scene"' "$G/index.html" | cut -d: -f1)" -lt "$(grep -n 'id="a_loop.scene"' "$G/index.html" | cut -d: -f1)" ] &&
+    ok || bad "index: the paper's figure does not come first"
+rm "$S/fig99_gone.scene"
+run deleted
+[ ! -e "$G/fig99_gone.svg" ] && [ ! -e "$G/fig99_gone.png" ] && [ -s "$G/a_loop.svg" ] && ok || bad "deleted scene's outputs kept: $(ls "$G")"
 
 # 8. an output name used twice is an error for the second scene only; --data; options
 printf 'include "look.scene"\n[figure]\nkind = input\n[series u]\ndata = input\n[output]\nname = a_loop\n' > "$S/e_dup.scene"
