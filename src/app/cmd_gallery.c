@@ -666,7 +666,7 @@ static int catalogue_part(const char *file)
 
 static const char *const part_title[4] = {
     "Minor loops of the Dahl and LuGre models (Ikhouane, Ma\xc3\xb1osa, Pujol)",
-    "The Bouc-Wen benchmark (No\xc3\xabl, Schoukens)", "Beyond the papers", "Animations"};
+    "The Bouc-Wen benchmark (No\xc3\xabl, Schoukens)", "Beyond the papers' figures", "Animations"};
 
 /* The heading of a figure: "Fig. 4", "Fig. 1a", or the output name. */
 static void figure_heading(FILE *f, const job *j)
