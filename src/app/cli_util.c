@@ -1,4 +1,4 @@
-/* cli_util.c: option parsing and atomic output helpers for the hystviz command. */
+/* cli_util.c: option parsing and exit statuses for the hystviz commands. */
 #include "cli_util.h"
 
 #include <errno.h>
@@ -114,35 +114,19 @@ int cli_model_build(const cli_model *cm, hy_model *m)
     return 0;
 }
 
-FILE *cli_out_open(const char *path, char *tmp, size_t tmpsz)
+int cli_exit_status(int code)
 {
-    if (!path || strcmp(path, "-") == 0) {
-        tmp[0] = '\0';
-        return stdout;
-    }
-    snprintf(tmp, tmpsz, "%s.tmp.%ld", path, (long)getpid());
-    FILE *f = fopen(tmp, "w");
-    if (!f)
-        fprintf(stderr, "hystviz: %s: cannot write: %s\n", path, strerror(errno));
-    return f;
+    return code == HY_OK ? 0 : code == HY_EINVAL ? 2 : 1;
 }
 
-int cli_out_close(FILE *f, const char *path, const char *tmp)
+int cli_stdout_status(const char *cmd, int rc)
 {
-    if (!tmp[0]) {
-        if (fflush(f) || ferror(f)) {
-            fprintf(stderr, "hystviz: error writing to standard output: %s\n", strerror(errno));
-            return -1;
-        }
-        return 0;
+    int e = fflush(stdout) ? errno : 0;
+    if (!e && ferror(stdout))
+        e = EIO;
+    if (e && rc == 0) {
+        fprintf(stderr, "hystviz%s%s: cannot write standard output: %s\n", cmd ? " " : "", cmd ? cmd : "", strerror(e));
+        return 1;
     }
-    int bad = ferror(f);
-    if (fclose(f))
-        bad = 1;
-    if (bad || rename(tmp, path)) {
-        fprintf(stderr, "hystviz: %s: write failed: %s (nothing written)\n", path, strerror(errno ? errno : EIO));
-        remove(tmp);
-        return -1;
-    }
-    return 0;
+    return rc;
 }

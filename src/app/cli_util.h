@@ -1,5 +1,6 @@
 /* cli_util.h: small helpers shared by the hystviz subcommands (strict number
- * parsing, model options, atomic output files). */
+ * parsing, model options, exit statuses).  Files are written through
+ * hy_out.h. */
 #ifndef HY_CLI_UTIL_H
 #define HY_CLI_UTIL_H
 
@@ -24,9 +25,17 @@ int cli_model_option(cli_model *cm, int argc, char **argv, int *i);
 /* Builds and validates the model; prints the message and returns nonzero on error. */
 int cli_model_build(const cli_model *cm, hy_model *m);
 
-/* Opens PATH.tmp.PID for writing ("-" or NULL: stdout). */
-FILE *cli_out_open(const char *path, char *tmp, size_t tmpsz);
-/* Closes and renames into place; on any error removes the temp file, prints, returns -1. */
-int cli_out_close(FILE *f, const char *path, const char *tmp);
+/* Exit statuses of every command (README "Exit status"): 0 ok, 1 failure
+ * while running (I/O, computation), 2 usage error or invalid input (bad
+ * option, bad scene, refused parameter), 3 feature not built. */
+enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2, CLI_NOT_BUILT = 3 };
+
+/* The exit status for an hy_error code: HY_EINVAL 2, any other failure 1. */
+int cli_exit_status(int code);
+
+/* Flushes standard output; when that (or an earlier write) failed and rc is
+ * 0, prints "hystviz CMD: cannot write standard output: reason" and returns
+ * 1, else rc.  Every command's last step (main). */
+int cli_stdout_status(const char *cmd, int rc);
 
 #endif

@@ -1,10 +1,11 @@
 /* cmd_boucwen.c: `hystviz boucwen`: Table 2 and synthesised benchmark data
  * (seeds/001, Sections 2-5: signal, 20x upsampling, Newmark, decimation,
- * output noise), written as CSV t,u,y through a temporary file. */
+ * output noise), written as CSV t,u,y through the output writer (hy_out). */
 #include "cmd_boucwen.h"
 
 #include "hy_boucwen.h"
 #include "hy_config.h"
+#include "hy_out.h"
 #include "hy_signal.h"
 
 #include <errno.h>
@@ -90,12 +91,12 @@ static const char usage_data[] =
     "  --set-param N=V      change a parameter: m c k alpha beta gamma delta nu\n"
     "                       (Table 1: 2 10 5e4 5e4 1e3 0.8 -1.1 1)\n"
     "  -o FILE              output file (written to a temporary name, then\n"
-    "                       renamed); default standard output\n"
+    "                       renamed; '-' or none: standard output)\n"
     "  -h, --help           this text\n"
     "\n"
     "Options take their value as the next argument or after '=' (--fs=750).\n"
-    "Exit status: 0 done, 1 computation or output failed, 2 usage error (nothing\n"
-    "written).  Scenes draw the same system: [model] kind = boucwen (docs/SCENES.md).\n";
+    "Exit status: 0 done, 1 computation or output failed, 2 usage error or a\n"
+    "refused parameter (nothing written).  Scenes draw the same system: [model] kind = boucwen (docs/SCENES.md).\n";
 
 typedef struct opts {
     const char *signal, *input, *data_dir, *out;
@@ -256,7 +257,7 @@ static int cmd_table2(const opts *o)
     hy_error err;
     if (hy_boucwen_table2(&o->p, &md, &err)) {
         fprintf(stderr, "hystviz boucwen: %s\n", err.msg);
-        return 1;
+        return err.code == HY_EINVAL ? 2 : 1;
     }
     printf("Table 2: linear modal parameters (linearised stiffness k + alpha)\n");
     printf("%-28s %8s  %s\n", "parameter", "value", "full precision");
@@ -502,45 +503,11 @@ static int make_signal(opts *o, series *s, hy_error *err)
                         o->signal);
 }
 
-static int write_rows(FILE *f, const series *s)
+static void write_rows(FILE *f, const series *s)
 {
     fprintf(f, "t,u,y\n");
     for (size_t i = 0; i < s->n; i++)
         fprintf(f, "%.17g,%.17g,%.17g\n", s->t[i], s->u[i], s->y[i]);
-    return ferror(f) ? -1 : 0;
-}
-
-/* Writes s to path through path.tmpXXXXXX and rename(); "-" or NULL: stdout. */
-static int write_csv(const char *path, const series *s, hy_error *err)
-{
-    if (!path || strcmp(path, "-") == 0)
-        return write_rows(stdout, s) || fflush(stdout)
-                   ? hy_error_set(err, HY_EIO, "writing standard output failed")
-                   : HY_OK;
-    size_t len = strlen(path) + 16;
-    char *tmp = malloc(len);
-    if (!tmp)
-        return hy_error_set(err, HY_ENOMEM, "out of memory");
-    snprintf(tmp, len, "%s.tmpXXXXXX", path);
-    int fd = mkstemp(tmp);
-    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
-    int rc = HY_OK;
-    if (!f) {
-        rc = hy_error_set(err, HY_EIO, "%s: cannot create a temporary file next to it: %s", path, strerror(errno));
-        if (fd >= 0)
-            close(fd);
-    } else {
-        int bad = write_rows(f, s);
-        bad |= fclose(f) != 0;
-        if (bad)
-            rc = hy_error_set(err, HY_EIO, "%s: write failed: %s", tmp, strerror(errno));
-        else if (rename(tmp, path) != 0)
-            rc = hy_error_set(err, HY_EIO, "%s: cannot rename into place: %s", path, strerror(errno));
-    }
-    if (rc && fd >= 0)
-        unlink(tmp);
-    free(tmp);
-    return rc;
 }
 
 static int cmd_data(opts *o)
@@ -559,8 +526,18 @@ static int cmd_data(opts *o)
     if (o->input && strcmp(o->signal, "file") != 0)
         return bad_usage("--input goes with --signal file, not '%s'", o->signal);
     int rc = hy_boucwen_params_validate(&o->p, &err);
-    if (!rc)
-        rc = make_signal(o, &s, &err);
+    if (rc) {
+        fprintf(stderr, "hystviz boucwen: %s\n", err.msg);
+        return 2;
+    }
+    /* the output is opened first: a directory or a missing folder fails before
+     * the synthesis, and a failed synthesis leaves nothing (hy_out.h) */
+    hy_out out;
+    if (hy_out_open(&out, o->out ? o->out : "-", 0, &err)) {
+        fprintf(stderr, "hystviz boucwen: %s\n", err.msg);
+        return 1;
+    }
+    rc = make_signal(o, &s, &err);
     if (!rc) {
         int exact = strcmp(o->signal, "validation") == 0 || vsweep; /* the data sets: noiseless */
         double rms = isnan(o->noise) ? (exact ? 0.0 : 8e-6) : o->noise;
@@ -568,8 +545,11 @@ static int cmd_data(opts *o)
         rc = hy_signal_add_noise(s.y, s.n, rms, o->fs / 2, o->fs,
                                  o->seed ^ 0x6e6f697365ULL, &err);
     }
-    if (!rc)
-        rc = write_csv(o->out, &s, &err);
+    if (!rc) {
+        write_rows(hy_out_file(&out), &s);
+        rc = hy_out_commit(&out, &err);
+    }
+    hy_out_abort(&out);
     series_free(&s);
     if (rc) {
         fprintf(stderr, "hystviz boucwen: %s\n", err.msg);

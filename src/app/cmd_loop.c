@@ -12,6 +12,7 @@
 #include "hy_limit.h"
 #include "hy_loops.h"
 #include "hy_ode.h"
+#include "hy_out.h"
 
 static const char loop_help[] =
     "usage: hystviz loop [MODEL OPTIONS] --input SPEC [--points N] [--k K]\n"
@@ -132,14 +133,14 @@ static int compute(const loop_args *a, const hy_model *m, const hy_input *in, do
         }
         if (rc) {
             fprintf(stderr, "hystviz loop: %s\n", err.msg);
-            return 1;
+            return cli_exit_status(rc);
         }
         return 0;
     }
     hy_steady st;
     if (hy_steady_init(&st, m, in, &err)) {
         fprintf(stderr, "hystviz loop: %s\n", err.msg);
-        return 1;
+        return cli_exit_status(err.code);
     }
     for (size_t i = 0; i < n; i++)
         y[i] = a->have_k ? hy_ystar_k(&st, m->x0, a->k, t[i]) : hy_steady_at(&st, t[i]);
@@ -148,24 +149,37 @@ static int compute(const loop_args *a, const hy_model *m, const hy_input *in, do
     return 0;
 }
 
-static int write_loop(const char *path, const double *t, const double *u, const double *y, size_t n)
+/* Opens the CSV output before computing: a directory or a missing folder
+ * fails at once, and a failed computation leaves nothing. */
+static int open_out(const char *cmd, const char *path, hy_out *o)
 {
-    char tmp[4096];
-    FILE *f = cli_out_open(path, tmp, sizeof tmp);
-    if (!f)
+    hy_error err;
+    if (hy_out_open(o, path ? path : "-", 0, &err)) {
+        fprintf(stderr, "hystviz %s: %s\n", cmd, err.msg);
         return 1;
+    }
+    return 0;
+}
+
+static int close_out(const char *cmd, hy_out *o)
+{
+    hy_error err;
+    if (hy_out_commit(o, &err)) {
+        fprintf(stderr, "hystviz %s: %s\n", cmd, err.msg);
+        return 1;
+    }
+    return 0;
+}
+
+static void write_loop(FILE *f, const double *t, const double *u, const double *y, size_t n)
+{
     fprintf(f, "t,u,y\n");
     for (size_t i = 0; i < n; i++)
         fprintf(f, "%.17g,%.17g,%.17g\n", t[i], u[i], y[i]);
-    return cli_out_close(f, path, tmp) ? 1 : 0;
 }
 
-static int write_loops(const char *path, const hy_loops *L)
+static void write_loops(FILE *f, const hy_loops *L)
 {
-    char tmp[4096];
-    FILE *f = cli_out_open(path, tmp, sizeof tmp);
-    if (!f)
-        return 1;
     fprintf(f, "loop,depth,rho_start,rho_turn,rho_close,u_start,u_turn,y_start,y_close,area,own_area\n");
     for (size_t i = 0; i <= L->nminor; i++) {
         const hy_loop *p = i ? &L->minor[i - 1] : &L->major;
@@ -174,7 +188,6 @@ static int write_loops(const char *path, const hy_loops *L)
                 p->y_close, p->area, p->own_area);
     }
     fprintf(f, "# energy per cycle (closed integral of y du over one period): %.17g\n", L->area_period);
-    return cli_out_close(f, path, tmp) ? 1 : 0;
 }
 
 int hy_cmd_loop(int argc, char **argv)
@@ -193,30 +206,43 @@ int hy_cmd_loop(int argc, char **argv)
         fprintf(stderr, "hystviz loop: --input: %s\n", err.msg);
         return 2;
     }
+    hy_out o;
+    if (open_out(argv[0], a.out, &o)) {
+        hy_input_free(&in);
+        return 1;
+    }
     if (!strcmp(argv[0], "loops")) {
         hy_steady st;
         hy_loops L;
         rc = hy_steady_init(&st, &m, &in, &err) || hy_loops_find(&st, &L, &err);
-        if (rc)
+        if (rc) {
             fprintf(stderr, "hystviz loops: %s\n", err.msg);
+            rc = cli_exit_status(err.code);
+        }
         else {
-            rc = write_loops(a.out, &L);
+            write_loops(hy_out_file(&o), &L);
+            rc = close_out(argv[0], &o);
             hy_loops_free(&L);
         }
         hy_steady_free(&st);
         hy_input_free(&in);
-        return rc ? 1 : 0;
+        hy_out_abort(&o);
+        return rc;
     }
     size_t n = (size_t)a.points;
     double *buf = malloc(3 * n * sizeof *buf);
     if (!buf) {
         fprintf(stderr, "hystviz loop: out of memory for %zu points\n", n);
         hy_input_free(&in);
+        hy_out_abort(&o);
         return 1;
     }
     rc = compute(&a, &m, &in, buf, buf + n, buf + 2 * n, n);
-    if (!rc)
-        rc = write_loop(a.out, buf, buf + n, buf + 2 * n, n);
+    if (!rc) {
+        write_loop(hy_out_file(&o), buf, buf + n, buf + 2 * n, n);
+        rc = close_out(argv[0], &o);
+    }
+    hy_out_abort(&o);
     free(buf);
     hy_input_free(&in);
     return rc;

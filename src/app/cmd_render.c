@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cli_util.h"
+#include "hy_out.h"
 #include "scene_run.h"
 
 static const char render_help[] =
@@ -14,7 +15,7 @@ static const char render_help[] =
     "       hystviz data SCENE [--set SECTION.KEY=VALUE]... [-o FILE]\n"
     "\n"
     "render draws each scene file (docs/SCENES.md) into DIR (default: the scene's\n"
-    "[output] dir) as NAME.svg/.pdf/.png; files are written whole or not at all.\n"
+    "[output] dir) as NAME.svg/.pdf/.png: all of a figure's files or none of them.\n"
     "data prints every series the scene draws as CSV 'series,x,y' (%.17g).\n"
     "\n"
     "  -o DIR / FILE      output directory (render) or CSV file (data)\n"
@@ -23,6 +24,86 @@ static const char render_help[] =
     "  --format LIST      formats to write instead of the scene's\n"
     "  -v, --verbose      print the plan, each step's time and each series' error\n"
     "                     against the exact answer where one exists\n";
+
+/* Of two exit statuses the one to report: invalid input over failure. */
+static int worse(int a, int b)
+{
+    return a == 2 || b == 2 ? 2 : a > b ? a : b;
+}
+
+/* Loads a scene and checks its outputs can be written (before computing);
+ * the exit status (message printed). */
+static int load(hy_scene_run *run, const char *scene, const char *formats, char **sets, size_t nsets, int check)
+{
+    hy_error err;
+    if (hy_scene_run_load(run, scene, sets, nsets, &err)) {
+        fprintf(stderr, "hystviz: %s\n", err.msg);
+        return err.code == HY_ENOMEM ? 1 : 2; /* an unreadable or invalid scene: invalid input */
+    }
+    if (check && hy_scene_run_check_output(run, formats, &err)) {
+        fprintf(stderr, "hystviz: %s\n", err.msg);
+        hy_scene_run_free(run);
+        return cli_exit_status(err.code);
+    }
+    return 0;
+}
+
+static int compute(hy_scene_run *run, int verbose)
+{
+    hy_error err;
+    if (hy_scene_run_compute(run, verbose ? stderr : NULL, &err)) {
+        fprintf(stderr, "hystviz: %s\n", err.msg);
+        return cli_exit_status(err.code);
+    }
+    return 0;
+}
+
+/* `render`: one scene's figure in every format, all or none. */
+static int render_one(const char *scene, const char *out, const char *formats, char **sets, size_t nsets, int verbose)
+{
+    hy_scene_run run;
+    hy_error err;
+    int st = load(&run, scene, formats, sets, nsets, 1);
+    if (st)
+        return st;
+    char written[8192] = "";
+    if (!(st = compute(&run, verbose))) {
+        if (hy_scene_run_write(&run, out, formats, written, sizeof written, &err)) {
+            fprintf(stderr, "hystviz: %s: %s\n", scene, err.msg);
+            st = cli_exit_status(err.code);
+        } else if (verbose)
+            fprintf(stderr, "%s", written);
+    }
+    hy_scene_run_free(&run);
+    return st;
+}
+
+/* `data`: the output is opened first (a directory, a missing folder or a
+ * dangling link fail before computing) and written whole or not at all. */
+static int render_data(const char *scene, const char *out, char **sets, size_t nsets, int verbose)
+{
+    hy_scene_run run;
+    hy_error err;
+    hy_out o;
+    int st = load(&run, scene, NULL, sets, nsets, 0);
+    if (st)
+        return st;
+    if (hy_out_open(&o, out ? out : "-", 0, &err)) {
+        fprintf(stderr, "hystviz data: %s\n", err.msg);
+        hy_scene_run_free(&run);
+        return 1;
+    }
+    if (!(st = compute(&run, verbose))) {
+        hy_scene_run_data(&run, hy_out_file(&o), NULL); /* a write error shows at commit, naming the file */
+        if (hy_out_commit(&o, &err)) {
+            fprintf(stderr, "hystviz data: %s\n", err.msg);
+            st = 1;
+        }
+    }
+    hy_out_abort(&o); /* no-op once committed */
+    hy_scene_run_free(&run);
+    return st;
+}
 
 int hy_cmd_render(int argc, char **argv)
 {
@@ -35,7 +116,7 @@ int hy_cmd_render(int argc, char **argv)
         fprintf(stderr, "hystviz %s: out of memory\n", argv[0]);
         return 1;
     }
-    int rc = 0;
+    int rc = 0, failed = 0;
     for (int i = 1; i < argc && !rc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -64,36 +145,19 @@ int hy_cmd_render(int argc, char **argv)
                 argv[0]);
         rc = 2;
     }
+    int fmt[3];
+    size_t nfmt;
+    hy_error err;
+    if (!rc && formats && hy_scene_formats_parse(formats, fmt, &nfmt, &err)) {
+        fprintf(stderr, "hystviz %s: %s\n", argv[0], err.msg);
+        rc = 2;
+    }
     gsl_set_error_handler_off();
-    int failed = 0;
+    if (!rc && out && !is_data)
+        hy_out_sweep(out); /* temporaries of killed runs */
     for (size_t k = 0; k < nscenes && !rc; k++) {
-        hy_scene_run run;
-        hy_error err;
-        if (hy_scene_run_load(&run, scenes[k], sets, nsets, &err) ||
-            (hy_scene_run_compute(&run, verbose ? stderr : NULL, &err) && (hy_scene_run_free(&run), 1))) {
-            fprintf(stderr, "hystviz: %s\n", err.msg);
-            failed = 1;
-            continue;
-        }
-        if (is_data) {
-            char tmp[4200];
-            FILE *f = cli_out_open(out, tmp, sizeof tmp);
-            if (!f || hy_scene_run_data(&run, f, &err) || cli_out_close(f, out, tmp)) {
-                if (f && tmp[0]) {
-                    fclose(f);
-                    remove(tmp);
-                }
-                failed = 1;
-            }
-        } else {
-            char written[8192] = "";
-            if (hy_scene_run_write(&run, out, formats, written, sizeof written, &err)) {
-                fprintf(stderr, "hystviz: %s: %s\n", scenes[k], err.msg);
-                failed = 1;
-            } else if (verbose)
-                fprintf(stderr, "%s", written);
-        }
-        hy_scene_run_free(&run);
+        int st = is_data ? render_data(scenes[k], out, sets, nsets, verbose) : render_one(scenes[k], out, formats, sets, nsets, verbose);
+        failed = worse(failed, st);
     }
     free(sets);
     free(scenes);

@@ -5,6 +5,7 @@
 
 #include "cli_util.h"
 #include "hy_ode.h"
+#include "hy_out.h"
 #include "hy_plot.h"
 #include "hy_workprec.h"
 
@@ -215,17 +216,39 @@ static int run_problem(const hy_wp_problem *p, const ropts *o, runlist *L)
     return 0;
 }
 
+/* Opens DIR/NAME through the output writer; message printed on failure. */
+static FILE *open_out(hy_out *o, const char *dir, const char *name)
+{
+    char path[1100];
+    hy_error err;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (hy_out_open(o, path, 0, &err)) {
+        fprintf(stderr, "hystviz report: %s\n", err.msg);
+        return NULL;
+    }
+    return hy_out_file(o);
+}
+
+static int close_out(hy_out *o)
+{
+    hy_error err;
+    if (hy_out_commit(o, &err)) {
+        fprintf(stderr, "hystviz report: %s\n", err.msg);
+        return -1;
+    }
+    return 0;
+}
+
 static int write_csv(const char *dir, const runlist *L)
 {
-    char path[1100], tmp[1200];
-    snprintf(path, sizeof path, "%s/report.csv", dir);
-    FILE *f = cli_out_open(path, tmp, sizeof tmp);
+    hy_out o;
+    FILE *f = open_out(&o, dir, "report.csv");
     if (!f)
         return -1;
     hy_wp_csv_header(f);
     for (size_t i = 0; i < L->n; i++)
         hy_wp_csv_row(f, &L->r[i]);
-    return cli_out_close(f, path, tmp);
+    return close_out(&o);
 }
 
 /* The plot title as plain text: the markup names \gamma and \sigma_0 as letters. */
@@ -293,9 +316,8 @@ static void md_problem(FILE *f, const hy_wp_problem *p, const runlist *L)
 
 static int write_md(const ropts *o, const hy_wp_problem *P, int np, const runlist *L, double total)
 {
-    char path[1100], tmp[1200];
-    snprintf(path, sizeof path, "%s/report.md", o->dir);
-    FILE *f = cli_out_open(path, tmp, sizeof tmp);
+    hy_out out;
+    FILE *f = open_out(&out, o->dir, "report.md");
     if (!f)
         return -1;
     fprintf(f, "# hystviz work-precision report%s\n\n", o->quick ? " (--quick)" : "");
@@ -306,7 +328,7 @@ static int write_md(const ropts *o, const hy_wp_problem *P, int np, const runlis
             L->n, total, o->cfg.repeats, o->cfg.max_steps, o->cfg.time_cap);
     for (int i = 0; i < np; i++)
         md_problem(f, &P[i], L);
-    return cli_out_close(f, path, tmp);
+    return close_out(&out);
 }
 
 /* Plot data: x (error) and y (time) of the OK runs of one series. */
@@ -465,6 +487,7 @@ int hy_cmd_report(int argc, char **argv)
         free(P);
         return 1;
     }
+    hy_out_sweep(o.dir); /* temporaries of killed runs */
     for (; np < o.nproblems; np++) {
         hy_error err;
         if (hy_wp_problem_init(&P[np], o.problems[np], o.quick, &err)) {

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "hy_out.h"
 #include "hy_plot.h"
 #include "hy_markup.h"
 #include "scene_run.h"
@@ -120,6 +121,18 @@ static hy_range range_of(const hy_scene *s, const char *key, const char *logkey)
 }
 
 typedef hy_scene_fig fig_store;
+
+/* The figure's [figure] size and dpi (all a format check needs). */
+static void figure_size(const hy_scene *s, hy_figure *f)
+{
+    double size[2] = {hy_cm(12), hy_cm(9)};
+    long dpi = 300;
+    hy_scene_get_length_pair_pt(s, "figure", NULL, "size", size);
+    hy_scene_get_int(s, "figure", NULL, "dpi", &dpi);
+    f->width = size[0];
+    f->height = size[1];
+    f->dpi = (double)dpi;
+}
 
 void hy_scene_fig_free(hy_scene_fig *st)
 {
@@ -239,16 +252,11 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
         ax->zoom_y = (hy_range){zy[0], zy[1], ax->y.log, 0};
     }
     hy_figure *f = &st->fig;
-    double size[2] = {hy_cm(12), hy_cm(9)}, fs = 9;
-    long dpi = 300;
-    hy_scene_get_length_pair_pt(s, "figure", NULL, "size", size);
-    hy_scene_get_int(s, "figure", NULL, "dpi", &dpi);
+    double fs = 9;
     hy_scene_get_length_pt(s, "figure", NULL, "fontsize", &fs);
     const char *font = "DejaVu Sans";
     hy_scene_get_str(s, "figure", NULL, "font", &font);
-    f->width = size[0];
-    f->height = size[1];
-    f->dpi = (double)dpi;
+    figure_size(s, f);
     f->font = font;
     f->font_size = fs;
     f->axes = ax;
@@ -273,6 +281,80 @@ static int mkdir_p(const char *dir, hy_error *err)
     return HY_OK;
 }
 
+static const char *const format_ext[] = {"svg", "pdf", "png"};
+
+int hy_scene_formats_parse(const char *list, int fmt[3], size_t *n, hy_error *err)
+{
+    *n = 0;
+    for (const char *c = list; c && *c;) {
+        size_t len = strcspn(c, ",");
+        int f = -1;
+        for (int k = 0; k < 3; k++)
+            if (len == strlen(format_ext[k]) && !strncmp(c, format_ext[k], len))
+                f = k;
+        if (f < 0 && len)
+            return hy_error_set(err, HY_EINVAL, "--format: unknown format '%.*s' (svg, pdf, png)", (int)(len > 40 ? 40 : len), c);
+        int dup = f < 0;
+        for (size_t i = 0; i < *n && !dup; i++)
+            dup = fmt[i] == HY_FORMAT_SVG + f;
+        if (!dup)
+            fmt[(*n)++] = HY_FORMAT_SVG + f;
+        c += len + (c[len] == ',');
+    }
+    if (!*n)
+        return hy_error_set(err, HY_EINVAL, "--format: no format given (svg, pdf, png)");
+    return HY_OK;
+}
+
+/* The formats to write: the override list, else the scene's [output] formats. */
+static int run_formats(const hy_scene *s, const char *formats, int fmt[3], size_t *nf, hy_error *err)
+{
+    if (formats)
+        return hy_scene_formats_parse(formats, fmt, nf, err);
+    size_t n = 0;
+    const char *t;
+    *nf = 0;
+    for (size_t i = 0; hy_scene_get_enum_at(s, "output", NULL, "formats", i, &t, &n) >= 0 && i < n && *nf < 3; i++)
+        for (int k = 0; k < 3; k++)
+            if (!strcmp(t, format_ext[k]))
+                fmt[(*nf)++] = HY_FORMAT_SVG + k;
+    return HY_OK;
+}
+
+int hy_scene_run_check_output(const hy_scene_run *r, const char *formats, hy_error *err)
+{
+    int fmt[3];
+    size_t nf;
+    hy_figure f;
+    memset(&f, 0, sizeof f);
+    figure_size(r->scene, &f);
+    int rc = run_formats(r->scene, formats, fmt, &nf, err);
+    for (size_t i = 0; i < nf && !rc; i++)
+        if ((rc = hy_figure_check(&f, fmt[i], err)))
+            hy_error_prefix(err, "%s", r->path);
+    return rc;
+}
+
+/* Writes every format to a temporary, then renames them all: all or none. */
+static int write_all(const hy_figure *fig, char paths[][4400], const int *fmt, size_t nf, hy_error *err)
+{
+    hy_out out[3];
+    size_t opened = 0;
+    int rc = HY_OK;
+    for (size_t i = 0; i < nf && !rc; i++)
+        if (!(rc = hy_figure_check(fig, fmt[i], err)) && !(rc = hy_out_open(&out[i], paths[i], HY_OUT_HOLD, err))) {
+            opened++;
+            rc = hy_figure_write_out(fig, &out[i], fmt[i], err); /* aborts out[i] on failure */
+        }
+    for (size_t i = 0; i < opened; i++) {
+        if (rc)
+            hy_out_abort(&out[i]); /* no-op for the one that failed */
+        else if ((rc = hy_out_publish(&out[i], err)) && i)
+            hy_error_prefix(err, "only %zu of the %zu files were replaced", i, nf);
+    }
+    return rc;
+}
+
 int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *formats, char *written, size_t written_size,
                        hy_error *err)
 {
@@ -281,36 +363,23 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
         dir = ".";
     char name[256];
     hy_scene_run_name(r, name, sizeof name);
-    const char *fmts[3];
+    int fmt[3];
     size_t nf = 0;
-    char fbuf[64];
-    if (formats) {
-        snprintf(fbuf, sizeof fbuf, "%s", formats);
-        char *save = NULL; /* strtok_r: the gallery calls this from several threads */
-        for (char *tok = strtok_r(fbuf, ",", &save); tok && nf < 3; tok = strtok_r(NULL, ",", &save))
-            fmts[nf++] = tok;
-    } else {
-        size_t n = 0;
-        const char *t;
-        for (size_t i = 0; hy_scene_get_enum_at(s, "output", NULL, "formats", i, &t, &n) >= 0 && i < n && nf < 3; i++)
-            fmts[nf++] = t;
-    }
+    int rc = run_formats(s, formats, fmt, &nf, err);
+    if (rc)
+        return rc;
+    char paths[3][4400];
     for (size_t i = 0; i < nf; i++)
-        if (strcmp(fmts[i], "svg") && strcmp(fmts[i], "pdf") && strcmp(fmts[i], "png"))
-            return hy_error_set(err, HY_EINVAL, "--format: unknown format '%s' (svg, pdf, png)", fmts[i]);
+        snprintf(paths[i], sizeof paths[i], "%s/%s.%s", dir, name, format_ext[fmt[i] - HY_FORMAT_SVG]);
     fig_store st;
-    int rc = hy_scene_run_figure(r, &st, err);
+    rc = hy_scene_run_figure(r, &st, err);
     if (!rc)
         rc = mkdir_p(dir, err);
-    for (size_t i = 0; i < nf && !rc; i++) {
-        char path[4400];
-        snprintf(path, sizeof path, "%s/%s.%s", dir, name, fmts[i]);
-        int fmt = !strcmp(fmts[i], "svg") ? HY_FORMAT_SVG : !strcmp(fmts[i], "pdf") ? HY_FORMAT_PDF : HY_FORMAT_PNG;
-        rc = hy_figure_write(&st.fig, path, fmt, err);
-        if (!rc && written) {
-            size_t len = strlen(written);
-            snprintf(written + len, written_size - len, "%s\n", path);
-        }
+    if (!rc)
+        rc = write_all(&st.fig, paths, fmt, nf, err);
+    for (size_t i = 0; i < nf && !rc && written; i++) {
+        size_t len = strlen(written);
+        snprintf(written + len, written_size - len, "%s\n", paths[i]);
     }
     hy_scene_fig_free(&st);
     return rc;

@@ -70,9 +70,20 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err);
 
 /* Writes the figure in the scene's formats (or the comma-separated formats
  * override) into dir (NULL: the scene's [output] dir); the paths written are
- * appended to written (may be NULL), one per line. */
+ * appended to written (may be NULL), one per line.  All or nothing: every
+ * format is written to a temporary first (hy_out.h) and renamed only when all
+ * of them are complete; on failure none is replaced and err names the file. */
 int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *formats, char *written,
                        size_t written_size, hy_error *err);
+
+/* Checks before any computing what hy_scene_run_write will need: known
+ * formats and a PNG within the raster limits (hy_figure_check).  HY_EINVAL
+ * with a message naming the scene file. */
+int hy_scene_run_check_output(const hy_scene_run *r, const char *formats, hy_error *err);
+
+/* Parses a comma-separated format list ("svg,png") into HY_FORMAT_* values
+ * (duplicates dropped); HY_EINVAL naming an unknown one or an empty list. */
+int hy_scene_formats_parse(const char *list, int fmt[3], size_t *n, hy_error *err);
 
 /* Prints every series as CSV: header "series,x,y", values %.17g. */
 int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err);

@@ -4,6 +4,7 @@
 #include "hy_anim.h"
 
 #include <cairo.h>
+#include <dirent.h>
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -17,6 +18,7 @@
 #include <unistd.h>
 
 #include "hy_cairo.h"
+#include "hy_out.h"
 
 /* ---- timeline ---- */
 
@@ -120,7 +122,7 @@ typedef struct run {
     long nframes, first, last, next, done, piped;
     char dir[4096];
     FILE *video;
-    char video_tmp[4200], video_path[4200];
+    hy_out video_out;         /* ffmpeg writes its temporary; renamed when complete */
     pthread_mutex_t mu;
     pthread_cond_t cv;
     int failed;
@@ -335,16 +337,51 @@ static int open_video(run *r, hy_error *err)
     char cmd[8800];
     if (strchr(p->outdir, '\'') || strchr(p->name, '\''))
         return hy_error_set(err, HY_EINVAL, "output names for --video may not contain a quote");
-    if (snprintf(r->video_tmp, sizeof r->video_tmp, "%s/.%s.%s.part", p->outdir, p->name, v) >= (int)sizeof r->video_tmp ||
-        snprintf(r->video_path, sizeof r->video_path, "%s/%s.%s", p->outdir, p->name, v) >= (int)sizeof r->video_path)
+    char path[4200];
+    if (snprintf(path, sizeof path, "%s/%s.%s", p->outdir, p->name, v) >= (int)sizeof path)
         return hy_error_set(err, HY_EINVAL, "output directory name is too long");
+    /* an empty temporary, locked, that ffmpeg fills (-y) and publish renames */
+    int st = hy_out_open(&r->video_out, path, 0, err);
+    if (!st && (st = hy_out_finish(&r->video_out, err)) == HY_OK && strchr(hy_out_tmp_path(&r->video_out), '\'')) {
+        hy_out_abort(&r->video_out);
+        st = hy_error_set(err, HY_EINVAL, "output names for --video may not contain a quote");
+    }
+    if (st)
+        return st;
     /* the container named with -f: the temporary name has no telling extension */
     snprintf(cmd, sizeof cmd, "ffmpeg -loglevel error -y -f rawvideo -pix_fmt %s -s %dx%d -r %g -i - "
-             "%s -f %s '%s'", hy_little_endian() ? "bgr0" : "0rgb", p->width, p->height, p->fps, codec, v, r->video_tmp);
+             "%s -f %s '%s'", hy_little_endian() ? "bgr0" : "0rgb", p->width, p->height, p->fps, codec, v,
+             hy_out_tmp_path(&r->video_out));
     r->video = popen(cmd, "w");
-    if (!r->video)
-        return hy_error_set(err, HY_EIO, "cannot start ffmpeg: %s", strerror(errno));
+    if (!r->video) {
+        int e = errno;
+        hy_out_abort(&r->video_out);
+        return hy_error_set(err, HY_EIO, "cannot start ffmpeg: %s", strerror(e));
+    }
     return HY_OK;
+}
+
+/* Removes DIR/frame_N.png for N >= nframes (a longer earlier run's frames,
+ * which `ffmpeg -i frame_%05d.png` would encode after ours) and the frame
+ * directory's stale temporaries. */
+static void remove_frames_after(const char *dir, long nframes)
+{
+    hy_out_sweep(dir);
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    for (struct dirent *de; (de = readdir(d));) {
+        const char *s = de->d_name;
+        char *end;
+        if (strncmp(s, "frame_", 6) || s[6] < '0' || s[6] > '9')
+            continue;
+        errno = 0;
+        unsigned long long i = strtoull(s + 6, &end, 10);
+        if (strcmp(end, ".png") || end - (s + 6) < 5 || errno || i < (unsigned long long)nframes)
+            continue;
+        unlinkat(dirfd(d), s, 0);
+    }
+    closedir(d);
 }
 
 static int start(run *r, hy_error *err)
@@ -355,6 +392,11 @@ static int start(run *r, hy_error *err)
     if (snprintf(r->dir, sizeof r->dir, "%s/%s", p->outdir, p->name) >= (int)sizeof r->dir)
         return hy_error_set(err, HY_EINVAL, "output directory name is too long");
     int st = make_dir(p->no_frames ? p->outdir : r->dir, err); /* before ffmpeg, which writes next to it */
+    if (!st) { /* what killed runs left, and frames past this animation's end */
+        hy_out_sweep(p->outdir);
+        if (!p->no_frames)
+            remove_frames_after(r->dir, r->nframes);
+    }
     if (!st && p->video && open_video(r, err))
         st = err ? err->code : HY_EINVAL;
     return st;
@@ -378,10 +420,9 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
         sigaction(SIGPIPE, &ign, &old_pipe);
     int st = start(&r, err);
     if (st) {
-        if (r.video) {
+        if (r.video)
             pclose(r.video);
-            unlink(r.video_tmp);
-        }
+        hy_out_abort(&r.video_out);
         if (p->video)
             sigaction(SIGPIPE, &old_pipe, NULL);
         return st;
@@ -405,12 +446,10 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
     progress(&r, 1);
     pthread_mutex_unlock(&r.mu);
     if (r.video && pclose(r.video) != 0 && !r.failed)
-        hy_error_set(&r.err, HY_EIO, "ffmpeg failed to encode '%s'", r.video_path), r.failed = 1;
-    if (r.video && !r.failed && rename(r.video_tmp, r.video_path) != 0)
-        hy_error_set(&r.err, HY_EIO, "cannot rename '%s' to '%s': %s", r.video_tmp, r.video_path, strerror(errno)),
-            r.failed = 1;
-    if (r.video && r.failed)
-        unlink(r.video_tmp);          /* no half-written video */
+        hy_error_set(&r.err, HY_EIO, "ffmpeg failed to encode '%s'", r.video_out.path), r.failed = 1;
+    if (r.video && !r.failed && hy_out_publish(&r.video_out, &r.err))
+        r.failed = 1;
+    hy_out_abort(&r.video_out);       /* no half-written video */
     if (p->video)
         sigaction(SIGPIPE, &old_pipe, NULL);
     pthread_mutex_destroy(&r.mu);

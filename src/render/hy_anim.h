@@ -90,8 +90,9 @@ typedef struct hy_anim_params {
     int quiet;                /* no progress bar even on a terminal */
     int poster;               /* also write outdir/name.png (the last frame) */
     const char *video;        /* NULL, "mp4", "webm" or "gif": pipe frames to ffmpeg, which
-                               * writes outdir/.name.FMT.part, renamed to outdir/name.FMT
-                               * only when every frame went and ffmpeg succeeded */
+                               * writes a temporary of the output writer (hy_out.h), renamed
+                               * to outdir/name.FMT only when every frame went and ffmpeg
+                               * succeeded */
     int no_frames;            /* with video: no PNG frames, only the video (and poster) */
     hy_png_opts png;
 } hy_anim_params;
@@ -111,7 +112,11 @@ long hy_anim_nframes(const hy_anim_params *p);
 /* Renders frames [first, last) through draw.  Returns HY_OK; HY_EINVAL for bad
  * parameters; HY_EUNSUP when GL (or ffmpeg for video) is unavailable, before
  * anything is written; HY_EIO naming the file; the first error of draw.
- * Frames written before a failure stay (each is complete). stats may be NULL.
+ * Frames written before a failure stay (each is complete). Before rendering,
+ * frames numbered nframes and above (left by a longer earlier run) and the
+ * temporaries of killed runs (hy_out_sweep) are removed from outdir/name/ and
+ * outdir, so the frame directory holds this animation's frames only.
+ * stats may be NULL.
  * With video, SIGPIPE is ignored during the run (an ffmpeg that dies gives
  * HY_EIO, not a killed process) and restored afterwards. */
 int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_anim_stats *stats,

@@ -1,5 +1,5 @@
 /* hy_frame.c: overlay compositing (premultiplied "over", vertical flip of the
- * GL layer) and atomic libpng frame output. */
+ * GL layer) and libpng frame output through the output writer (hy_out). */
 #include "hy_frame.h"
 
 #include <errno.h>
@@ -9,9 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <zlib.h>
+
+#include "hy_out.h"
 
 /* x / 255 rounded to nearest for x in [0, 255 * 255] (exact, no division). */
 static inline unsigned div255(unsigned x)
@@ -109,34 +109,17 @@ static int write_png(const char *path, int w, int h, const unsigned char *rgb, i
                      const hy_png_opts *o, hy_error *err)
 {
     hy_png_opts def = hy_png_frame_defaults();
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 16);
-    if (!tmp)
-        return hy_error_set(err, HY_ENOMEM, "out of memory writing '%s'", path);
-    memcpy(tmp, path, n);
-    memcpy(tmp + n, ".tmp.XXXXXX", 12);
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
+    hy_out out;
+    int st = hy_out_open(&out, path, 0, err);
+    if (st)
+        return st;
+    errno = 0;
+    if (encode(hy_out_file(&out), w, h, rgb, xrgb_stride, o ? o : &def) != 0) {
         int e = errno;
-        free(tmp);
-        return hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, strerror(e));
-    }
-    fchmod(fd, 0644);
-    FILE *fp = fdopen(fd, "wb");
-    int bad = !fp || encode(fp, w, h, rgb, xrgb_stride, o ? o : &def) != 0;
-    int e = errno;
-    if (fp && fclose(fp) != 0 && !bad)
-        bad = 1, e = errno;
-    else if (!fp)
-        close(fd);
-    if (!bad && rename(tmp, path) != 0)
-        bad = 1, e = errno;
-    if (bad)
-        unlink(tmp);
-    free(tmp);
-    if (bad)
+        hy_out_abort(&out);
         return hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, e ? strerror(e) : "PNG encoding failed");
-    return HY_OK;
+    }
+    return hy_out_commit(&out, err);
 }
 
 int hy_png_write_rgb(const char *path, int w, int h, const unsigned char *rgb, const hy_png_opts *o,

@@ -5,8 +5,8 @@
  * cairo ARGB32 image surface of the same size (premultiplied, native-endian
  * 32-bit pixels, rows top-down).  The result is packed RGB, rows top-down:
  *     out = overlay + (1 - overlay_alpha) * gl      (per channel, rounded)
- * Frames are written to "PATH.tmp.XXXXXX" and renamed, so a crash never
- * leaves a truncated frame under the final name.
+ * Frames go through the output writer (hy_out.h): a temporary file renamed
+ * into place, so a crash never leaves a truncated frame under the final name.
  *
  *     hy_frame_composite(w, h, gl_rgba, argb, stride, rgb);
  *     hy_png_opts o = hy_png_frame_defaults();

@@ -1,4 +1,5 @@
-/* hy_output.c: figure output to SVG, PDF (cairo) and PNG (libpng), written atomically via temp file + rename. */
+/* hy_output.c: figure output to SVG, PDF (cairo) and PNG (libpng), written
+ * through the one output writer (hy_out: temporary + rename). */
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <cairo.h>
@@ -9,10 +10,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "hy_cairo.h"
+#include "hy_out.h"
 #include "hy_plot.h"
 #include "hy_plot_private.h"
 
@@ -234,43 +234,52 @@ int hy_format_from_path(const char *path)
     return -1;
 }
 
+int hy_figure_check(const hy_figure *f, int format, hy_error *err)
+{
+    if (!f)
+        return hy_error_set(err, HY_EINVAL, "no figure to write");
+    if (format < HY_FORMAT_SVG || format > HY_FORMAT_PNG)
+        return hy_error_set(err, HY_EINVAL, "unknown figure format %d", format);
+    if (format != HY_FORMAT_PNG)
+        return HY_OK;
+    double W, H, dpi;
+    hy__figure_size(f, &W, &H, &dpi);
+    double pw = W * dpi / 72.0, ph = H * dpi / 72.0;
+    if (!(pw <= HY_PNG_MAX_SIDE && ph <= HY_PNG_MAX_SIDE && pw * ph <= HY_PNG_MAX_PIXELS))
+        return hy_error_set(err, HY_EINVAL,
+                            "a PNG of %.0f x %.0f pixels (%.4g x %.4g in at %.4g dpi) is too large: at most %d pixels "
+                            "a side and %.0f million pixels; lower the dpi or the size",
+                            pw, ph, W / 72.0, H / 72.0, dpi, HY_PNG_MAX_SIDE, HY_PNG_MAX_PIXELS / 1e6);
+    return HY_OK;
+}
+
+int hy_figure_write_out(const hy_figure *f, hy_out *out, int format, hy_error *err)
+{
+    int st = hy_figure_check(f, format, err);
+    if (st)
+        return st;
+    sink sk = {hy_out_file(out), 0, NULL, 0, 0, 0};
+    st = format == HY_FORMAT_PNG ? write_png(f, &sk, err) : write_vector(f, format, &sk, err);
+    if (!st)
+        st = hy_out_finish(out, err);
+    else {
+        hy_error_prefix(err, "cannot write '%s'", out->path);
+        hy_out_abort(out);
+    }
+    return st;
+}
+
 int hy_figure_write(const hy_figure *f, const char *path, int format, hy_error *err)
 {
     if (!f || !path || !*path)
         return hy_error_set(err, HY_EINVAL, "hy_figure_write needs a figure and a path");
-    if (format < HY_FORMAT_SVG || format > HY_FORMAT_PNG)
-        return hy_error_set(err, HY_EINVAL, "cannot write '%s': unknown format %d", path, format);
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 16);
-    if (!tmp)
-        return hy_error_set(err, HY_ENOMEM, "out of memory writing '%s'", path);
-    memcpy(tmp, path, n);
-    memcpy(tmp + n, ".tmp.XXXXXX", 12);  /* matches the *.tmp.* ignore rule */
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        int e = errno;
-        free(tmp);
-        return hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, strerror(e));
-    }
-    fchmod(fd, 0644);
-    sink sk = {fdopen(fd, "wb"), 0, NULL, 0, 0, 0};
-    int st;
-    if (!sk.fp) {
-        close(fd);
-        st = hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, strerror(errno));
-    } else {
-        st = format == HY_FORMAT_PNG ? write_png(f, &sk, err) : write_vector(f, format, &sk, err);
-        if (fflush(sk.fp) != 0 && !st)
-            st = hy_error_set(err, HY_EIO, "%s", strerror(errno));
-        if (fclose(sk.fp) != 0 && !st)
-            st = hy_error_set(err, HY_EIO, "%s", strerror(errno));
-        if (!st && rename(tmp, path) != 0)
-            st = hy_error_set(err, HY_EIO, "renaming the temporary file: %s", strerror(errno));
-        if (st)
-            hy_error_prefix(err, "cannot write '%s'", path);
-    }
-    if (st)
-        unlink(tmp);
-    free(tmp);
+    hy_out out;
+    int st = hy_figure_check(f, format, err);
+    if (!st)
+        st = hy_out_open(&out, path, 0, err);
+    if (!st)
+        st = hy_figure_write_out(f, &out, format, err);
+    if (!st)
+        st = hy_out_publish(&out, err);
     return st;
 }

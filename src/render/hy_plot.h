@@ -140,11 +140,28 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
  * the data (a colour bar).  HY_EINVAL for a bad index or figure. */
 int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err);
 
-/* Renders f as HY_FORMAT_SVG, _PDF or _PNG into path, through a temporary
- * file in the same directory renamed on success: on failure (HY_EIO with the
- * path in the message, HY_EINVAL, HY_ENOMEM) no file is left behind.
- * Output bytes depend only on f (fixed PDF dates, no timestamps). */
+/* Largest PNG hystviz renders: cairo's image limit a side, and 2^28 pixels
+ * (1 GiB of ARGB32) in all. */
+#define HY_PNG_MAX_SIDE 32767
+#define HY_PNG_MAX_PIXELS 268435456.0
+
+/* HY_OK if f can be written as format (HY_FORMAT_*), else HY_EINVAL saying
+ * why: an unknown format, or a PNG over the limits above (e.g. 40 x 40 in at
+ * 2400 dpi).  Cheap: lets a caller refuse before computing anything. */
+int hy_figure_check(const hy_figure *f, int format, hy_error *err);
+
+/* Renders f as HY_FORMAT_SVG, _PDF or _PNG into path through the output
+ * writer (hy_out.h): a temporary file in the same directory renamed on
+ * success; on failure (HY_EIO with the path in the message, HY_EINVAL,
+ * HY_ENOMEM) no file is left behind.  Output bytes depend only on f (fixed
+ * PDF dates, no timestamps). */
 int hy_figure_write(const hy_figure *f, const char *path, int format, hy_error *err);
+
+/* Renders f into an output opened with hy_out_open and finishes it (the
+ * caller publishes it, e.g. once every format of a figure is written); on
+ * failure aborts it and names its path. */
+struct hy_out;
+int hy_figure_write_out(const hy_figure *f, struct hy_out *out, int format, hy_error *err);
 
 /* Format from a file name's extension (.svg .pdf .png), or -1. */
 int hy_format_from_path(const char *path);
