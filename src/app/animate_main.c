@@ -4,6 +4,7 @@
  * `hystviz render`, never initialises GL.  argv as after "hystviz". */
 #include <gsl/gsl_errno.h>
 
+#include "cli_util.h"
 #include "cmd_animate.h"
 
 int main(int argc, char **argv)
@@ -11,7 +12,7 @@ int main(int argc, char **argv)
     gsl_set_error_handler_off();
     if (argc < 2) {
         static char name[] = "animate", *args[] = {name, NULL};
-        return hy_cmd_animate(1, args);
+        return cli_stdout_status("animate", hy_cmd_animate(1, args));
     }
-    return hy_cmd_animate(argc - 1, argv + 1);
+    return cli_stdout_status("animate", hy_cmd_animate(argc - 1, argv + 1));
 }

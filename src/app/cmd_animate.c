@@ -218,7 +218,7 @@ static int animate_scene(anim_args *a)
     gsl_set_error_handler_off();
     if (scene_anim_load(&sa, a->name, &err)) {
         fprintf(stderr, "hystviz animate: %s\n", err.msg);
-        return 1;
+        return err.code == HY_ENOMEM ? 1 : 2; /* an unreadable or invalid scene */
     }
     int r = settle_scene(a, &sa);
     if (r)
@@ -235,7 +235,7 @@ static int animate_scene(anim_args *a)
                 stats.seconds, stats.frames / (stats.seconds + 1e-9), a->p.jobs > 0 ? a->p.jobs : 1, a->p.outdir, sa.name, sa.nkf,
                 sa.computes, sa.hits);
     scene_anim_free(&sa);
-    return st == HY_EUNSUP ? 3 : st ? 1 : 0;
+    return st == HY_EUNSUP ? 3 : cli_exit_status(st);
 }
 
 static int animate(int argc, char **argv)
@@ -271,7 +271,7 @@ static int animate(int argc, char **argv)
                 a.p.jobs, a.p.outdir, sc->name, sc->describe(state));
     if (state)
         sc->release(state);
-    return st == HY_EUNSUP ? 3 : st ? 1 : 0;
+    return st == HY_EUNSUP ? 3 : cli_exit_status(st);
 }
 
 int hy_cmd_animate(int argc, char **argv) { return animate(argc, argv); }

@@ -6,6 +6,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <gsl/gsl_errno.h>
 #include <inttypes.h>
 #include <math.h>
@@ -13,11 +14,13 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "hy_config.h"
+#include "hy_out.h"
 #include "scene_run.h"
 
 static const char gallery_help[] =
@@ -57,7 +60,8 @@ typedef struct entry {
     double seconds; /* render time of the last good render           */
     double err;     /* max error against the exact answer, or NaN    */
     char *ref;      /* what err was measured against, or NULL        */
-    char *outputs;  /* space-separated file names                    */
+    char **outputs; /* the file names it wrote (in the gallery dir)  */
+    size_t nout;
 } entry;
 
 typedef struct job {
@@ -108,8 +112,32 @@ static void entry_free(entry *e)
 {
     free(e->scene);
     free(e->ref);
+    for (size_t i = 0; i < e->nout; i++)
+        free(e->outputs[i]);
     free(e->outputs);
     memset(e, 0, sizeof *e);
+}
+
+/* Appends a copy of the n bytes at name to e's outputs; -1 out of memory. */
+static int entry_add(entry *e, const char *name, size_t n)
+{
+    char **v = realloc(e->outputs, (e->nout + 1) * sizeof *v);
+    if (!v)
+        return -1;
+    e->outputs = v;
+    if (!(v[e->nout] = malloc(n + 1)))
+        return -1;
+    memcpy(v[e->nout], name, n);
+    v[e->nout++][n] = '\0';
+    return 0;
+}
+
+static int entry_has(const entry *e, const char *name)
+{
+    for (size_t i = 0; i < e->nout; i++)
+        if (!strcmp(e->outputs[i], name))
+            return 1;
+    return 0;
 }
 
 static int entry_copy(entry *d, const entry *s)
@@ -117,64 +145,56 @@ static int entry_copy(entry *d, const entry *s)
     *d = *s;
     d->scene = dupstr(s->scene);
     d->ref = s->ref ? dupstr(s->ref) : NULL;
-    d->outputs = dupstr(s->outputs);
-    if (!d->scene || !d->outputs || (s->ref && !d->ref)) {
+    d->outputs = NULL;
+    d->nout = 0;
+    int bad = !d->scene || (s->ref && !d->ref);
+    for (size_t i = 0; i < s->nout && !bad; i++)
+        bad = entry_add(d, s->outputs[i], strlen(s->outputs[i]));
+    if (bad) {
         entry_free(d);
         return -1;
     }
     return 0;
 }
 
-/* ---- atomic files ---------------------------------------------------- */
-
-/* Opens a temporary file next to path (PATH.tmp.XXXXXX); *tmp receives its
- * name, freed by atomic_close.  NULL with errno set on failure. */
-static FILE *atomic_open(const char *path, char **tmp)
-{
-    size_t n = strlen(path);
-    *tmp = malloc(n + 12);
-    if (!*tmp)
-        return NULL;
-    memcpy(*tmp, path, n);
-    memcpy(*tmp + n, ".tmp.XXXXXX", 12);
-    int fd = mkstemp(*tmp);
-    FILE *f = fd >= 0 ? (fchmod(fd, 0644), fdopen(fd, "w")) : NULL;
-    if (!f) {
-        int e = errno;
-        if (fd >= 0) {
-            close(fd);
-            unlink(*tmp);
-        }
-        free(*tmp);
-        *tmp = NULL;
-        errno = e;
-    }
-    return f;
-}
-
-/* Closes f and renames the temporary file onto path; on any error removes
- * it and returns -1 with errno set. */
-static int atomic_close(FILE *f, char *tmp, const char *path)
-{
-    int bad = ferror(f) != 0, e = bad ? EIO : 0;
-    if (fclose(f) && !bad) {
-        bad = 1;
-        e = errno;
-    }
-    if (!bad && rename(tmp, path)) {
-        bad = 1;
-        e = errno;
-    }
-    if (bad)
-        unlink(tmp);
-    free(tmp);
-    errno = e;
-    return bad ? -1 : 0;
-}
-
 /* ---- manifest -------------------------------------------------------- */
 
 static const char manifest_head[] = "# hystviz gallery manifest 1: scene, key, status, seconds, error, reference, outputs\n";
+
+/* Manifest fields are tab-separated and the outputs space-separated; in
+ * names, '%', space and control bytes are written %XX (names hystviz writes
+ * today have none of them, so older manifests read the same). */
+static void put_name(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c <= ' ' || c == '%' || c == 0x7f)
+            fprintf(f, "%%%02X", c);
+        else
+            fputc(c, f);
+    }
+}
+
+static int hexval(int c)
+{
+    return c >= '0' && c <= '9' ? c - '0' : c >= 'A' && c <= 'F' ? c - 'A' + 10 : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+}
+
+/* Decodes %XX in place; the length of the result. */
+static size_t get_name(char *s, size_t n)
+{
+    size_t o = 0;
+    for (size_t i = 0; i < n; i++) {
+        int hi, lo;
+        if (s[i] == '%' && i + 2 < n && (hi = hexval(s[i + 1])) >= 0 && (lo = hexval(s[i + 2])) >= 0 && (hi || lo)) {
+            s[o++] = (char)(hi * 16 + lo);
+            i += 2;
+        } else
+            s[o++] = s[i];
+    }
+    s[o] = '\0';
+    return o;
+}
 
 static char *field(char **s)
 {
@@ -201,10 +221,17 @@ static int entry_parse(char *line, entry *e)
     e->failed = !strcmp(f[2], "failed");
     e->seconds = strtod(f[3], NULL);
     e->err = strcmp(f[4], "-") ? strtod(f[4], NULL) : NAN;
+    get_name(f[0], strlen(f[0]));
     e->scene = dupstr(f[0]);
     e->ref = strcmp(f[5], "-") ? dupstr(f[5]) : NULL;
-    e->outputs = dupstr(f[6]);
-    if (!e->scene || !e->outputs || (strcmp(f[5], "-") && !e->ref)) {
+    int bad = !e->scene || (strcmp(f[5], "-") && !e->ref);
+    for (char *t = f[6]; *t && !bad;) {
+        size_t n = strcspn(t, " ");
+        char end = t[n];
+        bad = n && entry_add(e, t, get_name(t, n));
+        t += n + (end == ' ');
+    }
+    if (bad) {
         entry_free(e);
         return -1;
     }
@@ -242,25 +269,32 @@ static entry *manifest_read(const char *path, size_t *n)
     return v;
 }
 
-static int manifest_write(const char *path, const job *jobs, size_t n)
+static int manifest_write(const char *path, const job *jobs, size_t n, hy_error *err)
 {
-    char *tmp;
-    FILE *f = atomic_open(path, &tmp);
-    if (!f)
+    hy_out o;
+    if (hy_out_open(&o, path, 0, err))
         return -1;
+    FILE *f = hy_out_file(&o);
     fputs(manifest_head, f);
     for (size_t i = 0; i < n; i++) {
         const entry *e = &jobs[i].now;
         if (!jobs[i].have_now)
             continue;
-        fprintf(f, "%s\t%s\t%s\t%.6f\t", e->scene, e->key, e->failed ? "failed" : "ok", e->seconds);
+        put_name(f, e->scene);
+        fprintf(f, "\t%s\t%s\t%.6f\t", e->key, e->failed ? "failed" : "ok", e->seconds);
         if (isnan(e->err))
             fputs("-", f);
         else
             fprintf(f, "%.17g", e->err);
-        fprintf(f, "\t%s\t%s\n", e->ref ? e->ref : "-", e->outputs);
+        fprintf(f, "\t%s\t", e->ref ? e->ref : "-");
+        for (size_t k = 0; k < e->nout; k++) {
+            if (k)
+                fputc(' ', f);
+            put_name(f, e->outputs[k]);
+        }
+        fputc('\n', f);
     }
-    return atomic_close(f, tmp, path);
+    return hy_out_commit(&o, err) ? -1 : 0;
 }
 
 /* ---- planning: which scenes, which of them changed -------------------- */
@@ -320,17 +354,24 @@ static void scene_key(const hy_scene *s, int data, char key[17])
 /* Every output of e exists in dir. */
 static int outputs_exist(const char *dir, const entry *e)
 {
-    char *list = dupstr(e->outputs);
-    int ok = list && *list;
-    char *save = NULL;
-    for (char *t = list ? strtok_r(list, " ", &save) : NULL; t && ok; t = strtok_r(NULL, " ", &save)) {
-        char *p = join(dir, t);
+    int ok = e->nout > 0;
+    for (size_t i = 0; i < e->nout && ok; i++) {
+        char *p = join(dir, e->outputs[i]);
         struct stat st;
         ok = p && stat(p, &st) == 0 && S_ISREG(st.st_mode);
         free(p);
     }
-    free(list);
     return ok;
+}
+
+/* A name the page and the manifest can carry: no control bytes (a form feed,
+ * a line break), which no browser shows and which hide markup in a name. */
+static int printable_name(const char *s)
+{
+    for (; *s; s++)
+        if ((unsigned char)*s < 0x20 || *s == 0x7f)
+            return 0;
+    return 1;
 }
 
 static void job_fail(job *j, const char *msg)
@@ -353,8 +394,9 @@ static void job_plan(const opts *o, job *jobs, size_t i, entry *man, size_t nman
             j->old = &man[k];
     snprintf(j->name, sizeof j->name, "%.*s", (int)(strlen(j->file) - 6), j->file);
     j->state = J_PENDING;
-    if (strpbrk(j->file, "\t\n\r")) {
-        job_fail(j, "a scene file name with a tab or a line break is not supported");
+    if (!printable_name(j->file)) {
+        job_fail(j, "a scene file name with a control character (tab, line break, form feed, ...) is not "
+                    "supported: rename the file");
         return;
     }
     hy_scene_run probe;
@@ -388,15 +430,13 @@ static int write_csv(const hy_scene_run *r, const char *dir, const char *name, h
 {
     char file[300];
     snprintf(file, sizeof file, "%s.csv", name);
-    char *path = join(dir, file), *tmp = NULL;
-    FILE *f = path ? atomic_open(path, &tmp) : NULL;
-    int rc = f ? hy_scene_run_data(r, f, err) : hy_error_set(err, HY_EIO, "cannot write '%s/%s': %s", dir, file, strerror(errno));
-    if (f && rc) {
-        fclose(f);
-        unlink(tmp);
-        free(tmp);
-    } else if (f && atomic_close(f, tmp, path))
-        rc = hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, strerror(errno));
+    char *path = join(dir, file);
+    hy_out o;
+    int rc = path ? hy_out_open(&o, path, 0, err) : hy_error_set(err, HY_ENOMEM, "out of memory");
+    if (!rc) {
+        hy_scene_run_data(r, hy_out_file(&o), NULL); /* a write error shows at commit */
+        rc = hy_out_commit(&o, err);
+    }
     free(path);
     return rc;
 }
@@ -416,21 +456,22 @@ static int entry_of_run(entry *e, const job *j, const hy_scene_run *r, const cha
         }
     e->ref = ref ? dupstr(ref) : NULL;
     e->scene = dupstr(j->file);
-    size_t cap = strlen(written) + 320, len = 0;
-    e->outputs = calloc(1, cap);
-    if (!e->scene || !e->outputs || (!isnan(e->err) && !e->ref)) {
-        entry_free(e);
-        return -1;
-    }
-    for (const char *l = written; *l;) {
+    int bad = !e->scene || (!isnan(e->err) && !e->ref);
+    for (const char *l = written; *l && !bad;) { /* one path a line: keep the file names */
         const char *nl = strchr(l, '\n'), *end = nl ? nl : l + strlen(l), *b = end;
         while (b > l && b[-1] != '/')
             b--;
-        len += (size_t)snprintf(e->outputs + len, cap - len, "%s%.*s", len ? " " : "", (int)(end - b), b);
+        bad = end > b && entry_add(e, b, (size_t)(end - b));
         l = nl ? nl + 1 : end;
     }
-    if (data)
-        snprintf(e->outputs + len, cap - len, "%s%s.csv", len ? " " : "", j->name);
+    char csv[300];
+    snprintf(csv, sizeof csv, "%s.csv", j->name);
+    if (!bad && data)
+        bad = entry_add(e, csv, strlen(csv));
+    if (bad) {
+        entry_free(e);
+        return -1;
+    }
     return 0;
 }
 
@@ -522,17 +563,25 @@ static int run_pool(const opts *o, job *jobs, size_t n)
 
 /* ---- index.html ------------------------------------------------------ */
 
+/* Every string the page interpolates goes through html() (text and
+ * attribute values: the five markup characters as entities, control bytes
+ * other than tab and line breaks as U+FFFD, which HTML and XML forbid) or
+ * url() (href and src: percent-encoded bytes, then safe in an attribute). */
 static void html(FILE *f, const char *s, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
-        switch (s[i]) {
+        unsigned char c = (unsigned char)s[i];
+        switch (c) {
         case '&': fputs("&amp;", f); break;
         case '<': fputs("&lt;", f); break;
         case '>': fputs("&gt;", f); break;
         case '"': fputs("&quot;", f); break;
         case '\'': fputs("&#39;", f); break;
-        case '\0': fputs("\xef\xbf\xbd", f); break;
-        default: fputc(s[i], f);
+        default:
+            if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f)
+                fputs("\xef\xbf\xbd", f);
+            else
+                fputc(c, f);
         }
     }
 }
@@ -606,10 +655,11 @@ static const char index_css[] =
     "table{border-collapse:collapse}td,th{padding:.15em .8em;text-align:left}td.t{text-align:right}\n";
 
 /* The thumbnail: the PNG if there is one, else the SVG, with its size scaled to 400 px wide. */
-static void index_thumb(FILE *f, const char *dir, const char *outputs)
+static void index_thumb(FILE *f, const char *dir, const entry *e)
 {
-    char *list = dupstr(outputs), *save = NULL, *img = NULL;
-    for (char *t = list ? strtok_r(list, " ", &save) : NULL; t; t = strtok_r(NULL, " ", &save)) {
+    const char *img = NULL;
+    for (size_t i = 0; i < e->nout; i++) {
+        const char *t = e->outputs[i];
         size_t n = strlen(t);
         if (n > 4 && !strcmp(t + n - 4, ".png"))
             img = t;
@@ -629,25 +679,26 @@ static void index_thumb(FILE *f, const char *dir, const char *outputs)
         fputs("\" /></a>\n", f);
     }
     free(p);
-    free(list);
 }
 
-static void index_links(FILE *f, const char *outputs)
+/* A link per output, labelled by its extension in capitals (SVG, PNG). */
+static void index_links(FILE *f, const entry *e)
 {
-    char *list = dupstr(outputs), *save = NULL;
     fputs("<p class=\"links\">", f);
-    int first = 1;
-    for (char *t = list ? strtok_r(list, " ", &save) : NULL; t; t = strtok_r(NULL, " ", &save), first = 0) {
-        const char *dot = strrchr(t, '.');
-        fputs(first ? "<a href=\"" : " <a href=\"", f);
+    for (size_t i = 0; i < e->nout; i++) {
+        const char *t = e->outputs[i], *dot = strrchr(t, '.');
+        char label[16];
+        size_t n = 0;
+        for (const char *c = dot ? dot + 1 : t; *c && n + 1 < sizeof label; c++)
+            label[n++] = *c >= 'a' && *c <= 'z' ? (char)(*c - 'a' + 'A') : *c;
+        label[n] = '\0';
+        fputs(i ? " <a href=\"" : "<a href=\"", f);
         url(f, t);
         fputs("\">", f);
-        for (const char *c = dot ? dot + 1 : t; *c; c++)
-            fputc(*c >= 'a' && *c <= 'z' ? *c - 'a' + 'A' : *c, f);
+        htmls(f, label);
         fputs("</a>", f);
     }
     fputs("</p>\n", f);
-    free(list);
 }
 
 /* Where a scene goes in the catalogue, from its file name: the minor-loops
@@ -741,8 +792,8 @@ static void index_figure(FILE *f, const opts *o, const job *j)
         fputs(j->have_now ? " (the files below are from the last good render)</p>\n" : "</p>\n", f);
     }
     if (j->have_now) {
-        index_thumb(f, o->out, j->now.outputs);
-        index_links(f, j->now.outputs);
+        index_thumb(f, o->out, &j->now);
+        index_links(f, &j->now);
         if (!isnan(j->now.err)) {
             fprintf(f, "<p class=\"err\">max error %.3g against the ", j->now.err);
             htmls(f, j->now.ref ? j->now.ref : "exact answer");
@@ -783,14 +834,17 @@ static void index_times(FILE *f, const job *jobs, size_t n, const size_t count[5
     fputs("</table>\n</section>\n", f);
 }
 
-static int index_write(const opts *o, const job *jobs, size_t n, const size_t count[5], double total)
+static int index_write(const opts *o, const job *jobs, size_t n, const size_t count[5], double total, hy_error *err)
 {
-    char *path = join(o->out, "index.html"), *tmp = NULL;
-    FILE *f = path ? atomic_open(path, &tmp) : NULL;
-    if (!f) {
+    char *path = join(o->out, "index.html");
+    hy_out out;
+    if (!path || hy_out_open(&out, path, 0, err)) {
+        if (!path)
+            hy_error_set(err, HY_ENOMEM, "out of memory");
         free(path);
         return -1;
     }
+    FILE *f = hy_out_file(&out);
     size_t nfig = count[J_RENDERED] + count[J_UNCHANGED] + count[J_FAILED];
     fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\" />\n"
                "<meta name=\"generator\" content=\"hystviz %s\" />\n<title>hystviz gallery</title>\n<style>\n%s</style>\n"
@@ -833,9 +887,8 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
     if (o->times)
         index_times(f, jobs, n, count, total);
     fputs("</body>\n</html>\n", f);
-    int rc = atomic_close(f, tmp, path);
     free(path);
-    return rc;
+    return hy_out_commit(&out, err) ? -1 : 0;
 }
 
 /* ---- the command ----------------------------------------------------- */
@@ -894,16 +947,6 @@ static int make_dir(const char *dir)
     return mkdir(buf, 0755) && errno != EEXIST ? -1 : 0;
 }
 
-/* word is one of the space-separated words of list. */
-static int has_word(const char *list, const char *word)
-{
-    size_t n = strlen(word);
-    for (const char *p = list; (p = strstr(p, word)); p += n)
-        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
-            return 1;
-    return 0;
-}
-
 /* Removes what a re-rendered scene wrote last time and no longer writes (a
  * format dropped, a new output name), unless another figure writes it now. */
 static void remove_stale(const opts *o, const job *jobs, size_t n)
@@ -912,17 +955,16 @@ static void remove_stale(const opts *o, const job *jobs, size_t n)
         const job *j = &jobs[i];
         if (j->state != J_RENDERED || !j->old)
             continue;
-        char *list = dupstr(j->old->outputs), *save = NULL;
-        for (char *t = list ? strtok_r(list, " ", &save) : NULL; t; t = strtok_r(NULL, " ", &save)) {
-            int claimed = 0;
+        for (size_t i2 = 0; i2 < j->old->nout; i2++) {
+            const char *t = j->old->outputs[i2];
+            int claimed = strchr(t, '/') != NULL; /* never outside the gallery */
             for (size_t k = 0; k < n && !claimed; k++)
-                claimed = jobs[k].have_now && has_word(jobs[k].now.outputs, t);
+                claimed = jobs[k].have_now && entry_has(&jobs[k].now, t);
             char *p = claimed ? NULL : join(o->out, t);
             if (p)
                 unlink(p);
             free(p);
         }
-        free(list);
     }
 }
 
@@ -958,7 +1000,7 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
         job_plan(o, jobs, i, man, nman);
     if (run_pool(o, jobs, n)) {
         fprintf(stderr, "hystviz gallery: out of memory\n");
-        return 2;
+        return 1;
     }
     size_t count[5] = {0};
     int rc = 0;
@@ -977,20 +1019,46 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
     remove_stale(o, jobs, n);
     remove_deleted(o, jobs, n, man, nman);
     char *mpath = join(o->out, ".manifest");
-    if (!mpath || manifest_write(mpath, jobs, n)) {
-        fprintf(stderr, "hystviz gallery: cannot write '%s/.manifest': %s\n", o->out, strerror(errno));
-        rc = 2;
+    hy_error err;
+    if (!mpath || manifest_write(mpath, jobs, n, &err)) {
+        fprintf(stderr, "hystviz gallery: %s\n", mpath ? err.msg : "out of memory");
+        rc = 1;
     }
     free(mpath);
     double total = now() - t0;
-    if (index_write(o, jobs, n, count, total)) {
-        fprintf(stderr, "hystviz gallery: cannot write '%s/index.html': %s\n", o->out, strerror(errno));
-        rc = 2;
+    if (index_write(o, jobs, n, count, total, &err)) {
+        fprintf(stderr, "hystviz gallery: %s\n", err.msg);
+        rc = 1;
     }
     if (!o->quiet)
         fprintf(stderr, "gallery: %zu rendered, %zu unchanged, %zu failed in %.2f s\n", count[J_RENDERED],
                 count[J_UNCHANGED], count[J_FAILED], now() - t0);
     return rc;
+}
+
+/* Takes DIR/.lock (flock, waiting for a run that holds it): one gallery run
+ * at a time per directory, so the manifest, the index and the files agree.
+ * The lock goes with the process, also when it is killed.  -1: printed. */
+static int lock_gallery(const opts *o)
+{
+    char *path = join(o->out, ".lock");
+    int fd = path ? open(path, O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666) : -1;
+    if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) && errno == EWOULDBLOCK) {
+        if (!o->quiet)
+            fprintf(stderr, "gallery: waiting for another gallery run on %s to finish\n", o->out);
+        while (flock(fd, LOCK_EX) && errno == EINTR)
+            ;
+    }
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) || !S_ISREG(st.st_mode)) {
+        fprintf(stderr, "hystviz gallery: cannot lock '%s': %s\n", path ? path : o->out,
+                fd < 0 ? strerror(errno) : "not a regular file");
+        if (fd >= 0)
+            close(fd);
+        fd = -1;
+    }
+    free(path);
+    return fd;
 }
 
 int hy_cmd_gallery(int argc, char **argv)
@@ -1003,10 +1071,14 @@ int hy_cmd_gallery(int argc, char **argv)
     char **names = list_scenes(o.scenes, &n);
     if (!names)
         return 2;
+    int lock = -1;
     if (make_dir(o.out)) {
         fprintf(stderr, "hystviz gallery: %s: cannot create the gallery directory: %s\n", o.out, strerror(errno));
-        rc = 2;
-    }
+        rc = 1;
+    } else if ((lock = lock_gallery(&o)) < 0)
+        rc = 1;
+    else
+        hy_out_sweep(o.out); /* temporaries of killed runs (their locks are free) */
     char *mpath = join(o.out, ".manifest");
     entry *man = mpath && !rc ? manifest_read(mpath, &nman) : NULL;
     free(mpath);
@@ -1033,5 +1105,7 @@ int hy_cmd_gallery(int argc, char **argv)
     free(man);
     free(jobs);
     free(names);
+    if (lock >= 0)
+        close(lock); /* releases the gallery to the next run */
     return rc;
 }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 #include <string.h>
 
+#include "cli_util.h"
 #include "cmd_boucwen.h"
 #include "cmd_check.h"
 #include "cmd_gallery.h"
@@ -35,6 +36,15 @@ static const char usage[] =
     "options:\n"
     "  -h, --help     this text (COMMAND --help: that command's options)\n"
     "  --version      the program version\n"
+    "\n"
+    "exit status (every command):\n"
+    "  0  done\n"
+    "  1  failure while running (a file could not be written, a computation failed)\n"
+    "  2  usage error or invalid input (bad option, bad scene, refused parameter);\n"
+    "     found before anything is computed or written\n"
+    "  3  feature not built into this hystviz (e.g. animations without OSMesa)\n"
+    "A failure prints what failed and leaves no partial file: a command's files\n"
+    "are written whole, all of them or none (FILE '-' is standard output).\n"
     "\n"
     "example:\n"
     "  hystviz loop --model lugre --sigma0 6 --fc 1 --fs 2 --vs 1 --beta 1 \\\n"
@@ -86,17 +96,17 @@ int main(int argc, char **argv)
     }
     if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
         printf("hystviz %s\n", HY_VERSION);
-        return 0;
+        return cli_stdout_status(NULL, 0);
     }
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         fputs(usage, stdout);
-        return 0;
+        return cli_stdout_status(NULL, 0);
     }
     if (!strcmp(argv[1], "animate"))
         return run_animate(argv);
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (!strcmp(argv[1], commands[i].name))
-            return commands[i].run(argc - 1, argv + 1);
+        if (!strcmp(argv[1], commands[i].name)) /* every command's output checked here */
+            return cli_stdout_status(argv[1], commands[i].run(argc - 1, argv + 1));
     fprintf(stderr, "hystviz: unknown command '%s' (try hystviz --help)\n", argv[1]);
     return 2;
 }

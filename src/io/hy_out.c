@@ -59,6 +59,14 @@ static int fail_msg(hy_error *err, const char *path, const char *why)
     return hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, why);
 }
 
+/* The failure of o: its path, or "standard output". */
+static int fail_out(hy_error *err, const hy_out *o, int e)
+{
+    if (o->direct != 1)
+        return fail(err, o->path, e);
+    return hy_error_set(err, e == ENOMEM ? HY_ENOMEM : HY_EIO, "cannot write standard output: %s", strerror(e ? e : EIO));
+}
+
 static void release(hy_out *o)
 {
     if (o->fd >= 0)
@@ -231,7 +239,7 @@ int hy_out_finish(hy_out *o, hy_error *err)
         e = errno;
     o->fp = NULL;
     if (e) {
-        int code = fail(err, o->direct == 1 ? "standard output" : o->path, e);
+        int code = fail_out(err, o, e);
         if (o->tmp)
             unlink(o->tmp);
         release(o);
@@ -276,7 +284,7 @@ int hy_out_publish(hy_out *o, hy_error *err)
             e = errno;
         o->fd = -1;
     }
-    int code = e ? fail(err, o->direct == 1 ? "standard output" : o->path, e) : HY_OK;
+    int code = e ? fail_out(err, o, e) : HY_OK;
     release(o);
     return code;
 }

@@ -1,7 +1,7 @@
 #!/bin/sh
 # The Bouc-Wen scenes through the hystviz command: `hystviz data` of Fig. 1(b),
 # `hystviz render` of all six, and a malformed scene refused with
-# file:line:col, exit status 1 and no output file.
+# file:line:col, exit status 2 (invalid input) and no output file.
 set -u
 hv=$1
 scenes=$2
@@ -28,7 +28,7 @@ done
 printf 'include "%s/style.scene"\n[model]\nkind = boucwen\nnu = 0\n' "$scenes" > "$tmp/bad.scene"
 "$hv" render "$tmp/bad.scene" -o "$tmp/badout" > "$tmp/stdout" 2> "$tmp/err"
 st=$?
-[ $st -eq 1 ] && ok || bad "bad scene: status $st"
+[ $st -eq 2 ] && ok || bad "bad scene: status $st"
 grep -qF "$tmp/bad.scene:4:6: 'nu' in [model] must be > 0, got 0" "$tmp/err" && ok || bad "message: $(cat "$tmp/err")"
 [ ! -e "$tmp/badout" ] && ok || bad "a refused scene left output"
 

@@ -230,5 +230,69 @@ if script -qec true /dev/null > /dev/null 2>&1; then # progress lines on a termi
 fi
 "$hv" gallery --help | grep -q 'usage: hystviz gallery' && ok || bad "--help"
 
+# 9. names: a scene file name with a form feed and markup is refused (it would
+#    be markup in index.html); one with a space, quotes and '&' works, is
+#    escaped everywhere and is not rendered again on the next run
+H=$tmp/hostile
+mkdir "$H"
+cp "$S/look.scene" "$H/"
+ff=$(printf 'x\f<svg onload=alert(1)>.scene')
+printf 'include "look.scene"\n[figure]\nkind = input\n[series u]\ndata = input\n' > "$H/$ff"
+printf 'include "look.scene"\n[figure]\nkind = input\n[series u]\ndata = input\n' > "$H/my fig & \"q\" 's.scene"
+"$hv" gallery --scenes "$H" -o "$tmp/hg" --no-times > /dev/null 2> "$tmp/h1.err"
+[ $? -eq 1 ] && grep -q 'control character' "$tmp/h1.err" && ok || bad "form-feed name: $(cat "$tmp/h1.err")"
+grep -qi '<svg' "$tmp/hg/index.html" && bad "markup from a file name reached index.html" || ok
+LC_ALL=C grep -q "$(printf '\f')" "$tmp/hg/index.html" && bad "a control byte reached index.html" || ok
+grep -q 'href="my%20fig%20%26%20%22q%22%20%27s.png"' "$tmp/hg/index.html" &&
+    grep -q '<h2>my fig &amp; &quot;q&quot; &#39;s</h2>' "$tmp/hg/index.html" && ok || bad "name with a space: not escaped/linked"
+[ -s "$tmp/hg/my fig & \"q\" 's.png" ] && ok || bad "name with a space: no PNG"
+if command -v xmllint > /dev/null 2>&1; then
+    xmllint --noout "$tmp/hg/index.html" && ok || bad "hostile index.html is not well-formed"
+fi
+rm "$H/$ff"
+"$hv" gallery --scenes "$H" -o "$tmp/hg" --no-times > /dev/null 2> "$tmp/h2.err"
+grep -q '^gallery: 0 rendered, 1 unchanged, 0 failed' "$tmp/h2.err" && ok || bad "a name with a space is rendered every run: $(cat "$tmp/h2.err")"
+
+# 10. leftovers: temporaries of killed writers go at the next run (their flock
+#     is free), a live writer's stays; the old writers' NAME.EXT.tmp.XXXXXX too
+run tmps1
+: > "$G/.a_loop.png.hystviz-tmp.AbC123"
+: > "$G/a_loop.svg.tmp.Xy9Zq1"
+: > "$G/.held.svg.hystviz-tmp.LiVe01"
+: > "$G/notes.tmp.txt"
+flock "$G/.held.svg.hystviz-tmp.LiVe01" sleep 30 &
+holder=$!
+sleep 0.2
+run tmps2
+[ ! -e "$G/.a_loop.png.hystviz-tmp.AbC123" ] && [ ! -e "$G/a_loop.svg.tmp.Xy9Zq1" ] && ok || bad "stale temporaries kept: $(ls -A "$G")"
+[ -e "$G/.held.svg.hystviz-tmp.LiVe01" ] && [ -e "$G/notes.tmp.txt" ] && ok || bad "a locked temporary or a user file was removed"
+kill $holder 2> /dev/null
+wait $holder 2> /dev/null
+rm -f "$G/.held.svg.hystviz-tmp.LiVe01" "$G/notes.tmp.txt"
+# a real kill -9: a writer with its temporary open in the gallery directory
+"$hv" loop --input sine:1,1 --gamma 1 --cycles 1000000 --points 2 --solver rk8pd -o "$G/slow.csv" 2> /dev/null &
+slow=$!
+for _ in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
+    ls -A "$G" | grep -q '^\.slow\.csv\.hystviz-tmp\.' && break
+    sleep 0.1
+done
+kill -9 $slow
+wait $slow 2> /dev/null
+ls -A "$G" | grep -q '^\.slow\.csv\.hystviz-tmp\.' && ok || bad "no temporary seen before kill -9"
+run tmps3
+ls -A "$G" | grep -q 'hystviz-tmp' && bad "kill -9 leftover kept: $(ls -A "$G")" || ok
+
+# 11. one gallery run at a time per directory (flock on .lock): a run waits
+#     while another holds the lock, then goes on
+flock "$G/.lock" sleep 30 &
+holder=$!
+sleep 0.2
+timeout 2 "$hv" gallery --scenes "$S" -o "$G" --no-times > /dev/null 2> "$tmp/lock.err"
+[ $? -eq 124 ] && grep -q 'waiting for another gallery run' "$tmp/lock.err" && ok || bad "gallery ran while the lock was held: $(cat "$tmp/lock.err")"
+kill $holder 2> /dev/null
+wait $holder 2> /dev/null
+run unlocked
+[ $st -eq 0 ] && ok || bad "gallery after the lock was released: status $st"
+
 echo "gallery: $pass passed, $fail failed"
 [ $fail -eq 0 ]
