@@ -37,6 +37,18 @@ static inline long count_frames(const char *dir)
     return n;
 }
 
+/* Temporaries of the output writer (".NAME.hystviz-tmp.XXXXXX") in dir. */
+static inline long count_tmps(const char *dir)
+{
+    DIR *d = opendir(dir);
+    long n = 0;
+    for (struct dirent *e; d && (e = readdir(d));)
+        n += strstr(e->d_name, ".hystviz-tmp.") != NULL;
+    if (d)
+        closedir(d);
+    return n;
+}
+
 /* The whole file, or NULL. */
 static inline unsigned char *slurp(const char *path, size_t *len)
 {

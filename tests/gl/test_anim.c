@@ -8,9 +8,11 @@
 
 #include <cairo.h>
 #include <dirent.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdarg.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -227,7 +229,7 @@ static void test_video_pipe(void)
     free(a);
     free(b);
     struct stat sb;
-    CHECK(stat("out_vid1/.k-cycle-ex2.mp4.part", &sb) != 0, "the temporary video was renamed");
+    CHECK(count_tmps("out_vid1") == 0, "the temporary video was renamed");
     /* --no-frames: the video and the poster, no frame directory */
     CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid3", "--size", "64x48", "--fps", "10", "--duration", "2",
                   "--video", "mp4", "--no-frames", "--quiet", NULL) == 0, "video run --no-frames");
@@ -246,11 +248,45 @@ static void test_video_pipe(void)
     fclose(f);
     CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid5", "--size", "64x48", "--fps", "10", "--duration", "2",
                   "--video", "mp4", "--quiet", NULL) != 0, "a failing ffmpeg fails the run");
-    CHECK(stat("out_vid5/k-cycle-ex2.mp4", &sb) != 0 && stat("out_vid5/.k-cycle-ex2.mp4.part", &sb) != 0,
+    CHECK(stat("out_vid5/k-cycle-ex2.mp4", &sb) != 0 && count_tmps("out_vid5") == 0,
           "a failing ffmpeg leaves no video and no temporary");
     if (old)
         setenv("PATH", old, 1);
     free(old);
+}
+
+/* A shorter re-run leaves exactly its own frames (ffmpeg -i frame_%05d.png
+ * would encode a longer run's tail after them), and the temporaries of a
+ * killed run go; a locked one (a live writer's) and other files stay. */
+static void test_rerun(void)
+{
+    const char *d = "out_rerun/k-cycle-ex2";
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_rerun", "--size", "64x48", "--fps", "10", "--duration", "1",
+                  "--quiet", NULL) == 0, "first run");
+    CHECK(count_frames(d) == 10, "10 frames expected, got %ld", count_frames(d));
+    static const char *const planted[] = {"out_rerun/k-cycle-ex2/.frame_00004.png.hystviz-tmp.AbC123",
+                                          "out_rerun/.k-cycle-ex2.png.hystviz-tmp.dEf456",
+                                          "out_rerun/k-cycle-ex2/frame_00002.png.tmp.Xy9Zq1",
+                                          "out_rerun/k-cycle-ex2/.live.png.hystviz-tmp.LiVe01",
+                                          "out_rerun/k-cycle-ex2/notes.txt"};
+    for (size_t i = 0; i < sizeof planted / sizeof *planted; i++)
+        fclose(fopen(planted[i], "w"));
+    int live = open(planted[3], O_RDONLY);
+    CHECK(live >= 0 && flock(live, LOCK_EX) == 0, "lock the live temporary");
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_rerun", "--size", "64x48", "--fps", "10", "--duration", "0.5",
+                  "--quiet", NULL) == 0, "shorter run");
+    CHECK(count_frames(d) == 5, "the shorter run left %ld frames, expected its 5", count_frames(d));
+    CHECK(access("out_rerun/k-cycle-ex2/frame_00004.png", F_OK) == 0 &&
+          access("out_rerun/k-cycle-ex2/frame_00005.png", F_OK) != 0 &&
+          access("out_rerun/k-cycle-ex2/frame_00009.png", F_OK) != 0, "frames 5..9 of the longer run remain");
+    for (size_t i = 0; i < 3; i++)
+        CHECK(access(planted[i], F_OK) != 0, "stale temporary %s kept", planted[i]);
+    CHECK(access(planted[3], F_OK) == 0 && access(planted[4], F_OK) == 0, "a locked temporary or a user file removed");
+    close(live);
+    /* a range run keeps the other frames of the same animation */
+    CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_rerun", "--size", "64x48", "--fps", "10", "--duration", "0.5",
+                  "--frames", "2:3", "--quiet", NULL) == 0, "range run");
+    CHECK(count_frames(d) == 5, "a --frames run removed frames: %ld left", count_frames(d));
 }
 
 static int ok_draw(void *state, const hy_anim_frame *f, hy_error *err)
@@ -288,6 +324,7 @@ int main(void)
     test_references();
     test_errors();
     test_video_pipe();
+    test_rerun();
     test_silent();
     return fails ? 1 : 0;
 }

@@ -198,8 +198,8 @@ static void bad(const char *kf, const char *where, const char *what)
     }
     CHECK(rc != 0 && !strncmp(err.msg, where, strlen(where)) && strstr(err.msg, what),
           "want '%s ... %s', got '%s'", where, what, err.msg);
-    CHECK(run_cmd("animate", "kf_bad.scene", "-o", "out_bad", "--size", "160x90", "--quiet", NULL) == 1,
-          "the command fails");
+    CHECK(run_cmd("animate", "kf_bad.scene", "-o", "out_bad", "--size", "160x90", "--quiet", NULL) == 2,
+          "the command fails with status 2 (invalid input)");
     CHECK(access("out_bad/kf_bad", F_OK) != 0, "no frames written for a bad keyframe");
 }
 
@@ -213,7 +213,7 @@ static void test_errors(void)
     bad("key = \"model.sigma0\"\ntimes = 0, 1\nvalues = 1, -1\n", "kf_bad.scene:16:1:", "at frame 2");
     bad("key = \"series.g.gamma\"\ntimes = 0, 1\nvalues = 0, 10\nlog = true\n", "kf_bad.scene:16:1:", "values > 0");
     bad("key = \"input.umin2\"\ntimes = 0, 1\nvalues = 0.2, 1.2\n", "kf_bad.scene:13:1:", "u_min,2 < u_max,1");
-    CHECK(run_cmd("animate", "no_such.scene", "--quiet", NULL) == 1, "a missing scene file");
+    CHECK(run_cmd("animate", "no_such.scene", "--quiet", NULL) == 2, "a missing scene file: status 2");
 }
 
 static void test_interp(void)

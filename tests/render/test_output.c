@@ -203,14 +203,16 @@ static void test_determinism(int i)
     }
 }
 
-/* No file and no temporary left in dir whose name starts with stem. */
+/* Files in dir whose name starts with stem, and temporaries of the output
+ * writer for such a name (".STEM....hystviz-tmp.XXXXXX"). */
 static int leftovers(const char *dir, const char *stem)
 {
     DIR *d = opendir(dir);
     struct dirent *e;
     int n = 0;
     while (d && (e = readdir(d)) != NULL)
-        n += !strncmp(e->d_name, stem, strlen(stem));
+        n += !strncmp(e->d_name, stem, strlen(stem)) ||
+             (e->d_name[0] == '.' && !strncmp(e->d_name + 1, stem, strlen(stem)) && strstr(e->d_name, ".hystviz-tmp."));
     if (d)
         closedir(d);
     return n;
@@ -253,7 +255,7 @@ static void test_atomic(void)
     mkdir("atomic_dir/fig.pdf", 0755);
     CHECK(hy_figure_write(&fig, "atomic_dir/fig.pdf", HY_FORMAT_PDF, &err) == HY_EIO, "rename onto a directory succeeded");
     CHECK(strstr(err.msg, "atomic_dir/fig.pdf") != NULL, "message \"%s\" does not name the path", err.msg);
-    CHECK(leftovers("atomic_dir", "fig.pdf.tmp") == 0, "temporary file left in atomic_dir");
+    CHECK(leftovers("atomic_dir", "fig.pdf.") == 0, "temporary file left in atomic_dir");
     rmdir("atomic_dir/fig.pdf");
 
     /* A write failure part-way (file size limit, as ENOSPC would): the old file survives. */
@@ -282,7 +284,7 @@ static void test_atomic(void)
     char *now = slurp("atomic_dir/keep.svg", &lnow);
     CHECK(old && now && lold == lnow && !memcmp(old, now, lold), "a failed write damaged the existing file");
     CHECK(leftovers("atomic_dir", "big") == 0, "partial files left after write failures");
-    CHECK(leftovers("atomic_dir", "keep.svg.tmp") == 0, "temporary file left after a write failure");
+    CHECK(leftovers("atomic_dir", "keep.svg.") == 0, "temporary file left after a write failure");
     free(old);
     free(now);
 }
@@ -298,6 +300,22 @@ int main(void)
     CHECK(hy_format_from_path("a/b.svg") == HY_FORMAT_SVG && hy_format_from_path("x.png") == HY_FORMAT_PNG &&
           hy_format_from_path("x.pdf") == HY_FORMAT_PDF && hy_format_from_path("x.jpg") == -1,
           "hy_format_from_path");
+    /* an absurd raster is refused before anything is drawn or written */
+    hy_figure big;
+    hy_error berr = {0, ""};
+    fig_build(1, &big);
+    big.width = hy_in(40), big.height = hy_in(40), big.dpi = 2400;
+    CHECK(hy_figure_check(&big, HY_FORMAT_PNG, &berr) == HY_EINVAL && strstr(berr.msg, "96000 x 96000 pixels"),
+          "40 x 40 in at 2400 dpi: %s", berr.msg);
+    CHECK(hy_figure_write(&big, "big.png", HY_FORMAT_PNG, &berr) == HY_EINVAL && leftovers(".", "big.png") == 0,
+          "the absurd PNG was written or left a file");
+    CHECK(hy_figure_check(&big, HY_FORMAT_SVG, &berr) == HY_OK, "a vector figure of 40 x 40 in is fine");
+    big.width = hy_in(10), big.height = hy_in(10), big.dpi = 2400; /* 24000 px a side: 576 Mpx > 2^28 */
+    CHECK(hy_figure_check(&big, HY_FORMAT_PNG, &berr) == HY_EINVAL, "576 million pixels accepted");
+    big.width = hy_in(5);                                          /* 12000 x 24000 = 288 Mpx > 2^28 */
+    CHECK(hy_figure_check(&big, HY_FORMAT_PNG, &berr) == HY_EINVAL, "288 million pixels accepted");
+    big.width = hy_in(4);                                          /* 9600 x 24000 = 230 Mpx: allowed */
+    CHECK(hy_figure_check(&big, HY_FORMAT_PNG, &berr) == HY_OK, "230 million pixels refused: %s", berr.msg);
     hy_figure empty = {0};
     hy_error err;
     CHECK(hy_figure_write(&empty, "empty.svg", HY_FORMAT_SVG, &err) == HY_EINVAL, "a figure without panels was written");
