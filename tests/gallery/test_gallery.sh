@@ -260,7 +260,7 @@ run tmps1
 : > "$G/a_loop.svg.tmp.Xy9Zq1"
 : > "$G/.held.svg.hystviz-tmp.LiVe01"
 : > "$G/notes.tmp.txt"
-flock "$G/.held.svg.hystviz-tmp.LiVe01" sleep 30 &
+flock -o "$G/.held.svg.hystviz-tmp.LiVe01" sleep 5 > /dev/null 2>&1 & # -o: flock itself holds it
 holder=$!
 sleep 0.2
 run tmps2
@@ -284,7 +284,7 @@ ls -A "$G" | grep -q 'hystviz-tmp' && bad "kill -9 leftover kept: $(ls -A "$G")"
 
 # 11. one gallery run at a time per directory (flock on .lock): a run waits
 #     while another holds the lock, then goes on
-flock "$G/.lock" sleep 30 &
+flock -o "$G/.lock" sleep 5 > /dev/null 2>&1 &
 holder=$!
 sleep 0.2
 timeout 2 "$hv" gallery --scenes "$S" -o "$G" --no-times > /dev/null 2> "$tmp/lock.err"
