@@ -151,8 +151,15 @@ static int open_direct(hy_out *o, const struct stat *st, hy_error *err)
     }
     o->fd = fd;
     o->direct = 2;
-    if (!o->hold && !(o->fp = fdopen(dup(fd), "wb")))
-        return fail(err, o->path, errno);
+    if (o->hold)
+        return HY_OK; /* a memory stream until publish */
+    int d = dup(fd);  /* the stream closes its own descriptor; publish closes fd */
+    if (d < 0 || !(o->fp = fdopen(d, "wb"))) {
+        int e = errno;
+        if (d >= 0)
+            close(d);
+        return fail(err, o->path, e);
+    }
     return HY_OK;
 }
 
