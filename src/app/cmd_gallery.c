@@ -947,25 +947,29 @@ static int make_dir(const char *dir)
     return mkdir(buf, 0755) && errno != EEXIST ? -1 : 0;
 }
 
+/* Removes the files of an old manifest entry that no current figure writes
+ * (never a name with a '/': nothing outside the gallery). */
+static void remove_unclaimed(const opts *o, const job *jobs, size_t n, const entry *old)
+{
+    for (size_t i = 0; i < old->nout; i++) {
+        const char *t = old->outputs[i];
+        int claimed = strchr(t, '/') != NULL;
+        for (size_t k = 0; k < n && !claimed; k++)
+            claimed = jobs[k].have_now && entry_has(&jobs[k].now, t);
+        char *p = claimed ? NULL : join(o->out, t);
+        if (p)
+            unlink(p);
+        free(p);
+    }
+}
+
 /* Removes what a re-rendered scene wrote last time and no longer writes (a
  * format dropped, a new output name), unless another figure writes it now. */
 static void remove_stale(const opts *o, const job *jobs, size_t n)
 {
-    for (size_t i = 0; i < n; i++) {
-        const job *j = &jobs[i];
-        if (j->state != J_RENDERED || !j->old)
-            continue;
-        for (size_t i2 = 0; i2 < j->old->nout; i2++) {
-            const char *t = j->old->outputs[i2];
-            int claimed = strchr(t, '/') != NULL; /* never outside the gallery */
-            for (size_t k = 0; k < n && !claimed; k++)
-                claimed = jobs[k].have_now && entry_has(&jobs[k].now, t);
-            char *p = claimed ? NULL : join(o->out, t);
-            if (p)
-                unlink(p);
-            free(p);
-        }
-    }
+    for (size_t i = 0; i < n; i++)
+        if (jobs[i].state == J_RENDERED && jobs[i].old)
+            remove_unclaimed(o, jobs, n, jobs[i].old);
 }
 
 /* Removes the outputs the manifest lists for scenes no longer in the scene
@@ -976,19 +980,8 @@ static void remove_deleted(const opts *o, const job *jobs, size_t n, const entry
         int present = 0;
         for (size_t i = 0; i < n && !present; i++)
             present = !strcmp(jobs[i].file, man[m].scene);
-        if (present)
-            continue;
-        char *list = dupstr(man[m].outputs), *save = NULL;
-        for (char *t = list ? strtok_r(list, " ", &save) : NULL; t; t = strtok_r(NULL, " ", &save)) {
-            int claimed = 0;
-            for (size_t k = 0; k < n && !claimed; k++)
-                claimed = jobs[k].have_now && has_word(jobs[k].now.outputs, t);
-            char *path = claimed || strchr(t, '/') ? NULL : join(o->out, t);
-            if (path)
-                unlink(path);
-            free(path);
-        }
-        free(list);
+        if (!present)
+            remove_unclaimed(o, jobs, n, &man[m]);
     }
 }
 
