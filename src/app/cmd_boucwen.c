@@ -76,8 +76,9 @@ static const char usage_data[] =
     "                       --single-stage; t is written from 0\n"
     "  --input FILE         input force file (implies --signal file)\n"
     "  --data-dir DIR       folder of uval_multisine.txt (validation; default\n"
-    "                       $HY_BOUCWEN_DATA, then shared/data/boucwen next to\n"
-    "                       the source tree)\n"
+    "                       $HY_BOUCWEN_DATA, then the installed copy in\n"
+    "                       " HY_DATA_DIR "/boucwen,\n"
+    "                       then tests/data/boucwen of the source tree)\n"
     "  --periods P          number of periods written (periodic signals)\n"
     "  --noise RMS          output noise RMS in metres, Gaussian band-limited\n"
     "                       to 0-fs/2 (default 8e-6 = 8e-3 mm; 0 = none;\n"
@@ -266,12 +267,12 @@ static int cmd_table2(const opts *o)
     return 0;
 }
 
-/* Finds uval_multisine.txt: --data-dir, $HY_BOUCWEN_DATA, next to the source. */
+/* Finds uval_multisine.txt: --data-dir, $HY_BOUCWEN_DATA, the installed
+ * copy, the source tree's (a build run before `meson install`). */
 static int validation_path(const opts *o, char *path, size_t size)
 {
-    const char *cand[] = {o->data_dir, getenv("HY_BOUCWEN_DATA"),
-                          HY_SOURCE_DIR "/../shared/data/boucwen",
-                          HY_SOURCE_DIR "/../../shared/data/boucwen"};
+    const char *cand[] = {o->data_dir, getenv("HY_BOUCWEN_DATA"), HY_DATA_DIR "/boucwen",
+                          HY_SOURCE_DIR "/tests/data/boucwen"};
     for (size_t i = 0; i < sizeof cand / sizeof *cand; i++) {
         struct stat st;
         if (!cand[i])

@@ -1,6 +1,6 @@
 /* bw_test.h: tiny check macros and the location of the benchmark's data for
- * the Bouc-Wen tests.  A test that needs the data and cannot find it exits 77
- * (meson's SKIP) after saying where it looked. */
+ * the Bouc-Wen tests (tests/data/boucwen, in the tree: a test that cannot find
+ * it fails after saying where it looked). */
 #ifndef BW_TEST_H
 #define BW_TEST_H
 
@@ -24,16 +24,12 @@ static int bw_failures;
         }                                                                     \
     } while (0)
 
-/* The folder holding uval_multisine.txt: $HY_BOUCWEN_DATA, else the shared
- * data next to the source tree (main checkout: HY_SOURCE_DIR/../shared, a
- * worktree under wt/: HY_SOURCE_DIR/../../shared).  Exits 77 if none. */
+/* The folder holding uval_multisine.txt: $HY_BOUCWEN_DATA, else the copy in
+ * the source tree (tests/data/boucwen).  The data belongs to the project, so a
+ * missing file is a failure (exit 1), not a reason to skip. */
 static inline const char *bw_data_dir(void)
 {
-    static const char *cand[] = {
-        NULL,
-        HY_SOURCE_DIR "/../shared/data/boucwen",
-        HY_SOURCE_DIR "/../../shared/data/boucwen",
-    };
+    static const char *cand[] = {NULL, HY_SOURCE_DIR "/tests/data/boucwen"};
     cand[0] = getenv("HY_BOUCWEN_DATA");
     for (size_t i = 0; i < sizeof cand / sizeof cand[0]; i++) {
         char path[4096];
@@ -44,9 +40,8 @@ static inline const char *bw_data_dir(void)
         if (stat(path, &st) == 0)
             return cand[i];
     }
-    fprintf(stderr, "SKIP: Bouc-Wen validation data not found (set "
-            "HY_BOUCWEN_DATA, or provide %s)\n", cand[1]);
-    exit(77);
+    fprintf(stderr, "FAIL: Bouc-Wen validation data not found in %s (or $HY_BOUCWEN_DATA)\n", cand[1]);
+    exit(1);
 }
 
 #endif
