@@ -3,12 +3,19 @@
 #   sh tools/setup.sh gallery   install what is missing, build, render the gallery
 #   sh tools/setup.sh test      install what is missing, build, run every test suite
 #                               (again without OSMesa, and again under ASan+UBSan)
+#   sh tools/setup.sh bench     build, run the benchmarks
+#   sh tools/setup.sh fuzz MIN  build the libFuzzer target with clang in build-fuzz/ and
+#                               fuzz the scene parser and `data` path for MIN minutes
+#                               (default 10); new inputs go to build-fuzz/fuzz-corpus/,
+#                               failing ones to build-fuzz/fuzz-crashes/ (tests/fuzz/README.md)
 # With CI=true the build uses -Dwerror=true.
 set -eu
 cd "$(dirname "$0")/.."
 what=${1:-gallery}
 
 pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev libosmesa6-dev fonts-dejavu-core fonts-stix"
+# the fuzzer needs clang and its runtime libraries (libFuzzer, ASan, UBSan)
+[ "$what" = fuzz ] && pkgs="$pkgs clang libclang-rt-dev"
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"
@@ -62,8 +69,41 @@ bench)
     configure build
     meson test -C build --benchmark --verbose
     ;;
+fuzz)
+    minutes=${2:-10}
+    case "$minutes" in ''|*[!0-9]*) echo "setup: fuzz MINUTES takes a whole number of minutes" >&2; exit 2;; esac
+    # clang: libFuzzer instruments every library (coverage), ASan + UBSan with
+    # float-cast-overflow abort at the first report; only the fuzz target is built
+    fuzz_cflags="-fsanitize=fuzzer-no-link,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer"
+    if [ -d build-fuzz ]; then
+        meson setup --reconfigure build-fuzz >/dev/null
+    else
+        CC=clang meson setup build-fuzz -Dfuzz=true -Dosmesa=disabled -Db_sanitize=address,undefined \
+            -Db_lundef=false -Dc_args="$fuzz_cflags" >/dev/null
+    fi
+    meson compile -C build-fuzz fuzz_scene fuzz_dict
+    mkdir -p build-fuzz/fuzz-corpus build-fuzz/fuzz-crashes
+    build-fuzz/tests/fuzz/fuzz_dict --write build-fuzz/scene.dict
+    before=$(ls build-fuzz/fuzz-crashes | wc -l)
+    # one job; a failing input is saved and the fuzzing goes on (-fork=1 -ignore_*)
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+    build-fuzz/tests/fuzz/fuzz_scene -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+        -max_total_time=$((minutes * 60)) -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
+        -dict=build-fuzz/scene.dict -artifact_prefix=build-fuzz/fuzz-crashes/ \
+        build-fuzz/fuzz-corpus tests/fuzz/corpus tests/fuzz/repro >build-fuzz/fuzz.log 2>&1 || true
+    last=$(grep -E '^#[0-9]+: cov:' build-fuzz/fuzz.log | tail -n 1)
+    echo "fuzz: $minutes min, log build-fuzz/fuzz.log"
+    echo "fuzz: last status: ${last:-none (see the log)}"
+    echo "fuzz: executions $(echo "$last" | sed -n 's/^#\([0-9]*\):.*/\1/p'), coverage: edges (cov) $(echo "$last" |
+        sed -n 's/.* cov: \([0-9]*\).*/\1/p'), features (ft) $(echo "$last" | sed -n 's/.* ft: \([0-9]*\).*/\1/p'),"\
+        "corpus $(ls build-fuzz/fuzz-corpus | wc -l) files"
+    after=$(ls build-fuzz/fuzz-crashes | wc -l)
+    echo "fuzz: findings: $((after - before)) new in build-fuzz/fuzz-crashes/ ($after in all)"
+    ls -t build-fuzz/fuzz-crashes | head -n $((after - before)) | sed 's|^|  build-fuzz/fuzz-crashes/|'
+    echo "fuzz: replay one: build-fuzz/tests/fuzz/fuzz_scene FILE (or build/tests/fuzz/fuzz_replay -v FILE)"
+    ;;
 *)
-    echo "usage: sh tools/setup.sh gallery|test|bench" >&2
+    echo "usage: sh tools/setup.sh gallery|test|bench|fuzz [MINUTES]" >&2
     exit 2
     ;;
 esac
