@@ -85,7 +85,7 @@ static char *dictionary(void)
         "pt", "cm", "mm", "in", "px", "e-", "e+", "1e308", "4.9e-324", "-0", "nan", "inf",
         "0x", "#0072b2", "black", "vermillion", "vermilion", "orange", "skyblue", "bluishgreen",
         "yellow", "blue", "reddishpurple", "{", "}", "{energy}", "{nminor}", ".area}", "^", "_",
-        "\\circ", "style.scene", "part.scene", "self.scene", "sub/inner.scene", "u.txt", "u1.txt",
+        "\\circ", "style.scene", "part.scene", "self.scene", "sub/inner.scene", "v.txt", "u.txt", "u1.txt",
         "bad.txt", "empty.txt", "../", "/", "\r\n", "\t", "\xef\xbb\xbf", NULL};
     for (size_t i = 0; extra[i]; i++)
         put(&b, "\"%s\"\n", q(extra[i], e2, sizeof e2), "");

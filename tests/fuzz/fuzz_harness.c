@@ -243,7 +243,8 @@ static const struct {
                     "formats = svg, pdf, png\ndir = \"gallery\"\n"},
     {"part.scene", "include \"style.scene\"\n[compute]\npoints = 50\ncycles = 2\n"},
     {"self.scene", "[model]\nkind = dahl\ninclude \"self.scene\"\n"},
-    {"sub/inner.scene", "include \"../style.scene\"\n[input]\nkind = file\nfile = \"../u.txt\"\n"},
+    {"sub/inner.scene", "[input]\nkind = file\nfile = \"v.txt\"\n"},
+    {"sub/v.txt", "0 1\n0.5 -1\n1 1\n"},
     {"u.txt", "0 0\n0.25 0.5\n0.5 1\n0.75 0.5\n1 0\n1.25 -0.5\n1.5 -1\n1.75 -0.5\n2 0\n"},
     {"u1.txt", "0\n1\n0.5\n-1\n0.25\n0\n"},
     {"bad.txt", "0 0\n0.5 1\nx y\n"},
@@ -281,8 +282,8 @@ int hy_fuzz_init(void)
         fprintf(stderr, "hy_fuzz: cannot create a temporary directory from %s: %s\n", templ, strerror(errno));
         return -1;
     }
-    snprintf(sb_dir, sizeof sb_dir, "%s", canon);
-    sb_len = strlen(sb_dir);
+    sb_len = strlen(canon);
+    memcpy(sb_dir, canon, sb_len + 1);
     atexit(remove_dir);
     char path[600];
     snprintf(path, sizeof path, "%s/sub", sb_dir);

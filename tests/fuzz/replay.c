@@ -276,7 +276,7 @@ static int sandbox_test(void)
             bad = 1;
         }
     }
-    printf("sandbox: %lu file operations refused in %s's absence\n", hy_fuzz_refused(), hy_fuzz_dir());
+    printf("sandbox: %lu file operations outside %s refused\n", hy_fuzz_refused(), hy_fuzz_dir());
     return bad;
 }
 
