@@ -85,6 +85,7 @@ fuzz)
     mkdir -p build-fuzz/fuzz-corpus build-fuzz/fuzz-crashes
     build-fuzz/tests/fuzz/fuzz_dict --write build-fuzz/scene.dict
     before=$(ls build-fuzz/fuzz-crashes | wc -l)
+    start=$(date +%s)
     # one job; a failing input is saved and the fuzzing goes on (-fork=1 -ignore_*)
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
     build-fuzz/tests/fuzz/fuzz_scene -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
@@ -92,7 +93,7 @@ fuzz)
         -dict=build-fuzz/scene.dict -artifact_prefix=build-fuzz/fuzz-crashes/ \
         build-fuzz/fuzz-corpus tests/fuzz/corpus tests/fuzz/repro >build-fuzz/fuzz.log 2>&1 || true
     last=$(grep -E '^#[0-9]+: cov:' build-fuzz/fuzz.log | tail -n 1)
-    echo "fuzz: $minutes min, log build-fuzz/fuzz.log"
+    echo "fuzz: ran $(($(date +%s) - start)) s of $minutes min, log build-fuzz/fuzz.log"
     echo "fuzz: last status: ${last:-none (see the log)}"
     echo "fuzz: executions $(echo "$last" | sed -n 's/^#\([0-9]*\):.*/\1/p'), coverage: edges (cov) $(echo "$last" |
         sed -n 's/.* cov: \([0-9]*\).*/\1/p'), features (ft) $(echo "$last" | sed -n 's/.* ft: \([0-9]*\).*/\1/p'),"\

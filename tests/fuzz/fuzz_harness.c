@@ -356,8 +356,8 @@ static char *written(const hy_scene *s, size_t *len)
     size_t o = 0;
     for (char *line = buf; *line;) {
         char *nl = strchr(line, '\n'), *next = nl ? nl + 1 : line + strlen(line);
-        char *end = nl ? nl : next;
-        for (char *c = line; c + 6 <= end; c++) /* the last "    # " starts the comment */
+        char *eol = nl ? nl : next, *end = eol;
+        for (char *c = line; c + 6 <= eol; c++) /* the last "    # " starts the comment */
             if (!memcmp(c, "    # ", 6))
                 end = c;
         if (line[0] == '#') /* "# effective scene of NAME" */
