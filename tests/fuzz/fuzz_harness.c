@@ -331,13 +331,21 @@ static void broken(const char *what, const char *detail)
     abort();
 }
 
-/* A failed call must say why. */
+/* A failed call must say why: a message that does not end at a colon. */
 static void check_message(int rc, const hy_error *err, const char *stage)
 {
     if (rc)
         snprintf(last_msg, sizeof last_msg, "%.*s", (int)sizeof err->msg - 1, err->msg);
-    if (rc && (!memchr(err->msg, '\0', sizeof err->msg) || !err->msg[0]))
-        broken("empty error message", stage);
+    if (!rc)
+        return;
+    if (!memchr(err->msg, '\0', sizeof err->msg))
+        broken("unterminated error message", stage);
+    /* "file:3:1: " with nothing after it is as empty as "" */
+    size_t n = strlen(err->msg);
+    while (n && (err->msg[n - 1] == ' ' || err->msg[n - 1] == '\n'))
+        n--;
+    if (!n || err->msg[n - 1] == ':')
+        broken("empty error message (nothing after the location)", stage);
 }
 
 /* The effective scene as text, without the origin comments (which name

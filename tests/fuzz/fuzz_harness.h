@@ -23,7 +23,7 @@
  * scene above the cap is parsed and loaded but not computed, so one input
  * runs in milliseconds and the fuzzer does not spend its time on big, valid
  * scenes.  Invariants whose violation aborts (a fuzzer finding): a failed
- * call leaves a non-empty message; the effective scene written by
+ * call leaves a message with text after its location; the effective scene written by
  * hy_scene_write parses back and writes the same text again. */
 #ifndef HY_FUZZ_HARNESS_H
 #define HY_FUZZ_HARNESS_H
