@@ -340,12 +340,17 @@ static void check_message(int rc, const hy_error *err, const char *stage)
         return;
     if (!memchr(err->msg, '\0', sizeof err->msg))
         broken("unterminated error message", stage);
-    /* "file:3:1: " with nothing after it is as empty as "" */
+    /* "file:3:1: " with nothing after it is as empty as "" (a message that
+     * fills the buffer was cut, perhaps after a colon: not judged) */
     size_t n = strlen(err->msg);
+    if (n == sizeof err->msg - 1)
+        return;
     while (n && (err->msg[n - 1] == ' ' || err->msg[n - 1] == '\n'))
         n--;
-    if (!n || err->msg[n - 1] == ':')
+    if (!n || err->msg[n - 1] == ':') {
+        fprintf(stderr, "hy_fuzz: %s: message '%s'\n", stage, err->msg);
         broken("empty error message (nothing after the location)", stage);
+    }
 }
 
 /* The effective scene as text, without the origin comments (which name
