@@ -10,7 +10,9 @@
  *
  * `hystviz data` reads the file as fuzz.scene in a temporary directory holding the
  * harness's fixed files, so includes and `[input] file` find what they find under
- * the fuzzer.  --sandbox-test checks that the harness's sandbox refuses files
+ * the fuzzer.  In a directory, the scenes are the files named *.scene or without
+ * a dot (libFuzzer's names); the other files (not *.md) are data: copied into
+ * that directory next to fuzz.scene for every scene of the directory.  --sandbox-test checks that the harness's sandbox refuses files
  * outside its directory and lets the fixed files through. */
 #include <dirent.h>
 #include <errno.h>
@@ -29,6 +31,10 @@ static unsigned timeout_s = 10;
 static int verbose;
 static const char *hystviz;
 static int stage_count[5]; /* skipped, parse failed, parsed, loaded, computed */
+/* The data files of the directory being replayed (e.g. an [input] file of a
+ * reproducer): copied next to fuzz.scene in each child's harness directory. */
+static char **companions;
+static size_t ncompanions;
 
 static int read_file(const char *path, char **buf, size_t *len)
 {
@@ -60,12 +66,35 @@ static int read_file(const char *path, char **buf, size_t *len)
     return 0;
 }
 
+/* Copies the companions into the harness directory (created here). */
+static int copy_companions(void)
+{
+    if (hy_fuzz_init())
+        return -1;
+    for (size_t i = 0; i < ncompanions; i++) {
+        char *buf, dst[600];
+        size_t len;
+        const char *base = strrchr(companions[i], '/');
+        snprintf(dst, sizeof dst, "%s/%s", hy_fuzz_dir(), base ? base + 1 : companions[i]);
+        if (read_file(companions[i], &buf, &len))
+            return -1;
+        FILE *f = fopen(dst, "wb");
+        int bad = !f || (len && fwrite(buf, 1, len, f) != len);
+        if (f)
+            bad |= fclose(f) != 0;
+        free(buf);
+        if (bad)
+            return -1;
+    }
+    return 0;
+}
+
 /* In the harness child: the file through hy_fuzz_one; the stage goes to fd. */
 static int child_harness(const char *path, int stage_fd)
 {
     char *buf;
     size_t len;
-    if (read_file(path, &buf, &len)) {
+    if (copy_companions() || read_file(path, &buf, &len)) {
         fprintf(stderr, "%s: cannot read: %s\n", path, strerror(errno));
         return 3;
     }
@@ -87,7 +116,7 @@ static int child_hystviz(const char *path)
 {
     char *buf;
     size_t len;
-    if (read_file(path, &buf, &len) || hy_fuzz_init()) {
+    if (copy_companions() || read_file(path, &buf, &len)) {
         fprintf(stderr, "%s: cannot read or copy: %s\n", path, strerror(errno));
         return 3;
     }
@@ -200,6 +229,14 @@ static int cmp_str(const void *a, const void *b)
     return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
+static int is_scene(const char *path)
+{
+    const char *base = strrchr(path, '/'), *dot;
+    base = base ? base + 1 : path;
+    dot = strrchr(base, '.');
+    return !dot || !strcmp(dot, ".scene");
+}
+
 static int replay(const char *path, int *nfiles)
 {
     struct stat st;
@@ -241,17 +278,30 @@ static int replay(const char *path, int *nfiles)
     }
     closedir(d);
     qsort(names, n, sizeof *names, cmp_str);
+    /* scenes: NAME.scene, or a name without a dot (libFuzzer's); the other
+     * files are their data */
+    char **saved = companions;
+    size_t nsaved = ncompanions;
+    companions = malloc((n ? n : 1) * sizeof *companions);
+    ncompanions = 0;
+    if (!companions)
+        abort();
+    for (size_t i = 0; i < n; i++)
+        if (!is_scene(names[i]))
+            companions[ncompanions++] = names[i];
     int bad = 0;
-    for (size_t i = 0; i < n; i++) {
-        bad |= replay(names[i], nfiles);
+    for (size_t i = 0; i < n; i++)
+        if (is_scene(names[i]))
+            bad |= replay(names[i], nfiles);
+    for (size_t i = 0; i < n; i++)
         free(names[i]);
-    }
     free(names);
+    free(companions);
+    companions = saved;
+    ncompanions = nsaved;
     return bad;
 }
 
-/* The sandbox refuses what lies outside its directory and lets the fixed
- * files through (run in-process: the counters are this process's). */
 static int sandbox_test(void)
 {
     static const struct {
