@@ -11,7 +11,7 @@
 
 #include "cli_util.h"
 
-#if HY_HAVE_OSMESA
+#if HY_HAVE_GL
 #include "anim_scenes.h"
 #include "scene_anim.h"
 
@@ -45,7 +45,7 @@ static const char animate_help[] =
     "example:\n"
     "  hystviz animate gamma-sweep-ex2 -o frames --quality 480p15 -j 2\n";
 
-#if HY_HAVE_OSMESA
+#if HY_HAVE_GL
 
 typedef struct anim_args {
     hy_anim_params p;

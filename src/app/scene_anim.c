@@ -259,7 +259,7 @@ void scene_anim_free(scene_anim *a)
     memset(a, 0, sizeof *a);
 }
 
-#if HY_HAVE_OSMESA
+#if HY_HAVE_GL
 
 /* 64-bit FNV-1a of a frame's override text. */
 static uint64_t fnv1a(const char *s)

@@ -85,7 +85,7 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
 void scene_anim_free(scene_anim *a);
 
 #include "hy_config.h"
-#if HY_HAVE_OSMESA
+#if HY_HAVE_GL
 #include "hy_anim.h"
 /* hy_anim_draw_fn: computes (or waits for, or reuses) the run of frame f's
  * overrides and draws its figure on f->data and f->overlay. */

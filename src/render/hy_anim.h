@@ -15,7 +15,7 @@
  *     hy_anim_stats s;
  *     if (hy_anim_run(&p, draw, state, &s, &err)) fprintf(stderr, "%s\n", err.msg);
  *
- * Only built when OSMesa is found (HY_HAVE_OSMESA).
+ * Only built with a GL backend (HY_HAVE_GL: OSMesa and/or EGL).
  */
 #ifndef HY_ANIM_H
 #define HY_ANIM_H

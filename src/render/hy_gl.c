@@ -1,10 +1,8 @@
-/* hy_gl.c: the OSMesa/OpenGL 3.3 core backend of hy_canvas (instanced capsule
- * strokes with coverage AA, dashes, colour-map effects) and the lit 3-D ribbon. */
-#define GL_GLEXT_PROTOTYPES 1
+/* hy_gl.c: the OpenGL 3.3 core backend of hy_canvas (instanced capsule
+ * strokes with coverage AA, dashes, colour-map effects) and the lit 3-D
+ * ribbon, on either off-screen backend (hy_gl_backend.h: OSMesa or EGL). */
 #include "hy_gl.h"
 
-#include <GL/osmesa.h>
-#include <GL/glext.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
@@ -13,6 +11,7 @@
 #include <string.h>
 
 #include "hy_frame.h"
+#include "hy_gl_backend.h"
 #include "hy_shaders.h"
 
 /* One OpenGL call sequence at a time in the whole process.  Each thread has
@@ -23,6 +22,11 @@
  * caller's cairo overlay, compositing and PNG encoding still run in parallel,
  * and llvmpipe rasterises each frame with its own threads. */
 static pthread_mutex_t gl_mu = PTHREAD_MUTEX_INITIALIZER;
+
+/* The context current on this thread and its entry points (gl->Clear(...)). */
+static _Thread_local hy_gl *cur;
+static _Thread_local const hy_gl_fns *gl;
+
 
 #define MAX_EFFECTS 8
 #define MAX_CLIP 8
@@ -42,8 +46,10 @@ typedef struct cmd {
 } cmd;
 
 struct hy_gl {
-    OSMesaContext ctx;
-    unsigned char *fb;                 /* OSMesa's colour buffer */
+    const hy_gl_backend *be;
+    hy_gl_surface *surf;               /* the backend's context and frame */
+    const hy_gl_fns *fns;              /* its GL entry points */
+    GLuint fbo0;                       /* the framebuffer that is the frame (0: the default) */
     int w, h;
     double scale;
     GLuint stroke_prog, stroke_dash_prog, ribbon_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
@@ -64,6 +70,15 @@ struct hy_gl {
     int clip[MAX_CLIP][4], nclip;
     char desc[256];
 };
+
+/* Makes g current on this thread if another context is. */
+static void use(hy_gl *g)
+{
+    if (cur == g)
+        return;
+    g->be->make_current(g->surf);
+    cur = g, gl = g->fns;
+}
 
 /* ---- colour maps ---- */
 
@@ -122,7 +137,7 @@ static void trim_log(char *log)
 
 static GLuint compile_stage(const hy_gl_stage *s, hy_error *err)
 {
-    GLuint sh = glCreateShader(s->stage);
+    GLuint sh = gl->CreateShader(s->stage);
     if (!sh) {
         hy_error_set(err, HY_ENUM, "%s (%s shader): glCreateShader failed", s->file, stage_name(s->stage));
         return 0;
@@ -132,25 +147,25 @@ static GLuint compile_stage(const hy_gl_stage *s, hy_error *err)
     if (eol) {                        /* head through the #version line, the defines, the rest */
         const char *parts[3] = {s->src, s->defines, eol + 1};
         const GLint lens[3] = {(GLint)(eol + 1 - s->src), -1, -1};
-        glShaderSource(sh, 3, parts, lens);
+        gl->ShaderSource(sh, 3, parts, lens);
     } else
-        glShaderSource(sh, 1, &s->src, NULL);
-    glCompileShader(sh);
+        gl->ShaderSource(sh, 1, &s->src, NULL);
+    gl->CompileShader(sh);
     GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     if (ok)
         return sh;
     char log[400] = "";
-    glGetShaderInfoLog(sh, sizeof log, NULL, log);
+    gl->GetShaderInfoLog(sh, sizeof log, NULL, log);
     trim_log(log);
     hy_error_set(err, HY_ENUM, "%s (%s shader): compile error: %s", s->file, stage_name(s->stage), log);
-    glDeleteShader(sh);
+    gl->DeleteShader(sh);
     return 0;
 }
 
 int hy_gl_program(const hy_gl_stage *stages, int n, unsigned *program, hy_error *err)
 {
-    GLuint sh[4], prog = glCreateProgram();
+    GLuint sh[4], prog = gl->CreateProgram();
     if (n < 1 || n > 4 || !prog)
         return hy_error_set(err, HY_EINVAL, "a GL program needs 1 to 4 stages and a current context");
     int got = 0, st = HY_OK;
@@ -160,24 +175,24 @@ int hy_gl_program(const hy_gl_stage *stages, int n, unsigned *program, hy_error 
             st = HY_ENUM;
             break;
         }
-        glAttachShader(prog, sh[got]);
+        gl->AttachShader(prog, sh[got]);
     }
     if (!st) {
-        glLinkProgram(prog);
+        gl->LinkProgram(prog);
         GLint ok = 0;
-        glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+        gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
         if (!ok) {
             char log[400] = "";
-            glGetProgramInfoLog(prog, sizeof log, NULL, log);
+            gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
             trim_log(log);
             st = hy_error_set(err, HY_ENUM, "program %s + %s: link error: %s", stages[0].file,
                               stages[n - 1].file, log);
         }
     }
     for (int i = 0; i < got; i++)
-        glDeleteShader(sh[i]);
+        gl->DeleteShader(sh[i]);
     if (st) {
-        glDeleteProgram(prog);
+        gl->DeleteProgram(prog);
         return st;
     }
     *program = prog;
@@ -201,39 +216,39 @@ static int build_programs(hy_gl *g, hy_error *err)
     if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(stroke_dash, 2, &g->stroke_dash_prog, err) ||
         hy_gl_program(ribbon, 2, &g->ribbon_prog, err))
         return HY_ENUM;
-    g->u_size = glGetUniformLocation(g->stroke_prog, "u_size");
-    g->u_size_dash = glGetUniformLocation(g->stroke_dash_prog, "u_size");
-    g->u_ndash = glGetUniformLocation(g->stroke_dash_prog, "u_ndash");
-    g->u_dash = glGetUniformLocation(g->stroke_dash_prog, "u_dash");
-    g->u_dash_total = glGetUniformLocation(g->stroke_dash_prog, "u_dash_total");
-    g->u_mvp = glGetUniformLocation(g->ribbon_prog, "u_mvp");
-    g->u_mv = glGetUniformLocation(g->ribbon_prog, "u_mv");
-    g->u_light = glGetUniformLocation(g->ribbon_prog, "u_light");
+    g->u_size = gl->GetUniformLocation(g->stroke_prog, "u_size");
+    g->u_size_dash = gl->GetUniformLocation(g->stroke_dash_prog, "u_size");
+    g->u_ndash = gl->GetUniformLocation(g->stroke_dash_prog, "u_ndash");
+    g->u_dash = gl->GetUniformLocation(g->stroke_dash_prog, "u_dash");
+    g->u_dash_total = gl->GetUniformLocation(g->stroke_dash_prog, "u_dash_total");
+    g->u_mvp = gl->GetUniformLocation(g->ribbon_prog, "u_mvp");
+    g->u_mv = gl->GetUniformLocation(g->ribbon_prog, "u_mv");
+    g->u_light = gl->GetUniformLocation(g->ribbon_prog, "u_light");
     return HY_OK;
 }
 
 static void setup_buffers(hy_gl *g)
 {
-    glGenVertexArrays(1, &g->vao);
-    glBindVertexArray(g->vao);
-    glGenBuffers(1, &g->vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, g->vbo);
+    gl->GenVertexArrays(1, &g->vao);
+    gl->BindVertexArray(g->vao);
+    gl->GenBuffers(1, &g->vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, g->vbo);
     for (GLuint i = 0; i < 5; i++) {
-        glEnableVertexAttribArray(i);
-        glVertexAttribPointer(i, 4, GL_FLOAT, GL_FALSE, sizeof(inst), (const void *)(i * 4 * sizeof(float)));
-        glVertexAttribDivisor(i, 1);
+        gl->EnableVertexAttribArray(i);
+        gl->VertexAttribPointer(i, 4, GL_FLOAT, GL_FALSE, sizeof(inst), (const void *)(i * 4 * sizeof(float)));
+        gl->VertexAttribDivisor(i, 1);
     }
-    glGenVertexArrays(1, &g->ribbon_vao);
-    glBindVertexArray(g->ribbon_vao);
-    glGenBuffers(1, &g->ribbon_vbo);
-    glGenBuffers(1, &g->ribbon_ibo);
-    glBindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ribbon_ibo);
+    gl->GenVertexArrays(1, &g->ribbon_vao);
+    gl->BindVertexArray(g->ribbon_vao);
+    gl->GenBuffers(1, &g->ribbon_vbo);
+    gl->GenBuffers(1, &g->ribbon_ibo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ribbon_ibo);
     for (GLuint i = 0; i < 3; i++) {
-        glEnableVertexAttribArray(i);
-        glVertexAttribPointer(i, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), (const void *)(i * 3 * sizeof(float)));
+        gl->EnableVertexAttribArray(i);
+        gl->VertexAttribPointer(i, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), (const void *)(i * 3 * sizeof(float)));
     }
-    glBindVertexArray(0);
+    gl->BindVertexArray(0);
 }
 
 /* ---- context ---- */
@@ -244,36 +259,28 @@ static int gl_create_unlocked(hy_gl **out, int width, int height, hy_error *err)
 {
     if (width < 16 || height < 16 || width > 8192 || height > 8192)
         return hy_error_set(err, HY_EINVAL, "frame size %d x %d is outside 16..8192 pixels", width, height);
+    const hy_gl_backend *be = hy_gl_backend_current(err);
+    if (!be)
+        return err->code;
     hy_gl *g = calloc(1, sizeof *g);
-    if (!g || !(g->fb = malloc((size_t)width * (size_t)height * 4))) {
-        free(g);
+    if (!g)
         return hy_error_set(err, HY_ENOMEM, "out of memory for a %d x %d GL frame", width, height);
+    g->w = width, g->h = height, g->scale = 1.0, g->be = be;
+    int st = be->open(&g->surf, width, height, &g->fns, &g->fbo0, err);
+    if (st) {
+        free(g);
+        return st;
     }
-    g->w = width, g->h = height, g->scale = 1.0;
-    /* Bytes B, G, R, A (little-endian hosts) or A, R, G, B (big-endian), top
-     * row first: OSMesa's buffer is then a cairo RGB24 image, and the overlay
-     * is drawn straight onto the frame (hy_gl_finish) */
-    const int attribs[] = {OSMESA_FORMAT, hy_little_endian() ? OSMESA_BGRA : OSMESA_ARGB, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
-                           OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                           OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
-    g->ctx = OSMesaCreateContextAttribs(attribs, NULL);
-    if (!g->ctx) {
-        gl_free_unlocked(g);
-        return hy_error_set(err, HY_EUNSUP, "OSMesa could not create an OpenGL 3.3 core-profile context");
-    }
-    if (!OSMesaMakeCurrent(g->ctx, g->fb, GL_UNSIGNED_BYTE, width, height)) {
-        gl_free_unlocked(g);
-        return hy_error_set(err, HY_EUNSUP, "OSMesa could not make a %d x %d context current", width, height);
-    }
-    OSMesaPixelStore(OSMESA_Y_UP, 0);
-    snprintf(g->desc, sizeof g->desc, "%s / %s", (const char *)glGetString(GL_VERSION),
-             (const char *)glGetString(GL_RENDERER));
+    cur = g, gl = g->fns;
+    snprintf(g->desc, sizeof g->desc, "%s / %s (%s)", (const char *)gl->GetString(GL_VERSION),
+             (const char *)gl->GetString(GL_RENDERER), be->name);
     if (build_programs(g, err)) {
         gl_free_unlocked(g);
         return HY_ENUM;
     }
     setup_buffers(g);
-    glViewport(0, 0, width, height);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
+    gl->Viewport(0, 0, width, height);
     *out = g;
     return HY_OK;
 }
@@ -290,9 +297,9 @@ static void gl_free_unlocked(hy_gl *g)
 {
     if (!g)
         return;
-    if (g->ctx)
-        OSMesaDestroyContext(g->ctx);
-    free(g->fb);
+    g->be->close(g->surf, cur == g);
+    if (cur == g)
+        cur = NULL, gl = NULL;
     free(g->pts);
     free(g->starts);
     free(g->buf);
@@ -317,17 +324,18 @@ static void gl_begin_unlocked(hy_gl *g, hy_rgb c)
     g->nbuf = g->cmd_start = 0;
     g->in_ms = 0;
     g->bg = c;
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDisable(GL_SCISSOR_TEST);
-    glViewport(0, 0, g->w, g->h);
-    glClearColor((float)c.r, (float)c.g, (float)c.b, 1.0f);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
+    gl->Disable(GL_SCISSOR_TEST);
+    gl->Viewport(0, 0, g->w, g->h);
+    gl->ClearColor((float)c.r, (float)c.g, (float)c.b, 1.0f);
+    gl->ClearDepth(1.0);
+    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
 void hy_gl_begin(hy_gl *g, hy_rgb c)
 {
     pthread_mutex_lock(&gl_mu);
+    use(g);
     gl_begin_unlocked(g, c);
     pthread_mutex_unlock(&gl_mu);
 }
@@ -394,11 +402,11 @@ static void flush(hy_gl *g, const double *dash, int ndash)
 static void set_scissor(const hy_gl *g, const cmd *c)
 {
     if (!c->clipped) {
-        glDisable(GL_SCISSOR_TEST);
+        gl->Disable(GL_SCISSOR_TEST);
         return;
     }
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(c->clip[0], g->h - c->clip[3], c->clip[2] - c->clip[0], c->clip[3] - c->clip[1]);
+    gl->Enable(GL_SCISSOR_TEST);
+    gl->Scissor(c->clip[0], g->h - c->clip[3], c->clip[2] - c->clip[0], c->clip[3] - c->clip[1]);
 }
 
 /* Sends every recorded command to GL: one buffer upload, one draw per command. */
@@ -406,44 +414,44 @@ static void submit(hy_gl *g)
 {
     if (!g->ncmds)
         return;
-    glUseProgram(g->stroke_dash_prog);
-    glUniform2f(g->u_size_dash, (float)g->w, (float)g->h);
-    glUseProgram(g->stroke_prog);     /* solid strokes: the variant without dash code */
-    glUniform2f(g->u_size, (float)g->w, (float)g->h);
+    gl->UseProgram(g->stroke_dash_prog);
+    gl->Uniform2f(g->u_size_dash, (float)g->w, (float)g->h);
+    gl->UseProgram(g->stroke_prog);     /* solid strokes: the variant without dash code */
+    gl->Uniform2f(g->u_size, (float)g->w, (float)g->h);
     GLuint current = g->stroke_prog;
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    glDisable(GL_DEPTH_TEST);
-    glBindVertexArray(g->vao);
-    glBindBuffer(GL_ARRAY_BUFFER, g->vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(g->nbuf * sizeof(inst)), g->buf, GL_STREAM_DRAW);
+    gl->Enable(GL_BLEND);
+    gl->BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    gl->Disable(GL_DEPTH_TEST);
+    gl->BindVertexArray(g->vao);
+    gl->BindBuffer(GL_ARRAY_BUFFER, g->vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(g->nbuf * sizeof(inst)), g->buf, GL_STREAM_DRAW);
     int last_nd = -1;
     float last_dash[8] = {0};
     for (size_t k = 0; k < g->ncmds; k++) {
         const cmd *c = &g->cmds[k];
         GLuint want = c->ndash > 0 ? g->stroke_dash_prog : g->stroke_prog;
         if (want != current)
-            glUseProgram(current = want);
+            gl->UseProgram(current = want);
         if (c->ndash > 0 && (c->ndash != last_nd || memcmp(c->dash, last_dash, sizeof last_dash))) {
-            glUniform1i(g->u_ndash, c->ndash);
-            glUniform1fv(g->u_dash, 8, c->dash);
-            glUniform1f(g->u_dash_total, c->total > 0 ? c->total : 1.0f);
+            gl->Uniform1i(g->u_ndash, c->ndash);
+            gl->Uniform1fv(g->u_dash, 8, c->dash);
+            gl->Uniform1f(g->u_dash_total, c->total > 0 ? c->total : 1.0f);
             last_nd = c->ndash;
             memcpy(last_dash, c->dash, sizeof last_dash);
         }
         for (GLuint i = 0; i < 5; i++)
-            glVertexAttribPointer(i, 4, GL_FLOAT, GL_FALSE, sizeof(inst),
+            gl->VertexAttribPointer(i, 4, GL_FLOAT, GL_FALSE, sizeof(inst),
                                   (const void *)(c->first * sizeof(inst) + i * 4 * sizeof(float)));
         set_scissor(g, c);
         if (c->clear) {
-            glClearColor(c->colour[0], c->colour[1], c->colour[2], 1.0f);
-            glClear(GL_COLOR_BUFFER_BIT);
+            gl->ClearColor(c->colour[0], c->colour[1], c->colour[2], 1.0f);
+            gl->Clear(GL_COLOR_BUFFER_BIT);
             continue;
         }
-        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)c->count);
+        gl->DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)c->count);
     }
-    glDisable(GL_SCISSOR_TEST);
-    glBindVertexArray(0);
+    gl->Disable(GL_SCISSOR_TEST);
+    gl->BindVertexArray(0);
     g->ncmds = 0;
     g->nbuf = g->cmd_start = 0;
 }
@@ -861,17 +869,17 @@ static int msaa_target(hy_gl *g, hy_error *err)
 {
     if (g->ms_fbo)
         return HY_OK;
-    glGenFramebuffers(1, &g->ms_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
-    glGenRenderbuffers(2, g->ms_rb);
-    glBindRenderbuffer(GL_RENDERBUFFER, g->ms_rb[0]);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, RIBBON_SAMPLES, GL_RGBA8, g->w, g->h);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g->ms_rb[0]);
-    glBindRenderbuffer(GL_RENDERBUFFER, g->ms_rb[1]);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, RIBBON_SAMPLES, GL_DEPTH_COMPONENT24, g->w, g->h);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g->ms_rb[1]);
-    int ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl->GenFramebuffers(1, &g->ms_fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
+    gl->GenRenderbuffers(2, g->ms_rb);
+    gl->BindRenderbuffer(GL_RENDERBUFFER, g->ms_rb[0]);
+    gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, RIBBON_SAMPLES, GL_RGBA8, g->w, g->h);
+    gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g->ms_rb[0]);
+    gl->BindRenderbuffer(GL_RENDERBUFFER, g->ms_rb[1]);
+    gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, RIBBON_SAMPLES, GL_DEPTH_COMPONENT24, g->w, g->h);
+    gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g->ms_rb[1]);
+    int ok = gl->CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
     return ok ? HY_OK : hy_error_set(err, HY_EUNSUP, "the 4x multisampled framebuffer of the 3-D pass is incomplete");
 }
 
@@ -882,11 +890,11 @@ static void enter_msaa(hy_gl *g)
     if (g->in_ms)
         return;
     g->in_ms = 1;
-    glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
-    glDisable(GL_SCISSOR_TEST);
-    glViewport(0, 0, g->w, g->h);
-    glClearColor((float)g->bg.r, (float)g->bg.g, (float)g->bg.b, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
+    gl->Disable(GL_SCISSOR_TEST);
+    gl->Viewport(0, 0, g->w, g->h);
+    gl->ClearColor((float)g->bg.r, (float)g->bg.g, (float)g->bg.b, 1.0f);
+    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
 /* Resolves the multisampled frame into the default framebuffer. */
@@ -894,11 +902,11 @@ static void leave_msaa(hy_gl *g)
 {
     if (!g->in_ms)
         return;
-    glDisable(GL_SCISSOR_TEST);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, g->ms_fbo);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glBlitFramebuffer(0, 0, g->w, g->h, 0, 0, g->w, g->h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl->Disable(GL_SCISSOR_TEST);
+    gl->BindFramebuffer(GL_READ_FRAMEBUFFER, g->ms_fbo);
+    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, g->fbo0);
+    gl->BlitFramebuffer(0, 0, g->w, g->h, 0, 0, g->w, g->h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
     g->in_ms = 0;
 }
 
@@ -935,17 +943,17 @@ static void ribbon_pass(hy_gl *g, const hy_gl_ribbon *r, const double *vp)
     float fm[16], fmv[16];
     to_float(&mvp, fm);
     to_float(&mv, fmv);
-    glDisable(GL_SCISSOR_TEST);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glViewport((GLint)lround(vp[0]), (GLint)lround(g->h - vp[1] - vp[3]), (GLsizei)lround(vp[2]),
+    gl->Disable(GL_SCISSOR_TEST);
+    gl->Clear(GL_DEPTH_BUFFER_BIT);
+    gl->Viewport((GLint)lround(vp[0]), (GLint)lround(g->h - vp[1] - vp[3]), (GLsizei)lround(vp[2]),
                (GLsizei)lround(vp[3]));
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_BLEND);
-    glUseProgram(g->ribbon_prog);
-    glUniformMatrix4fv(g->u_mvp, 1, GL_FALSE, fm);
-    glUniformMatrix4fv(g->u_mv, 1, GL_FALSE, fmv);
-    glUniform3f(g->u_light, 0.4f, 0.8f, 0.6f);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->DepthFunc(GL_LESS);
+    gl->Disable(GL_BLEND);
+    gl->UseProgram(g->ribbon_prog);
+    gl->UniformMatrix4fv(g->u_mvp, 1, GL_FALSE, fm);
+    gl->UniformMatrix4fv(g->u_mv, 1, GL_FALSE, fmv);
+    gl->Uniform3f(g->u_light, 0.4f, 0.8f, 0.6f);
 }
 
 static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
@@ -967,14 +975,14 @@ static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *er
     double vp[4];
     ribbon_viewport(g, r, vp);
     ribbon_pass(g, r, vp);
-    glBindVertexArray(g->ribbon_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * 9 * sizeof *v), v, GL_STREAM_DRAW);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ni * sizeof *idx), idx, GL_STREAM_DRAW);
-    glDrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, NULL);
-    glBindVertexArray(0);
-    glDisable(GL_DEPTH_TEST);
-    glViewport(0, 0, g->w, g->h);
+    gl->BindVertexArray(g->ribbon_vao);
+    gl->BindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * 9 * sizeof *v), v, GL_STREAM_DRAW);
+    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ni * sizeof *idx), idx, GL_STREAM_DRAW);
+    gl->DrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, NULL);
+    gl->BindVertexArray(0);
+    gl->Disable(GL_DEPTH_TEST);
+    gl->Viewport(0, 0, g->w, g->h);
     free(v);
     free(idx);
     return HY_OK;
@@ -983,6 +991,7 @@ static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *er
 int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
 {
     pthread_mutex_lock(&gl_mu);
+    use(g);
     int rc = gl_draw_ribbon_unlocked(g, r, err);
     pthread_mutex_unlock(&gl_mu);
     return rc;
@@ -992,9 +1001,10 @@ static int gl_read_unlocked(hy_gl *g, unsigned char *rgba, hy_error *err)
 {
     submit(g);
     leave_msaa(g);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, g->w, g->h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
-    GLenum e = glGetError();
+    gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl->ReadPixels(0, 0, g->w, g->h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    GLenum e = gl->GetError();
     if (e != GL_NO_ERROR)
         return hy_error_set(err, HY_ENUM, "OpenGL error 0x%04x while drawing or reading the frame", e);
     return HY_OK;
@@ -1004,18 +1014,19 @@ static const unsigned char *gl_finish_unlocked(hy_gl *g, hy_error *err)
 {
     submit(g);
     leave_msaa(g);
-    glFinish();                       /* OSMesa copies the frame into g->fb */
-    GLenum e = glGetError();
+    const unsigned char *fb = g->be->frame(g->surf);
+    GLenum e = gl->GetError();
     if (e != GL_NO_ERROR) {
         hy_error_set(err, HY_ENUM, "OpenGL error 0x%04x while drawing the frame", e);
         return NULL;
     }
-    return g->fb;
+    return fb;
 }
 
 const unsigned char *hy_gl_finish(hy_gl *g, hy_error *err)
 {
     pthread_mutex_lock(&gl_mu);
+    use(g);
     const unsigned char *fb = gl_finish_unlocked(g, err);
     pthread_mutex_unlock(&gl_mu);
     return fb;
@@ -1024,6 +1035,7 @@ const unsigned char *hy_gl_finish(hy_gl *g, hy_error *err)
 int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err)
 {
     pthread_mutex_lock(&gl_mu);
+    use(g);
     int rc = gl_read_unlocked(g, rgba, err);
     pthread_mutex_unlock(&gl_mu);
     return rc;

@@ -1,7 +1,8 @@
-/* hy_gl.h: the OpenGL backend (OSMesa, core profile 3.3+, llvmpipe) of hy_canvas.
+/* hy_gl.h: the OpenGL backend (core profile 3.3+) of hy_canvas, off-screen
+ * through OSMesa or EGL (hy_gl_select; llvmpipe or a GPU).
  *
- * A hy_gl owns one off-screen OSMesa context and its RGBA framebuffer; it is
- * current on the thread that created it (one per thread: contexts are never
+ * A hy_gl owns one off-screen context and its RGBA framebuffer; it is used
+ * on the thread that created it (one per thread: contexts are never
  * shared).  Its canvas draws the DATA layer of a figure (polylines, markers,
  * filled rectangles, clipping) with GLSL shaders from shaders/NAME.glsl embedded
  * at build time: thick polylines as instanced segments with coverage AA
@@ -21,10 +22,12 @@
  *     hy_gl_read(g, rgba, &err);                         // width*height*4 bytes
  *     hy_gl_free(g);
  *
- * Only built when OSMesa is found (HY_HAVE_OSMESA).
+ * Only built with a GL backend (HY_HAVE_GL: OSMesa and/or EGL).
  */
 #ifndef HY_GL_H
 #define HY_GL_H
+
+#include <stdio.h>
 
 #include "hy_canvas.h"
 #include "hy_status.h"
@@ -44,13 +47,29 @@ typedef struct hy_gl_effect {
     double fade;              /* alpha at the oldest end, in [0, 1]; 1: no fade */
 } hy_gl_effect;
 
-/* Creates a width x height context (core profile, version >= 3.3) with its
- * shaders compiled and makes it current.  HY_EUNSUP when OSMesa cannot create
- * one, HY_EINVAL for a bad size, HY_ENUM for a shader error (file, stage, log). */
+/* The backends built, as "osmesa egl " (each name followed by a space). */
+const char *hy_gl_backends(void);
+/* Picks the backend of the contexts created from now on: "osmesa" or "egl";
+ * NULL goes back to $HYSTVIZ_GL, else OSMesa where built, else EGL.
+ * HY_EINVAL for an unknown name, HY_EUNSUP for one not built (the choice is
+ * then unchanged).  Call it before any thread creates contexts. */
+int hy_gl_select(const char *name, hy_error *err);
+/* The name of the backend hy_gl_create would use now; NULL (and err:
+ * HY_EINVAL, HY_EUNSUP as hy_gl_select) when $HYSTVIZ_GL names a bad one. */
+const char *hy_gl_backend_name(hy_error *err);
+/* Writes the backends built, the one in use and why, its devices (EGL:
+ * HYSTVIZ_EGL_DEVICE) and the renderer of a test context to f; HY_OK, or
+ * the error of making that context. */
+int hy_gl_info(FILE *f, hy_error *err);
+
+/* Creates a width x height context (core profile, version >= 3.3) on the
+ * selected backend with its shaders compiled and makes it current.
+ * HY_EUNSUP when the backend cannot create one (or is not built), HY_EINVAL
+ * for a bad size or backend choice, HY_ENUM for a shader error (file, stage, log). */
 int hy_gl_create(hy_gl **out, int width, int height, hy_error *err);
 /* Releases the context and its buffers (NULL is ignored). */
 void hy_gl_free(hy_gl *g);
-/* "GL_VERSION / GL_RENDERER" of the context, for reports. */
+/* "GL_VERSION / GL_RENDERER (backend)" of the context, for reports. */
 const char *hy_gl_describe(const hy_gl *g);
 
 /* A canvas drawing on g; coordinates in points times scale = pixels.

@@ -1,7 +1,6 @@
 /* test_shader.c: a deliberately broken shader gives an error naming its file
  * and stage with the compiler's log; a link error names the program. */
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/osmesa.h>
+#include <GL/gl.h>
 #include <GL/glext.h>
 #include <string.h>
 
