@@ -13,6 +13,7 @@
 
 #if HY_HAVE_GL
 #include "anim_scenes.h"
+#include "hy_gl.h"
 #include "scene_anim.h"
 
 #endif
@@ -20,10 +21,11 @@
 static const char animate_help[] =
     "usage: hystviz animate NAME|SCENE.scene [-o DIR] [--quality Q] [--size WxH] [--fps F] [--duration S]\n"
     "                            [--frames A:B] [-j N] [--quiet] [--video mp4|webm|gif [--no-frames]]\n"
-    "       hystviz animate --list\n"
+    "                            [--gl osmesa|egl]\n"
+    "       hystviz animate --list | --gl-info [--gl osmesa|egl]\n"
     "\n"
-    "Renders animation NAME as PNG frames DIR/NAME/frame_00000.png ... (OpenGL through\n"
-    "OSMesa for the data, cairo for text and axes) and a poster DIR/NAME.png (the last frame).\n"
+    "Renders animation NAME as PNG frames DIR/NAME/frame_00000.png ... (off-screen OpenGL,\n"
+    "OSMesa or EGL, for the data, cairo for text and axes) and a poster DIR/NAME.png (the last frame).\n"
     "A path ending in .scene animates that scene: its [keyframe NAME] sections set numeric\n"
     "keys per frame, its [animation] section gives duration, fps, easing and quality (the\n"
     "options below beat it); NAME is then the scene's output name (docs/SCENES.md).\n"
@@ -40,7 +42,15 @@ static const char animate_help[] =
     "  --video FMT        also encode DIR/NAME.FMT by piping frames to ffmpeg (must be on PATH);\n"
     "                     the file appears only when the whole clip is encoded\n"
     "  --no-frames        with --video: write the video (and poster) but no PNG frames\n"
-    "  --list             the animations and what they show\n"
+    "  --gl B             GL backend: osmesa or egl (default: $HYSTVIZ_GL, else osmesa where\n"
+    "                     built, else egl); frames are the same on either with the software rasteriser\n"
+    "  --list             the animations and what they show, then the GL backend and renderer\n"
+    "  --gl-info          the GL backends built, the one used, its EGL devices and renderer\n"
+    "\n"
+    "environment:\n"
+    "  HYSTVIZ_GL=osmesa|egl    the backend when --gl is not given\n"
+    "  HYSTVIZ_EGL_DEVICE=N     EGL device N (--gl-info lists them; default: the first GPU,\n"
+    "                           else the software rasteriser)\n"
     "\n"
     "example:\n"
     "  hystviz animate gamma-sweep-ex2 -o frames --quality 480p15 -j 2\n";
@@ -49,8 +59,8 @@ static const char animate_help[] =
 
 typedef struct anim_args {
     hy_anim_params p;
-    const char *name, *quality;
-    int w, h, have_size, have_fps, have_duration, have_quality, list;
+    const char *name, *quality, *gl;
+    int w, h, have_size, have_fps, have_duration, have_quality, list, gl_info;
     double fps, duration;
 } anim_args;
 
@@ -94,6 +104,8 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
         return fputs(animate_help, stdout), 1;
     if (!strcmp(s, "--list"))
         return a->list = 1, 0;
+    if (!strcmp(s, "--gl-info"))
+        return a->gl_info = 1, 0;
     if (!strcmp(s, "--quiet") || !strcmp(s, "-q"))
         return a->p.quiet = 1, 0;
     if (!strcmp(s, "--no-frames"))
@@ -109,6 +121,8 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
         a->quality = v, a->have_quality = 1;
     else if (!strcmp(s, "--video"))
         a->p.video = v;
+    else if (!strcmp(s, "--gl"))
+        a->gl = v;
     else if (!strcmp(s, "--size")) {
         if (parse_size(v, &a->w, &a->h))
             return fprintf(stderr, "hystviz animate: --size '%s' is not WxH with 16 <= W, H <= 8192\n", v), 2;
@@ -151,10 +165,41 @@ static int parse_args(int argc, char **argv, anim_args *a)
     return 0;
 }
 
-static void list_scenes(void)
+/* --gl, else $HYSTVIZ_GL, checked before any work or output: 2 for an
+ * unknown name or a bad HYSTVIZ_EGL_DEVICE (unless only_name), 3 for a
+ * backend not built or without a device. */
+static int pick_backend(const char *name, int only_name)
+{
+    hy_error err;
+    int st = name ? hy_gl_select(name, &err) : HY_OK;
+    if (!st)
+        st = only_name ? (hy_gl_backend_name(&err) ? HY_OK : err.code) : hy_gl_check(&err);
+    if (!st)
+        return 0;
+    fprintf(stderr, "hystviz animate: %s\n", err.msg);
+    return st == HY_EUNSUP ? 3 : 2;
+}
+
+/* --gl-info on stdout; 3 when no context can be made, 2 for a bad
+ * HYSTVIZ_EGL_DEVICE (the reason on stderr too). */
+static int gl_info(void)
+{
+    hy_error err;
+    fflush(stdout);
+    int st = hy_gl_info(stdout, &err);
+    if (st)
+        fprintf(stderr, "hystviz animate: no GL context: %s\n", err.msg);
+    return st == HY_EINVAL ? 2 : st ? 3 : 0;
+}
+
+/* The animations, then the GL backend and renderer they would use (a test
+ * context); 3 if none can be made. */
+static int list_scenes(void)
 {
     for (const anim_scene *const *s = anim_scene_list(); *s; s++)
         printf("%-16s %s\n", (*s)->name, (*s)->summary);
+    printf("\n");
+    return gl_info();
 }
 
 /* --frames A:B must lie within the animation's frames; 2 (usage) if not. */
@@ -244,8 +289,12 @@ static int animate(int argc, char **argv)
     int r = parse_args(argc, argv, &a);
     if (r)
         return r == 1 ? 0 : 2;
+    if ((r = pick_backend(a.gl, a.gl_info || a.list)))
+        return r;
+    if (a.gl_info)
+        return gl_info();
     if (a.list)
-        return list_scenes(), 0;
+        return list_scenes();
     if (a.name && ends_with(a.name, ".scene"))
         return animate_scene(&a);
     const anim_scene *sc = anim_scene_find(a.name);
@@ -284,8 +333,8 @@ int hy_cmd_animate(int argc, char **argv)
         fputs(animate_help, stdout);
         return 0;
     }
-    fprintf(stderr, "hystviz animate: this hystviz was built without OSMesa, so it cannot render "
-            "animations (install libosmesa6-dev and reconfigure with -Dosmesa=enabled)\n");
+    fprintf(stderr, "hystviz animate: this hystviz was built without OSMesa and EGL, so it cannot render "
+            "animations (install libosmesa6-dev or libegl-dev and reconfigure with -Dgl=auto)\n");
     return 3;
 }
 #endif

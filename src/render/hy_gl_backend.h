@@ -32,6 +32,9 @@ typedef struct hy_gl_backend {
     void (*close)(hy_gl_surface *s, int current);
     /* Writes what this backend would use (devices, the chosen one) to f. */
     void (*info)(FILE *f);
+    /* Cheap check, no context made, that open can find what it needs (EGL: a
+     * device, a valid HYSTVIZ_EGL_DEVICE): HY_OK, HY_EUNSUP or HY_EINVAL. */
+    int (*check)(hy_error *err);
 } hy_gl_backend;
 
 #if HY_HAVE_OSMESA

@@ -59,8 +59,9 @@ static int list_devices(devices *d, hy_error *err)
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!client || !has_ext(client, "EGL_EXT_platform_device") ||
         !(has_ext(client, "EGL_EXT_device_enumeration") || has_ext(client, "EGL_EXT_device_base")))
-        return hy_error_set(err, HY_EUNSUP, "EGL has no device platform (EGL_EXT_platform_device and "
-                            "EGL_EXT_device_enumeration are needed; install libegl1 and libegl-mesa0)");
+        return hy_error_set(err, HY_EUNSUP, "EGL found no device: no EGL driver offers the device platform "
+                            "(EGL_EXT_platform_device; install libegl-mesa0 for Mesa's software rasteriser, "
+                            "or the GPU's EGL driver)");
     PFNEGLQUERYDEVICESEXTPROC query = (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
     d->string = (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
     d->n = 0;
@@ -267,4 +268,11 @@ static void egl_info(FILE *f)
         fprintf(f, "egl: %s\n", err.msg);
 }
 
-const hy_gl_backend hy_gl_egl_backend = {"egl", egl_open, egl_make_current, egl_frame, egl_close, egl_info};
+static int egl_check(hy_error *err)
+{
+    devices d;
+    int pick, st = list_devices(&d, err);
+    return st ? st : choose_device(&d, &pick, err);
+}
+
+const hy_gl_backend hy_gl_egl_backend = {"egl", egl_open, egl_make_current, egl_frame, egl_close, egl_info, egl_check};

@@ -79,4 +79,11 @@ static const unsigned char *osm_frame(hy_gl_surface *s)
 
 static void osm_info(FILE *f) { fputs("osmesa: Mesa's off-screen library (libOSMesa), software rasteriser\n", f); }
 
-const hy_gl_backend hy_gl_osmesa_backend = {"osmesa", osm_open, osm_make_current, osm_frame, osm_close, osm_info};
+static int osm_check(hy_error *err)
+{
+    (void)err;                        /* linked: the library is there */
+    return HY_OK;
+}
+
+const hy_gl_backend hy_gl_osmesa_backend = {"osmesa",  osm_open, osm_make_current, osm_frame,
+                                            osm_close, osm_info, osm_check};

@@ -25,13 +25,13 @@ const char *hy_gl_backends(void)
 {
     static const char list[] = ""
 #if HY_HAVE_OSMESA
-                               "osmesa "
+                               " osmesa"
 #endif
 #if HY_HAVE_EGL
-                               "egl "
+                               " egl"
 #endif
         ;
-    return list;
+    return list[0] ? list + 1 : list;
 }
 
 static const hy_gl_backend *by_name(const char *name, const char *origin, hy_error *err)
@@ -77,6 +77,12 @@ const char *hy_gl_backend_name(hy_error *err)
 {
     const hy_gl_backend *b = hy_gl_backend_current(err);
     return b ? b->name : NULL;
+}
+
+int hy_gl_check(hy_error *err)
+{
+    const hy_gl_backend *b = hy_gl_backend_current(err);
+    return b ? b->check(err) : err->code;
 }
 
 int hy_gl_info(FILE *f, hy_error *err)
