@@ -2,7 +2,9 @@
 # tools/setup.sh: one command from a fresh Debian 12 (as root) to a built hystviz.
 #   sh tools/setup.sh gallery   install what is missing, build, render the gallery
 #   sh tools/setup.sh test      install what is missing, build, run every test suite
-#                               (again without OSMesa, and again under ASan+UBSan)
+#                               (the gl suite on each GL backend: both in build/,
+#                               -Dgl=osmesa, -Dgl=egl; again without GL, and again
+#                               under ASan+UBSan)
 #   sh tools/setup.sh bench     build, run the benchmarks
 #   sh tools/setup.sh fuzz MIN  build the libFuzzer target with clang in build-fuzz/ and
 #                               fuzz the scene parser and `data` path for MIN minutes
@@ -13,7 +15,9 @@ set -eu
 cd "$(dirname "$0")/.."
 what=${1:-gallery}
 
-pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev libosmesa6-dev fonts-dejavu-core fonts-stix"
+pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev fonts-dejavu-core fonts-stix"
+# GL backends (OSMesa; EGL with Mesa's software device) and ffmpeg for the video tests
+pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # the fuzzer needs clang and its runtime libraries (libFuzzer, ASan, UBSan)
 [ "$what" = fuzz ] && pkgs="$pkgs clang libclang-rt-dev"
 missing=""
@@ -51,9 +55,15 @@ gallery)
 test)
     configure build
     meson test -C build --print-errorlogs --num-processes 2
-    # the build without OSMesa: cairo figures work, GL tests report SKIP
-    configure build-noosm -Dosmesa=disabled
-    meson test -C build-noosm --no-suite check --print-errorlogs --num-processes 2
+    # each GL backend alone (build/ has both: its gl suite ran on each, and
+    # compared their frames); -Dgl=egl is the machine without OSMesa
+    for gl in osmesa egl; do
+        configure build-$gl -Dgl=$gl
+        meson test -C build-$gl --suite gl --print-errorlogs --num-processes 2
+    done
+    # the build without GL: cairo figures work, GL tests report SKIP
+    configure build-nogl -Dgl=disabled
+    meson test -C build-nogl --no-suite check --print-errorlogs --num-processes 2
     # GCC's -fsanitize=undefined leaves out float-cast-overflow (a double too large
     # for the integer it is converted to); it is added, and made fatal, here
     san="-fsanitize=float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
@@ -78,7 +88,7 @@ fuzz)
     if [ -d build-fuzz ]; then
         meson setup --reconfigure build-fuzz >/dev/null
     else
-        CC=clang meson setup build-fuzz -Dfuzz=true -Dosmesa=disabled -Db_sanitize=address,undefined \
+        CC=clang meson setup build-fuzz -Dfuzz=true -Dgl=disabled -Db_sanitize=address,undefined \
             -Db_lundef=false -Dc_args="$fuzz_cflags" >/dev/null
     fi
     meson compile -C build-fuzz fuzz_scene fuzz_dict

@@ -14,19 +14,21 @@
 #include "hy_gl_backend.h"
 #include "hy_shaders.h"
 
-/* One OpenGL call sequence at a time in the whole process.  Each thread has
- * its own context, which OpenGL allows, but Mesa 22.3's llvmpipe under OSMesa
- * crashed (SIGSEGV inside glReadPixels of one context while another context
- * drew, about 1 run in 10 of the -j 2 ribbon test on a loaded machine; see
- * tests/gl/test_anim.c).  Only the GL part of a frame is serialised: the
- * caller's cairo overlay, compositing and PNG encoding still run in parallel,
- * and llvmpipe rasterises each frame with its own threads. */
+/* Context creation and destruction, one at a time in the whole process (they
+ * touch the backends' process-wide state: OSMesa's framebuffer list, the EGL
+ * display and its user count).  With OSMesa (backend->serialise) every GL
+ * call sequence of a frame holds it too: Mesa 22.3's llvmpipe under OSMesa
+ * crashed inside glReadPixels of one context while another drew, about 1 run
+ * in 10 of the -j 2 ribbon test on a loaded machine, with the readback of
+ * the time (see docs/ARCHITECTURE.md, "GL backends").  EGL contexts draw
+ * concurrently: each has its own pipe context and framebuffer object.  The
+ * caller's cairo overlay, compositing and PNG encoding always run in
+ * parallel, and llvmpipe rasterises each frame with its own threads. */
 static pthread_mutex_t gl_mu = PTHREAD_MUTEX_INITIALIZER;
 
 /* The context current on this thread and its entry points (gl->Clear(...)). */
 static _Thread_local hy_gl *cur;
 static _Thread_local const hy_gl_fns *gl;
-
 
 #define MAX_EFFECTS 8
 #define MAX_CLIP 8
@@ -78,6 +80,18 @@ static void use(hy_gl *g)
         return;
     g->be->make_current(g->surf);
     cur = g, gl = g->fns;
+}
+
+static void lock(const hy_gl *g)
+{
+    if (g->be->serialise)
+        pthread_mutex_lock(&gl_mu);
+}
+
+static void unlock(const hy_gl *g)
+{
+    if (g->be->serialise)
+        pthread_mutex_unlock(&gl_mu);
 }
 
 /* ---- colour maps ---- */
@@ -334,10 +348,10 @@ static void gl_begin_unlocked(hy_gl *g, hy_rgb c)
 
 void hy_gl_begin(hy_gl *g, hy_rgb c)
 {
-    pthread_mutex_lock(&gl_mu);
+    lock(g);
     use(g);
     gl_begin_unlocked(g, c);
-    pthread_mutex_unlock(&gl_mu);
+    unlock(g);
 }
 
 int hy_gl_set_effect(hy_gl *g, const hy_gl_effect *e, hy_error *err)
@@ -990,10 +1004,10 @@ static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *er
 
 int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
 {
-    pthread_mutex_lock(&gl_mu);
+    lock(g);
     use(g);
     int rc = gl_draw_ribbon_unlocked(g, r, err);
-    pthread_mutex_unlock(&gl_mu);
+    unlock(g);
     return rc;
 }
 
@@ -1025,18 +1039,18 @@ static const unsigned char *gl_finish_unlocked(hy_gl *g, hy_error *err)
 
 const unsigned char *hy_gl_finish(hy_gl *g, hy_error *err)
 {
-    pthread_mutex_lock(&gl_mu);
+    lock(g);
     use(g);
     const unsigned char *fb = gl_finish_unlocked(g, err);
-    pthread_mutex_unlock(&gl_mu);
+    unlock(g);
     return fb;
 }
 
 int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err)
 {
-    pthread_mutex_lock(&gl_mu);
+    lock(g);
     use(g);
     int rc = gl_read_unlocked(g, rgba, err);
-    pthread_mutex_unlock(&gl_mu);
+    unlock(g);
     return rc;
 }

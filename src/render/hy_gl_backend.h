@@ -17,6 +17,9 @@ typedef struct hy_gl_surface hy_gl_surface;   /* a context and its frame, define
 
 typedef struct hy_gl_backend {
     const char *name;                          /* "osmesa", "egl" */
+    /* 1: every context's GL calls are serialised by hy_gl.c's process-wide
+     * lock (OSMesa); 0: contexts draw concurrently, one per thread (EGL). */
+    int serialise;
     /* Creates a w x h OpenGL 3.3 core context with an RGBA8 colour and a
      * 24-bit depth target and makes it current on this thread.  *fns: its entry
      * points; *fbo: the framebuffer that is the frame (0: the default one).

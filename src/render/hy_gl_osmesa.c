@@ -85,5 +85,5 @@ static int osm_check(hy_error *err)
     return HY_OK;
 }
 
-const hy_gl_backend hy_gl_osmesa_backend = {"osmesa",  osm_open, osm_make_current, osm_frame,
+const hy_gl_backend hy_gl_osmesa_backend = {"osmesa",  1,        osm_open,  osm_make_current, osm_frame,
                                             osm_close, osm_info, osm_check};
