@@ -1,8 +1,10 @@
 /* hy_gl_egl.c: the EGL backend (hy_gl_backend.h).  One EGL display on the
  * device platform (EGL_EXT_platform_device) for the process, initialised by
- * the first context and terminated with the last; each context is surfaceless
+ * the first context; each context is surfaceless
  * (EGL_KHR_surfaceless_context) and draws into its own framebuffer object
  * (RGBA8 colour, 24-bit depth renderbuffers), read back with glReadPixels.
+ *
+ * The device is chosen once, by the first context.
  *
  * Devices: eglQueryDevicesEXT lists GPUs (EGL_EXT_device_drm, NVIDIA's
  * EGL_NV_device_cuda) and Mesa's software rasteriser (EGL_MESA_device_software,
@@ -26,9 +28,12 @@ struct hy_gl_surface {
     unsigned char *fb, *row;          /* the frame read back (top row first); one row for the flip */
 };
 
-static pthread_mutex_t mu = PTHREAD_MUTEX_INITIALIZER;   /* guards the display and its users */
+/* The display, made by the first context and kept for the process (EGL
+ * holds it in its own list, so it stays reachable, not leaked): Mesa 22.3's
+ * eglTerminate leaves objects of the driver that it then unloads, which a
+ * leak checker could only report as from "<unknown module>". */
+static pthread_mutex_t mu = PTHREAD_MUTEX_INITIALIZER;   /* guards dpy and config */
 static EGLDisplay dpy = EGL_NO_DISPLAY;
-static int users;                     /* contexts open on dpy */
 static EGLConfig config;              /* EGL_NO_CONFIG_KHR where the display allows it */
 
 static hy_gl_fns fns;
@@ -99,13 +104,11 @@ static int choose_device(const devices *d, int *pick, hy_error *err)
     return HY_OK;
 }
 
-/* Under mu: the display of the chosen device, initialised, one more user. */
+/* Under mu: the display of the chosen device, initialised. */
 static int display_get(hy_error *err)
 {
-    if (users > 0) {
-        users++;
+    if (dpy != EGL_NO_DISPLAY)
         return HY_OK;
-    }
     devices d;
     int pick, st = list_devices(&d, err);
     if (st || (st = choose_device(&d, &pick, err)))
@@ -133,18 +136,9 @@ static int display_get(hy_error *err)
         dpy = EGL_NO_DISPLAY;
         return st;
     }
-    users = 1;
     return HY_OK;
 }
 
-/* Under mu: one user fewer; the last terminates the display. */
-static void display_put(void)
-{
-    if (--users == 0) {
-        eglTerminate(dpy);
-        dpy = EGL_NO_DISPLAY;
-    }
-}
 
 static void egl_close(hy_gl_surface *s, int current)
 {
@@ -155,7 +149,6 @@ static void egl_close(hy_gl_surface *s, int current)
         if (current)
             eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(dpy, s->ctx);   /* its framebuffer object and renderbuffers with it */
-        display_put();
         pthread_mutex_unlock(&mu);
         if (current)
             eglReleaseThread();
@@ -205,8 +198,6 @@ static int egl_open(hy_gl_surface **out, int w, int h, const hy_gl_fns **f, unsi
                               "(error 0x%04x)", eglGetError());
         if (st && s->ctx != EGL_NO_CONTEXT)
             eglDestroyContext(dpy, s->ctx), s->ctx = EGL_NO_CONTEXT;
-        if (st)
-            display_put();
     }
     pthread_mutex_unlock(&mu);
     if (st) {
