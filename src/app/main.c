@@ -25,7 +25,7 @@ static const char usage[] =
     "commands:\n"
     "  render    draw scene files into SVG, PDF and PNG figures\n"
     "  data      print every series a scene draws as CSV\n"
-    "  animate   render an animation (OpenGL through OSMesa) as PNG frames or a video\n"
+    "  animate   render an animation (off-screen OpenGL: OSMesa or EGL) as PNG frames or a video\n"
     "  gallery   render every scene into gallery/ (parallel, skips unchanged) with an index page\n"
     "  loop      print a steady hysteresis loop, y*_{u,k} or y_gamma as CSV\n"
     "  loops     print the major and minor loops of an input with their areas\n"

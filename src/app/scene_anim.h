@@ -14,7 +14,7 @@
  *     scene_anim a;
  *     if (scene_anim_load(&a, "scenes/anim_gamma_sweep_ex3.scene", &err)) ...
  *     if (scene_anim_check(&a, nframes, &err)) ...
- *     hy_anim_run(&p, scene_anim_draw, &a, &stats, &err);   (OSMesa only)
+ *     hy_anim_run(&p, scene_anim_draw, &a, &stats, &err);   (GL builds only)
  *     scene_anim_free(&a);
  */
 #ifndef HY_SCENE_ANIM_H

@@ -1,5 +1,5 @@
 /* hy_anim.h: the animation engine: timeline (duration, fps, easing,
- * keyframe tracks), quality presets, parallel frame rendering (one OSMesa
+ * keyframe tracks), quality presets, parallel frame rendering (one GL
  * context per thread, frames byte-identical for any number of threads),
  * PNG frames DIR/NAME/frame_00000.png plus a poster DIR/NAME.png, a progress
  * bar on a terminal, and optional video through ffmpeg.

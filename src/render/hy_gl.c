@@ -16,7 +16,7 @@
 
 /* Context creation and destruction, one at a time in the whole process (they
  * touch the backends' process-wide state: OSMesa's framebuffer list, the EGL
- * display and its user count).  With OSMesa (backend->serialise) every GL
+ * display).  With OSMesa (backend->serialise) every GL
  * call sequence of a frame holds it too: Mesa 22.3's llvmpipe under OSMesa
  * crashed inside glReadPixels of one context while another drew, about 1 run
  * in 10 of the -j 2 ribbon test on a loaded machine, with the readback of
@@ -179,7 +179,7 @@ static GLuint compile_stage(const hy_gl_stage *s, hy_error *err)
 
 int hy_gl_program(const hy_gl_stage *stages, int n, unsigned *program, hy_error *err)
 {
-    GLuint sh[4], prog = gl->CreateProgram();
+    GLuint sh[4], prog = gl ? gl->CreateProgram() : 0;
     if (n < 1 || n > 4 || !prog)
         return hy_error_set(err, HY_EINVAL, "a GL program needs 1 to 4 stages and a current context");
     int got = 0, st = HY_OK;
@@ -283,6 +283,7 @@ static int gl_create_unlocked(hy_gl **out, int width, int height, hy_error *err)
     int st = be->open(&g->surf, width, height, &g->fns, &g->fbo0, err);
     if (st) {
         free(g);
+        cur = NULL, gl = NULL;        /* whatever was current may not be any more */
         return st;
     }
     cur = g, gl = g->fns;
