@@ -217,8 +217,13 @@ static int egl_open(hy_gl_surface **out, int w, int h, const hy_gl_fns **f, unsi
     return HY_OK;
 }
 
+/* Called only when another context was used on this thread since, maybe an
+ * OSMesa one: EGL still believes s current and would skip the bind, leaving
+ * Mesa's dispatch on the OSMesa context (GL_INVALID_OPERATION on our FBO,
+ * test_backends), so it is released first. */
 static int egl_make_current(hy_gl_surface *s)
 {
+    eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     return eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, s->ctx) ? 0 : -1;
 }
 

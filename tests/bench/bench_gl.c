@@ -19,6 +19,7 @@
 
 #include "anim_scenes.h"
 #include "hy_cairo.h"
+#include "hy_anim.h"
 #include "hy_gl.h"
 
 static char tmpdir[4096];             /* every file written goes under it */
@@ -57,7 +58,7 @@ static int frame(one *o, const anim_scene *sc, void *st, long index, long nframe
                  double *t_read)
 {
     hy_error err;
-    double t0 = now(), k = o->h / 360.0;
+    double t0 = now(), k = o->h / HY_ANIM_POINTS_HIGH;
     cairo_rectangle_t ext = {0, 0, o->w, o->h};
     cairo_surface_t *rec = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &ext);
     cairo_t *cr = cairo_create(rec);

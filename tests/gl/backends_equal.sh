@@ -38,5 +38,6 @@ for what in $names "$scenes"/anim_*.scene; do
     n=$((n + 1))
     echo "$base: $k files identical"
 done
-echo "$n animations compared, $fails differences"
-[ "$fails" -eq 0 ] && [ "$n" -ge 9 ]
+nscenes=$(ls "$scenes"/anim_*.scene | wc -l)
+echo "$n animations compared ($(echo $names | wc -w) built-in, $nscenes scenes), $fails differences"
+[ "$fails" -eq 0 ] && [ "$n" -eq $(($(echo $names | wc -w) + nscenes)) ] && [ "$nscenes" -ge 2 ]
