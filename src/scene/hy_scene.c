@@ -58,6 +58,14 @@ hy_scene *hy__scene_new(hy_error *err)
         return NULL;
     }
     s->hash = FNV_OFFSET;
+    size_t nsec;
+    hy_scene_schema(&nsec);
+    s->kinds = calloc(nsec, sizeof *s->kinds);
+    if (!s->kinds) {
+        hy_error_set(err, HY_ENOMEM, "out of memory allocating a scene");
+        free(s);
+        return NULL;
+    }
     if (prepare_defaults(s, err)) {
         hy_scene_free(s);
         return NULL;
@@ -79,6 +87,14 @@ void hy_scene_free(hy_scene *s)
         free(sec->name);
     }
     free(s->secs);
+    free(s->table);
+    for (size_t i = 0; s->kinds && i < nsec; i++)
+        free(s->kinds[i].idx);
+    free(s->kinds);
+    free(s->root);
+    for (size_t i = 0; i < s->nincdirs; i++)
+        free(s->incdirs[i]);
+    free(s->incdirs);
     if (s->defaults && s->defoff) {
         for (size_t i = 0; i < nsec; i++)
             for (size_t j = 0; j < spec[i].nkeys; j++)
@@ -109,14 +125,69 @@ int hy__scene_add_file(hy_scene *s, const char *name)
     return (int)s->nfiles++;
 }
 
+/* FNV-1a of a section's kind and name (NULL for unnamed kinds). */
+static size_t section_hash(int sec, const char *name)
+{
+    uint64_t h = FNV_OFFSET ^ (uint64_t)(unsigned)sec;
+    h *= FNV_PRIME;
+    for (const char *c = name ? name : ""; *c; c++) {
+        h ^= (unsigned char)*c;
+        h *= FNV_PRIME;
+    }
+    return (size_t)(h ^ (h >> 29));
+}
+
+static int same_section(const hy__section *x, int sec, const char *name)
+{
+    return x->spec == sec && ((!name && !x->name) || (name && x->name && strcmp(name, x->name) == 0));
+}
+
+/* The slot of (sec, name) in the table: where it is, or the empty slot where it would go. */
+static size_t table_slot(const hy_scene *s, int sec, const char *name)
+{
+    size_t mask = s->captable - 1, i = section_hash(sec, name) & mask;
+    while (s->table[i] && !same_section(&s->secs[s->table[i] - 1], sec, name))
+        i = (i + 1) & mask;
+    return i;
+}
+
+/* Doubles the table (or makes the first one); 0 or -1 on allocation failure. */
+static int table_grow(hy_scene *s)
+{
+    size_t cap = s->captable ? 2 * s->captable : 64;
+    size_t *t = calloc(cap, sizeof *t);
+    if (!t)
+        return -1;
+    free(s->table);
+    s->table = t;
+    s->captable = cap;
+    for (size_t i = 0; i < s->nsecs; i++)
+        s->table[table_slot(s, s->secs[i].spec, s->secs[i].name)] = i + 1;
+    return 0;
+}
+
 hy__section *hy__scene_find(const hy_scene *s, int sec, const char *name)
 {
-    for (size_t i = 0; i < s->nsecs; i++) {
-        const hy__section *x = &s->secs[i];
-        if (x->spec == sec && ((!name && !x->name) || (name && x->name && strcmp(name, x->name) == 0)))
-            return &s->secs[i];
+    if (!s->captable)
+        return NULL;
+    size_t i = s->table[table_slot(s, sec, name)];
+    return i ? &s->secs[i - 1] : NULL;
+}
+
+/* Appends section index i to the list of its kind; 0 or -1. */
+static int kind_push(hy_scene *s, int sec, size_t i)
+{
+    hy__kind_list *k = &s->kinds[sec];
+    if (k->n == k->cap) {
+        size_t cap = k->cap ? 2 * k->cap : 8;
+        size_t *n = realloc(k->idx, cap * sizeof *n);
+        if (!n)
+            return -1;
+        k->idx = n;
+        k->cap = cap;
     }
-    return NULL;
+    k->idx[k->n++] = i;
+    return 0;
 }
 
 hy__section *hy__scene_touch(hy_scene *s, int sec, const char *name, hy_scene_loc loc)
@@ -124,6 +195,8 @@ hy__section *hy__scene_touch(hy_scene *s, int sec, const char *name, hy_scene_lo
     hy__section *x = hy__scene_find(s, sec, name);
     if (x)
         return x;
+    if (2 * (s->nsecs + 1) > s->captable && table_grow(s))
+        return NULL;
     if (s->nsecs == s->capsecs) {
         size_t cap = s->capsecs ? 2 * s->capsecs : 8;
         hy__section *n = realloc(s->secs, cap * sizeof *n);
@@ -139,12 +212,12 @@ hy__section *hy__scene_touch(hy_scene *s, int sec, const char *name, hy_scene_lo
     x->loc = loc;
     x->slots = calloc(spec[sec].nkeys, sizeof *x->slots);
     x->name = name ? strdup(name) : NULL;
-    if (!x->slots || (name && !x->name)) {
+    if (!x->slots || (name && !x->name) || kind_push(s, sec, s->nsecs)) {
         free(x->slots);
         free(x->name);
         return NULL;
     }
-    s->nsecs++;
+    s->table[table_slot(s, sec, name)] = ++s->nsecs;
     return x;
 }
 
@@ -352,19 +425,15 @@ int hy_scene_get_color(const hy_scene *s, const char *section, const char *name,
 size_t hy_scene_count(const hy_scene *s, const char *section)
 {
     int sec = hy_scene_schema_section(section);
-    size_t n = 0;
-    for (size_t i = 0; i < s->nsecs; i++)
-        n += s->secs[i].spec == sec;
-    return n;
+    return sec < 0 ? 0 : s->kinds[sec].n;
 }
 
 const char *hy_scene_name_at(const hy_scene *s, const char *section, size_t i)
 {
     int sec = hy_scene_schema_section(section);
-    for (size_t j = 0; j < s->nsecs; j++)
-        if (s->secs[j].spec == sec && i-- == 0)
-            return s->secs[j].name;
-    return NULL;
+    if (sec < 0 || i >= s->kinds[sec].n)
+        return NULL;
+    return s->secs[s->kinds[sec].idx[i]].name;
 }
 
 int hy_scene_get_loc(const hy_scene *s, const char *section, const char *name,

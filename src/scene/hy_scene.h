@@ -161,4 +161,6 @@ int hy_scene_write(const hy_scene *s, FILE *f, int defaults);
 /* The path or display name the scene was parsed from (owned by the scene). */
 const char *hy_scene_source(const hy_scene *s);
 
+#include "hy_scene_policy.h"
+
 #endif

@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "hy_scene.h"
+#include "hy_scene_policy.h"
 
 enum { HY__UNIT_PT, HY__UNIT_CM, HY__UNIT_MM, HY__UNIT_IN, HY__UNIT_PX };
 
@@ -38,11 +39,25 @@ typedef struct hy__section {
     hy__slot *slots; /* one per key of the spec */
 } hy__section;
 
+/* The sections of one kind in order of first appearance (indices in secs). */
+typedef struct hy__kind_list {
+    size_t *idx;
+    size_t n, cap;
+} hy__kind_list;
+
 struct hy_scene {
     char **files; /* display names of every file read and every override, in order */
     size_t nfiles, capfiles;
     hy__section *secs;
     size_t nsecs, capsecs;
+    size_t *table;        /* open addressing over (kind, name): secs index + 1, 0 empty */
+    size_t captable;      /* a power of two, at least twice nsecs                    */
+    hy__kind_list *kinds; /* one per schema section kind                             */
+    char *root;           /* directory of the top scene file (realpath), or NULL     */
+    char **incdirs;       /* --include-dir roots (realpath), owned                   */
+    size_t nincdirs;
+    size_t inc_files;     /* included files read so far (repeats counted)            */
+    size_t inc_bytes;     /* bytes read so far, the top file and every include       */
     hy__value *defaults;  /* flattened: defoff[sec] + key */
     size_t *defoff;
     uint64_t hash;
@@ -86,6 +101,18 @@ hy__section *hy__scene_touch(hy_scene *s, int sec, const char *name, hy_scene_lo
 
 /* Folds bytes into the FNV-1a hash. */
 void hy__scene_hash_bytes(hy_scene *s, const void *p, size_t n);
+
+/* Sets the scene's read roots: realpath of top_dir (the top file's directory)
+ * and of each include dir of pol (an include dir that is not a directory is
+ * an error); counts the top file's len bytes. */
+int hy__policy_roots(hy_scene *s, const char *top_dir, const hy_scene_policy *pol,
+                     size_t len, hy_error *err);
+
+/* Finds (relative to dir, then in each include dir), checks and reads the
+ * include rel: path as opened, its text (buf, len) and its real path (canon),
+ * all malloc'ed.  On error returns a status with the reason in why. */
+int hy__policy_include(hy_scene *s, const char *dir, const char *rel, char **path, char **buf,
+                       size_t *len, char **canon, char *why, size_t whysz);
 
 /* A fresh scene with defaults prepared; NULL and err on failure. */
 hy_scene *hy__scene_new(hy_error *err);

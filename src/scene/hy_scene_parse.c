@@ -1,11 +1,15 @@
 /* hy_scene_parse.c: the scene file parser: lines, [section] headers, keys, includes and their precedence. */
 #include "hy_scene_internal.h"
 
+#include "hy_file.h"
+#include "hy_scene_policy.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -13,7 +17,7 @@
 
 /* A key or section header already written in the file being read. */
 typedef struct seen {
-    size_t sec; /* index in scene->secs */
+    size_t sec; /* index in scene->secs, + 1 (0: an empty slot of the table) */
     int key;    /* -1 for a section header */
     int line;
 } seen;
@@ -34,8 +38,8 @@ typedef struct pctx {
 
 /* State of one file while its lines are read. */
 typedef struct fstate {
-    seen *seen;
-    size_t nseen, capseen;
+    seen *seen;           /* open addressing over (sec, key): O(1) duplicate checks */
+    size_t nseen, capseen; /* capseen a power of two, at least twice nseen          */
     long cur; /* current section (index in scene->secs), -1 before any header */
     int line;
 } fstate;
@@ -78,58 +82,49 @@ static char *dir_of(const char *path)
     return d;
 }
 
-/* Reads a whole file; returns 0 or errno. */
-static int slurp(const char *path, char **buf, size_t *len)
+static size_t seen_hash(size_t sec, int key)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return errno ? errno : ENOENT;
-    size_t cap = 4096, n = 0;
-    char *b = malloc(cap);
-    while (b) {
-        n += fread(b + n, 1, cap - n, f);
-        if (n < cap)
-            break;
-        char *nb = realloc(b, cap * 2);
-        if (!nb) {
-            free(b);
-            b = NULL;
-            break;
-        }
-        b = nb;
-        cap *= 2;
-    }
-    int bad = b ? ferror(f) : ENOMEM;
-    fclose(f);
-    if (bad) {
-        free(b);
-        return bad == ENOMEM ? ENOMEM : EIO;
-    }
-    *buf = b;
-    *len = n;
-    return 0;
+    uint64_t h = (uint64_t)sec * 0x9e3779b97f4a7c15ULL ^ (uint64_t)(unsigned)(key + 1) * 0xc2b2ae3d27d4eb4fULL;
+    return (size_t)(h ^ (h >> 31));
+}
+
+/* The slot of (sec, key) in the table: where it is or where it would go. */
+static size_t seen_slot(const fstate *fs, size_t sec, int key)
+{
+    size_t mask = fs->capseen - 1, i = seen_hash(sec, key) & mask;
+    while (fs->seen[i].sec && !(fs->seen[i].sec == sec + 1 && fs->seen[i].key == key))
+        i = (i + 1) & mask;
+    return i;
 }
 
 static int push_seen(fstate *fs, size_t sec, int key, int line)
 {
-    if (fs->nseen == fs->capseen) {
-        size_t cap = fs->capseen ? 2 * fs->capseen : 32;
-        seen *n = realloc(fs->seen, cap * sizeof *n);
-        if (!n)
+    if (2 * (fs->nseen + 1) > fs->capseen) {
+        size_t cap = fs->capseen ? 2 * fs->capseen : 64;
+        seen *old = fs->seen;
+        size_t oldcap = fs->capseen;
+        fs->seen = calloc(cap, sizeof *fs->seen);
+        if (!fs->seen) {
+            fs->seen = old;
             return HY_ENOMEM;
-        fs->seen = n;
+        }
         fs->capseen = cap;
+        for (size_t i = 0; i < oldcap; i++)
+            if (old[i].sec)
+                fs->seen[seen_slot(fs, old[i].sec - 1, old[i].key)] = old[i];
+        free(old);
     }
-    fs->seen[fs->nseen++] = (seen){sec, key, line};
+    fs->seen[seen_slot(fs, sec, key)] = (seen){sec + 1, key, line};
+    fs->nseen++;
     return HY_OK;
 }
 
 static const seen *find_seen(const fstate *fs, size_t sec, int key)
 {
-    for (size_t i = 0; i < fs->nseen; i++)
-        if (fs->seen[i].sec == sec && fs->seen[i].key == key)
-            return &fs->seen[i];
-    return NULL;
+    if (!fs->capseen)
+        return NULL;
+    const seen *x = &fs->seen[seen_slot(fs, sec, key)];
+    return x->sec ? x : NULL;
 }
 
 static void section_label(const hy_scene *s, size_t si, char *buf, size_t n)
@@ -376,28 +371,15 @@ static int check_cycle(pctx *c, fstate *fs, const char *canon, const char *path,
     return HY_OK;
 }
 
-/* Depth limit, reading and parsing of one included file. */
+/* Reads, checks (policy, caps, cycle, depth) and parses one included file. */
 static int include_file(pctx *c, fstate *fs, const char *rel, int col)
 {
     const frame *top = &c->stack[c->depth - 1];
-    size_t need = strlen(top->dir) + strlen(rel) + 2;
-    char *path = malloc(need);
-    if (!path)
-        return perr(c, fs->line, col, HY_ENOMEM, "out of memory");
-    if (rel[0] == '/' || strcmp(top->dir, ".") == 0)
-        snprintf(path, need, "%s", rel);
-    else
-        snprintf(path, need, "%s/%s", top->dir, rel);
-    char *buf = NULL, *canon = NULL;
+    char *buf = NULL, *canon = NULL, *path = NULL, why[300];
     size_t blen = 0;
-    int rc = HY_OK;
-    int e = slurp(path, &buf, &blen);
-    if (e) {
-        rc = perr(c, fs->line, col, HY_EIO, "cannot read included file '%s' (%s): %s", rel, path,
-                  strerror(e));
-        goto done;
-    }
-    canon = realpath(path, NULL);
+    int rc = hy__policy_include(c->s, top->dir, rel, &path, &buf, &blen, &canon, why, sizeof why);
+    if (rc)
+        return perr(c, fs->line, col, rc, "%s", why);
     rc = check_cycle(c, fs, canon, path, col);
     if (rc)
         goto done;
@@ -439,6 +421,9 @@ static int parse_include(pctx *c, fstate *fs, const char *ls, const char *p, con
     hy__value v;
     p = skip_ws(p, end);
     col = (int)(p - ls) + 1;
+    if (p == end || hy__is_comment(p, end))
+        return perr(c, fs->line, col, HY_EINVAL,
+                    "include needs a file name in quotes, as in include \"style.scene\"");
     int rc = hy__value_parse(&inc, "include", NULL, p, (size_t)(end - p), col, &v, &ecol, msg,
                              sizeof msg);
     if (rc)
@@ -458,8 +443,8 @@ static int parse_line(pctx *c, fstate *fs, const char *ls, const char *end)
         return HY_OK;
     if (*p == '[')
         return parse_header(c, fs, ls, p, end);
-    if ((size_t)(end - p) > 7 && strncmp(p, "include", 7) == 0 &&
-        (p[7] == ' ' || p[7] == '\t' || p[7] == '"'))
+    if ((size_t)(end - p) >= 7 && strncmp(p, "include", 7) == 0 &&
+        (end - p == 7 || p[7] == ' ' || p[7] == '\t' || p[7] == '"' || p[7] == '#'))
         return parse_include(c, fs, ls, p + 7, end);
     return parse_key(c, fs, ls, p, end);
 }
@@ -490,8 +475,9 @@ static int parse_text(pctx *c, const char *text, size_t len)
     return rc;
 }
 
-int hy_scene_parse_buffer(const char *name, const char *text, size_t len, hy_scene **out,
-                          hy_error *err)
+/* Parses text as the top file name under pol (NULL: the default). */
+static int parse_top(const char *name, const char *text, size_t len, const hy_scene_policy *pol,
+                     hy_scene **out, hy_error *err)
 {
     *out = NULL;
     hy_scene *s = hy__scene_new(err);
@@ -505,6 +491,8 @@ int hy_scene_parse_buffer(const char *name, const char *text, size_t len, hy_sce
     if (c.stack[0].inst < 0 || !c.stack[0].dir)
         rc = hy_error_set(err, HY_ENOMEM, "%s: out of memory", name);
     else
+        rc = hy__policy_roots(s, c.stack[0].dir, pol, len, err);
+    if (!rc)
         rc = parse_text(&c, text, len);
     free(c.stack[0].dir);
     free(c.stack[0].canon);
@@ -516,15 +504,28 @@ int hy_scene_parse_buffer(const char *name, const char *text, size_t len, hy_sce
     return HY_OK;
 }
 
-int hy_scene_parse_file(const char *path, hy_scene **out, hy_error *err)
+int hy_scene_parse_buffer(const char *name, const char *text, size_t len, hy_scene **out,
+                          hy_error *err)
 {
-    char *buf = NULL;
+    return parse_top(name, text, len, NULL, out, err);
+}
+
+int hy_scene_parse_file_policy(const char *path, const hy_scene_policy *pol, hy_scene **out,
+                               hy_error *err)
+{
+    char *buf = NULL, why[200];
     size_t len = 0;
     *out = NULL;
-    int e = slurp(path, &buf, &len);
+    int e = hy_file_read(path, HY_SCENE_MAX_FILE_BYTES, &buf, &len, NULL, why, sizeof why);
     if (e)
-        return hy_error_set(err, HY_EIO, "%s: cannot read scene file: %s", path, strerror(e));
-    int rc = hy_scene_parse_buffer(path, buf, len, out, err);
+        return hy_error_set(err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
+                            "%s: cannot read scene file: %s", path, why);
+    int rc = parse_top(path, buf, len, pol, out, err);
     free(buf);
     return rc;
+}
+
+int hy_scene_parse_file(const char *path, hy_scene **out, hy_error *err)
+{
+    return hy_scene_parse_file_policy(path, NULL, out, err);
 }

@@ -1,0 +1,159 @@
+/* hy_file.c: whole-file reads with a type check and a size cap (O_NONBLOCK open,
+ * fstat on the descriptor, real path from /proc/self/fd), and message excerpts. */
+#include "hy_file.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static const char *kind_of(mode_t m)
+{
+    if (S_ISDIR(m))
+        return "a directory";
+    if (S_ISFIFO(m))
+        return "a FIFO";
+    if (S_ISCHR(m))
+        return "a character device";
+    if (S_ISBLK(m))
+        return "a block device";
+    if (S_ISSOCK(m))
+        return "a socket";
+    return "not a regular file";
+}
+
+/* The real path of the open descriptor fd (Linux /proc), or NULL. */
+static char *fd_path(int fd, const char *path)
+{
+    char link[64], buf[PATH_MAX];
+    snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
+    ssize_t n = readlink(link, buf, sizeof buf - 1);
+    if (n > 0 && buf[0] == '/') {
+        buf[n] = '\0';
+        return strdup(buf);
+    }
+    return realpath(path, NULL);
+}
+
+static int fail(char *why, size_t whysz, int code, const char *fmt, const char *a)
+{
+    if (why && whysz)
+        snprintf(why, whysz, fmt, a);
+    return code;
+}
+
+/* Reads up to max + 1 bytes of fd; 0 or an errno code. */
+static int read_all(int fd, size_t max, char **buf, size_t *len)
+{
+    size_t cap = 4096, n = 0;
+    char *b = malloc(cap + 1);
+    if (!b)
+        return ENOMEM;
+    for (;;) {
+        if (n == cap) {
+            if (cap > max)
+                break;
+            size_t nc = cap * 2 > max + 1 ? max + 1 : cap * 2;
+            char *nb = realloc(b, nc + 1);
+            if (!nb) {
+                free(b);
+                return ENOMEM;
+            }
+            b = nb;
+            cap = nc;
+        }
+        ssize_t r = read(fd, b + n, cap - n);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0) {
+            int e = errno;
+            free(b);
+            return e;
+        }
+        if (r == 0)
+            break;
+        n += (size_t)r;
+    }
+    b[n] = '\0';
+    *buf = b;
+    *len = n;
+    return 0;
+}
+
+int hy_file_read(const char *path, size_t max, char **buf, size_t *len, char **real, char *why,
+                 size_t whysz)
+{
+    *buf = NULL;
+    *len = 0;
+    if (real)
+        *real = NULL;
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) {
+        int e = errno;
+        return fail(why, whysz, e, "%s", strerror(e));
+    }
+    struct stat st;
+    if (fstat(fd, &st)) {
+        int e = errno;
+        close(fd);
+        return fail(why, whysz, e, "cannot stat: %s", strerror(e));
+    }
+    if (!S_ISREG(st.st_mode)) {
+        close(fd);
+        return fail(why, whysz, S_ISDIR(st.st_mode) ? EISDIR : EINVAL, "is %s, not a regular file",
+                    kind_of(st.st_mode));
+    }
+    char lim[64];
+    snprintf(lim, sizeof lim, "%zu", max);
+    if ((unsigned long long)st.st_size > (unsigned long long)max) {
+        close(fd);
+        return fail(why, whysz, EFBIG, "is larger than the %s bytes allowed", lim);
+    }
+    /* back to blocking reads: a regular file never blocks, O_NONBLOCK only kept open() from hanging */
+    int fl = fcntl(fd, F_GETFL);
+    if (fl >= 0)
+        fcntl(fd, F_SETFL, fl & ~O_NONBLOCK);
+    int e = read_all(fd, max, buf, len);
+    if (!e && *len > max) {
+        free(*buf);
+        *buf = NULL;
+        e = EFBIG;
+        close(fd);
+        return fail(why, whysz, e, "is larger than the %s bytes allowed", lim);
+    }
+    if (e) {
+        close(fd);
+        return fail(why, whysz, e, "read error: %s", strerror(e));
+    }
+    if (real && !(*real = fd_path(fd, path))) {
+        free(*buf);
+        *buf = NULL;
+        close(fd);
+        return fail(why, whysz, ENOMEM, "%s", "cannot resolve its real path");
+    }
+    close(fd);
+    return 0;
+}
+
+const char *hy_file_excerpt(const char *p, size_t n, char *buf, size_t size)
+{
+    size_t o = 0, i = 0;
+    if (!size)
+        return buf;
+    buf[0] = '\0';
+    for (; i < n && i < 20 && p[i] != '\n' && p[i] != '\r'; i++) {
+        unsigned char c = (unsigned char)p[i];
+        int w = isprint(c) ? snprintf(buf + o, size - o, "%c", c) : snprintf(buf + o, size - o, "\\x%02x", c);
+        if (w < 0 || (size_t)w >= size - o)
+            break;
+        o += (size_t)w;
+    }
+    if (i == 20 && i < n && p[i] != '\n' && p[i] != '\r' && o + 4 <= size)
+        snprintf(buf + o, size - o, "...");
+    return buf;
+}

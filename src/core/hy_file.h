@@ -1,0 +1,25 @@
+/* hy_file.h: reading a whole input file safely: regular files only, a size cap,
+ * never blocking on a FIFO or a device; and short printable excerpts of text.
+ *
+ *     char *buf, why[160]; size_t n;
+ *     if (hy_file_read(path, 1 << 20, &buf, &n, NULL, why, sizeof why))
+ *         printf("%s: %s\n", path, why);     // "is a directory", ...
+ */
+#ifndef HY_FILE_H
+#define HY_FILE_H
+
+#include <stddef.h>
+
+/* Reads the regular file at path, at most max bytes, into *buf (malloc'ed,
+ * NUL-terminated; len excludes the NUL).  If real is not NULL it receives the
+ * malloc'ed real path of the file actually opened (symlinks resolved).
+ * Returns 0, or an errno-like code (EISDIR, EINVAL not regular, EFBIG too
+ * large, ...) with the reason, without the path, in why. */
+int hy_file_read(const char *path, size_t max, char **buf, size_t *len, char **real, char *why,
+                 size_t whysz);
+
+/* At most 20 bytes of p[0..n) up to the first line end, each non-printable
+ * byte as \xNN, "..." appended if cut: text safe to show in a message. */
+const char *hy_file_excerpt(const char *p, size_t n, char *buf, size_t size);
+
+#endif
