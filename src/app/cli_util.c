@@ -130,3 +130,36 @@ int cli_stdout_status(const char *cmd, int rc)
     }
     return rc;
 }
+
+int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, int argc, char **argv,
+                      int *i)
+{
+    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (!strncmp(a, "--include-dir=", 14) || !strncmp(a, "--max-work=", 11))
+        v = strchr(a, '=') + 1;
+    else if (strcmp(a, "--include-dir") && strcmp(a, "--max-work"))
+        return 0;
+    else if (!v) {
+        fprintf(stderr, "hystviz %s: %s needs a value\n", cmd, a);
+        return -1;
+    } else
+        (*i)++;
+    if (!strncmp(a, "--include-dir", 13)) {
+        if (!*v) {
+            fprintf(stderr, "hystviz %s: --include-dir needs a directory\n", cmd);
+            return -1;
+        }
+        dirs[pol->ninclude_dirs++] = v;
+        pol->include_dirs = dirs;
+        return 1;
+    }
+    double w;
+    if (cli_num("--max-work", v, &w))
+        return -1;
+    if (!(w >= 1)) {
+        fprintf(stderr, "hystviz %s: --max-work must be >= 1 (units of work, docs/SCENES.md), got %s\n", cmd, v);
+        return -1;
+    }
+    pol->max_work = w;
+    return 1;
+}

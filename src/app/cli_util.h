@@ -6,6 +6,7 @@
 
 #include <stdio.h>
 #include "hy_model.h"
+#include "hy_scene_policy.h"
 
 /* Parses a finite double; on failure prints "hystviz: OPTION: ..." and returns -1. */
 int cli_num(const char *opt, const char *s, double *out);
@@ -37,5 +38,11 @@ int cli_exit_status(int code);
  * 0, prints "hystviz CMD: cannot write standard output: reason" and returns
  * 1, else rc.  Every command's last step (main). */
 int cli_stdout_status(const char *cmd, int rc);
+
+/* Scene policy options: --include-dir DIR (repeatable; dirs has room for one
+ * per argument) and --max-work N.  Returns 1 if argv[*i] was one (consuming
+ * its value), 0 if not, -1 on error (message printed, prefixed with cmd). */
+int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, int argc, char **argv,
+                      int *i);
 
 #endif

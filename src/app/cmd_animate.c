@@ -21,7 +21,7 @@
 static const char animate_help[] =
     "usage: hystviz animate NAME|SCENE.scene [-o DIR] [--quality Q] [--size WxH] [--fps F] [--duration S]\n"
     "                            [--frames A:B] [-j N] [--quiet] [--video mp4|webm|gif [--no-frames]]\n"
-    "                            [--gl osmesa|egl]\n"
+    "                            [--gl osmesa|egl] [--include-dir DIR]... [--max-work N]\n"
     "       hystviz animate --list | --gl-info [--gl osmesa|egl]\n"
     "\n"
     "Renders animation NAME as PNG frames DIR/NAME/frame_00000.png ... (off-screen OpenGL,\n"
@@ -51,6 +51,8 @@ static const char animate_help[] =
     "  HYSTVIZ_GL=osmesa|egl    the backend when --gl is not given\n"
     "  HYSTVIZ_EGL_DEVICE=N     EGL device N (--gl-info lists them; default: the first GPU,\n"
     "                           else the software rasteriser)\n"
+    "  --include-dir DIR  (SCENE.scene) a directory the scene may include from; repeatable\n"
+    "  --max-work N       (SCENE.scene) work budget of all frames together (default 1e8)\n"
     "\n"
     "example:\n"
     "  hystviz animate gamma-sweep-ex2 -o frames --quality 480p15 -j 2\n";
@@ -59,6 +61,8 @@ static const char animate_help[] =
 
 typedef struct anim_args {
     hy_anim_params p;
+    hy_scene_policy pol;      /* --include-dir, --max-work (scene animations) */
+    const char *dirs[64];
     const char *name, *quality, *gl;
     int w, h, have_size, have_fps, have_duration, have_quality, list, gl_info;
     double fps, duration;
@@ -112,6 +116,8 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
         return a->p.no_frames = 1, 0;
     if (s[0] != '-')
         return fprintf(stderr, "hystviz animate: one animation at a time ('%s' and '%s')\n", a->name, s), 2;
+    if ((!strncmp(s, "--include-dir", 13) || !strncmp(s, "--max-work", 10)) && a->pol.ninclude_dirs < 64)
+        return cli_policy_option(&a->pol, a->dirs, "animate", argc, argv, i) < 0 ? 2 : 0;
     if (!v)
         return fprintf(stderr, "hystviz animate: unknown option '%s' or it needs a value (see --help)\n", s), 2;
     (*i)++;
@@ -261,7 +267,7 @@ static int animate_scene(anim_args *a)
     hy_error err;
     scene_anim sa;
     gsl_set_error_handler_off();
-    if (scene_anim_load(&sa, a->name, &err)) {
+    if (scene_anim_load_policy(&sa, a->name, &a->pol, &err)) {
         fprintf(stderr, "hystviz animate: %s\n", err.msg);
         return err.code == HY_ENOMEM ? 1 : 2; /* an unreadable or invalid scene */
     }

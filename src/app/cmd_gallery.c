@@ -20,11 +20,13 @@
 #include <unistd.h>
 
 #include "hy_config.h"
+#include "cli_util.h"
 #include "hy_out.h"
 #include "scene_run.h"
 
 static const char gallery_help[] =
     "usage: hystviz gallery [-j N] [--scenes DIR] [-o DIR] [--force] [--data] [--times] [--quiet]\n"
+    "                       [--include-dir DIR]... [--max-work N]\n"
     "\n"
     "Renders every figure scene DIR/*.scene (files without a [series] section,\n"
     "such as style.scene, are includes, not figures) into the gallery directory,\n"
@@ -42,6 +44,8 @@ static const char gallery_help[] =
     "  --times            add render times to index.html (off by default: the\n"
     "                     committed page stays byte-stable; --no-times is the default)\n"
     "  -q, --quiet        print only errors (no progress, no summary)\n"
+    "  --include-dir DIR  a directory scenes may include from, besides their own (repeatable)\n"
+    "  --max-work N       the work budget of each scene (default 1e8; docs/SCENES.md)\n"
     "  -h, --help         this text\n";
 
 enum { J_SKIP, J_UNCHANGED, J_PENDING, J_RENDERED, J_FAILED };
@@ -50,6 +54,8 @@ typedef struct opts {
     const char *scenes, *out;
     long jobs;
     int force, data, times, quiet, progress;
+    hy_scene_policy pol;      /* --include-dir, --max-work */
+    const char *dirs[64];
 } opts;
 
 /* One manifest line: what the last good render of a scene produced. */
@@ -403,7 +409,7 @@ static void job_plan(const opts *o, job *jobs, size_t i, entry *man, size_t nman
     hy_error err;
     memset(&probe, 0, sizeof probe);
     probe.path = j->path;
-    if (hy_scene_parse_file(j->path, &probe.scene, &err)) {
+    if (hy_scene_parse_file_policy(j->path, &o->pol, &probe.scene, &err)) {
         job_fail(j, err.msg);
         return;
     }
@@ -484,7 +490,7 @@ static void render_one(const opts *o, job *j)
     FILE *log = open_memstream(&logbuf, &loglen); /* asks compute to measure every error it can */
     hy_scene_run run;
     hy_error err;
-    int rc = hy_scene_run_load(&run, j->path, NULL, 0, &err);
+    int rc = hy_scene_run_load_policy(&run, j->path, NULL, 0, &o->pol, &err);
     if (!rc) {
         char written[4096] = "";
         hy_scene_run_name(&run, j->name, sizeof j->name);
@@ -896,7 +902,7 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
 static int parse_opts(int argc, char **argv, opts *o)
 {
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    *o = (opts){"scenes", "gallery", ncpu > 0 ? ncpu : 1, 0, 0, 0, 0, 0};
+    *o = (opts){.scenes = "scenes", .out = "gallery", .jobs = ncpu > 0 ? ncpu : 1};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -912,6 +918,11 @@ static int parse_opts(int argc, char **argv, opts *o)
             }
         } else if (!strcmp(a, "--scenes") && v)
             o->scenes = argv[++i];
+        else if ((!strncmp(a, "--include-dir", 13) || !strncmp(a, "--max-work", 10)) &&
+                 o->pol.ninclude_dirs < sizeof o->dirs / sizeof o->dirs[0]) {
+            if (cli_policy_option(&o->pol, o->dirs, "gallery", argc, argv, &i) < 0)
+                return 2;
+        }
         else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
             o->out = argv[++i];
         else if (!strcmp(a, "--force"))

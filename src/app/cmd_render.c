@@ -12,10 +12,12 @@
 
 static const char render_help[] =
     "usage: hystviz render SCENE... [-o DIR] [--set SECTION.KEY=VALUE]... [--format svg,pdf,png] [-v]\n"
-    "       hystviz data SCENE [--set SECTION.KEY=VALUE]... [-o FILE]\n"
+    "                      [--include-dir DIR]... [--max-work N]\n"
+    "       hystviz data SCENE [--set SECTION.KEY=VALUE]... [-o FILE] [--include-dir DIR]... [--max-work N]\n"
     "\n"
     "render draws each scene file (docs/SCENES.md) into DIR (default: the scene's\n"
-    "[output] dir) as NAME.svg/.pdf/.png: all of a figure's files or none of them.\n"
+    "[output] dir, relative to the scene's directory) as NAME.svg/.pdf/.png: all of\n"
+    "a figure's files or none of them.\n"
     "data prints every series the scene draws as CSV 'series,x,y' (%.17g).\n"
     "\n"
     "  -o DIR / FILE      output directory (render) or CSV file (data)\n"
@@ -23,7 +25,10 @@ static const char render_help[] =
     "                     or --set series.ystar.style=dashed\n"
     "  --format LIST      formats to write instead of the scene's\n"
     "  -v, --verbose      print the plan, each step's time and each series' error\n"
-    "                     against the exact answer where one exists\n";
+    "                     against the exact answer where one exists\n"
+    "  --include-dir DIR  a directory scenes may include from (and read input files\n"
+    "                     below), besides their own; repeatable\n"
+    "  --max-work N       the work budget of one scene (default 1e8; docs/SCENES.md)\n";
 
 /* Of two exit statuses the one to report: invalid input over failure. */
 static int worse(int a, int b)
@@ -33,10 +38,11 @@ static int worse(int a, int b)
 
 /* Loads a scene and checks its outputs can be written (before computing);
  * the exit status (message printed). */
-static int load(hy_scene_run *run, const char *scene, const char *formats, char **sets, size_t nsets, int check)
+static int load(hy_scene_run *run, const char *scene, const char *formats, char **sets, size_t nsets,
+                const hy_scene_policy *pol, int check)
 {
     hy_error err;
-    if (hy_scene_run_load(run, scene, sets, nsets, &err)) {
+    if (hy_scene_run_load_policy(run, scene, sets, nsets, pol, &err)) {
         fprintf(stderr, "hystviz: %s\n", err.msg);
         return err.code == HY_ENOMEM ? 1 : 2; /* an unreadable or invalid scene: invalid input */
     }
@@ -59,11 +65,12 @@ static int compute(hy_scene_run *run, int verbose)
 }
 
 /* `render`: one scene's figure in every format, all or none. */
-static int render_one(const char *scene, const char *out, const char *formats, char **sets, size_t nsets, int verbose)
+static int render_one(const char *scene, const char *out, const char *formats, char **sets, size_t nsets,
+                      const hy_scene_policy *pol, int verbose)
 {
     hy_scene_run run;
     hy_error err;
-    int st = load(&run, scene, formats, sets, nsets, 1);
+    int st = load(&run, scene, formats, sets, nsets, pol, 1);
     if (st)
         return st;
     char written[8192] = "";
@@ -80,12 +87,13 @@ static int render_one(const char *scene, const char *out, const char *formats, c
 
 /* `data`: the output is opened first (a directory, a missing folder or a
  * dangling link fail before computing) and written whole or not at all. */
-static int render_data(const char *scene, const char *out, char **sets, size_t nsets, int verbose)
+static int render_data(const char *scene, const char *out, char **sets, size_t nsets, const hy_scene_policy *pol,
+                       int verbose)
 {
     hy_scene_run run;
     hy_error err;
     hy_out o;
-    int st = load(&run, scene, NULL, sets, nsets, 0);
+    int st = load(&run, scene, NULL, sets, nsets, pol, 0);
     if (st)
         return st;
     if (hy_out_open(&o, out ? out : "-", 0, &err)) {
@@ -111,8 +119,13 @@ int hy_cmd_render(int argc, char **argv)
     const char *out = NULL, *formats = NULL;
     int verbose = 0;
     char **sets = calloc((size_t)argc, sizeof *sets), **scenes = calloc((size_t)argc, sizeof *scenes);
+    const char **dirs = calloc((size_t)argc, sizeof *dirs);
+    hy_scene_policy pol = hy_scene_policy_default();
     size_t nsets = 0, nscenes = 0;
-    if (!sets || !scenes) {
+    if (!sets || !scenes || !dirs) {
+        free(sets);
+        free(scenes);
+        free(dirs);
         fprintf(stderr, "hystviz %s: out of memory\n", argv[0]);
         return 1;
     }
@@ -123,8 +136,15 @@ int hy_cmd_render(int argc, char **argv)
             fputs(render_help, stdout);
             free(sets);
             free(scenes);
+            free(dirs);
             return 0;
-        } else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
+        }
+        int po = cli_policy_option(&pol, dirs, argv[0], argc, argv, &i);
+        if (po < 0)
+            rc = 2;
+        else if (po > 0)
+            continue;
+        else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
             out = argv[++i];
         else if (!strcmp(a, "--set") && v)
             sets[nsets++] = argv[++i];
@@ -156,10 +176,12 @@ int hy_cmd_render(int argc, char **argv)
     if (!rc && out && !is_data)
         hy_out_sweep(out); /* temporaries of killed runs */
     for (size_t k = 0; k < nscenes && !rc; k++) {
-        int st = is_data ? render_data(scenes[k], out, sets, nsets, verbose) : render_one(scenes[k], out, formats, sets, nsets, verbose);
+        int st = is_data ? render_data(scenes[k], out, sets, nsets, &pol, verbose)
+                         : render_one(scenes[k], out, formats, sets, nsets, &pol, verbose);
         failed = worse(failed, st);
     }
     free(sets);
     free(scenes);
+    free(dirs);
     return rc ? rc : failed;
 }

@@ -98,9 +98,15 @@ static void read_timing(scene_anim *a)
 
 int scene_anim_load(scene_anim *a, const char *path, hy_error *err)
 {
+    return scene_anim_load_policy(a, path, NULL, err);
+}
+
+int scene_anim_load_policy(scene_anim *a, const char *path, const hy_scene_policy *pol, hy_error *err)
+{
     memset(a, 0, sizeof *a);
     a->path = path;
-    int rc = hy_scene_parse_file(path, &a->scene, err);
+    a->pol = pol ? *pol : hy_scene_policy_default();
+    int rc = hy_scene_parse_file_policy(path, &a->pol, &a->scene, err);
     if (rc)
         return rc;
     read_timing(a);
@@ -186,7 +192,8 @@ int scene_anim_sets(const scene_anim *a, double t, char *buf, size_t size, char 
 int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_error *err)
 {
     hy_scene *s;
-    int rc = hy_scene_parse_file(a->path, &s, err);
+    double work = 0, budget = hy_scene_policy_budget(&a->pol);
+    int rc = hy_scene_parse_file_policy(a->path, &a->pol, &s, err);
     if (rc)
         return rc;
     char buf[4096], *sets[64];
@@ -209,12 +216,22 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
         }
         hy_scene_run r;
         hy_error e3;
-        if (!rc && a->nkf && hy_scene_run_load(&r, a->path, sets, a->nkf, &e3))
-            rc = hy_scene_error_at(a->scene, "keyframe", a->kf[0].label, NULL, err, e3.code,
-                                   "at frame %ld (t = %g s) the keyframe values give an invalid scene: %s", f, t,
-                                   e3.msg);
-        else if (!rc && a->nkf)
+        double w = 0;
+        if (!rc && (a->nkf || f == 0) && hy_scene_run_load_policy(&r, a->path, sets, a->nkf, &a->pol, &e3))
+            rc = a->nkf ? hy_scene_error_at(a->scene, "keyframe", a->kf[0].label, NULL, err, e3.code,
+                                            "at frame %ld (t = %g s) the keyframe values give an invalid scene: %s", f, t,
+                                            e3.msg)
+                        : (*err = e3, e3.code);
+        else if (!rc && (a->nkf || f == 0)) {
+            rc = hy_scene_run_estimate(&r, &w, NULL, 0, err);
             hy_scene_run_free(&r);
+            work += a->nkf ? w : w * (double)nframes; /* no keyframes: every frame is frame 0 */
+        }
+        if (!rc && work > budget) {
+            char what[96];
+            snprintf(what, sizeof what, "%ld frames%s", nframes, f + 1 < nframes && a->nkf ? ", counted so far" : "");
+            rc = hy_scene_run_over_budget(a->scene, work, budget, what, err);
+        }
     }
     hy_scene_free(s);
     return rc;
@@ -369,7 +386,7 @@ int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err)
     if (!e)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     if (fresh) {
-        int rc = hy_scene_run_load(&e->run, a->path, sets, a->nkf, &e->err);
+        int rc = hy_scene_run_load_policy(&e->run, a->path, sets, a->nkf, &a->pol, &e->err);
         if (!rc && (rc = hy_scene_run_compute(&e->run, NULL, &e->err)))
             hy_scene_run_free(&e->run);
         pthread_mutex_lock(&a->mu);

@@ -56,6 +56,7 @@ typedef struct scene_anim {
     uint64_t *frame_hash;     /* per frame: hash of its override text         */
     long nhash;
     long computes, hits;      /* runs computed / frames that reused a run     */
+    hy_scene_policy pol;      /* include dirs and work budget of every load   */
 } scene_anim;
 
 /* Parses the scene at path, reads [animation] and every [keyframe NAME] and
@@ -63,6 +64,10 @@ typedef struct scene_anim {
  * values > 0).  On error returns a status with file:line:col in err and
  * leaves nothing to free. */
 int scene_anim_load(scene_anim *a, const char *path, hy_error *err);
+
+/* As scene_anim_load under pol (--include-dir, --max-work; NULL: defaults);
+ * pol's include dirs must outlive a. */
+int scene_anim_load_policy(scene_anim *a, const char *path, const hy_scene_policy *pol, hy_error *err);
 
 /* The keyframe's value at time t seconds: exact key values at the key times,
  * held before the first and after the last. */
@@ -78,7 +83,8 @@ int scene_anim_sets(const scene_anim *a, double t, char *buf, size_t size, char 
 
 /* Checks every frame before rendering: applies its overrides to a copy of the
  * scene (a refused value is reported at its keyframe's values, file:line:col)
- * and builds its model and input (a refused combination: at the first keyframe). */
+ * and builds its model and input (a refused combination: at the first keyframe);
+ * the work of all frames together must fit the budget (docs/SCENES.md). */
 int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_error *err);
 
 /* Frees the scene, the keyframes and the cached runs. */

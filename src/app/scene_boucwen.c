@@ -39,6 +39,7 @@ typedef struct bw_setup {
     size_t nd;            /* samples at fs: one period, or the whole sweep   */
     int need_output;      /* some series needs the simulated y               */
     int need_sinc;        /* bits: 1 the sinc-upsampled force, 2 its output  */
+    double work;          /* Newmark steps + series samples (the work budget) */
 } bw_setup;
 
 static double now(void)
@@ -224,6 +225,7 @@ static int read_signal(const hy_scene *s, bw_setup *b, hy_error *err)
     /* the periodic synthesis integrates one extra period for the filter's edge */
     double periods = b->input == IN_SWEEP ? 1.0 : (double)(b->cycles + b->settle + (b->dec != DEC_NONE));
     double total = periods * (double)b->nd * (double)b->r;
+    b->work = total;
     if (total > BW_MAX_SAMPLES)
         return hy_scene_error_at(s, "compute", NULL, b->input == IN_SWEEP ? "upsample" : "cycles", err, HY_EINVAL,
                                  "%.0f integration samples (%g periods of %zu samples at %g Hz x %zu) "
@@ -272,6 +274,10 @@ static int check_series(const hy_scene_run *r, bw_setup *b, hy_error *err)
                                      "quantity = spectrum is drawn against frequency, not in a loop figure");
         b->need_output |= q != Q_INPUT && q != Q_SINC_INPUT;
         b->need_sinc |= q == Q_SINC_OUTPUT ? 2 : q == Q_SINC_INPUT;
+        b->work += (double)b->nd * (double)(b->input == IN_SWEEP ? 1 : b->cycles) *
+                   (b->dec == DEC_NONE ? (double)b->r : 1.0);
+        if (q == Q_SINC_INPUT || q == Q_SINC_OUTPUT) /* the sinc-upsampled force, and its own Newmark run */
+            b->work += (double)b->nd * (double)b->r * (q == Q_SINC_OUTPUT ? 2.0 : 1.0);
     }
     for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
         const char *name = hy_scene_name_at(s, "annotation", i), *text;
@@ -309,6 +315,14 @@ static int refuse_boucwen_parts(const hy_scene *s, hy_error *err)
                                      enum_text(s, "model", NULL, "kind"));
     }
     return HY_OK;
+}
+
+int hy_scene_boucwen_work(const hy_scene_run *r, double *work, hy_error *err)
+{
+    bw_setup b;
+    int rc = read_setup(r, &b, err);
+    *work = rc ? 0.0 : b.work;
+    return rc;
 }
 
 int hy_scene_boucwen_load(hy_scene_run *r, hy_error *err)

@@ -30,6 +30,10 @@ int hy_scene_is_boucwen(const hy_scene *s);
  * (input kind multisine or sweep, data = boucwen).  HY_OK or HY_EINVAL. */
 int hy_scene_boucwen_load(hy_scene_run *r, hy_error *err);
 
+/* The work estimate of a boucwen scene (Newmark steps plus series samples),
+ * from its setup alone; errors as hy_scene_boucwen_load. */
+int hy_scene_boucwen_work(const hy_scene_run *r, double *work, hy_error *err);
+
 /* Computes every series of a boucwen scene into r->series (x: t in s, or u in
  * N in loop figures, or f in Hz for spectra), logging the plan and timings to
  * log (may be NULL).  On error the series computed so far stay in r for

@@ -359,8 +359,6 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
                        hy_error *err)
 {
     const hy_scene *s = r->scene;
-    if (!dir && hy_scene_get_str(s, "output", NULL, "dir", &dir) < 0)
-        dir = ".";
     char name[256];
     hy_scene_run_name(r, name, sizeof name);
     int fmt[3];
@@ -368,6 +366,11 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     int rc = run_formats(s, formats, fmt, &nf, err);
     if (rc)
         return rc;
+    char *odir = NULL; /* -o, or [output] dir below the scene's directory (hy_scene_policy.h) */
+    const char *cli_dir = dir;
+    if ((rc = hy_scene_output_dir(s, cli_dir, &odir, err)))
+        return rc;
+    dir = odir;
     char paths[3][4400];
     for (size_t i = 0; i < nf; i++)
         snprintf(paths[i], sizeof paths[i], "%s/%s.%s", dir, name, format_ext[fmt[i] - HY_FORMAT_SVG]);
@@ -376,12 +379,15 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     if (!rc)
         rc = mkdir_p(dir, err);
     if (!rc)
+        rc = hy_scene_output_dir_check(s, cli_dir, dir, err);
+    if (!rc)
         rc = write_all(&st.fig, paths, fmt, nf, err);
     for (size_t i = 0; i < nf && !rc && written; i++) {
         size_t len = strlen(written);
         snprintf(written + len, written_size - len, "%s\n", paths[i]);
     }
     hy_scene_fig_free(&st);
+    free(odir);
     return rc;
 }
 

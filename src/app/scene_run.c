@@ -40,7 +40,7 @@ static int located(const hy_scene *s, const char *sec, const char *const *keys, 
     memcpy(msg, err->msg, sizeof msg);
     for (size_t i = 0; keys[i]; i++) {
         size_t n = strlen(keys[i]);
-        if (!strncmp(msg, keys[i], n) && (msg[n] == ' ' || msg[n] == '['))
+        if (!strncmp(msg, keys[i], n) && (msg[n] == ' ' || msg[n] == '[' || msg[n] == '/'))
             return hy_scene_error_at(s, sec, NULL, keys[i], err, err->code, "%s", msg);
     }
     /* Definition 1 messages name u_min,1 ... u_max,2: point at the first one named */
@@ -138,9 +138,19 @@ static int build_input(hy_scene_run *r, hy_error *err)
         const char *path;
         if (hy_scene_get_str(s, "input", NULL, "file", &path) < 0)
             return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL, "a file input needs 'file = \"PATH\"'");
-        rc = hy_input_file(&r->input, path, err);
+        char *text;
+        size_t len;
+        int user;
+        rc = hy_scene_read_path(s, "input", NULL, "file", &text, &len, &user, err);
         if (rc)
-            return hy_scene_error_at(s, "input", NULL, "file", err, rc, "%s", err->msg);
+            return rc; /* located at the key by the policy */
+        rc = hy_input_text(&r->input, text, len, path, user, err);
+        free(text);
+        if (rc) {
+            char msg[sizeof err->msg]; /* copied: hy_scene_error_at formats into err->msg */
+            memcpy(msg, err->msg, sizeof msg);
+            return hy_scene_error_at(s, "input", NULL, "file", err, rc, "%s", msg);
+        }
     }
     if (rc)
         return located(s, "input", keys, err);
@@ -150,9 +160,16 @@ static int build_input(hy_scene_run *r, hy_error *err)
 
 int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err)
 {
+    return hy_scene_run_load_policy(r, path, sets, nsets, NULL, err);
+}
+
+int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *sets, size_t nsets,
+                             const hy_scene_policy *pol, hy_error *err)
+{
     memset(r, 0, sizeof *r);
     r->path = path;
-    int rc = hy_scene_parse_file(path, &r->scene, err);
+    r->budget = hy_scene_policy_budget(pol);
+    int rc = hy_scene_parse_file_policy(path, pol, &r->scene, err);
     for (size_t i = 0; !rc && i < nsets; i++)
         rc = hy_scene_set(r->scene, sets[i], err);
     if (!rc) {
@@ -351,9 +368,10 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
     }
     if (need_steady) {
         double t0 = now();
+        static const char *const mkeys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
         int rc = hy_steady_init(&r->steady, &r->model, &r->input, err);
         if (rc)
-            return rc;
+            return located(s, "model", mkeys, err); /* at the key the message names, else at [model] */
         r->have_steady = 1;
         plan_line(r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
     }
@@ -652,8 +670,89 @@ static int check_series_kind(const hy_scene_run *r, const hy_run_series *se, hy_
     return HY_OK;
 }
 
+/* Points of one series before computing: the grid, one period, or one period per loop. */
+static double series_points(const hy_scene_run *r, int d, double npts, double per)
+{
+    switch (d) {
+    case HY_DATA_MINOR:
+    case HY_DATA_MAJOR: return (per + 1) * fmin(64.0, fmax(1.0, (double)r->input.nruns));
+    case HY_DATA_G:
+    case HY_DATA_PSI:
+    case HY_DATA_YSTEADY:
+    case HY_DATA_YK: return per + 1;
+    default: return npts;
+    }
+}
+
+int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    *work = 0;
+    if (hy_scene_is_boucwen(s)) {
+        int rc = hy_scene_boucwen_work(r, work, err);
+        if (what && size)
+            snprintf(what, size, "Newmark steps and series samples");
+        return rc;
+    }
+    long pts = 2000, cycles = 1;
+    hy_scene_get_int(s, "compute", NULL, "points", &pts);
+    hy_scene_get_int(s, "compute", NULL, "cycles", &cycles);
+    double span[2], T = r->input.period, periods = (double)cycles;
+    int is_auto = 1;
+    if (hy_scene_get_pair(s, "compute", NULL, "tspan", span, &is_auto) == HY_SCENE_SET && !is_auto)
+        periods = (span[1] - span[0]) / T;
+    double npts = (double)pts * fmax(1.0, periods) + 1, pointsum = 0, *gam = NULL;
+    size_t ns = hy_scene_count(s, "series"), ng = 0;
+    if (ns && !(gam = malloc(ns * sizeof *gam)))
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t i = 0; i < ns; i++) {
+        const char *name = hy_scene_name_at(s, "series", i);
+        int d = HY_DATA_INPUT;
+        double g;
+        series_data(s, name, &d);
+        pointsum += series_points(r, d, npts, (double)pts);
+        if ((d == HY_DATA_YGAMMA || d == HY_DATA_TRANSIENT) && hy_scene_get_num(s, "series", name, "gamma", &g) >= 0) {
+            size_t j = 0;
+            while (j < ng && gam[j] != g)
+                j++;
+            if (j == ng)
+                gam[ng++] = g;
+        }
+    }
+    free(gam);
+    *work = (double)ng * npts + pointsum;
+    if (what && size)
+        snprintf(what, size, "%zu series, %zu distinct gamma solves over %.0f points (%ld per period, %g periods)", ns, ng,
+                 npts, pts, fmax(1.0, periods));
+    return HY_OK;
+}
+
+int hy_scene_run_over_budget(const hy_scene *s, double work, double budget, const char *what, hy_error *err)
+{
+    static const char *const keys[] = {"points", "cycles", "tspan", "gamma", "settle", "upsample", NULL};
+    const char *fmt = "the scene asks for about %.3g units of work (%s), more than the budget of %.3g; "
+                      "raise it with --max-work N if this is intended";
+    hy_scene_loc loc;
+    for (size_t i = 0; keys[i]; i++)
+        if (hy_scene_get_loc(s, "compute", NULL, keys[i], &loc) && loc.line > 0)
+            return hy_scene_error_at(s, "compute", NULL, keys[i], err, HY_EINVAL, fmt, work, what, budget);
+    const char *first = hy_scene_name_at(s, "series", 0);
+    if (first && hy_scene_get_loc(s, "series", first, NULL, &loc) && loc.line > 0)
+        return hy_scene_error_at(s, "series", first, NULL, err, HY_EINVAL, fmt, work, what, budget);
+    hy_error_set(err, HY_EINVAL, fmt, work, what, budget);
+    hy_error_prefix(err, "%s:1:1", hy_scene_source(s));
+    return HY_EINVAL;
+}
+
 int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
+    char what[200];
+    int erc = hy_scene_run_estimate(r, &r->work, what, sizeof what, err);
+    if (erc)
+        return erc;
+    double budget = r->budget > 0 ? r->budget : HY_SCENE_WORK_DEFAULT;
+    if (r->work > budget)
+        return hy_scene_run_over_budget(r->scene, r->work, budget, what, err);
     if (hy_scene_is_boucwen(r->scene))
         return hy_scene_boucwen_compute(r, log, err);
     double t_start = now();
@@ -694,7 +793,8 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
                 fprintf(log, "  error unknown (no exact solution for this input)");
             fputc('\n', log);
         }
-        fprintf(log, "  compute total %.3f ms\n", 1e3 * r->seconds_compute);
+        fprintf(log, "  compute total %.3f ms (work estimate %.3g of the budget %.3g)\n", 1e3 * r->seconds_compute, r->work,
+                r->budget > 0 ? r->budget : HY_SCENE_WORK_DEFAULT);
     }
     for (size_t i = 0; i < p.nsolves; i++)
         free(p.solves[i].y);

@@ -57,6 +57,8 @@ typedef struct hy_scene_run {
     hy_run_series *series;
     size_t nseries;
     char plan[2048];          /* the plan, one step a line (render -v)            */
+    double budget;            /* work budget (hy_scene_policy, --max-work)        */
+    double work;              /* the estimate of the last compute                 */
     double seconds_compute;
 } hy_scene_run;
 
@@ -64,7 +66,22 @@ typedef struct hy_scene_run {
  * model and input.  Errors name file:line:col.  On error r is freed. */
 int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err);
 
-/* Plans and computes every series; log (may be NULL) receives the plan and
+/* As hy_scene_run_load under pol (include dirs, work budget; NULL: defaults). */
+int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *sets, size_t nsets,
+                             const hy_scene_policy *pol, hy_error *err);
+
+/* The work the scene asks for, before computing: for Dahl/LuGre scenes the
+ * grid points of every distinct gamma solve plus the points of every series;
+ * for Bouc-Wen scenes the Newmark steps plus the series samples (docs/SCENES.md,
+ * "Work budget").  what (may be NULL) receives the breakdown. */
+int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err);
+
+/* Writes the budget refusal (at [compute] points/cycles/tspan/gamma if written,
+ * else at the first series, else file:1:1) and returns HY_EINVAL. */
+int hy_scene_run_over_budget(const hy_scene *s, double work, double budget, const char *what, hy_error *err);
+
+/* Plans and computes every series (refused at once with HY_EINVAL if the
+ * estimate passes r->budget); log (may be NULL) receives the plan and
  * per-step times, errors against exact answers where they exist. */
 int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err);
 

@@ -2,6 +2,8 @@
  * normalised input ψ_u (Eqs. 9-10) of seed 000. */
 #include "hy_input.h"
 
+#include "hy_file.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -350,89 +352,111 @@ int hy_input_sine(hy_input *in, double amp, double period, double offset, hy_err
     return rc;
 }
 
-/* Reads "t u" / "t,u" lines into growing arrays; errors name path:line. */
-static int read_samples(const char *path, double **pt, double **pu, size_t *pn, hy_error *err)
+/* The text of a message about content: a short excerpt if quote, else nothing. */
+static const char *shown(const char *s, int quote, char *buf, size_t size)
 {
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return hy_error_set(err, HY_EIO, "%s: cannot open input file: %s", path, strerror(errno));
-    size_t n = 0, cap = 0, line = 0, bufcap = 0;
+    char ex[96];
+    if (!quote)
+        return "";
+    snprintf(buf, size, ": '%s'", hy_file_excerpt(s, strlen(s), ex, sizeof ex));
+    return buf;
+}
+
+/* Parses one "t u" / "t,u" line s into *a, *b; 1 for a blank or comment line,
+ * 0 for a sample, or an error naming name:line. */
+static int sample_line(const char *s, const char *name, size_t line, int quote, double *a, double *b,
+                       hy_error *err)
+{
+    char q[128];
+    while (isspace((unsigned char)*s))
+        s++;
+    if (*s == '#' || *s == '\0')
+        return 1;
+    char *end;
+    *a = strtod(s, &end);
+    if (end == s)
+        return -hy_error_set(err, HY_EINVAL, "%s:%zu: expected two numbers 't u'%s", name, line,
+                             shown(s, quote, q, sizeof q));
+    s = end;
+    while (isspace((unsigned char)*s) || *s == ',')
+        s++;
+    *b = strtod(s, &end);
+    if (end == s)
+        return -hy_error_set(err, HY_EINVAL, "%s:%zu: expected a second number (u) after t", name, line);
+    for (s = end; isspace((unsigned char)*s); s++)
+        ;
+    if (*s && *s != '#')
+        return -hy_error_set(err, HY_EINVAL, "%s:%zu: unexpected text after 't u'%s", name, line,
+                             shown(s, quote, q, sizeof q));
+    if (!isfinite(*a) || !isfinite(*b))
+        return -hy_error_set(err, HY_EINVAL, "%s:%zu: values must be finite numbers", name, line);
+    return 0;
+}
+
+/* Grows t and u (one spare slot each, for the closing sample) to hold n + 1. */
+static int grow(double **t, double **u, size_t n, size_t *cap)
+{
+    if (n < *cap)
+        return 0;
+    size_t c = *cap ? 2 * *cap : 256;
+    double *nt = realloc(*t, (c + 1) * sizeof **t);
+    if (nt)
+        *t = nt;
+    double *nu = nt ? realloc(*u, (c + 1) * sizeof **u) : NULL;
+    if (nu)
+        *u = nu;
+    if (!nt || !nu)
+        return -1;
+    *cap = c;
+    return 0;
+}
+
+/* Reads "t u" / "t,u" lines of text[0..len) into growing arrays; errors name
+ * name:line and, if quote, show at most a short excerpt of the line. */
+static int read_samples(const char *text, size_t len, const char *name, int quote, double **pt,
+                        double **pu, size_t *pn, hy_error *err)
+{
+    size_t n = 0, cap = 0, line = 0;
     double *t = NULL, *u = NULL;
-    char *buf = NULL;
+    char buf[4096];
     int rc = HY_OK;
-    ssize_t len;
-    while ((len = getline(&buf, &bufcap, f)) >= 0) {
+    for (const char *p = text, *end = text + len; p < end && !rc;) {
+        const char *ls = p, *nl = memchr(p, '\n', (size_t)(end - p));
+        size_t ll = (size_t)((nl ? nl : end) - p);
         line++;
-        const char *nul = memchr(buf, '\0', (size_t)len);
-        if (nul) { /* strtod would stop there and drop the rest of the line */
-            rc = hy_error_set(err, HY_EINVAL, "%s:%zu:%zu: NUL byte in the line (is this a text file?)", path, line,
-                              (size_t)(nul - buf) + 1);
+        double a = 0, b = 0;
+        const char *nul = memchr(p, '\0', ll);
+        if (nul) /* strtod would stop there and drop the rest of the line */
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu:%zu: NUL byte in the line (is this a text file?)", name, line,
+                              (size_t)(nul - p) + 1);
+        else if (ll >= sizeof buf)
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: line too long", name, line);
+        p = nl ? nl + 1 : end;
+        if (rc)
             break;
-        }
-        if (len > 4095) {
-            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: line too long", path, line);
-            break;
-        }
-        char *s = buf;
-        while (isspace((unsigned char)*s))
-            s++;
-        if (*s == '#' || *s == '\0')
+        memcpy(buf, ls, ll);
+        buf[ll] = '\0';
+        int r = sample_line(buf, name, line, quote, &a, &b, err);
+        if (r < 0)
+            rc = -r;
+        if (r)
             continue;
-        char *end;
-        errno = 0;
-        double a = strtod(s, &end);
-        if (end == s) {
-            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: expected two numbers 't u', found '%.40s'", path, line, s);
-            break;
+        if (n && !(a > t[n - 1]))
+            rc = quote ? hy_error_set(err, HY_EINVAL, "%s:%zu: time %g is not greater than the previous time %g", name, line, a, t[n - 1])
+                       : hy_error_set(err, HY_EINVAL, "%s:%zu: the time is not greater than the previous time", name, line);
+        else if (!n && a != 0)
+            rc = quote ? hy_error_set(err, HY_EINVAL, "%s:%zu: the first sample must be at t = 0 (got %g)", name, line, a)
+                       : hy_error_set(err, HY_EINVAL, "%s:%zu: the first sample must be at t = 0", name, line);
+        else if (grow(&t, &u, n, &cap))
+            rc = hy_error_set(err, HY_ENOMEM, "%s: out of memory at line %zu", name, line);
+        else {
+            t[n] = a;
+            u[n] = b;
+            n++;
         }
-        s = end;
-        while (isspace((unsigned char)*s) || *s == ',')
-            s++;
-        double b = strtod(s, &end);
-        if (end == s) {
-            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: expected a second number (u) after t", path, line);
-            break;
-        }
-        for (s = end; isspace((unsigned char)*s); s++)
-            ;
-        if (*s && *s != '#') {
-            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: unexpected text after 't u': '%.40s'", path, line, s);
-            break;
-        }
-        if (!isfinite(a) || !isfinite(b)) {
-            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: values must be finite numbers", path, line);
-            break;
-        }
-        if (n && !(a > t[n - 1])) {
-            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: time %g is not greater than the previous time %g", path, line, a, t[n - 1]);
-            break;
-        }
-        if (!n && a != 0) {
-            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: the first sample must be at t = 0 (got %g)", path, line, a);
-            break;
-        }
-        if (n == cap) {
-            cap = cap ? 2 * cap : 256;
-            double *nt = realloc(t, (cap + 1) * sizeof *t), *nu = nt ? realloc(u, (cap + 1) * sizeof *u) : NULL;
-            if (nt)
-                t = nt;
-            if (nu)
-                u = nu;
-            if (!nt || !nu) {
-                rc = hy_error_set(err, HY_ENOMEM, "%s: out of memory at line %zu", path, line);
-                break;
-            }
-        }
-        t[n] = a;
-        u[n] = b;
-        n++;
     }
-    free(buf);
-    if (!rc && ferror(f))
-        rc = hy_error_set(err, HY_EIO, "%s: read error: %s", path, strerror(errno));
-    fclose(f);
     if (!rc && n < 2)
-        rc = hy_error_set(err, HY_EINVAL, "%s: needs at least 2 samples 't u' (found %zu)", path, n);
+        rc = hy_error_set(err, HY_EINVAL, "%s: needs at least 2 samples 't u' (found %zu)", name, n);
     if (rc) {
         free(t);
         free(u);
@@ -449,20 +473,34 @@ static int read_samples(const char *path, double **pt, double **pu, size_t *pn, 
     return HY_OK;
 }
 
-int hy_input_file(hy_input *in, const char *path, hy_error *err)
+int hy_input_text(hy_input *in, const char *text, size_t len, const char *name, int quote,
+                  hy_error *err)
 {
     double *t = NULL, *u = NULL;
     size_t n = 0;
-    int rc = read_samples(path, &t, &u, &n, err);
+    int rc = read_samples(text, len, name, quote, &t, &u, &n, err);
     if (rc)
         return rc;
     rc = hy_input_pwl(in, t, u, n, err);
     if (rc)
-        hy_error_prefix(err, "%s", path);
+        hy_error_prefix(err, "%s", name);
     else
-        snprintf(in->desc, sizeof in->desc, "sampled input from %s", path);
+        snprintf(in->desc, sizeof in->desc, "sampled input from %s", name);
     free(t);
     free(u);
+    return rc;
+}
+
+int hy_input_file(hy_input *in, const char *path, hy_error *err)
+{
+    char *buf, why[200];
+    size_t len;
+    int e = hy_file_read(path, HY_INPUT_FILE_MAX, &buf, &len, NULL, why, sizeof why);
+    if (e)
+        return hy_error_set(err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
+                            "%s: cannot read input file: %s", path, why);
+    int rc = hy_input_text(in, buf, len, path, 1, err);
+    free(buf);
     return rc;
 }
 

@@ -69,10 +69,20 @@ int hy_input_triangle(hy_input *in, double umin, double umax, double period, hy_
 /* offset + amp sin(2π t / period), split at its extrema into sine pieces. */
 int hy_input_sine(hy_input *in, double amp, double period, double offset, hy_error *err);
 
-/* Sampled signal from a text file: lines "t u" or "t,u" (# comments allowed),
- * t from 0 strictly increasing; closed back to u(0) if it does not end there.
- * Errors name path:line. */
+/* Input files are read whole; larger ones are refused (docs/SCENES.md). */
+#define HY_INPUT_FILE_MAX ((size_t)128 << 20)
+
+/* Sampled signal from a text file the user named: lines "t u" or "t,u" (#
+ * comments allowed), t from 0 strictly increasing; closed back to u(0) if it
+ * does not end there.  A regular file of at most HY_INPUT_FILE_MAX bytes;
+ * errors name path:line and quote at most 20 bytes of a line, escaped. */
 int hy_input_file(hy_input *in, const char *path, hy_error *err);
+
+/* As hy_input_file, from len bytes of text named name in messages; quote = 0
+ * (a file a scene named) keeps every byte and value of the text out of the
+ * messages. */
+int hy_input_text(hy_input *in, const char *text, size_t len, const char *name, int quote,
+                  hy_error *err);
 
 /* Parses "bimodal:umin1,umin2,umax1,umax2[,t1,t2,t3,t4]", "multimodal:e0,e1,...",
  * "triangle:min,max,T", "sine:amp,T[,offset]", "pwl:t0,u0,t1,u1,...",

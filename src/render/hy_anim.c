@@ -3,6 +3,8 @@
  * atomic PNG frames and a terminal progress bar. */
 #include "hy_anim.h"
 
+#include "hy_quality.h"
+
 #include <cairo.h>
 #include <dirent.h>
 #include <errno.h>
@@ -53,9 +55,9 @@ static const struct preset {
     int w, h;
     double fps;
 } presets[] = {
-    {"480p15", 854, 480, 15}, {"480p30", 854, 480, 30}, {"720p30", 1280, 720, 30},
-    {"720p60", 1280, 720, 60}, {"1080p30", 1920, 1080, 30}, {"1080p60", 1920, 1080, 60},
-    {"1440p60", 2560, 1440, 60}, {"2160p60", 3840, 2160, 60},
+#define QUALITY_ROW(name, w, h, fps) {name, w, h, fps},
+    HY_QUALITY_PRESETS(QUALITY_ROW)
+#undef QUALITY_ROW
 };
 #define NPRESETS (sizeof presets / sizeof presets[0])
 
@@ -74,8 +76,11 @@ int hy_anim_quality(const char *name, int *width, int *height, double *fps, hy_e
             *width = presets[i].w, *height = presets[i].h, *fps = presets[i].fps;
             return HY_OK;
         }
-    return hy_error_set(err, HY_EINVAL, "unknown quality '%s' (known: 480p15 480p30 720p30 720p60 "
-                        "1080p30 1080p60 1440p60 2160p60)", name ? name : "");
+    char known[160];
+    size_t o = 0;
+    for (size_t i = 0; i < NPRESETS && o < sizeof known; i++)
+        o += (size_t)snprintf(known + o, sizeof known - o, "%s%s", i ? " " : "", presets[i].name);
+    return hy_error_set(err, HY_EINVAL, "unknown quality '%s' (known: %s)", name ? name : "", known);
 }
 
 hy_anim_params hy_anim_defaults(void)

@@ -18,6 +18,7 @@
 
 #include <stddef.h>
 
+#include "hy_input.h"
 #include "hy_status.h"
 
 typedef struct hy_scene hy_scene;
@@ -26,8 +27,8 @@ typedef struct hy_scene hy_scene;
 #define HY_SCENE_MAX_FILE_BYTES (4u << 20)       /* one scene or included file: 4 MiB        */
 #define HY_SCENE_MAX_TOTAL_BYTES (16u << 20)     /* all files of one scene, repeats counted  */
 #define HY_SCENE_MAX_INCLUDES 256                /* included files per scene, repeats counted */
-#define HY_INPUT_MAX_FILE_BYTES (128u << 20)     /* an input (samples) file: 128 MiB         */
-#define HY_SCENE_WORK_DEFAULT 2e9                /* work budget of one scene (--max-work)    */
+#define HY_INPUT_MAX_FILE_BYTES HY_INPUT_FILE_MAX  /* an input (samples) file: 128 MiB (hy_input.h) */
+#define HY_SCENE_WORK_DEFAULT 1e8                /* work budget of one scene (--max-work)    */
 
 /* The user's command-line choices a scene is loaded with. */
 typedef struct hy_scene_policy {

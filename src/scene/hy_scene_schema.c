@@ -2,6 +2,8 @@
  * Sections 2-4; the Bouc-Wen benchmark of seed 001, Tables 1-2 and Sections 4-5). */
 #include "hy_scene_schema.h"
 
+#include "hy_quality.h"
+
 #include <stdio.h>
 #include <string.h>
 
@@ -37,7 +39,8 @@ static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {"none", "circle", "square", NULL};
 static const char *const formats[] = {"svg", "pdf", "png", NULL};
 static const char *const easings[] = {"linear", "smooth", NULL};
-static const char *const qualities[] = {"480p15", "720p30", "1080p60", "2160p60", NULL};
+#define QUALITY_NAME(name, w, h, fps) name,
+static const char *const qualities[] = {HY_QUALITY_PRESETS(QUALITY_NAME) NULL};
 
 static const hy_scene_key_spec model_keys[] = {
     K("kind", HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, "lugre",
@@ -120,7 +123,7 @@ static const hy_scene_key_spec compute_keys[] = {
     K("tspan", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "time interval computed and drawn (default: the periods simulated)"),
     K("points", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 10000000, 0, 0, "2000",
-      "number of output samples per curve"),
+      "output samples per input period (a curve over the time span has points x periods)"),
     K("settle", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 0, 100000, 0, 0, "0",
       "boucwen: input periods integrated from rest and discarded before the 'cycles' drawn"),
     K("upsample", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 1000, 0, 0, "20",
@@ -190,7 +193,8 @@ static const hy_scene_key_spec output_keys[] = {
     K("name", HY_KIND_NAME, NULL, NOLIM, 0, 0, NULL,
       "base name of the output files (default: the scene file's name)"),
     K("formats", HY_KIND_ENUM_LIST, formats, NOLIM, 1, 0, "svg", "output formats written"),
-    K("dir", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\".\"", "output directory"),
+    K("dir", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\".\"",
+      "output directory, relative to the scene file's directory and below it (-o beats it)"),
 };
 
 static const hy_scene_key_spec animation_keys[] = {
@@ -198,7 +202,7 @@ static const hy_scene_key_spec animation_keys[] = {
     K("fps", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 240, 0, 0, "30",
       "frames per second"),
     K("easing", HY_KIND_ENUM, easings, NOLIM, 0, 0, "smooth", "how the animated parameter moves"),
-    K("quality", HY_KIND_ENUM, qualities, NOLIM, 0, 0, "720p30", "frame size and rate preset"),
+    K("quality", HY_KIND_ENUM, qualities, NOLIM, 0, 0, "720p30", "frame size and rate preset (the presets of hystviz animate --quality)"),
 };
 
 static const hy_scene_key_spec keyframe_keys[] = {

@@ -34,6 +34,11 @@ typedef enum hy_scene_kind {
     HY_KIND_LIMITS        /* a pair as above, or auto                           */
 } hy_scene_kind;
 
+/* Every number in a scene is 0 or has a magnitude in [MIN, MAX]: no
+ * subnormals, and room for differences and products of two of them. */
+#define HY_SCENE_NUM_MIN 1e-300
+#define HY_SCENE_NUM_MAX 1e300
+
 /* Flags of a key spec: which bounds apply and whether they are strict. */
 enum {
     HY_SPEC_MIN = 1u << 0,      /* value >= min (or > min with MIN_EXCL)   */

@@ -210,7 +210,21 @@ static int strict_number(const char *s, double *out)
     if (!isfinite(v))
         return 2;
     *out = v;
+    if (v != 0 && !(fabs(v) >= HY_SCENE_NUM_MIN && fabs(v) <= HY_SCENE_NUM_MAX))
+        return 3; /* subnormal, or so large that a difference or a product overflows */
     return 0;
+}
+
+/* The message of a number outside the magnitudes a scene may hold. */
+static int magnitude_fail(vctx *c, const item *it)
+{
+    char r[96];
+    hy_scene_range_text(c->spec, r, sizeof r);
+    if (r[0])
+        return fail(c, it->col, "'%s' in %s must be %s and of magnitude in [%g, %g], got %s", c->spec->name,
+                    c->where, r, HY_SCENE_NUM_MIN, HY_SCENE_NUM_MAX, it->text);
+    return fail(c, it->col, "'%s' in %s must be 0 or of magnitude in [%g, %g], got %s", c->spec->name, c->where,
+                HY_SCENE_NUM_MIN, HY_SCENE_NUM_MAX, it->text);
 }
 
 static int strict_integer(const char *s, long *out)
@@ -261,6 +275,8 @@ static int num_item(vctx *c, const item *it, double *out)
         return fail(c, it->col, "'%s' in %s expects a number, got a quoted string",
                     c->spec->name, c->where);
     int rc = strict_number(it->text, out);
+    if (rc == 3)
+        return magnitude_fail(c, it);
     if (rc == 2)
         return fail(c, it->col, "'%s' in %s: %s does not fit a double", c->spec->name,
                     c->where, it->text);
@@ -327,6 +343,8 @@ static int length_item(vctx *c, const item *it, double *val, int *unit)
         num[n - 2] = '\0';
     }
     int rc = strict_number(num, val);
+    if (rc == 3)
+        return magnitude_fail(c, it);
     if (rc)
         return fail(c, it->col, "'%s' in %s expects a length such as 9pt, 1.2cm, 3mm, 1in or 12px, got '%s'",
                     c->spec->name, c->where, it->text);

@@ -25,8 +25,8 @@ for s in bw_fig1a_quasistatic_loop bw_fig1b_linear_loop bw_fig2a_output_periods 
     [ -s "$tmp/out/$s.svg" ] && ok || bad "no $s.svg"
 done
 
-printf 'include "%s/style.scene"\n[model]\nkind = boucwen\nnu = 0\n' "$scenes" > "$tmp/bad.scene"
-"$hv" render "$tmp/bad.scene" -o "$tmp/badout" > "$tmp/stdout" 2> "$tmp/err"
+printf 'include "style.scene"\n[model]\nkind = boucwen\nnu = 0\n' > "$tmp/bad.scene"
+"$hv" render "$tmp/bad.scene" --include-dir "$scenes" -o "$tmp/badout" > "$tmp/stdout" 2> "$tmp/err"
 st=$?
 [ $st -eq 2 ] && ok || bad "bad scene: status $st"
 grep -qF "$tmp/bad.scene:4:6: 'nu' in [model] must be > 0, got 0" "$tmp/err" && ok || bad "message: $(cat "$tmp/err")"
