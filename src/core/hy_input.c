@@ -498,7 +498,7 @@ int hy_input_file(hy_input *in, const char *path, hy_error *err)
     int e = hy_file_read(path, HY_INPUT_FILE_MAX, &buf, &len, NULL, why, sizeof why);
     if (e)
         return hy_error_set(err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
-                            "%s: cannot read input file: %s", path, why);
+                            "%s: cannot open input file: %s", path, why);
     int rc = hy_input_text(in, buf, len, path, 1, err);
     free(buf);
     return rc;

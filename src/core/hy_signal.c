@@ -3,6 +3,9 @@
  * e_RMS figure of merit of Eq. (6) (seeds/001, Sections 4-5). */
 #include "hy_signal.h"
 
+#include "hy_file.h"
+#include "hy_input.h"
+
 #include <errno.h>
 #include <float.h>
 #include <math.h>
@@ -392,9 +395,9 @@ static int read_lines(FILE *f, const char *path, time_col *tc, double **u,
         char *bad = NULL;
         int c = parse_line(s, v, &sig, &dec, &bad);
         if (c < 0) {
-            bad[strcspn(bad, "\r\n")] = '\0';
-            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: expected one value or 't,u', got '%.40s'", path, lineno,
-                              bad);
+            char ex[96]; /* a file the user named: at most 20 bytes of the line, escaped */
+            rc = hy_error_set(err, HY_EINVAL, "%s:%zu: expected one value or 't,u', got '%s'", path, lineno,
+                              hy_file_excerpt(bad, strlen(bad), ex, sizeof ex));
         } else if (*ncol && c != *ncol)
             rc = hy_error_set(err, HY_EINVAL, "%s:%zu: %d column(s) where earlier lines have %d", path,
                               lineno, c, *ncol);
@@ -419,15 +422,23 @@ static int read_lines(FILE *f, const char *path, time_col *tc, double **u,
 int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
                    hy_error *err)
 {
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return hy_error_set(err, HY_EIO, "%s: cannot open: %s", path, strerror(errno));
+    char *text, why[200];
+    size_t len;
+    int e = hy_file_read(path, HY_INPUT_FILE_MAX, &text, &len, NULL, why, sizeof why);
+    if (e)
+        return hy_error_set(err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
+                            "%s: cannot open: %s", path, why);
+    FILE *f = len ? fmemopen(text, len, "r") : NULL; /* the checked bytes, read as a stream */
     time_col tc = {0};
     double *v = NULL, dt = 0;
     size_t nv = 0;
-    int ncol;
-    int rc = read_lines(f, path, &tc, &v, &nv, &ncol, err);
-    fclose(f);
+    int ncol = 0;
+    int rc = f ? read_lines(f, path, &tc, &v, &nv, &ncol, err)
+               : len ? hy_error_set(err, HY_ENOMEM, "%s: out of memory", path)
+                     : hy_error_set(err, HY_EINVAL, "%s:0: no samples (empty file)", path);
+    if (f)
+        fclose(f);
+    free(text);
     if (!rc && ncol == 2 && nv >= 2)
         rc = check_uniform(&tc, path, &dt, err);
     time_col_free(&tc);
