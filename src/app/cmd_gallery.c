@@ -21,6 +21,7 @@
 
 #include "hy_config.h"
 #include "cli_util.h"
+#include "hy_file.h"
 #include "hy_out.h"
 #include "scene_run.h"
 
@@ -634,15 +635,15 @@ static int image_size(const char *path, int svg, unsigned *w, unsigned *h)
     return *w > 0 && *h > 0;
 }
 
+/* The scene's text for the page (a regular file under the scene cap, hy_file.h;
+ * at most 256 KiB of it shown), or NULL. */
 static char *read_text(const char *path, size_t *n)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    char *b, why[160];
+    if (hy_file_read(path, HY_SCENE_MAX_FILE_BYTES, &b, n, NULL, why, sizeof why))
         return NULL;
-    size_t cap = 1 << 18;
-    char *b = malloc(cap);
-    *n = b ? fread(b, 1, cap, f) : 0;
-    fclose(f);
+    if (*n > (size_t)1 << 18)
+        *n = (size_t)1 << 18;
     return b;
 }
 
