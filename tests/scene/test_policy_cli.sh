@@ -77,5 +77,14 @@ printf '[compute]\npoints = 1000\n[series a]\ndata = input\n' > "$s/small.scene"
 "$hv" data "$s/small.scene" --max-work abc > /dev/null 2> "$tmp/err"
 [ $? -eq 2 ] && ok || bad "--max-work abc: $(cat "$tmp/err")"
 
+# an animation's budget counts every frame (frames x a frame's work); refused before any frame
+printf '[compute]\npoints = 100\n[series a]\ndata = input\n[animation]\nduration = 1\nfps = 10\n[keyframe k]\nkey = "model.sigma0"\ntimes = 0, 1\nvalues = 1, 2\n' > "$s/anim.scene"
+"$hv" animate "$s/anim.scene" -o "$tmp/frames" --quiet --max-work 1000 > /dev/null 2> "$tmp/err"
+st=$?
+if [ $st -ne 3 ]; then # 3: built without OSMesa
+    [ $st -ne 0 ] && grep -q "units of work (10 frames" "$tmp/err" && [ ! -e "$tmp/frames/anim" ] && ok ||
+        bad "animate budget: $st $(cat "$tmp/err")"
+fi
+
 echo "scene policy cli: $pass passed, $fail failed"
 [ $fail -eq 0 ]
