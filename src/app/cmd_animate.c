@@ -117,7 +117,11 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
     if (s[0] != '-')
         return fprintf(stderr, "hystviz animate: one animation at a time ('%s' and '%s')\n", a->name, s), 2;
     if ((!strncmp(s, "--include-dir", 13) || !strncmp(s, "--max-work", 10)) && a->pol.ninclude_dirs < 64)
-        return cli_policy_option(&a->pol, a->dirs, "animate", argc, argv, i) < 0 ? 2 : 0;
+        switch (cli_policy_option(&a->pol, a->dirs, "animate", argc, argv, i)) {
+        case 1: return 0;
+        case 0: return fprintf(stderr, "hystviz animate: unknown option '%s' (see hystviz animate --help)\n", s), 2;
+        default: return 2;
+        }
     if (!v)
         return fprintf(stderr, "hystviz animate: unknown option '%s' or it needs a value (see --help)\n", s), 2;
     (*i)++;

@@ -921,8 +921,12 @@ static int parse_opts(int argc, char **argv, opts *o)
             o->scenes = argv[++i];
         else if ((!strncmp(a, "--include-dir", 13) || !strncmp(a, "--max-work", 10)) &&
                  o->pol.ninclude_dirs < sizeof o->dirs / sizeof o->dirs[0]) {
-            if (cli_policy_option(&o->pol, o->dirs, "gallery", argc, argv, &i) < 0)
+            int r = cli_policy_option(&o->pol, o->dirs, "gallery", argc, argv, &i);
+            if (r <= 0) {
+                if (!r)
+                    fprintf(stderr, "hystviz gallery: unknown option '%s' (see hystviz gallery --help)\n", a);
                 return 2;
+            }
         }
         else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
             o->out = argv[++i];
