@@ -178,7 +178,7 @@ int hy_scene_read_path(const hy_scene *s, const char *section, const char *name,
     int e = hy_file_read(path, HY_INPUT_MAX_FILE_BYTES, buf, len, *user ? NULL : &real, r, sizeof r);
     if (e)
         return hy_scene_error_at(s, section, name, key, err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
-                                 "cannot read '%s': %s", path, r);
+                                 "%s: cannot open input file: %s", path, r);
     if (!*user && !allowed(s, real)) {
         free(*buf);
         free(real);

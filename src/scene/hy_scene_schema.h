@@ -34,10 +34,9 @@ typedef enum hy_scene_kind {
     HY_KIND_LIMITS        /* a pair as above, or auto                           */
 } hy_scene_kind;
 
-/* Every number in a scene is 0 or has a magnitude in [MIN, MAX]: no
- * subnormals, and room for differences and products of two of them. */
-#define HY_SCENE_NUM_MIN 1e-300
-#define HY_SCENE_NUM_MAX 1e300
+/* Every number in a scene is 0 or at least this in magnitude (DBL_MIN, the
+ * smallest normal double): subnormal numbers such as 4.9e-324 are refused. */
+#define HY_SCENE_NUM_MIN 2.2250738585072014e-308
 
 /* Flags of a key spec: which bounds apply and whether they are strict. */
 enum {

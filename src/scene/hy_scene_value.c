@@ -210,21 +210,21 @@ static int strict_number(const char *s, double *out)
     if (!isfinite(v))
         return 2;
     *out = v;
-    if (v != 0 && !(fabs(v) >= HY_SCENE_NUM_MIN && fabs(v) <= HY_SCENE_NUM_MAX))
-        return 3; /* subnormal, or so large that a difference or a product overflows */
+    if (v != 0 && !(fabs(v) >= HY_SCENE_NUM_MIN))
+        return 3; /* subnormal: no model or axis means it, and 1/x overflows */
     return 0;
 }
 
-/* The message of a number outside the magnitudes a scene may hold. */
+/* The message of a subnormal number. */
 static int magnitude_fail(vctx *c, const item *it)
 {
     char r[96];
     hy_scene_range_text(c->spec, r, sizeof r);
     if (r[0])
-        return fail(c, it->col, "'%s' in %s must be %s and of magnitude in [%g, %g], got %s", c->spec->name,
-                    c->where, r, HY_SCENE_NUM_MIN, HY_SCENE_NUM_MAX, it->text);
-    return fail(c, it->col, "'%s' in %s must be 0 or of magnitude in [%g, %g], got %s", c->spec->name, c->where,
-                HY_SCENE_NUM_MIN, HY_SCENE_NUM_MAX, it->text);
+        return fail(c, it->col, "'%s' in %s must be %s and at least %.17g in magnitude (subnormal numbers are "
+                    "refused), got %s", c->spec->name, c->where, r, HY_SCENE_NUM_MIN, it->text);
+    return fail(c, it->col, "'%s' in %s must be 0 or at least %.17g in magnitude (subnormal numbers are refused), "
+                "got %s", c->spec->name, c->where, HY_SCENE_NUM_MIN, it->text);
 }
 
 static int strict_integer(const char *s, long *out)
