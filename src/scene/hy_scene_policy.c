@@ -47,7 +47,19 @@ static int allowed(const hy_scene *s, const char *real)
 int hy__policy_roots(hy_scene *s, const char *top_dir, const hy_scene_policy *pol, size_t len,
                      hy_error *err)
 {
-    s->root = realpath(top_dir, NULL); /* NULL (a name that is no path): nothing can be read */
+    /* the real directory of the top file (of the directory if the name is no file);
+     * NULL: nothing can be read */
+    char *real = realpath(hy_scene_source(s), NULL), *slash = real ? strrchr(real, '/') : NULL;
+    if (slash) {
+        if (slash == real)
+            slash[1] = '\0';
+        else
+            *slash = '\0';
+        s->root = real;
+    } else {
+        free(real);
+        s->root = realpath(top_dir, NULL);
+    }
     s->inc_bytes = len;
     if (len > HY_SCENE_MAX_FILE_BYTES)
         return hy_error_set(err, HY_EINVAL, "%s: the scene is %zu bytes, more than the %u allowed",

@@ -63,7 +63,8 @@ static int sb_readable(const char *path)
         p = e;
     }
     norm[n] = '\0';
-    return n > sb_len && !strncmp(norm, sb_dir, sb_len) && norm[sb_len] == '/';
+    /* the directory itself too: the scene policy resolves the scene's directory */
+    return n >= sb_len && !strncmp(norm, sb_dir, sb_len) && (norm[sb_len] == '/' || norm[sb_len] == '\0');
 }
 
 static int sb_writable(const char *path)
