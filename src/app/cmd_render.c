@@ -76,7 +76,11 @@ static int render_one(const char *scene, const char *out, const char *formats, c
     char written[8192] = "";
     if (!(st = compute(&run, verbose))) {
         if (hy_scene_run_write(&run, out, formats, written, sizeof written, &err)) {
-            fprintf(stderr, "hystviz: %s: %s\n", scene, err.msg);
+            /* errors of the scene's [output] dir already start with file:line:col */
+            if (!strncmp(err.msg, scene, strlen(scene)))
+                fprintf(stderr, "hystviz: %s\n", err.msg);
+            else
+                fprintf(stderr, "hystviz: %s: %s\n", scene, err.msg);
             st = cli_exit_status(err.code);
         } else if (verbose)
             fprintf(stderr, "%s", written);

@@ -21,7 +21,7 @@ printf '[output]\nname = fig\ndir = "figs"\nformats = svg\n[series a]\ndata = in
 printf '[output]\nname = fig\ndir = "../../out"\n[series a]\ndata = input\n' > "$s/up.scene"
 (cd "$tmp/elsewhere" && "$hv" render "$s/up.scene") > "$tmp/o1" 2> "$tmp/err"
 st=$?
-[ $st -ne 0 ] && grep -qF "$s/up.scene:3:1: 'dir' in [output] must stay below the scene's directory" "$tmp/err" &&
+[ $st -eq 2 ] && grep -qxF "hystviz: $s/up.scene:3:1: 'dir' in [output] must stay below the scene's directory, got '../../out' ('..' climbs above it; use -o on the command line)" "$tmp/err" &&
     [ ! -e "$tmp/out" ] && [ ! -s "$tmp/o1" ] && ok || bad "dir escaping: $st $(cat "$tmp/err")"
 printf '[output]\ndir = "%s/abs"\n[series a]\ndata = input\n' "$tmp" > "$s/abs.scene"
 "$hv" render "$s/abs.scene" 2> "$tmp/err" && bad "absolute dir accepted" || { [ ! -e "$tmp/abs" ] && ok || bad "absolute dir created"; }
