@@ -140,20 +140,28 @@ int hy_file_read(const char *path, size_t max, char **buf, size_t *len, char **r
     return 0;
 }
 
-const char *hy_file_excerpt(const char *p, size_t n, char *buf, size_t size)
+const char *hy_file_shown(const char *p, size_t n, size_t max, char *buf, size_t size)
 {
     size_t o = 0, i = 0;
     if (!size)
         return buf;
     buf[0] = '\0';
-    for (; i < n && i < 20 && p[i] != '\n' && p[i] != '\r'; i++) {
+    for (; i < n && i < max; i++) {
         unsigned char c = (unsigned char)p[i];
         int w = isprint(c) ? snprintf(buf + o, size - o, "%c", c) : snprintf(buf + o, size - o, "\\x%02x", c);
         if (w < 0 || (size_t)w >= size - o)
             break;
         o += (size_t)w;
     }
-    if (i == 20 && i < n && p[i] != '\n' && p[i] != '\r' && o + 4 <= size)
+    if (i < n && o + 4 <= size)
         snprintf(buf + o, size - o, "...");
     return buf;
+}
+
+const char *hy_file_excerpt(const char *p, size_t n, char *buf, size_t size)
+{
+    size_t m = 0;
+    while (m < n && p[m] != '\n' && p[m] != '\r')
+        m++;
+    return hy_file_shown(p, m, 20, buf, size);
 }

@@ -22,4 +22,8 @@ int hy_file_read(const char *path, size_t max, char **buf, size_t *len, char **r
  * byte as \xNN, "..." appended if cut: text safe to show in a message. */
 const char *hy_file_excerpt(const char *p, size_t n, char *buf, size_t size);
 
+/* At most max bytes of p[0..n), each non-printable byte (line ends too) as
+ * \xNN, "..." appended if cut: a name or text safe to quote in a message. */
+const char *hy_file_shown(const char *p, size_t n, size_t max, char *buf, size_t size);
+
 #endif

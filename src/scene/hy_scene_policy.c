@@ -126,18 +126,20 @@ int hy__policy_include(hy_scene *s, const char *dir, const char *rel, char **pat
 {
     *path = *buf = *canon = NULL;
     *len = 0;
+    char shown[32 * 4 + 4]; /* the name as written, at most 32 bytes, non-printables as \xNN */
+    hy_file_shown(rel, strlen(rel), 32, shown, sizeof shown);
     if (rel[0] == '/') {
         snprintf(why, whysz, "include paths must be relative (to the including file's directory "
                              "or an --include-dir), got an absolute path");
         return HY_EINVAL;
     }
     if (!ends_with(rel, ".scene")) {
-        snprintf(why, whysz, "an included file must be a scene file named *.scene, got '%s'", rel);
+        snprintf(why, whysz, "an included file must be a scene file named *.scene, got '%s'", shown);
         return HY_EINVAL;
     }
     if (s->inc_files >= HY_SCENE_MAX_INCLUDES) {
         snprintf(why, whysz, "more than %d included files in one scene (repeats counted) at '%s'",
-                 HY_SCENE_MAX_INCLUDES, rel);
+                 HY_SCENE_MAX_INCLUDES, shown);
         return HY_EINVAL;
     }
     if (!(*path = locate(s, dir, rel))) {
@@ -150,19 +152,19 @@ int hy__policy_include(hy_scene *s, const char *dir, const char *rel, char **pat
     int e = hy_file_read(*path, HY_SCENE_MAX_FILE_BYTES, buf, len, canon, r, sizeof r);
     int rc = HY_OK;
     if (e == EISDIR)
-        rc = HY_EINVAL, snprintf(why, whysz, "cannot include '%s': it is a directory, not a scene file", rel);
+        rc = HY_EINVAL, snprintf(why, whysz, "cannot include '%s': it is a directory, not a scene file", shown);
     else if (e == EFBIG)
-        rc = HY_EINVAL, snprintf(why, whysz, "cannot include '%s': it is larger than the %u bytes allowed for one scene file", rel,
+        rc = HY_EINVAL, snprintf(why, whysz, "cannot include '%s': it is larger than the %u bytes allowed for one scene file", shown,
                                  HY_SCENE_MAX_FILE_BYTES);
     else if (e)
         rc = (e == EINVAL ? HY_EINVAL : HY_EIO),
-        snprintf(why, whysz, "cannot read included file '%s' (%s): %s", rel, *path, r);
+        snprintf(why, whysz, "cannot read included file '%s': %s", shown, r);
     else if (!allowed(s, *canon))
         rc = HY_EINVAL, snprintf(why, whysz, "cannot include '%s': it lies outside the scene's directory%s "
-                                 "(a scene reads only files below it)", rel, s->nincdirs ? " and every --include-dir" : "");
+                                 "(a scene reads only files below it)", shown, s->nincdirs ? " and every --include-dir" : "");
     else if (*len > cap)
         rc = HY_EINVAL, snprintf(why, whysz, "cannot include '%s': the scene and its includes pass %u bytes in all "
-                                 "(repeats counted)", rel, HY_SCENE_MAX_TOTAL_BYTES);
+                                 "(repeats counted)", shown, HY_SCENE_MAX_TOTAL_BYTES);
     if (rc) {
         free(*buf);
         free(*canon);

@@ -138,7 +138,7 @@ static void failures(void)
 {
     st_write(dir, "miss.scene", "[model]\n  include   \"nope.scene\"\n");
     PATH_FAILS("miss.scene",
-               "@/miss.scene:2:13: cannot read included file 'nope.scene' (@/nope.scene): No such file or directory");
+               "@/miss.scene:2:13: cannot read included file 'nope.scene': No such file or directory");
     st_write(dir, "c1.scene", "include \"c2.scene\"\n");
     st_write(dir, "c2.scene", "[model]\ninclude \"c1.scene\"\n");
     PATH_FAILS("c1.scene", "@/c2.scene:2:9: include cycle: @/c1.scene -> @/c2.scene -> @/c1.scene");

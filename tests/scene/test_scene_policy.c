@@ -91,6 +91,15 @@ static void includes(void)
     REFUSED("inc_dir.scene", "cannot include 'd.scene': it is a directory, not a scene file", NULL);
     st_write(dir, "inc_fifo.scene", "include \"f.scene\"\n");
     REFUSED("inc_fifo.scene", "is a FIFO, not a regular file", NULL);
+    /* a name of control and high bytes, longer than a message: quoted escaped and cut at 32 bytes,
+     * never raw and never cut right after the location (a fuzzer finding) */
+    char longname[400] = "include \"st\x01";
+    for (int i = 0; i < 300; i++)
+        strcat(longname, "\xff");
+    strcat(longname, ".scene\"\n");
+    st_write(dir, "inc_bytes.scene", longname);
+    REFUSED("inc_bytes.scene", "cannot read included file 'st\\x01\\xff\\xff", NULL);
+    REFUSED("inc_bytes.scene", "\\xff...': File name too long", "\xff");
     /* no argument */
     st_write(dir, "inc_none.scene", "[model]\ninclude\n");
     REFUSED("inc_none.scene", ":2:8: include needs a file name in quotes", NULL);
