@@ -15,6 +15,7 @@
 #include "cmd_loop.h"
 #include "cmd_render.h"
 #include "cmd_report.h"
+#include "cmd_sweep.h"
 
 static const char usage[] =
     "usage: hystviz COMMAND [OPTIONS]\n"
@@ -27,6 +28,7 @@ static const char usage[] =
     "  data      print every series a scene draws as CSV\n"
     "  animate   render an animation (off-screen OpenGL: OSMesa or EGL) as PNG frames or a video\n"
     "  gallery   render every scene into gallery/ (parallel, skips unchanged) with an index page\n"
+    "  sweep     a parameter study: a figure and a table row per point of a grid, in shards\n"
     "  loop      print a steady hysteresis loop, y*_{u,k} or y_gamma as CSV\n"
     "  loops     print the major and minor loops of an input with their areas\n"
     "  boucwen   the Bouc-Wen benchmark: Table 2, synthetic data sets as CSV\n"
@@ -59,6 +61,7 @@ static const command commands[] = {
     {"render", hy_cmd_render},
     {"data", hy_cmd_render},
     {"gallery", hy_cmd_gallery},
+    {"sweep", hy_cmd_sweep},
     {"loop", hy_cmd_loop},
     {"loops", hy_cmd_loop},
     {"boucwen", hy_cmd_boucwen},

@@ -532,6 +532,37 @@ static double distance_to_limit(const hy_scene_run *r, const plan *p, const gamm
     return d;
 }
 
+/* The refusal of an input whose minor loop is too narrow to sample. */
+static int too_narrow(const hy_scene_run *r, hy_error *err)
+{
+    static const char *const inkeys[] = {"points", "file", "extrema", NULL};
+    const char *key = NULL;
+    hy_scene_loc loc;
+    for (size_t i = 0; inkeys[i] && !key; i++)
+        if (hy_scene_get_loc(r->scene, "input", NULL, inkeys[i], &loc))
+            key = inkeys[i];
+    return hy_scene_error_at(r->scene, "input", NULL, key, err, HY_EINVAL,
+                             "a minor loop of this input is narrower than the resolution of ϱ at its "
+                             "scale (ρ_T = %g): the major loop cannot be computed", r->input.rho_T);
+}
+
+/* The error a closed-form series has, and the refusal of a loop too narrow
+ * to sample, without sampling it (hy_scene_run.numbers_only). */
+static int numbers_only_series(hy_scene_run *r, hy_run_series *se, hy_error *err)
+{
+    if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
+        double a[64], b[64];
+        if (loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64) < 0)
+            return too_narrow(r, err);
+        se->err = 0;
+        se->err_ref = "closed form (Eqs. 11-14 generalised)";
+    } else if (se->data == HY_DATA_YSTEADY || se->data == HY_DATA_YK || se->data == HY_DATA_YSTAR) {
+        se->err = 0;
+        se->err_ref = se->data == HY_DATA_YSTAR ? "closed form (Eq. 4)" : "closed form";
+    }
+    return HY_OK;
+}
+
 static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error *err)
 {
     const hy_scene *s = r->scene;
@@ -542,19 +573,13 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     se->err = NAN;
     se->err_ref = NULL;
     se->dist = NAN;
+    if (r->numbers_only && se->data != HY_DATA_YGAMMA && se->data != HY_DATA_TRANSIENT)
+        return numbers_only_series(r, se, err);
     if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
         double a[64], b[64];
         int k = loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64);
-        static const char *const inkeys[] = {"points", "file", "extrema", NULL};
-        const char *key = NULL;
-        hy_scene_loc loc;
-        for (size_t i = 0; inkeys[i] && !key; i++)
-            if (hy_scene_get_loc(s, "input", NULL, inkeys[i], &loc))
-                key = inkeys[i];
         if (k < 0)
-            return hy_scene_error_at(s, "input", NULL, key, err, HY_EINVAL,
-                                     "a minor loop of this input is narrower than the resolution of ϱ at its "
-                                     "scale (ρ_T = %g): the major loop cannot be computed", r->input.rho_T);
+            return too_narrow(r, err);
         size_t total = 0;
         for (int i = 0; i < k; i++)
             total += per + 1;

@@ -1,0 +1,689 @@
+/* cmd_sweep.c: `hystviz sweep SCENE --grid KEY=SPEC ...`: renders the scene at
+ * every point of a parameter grid (hy_grid.h) exactly as `hystviz render SCENE
+ * --set KEY=VALUE ... --set output.name=NAME` would, and streams one table row
+ * per point, in point order, into DIR/sweep.csv.  With --shard K/N it does only
+ * the points i with i mod N = K and writes their rows into the shard manifest
+ * DIR/sweep.shard-K-of-N.csv; `sweep --merge DIR` joins the N manifests into
+ * the sweep.csv the unsharded run writes, byte for byte. */
+#include "cmd_sweep.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli_util.h"
+#include "hy_config.h"
+#include "hy_grid.h"
+#include "scene_run.h"
+#include "sweep_merge.h"
+
+static const char sweep_help[] =
+    "usage: hystviz sweep SCENE --grid SECTION.KEY=SPEC... [-o DIR] [-j N] [--shard K/N]\n"
+    "                     [--formats LIST|none] [--set SECTION.KEY=VALUE]... [--times] [-q]\n"
+    "       hystviz sweep --merge DIR\n"
+    "\n"
+    "A parameter study: the scene is rendered at every point of the grid, the\n"
+    "Cartesian product of the --grid axes, and DIR/sweep.csv gets one row per point.\n"
+    "SPEC is a list (1,2,5), a linear range FROM:TO:COUNT (0.1:0.5:5 = 0.1, 0.2, ...,\n"
+    "0.5) or a log range FROM:TO:logCOUNT (1:1e3:log4 = 1, 10, 100, 1000).  Points\n"
+    "are numbered in row-major order: the first --grid is the outermost axis, the\n"
+    "last varies fastest.  Point i is written as DIR/pINDEX_KEY-VALUE_....FORMAT and\n"
+    "is byte for byte what `hystviz render SCENE --set ... --set KEY=VALUE ...\n"
+    "--set output.name=NAME -o DIR` writes (VALUE as in the table).\n"
+    "\n"
+    "sweep.csv columns: index, status (ok, invalid: the scene refused the point,\n"
+    "failed: computing or writing failed), name, one column per grid key, [compute_s],\n"
+    "ysteady_min, ysteady_max (y° extremes), nminor, major_area, minor1_area,\n"
+    "minor_areas (every minor loop's ∮ y du, ';'-separated), energy (∮ y° du over a\n"
+    "period), SERIES.err (error against the exact answer) for every series,\n"
+    "SERIES.dist (max |y_γ - y*_u|) for every ygamma/transient series, message.\n"
+    "Empty: not computed by this scene.  Numbers are %.17g.\n"
+    "\n"
+    "  --grid K=SPEC      a grid axis (repeatable)\n"
+    "  --set S.K=V        a fixed override applied to every point before the grid\n"
+    "  -o, --output DIR   the study directory (default: sweep)\n"
+    "  -j, --jobs N       worker threads (default: the number of online CPUs)\n"
+    "  --formats LIST     svg,pdf,png (default: the scene's), or none: the table only\n"
+    "  --shard K/N        only points with index mod N = K (0 <= K < N); the rows go\n"
+    "                     to DIR/sweep.shard-K-of-N.csv for --merge\n"
+    "  --merge DIR        join DIR's N shard manifests into DIR/sweep.csv (refused,\n"
+    "                     with the missing shards listed, unless all N are there)\n"
+    "  --times            add compute_s (compute time of the point, seconds); the\n"
+    "                     table is then no longer byte-stable between runs\n"
+    "  -q, --quiet        print only errors\n"
+    "\n"
+    "exit status: 0 every point ok; 2 usage error, invalid scene or grid value (nothing\n"
+    "written), or a point the scene refused (its row says why); 1 a point failed to\n"
+    "compute or a file could not be written.\n";
+
+typedef struct sweep_opts {
+    const char *scene, *out, *formats, *merge;
+    char **sets;
+    size_t nsets;
+    hy_grid grid;
+    long jobs, shard_k, shard_n;
+    int sharded, times, quiet, figures;
+} sweep_opts;
+
+typedef struct study {
+    const sweep_opts *o;
+    char **series;       /* the base scene's series names                */
+    int *series_dist;    /* ... and whether each gets a .dist column      */
+    size_t nseries;
+    char **short_keys;   /* the key of each axis as a file name uses it   */
+    int index_width;
+    size_t nmine;        /* points of this shard                          */
+    FILE *table;
+    char table_path[4400], table_tmp[4400];
+    /* streaming in point order */
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    size_t next, written, window;
+    char **slots;
+    size_t nok, ninvalid, nfailed;
+    int io_error;
+} study;
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ---- options ---------------------------------------------------------- */
+
+static int refused_key(const char *opt, const char *assignment)
+{
+    if (!strncmp(assignment, "output.name", 11) || !strncmp(assignment, "output.dir", 10)) {
+        fprintf(stderr, "hystviz sweep: %s %s: the sweep names each point's files itself (-o sets the directory)\n",
+                opt, assignment);
+        return 1;
+    }
+    return 0;
+}
+
+/* 0 ok, 1 help printed, 2 usage error (message printed). */
+static int parse_opts(int argc, char **argv, sweep_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    hy_grid_init(&o->grid);
+    o->out = "sweep";
+    o->figures = 1;
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    o->jobs = ncpu > 0 ? ncpu : 1;
+    o->sets = calloc((size_t)argc, sizeof *o->sets);
+    if (!o->sets) {
+        fprintf(stderr, "hystviz sweep: out of memory\n");
+        return 2;
+    }
+    hy_error err;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            fputs(sweep_help, stdout);
+            return 1;
+        } else if (!strcmp(a, "--grid") && v) {
+            if (refused_key(a, v))
+                return 2;
+            if (hy_grid_add(&o->grid, argv[++i], &err)) {
+                fprintf(stderr, "hystviz sweep: %s\n", err.msg);
+                return 2;
+            }
+        } else if (!strcmp(a, "--set") && v) {
+            if (refused_key(a, v))
+                return 2;
+            o->sets[o->nsets++] = argv[++i];
+        } else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
+            o->out = argv[++i];
+        else if ((!strcmp(a, "-j") || !strcmp(a, "--jobs")) && v) {
+            if (cli_long(a, argv[++i], 1, 1024, &o->jobs))
+                return 2;
+        } else if (!strcmp(a, "--formats") && v)
+            o->formats = argv[++i];
+        else if (!strcmp(a, "--shard") && v) {
+            if (hy_shard_parse(argv[++i], &o->shard_k, &o->shard_n, &err)) {
+                fprintf(stderr, "hystviz sweep: %s\n", err.msg);
+                return 2;
+            }
+            o->sharded = 1;
+        } else if (!strcmp(a, "--merge") && v)
+            o->merge = argv[++i];
+        else if (!strcmp(a, "--times"))
+            o->times = 1;
+        else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
+            o->quiet = 1;
+        else if (a[0] == '-' || o->scene) {
+            fprintf(stderr, "hystviz sweep: unknown or incomplete option '%s' (see hystviz sweep --help)\n", a);
+            return 2;
+        } else
+            o->scene = a;
+    }
+    if (o->merge && (o->scene || o->grid.naxes || o->sharded)) {
+        fprintf(stderr, "hystviz sweep: --merge DIR takes no scene, --grid or --shard\n");
+        return 2;
+    }
+    if (!o->merge && !o->scene) {
+        fprintf(stderr, "hystviz sweep: give a scene file (see hystviz sweep --help)\n");
+        return 2;
+    }
+    if (o->formats && !strcmp(o->formats, "none"))
+        o->figures = 0;
+    else if (o->formats) {
+        char buf[64];
+        snprintf(buf, sizeof buf, "%s", o->formats);
+        char *save = NULL;
+        size_t n = 0;
+        for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save), n++)
+            if (strcmp(t, "svg") && strcmp(t, "pdf") && strcmp(t, "png")) {
+                fprintf(stderr, "hystviz sweep: --formats: unknown format '%s' (svg, pdf, png, or none)\n", t);
+                return 2;
+            }
+        if (!n || strlen(o->formats) >= sizeof buf) {
+            fprintf(stderr, "hystviz sweep: --formats '%s': expected a list of svg, pdf, png, or none\n", o->formats);
+            return 2;
+        }
+    }
+    return 0;
+}
+
+/* ---- names and rows --------------------------------------------------- */
+
+/* The point's file base name: pINDEX then _KEY-VALUE per axis, characters
+ * other than [A-Za-z0-9.-] as '_', at most 200 bytes (the index alone keeps
+ * names unique). */
+static void point_name(const study *s, size_t i, char *buf, size_t size)
+{
+    const hy_grid *g = &s->o->grid;
+    size_t len = (size_t)snprintf(buf, size, "p%0*zu", s->index_width, i);
+    for (size_t a = 0; a < g->naxes && len + 1 < size; a++) {
+        char part[256];
+        snprintf(part, sizeof part, "_%s-%s", s->short_keys[a], hy_grid_value(g, i, a));
+        for (char *c = part + 1; *c; c++)
+            if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '.' ||
+                  *c == '-'))
+                *c = '_';
+        len += (size_t)snprintf(buf + len, size - len, "%s", part);
+    }
+    if (len > 200)
+        buf[200] = '\0';
+}
+
+/* The short key of each axis: the part after the last '.', or the whole key
+ * ('.' as '-') when two axes share it. */
+static int make_short_keys(study *s)
+{
+    const hy_grid *g = &s->o->grid;
+    s->short_keys = calloc(g->naxes ? g->naxes : 1, sizeof *s->short_keys);
+    if (!s->short_keys)
+        return -1;
+    for (size_t a = 0; a < g->naxes; a++) {
+        const char *last = strrchr(g->axes[a].key, '.') + 1;
+        int shared = 0;
+        for (size_t b = 0; b < g->naxes; b++)
+            shared |= b != a && !strcmp(strrchr(g->axes[b].key, '.') + 1, last);
+        const char *src = shared ? g->axes[a].key : last;
+        size_t n = strlen(src);
+        if (!(s->short_keys[a] = malloc(n + 1)))
+            return -1;
+        for (size_t c = 0; c <= n; c++)
+            s->short_keys[a][c] = src[c] == '.' ? '-' : src[c];
+    }
+    return 0;
+}
+
+/* A CSV field: as is, or in double quotes (quotes doubled) if it holds a
+ * comma, quote or line break. */
+static void csv_field(FILE *f, const char *t)
+{
+    if (!strpbrk(t, ",\"\n\r")) {
+        fputs(t, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *t; t++) {
+        if (*t == '"')
+            fputc('"', f);
+        fputc(*t, f);
+    }
+    fputc('"', f);
+}
+
+static void csv_num(FILE *f, double v)
+{
+    if (!isnan(v))
+        fprintf(f, ",%.17g", v);
+    else
+        fputc(',', f);
+}
+
+static void write_header(const study *s, FILE *f)
+{
+    const hy_grid *g = &s->o->grid;
+    fputs("index,status,name", f);
+    for (size_t a = 0; a < g->naxes; a++) {
+        fputc(',', f);
+        csv_field(f, g->axes[a].key);
+    }
+    if (s->o->times)
+        fputs(",compute_s", f);
+    fputs(",ysteady_min,ysteady_max,nminor,major_area,minor1_area,minor_areas,energy", f);
+    for (size_t k = 0; k < s->nseries; k++) {
+        fputc(',', f);
+        char col[300];
+        snprintf(col, sizeof col, "%s.err", s->series[k]);
+        csv_field(f, col);
+    }
+    for (size_t k = 0; k < s->nseries; k++)
+        if (s->series_dist[k]) {
+            fputc(',', f);
+            char col[300];
+            snprintf(col, sizeof col, "%s.dist", s->series[k]);
+            csv_field(f, col);
+        }
+    fputs(",message\n", f);
+}
+
+static const hy_run_series *find_series(const hy_scene_run *r, const char *name)
+{
+    for (size_t k = 0; r && k < r->nseries; k++)
+        if (!strcmp(r->series[k].name, name))
+            return &r->series[k];
+    return NULL;
+}
+
+/* The row of point i: r is the computed run (NULL if loading failed),
+ * status "ok", "invalid" or "failed", msg the reason or "". */
+static void write_row(const study *s, FILE *f, size_t i, const char *name, const hy_scene_run *r, const char *status,
+                      const char *msg)
+{
+    const hy_grid *g = &s->o->grid;
+    fprintf(f, "%zu,%s,%s", i, status, name);
+    for (size_t a = 0; a < g->naxes; a++) {
+        fputc(',', f);
+        csv_field(f, hy_grid_value(g, i, a));
+    }
+    int ok = !strcmp(status, "ok");
+    if (s->o->times)
+        csv_num(f, ok ? r->seconds_compute : NAN);
+    double ymin = NAN, ymax = NAN;
+    if (ok && r->have_steady)
+        for (size_t k = 0; k <= r->input.nruns; k++) {
+            double y = r->steady.y_run[k];
+            ymin = k && ymin <= y ? ymin : y;
+            ymax = k && ymax >= y ? ymax : y;
+        }
+    csv_num(f, ymin);
+    csv_num(f, ymax);
+    const hy_loops *L = ok && r->have_loops ? &r->loops : NULL;
+    if (L)
+        fprintf(f, ",%zu", L->nminor);
+    else
+        fputc(',', f);
+    csv_num(f, L ? L->major.area : NAN);
+    csv_num(f, L && L->nminor ? L->minor[0].area : NAN);
+    fputc(',', f);
+    for (size_t k = 0; L && k < L->nminor; k++)
+        fprintf(f, "%s%.17g", k ? ";" : "", L->minor[k].area);
+    csv_num(f, L ? L->area_period : NAN);
+    for (size_t k = 0; k < s->nseries; k++) {
+        const hy_run_series *se = ok ? find_series(r, s->series[k]) : NULL;
+        csv_num(f, se && se->err_ref ? se->err : NAN);
+    }
+    for (size_t k = 0; k < s->nseries; k++)
+        if (s->series_dist[k]) {
+            const hy_run_series *se = ok ? find_series(r, s->series[k]) : NULL;
+            csv_num(f, se ? se->dist : NAN);
+        }
+    fputc(',', f);
+    csv_field(f, msg);
+    fputc('\n', f);
+}
+
+/* ---- one point -------------------------------------------------------- */
+
+typedef struct point_buf {
+    char **sets;      /* the user's sets, then KEY=VALUE per axis, then output.name */
+    char *text;       /* the KEY=VALUE texts */
+    size_t text_size;
+} point_buf;
+
+/* Loads, computes and writes point i; returns its row (malloc'ed) and counts
+ * its status into *kind (0 ok, 1 invalid, 2 failed). */
+static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
+{
+    const sweep_opts *o = s->o;
+    const hy_grid *g = &o->grid;
+    char name[256];
+    point_name(s, i, name, sizeof name);
+    size_t used = 0, nsets = o->nsets;
+    for (size_t a = 0; a < g->naxes; a++) {
+        pb->sets[nsets++] = pb->text + used;
+        used += (size_t)snprintf(pb->text + used, pb->text_size - used, "%s=%s", g->axes[a].key, hy_grid_value(g, i, a)) + 1;
+    }
+    if (o->figures) {
+        pb->sets[nsets++] = pb->text + used;
+        snprintf(pb->text + used, pb->text_size - used, "output.name=\"%s\"", name);
+    }
+    hy_scene_run r;
+    hy_error err;
+    err.msg[0] = '\0';
+    int loaded = 0, rc = hy_scene_run_load(&r, o->scene, pb->sets, nsets, &err);
+    if (!rc) {
+        loaded = 1;
+        r.numbers_only = !o->figures;
+        rc = hy_scene_run_compute(&r, NULL, &err);
+    }
+    if (!rc && o->figures)
+        rc = hy_scene_run_write(&r, o->out, o->formats, NULL, 0, &err);
+    *kind = !rc ? 0 : err.code == HY_EINVAL ? 1 : 2;
+    char *row = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&row, &len);
+    if (f) {
+        write_row(s, f, i, name, loaded && !rc ? &r : NULL, *kind == 0 ? "ok" : *kind == 1 ? "invalid" : "failed",
+                  rc ? err.msg : "");
+        if (fclose(f)) {
+            free(row);
+            row = NULL;
+        }
+    }
+    if (loaded)
+        hy_scene_run_free(&r);
+    if (rc && !o->quiet) {
+        static pthread_mutex_t print_mu = PTHREAD_MUTEX_INITIALIZER;
+        static size_t printed;
+        pthread_mutex_lock(&print_mu);
+        if (printed++ < 10)
+            fprintf(stderr, "hystviz sweep: point %zu (%s): %s%s\n", i, name, err.msg,
+                    printed == 10 ? " (further failures: see the table's message column)" : "");
+        pthread_mutex_unlock(&print_mu);
+    }
+    return row;
+}
+
+/* ---- the pool --------------------------------------------------------- */
+
+static void *worker(void *arg)
+{
+    study *s = arg;
+    const sweep_opts *o = s->o;
+    point_buf pb;
+    pb.sets = calloc(o->nsets + o->grid.naxes + 1, sizeof *pb.sets);
+    pb.text_size = 512;
+    for (size_t a = 0; a < o->grid.naxes; a++)
+        pb.text_size += strlen(o->grid.axes[a].key) + 64;
+    for (size_t a = 0; a < o->grid.naxes; a++) {
+        size_t longest = 0;
+        for (size_t v = 0; v < o->grid.axes[a].nvalues; v++) {
+            size_t n = strlen(o->grid.axes[a].values[v]);
+            longest = n > longest ? n : longest;
+        }
+        pb.text_size += longest;
+    }
+    pb.text = malloc(pb.text_size);
+    if (pb.sets)
+        memcpy(pb.sets, o->sets, o->nsets * sizeof *pb.sets);
+    pthread_mutex_lock(&s->mu);
+    if (!pb.sets || !pb.text)
+        s->io_error = 1;
+    for (;;) {
+        while (!s->io_error && s->next < s->nmine && s->next >= s->written + s->window)
+            pthread_cond_wait(&s->cv, &s->mu);
+        if (s->io_error || s->next >= s->nmine)
+            break;
+        size_t j = s->next++;
+        pthread_mutex_unlock(&s->mu);
+        size_t i = o->sharded ? (size_t)o->shard_k + j * (size_t)o->shard_n : j;
+        int kind;
+        char *row = run_point(s, &pb, i, &kind);
+        pthread_mutex_lock(&s->mu);
+        if (!row)
+            s->io_error = 1;
+        *(kind == 0 ? &s->nok : kind == 1 ? &s->ninvalid : &s->nfailed) += 1;
+        s->slots[j % s->window] = row;
+        while (!s->io_error && s->written < s->nmine && s->slots[s->written % s->window]) {
+            char **slot = &s->slots[s->written % s->window];
+            if (fputs(*slot, s->table) < 0)
+                s->io_error = 1;
+            free(*slot);
+            *slot = NULL;
+            s->written++;
+        }
+        pthread_cond_broadcast(&s->cv);
+    }
+    pthread_cond_broadcast(&s->cv);
+    pthread_mutex_unlock(&s->mu);
+    free(pb.sets);
+    free(pb.text);
+    return NULL;
+}
+
+static int run_pool(study *s)
+{
+    long nt = s->o->jobs < (long)s->nmine ? s->o->jobs : (long)s->nmine;
+    if (nt < 1)
+        nt = 1;
+    s->window = 4 * (size_t)nt + 16;
+    s->slots = calloc(s->window, sizeof *s->slots);
+    pthread_t *th = calloc((size_t)nt, sizeof *th);
+    if (!s->slots || !th) {
+        free(th);
+        return -1;
+    }
+    pthread_mutex_init(&s->mu, NULL);
+    pthread_cond_init(&s->cv, NULL);
+    long started = 0;
+    for (; started < nt; started++)
+        if (pthread_create(&th[started], NULL, worker, s))
+            break;
+    if (started == 0)
+        worker(s);
+    for (long t = 0; t < started; t++)
+        pthread_join(th[t], NULL);
+    pthread_mutex_destroy(&s->mu);
+    pthread_cond_destroy(&s->cv);
+    for (size_t k = 0; k < s->window; k++)
+        free(s->slots[k]);
+    free(s->slots);
+    free(th);
+    return 0;
+}
+
+/* ---- the study -------------------------------------------------------- */
+
+static int make_dir(const char *dir)
+{
+    char buf[4096];
+    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(buf, 0755) && errno != EEXIST)
+                return -1;
+            *p = '/';
+        }
+    return mkdir(buf, 0755) && errno != EEXIST ? -1 : 0;
+}
+
+/* 64-bit FNV-1a of a string into h. */
+static uint64_t fnv(uint64_t h, const char *t)
+{
+    for (const unsigned char *c = (const unsigned char *)t; *c; c++)
+        h = (h ^ *c) * 1099511628211ULL;
+    return (h ^ 0xff) * 1099511628211ULL; /* a separator: "ab","c" != "a","bc" */
+}
+
+/* Checks the study before anything is written: the scene loads at point 0,
+ * every grid value is accepted by the scene on its own; fills the series
+ * columns and the study hash.  2 on bad input (message printed). */
+static int check_study(study *s, uint64_t *hash)
+{
+    const sweep_opts *o = s->o;
+    const hy_grid *g = &o->grid;
+    hy_error err;
+    hy_scene *base = NULL;
+    if (hy_scene_parse_file(o->scene, &base, &err)) {
+        fprintf(stderr, "hystviz sweep: %s\n", err.msg);
+        return 2;
+    }
+    for (size_t k = 0; k < o->nsets; k++)
+        if (hy_scene_set(base, o->sets[k], &err)) {
+            fprintf(stderr, "hystviz sweep: --set %s: %s\n", o->sets[k], err.msg);
+            hy_scene_free(base);
+            return 2;
+        }
+    uint64_t h = 14695981039346656037ULL;
+    char num[64];
+    snprintf(num, sizeof num, "%016" PRIx64, hy_scene_hash(base));
+    h = fnv(fnv(fnv(h, "hystviz sweep 1"), HY_VERSION), num);
+    h = fnv(fnv(h, o->figures ? (o->formats ? o->formats : "scene formats") : "none"), o->times ? "times" : "");
+    int rc = 0;
+    for (size_t a = 0; a < g->naxes && !rc; a++) {
+        h = fnv(fnv(h, g->axes[a].key), g->axes[a].spec);
+        char buf[4200];
+        for (size_t v = 0; v < g->axes[a].nvalues && !rc; v++) {
+            snprintf(buf, sizeof buf, "%s=%s", g->axes[a].key, g->axes[a].values[v]);
+            if (hy_scene_set(base, buf, &err)) {
+                fprintf(stderr, "hystviz sweep: --grid %s=%s: value '%s': %s\n", g->axes[a].key, g->axes[a].spec,
+                        g->axes[a].values[v], err.msg);
+                rc = 2;
+            }
+        }
+    }
+    size_t ns = hy_scene_count(base, "series");
+    s->series = calloc(ns ? ns : 1, sizeof *s->series);
+    s->series_dist = calloc(ns ? ns : 1, sizeof *s->series_dist);
+    if (!s->series || !s->series_dist)
+        rc = 2;
+    for (size_t k = 0; k < ns && !rc; k++) {
+        const char *name = hy_scene_name_at(base, "series", k), *data = "";
+        int idx;
+        hy_scene_get_enum(base, "series", name, "data", &idx, &data);
+        size_t n = strlen(name) + 1;
+        if (!(s->series[k] = malloc(n)))
+            rc = 2;
+        else
+            memcpy(s->series[k], name, n);
+        s->series_dist[k] = data && (!strcmp(data, "ygamma") || !strcmp(data, "transient"));
+        s->nseries++;
+    }
+    hy_scene_free(base);
+    if (rc)
+        return rc;
+    /* the whole scene at point 0: keys that only the model/input check refuse */
+    point_buf pb;
+    pb.sets = calloc(o->nsets + g->naxes + 1, sizeof *pb.sets);
+    hy_scene_run r;
+    size_t nsets = o->nsets;
+    char text[8192];
+    size_t used = 0;
+    if (!pb.sets)
+        return 2;
+    memcpy(pb.sets, o->sets, o->nsets * sizeof *pb.sets);
+    for (size_t a = 0; a < g->naxes && used < sizeof text; a++) {
+        pb.sets[nsets++] = text + used;
+        used += (size_t)snprintf(text + used, sizeof text - used, "%s=%s", g->axes[a].key, g->axes[a].values[0]) + 1;
+    }
+    if (used >= sizeof text || hy_scene_run_load(&r, o->scene, pb.sets, nsets, &err)) {
+        fprintf(stderr, "hystviz sweep: %s\n", used >= sizeof text ? "the grid keys are too long" : err.msg);
+        free(pb.sets);
+        return 2;
+    }
+    hy_scene_run_free(&r);
+    free(pb.sets);
+    *hash = h;
+    return 0;
+}
+
+static void study_free(study *s)
+{
+    for (size_t k = 0; s->series && k < s->nseries; k++)
+        free(s->series[k]);
+    free(s->series);
+    free(s->series_dist);
+    for (size_t a = 0; s->short_keys && a < s->o->grid.naxes; a++)
+        free(s->short_keys[a]);
+    free(s->short_keys);
+}
+
+static int sweep(const sweep_opts *o)
+{
+    study s;
+    memset(&s, 0, sizeof s);
+    s.o = o;
+    uint64_t hash = 0;
+    size_t npoints = hy_grid_points(&o->grid);
+    int rc = check_study(&s, &hash);
+    if (!rc && make_short_keys(&s)) {
+        fprintf(stderr, "hystviz sweep: out of memory\n");
+        rc = 2;
+    }
+    if (rc) {
+        study_free(&s);
+        return rc;
+    }
+    char digits[32];
+    s.index_width = snprintf(digits, sizeof digits, "%zu", npoints > 1 ? npoints - 1 : 0);
+    s.nmine = o->sharded ? hy_shard_count(npoints, o->shard_k, o->shard_n) : npoints;
+    if (make_dir(o->out)) {
+        fprintf(stderr, "hystviz sweep: %s: cannot create the study directory: %s\n", o->out, strerror(errno));
+        study_free(&s);
+        return 1;
+    }
+    if (o->sharded)
+        hy_sweep_shard_path(o->out, o->shard_k, o->shard_n, s.table_path, sizeof s.table_path);
+    else
+        snprintf(s.table_path, sizeof s.table_path, "%s/sweep.csv", o->out);
+    s.table = cli_out_open(s.table_path, s.table_tmp, sizeof s.table_tmp);
+    if (!s.table) {
+        study_free(&s);
+        return 1;
+    }
+    if (o->sharded)
+        hy_sweep_shard_head(s.table, o->shard_k, o->shard_n, npoints, hash);
+    write_header(&s, s.table);
+    double t0 = now();
+    tzset(); /* cairo's PDF writer reads the time zone: set it up before the threads */
+    if (run_pool(&s))
+        s.io_error = 1;
+    if (s.io_error || s.written != s.nmine) {
+        fclose(s.table);
+        remove(s.table_tmp);
+        fprintf(stderr, "hystviz sweep: cannot write '%s' (out of memory or a write error)\n", s.table_path);
+        rc = 1;
+    } else if (cli_out_close(s.table, s.table_path, s.table_tmp))
+        rc = 1;
+    if (!o->quiet) {
+        fprintf(stderr, "sweep: %zu of %zu points", s.nmine, npoints);
+        if (o->sharded)
+            fprintf(stderr, " (shard %ld/%ld)", o->shard_k, o->shard_n);
+        fprintf(stderr, ": %zu ok, %zu invalid, %zu failed in %.2f s; %s\n", s.nok, s.ninvalid, s.nfailed,
+                now() - t0, rc ? "no table written" : s.table_path);
+    }
+    study_free(&s);
+    return rc ? rc : s.ninvalid ? 2 : s.nfailed ? 1 : 0;
+}
+
+int hy_cmd_sweep(int argc, char **argv)
+{
+    sweep_opts o;
+    int rc = parse_opts(argc, argv, &o);
+    if (!rc)
+        rc = o.merge ? hy_sweep_merge(o.merge, o.quiet) : sweep(&o);
+    else if (rc == 1)
+        rc = 0;
+    hy_grid_free(&o.grid);
+    free(o.sets);
+    return rc;
+}

@@ -1,0 +1,242 @@
+/* sweep_merge.c: `hystviz sweep --merge DIR`: row i of the study comes from
+ * shard i mod N, in order, so the joined table is the unsharded run's
+ * sweep.csv byte for byte; nothing is written unless every shard is there,
+ * from the same study, complete. */
+#include "sweep_merge.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <inttypes.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+
+#include "cli_util.h"
+#include "hy_grid.h"
+
+void hy_sweep_shard_path(const char *dir, long k, long n, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s/sweep.shard-%ld-of-%ld.csv", dir, k, n);
+}
+
+void hy_sweep_shard_head(FILE *f, long k, long n, size_t npoints, uint64_t hash)
+{
+    fprintf(f, "# hystviz sweep shard %ld/%ld points %zu study %016" PRIx64 "\n", k, n, npoints, hash);
+}
+
+/* K and N of a shard manifest's file name; 0 if name is not one. */
+static int shard_name(const char *name, long *k, long *n)
+{
+    int end = 0;
+    if (sscanf(name, "sweep.shard-%ld-of-%ld.csv%n", k, n, &end) != 2 || name[end] || *n < 1 || *n > HY_SHARD_MAX ||
+        *k < 0 || *k >= *n)
+        return 0;
+    char canon[96];
+    snprintf(canon, sizeof canon, "sweep.shard-%ld-of-%ld.csv", *k, *n);
+    return !strcmp(canon, name); /* no "+1" or "01" aliases */
+}
+
+/* The N of DIR's shard manifests and which K are there (*present, n bytes);
+ * 2 with a message when there are none or several splits. */
+static int find_shards(const char *dir, long *nshards, unsigned char **present)
+{
+    DIR *d = opendir(dir);
+    if (!d) {
+        fprintf(stderr, "hystviz sweep --merge: %s: cannot open the study directory: %s\n", dir, strerror(errno));
+        return 2;
+    }
+    long n = 0, other = 0;
+    *present = NULL;
+    for (struct dirent *de; (de = readdir(d));) {
+        long k, nn;
+        if (!shard_name(de->d_name, &k, &nn))
+            continue;
+        if (n && nn != n) {
+            other = nn;
+            continue;
+        }
+        if (!n) {
+            n = nn;
+            if (!(*present = calloc((size_t)n, 1))) {
+                closedir(d);
+                fprintf(stderr, "hystviz sweep --merge: out of memory\n");
+                return 2;
+            }
+        }
+        (*present)[k] = 1;
+    }
+    closedir(d);
+    if (!n) {
+        fprintf(stderr, "hystviz sweep --merge: %s holds no shard manifests (sweep.shard-K-of-N.csv)\n", dir);
+        return 2;
+    }
+    if (other) {
+        fprintf(stderr,
+                "hystviz sweep --merge: %s holds shards of two splits (of %ld and of %ld): remove the stale ones "
+                "(sweep.shard-*-of-N.csv) and merge again\n",
+                dir, n, other);
+        free(*present);
+        *present = NULL;
+        return 2;
+    }
+    *nshards = n;
+    return 0;
+}
+
+/* Prints the missing shards (at most 20 named); returns how many. */
+static long report_missing(const char *dir, long n, const unsigned char *present)
+{
+    long missing = 0;
+    for (long k = 0; k < n; k++)
+        missing += !present[k];
+    if (!missing)
+        return 0;
+    fprintf(stderr, "hystviz sweep --merge: %s: %ld of %ld shards missing:", dir, missing, n);
+    long shown = 0;
+    for (long k = 0; k < n && shown < 20; k++)
+        if (!present[k]) {
+            fprintf(stderr, "%s %ld/%ld", shown ? "," : "", k, n);
+            shown++;
+        }
+    fprintf(stderr, "%s\n  (run the same `hystviz sweep ... --shard K/%ld` for each, then merge again)\n",
+            missing > shown ? ", ..." : "", n);
+    return missing;
+}
+
+typedef struct shard_in {
+    FILE *f;
+    char path[4400];
+} shard_in;
+
+/* Opens every shard and checks its first line and header against shard 0's;
+ * *npoints gets the study's point count.  2 with a message on a mismatch. */
+static int open_shards(const char *dir, long n, shard_in *in, char **header, size_t *npoints)
+{
+    char *line = NULL, *first = NULL;
+    size_t cap = 0;
+    uint64_t hash0 = 0;
+    int rc = 0;
+    for (long k = 0; k < n && !rc; k++) {
+        hy_sweep_shard_path(dir, k, n, in[k].path, sizeof in[k].path);
+        if (!(in[k].f = fopen(in[k].path, "r"))) {
+            fprintf(stderr, "hystviz sweep --merge: cannot open '%s': %s%s\n", in[k].path, strerror(errno),
+                    errno == EMFILE ? " (raise the limit of open files: ulimit -n)" : "");
+            rc = errno == EMFILE ? 1 : 2;
+            break;
+        }
+        long kk, nn;
+        size_t p;
+        uint64_t h;
+        if (getline(&line, &cap, in[k].f) < 0 ||
+            sscanf(line, "# hystviz sweep shard %ld/%ld points %zu study %" SCNx64, &kk, &nn, &p, &h) != 4 || kk != k ||
+            nn != n) {
+            fprintf(stderr, "hystviz sweep --merge: '%s' is not a shard manifest of hystviz sweep\n", in[k].path);
+            rc = 2;
+        } else if (k && (p != *npoints || h != hash0)) {
+            fprintf(stderr,
+                    "hystviz sweep --merge: '%s' belongs to another study than shard 0/%ld (other scene, grid, "
+                    "options or version): re-run shard %ld/%ld with the same command\n",
+                    in[k].path, n, k, n);
+            rc = 2;
+        } else if (getline(&line, &cap, in[k].f) < 0 || (k && strcmp(line, first))) {
+            fprintf(stderr, "hystviz sweep --merge: '%s': its table header is missing or differs from shard 0/%ld\n",
+                    in[k].path, n);
+            rc = 2;
+        } else if (!k) {
+            *npoints = p;
+            hash0 = h;
+            if (!(first = strdup(line)))
+                rc = 2;
+        }
+    }
+    free(line);
+    *header = first;
+    return rc;
+}
+
+/* Copies row i from shard i mod n into out; counts statuses. */
+static int join_rows(const char *dir, long n, shard_in *in, size_t npoints, FILE *out, size_t count[3])
+{
+    char *line = NULL;
+    size_t cap = 0;
+    int rc = 0;
+    for (size_t i = 0; i < npoints && !rc; i++) {
+        shard_in *s = &in[i % (size_t)n];
+        char status[16] = "";
+        size_t idx = (size_t)-1;
+        ssize_t len = getline(&line, &cap, s->f);
+        if (len < 1 || line[len - 1] != '\n' || sscanf(line, "%zu,%15[a-z],", &idx, status) != 2 || idx != i) {
+            fprintf(stderr, "hystviz sweep --merge: '%s' is incomplete or damaged at point %zu: re-run that shard\n",
+                    s->path, i);
+            rc = 2;
+            break;
+        }
+        count[!strcmp(status, "ok") ? 0 : !strcmp(status, "invalid") ? 1 : 2]++;
+        if (fputs(line, out) < 0)
+            rc = 1;
+    }
+    for (long k = 0; k < n && !rc; k++)
+        if (getline(&line, &cap, in[k].f) >= 0) {
+            fprintf(stderr, "hystviz sweep --merge: '%s' has more rows than its share of %zu points\n", in[k].path,
+                    npoints);
+            rc = 2;
+        }
+    (void)dir;
+    free(line);
+    return rc;
+}
+
+int hy_sweep_merge(const char *dir, int quiet)
+{
+    long n = 0;
+    unsigned char *present = NULL;
+    int rc = find_shards(dir, &n, &present);
+    if (rc)
+        return rc;
+    if (report_missing(dir, n, present)) {
+        free(present);
+        return 2;
+    }
+    free(present);
+    struct rlimit rl; /* every shard is open at once: allow that many files */
+    if (!getrlimit(RLIMIT_NOFILE, &rl) && rl.rlim_cur < rl.rlim_max && rl.rlim_cur < (rlim_t)n + 16) {
+        rl.rlim_cur = rl.rlim_max;
+        setrlimit(RLIMIT_NOFILE, &rl);
+    }
+    shard_in *in = calloc((size_t)n, sizeof *in);
+    if (!in) {
+        fprintf(stderr, "hystviz sweep --merge: out of memory\n");
+        return 1;
+    }
+    char *header = NULL;
+    size_t npoints = 0, count[3] = {0, 0, 0};
+    rc = open_shards(dir, n, in, &header, &npoints);
+    char path[4400], tmp[4400];
+    snprintf(path, sizeof path, "%s/sweep.csv", dir);
+    FILE *out = rc ? NULL : cli_out_open(path, tmp, sizeof tmp);
+    if (!rc && !out)
+        rc = 1;
+    if (!rc && fputs(header, out) < 0)
+        rc = 1;
+    if (!rc)
+        rc = join_rows(dir, n, in, npoints, out, count);
+    if (out && rc) {
+        fclose(out);
+        remove(tmp);
+    } else if (out && cli_out_close(out, path, tmp))
+        rc = 1;
+    for (long k = 0; k < n; k++)
+        if (in[k].f)
+            fclose(in[k].f);
+    if (!rc)
+        for (long k = 0; k < n; k++)
+            remove(in[k].path);
+    free(in);
+    free(header);
+    if (rc)
+        return rc;
+    if (!quiet)
+        fprintf(stderr, "sweep --merge: %ld shards, %zu points: %zu ok, %zu invalid, %zu failed; %s\n", n, npoints,
+                count[0], count[1], count[2], path);
+    return count[1] ? 2 : count[2] ? 1 : 0;
+}

@@ -1,0 +1,29 @@
+/* sweep_merge.h: the shard manifests of `hystviz sweep --shard K/N` and
+ * `hystviz sweep --merge DIR`, which joins them into DIR/sweep.csv.
+ *
+ * A shard manifest DIR/sweep.shard-K-of-N.csv is the first line
+ *     # hystviz sweep shard K/N points P study HASH
+ * then the table header and the rows of points K, K + N, K + 2N, ... in that
+ * order, exactly as sweep.csv holds them.  It is written whole (temporary
+ * name, renamed when the shard is done), so a killed shard leaves none.
+ */
+#ifndef HY_SWEEP_MERGE_H
+#define HY_SWEEP_MERGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+/* DIR/sweep.shard-K-of-N.csv into buf. */
+void hy_sweep_shard_path(const char *dir, long k, long n, char *buf, size_t size);
+
+/* Writes the manifest's first line. */
+void hy_sweep_shard_head(FILE *f, long k, long n, size_t npoints, uint64_t hash);
+
+/* Joins DIR's shard manifests into DIR/sweep.csv and removes them.  Refuses
+ * (2, message listing them) when shards are missing, come from another study
+ * or split, or are damaged; 1 on an I/O error; else the status the unsharded
+ * run would have had (0 all ok, 2 a point invalid, 1 a point failed). */
+int hy_sweep_merge(const char *dir, int quiet);
+
+#endif

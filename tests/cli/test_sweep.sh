@@ -1,0 +1,121 @@
+#!/bin/sh
+# Tests of `hystviz sweep` (issue 13): the Fig. 15 study gives 50 figures and a
+# 50-row table whose loop areas equal `hystviz loops` at the same values (the
+# same closed form through another front end: equal as %.17g text); a point's
+# files are byte for byte `hystviz render --set ...`; the table does not depend
+# on -j or on --formats none; grid values, order and names; bad input exits 2
+# with nothing written; a point the scene refuses gets a row and exit 2.
+# usage: test_sweep.sh HYSTVIZ SCENES_DIR
+set -u
+hv=$1
+scenes=$2
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fig15=$scenes/fig15_minor_loop_ex4.scene
+
+# ---- the done-when study ----------------------------------------------------
+"$hv" sweep "$fig15" --grid model.sigma0=1:10:log10 --grid input.umin2=0.1:0.5:5 -o "$tmp/study" -j 2 -q
+[ $? -eq 0 ] && ok || bad "fig15 study exit status"
+for e in svg pdf png; do
+    n=$(ls "$tmp/study" | grep -c "\.$e\$")
+    [ "$n" -eq 50 ] && ok || bad "$n .$e figures, expected 50"
+done
+[ "$(wc -l < "$tmp/study/sweep.csv")" -eq 51 ] && ok || bad "sweep.csv: $(wc -l < "$tmp/study/sweep.csv") lines, expected 51"
+[ "$(ls "$tmp/study" | wc -l)" -eq 151 ] && ok || bad "study dir holds $(ls "$tmp/study" | wc -l) files, expected 151"
+head -1 "$tmp/study/sweep.csv" | grep -q '^index,status,name,model.sigma0,input.umin2,ysteady_min,ysteady_max,nminor,major_area,minor1_area,minor_areas,energy,' &&
+    ok || bad "header: $(head -1 "$tmp/study/sweep.csv")"
+# row-major order: sigma0 (first --grid) outer, umin2 inner; log and linear values
+cut -d, -f4 "$tmp/study/sweep.csv" | sed -n '2p;7p;51p' | tr '\n' ' ' | grep -q '^1 1.2915496650148839 10 $' && ok ||
+    bad "sigma0 column: $(cut -d, -f4 "$tmp/study/sweep.csv" | sed -n '2p;7p;51p' | tr '\n' ' ')"
+[ "$(cut -d, -f5 "$tmp/study/sweep.csv" | sed -n '2,6p' | tr '\n' ' ')" = "0.1 0.2 0.3 0.4 0.5 " ] && ok || bad "umin2 column"
+[ "$(grep -c ',ok,' "$tmp/study/sweep.csv")" -eq 50 ] && ok || bad "not every row ok"
+# every row's areas are those of `hystviz loops` for the same values
+mism=0
+checked=0
+tail -n +2 "$tmp/study/sweep.csv" | while IFS=, read -r idx st name s0 u2 ymin ymax nmin major minor1 minors energy rest; do
+    "$hv" loops --model lugre --sigma0 "$s0" --sigma1 1 --fc 1 --fs 2 --vs 1 --beta 1 --input "bimodal:0,$u2,1,1.5" > "$tmp/l.csv"
+    lmaj=$(grep '^major,' "$tmp/l.csv" | cut -d, -f10)
+    lmin=$(grep '^minor,' "$tmp/l.csv" | cut -d, -f10)
+    len=$(sed -n 's/^# energy per cycle.*: //p' "$tmp/l.csv")
+    if [ "$lmaj" != "$major" ] || [ "$lmin" != "$minor1" ] || [ "$lmin" != "$minors" ] || [ "$len" != "$energy" ] || [ "$nmin" != 1 ]; then
+        echo "row $idx: sweep $major $minor1 $energy, loops $lmaj $lmin $len"
+    fi
+done > "$tmp/mism"
+[ ! -s "$tmp/mism" ] && ok || bad "areas differ from hystviz loops: $(head -3 "$tmp/mism")"
+# and they vary: not one value repeated (sigma0 and umin2 both change the loops)
+[ "$(tail -n +2 "$tmp/study/sweep.csv" | cut -d, -f10 | sort -u | wc -l)" -eq 50 ] && ok || bad "minor areas not all distinct"
+
+# ---- a point is `render --set` byte for byte --------------------------------
+for idx in 0 17 49; do
+    row=$(grep "^$idx," "$tmp/study/sweep.csv")
+    name=$(echo "$row" | cut -d, -f3)
+    s0=$(echo "$row" | cut -d, -f4)
+    u2=$(echo "$row" | cut -d, -f5)
+    rm -rf "$tmp/r"
+    "$hv" render "$fig15" --set model.sigma0="$s0" --set input.umin2="$u2" --set output.name="$name" -o "$tmp/r" 2> /dev/null
+    for e in svg pdf png; do
+        cmp -s "$tmp/r/$name.$e" "$tmp/study/$name.$e" && ok || bad "point $idx .$e differs from render --set"
+    done
+    # the name says index and values
+    [ "$name" = "$(printf 'p%02d_sigma0-%s_umin2-%s' "$idx" "$s0" "$u2")" ] && ok || bad "point name $name"
+done
+
+# ---- the table depends on neither -j nor --formats none ---------------------
+"$hv" sweep "$fig15" --grid model.sigma0=1:10:log10 --grid input.umin2=0.1:0.5:5 -o "$tmp/j1" -j 1 -q --formats none
+[ $? -eq 0 ] && cmp -s "$tmp/j1/sweep.csv" "$tmp/study/sweep.csv" && ok || bad "-j 1 --formats none table differs"
+[ "$(ls "$tmp/j1")" = "sweep.csv" ] && ok || bad "--formats none wrote figures: $(ls "$tmp/j1" | head -3)"
+"$hv" sweep "$fig15" --grid input.umin2=0.1,0.3 -o "$tmp/svg" -q --formats svg
+[ "$(ls "$tmp/svg" | tr '\n' ' ')" = "p0_umin2-0.1.svg p1_umin2-0.3.svg sweep.csv " ] && ok || bad "--formats svg: $(ls "$tmp/svg" | tr '\n' ' ')"
+# --times adds compute_s after the grid keys
+"$hv" sweep "$fig15" --grid input.umin2=0.2 -o "$tmp/t" -q --formats none --times
+head -1 "$tmp/t/sweep.csv" | grep -q '^index,status,name,input.umin2,compute_s,ysteady_min' && ok || bad "--times header"
+sed -n 2p "$tmp/t/sweep.csv" | cut -d, -f5 | grep -Eq '^[0-9.e-]+$' && ok || bad "--times value"
+
+# ---- grid values ------------------------------------------------------------
+"$hv" sweep "$fig15" --grid model.sigma0=1:1e3:log4 --grid input.umin2=0.25:0.25:1 -o "$tmp/v" -q --formats none
+[ "$(tail -n +2 "$tmp/v/sweep.csv" | cut -d, -f4 | tr '\n' ' ')" = "1 10 100 1000 " ] && ok || bad "log range 1:1e3:log4"
+"$hv" sweep "$fig15" --grid 'model.sigma0= 6, 2 ,1' -o "$tmp/l" -q --formats none
+[ "$(tail -n +2 "$tmp/l/sweep.csv" | cut -d, -f4 | tr '\n' ' ')" = "6 2 1 " ] && ok || bad "list order kept"
+
+# ---- bad input: exit 2, a message naming the option, nothing written --------
+for g in 'model.sigma0=1:10' 'model.sigma0=1:10:0' 'model.sigma0=0:10:log3' 'model.sigma0=1:2:x' 'model.sigma0=1,,2' \
+         'sigma0=1,2' 'model.sigma0=' 'model.sigma0=1:nan:3' 'model.sigma0=1:2:1'; do
+    "$hv" sweep "$fig15" --grid "$g" -o "$tmp/bad" -q 2> "$tmp/err"
+    st=$?
+    [ $st -eq 2 ] && grep -q -- '--grid' "$tmp/err" && [ ! -e "$tmp/bad" ] && ok || bad "--grid '$g': status $st, $(cat "$tmp/err")"
+done
+"$hv" sweep "$fig15" --grid model.sigma0=1,-1 -o "$tmp/bad" 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q "value '-1'" "$tmp/err" && [ ! -e "$tmp/bad" ] && ok || bad "refused value: $(cat "$tmp/err")"
+"$hv" sweep "$fig15" --grid model.nosuch=1,2 -o "$tmp/bad" 2> "$tmp/err"
+[ $? -eq 2 ] && [ ! -e "$tmp/bad" ] && ok || bad "unknown key: $(cat "$tmp/err")"
+"$hv" sweep "$fig15" --grid output.name=a,b -o "$tmp/bad" 2> "$tmp/err"
+[ $? -eq 2 ] && [ ! -e "$tmp/bad" ] && ok || bad "output.name as grid key accepted"
+"$hv" sweep "$fig15" --grid model.sigma0=1,2 --grid model.sigma0=3 -o "$tmp/bad" 2> "$tmp/err"
+[ $? -eq 2 ] && [ ! -e "$tmp/bad" ] && ok || bad "key given twice"
+"$hv" sweep "$fig15" --grid model.sigma0=1:10:1000000 --grid input.umin2=0.1:0.5:1000 -o "$tmp/bad" 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q 'more than' "$tmp/err" && [ ! -e "$tmp/bad" ] && ok || bad "grid too large: $(cat "$tmp/err")"
+for f in 'svg,gif' '' 'none,svg'; do
+    "$hv" sweep "$fig15" --grid model.sigma0=1 --formats "$f" -o "$tmp/bad" 2> /dev/null
+    [ $? -eq 2 ] && [ ! -e "$tmp/bad" ] && ok || bad "--formats '$f' accepted"
+done
+for s in '3/3' '-1/3' '1/0' '1' 'a/b' '1/3x'; do
+    "$hv" sweep "$fig15" --grid model.sigma0=1 --shard "$s" -o "$tmp/bad" 2> "$tmp/err"
+    [ $? -eq 2 ] && grep -q -- '--shard' "$tmp/err" && [ ! -e "$tmp/bad" ] && ok || bad "--shard '$s' accepted"
+done
+"$hv" sweep "$tmp/none.scene" --grid model.sigma0=1 -o "$tmp/bad" 2> /dev/null
+[ $? -eq 2 ] && [ ! -e "$tmp/bad" ] && ok || bad "missing scene"
+
+# ---- a point the scene refuses: its row says why, the others are done --------
+# umin2 = 1.2 > umax1 = 1 passes the key's own range but not the input's check
+"$hv" sweep "$fig15" --grid input.umin2=0.2,1.2,0.4 -o "$tmp/p" -q --formats svg 2> "$tmp/err"
+[ $? -eq 2 ] && ok || bad "refused point: exit status not 2"
+[ "$(cut -d, -f2 "$tmp/p/sweep.csv" | tr '\n' ' ')" = "status ok invalid ok " ] && ok || bad "statuses: $(cut -d, -f2 "$tmp/p/sweep.csv" | tr '\n' ' ')"
+grep '^1,invalid' "$tmp/p/sweep.csv" | grep -q 'umin2' && ok || bad "refused row has no message naming the key"
+[ -e "$tmp/p/p0_umin2-0.2.svg" ] && [ -e "$tmp/p/p2_umin2-0.4.svg" ] && [ ! -e "$tmp/p/p1_umin2-1.2.svg" ] && ok || bad "figures of a refused point"
+
+echo "test_sweep: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
