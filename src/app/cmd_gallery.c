@@ -22,12 +22,14 @@
 #include "hy_config.h"
 #include "cli_util.h"
 #include "hy_file.h"
+#include "hy_grid.h"
 #include "hy_out.h"
 #include "scene_run.h"
 
 static const char gallery_help[] =
     "usage: hystviz gallery [-j N] [--scenes DIR] [-o DIR] [--force] [--data] [--times] [--quiet]\n"
     "                       [--include-dir DIR]... [--max-work N]\n"
+    "                       [--shard K/N | --merge]\n"
     "\n"
     "Renders every figure scene DIR/*.scene (files without a [series] section,\n"
     "such as style.scene, are includes, not figures) into the gallery directory,\n"
@@ -47,6 +49,12 @@ static const char gallery_help[] =
     "  -q, --quiet        print only errors (no progress, no summary)\n"
     "  --include-dir DIR  a directory scenes may include from, besides their own (repeatable)\n"
     "  --max-work N       the work budget of each scene (default 1e8; docs/SCENES.md)\n"
+    "  --shard K/N        render only figure scenes number K, K+N, K+2N, ... (in file\n"
+    "                     name order) and write their records to DIR/.manifest.shard-K-of-N\n"
+    "                     instead of the manifest and index.html (0 <= K < N)\n"
+    "  --merge            join the N shard records into DIR/.manifest and index.html, as\n"
+    "                     the unsharded run writes them; refused, with the missing\n"
+    "                     shards listed, unless all N are there for the same scenes\n"
     "  -h, --help         this text\n";
 
 enum { J_SKIP, J_UNCHANGED, J_PENDING, J_RENDERED, J_FAILED };
@@ -57,6 +65,8 @@ typedef struct opts {
     int force, data, times, quiet, progress;
     hy_scene_policy pol;      /* --include-dir, --max-work */
     const char *dirs[64];
+    long shard_k, shard_n; /* --shard K/N (shard_n 0: unsharded) */
+    int merge;             /* --merge                            */
 } opts;
 
 /* One manifest line: what the last good render of a scene produced. */
@@ -79,6 +89,7 @@ typedef struct job {
     entry *old;     /* manifest entry, or NULL                       */
     entry now;      /* what the new manifest says (if have_now)      */
     int have_now;
+    int other_shard;  /* a figure of another shard (--shard): not rendered here */
     char msg[sizeof ((hy_error *)0)->msg + 64];
 } job;
 
@@ -276,6 +287,24 @@ static entry *manifest_read(const char *path, size_t *n)
     return v;
 }
 
+/* One manifest line. */
+static void entry_write(FILE *f, const entry *e)
+{
+    put_name(f, e->scene);
+    fprintf(f, "	%s	%s	%.6f	", e->key, e->failed ? "failed" : "ok", e->seconds);
+    if (isnan(e->err))
+        fputs("-", f);
+    else
+        fprintf(f, "%.17g", e->err);
+    fprintf(f, "	%s	", e->ref ? e->ref : "-");
+    for (size_t k = 0; k < e->nout; k++) {
+        if (k)
+            fputc(' ', f);
+        put_name(f, e->outputs[k]);
+    }
+    fputc('\n', f);
+}
+
 static int manifest_write(const char *path, const job *jobs, size_t n, hy_error *err)
 {
     hy_out o;
@@ -283,24 +312,9 @@ static int manifest_write(const char *path, const job *jobs, size_t n, hy_error 
         return -1;
     FILE *f = hy_out_file(&o);
     fputs(manifest_head, f);
-    for (size_t i = 0; i < n; i++) {
-        const entry *e = &jobs[i].now;
-        if (!jobs[i].have_now)
-            continue;
-        put_name(f, e->scene);
-        fprintf(f, "\t%s\t%s\t%.6f\t", e->key, e->failed ? "failed" : "ok", e->seconds);
-        if (isnan(e->err))
-            fputs("-", f);
-        else
-            fprintf(f, "%.17g", e->err);
-        fprintf(f, "\t%s\t", e->ref ? e->ref : "-");
-        for (size_t k = 0; k < e->nout; k++) {
-            if (k)
-                fputc(' ', f);
-            put_name(f, e->outputs[k]);
-        }
-        fputc('\n', f);
-    }
+    for (size_t i = 0; i < n; i++)
+        if (jobs[i].have_now)
+            entry_write(f, &jobs[i].now);
     return hy_out_commit(&o, err) ? -1 : 0;
 }
 
@@ -940,12 +954,24 @@ static int parse_opts(int argc, char **argv, opts *o)
             o->times = 1;
         else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
             o->quiet = 1;
+        else if (!strcmp(a, "--shard") && v) {
+            hy_error err;
+            if (hy_shard_parse(argv[++i], &o->shard_k, &o->shard_n, &err)) {
+                fprintf(stderr, "hystviz gallery: %s\n", err.msg);
+                return 2;
+            }
+        } else if (!strcmp(a, "--merge"))
+            o->merge = 1;
         else {
             fprintf(stderr, "hystviz gallery: unknown or incomplete option '%s' (see hystviz gallery --help)\n", a);
             return 2;
         }
     }
     o->progress = !o->quiet && isatty(STDERR_FILENO);
+    if (o->merge && o->shard_n) {
+        fprintf(stderr, "hystviz gallery: --merge joins the shards; it takes no --shard\n");
+        return 2;
+    }
     return 0;
 }
 
@@ -1001,13 +1027,243 @@ static void remove_deleted(const opts *o, const job *jobs, size_t n, const entry
     }
 }
 
+/* ---- shards (--shard K/N, --merge) ------------------------------------ */
+
+/* The figure scenes (not includes) in file-name order are numbered 0..F-1;
+ * figure m belongs to shard m mod N.  Their names, folded with FNV-1a, key
+ * the split: a merge refuses records made for another set of scenes. */
+static uint64_t figures_key(const job *jobs, size_t n, size_t *nfig)
+{
+    uint64_t h = UINT64_C(14695981039346656037);
+    *nfig = 0;
+    for (size_t i = 0; i < n; i++)
+        if (jobs[i].state != J_SKIP || jobs[i].other_shard) {
+            for (const char *c = jobs[i].file; *c; c++)
+                h = (h ^ (unsigned char)*c) * UINT64_C(0x100000001b3);
+            h = (h ^ '\n') * UINT64_C(0x100000001b3);
+            (*nfig)++;
+        }
+    return h;
+}
+
+/* Leaves J_PENDING/J_UNCHANGED/J_FAILED only on this shard's figures. */
+static void shard_select(const opts *o, job *jobs, size_t n)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (jobs[i].state != J_SKIP) {
+            if (m % (size_t)o->shard_n != (size_t)o->shard_k) {
+                jobs[i].other_shard = 1;
+                jobs[i].state = J_SKIP;
+            }
+            m++;
+        }
+}
+
+static const char *const state_word[] = {"skip", "unchanged", "pending", "rendered", "failed"};
+
+/* DIR/.manifest.shard-K-of-N: a header, then per figure of this shard a line
+ * "@ STATE FILE MESSAGE" (tab-separated) and its manifest line if it has one. */
+static int shard_write(const opts *o, const job *jobs, size_t n, hy_error *err)
+{
+    char name[96];
+    snprintf(name, sizeof name, ".manifest.shard-%ld-of-%ld", o->shard_k, o->shard_n);
+    char *path = join(o->out, name);
+    hy_out out;
+    if (!path) {
+        hy_error_set(err, HY_ENOMEM, "out of memory");
+        return -1;
+    }
+    if (hy_out_open(&out, path, 0, err)) {
+        free(path);
+        return -1;
+    }
+    FILE *f = hy_out_file(&out);
+    size_t nfig;
+    uint64_t key = figures_key(jobs, n, &nfig);
+    fprintf(f, "# hystviz gallery shard %ld/%ld figures %zu key %016" PRIx64 "\n", o->shard_k, o->shard_n, nfig, key);
+    for (size_t i = 0; i < n; i++) {
+        const job *j = &jobs[i];
+        if (j->state == J_SKIP)
+            continue;
+        fprintf(f, "@\t%s\t%s\t", state_word[j->state], j->file);
+        for (const char *c = j->msg; j->state == J_FAILED && *c; c++)
+            fputc(*c == '\t' || *c == '\n' || *c == '\r' ? ' ' : *c, f);
+        fputc('\n', f);
+        if (j->have_now)
+            entry_write(f, &j->now);
+    }
+    free(path);
+    return hy_out_commit(&out, err) ? -1 : 0;
+}
+
+/* K and N of a shard record's file name (canonical spelling only); 0 if not one. */
+static int shard_file(const char *name, long *k, long *n)
+{
+    int end = 0;
+    char canon[96];
+    if (sscanf(name, ".manifest.shard-%ld-of-%ld%n", k, n, &end) != 2 || name[end] || *n < 1 ||
+        *n > HY_SHARD_MAX || *k < 0 || *k >= *n)
+        return 0;
+    snprintf(canon, sizeof canon, ".manifest.shard-%ld-of-%ld", *k, *n);
+    return !strcmp(canon, name);
+}
+
+/* The N of DIR's shard records; 2 (message printed) if none, several
+ * splits, or shards missing (listed). */
+static int shard_find(const char *dir, long *nshards)
+{
+    DIR *d = opendir(dir);
+    long n = 0, other = 0, k, nn;
+    unsigned char *present = NULL;
+    for (struct dirent *de; d && (de = readdir(d));) {
+        if (!shard_file(de->d_name, &k, &nn))
+            continue;
+        if (n && nn != n)
+            other = nn;
+        else {
+            if (!n && !(present = calloc((size_t)(n = nn), 1)))
+                break;
+            present[k] = 1;
+        }
+    }
+    if (d)
+        closedir(d);
+    if (!n || !present || other) {
+        if (!n)
+            fprintf(stderr, "hystviz gallery --merge: %s holds no shard records (.manifest.shard-K-of-N)\n", dir);
+        else if (other)
+            fprintf(stderr, "hystviz gallery --merge: %s holds shards of two splits (of %ld and of %ld): remove the "
+                    "stale ones and merge again\n", dir, n, other);
+        free(present);
+        return 2;
+    }
+    long missing = 0;
+    for (k = 0; k < n; k++)
+        missing += !present[k];
+    if (missing) {
+        fprintf(stderr, "hystviz gallery --merge: %s: %ld of %ld shards missing:", dir, missing, n);
+        for (k = 0, nn = 0; k < n && nn < 20; k++)
+            if (!present[k])
+                fprintf(stderr, "%s %ld/%ld", nn++ ? "," : "", k, n);
+        fprintf(stderr, "%s\n  (run `hystviz gallery ... --shard K/%ld` for each, then merge again)\n",
+                missing > nn ? ", ..." : "", n);
+    }
+    free(present);
+    *nshards = n;
+    return missing ? 2 : 0;
+}
+
+/* Reads shard k's records into the jobs it covers (covered[i] set); 2 with a
+ * message if the record is not of this split, scene set or shard. */
+static int shard_read(const opts *o, job *jobs, size_t n, long k, long nsh, unsigned char *covered)
+{
+    char name[96];
+    snprintf(name, sizeof name, ".manifest.shard-%ld-of-%ld", k, nsh);
+    char *path = join(o->out, name), *line = NULL;
+    FILE *f = path ? fopen(path, "r") : NULL;
+    size_t lsz = 0, nfig, fig;
+    uint64_t key = figures_key(jobs, n, &nfig), h;
+    long kk, nn;
+    job *cur = NULL;
+    int rc = 0;
+    if (!f || getline(&line, &lsz, f) < 0 ||
+        sscanf(line, "# hystviz gallery shard %ld/%ld figures %zu key %" SCNx64, &kk, &nn, &fig, &h) != 4 || kk != k ||
+        nn != nsh) {
+        fprintf(stderr, "hystviz gallery --merge: '%s' is not a shard record of hystviz gallery\n", path ? path : name);
+        rc = 2;
+    } else if (fig != nfig || h != key) {
+        fprintf(stderr, "hystviz gallery --merge: '%s' was made for another set of scenes than %s holds now: re-run "
+                "shard %ld/%ld\n", path, o->scenes, k, nsh);
+        rc = 2;
+    }
+    while (!rc && getline(&line, &lsz, f) > 0) {
+        line[strcspn(line, "\n")] = '\0';
+        if (line[0] == '@') {
+            char *s = line + 2, *word = field(&s), *file = field(&s), *msg = s;
+            int st = -1;
+            for (int w = 0; word && w < 5; w++)
+                if (!strcmp(word, state_word[w]))
+                    st = w;
+            cur = NULL;
+            for (size_t i = 0, m = 0; file && i < n && !cur; i++)
+                if (jobs[i].state != J_SKIP) {
+                    if (!strcmp(jobs[i].file, file) && m % (size_t)nsh == (size_t)k && !covered[i])
+                        cur = &jobs[i];
+                    m++;
+                }
+            if (!cur || (st != J_RENDERED && st != J_UNCHANGED && st != J_FAILED)) {
+                fprintf(stderr, "hystviz gallery --merge: '%s': a record of '%s' that is not this shard's\n", path,
+                        file ? file : "?");
+                rc = 2;
+                break;
+            }
+            covered[cur - jobs] = 1;
+            cur->state = st;
+            snprintf(cur->msg, sizeof cur->msg, "%s", st == J_FAILED && msg ? msg : "");
+        } else if (cur && !cur->have_now && !entry_parse(line, &cur->now))
+            cur->have_now = 1;
+        else {
+            fprintf(stderr, "hystviz gallery --merge: '%s' is damaged: re-run shard %ld/%ld\n", path, k, nsh);
+            rc = 2;
+        }
+    }
+    free(line);
+    if (f)
+        fclose(f);
+    free(path);
+    return rc;
+}
+
+/* Fills every figure job from the shard records (2, message printed, and
+ * nothing changed on disk if they are incomplete or not of these scenes). */
+static int shard_merge(const opts *o, job *jobs, size_t n)
+{
+    long nsh = 0;
+    int rc = shard_find(o->out, &nsh);
+    unsigned char *covered = rc ? NULL : calloc(n ? n : 1, 1);
+    if (!rc && !covered)
+        rc = 2;
+    for (long k = 0; k < nsh && !rc; k++)
+        rc = shard_read(o, jobs, n, k, nsh, covered);
+    for (size_t i = 0; i < n && !rc; i++)
+        if (jobs[i].state != J_SKIP && !covered[i]) {
+            fprintf(stderr, "hystviz gallery --merge: no shard has a record of %s: re-run its shard\n", jobs[i].file);
+            rc = 2;
+        }
+    free(covered);
+    return rc;
+}
+
+/* Removes the joined shard records. */
+static void shard_remove(const opts *o)
+{
+    DIR *d = opendir(o->out);
+    long k, n;
+    for (struct dirent *de; d && (de = readdir(d));)
+        if (shard_file(de->d_name, &k, &n)) {
+            char *p = join(o->out, de->d_name);
+            if (p)
+                unlink(p);
+            free(p);
+        }
+    if (d)
+        closedir(d);
+}
+
 /* Plans, renders, writes the manifest and the index; returns the exit status. */
 static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
 {
     double t0 = now();
     for (size_t i = 0; i < n; i++)
         job_plan(o, jobs, i, man, nman);
-    if (run_pool(o, jobs, n)) {
+    if (o->merge) {
+        int mrc = shard_merge(o, jobs, n);
+        if (mrc)
+            return mrc;
+    } else if (o->shard_n)
+        shard_select(o, jobs, n);
+    if (!o->merge && run_pool(o, jobs, n)) {
         fprintf(stderr, "hystviz gallery: out of memory\n");
         return 1;
     }
@@ -1016,29 +1272,47 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
     for (size_t i = 0; i < n; i++) {
         job *j = &jobs[i];
         count[j->state]++;
-        if (j->state == J_UNCHANGED)
+        if (j->state == J_UNCHANGED && !o->merge)
             j->have_now = !entry_copy(&j->now, j->old);
         if (j->state == J_FAILED) {
             fprintf(stderr, "hystviz gallery: %s\n", j->msg);
-            j->have_now = j->old && !entry_copy(&j->now, j->old);
-            j->now.failed = 1;
+            if (!o->merge) {
+                j->have_now = j->old && !entry_copy(&j->now, j->old);
+                j->now.failed = 1;
+            }
             rc = 1;
         }
+    }
+    if (o->shard_n) {
+        hy_error werr;
+        if (shard_write(o, jobs, n, &werr)) {
+            fprintf(stderr, "hystviz gallery: %s\n", werr.msg);
+            rc = 1;
+        }
+        if (!o->quiet)
+            fprintf(stderr, "gallery shard %ld/%ld: %zu rendered, %zu unchanged, %zu failed in %.2f s\n", o->shard_k,
+                    o->shard_n, count[J_RENDERED], count[J_UNCHANGED], count[J_FAILED], now() - t0);
+        return rc;
     }
     remove_stale(o, jobs, n);
     remove_deleted(o, jobs, n, man, nman);
     char *mpath = join(o->out, ".manifest");
     hy_error err;
+    int written = 1;
     if (!mpath || manifest_write(mpath, jobs, n, &err)) {
         fprintf(stderr, "hystviz gallery: %s\n", mpath ? err.msg : "out of memory");
         rc = 1;
+        written = 0;
     }
     free(mpath);
     double total = now() - t0;
     if (index_write(o, jobs, n, count, total, &err)) {
         fprintf(stderr, "hystviz gallery: %s\n", err.msg);
         rc = 1;
+        written = 0;
     }
+    if (o->merge && written)
+        shard_remove(o); /* joined: the records are now .manifest and index.html */
     if (!o->quiet)
         fprintf(stderr, "gallery: %zu rendered, %zu unchanged, %zu failed in %.2f s\n", count[J_RENDERED],
                 count[J_UNCHANGED], count[J_FAILED], now() - t0);
@@ -1046,16 +1320,19 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
 }
 
 /* Takes DIR/.lock (flock, waiting for a run that holds it): one gallery run
- * at a time per directory, so the manifest, the index and the files agree.
+ * at a time per directory, so the manifest, the index and the files agree;
+ * shards (--shard) hold it shared, so they run together but not beside an
+ * unsharded run or a merge.
  * The lock goes with the process, also when it is killed.  -1: printed. */
 static int lock_gallery(const opts *o)
 {
     char *path = join(o->out, ".lock");
     int fd = path ? open(path, O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666) : -1;
-    if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) && errno == EWOULDBLOCK) {
+    int op = o->shard_n ? LOCK_SH : LOCK_EX; /* shards write disjoint files: they share the directory */
+    if (fd >= 0 && flock(fd, op | LOCK_NB) && errno == EWOULDBLOCK) {
         if (!o->quiet)
             fprintf(stderr, "gallery: waiting for another gallery run on %s to finish\n", o->out);
-        while (flock(fd, LOCK_EX) && errno == EINTR)
+        while (flock(fd, op) && errno == EINTR)
             ;
     }
     struct stat st;

@@ -21,6 +21,7 @@
 #include "cli_util.h"
 #include "hy_config.h"
 #include "hy_grid.h"
+#include "hy_out.h"
 #include "scene_run.h"
 #include "sweep_merge.h"
 
@@ -80,8 +81,9 @@ typedef struct study {
     char **short_keys;   /* the key of each axis as a file name uses it   */
     int index_width;
     size_t nmine;        /* points of this shard                          */
+    hy_out out;          /* the table (sweep.csv or the shard manifest)   */
     FILE *table;
-    char table_path[4400], table_tmp[4400];
+    char table_path[4400];
     /* streaming in point order */
     pthread_mutex_t mu;
     pthread_cond_t cv;
@@ -645,11 +647,14 @@ static int sweep(const sweep_opts *o)
         hy_sweep_shard_path(o->out, o->shard_k, o->shard_n, s.table_path, sizeof s.table_path);
     else
         snprintf(s.table_path, sizeof s.table_path, "%s/sweep.csv", o->out);
-    s.table = cli_out_open(s.table_path, s.table_tmp, sizeof s.table_tmp);
-    if (!s.table) {
+    hy_out_sweep(o->out); /* temporaries of killed runs (a running shard's are locked: kept) */
+    hy_error err;
+    if (hy_out_open(&s.out, s.table_path, 0, &err)) {
+        fprintf(stderr, "hystviz sweep: %s\n", err.msg);
         study_free(&s);
         return 1;
     }
+    s.table = hy_out_file(&s.out);
     if (o->sharded)
         hy_sweep_shard_head(s.table, o->shard_k, o->shard_n, npoints, hash);
     write_header(&s, s.table);
@@ -658,12 +663,13 @@ static int sweep(const sweep_opts *o)
     if (run_pool(&s))
         s.io_error = 1;
     if (s.io_error || s.written != s.nmine) {
-        fclose(s.table);
-        remove(s.table_tmp);
+        hy_out_abort(&s.out);
         fprintf(stderr, "hystviz sweep: cannot write '%s' (out of memory or a write error)\n", s.table_path);
         rc = 1;
-    } else if (cli_out_close(s.table, s.table_path, s.table_tmp))
+    } else if (hy_out_commit(&s.out, &err)) {
+        fprintf(stderr, "hystviz sweep: %s\n", err.msg);
         rc = 1;
+    }
     if (!o->quiet) {
         fprintf(stderr, "sweep: %zu of %zu points", s.nmine, npoints);
         if (o->sharded)

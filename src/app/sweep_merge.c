@@ -11,8 +11,8 @@
 #include <string.h>
 #include <sys/resource.h>
 
-#include "cli_util.h"
 #include "hy_grid.h"
+#include "hy_out.h"
 
 void hy_sweep_shard_path(const char *dir, long k, long n, char *buf, size_t size)
 {
@@ -211,20 +211,27 @@ int hy_sweep_merge(const char *dir, int quiet)
     char *header = NULL;
     size_t npoints = 0, count[3] = {0, 0, 0};
     rc = open_shards(dir, n, in, &header, &npoints);
-    char path[4400], tmp[4400];
+    char path[4400];
     snprintf(path, sizeof path, "%s/sweep.csv", dir);
-    FILE *out = rc ? NULL : cli_out_open(path, tmp, sizeof tmp);
-    if (!rc && !out)
+    hy_out o;
+    hy_error err;
+    int opened = 0;
+    if (!rc && hy_out_open(&o, path, 0, &err)) {
+        fprintf(stderr, "hystviz sweep --merge: %s\n", err.msg);
         rc = 1;
+    } else if (!rc)
+        opened = 1;
+    FILE *out = opened ? hy_out_file(&o) : NULL;
     if (!rc && fputs(header, out) < 0)
         rc = 1;
     if (!rc)
         rc = join_rows(dir, n, in, npoints, out, count);
-    if (out && rc) {
-        fclose(out);
-        remove(tmp);
-    } else if (out && cli_out_close(out, path, tmp))
+    if (opened && rc)
+        hy_out_abort(&o);
+    else if (opened && hy_out_commit(&o, &err)) {
+        fprintf(stderr, "hystviz sweep --merge: %s\n", err.msg);
         rc = 1;
+    }
     for (long k = 0; k < n; k++)
         if (in[k].f)
             fclose(in[k].f);
