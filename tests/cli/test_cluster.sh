@@ -1,0 +1,119 @@
+#!/bin/sh
+# Tests of tools/cluster (issue 13): the GNU parallel recipe run for real on
+# this machine with N = 1, 3, 7 shards plus the merge equals the single run
+# byte for byte (sweep: the Fig. 15 study of the done-when at N = 3; gallery);
+# GNU parallel's --sshlogin form with ':' (this machine through the same code
+# path); the Slurm array script with SLURM_ARRAY_TASK_* set by hand covers
+# every point exactly once (N = 1, 3, 7, an array 1-3), refuses a stepped
+# array, and with the merge script gives the single run; slurm-submit.sh asks
+# sbatch (a stand-in that records its arguments) for the array and an afterany
+# merge job.
+# usage: test_cluster.sh HYSTVIZ SOURCE_ROOT
+set -u
+hv=$1
+root=$2
+case $hv in /*) ;; *) hv=$(pwd)/$hv ;; esac     # the test works in a temporary directory
+root=$(cd "$root" && pwd)
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+export HYSTVIZ="$hv"
+export HOME="$tmp/home"   # GNU parallel keeps its state (and citation notice) under $HOME
+mkdir -p "$HOME/.parallel" && touch "$HOME/.parallel/will-cite"
+cl=$root/tools/cluster
+fig15=$root/scenes/fig15_minor_loop_ex4.scene
+if ! command -v parallel > /dev/null; then
+    echo "GNU parallel is not installed (tools/setup.sh installs it)"
+    exit 1
+fi
+cd "$tmp" || exit 1
+
+# ---- GNU parallel: the done-when study, 3 shards + merge == one run ----------
+big="--grid model.sigma0=1:10:log10 --grid input.umin2=0.1:0.5:5"
+"$hv" sweep "$fig15" $big -o one50 -q -j 2
+sh "$cl/parallel.sh" -P 3 3 sweep "$fig15" $big -o par50 -q -j 1 2> err
+[ $? -eq 0 ] && ok || bad "parallel.sh 3 sweep: status, $(cat err)"
+diff -r one50 par50 > diff && ok || bad "parallel 3 shards + merge differs from the single run: $(head -3 diff)"
+[ "$(ls par50 | wc -l)" -eq 151 ] && ok || bad "parallel study: $(ls par50 | wc -l) files"
+
+small="--grid model.sigma0=1:10:log4 --grid input.umin2=0.2,0.4 --formats svg"
+"$hv" sweep "$fig15" $small -o one8 -q
+for n in 1 7; do
+    sh "$cl/parallel.sh" $n sweep "$fig15" $small -o "par$n" -q -j 1 2> err
+    [ $? -eq 0 ] && diff -r one8 "par$n" > /dev/null && ok || bad "parallel.sh $n sweep: $(cat err)"
+done
+# --sshlogin: ':' is this machine, through parallel's remote-login code path
+sh "$cl/parallel.sh" -S : 3 sweep "$fig15" $small -o ssh3 -q -j 1 2> err
+[ $? -eq 0 ] && diff -r one8 ssh3 > /dev/null && ok || bad "parallel.sh -S : 3: $(cat err)"
+# a value with a space and a quote survives parallel's shell (parallel -q)
+"$hv" sweep "$fig15" --grid 'figure.title="a b",x'"'"'y' --formats svg -o q1 -q
+sh "$cl/parallel.sh" 2 sweep "$fig15" --grid 'figure.title="a b",x'"'"'y' --formats svg -o q2 -q 2> err
+[ $? -eq 0 ] && diff -r q1 q2 > /dev/null && ok || bad "quoted grid values through parallel: $(cat err)"
+
+# gallery: a few real scenes (with the include style.scene)
+mkdir sc
+for f in style fig02_bimodal_input_smooth fig05_g_stribeck fig15_minor_loop_ex4 fig16_minor_loop_ex4_sigma1; do
+    cp "$root/scenes/$f.scene" sc/ || bad "scene $f missing"
+done
+"$hv" gallery --scenes sc -o g1 -q -j 2
+for n in 1 3; do
+    sh "$cl/parallel.sh" $n gallery --scenes sc -o "g$n-par" -q -j 1 2> err
+    [ $? -eq 0 ] && diff -r -x .manifest g1 "g$n-par" > /dev/null && ok || bad "parallel.sh $n gallery: $(cat err)"
+done
+sh "$cl/parallel.sh" 0 sweep "$fig15" 2> /dev/null
+[ $? -eq 2 ] && ok || bad "parallel.sh N=0 accepted"
+sh "$cl/parallel.sh" 2 render "$fig15" 2> /dev/null
+[ $? -eq 2 ] && ok || bad "parallel.sh with render accepted"
+
+# ---- Slurm: the array script with the variables set by hand ------------------
+# run_array MIN MAX DIR: every task of --array=MIN-MAX
+run_array() {
+    id=$1
+    while [ "$id" -le "$2" ]; do
+        SLURM_ARRAY_TASK_ID=$id SLURM_ARRAY_TASK_COUNT=$(($2 - $1 + 1)) SLURM_ARRAY_TASK_MIN=$1 SLURM_ARRAY_TASK_MAX=$2 \
+            sh "$cl/shard.sbatch" sweep "$fig15" $small -o "$3" -q || return 1
+        id=$((id + 1))
+    done
+}
+# the union of the shards' rows: every point exactly once
+covered() { cat "$1"/sweep.shard-*.csv | grep -E '^[0-9]+,' | cut -d, -f1 | sort -n | tr '\n' ' '; }
+for n in 1 3 7; do
+    run_array 0 $((n - 1)) "sl$n" && ok || bad "array 0-$((n - 1)) task failed"
+    [ "$(covered "sl$n")" = "0 1 2 3 4 5 6 7 " ] && ok || bad "array of $n: points covered: $(covered "sl$n")"
+    sh "$cl/merge.sbatch" sweep --merge "sl$n" -q && diff -r one8 "sl$n" > /dev/null && ok || bad "array of $n + merge differs"
+done
+run_array 1 3 sl13 && [ "$(covered sl13)" = "0 1 2 3 4 5 6 7 " ] && ok || bad "array 1-3: $(covered sl13)"
+# a stepped array (--array=0-6:2: 4 tasks 0,2,4,6) would skip points: refused
+SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=4 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=6 \
+    sh "$cl/shard.sbatch" sweep "$fig15" $small -o step -q 2> err
+[ $? -eq 2 ] && grep -q contiguous err && [ ! -e step ] && ok || bad "stepped array accepted: $(cat err)"
+sh "$cl/shard.sbatch" sweep "$fig15" $small -o noarr -q 2> err
+[ $? -eq 2 ] && [ ! -e noarr ] && ok || bad "shard.sbatch outside an array accepted"
+# one task missing: the merge lists it
+rm sl3/sweep.csv
+SLURM_ARRAY_TASK_ID=0 SLURM_ARRAY_TASK_COUNT=3 sh "$cl/shard.sbatch" sweep "$fig15" $small -o sl3 -q
+SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=3 sh "$cl/shard.sbatch" sweep "$fig15" $small -o sl3 -q
+sh "$cl/merge.sbatch" sweep --merge sl3 2> err
+[ $? -eq 2 ] && grep -q 'missing: 1/3' err && ok || bad "merge job with a task missing: $(cat err)"
+
+# ---- slurm-submit.sh with a stand-in sbatch ----------------------------------
+mkdir bin
+cat > bin/sbatch <<'EOF'
+#!/bin/sh
+echo "$*" >> "$SBATCH_LOG"
+n=$(wc -l < "$SBATCH_LOG")
+echo "$((1000 + n));cluster"
+EOF
+chmod +x bin/sbatch
+PATH="$tmp/bin:$PATH" SBATCH_LOG="$tmp/sbatch.log" sh "$cl/slurm-submit.sh" 5 sweep "$fig15" $small -o study > out 2> err
+[ $? -eq 0 ] && grep -q 'array job 1001 (5 shards), merge job 1002' out && ok || bad "slurm-submit: $(cat out err)"
+sed -n 1p sbatch.log | grep -q -- "--array=0-4 --cpus-per-task=1 $cl/shard.sbatch sweep $fig15 --grid" && ok ||
+    bad "array submission: $(sed -n 1p sbatch.log)"
+sed -n 2p sbatch.log | grep -q -- "--dependency=afterany:1001 $cl/merge.sbatch sweep --merge study\$" && ok ||
+    bad "merge submission: $(sed -n 2p sbatch.log)"
+
+echo "test_cluster: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

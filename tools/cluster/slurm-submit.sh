@@ -1,0 +1,41 @@
+#!/bin/sh
+# tools/cluster/slurm-submit.sh: submits a hystviz sweep or gallery as a Slurm
+# job array of N shards (tools/cluster/shard.sbatch) and a merge job that
+# starts when the array is done (tools/cluster/merge.sbatch, afterany).
+#
+# usage: tools/cluster/slurm-submit.sh N sweep SCENE --grid ... [-o DIR] [...]
+#        tools/cluster/slurm-submit.sh N gallery [--scenes DIR] [-o DIR] [...]
+# SBATCH_OPTS: extra sbatch options for both jobs (e.g. "--partition=short
+# --time=1:00:00"); CPUS: --cpus-per-task of each shard (default 1).
+# Prints the two job ids.  Re-run a failed shard K alone with
+#   sbatch --array=K tools/cluster/shard.sbatch ...  (with SLURM_ARRAY_TASK_COUNT
+# unchanged: use --array=0-(N-1) and cancel the others, or run
+#   hystviz ... --shard K/N  by hand), then merge again.
+set -u
+here=$(cd "$(dirname "$0")" && pwd)
+[ $# -ge 2 ] || { sed -n '6,7p' "$0" | sed 's/^# //' >&2; exit 2; }
+n=$1
+cmd=$2
+shift 2
+case $n in
+'' | *[!0-9]* | 0*) echo "slurm-submit.sh: N must be a positive integer (got '$n')" >&2; exit 2 ;;
+esac
+[ "$cmd" = sweep ] || [ "$cmd" = gallery ] || { echo "slurm-submit.sh: the command is sweep or gallery" >&2; exit 2; }
+out=sweep
+prev=
+for a in "$@"; do
+    case $prev in -o | --output) out=$a ;; esac
+    prev=$a
+done
+# shellcheck disable=SC2086 # SBATCH_OPTS is a list of words
+jid=$(sbatch --parsable ${SBATCH_OPTS:-} --array=0-$((n - 1)) --cpus-per-task="${CPUS:-1}" "$here/shard.sbatch" "$cmd" "$@") ||
+    { echo "slurm-submit.sh: sbatch of the array failed" >&2; exit 1; }
+jid=${jid%%;*}
+if [ "$cmd" = sweep ]; then
+    # shellcheck disable=SC2086
+    mid=$(sbatch --parsable ${SBATCH_OPTS:-} --dependency=afterany:"$jid" "$here/merge.sbatch" sweep --merge "$out")
+else
+    # shellcheck disable=SC2086
+    mid=$(sbatch --parsable ${SBATCH_OPTS:-} --dependency=afterany:"$jid" "$here/merge.sbatch" gallery "$@" --merge)
+fi || { echo "slurm-submit.sh: sbatch of the merge failed (array job $jid is queued)" >&2; exit 1; }
+echo "array job $jid ($n shards), merge job ${mid%%;*}"
