@@ -12,16 +12,19 @@
 #include "cli_util.h"
 
 #if HY_HAVE_GL
+#include "anim_assemble.h"
 #include "anim_scenes.h"
 #include "hy_gl.h"
+#include "hy_grid.h"
 #include "scene_anim.h"
 
 #endif
 
 static const char animate_help[] =
     "usage: hystviz animate NAME|SCENE.scene [-o DIR] [--quality Q] [--size WxH] [--fps F] [--duration S]\n"
-    "                            [--frames A:B] [-j N] [--quiet] [--video mp4|webm|gif [--no-frames]]\n"
+    "                            [--frames A:B | --shard K/N] [-j N] [--quiet] [--video mp4|webm|gif [--no-frames]]\n"
     "                            [--gl osmesa|egl] [--include-dir DIR]... [--max-work N]\n"
+    "       hystviz animate NAME|SCENE.scene --assemble mp4|webm|gif [-o DIR] [timing options]\n"
     "       hystviz animate --list | --gl-info [--gl osmesa|egl]\n"
     "\n"
     "Renders animation NAME as PNG frames DIR/NAME/frame_00000.png ... (off-screen OpenGL,\n"
@@ -37,6 +40,11 @@ static const char animate_help[] =
     "  --fps F            frames per second (overrides the preset's)\n"
     "  --duration S       seconds (default: the animation's, 6, or the scene's)\n"
     "  --frames A:B       render only frames A .. B-1 (B may be empty: to the end)\n"
+    "  --shard K/N        render only piece K of N (0 <= K < N): frames\n"
+    "                     floor(F*K/N) .. floor(F*(K+1)/N)-1 of the F frames\n"
+    "  --assemble FMT     render nothing: encode the frames DIR/NAME/frame_*.png, rendered\n"
+    "                     in pieces (--frames, --shard; same size, fps, duration), into\n"
+    "                     DIR/NAME.FMT with ffmpeg; refused, listing them, if frames are missing\n"
     "  -j, --jobs N       threads, each with its own GL context (frames are identical for any N)\n"
     "  --quiet            no progress bar (it is shown only when stderr is a terminal)\n"
     "  --video FMT        also encode DIR/NAME.FMT by piping frames to ffmpeg (must be on PATH);\n"
@@ -64,8 +72,10 @@ typedef struct anim_args {
     hy_scene_policy pol;      /* --include-dir, --max-work (scene animations) */
     const char *dirs[64];
     const char *name, *quality, *gl;
-    int w, h, have_size, have_fps, have_duration, have_quality, list, gl_info;
+    int w, h, have_size, have_fps, have_duration, have_quality, list, gl_info, have_frames;
     double fps, duration;
+    const char *assemble;     /* --assemble FMT */
+    long shard_k, shard_n;    /* --shard K/N (shard_n 0: none) */
 } anim_args;
 
 static int parse_range(const char *v, long *a, long *b)
@@ -148,6 +158,13 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
     } else if (!strcmp(s, "--frames")) {
         if (parse_range(v, &a->p.first, &a->p.last))
             return fprintf(stderr, "hystviz animate: --frames '%s' is not A:B with 0 <= A < B (or A:)\n", v), 2;
+        a->have_frames = 1;
+    } else if (!strcmp(s, "--shard")) {
+        hy_error err;
+        if (hy_shard_parse(v, &a->shard_k, &a->shard_n, &err))
+            return fprintf(stderr, "hystviz animate: %s\n", err.msg), 2;
+    } else if (!strcmp(s, "--assemble")) {
+        a->assemble = v;
     } else if (!strcmp(s, "-j") || !strcmp(s, "--jobs")) {
         if (cli_long(s, v, 1, 64, &n))
             return 2;
@@ -172,7 +189,38 @@ static int parse_args(int argc, char **argv, anim_args *a)
         if (r)
             return r;
     }
+    if ((a->have_frames && a->shard_n) || (a->assemble && (a->have_frames || a->shard_n || a->p.video))) {
+        fprintf(stderr, "hystviz animate: %s\n", a->assemble ? "--assemble renders nothing: it takes no --frames, "
+                "--shard or --video" : "--frames and --shard both choose the frames: give one");
+        return 2;
+    }
     return 0;
+}
+
+/* After the timing is settled: --shard's frame range, or --assemble's video.
+ * Returns -1 to go on rendering, else the exit status. */
+static int split_or_assemble(anim_args *a)
+{
+    if (a->assemble) {
+        hy_error err;
+        int st = hy_anim_assemble(&a->p, a->assemble, &err);
+        if (st)
+            fprintf(stderr, "hystviz animate: %s\n", err.msg);
+        else if (!a->p.quiet)
+            fprintf(stderr, "%s: %ld frames -> %s/%s.%s\n", a->p.name, hy_anim_nframes(&a->p), a->p.outdir, a->p.name,
+                    a->assemble);
+        return st == HY_EUNSUP ? 3 : cli_exit_status(st);
+    }
+    if (a->shard_n) {
+        hy_anim_shard_range(hy_anim_nframes(&a->p), a->shard_k, a->shard_n, &a->p.first, &a->p.last);
+        if (a->p.first == a->p.last) {
+            if (!a->p.quiet)
+                fprintf(stderr, "%s: shard %ld/%ld has no frames (%ld in all)\n", a->p.name, a->shard_k, a->shard_n,
+                        hy_anim_nframes(&a->p));
+            return 0;
+        }
+    }
+    return -1;
 }
 
 /* --gl, else $HYSTVIZ_GL, checked before any work or output: 2 for an
@@ -276,7 +324,9 @@ static int animate_scene(anim_args *a)
         return err.code == HY_ENOMEM ? 1 : 2; /* an unreadable or invalid scene */
     }
     int r = settle_scene(a, &sa);
-    if (r)
+    if (!r)
+        r = split_or_assemble(a); /* -1: render */
+    if (r >= 0)
         return scene_anim_free(&sa), r;
     int st = scene_anim_check(&sa, hy_anim_nframes(&a->p), a->p.duration, &err);
     hy_anim_stats stats;
@@ -314,6 +364,8 @@ static int animate(int argc, char **argv)
         return 2;
     }
     if ((r = settle(&a, sc)))
+        return r;
+    if ((r = split_or_assemble(&a)) >= 0)
         return r;
     gsl_set_error_handler_off();
     hy_error err;
