@@ -15,7 +15,7 @@ set -eu
 cd "$(dirname "$0")/.."
 what=${1:-gallery}
 
-pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev fonts-dejavu-core fonts-stix parallel"
+pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev fonts-dejavu-core fonts-stix parallel time"
 # GL backends (OSMesa; EGL with Mesa's software device) and ffmpeg for the video tests
 pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # the fuzzer needs clang and its runtime libraries (libFuzzer, ASan, UBSan)

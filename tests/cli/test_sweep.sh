@@ -75,6 +75,14 @@ done
 head -1 "$tmp/t/sweep.csv" | grep -q '^index,status,name,input.umin2,compute_s,ysteady_min' && ok || bad "--times header"
 sed -n 2p "$tmp/t/sweep.csv" | cut -d, -f5 | grep -Eq '^[0-9.e-]+$' && ok || bad "--times value"
 
+# ---- the measured error of a GSL solve (Fig. 11 with rkf45 against the exact
+# solution, the input being piecewise linear): numbers, below rtol 1e-8 x 100
+"$hv" sweep "$scenes/fig11_ygamma_ex3.scene" --set compute.solver=rkf45 --grid model.sigma0=1,6 -o "$tmp/g" -q --formats none
+head -1 "$tmp/g/sweep.csv" | grep -q ',g1.err,g10.err,g100.err,g1.dist,g10.dist,g100.dist,message$' && ok || bad "fig11 header: $(head -1 "$tmp/g/sweep.csv")"
+errs=$(tail -n +2 "$tmp/g/sweep.csv" | cut -d, -f13-15 | tr ',\n' '  ')
+[ "$(echo $errs | wc -w)" -eq 6 ] && echo $errs | awk '{ for (i = 1; i <= NF; i++) if (!($i >= 0 && $i < 1e-6)) exit 1 }' && ok ||
+    bad "fig11 rkf45 errors: '$errs'"
+
 # ---- grid values ------------------------------------------------------------
 "$hv" sweep "$fig15" --grid model.sigma0=1:1e3:log4 --grid input.umin2=0.25:0.25:1 -o "$tmp/v" -q --formats none
 [ "$(tail -n +2 "$tmp/v/sweep.csv" | cut -d, -f4 | tr '\n' ' ')" = "1 10 100 1000 " ] && ok || bad "log range 1:1e3:log4"
