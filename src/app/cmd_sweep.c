@@ -24,11 +24,12 @@
 #include "hy_out.h"
 #include "scene_run.h"
 #include "sweep_merge.h"
+#include "sweep_plot.h"
 
 static const char sweep_help[] =
     "usage: hystviz sweep SCENE --grid SECTION.KEY=SPEC... [-o DIR] [-j N] [--shard K/N]\n"
-    "                     [--formats LIST|none] [--set SECTION.KEY=VALUE]... [--times] [-q]\n"
-    "       hystviz sweep --merge DIR\n"
+    "                     [--formats LIST|none] [--set SECTION.KEY=VALUE]... [--times] [--plot COLUMN] [-q]\n"
+    "       hystviz sweep --merge DIR [--plot COLUMN]\n"
     "\n"
     "A parameter study: the scene is rendered at every point of the grid, the\n"
     "Cartesian product of the --grid axes, and DIR/sweep.csv gets one row per point.\n"
@@ -58,6 +59,9 @@ static const char sweep_help[] =
     "                     to DIR/sweep.shard-K-of-N.csv for --merge\n"
     "  --merge DIR        join DIR's N shard manifests into DIR/sweep.csv (refused,\n"
     "                     with the missing shards listed, unless all N are there)\n"
+    "  --plot COLUMN      also draw DIR/sweep_COLUMN.svg and .png: the table's COLUMN\n"
+    "                     (e.g. minor1_area) against the first grid key, one curve per\n"
+    "                     value of the second (with --shard: give it to --merge)\n"
     "  --times            add compute_s (compute time of the point, seconds); the\n"
     "                     table is then no longer byte-stable between runs\n"
     "  -q, --quiet        print only errors\n"
@@ -67,7 +71,7 @@ static const char sweep_help[] =
     "compute or a file could not be written.\n";
 
 typedef struct sweep_opts {
-    const char *scene, *out, *formats, *merge;
+    const char *scene, *out, *formats, *merge, *plot;
     char **sets;
     size_t nsets;
     hy_grid grid;
@@ -160,6 +164,8 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
             o->sharded = 1;
         } else if (!strcmp(a, "--merge") && v)
             o->merge = argv[++i];
+        else if (!strcmp(a, "--plot") && v)
+            o->plot = argv[++i];
         else if (!strcmp(a, "--times"))
             o->times = 1;
         else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
@@ -615,6 +621,30 @@ static int check_study(study *s, uint64_t *hash)
     return 0;
 }
 
+/* --plot names a result column of this study's table (not index, status,
+ * name, a grid key or message)?  1 with a message if not. */
+static int plot_column_unknown(const study *s)
+{
+    char *head = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&head, &len);
+    if (!f)
+        return 1;
+    write_header(s, f);
+    fclose(f);
+    int found = 0;
+    size_t skip = 3 + s->o->grid.naxes, col = 0;
+    char *names = head ? strdup(head) : NULL;
+    for (char *save = NULL, *t = names ? strtok_r(names, ",\n", &save) : NULL; t; t = strtok_r(NULL, ",\n", &save), col++)
+        found |= col >= skip && strcmp(t, "message") && !strcmp(t, s->o->plot);
+    if (!found)
+        fprintf(stderr, "hystviz sweep: --plot %s: not a result column of this study (the table: %.*s)\n", s->o->plot,
+                head ? (int)strcspn(head, "\n") : 1, head ? head : "?");
+    free(names);
+    free(head);
+    return !found;
+}
+
 static void study_free(study *s)
 {
     for (size_t k = 0; s->series && k < s->nseries; k++)
@@ -641,6 +671,10 @@ static int sweep(const sweep_opts *o)
     if (rc) {
         study_free(&s);
         return rc;
+    }
+    if (o->plot && !o->sharded && plot_column_unknown(&s)) {
+        study_free(&s);
+        return 2;
     }
     char digits[32];
     s.index_width = snprintf(digits, sizeof digits, "%zu", npoints > 1 ? npoints - 1 : 0);
@@ -684,6 +718,13 @@ static int sweep(const sweep_opts *o)
         fprintf(stderr, ": %zu ok, %zu invalid, %zu failed in %.2f s; %s\n", s.nok, s.ninvalid, s.nfailed,
                 now() - t0, rc ? "no table written" : s.table_path);
     }
+    if (!rc && o->plot && !o->sharded) {
+        hy_error perr;
+        if (hy_sweep_plot(o->out, o->plot, &perr)) {
+            fprintf(stderr, "hystviz sweep: %s\n", perr.msg);
+            rc = perr.code == HY_EINVAL ? 2 : 1;
+        }
+    }
     study_free(&s);
     return rc ? rc : s.ninvalid ? 2 : s.nfailed ? 1 : 0;
 }
@@ -693,7 +734,7 @@ int hy_cmd_sweep(int argc, char **argv)
     sweep_opts o;
     int rc = parse_opts(argc, argv, &o);
     if (!rc)
-        rc = o.merge ? hy_sweep_merge(o.merge, o.quiet) : sweep(&o);
+        rc = o.merge ? hy_sweep_merge(o.merge, o.plot, o.quiet) : sweep(&o);
     else if (rc == 1)
         rc = 0;
     hy_grid_free(&o.grid);

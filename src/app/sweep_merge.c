@@ -13,6 +13,7 @@
 
 #include "hy_grid.h"
 #include "hy_out.h"
+#include "sweep_plot.h"
 
 void hy_sweep_shard_path(const char *dir, long k, long n, char *buf, size_t size)
 {
@@ -186,7 +187,7 @@ static int join_rows(const char *dir, long n, shard_in *in, size_t npoints, FILE
     return rc;
 }
 
-int hy_sweep_merge(const char *dir, int quiet)
+int hy_sweep_merge(const char *dir, const char *plot, int quiet)
 {
     long n = 0;
     unsigned char *present = NULL;
@@ -242,6 +243,11 @@ int hy_sweep_merge(const char *dir, int quiet)
     free(header);
     if (rc)
         return rc;
+    hy_error perr;
+    if (plot && hy_sweep_plot(dir, plot, &perr)) {
+        fprintf(stderr, "hystviz sweep --merge: %s\n", perr.msg);
+        return perr.code == HY_EINVAL ? 2 : 1;
+    }
     if (!quiet)
         fprintf(stderr, "sweep --merge: %ld shards, %zu points: %zu ok, %zu invalid, %zu failed; %s\n", n, npoints,
                 count[0], count[1], count[2], path);

@@ -23,7 +23,8 @@ void hy_sweep_shard_head(FILE *f, long k, long n, size_t npoints, uint64_t hash)
 /* Joins DIR's shard manifests into DIR/sweep.csv and removes them.  Refuses
  * (2, message listing them) when shards are missing, come from another study
  * or split, or are damaged; 1 on an I/O error; else the status the unsharded
- * run would have had (0 all ok, 2 a point invalid, 1 a point failed). */
-int hy_sweep_merge(const char *dir, int quiet);
+ * run would have had (0 all ok, 2 a point invalid, 1 a point failed).  plot
+ * (or NULL): then draws the summary figure of that column (sweep_plot.h). */
+int hy_sweep_merge(const char *dir, const char *plot, int quiet);
 
 #endif

@@ -33,11 +33,11 @@ cd "$tmp" || exit 1
 
 # ---- GNU parallel: the done-when study, 3 shards + merge == one run ----------
 big="--grid model.sigma0=1:10:log10 --grid input.umin2=0.1:0.5:5"
-"$hv" sweep "$fig15" $big -o one50 -q -j 2
-sh "$cl/parallel.sh" -P 3 3 sweep "$fig15" $big -o par50 -q -j 1 2> err
+"$hv" sweep "$fig15" $big -o one50 -q -j 2 --plot minor1_area
+sh "$cl/parallel.sh" -P 3 3 sweep "$fig15" $big -o par50 -q -j 1 --plot minor1_area 2> err
 [ $? -eq 0 ] && ok || bad "parallel.sh 3 sweep: status, $(cat err)"
 diff -r one50 par50 > diff && ok || bad "parallel 3 shards + merge differs from the single run: $(head -3 diff)"
-[ "$(ls par50 | wc -l)" -eq 151 ] && ok || bad "parallel study: $(ls par50 | wc -l) files"
+[ "$(ls par50 | wc -l)" -eq 153 ] && [ -s par50/sweep_minor1_area.svg ] && ok || bad "parallel study: $(ls par50 | wc -l) files"
 
 small="--grid model.sigma0=1:10:log4 --grid input.umin2=0.2,0.4 --formats svg"
 "$hv" sweep "$fig15" $small -o one8 -q

@@ -37,6 +37,17 @@ for n in 1 2 3 4 5 6 7 20; do
     "$hv" sweep --merge "$tmp/all" -q && ok || bad "N=$n: merge status"
     diff -r "$tmp/one" "$tmp/all" > "$tmp/diff" && ok || bad "N=$n: merged study differs from the unsharded run: $(head -3 "$tmp/diff")"
 done
+# the summary figure drawn by the merge is the unsharded run's
+"$hv" sweep "$fig15" $grid -o "$tmp/p1" -q --formats none --plot minor1_area
+for k in 0 1; do "$hv" sweep "$fig15" $grid -o "$tmp/p2" -q --formats none --plot minor1_area --shard $k/2; done
+[ ! -e "$tmp/p2/sweep_minor1_area.svg" ] && ok || bad "a shard drew the summary figure"
+"$hv" sweep --merge "$tmp/p2" --plot minor1_area -q && diff -r "$tmp/p1" "$tmp/p2" > /dev/null && ok || bad "merged --plot differs"
+[ -s "$tmp/p1/sweep_minor1_area.svg" ] && [ -s "$tmp/p1/sweep_minor1_area.png" ] && ok || bad "no summary figure"
+"$hv" sweep "$fig15" $grid -o "$tmp/p3" -q --formats none --plot energy
+cmp -s "$tmp/p3/sweep_energy.svg" "$tmp/p1/sweep_minor1_area.svg" && bad "the plot does not depend on the column" || ok
+"$hv" sweep "$fig15" $grid -o "$tmp/p4" -q --formats none --plot model.sigma0 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q 'not a result column' "$tmp/err" && [ ! -e "$tmp/p4" ] && ok || bad "--plot of a grid key: $(cat "$tmp/err")"
+
 # balanced: shard k of 4 holds 4, 4, 4, 3 of the 15 points
 for k in 0 1 2 3; do
     "$hv" sweep "$fig15" $grid -o "$tmp/b$k" -q --formats none --shard "$k/4"

@@ -45,11 +45,12 @@ esac
 [ "$cmd" = sweep ] || [ "$cmd" = gallery ] || { echo "parallel.sh: the command is sweep or gallery (got '$cmd')" >&2; exit 2; }
 command -v parallel > /dev/null || { echo "parallel.sh: GNU parallel is not installed (Debian: apt-get install parallel)" >&2; exit 3; }
 
-# the merge: sweep --merge DIR (DIR from -o/--output, default sweep); gallery ARGS --merge
+# the merge: sweep --merge DIR [--plot C] (from -o/--output, default sweep, and --plot); gallery ARGS --merge
 out=sweep
+plot=
 prev=
 for a in "$@"; do
-    case $prev in -o | --output) out=$a ;; esac
+    case $prev in -o | --output) out=$a ;; --plot) plot=$a ;; esac
     prev=$a
 done
 
@@ -61,7 +62,7 @@ popts="--halt never"
 parallel $popts -q "$hv" "$@" --shard "{}/$n" ::: $(seq 0 $((n - 1)))
 shard_status=$?
 if [ "$cmd" = sweep ]; then
-    "$hv" sweep --merge "$out"
+    "$hv" sweep --merge "$out" ${plot:+--plot "$plot"}
 else
     "$hv" "$@" --merge
 fi

@@ -22,9 +22,10 @@ case $n in
 esac
 [ "$cmd" = sweep ] || [ "$cmd" = gallery ] || { echo "slurm-submit.sh: the command is sweep or gallery" >&2; exit 2; }
 out=sweep
+plot=
 prev=
 for a in "$@"; do
-    case $prev in -o | --output) out=$a ;; esac
+    case $prev in -o | --output) out=$a ;; --plot) plot=$a ;; esac
     prev=$a
 done
 # shellcheck disable=SC2086 # SBATCH_OPTS is a list of words
@@ -33,7 +34,7 @@ jid=$(sbatch --parsable ${SBATCH_OPTS:-} --array=0-$((n - 1)) --cpus-per-task="$
 jid=${jid%%;*}
 if [ "$cmd" = sweep ]; then
     # shellcheck disable=SC2086
-    mid=$(sbatch --parsable ${SBATCH_OPTS:-} --dependency=afterany:"$jid" "$here/merge.sbatch" sweep --merge "$out")
+    mid=$(sbatch --parsable ${SBATCH_OPTS:-} --dependency=afterany:"$jid" "$here/merge.sbatch" sweep --merge "$out" ${plot:+--plot "$plot"})
 else
     # shellcheck disable=SC2086
     mid=$(sbatch --parsable ${SBATCH_OPTS:-} --dependency=afterany:"$jid" "$here/merge.sbatch" gallery "$@" --merge)
