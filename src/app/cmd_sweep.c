@@ -391,7 +391,10 @@ static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
     if (!rc) {
         loaded = 1;
         r.numbers_only = !o->figures;
-        rc = hy_scene_run_compute(&r, pb->log, &err);
+        if (o->figures) /* formats and raster limits, before computing */
+            rc = hy_scene_run_check_output(&r, o->formats, &err);
+        if (!rc)
+            rc = hy_scene_run_compute(&r, pb->log, &err);
     }
     if (!rc && o->figures)
         rc = hy_scene_run_write(&r, o->out, o->formats, NULL, 0, &err);
@@ -615,7 +618,13 @@ static int check_study(study *s, uint64_t *hash)
         free(pb.sets);
         return 2;
     }
+    int bad_output = o->figures && hy_scene_run_check_output(&r, o->formats, &err);
     hy_scene_run_free(&r);
+    if (bad_output) {
+        fprintf(stderr, "hystviz sweep: %s\n", err.msg);
+        free(pb.sets);
+        return 2;
+    }
     free(pb.sets);
     *hash = h;
     return 0;

@@ -117,6 +117,14 @@ done
 "$hv" sweep "$tmp/none.scene" --grid model.sigma0=1 -o "$tmp/bad" 2> /dev/null
 [ $? -eq 2 ] && [ ! -e "$tmp/bad" ] && ok || bad "missing scene"
 
+# a PNG over the raster limits: refused before anything is written, or as the
+# row of the one point whose dpi makes it too large
+"$hv" sweep "$fig15" --set 'figure.size=100cm, 100cm' --grid figure.dpi=2400 -o "$tmp/bad" --formats png 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q -i 'pixels' "$tmp/err" && [ ! -e "$tmp/bad" ] && ok || bad "huge PNG at point 0: $(cat "$tmp/err")"
+"$hv" sweep "$fig15" --set 'figure.size=100cm, 100cm' --grid figure.dpi=36,2400 -o "$tmp/dpi" --formats png -q 2> /dev/null
+[ $? -eq 2 ] && [ "$(cut -d, -f2 "$tmp/dpi/sweep.csv" | tr '\n' ' ')" = "status ok invalid " ] && [ "$(ls "$tmp/dpi" | wc -l)" -eq 2 ] &&
+    ok || bad "huge PNG at point 1: $(cat "$tmp/dpi/sweep.csv" 2> /dev/null)"
+
 # ---- a point the scene refuses: its row says why, the others are done --------
 # umin2 = 1.2 > umax1 = 1 passes the key's own range but not the input's check
 "$hv" sweep "$fig15" --grid input.umin2=0.2,1.2,0.4 -o "$tmp/p" -q --formats svg 2> "$tmp/err"
