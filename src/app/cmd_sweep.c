@@ -62,6 +62,10 @@ static const char sweep_help[] =
     "  --plot COLUMN      also draw DIR/sweep_COLUMN.svg and .png: the table's COLUMN\n"
     "                     (e.g. minor1_area) against the first grid key, one curve per\n"
     "                     value of the second (with --shard: give it to --merge)\n"
+    "  --include-dir DIR  a directory scenes may include from (and read input files\n"
+    "                     from), besides the scene's own (repeatable)\n"
+    "  --max-work N       the work budget of each point, as render's (default 1e8;\n"
+    "                     docs/SCENES.md); a point over it is an invalid row\n"
     "  --times            add compute_s (compute time of the point, seconds); the\n"
     "                     table is then no longer byte-stable between runs\n"
     "  -q, --quiet        print only errors\n"
@@ -75,6 +79,8 @@ typedef struct sweep_opts {
     char **sets;
     size_t nsets;
     hy_grid grid;
+    hy_scene_policy pol;   /* --include-dir, --max-work: as render's, per point */
+    const char **dirs;
     long jobs, shard_k, shard_n;
     int sharded, times, quiet, figures;
 } sweep_opts;
@@ -127,14 +133,21 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
     o->figures = 1;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     o->jobs = ncpu > 0 ? ncpu : 1;
+    o->pol = hy_scene_policy_default();
     o->sets = calloc((size_t)argc, sizeof *o->sets);
-    if (!o->sets) {
+    o->dirs = calloc((size_t)argc, sizeof *o->dirs);
+    if (!o->sets || !o->dirs) {
         fprintf(stderr, "hystviz sweep: out of memory\n");
         return 2;
     }
     hy_error err;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int po = cli_policy_option(&o->pol, o->dirs, "sweep", argc, argv, &i);
+        if (po < 0)
+            return 2;
+        if (po > 0)
+            continue;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             fputs(sweep_help, stdout);
             return 1;
@@ -387,7 +400,7 @@ static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
     hy_scene_run r;
     hy_error err;
     err.msg[0] = '\0';
-    int loaded = 0, rc = hy_scene_run_load(&r, o->scene, pb->sets, nsets, &err);
+    int loaded = 0, rc = hy_scene_run_load_policy(&r, o->scene, pb->sets, nsets, &o->pol, &err);
     if (!rc) {
         loaded = 1;
         r.numbers_only = !o->figures;
@@ -551,7 +564,7 @@ static int check_study(study *s, uint64_t *hash)
     const hy_grid *g = &o->grid;
     hy_error err;
     hy_scene *base = NULL;
-    if (hy_scene_parse_file(o->scene, &base, &err)) {
+    if (hy_scene_parse_file_policy(o->scene, &o->pol, &base, &err)) {
         fprintf(stderr, "hystviz sweep: %s\n", err.msg);
         return 2;
     }
@@ -566,6 +579,8 @@ static int check_study(study *s, uint64_t *hash)
     snprintf(num, sizeof num, "%016" PRIx64, hy_scene_hash(base));
     h = fnv(fnv(fnv(h, "hystviz sweep 1"), HY_VERSION), num);
     h = fnv(fnv(h, o->figures ? (o->formats ? o->formats : "scene formats") : "none"), o->times ? "times" : "");
+    snprintf(num, sizeof num, "%.17g", hy_scene_policy_budget(&o->pol)); /* it decides which points are refused */
+    h = fnv(h, num);
     int rc = 0;
     for (size_t a = 0; a < g->naxes && !rc; a++) {
         h = fnv(fnv(h, g->axes[a].key), g->axes[a].spec);
@@ -613,12 +628,17 @@ static int check_study(study *s, uint64_t *hash)
         pb.sets[nsets++] = text + used;
         used += (size_t)snprintf(text + used, sizeof text - used, "%s=%s", g->axes[a].key, g->axes[a].values[0]) + 1;
     }
-    if (used >= sizeof text || hy_scene_run_load(&r, o->scene, pb.sets, nsets, &err)) {
+    if (used >= sizeof text || hy_scene_run_load_policy(&r, o->scene, pb.sets, nsets, &o->pol, &err)) {
         fprintf(stderr, "hystviz sweep: %s\n", used >= sizeof text ? "the grid keys are too long" : err.msg);
         free(pb.sets);
         return 2;
     }
-    int bad_output = o->figures && hy_scene_run_check_output(&r, o->formats, &err);
+    double work = 0;
+    char what[256];
+    int bad_output = (o->figures && hy_scene_run_check_output(&r, o->formats, &err)) ||
+                     hy_scene_run_estimate(&r, &work, what, sizeof what, &err) ||
+                     (work > hy_scene_policy_budget(&o->pol) &&
+                      hy_scene_run_over_budget(r.scene, work, hy_scene_policy_budget(&o->pol), what, &err));
     hy_scene_run_free(&r);
     if (bad_output) {
         fprintf(stderr, "hystviz sweep: %s\n", err.msg);
@@ -748,5 +768,6 @@ int hy_cmd_sweep(int argc, char **argv)
         rc = 0;
     hy_grid_free(&o.grid);
     free(o.sets);
+    free(o.dirs);
     return rc;
 }

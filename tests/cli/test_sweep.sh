@@ -125,6 +125,21 @@ done
 [ $? -eq 2 ] && [ "$(cut -d, -f2 "$tmp/dpi/sweep.csv" | tr '\n' ' ')" = "status ok invalid " ] && [ "$(ls "$tmp/dpi" | wc -l)" -eq 2 ] &&
     ok || bad "huge PNG at point 1: $(cat "$tmp/dpi/sweep.csv" 2> /dev/null)"
 
+# the scene file policy and work budget, as render's: an include from another
+# directory needs --include-dir; a budget below the scene's work refuses it up front
+mkdir "$tmp/own"
+cp "$fig15" "$tmp/own/f15.scene"
+"$hv" sweep "$tmp/own/f15.scene" --grid model.sigma0=1,2 -o "$tmp/bad" --formats none 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q 'style.scene' "$tmp/err" && [ ! -e "$tmp/bad" ] && ok || bad "include outside the scene dir: $(cat "$tmp/err")"
+"$hv" sweep "$fig15" --grid model.sigma0=1,2 -o "$tmp/inc0" --formats none -q
+"$hv" sweep "$tmp/own/f15.scene" --include-dir "$scenes" --grid model.sigma0=1,2 -o "$tmp/inc" --formats none -q &&
+    cmp -s "$tmp/inc/sweep.csv" "$tmp/inc0/sweep.csv" && ok || bad "--include-dir: table differs"
+"$hv" sweep "$fig15" --grid model.sigma0=1,2 --max-work 100 -o "$tmp/bad" --formats none 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q 'work' "$tmp/err" && [ ! -e "$tmp/bad" ] && ok || bad "--max-work 100: $(cat "$tmp/err")"
+"$hv" sweep "$fig15" --grid compute.points=100,100000 --max-work 5e5 -o "$tmp/w" --formats none -q 2> /dev/null
+[ $? -eq 2 ] && [ "$(cut -d, -f2 "$tmp/w/sweep.csv" | tr '\n' ' ')" = "status ok invalid " ] && grep -q 'budget' "$tmp/w/sweep.csv" &&
+    ok || bad "a point over the budget: $(cat "$tmp/w/sweep.csv" 2> /dev/null)"
+
 # ---- a point the scene refuses: its row says why, the others are done --------
 # umin2 = 1.2 > umax1 = 1 passes the key's own range but not the input's check
 "$hv" sweep "$fig15" --grid input.umin2=0.2,1.2,0.4 -o "$tmp/p" -q --formats svg 2> "$tmp/err"
