@@ -103,32 +103,32 @@ int hy_gamma_exact(const hy_model *m, const hy_input *in, double gamma, const do
         if (!isfinite(t[i]) || t[i] < 0 || (i && t[i] < t[i - 1]))
             return hy_error_set(err, HY_EINVAL, "output times must be finite, >= 0 and ascending (t[%zu] = %g)", i, t[i]);
     seg s = {m->x0, m->yf0};
-    size_t ip = 0;           /* current piece index within the period */
-    double base = 0;         /* start time of the current period      */
+    size_t ip = 0;           /* current piece index within the period        */
+    double k = 0;            /* index of the current period: time is (k, tm) */
     coef c = piece_coef(m, &in->pieces[0], gamma);
     for (size_t j = 0; j < n; j++) {
-        /* advance whole pieces until t[j] lies in [base + t0, base + t1) */
-        for (;;) {
+        /* tm = t[j] - kT, formed from k each time (never a running sum) */
+        double tm = hy_input_reduce(in, t[j], k);
+        /* advance whole pieces until tm lies in [t0, t1) of piece ip; a time
+           within hy_input_snap of t1 counts as the next piece's start */
+        while (tm >= in->pieces[ip].t1 - hy_input_snap(k * in->period + in->pieces[ip].t1)) {
             const hy_piece *p = &in->pieces[ip];
-            double tend = base + p->t1;
-            if (t[j] < tend)
-                break;
-            hy_piece shifted = *p;
             seg s1;
             double ydummy;
-            eval_piece(m, &shifted, &c, gamma, &s, shifted.t1, &s1, &ydummy);
+            eval_piece(m, p, &c, gamma, &s, p->t1, &s1, &ydummy);
             s = s1;
             if (++ip == in->npieces) {
                 ip = 0;
-                base += in->period;
-                if (!isfinite(base))
+                k += 1;
+                if (!isfinite(k * in->period) || k > 0x1p52)
                     return hy_error_set(err, HY_EINVAL, "time %g is too large", t[j]);
+                tm = hy_input_reduce(in, t[j], k);
             }
             c = piece_coef(m, &in->pieces[ip], gamma);
         }
         seg s1;
         double y;
-        eval_piece(m, &in->pieces[ip], &c, gamma, &s, t[j] - base, &s1, &y);
+        eval_piece(m, &in->pieces[ip], &c, gamma, &s, fmax(tm, in->pieces[ip].t0), &s1, &y);
         y_out[j] = y;
         if (z_out)
             z_out[j] = s1.z;

@@ -6,6 +6,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -597,13 +598,29 @@ int hy_input_parse(hy_input *in, const char *spec, hy_error *err)
     return rc;
 }
 
+double hy_input_reduce(const hy_input *in, double t, double k)
+{
+    double hi = k * in->period;
+    double lo = fma(k, in->period, -hi); /* k T = hi + lo exactly */
+    return (t - hi) - lo;                /* t - hi is exact when t is in period k (Sterbenz) */
+}
+
+double hy_input_snap(double tb)
+{
+    return 8 * DBL_EPSILON * fmax(fabs(tb), DBL_MIN);
+}
+
 size_t hy_input_piece_at(const hy_input *in, double t, double *tmod, double *kcycles)
 {
     double k = floor(t / in->period);
-    double tm = t - k * in->period;
+    double tm = hy_input_reduce(in, t, k);
     if (tm >= in->period) { /* rounding */
-        tm -= in->period;
         k += 1;
+        tm = hy_input_reduce(in, t, k);
+    }
+    if (tm < 0 && k > 0) {
+        k -= 1;
+        tm = hy_input_reduce(in, t, k);
     }
     if (tm < 0)
         tm = 0;

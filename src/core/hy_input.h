@@ -91,6 +91,14 @@ int hy_input_parse(hy_input *in, const char *spec, hy_error *err);
 
 void hy_input_free(hy_input *in);
 
+/* t - k T, the time within period k, with k T carried exactly (an fma gives
+ * the product's rounding error), so it is as accurate as t itself for any k:
+ * no error grows with the number of periods. */
+double hy_input_reduce(const hy_input *in, double t, double k);
+/* Width within which an output time counts as a breakpoint at time tb (or as
+ * the current time of an integrator): 8 ulps of tb.  Both solvers serve such
+ * a time on the piece that starts at the breakpoint. */
+double hy_input_snap(double tb);
 /* Index of the piece containing t modulo the period (t in [t0, t1)). */
 size_t hy_input_piece_at(const hy_input *in, double t, double *tmod, double *kcycles);
 /* u(t), u̇(t), ü(t) for any t >= 0 (periodic extension). */

@@ -41,7 +41,7 @@ int hy_ode_stepper_known(const char *name) { return name && find_stepper(name) !
 
 hy_ode_opts hy_ode_defaults(void)
 {
-    hy_ode_opts o = {"rkf45", 1e-8, 1e-10, 0, 1, 10000000UL};
+    hy_ode_opts o = {"rkf45", 1e-8, 1e-10, 0, 1, 10000000UL, 0, NULL, NULL, 0};
     return o;
 }
 
@@ -50,14 +50,14 @@ typedef struct ctx {
     const hy_input *in;
     double gamma;
     const hy_piece *piece;  /* fixed piece (restart mode) or NULL: search  */
-    double base;            /* start time of the period the piece is in    */
+    double k;               /* index of the period the piece is in         */
     unsigned long nfev, njev;
 } ctx;
 
 static double ctx_du(const ctx *c, double t)
 {
     if (c->piece)
-        return hy_piece_du(c->piece, t - c->base);
+        return hy_piece_du(c->piece, hy_input_reduce(c->in, t, c->k));
     return hy_input_du(c->in, t);
 }
 
@@ -115,21 +115,78 @@ static void take_stats(gsl_odeiv2_driver *d, hy_ode_stats *s)
     s->fails += d->e->failed_steps;
 }
 
-/* Integrates from *tc to target; on failure the message names the time. */
-static int advance(gsl_odeiv2_driver *d, double *tc, double target, double y[], hy_error *err)
+/* An output time within snap_width of the current time or of a breakpoint is
+ * served there instead of asking for a step of a few ulps (which implicit and
+ * multistep steppers refuse). */
+#define snap_width hy_input_snap
+
+static int step_failed(int st, double tc, double target, hy_error *err)
 {
-    if (target <= *tc)
-        return HY_OK;
-    int st = gsl_odeiv2_driver_apply(d, tc, target, y);
     if (st == GSL_EMAXITER)
         return hy_error_set(err, HY_ENUM, "ODE step cap reached at t = %.17g before t = %.17g (raise max_steps or loosen the tolerance)",
-                            *tc, target);
+                            tc, target);
+    return hy_error_set(err, HY_ENUM, "ODE integration failed at t = %.17g: %s", tc, gsl_strerror(st));
+}
+
+/* After a step: GSL's status, then a non-finite state (which GSL reports as
+ * success: say what went wrong instead). */
+static int step_status(int st, size_t dim, const double y[], double tc, double target, hy_error *err)
+{
     if (st != GSL_SUCCESS)
-        return hy_error_set(err, HY_ENUM, "ODE integration failed at t = %.17g: %s", *tc, gsl_strerror(st));
-    for (size_t i = 0; i < d->sys->dimension; i++)
-        if (!isfinite(y[i])) /* GSL reports success: say what went wrong instead */
-            return hy_error_set(err, HY_ENUM, "ODE solution became non-finite (y[%zu] = %g) by t = %.17g",
-                                i, y[i], *tc);
+        return step_failed(st, tc, target, err);
+    for (size_t i = 0; i < dim; i++)
+        if (!isfinite(y[i]))
+            return hy_error_set(err, HY_ENUM, "ODE solution became non-finite (y[%zu] = %g) by t = %.17g", i, y[i],
+                                tc);
+    return HY_OK;
+}
+
+/* Integrates from *tc to target (a target within snap_width of *tc is
+ * served at *tc); on failure the message names the time. */
+static int advance(gsl_odeiv2_driver *d, double *tc, double target, double y[], hy_error *err)
+{
+    if (target <= *tc + snap_width(*tc))
+        return HY_OK;
+    int st = gsl_odeiv2_driver_apply(d, tc, target, y);
+    return step_status(st, d->sys->dimension, y, *tc, target, err);
+}
+
+/* Dense mode: free steps from *tc to tb; the outputs t[*j] <= tb below limit
+ * come from the cubic Hermite interpolant of the accepted steps' ends (value
+ * and slope; one extra evaluation of f per step, counted in nfev).  Step ends
+ * below limit go to the trace when one is asked for. */
+static int advance_dense(gsl_odeiv2_driver *d, gsl_odeiv2_system *sys, ctx *c, const hy_ode_opts *o,
+                         hy_ode_stats *stats, double *tc, double tb, double limit, double y[], const double *t,
+                         size_t n, size_t *j, double *y_out, hy_error *err)
+{
+    size_t dim = sys->dimension;
+    double f[2], y0[2], f0[2];
+    rhs(*tc, y, f, c);
+    unsigned long steps = 0;
+    while (*tc < tb) {
+        double t0 = *tc;
+        memcpy(y0, y, dim * sizeof *y);
+        memcpy(f0, f, dim * sizeof *f);
+        if (o->max_steps && ++steps > o->max_steps)
+            return step_failed(GSL_EMAXITER, *tc, tb, err);
+        int st = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, sys, tc, tb, &d->h, y);
+        if ((st = step_status(st, dim, y, *tc, tb, err)))
+            return st;
+        rhs(*tc, y, f, c);
+        double h = *tc - t0;
+        if (o->trace_t && stats->ntrace < o->trace_cap && *tc < limit) {
+            o->trace_t[stats->ntrace] = *tc;
+            o->trace_y[stats->ntrace++] = output(c, *tc, y);
+        }
+        for (; *j < n && t[*j] <= *tc && t[*j] < limit; (*j)++) {
+            double s = h > 0 ? (t[*j] - t0) / h : 1, yi[2];
+            double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+            double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+            for (size_t q = 0; q < dim; q++)
+                yi[q] = h00 * y0[q] + h10 * h * f0[q] + h01 * y[q] + h11 * h * f[q];
+            y_out[*j] = output(c, t[*j], yi);
+        }
+    }
     return HY_OK;
 }
 
@@ -143,6 +200,15 @@ static int check_opts(const hy_ode_opts *o, hy_error *err)
     if (!isfinite(o->h0) || o->h0 < 0)
         return hy_error_set(err, HY_EINVAL, "ODE first step h0 must be finite and >= 0 (got %g)", o->h0);
     return HY_OK;
+}
+
+/* Serves the outputs t[*j] within snap width of the breakpoint tb, at tb,
+ * on the piece that starts there. */
+static void serve_at_breakpoint(const ctx *c, double tb, const double y[], const double *t, size_t n, size_t *j,
+                                double *y_out)
+{
+    for (; *j < n && t[*j] <= tb + snap_width(tb); (*j)++)
+        y_out[*j] = output(c, tb, y);
 }
 
 int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
@@ -169,43 +235,60 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
         gsl_odeiv2_driver_set_nmax(d, o->max_steps);
     double y[2] = {m->x0, m->yf0};
     double tc = 0;
-    size_t ip = 0, j = 0;
-    double base = 0;
-    if (o->restart)
-        c.piece = &in->pieces[0];
-    while (j < n && rc == HY_OK) {
-        if (!o->restart) {
-            while (j < n && rc == HY_OK) {
-                rc = advance(d, &tc, t[j], y, err);
-                if (!rc)
-                    y_out[j++] = output(&c, tc, y);
-            }
-            break;
+    size_t j = 0;
+    if (!o->restart) {
+        if (o->dense && n) {
+            rc = advance_dense(d, &sys, &c, o, stats, &tc, t[n - 1], INFINITY, y, t, n, &j, y_out, err);
+            if (!rc)
+                serve_at_breakpoint(&c, tc, y, t, n, &j, y_out);
         }
-        const hy_piece *p = &in->pieces[ip];
-        double tend = base + p->t1;
-        while (j < n && t[j] < tend && rc == HY_OK) {
+        while (j < n && rc == HY_OK) {
             rc = advance(d, &tc, t[j], y, err);
             if (!rc)
                 y_out[j++] = output(&c, tc, y);
         }
-        if (rc || j >= n)
+        take_stats(d, stats);
+    }
+    size_t ip = 0;
+    double k = 0; /* time is (period k, piece ip): k T is formed, never summed */
+    c.piece = &in->pieces[0];
+    while (o->restart && j < n && rc == HY_OK) {
+        const hy_piece *p = &in->pieces[ip];
+        double tb = k * in->period + p->t1, limit = tb - snap_width(tb);
+        if (o->dense) {
+            double stop = fmin(tb, t[n - 1]);
+            rc = advance_dense(d, &sys, &c, o, stats, &tc, stop, stop < limit ? INFINITY : limit, y, t, n, &j,
+                               y_out, err);
+        } else {
+            while (j < n && t[j] < limit && rc == HY_OK) {
+                rc = advance(d, &tc, t[j], y, err);
+                if (!rc)
+                    y_out[j++] = output(&c, tc, y);
+            }
+            if (!rc && j < n)
+                rc = advance(d, &tc, tb, y, err);
+        }
+        if (rc || j >= n) {
+            take_stats(d, stats);
             break;
-        rc = advance(d, &tc, tend, y, err);
-        tc = tend;
+        }
+        tc = tb;
         take_stats(d, stats);
         gsl_odeiv2_driver_reset(d);
         gsl_odeiv2_driver_reset_hstart(d, o->h0 > 0 ? o->h0 : 1e-3 * (p->t1 - p->t0));
         stats->restarts++;
         if (++ip == in->npieces) {
             ip = 0;
-            base += in->period;
+            k += 1;
         }
         c.piece = &in->pieces[ip];
-        c.base = base;
+        c.k = k;
+        if (o->trace_t && stats->ntrace < o->trace_cap) {
+            o->trace_t[stats->ntrace] = tb;
+            o->trace_y[stats->ntrace++] = output(&c, tb, y);
+        }
+        serve_at_breakpoint(&c, tb, y, t, n, &j, y_out);
     }
-    if (!o->restart || j >= n)
-        take_stats(d, stats);
     stats->nfev = c.nfev;
     stats->njev = c.njev;
     gsl_odeiv2_driver_free(d);

@@ -6,6 +6,10 @@
  * through (for work-precision comparisons).  The GSL error handler must be off
  * (gsl_set_error_handler_off) in programs that call this; every status is
  * checked and a failure returns HY_ENUM with the time and the GSL reason.
+ * Time is kept as (period index k, time within the period) with k T formed
+ * from k, so no error grows with the number of periods; an output time within
+ * 8 ulps of a breakpoint or of the current time is served there (never a step
+ * of a few ulps, which the implicit and multistep steppers refuse).
  *
  *     hy_ode_opts o = hy_ode_defaults();
  *     o.stepper = "rk8pd"; o.rtol = 1e-10;
@@ -24,13 +28,20 @@ typedef struct hy_ode_opts {
     double h0;                /* first step (0: a guess from the piece length) */
     int restart;              /* restart at every breakpoint of u̇ (default 1)  */
     unsigned long max_steps;  /* step cap per segment (0: no cap)              */
+    int dense;                /* 0: every output time ends a step; 1: the
+                               * stepper chooses its steps between breakpoints
+                               * and outputs come from the cubic Hermite
+                               * interpolant of its step ends (error O(h^4))   */
+    double *trace_t, *trace_y;/* dense: step ends and y there (NULL: none)     */
+    size_t trace_cap;         /* room in trace_t, trace_y                      */
 } hy_ode_opts;
 
 typedef struct hy_ode_stats {
     unsigned long nfev, njev, steps, fails, restarts;
+    size_t ntrace;            /* step ends written to the trace                */
 } hy_ode_stats;
 
-/* rkf45, rtol 1e-8, atol 1e-10, restart on, 1e7 steps. */
+/* rkf45, rtol 1e-8, atol 1e-10, restart on, 1e7 steps, output times hit. */
 hy_ode_opts hy_ode_defaults(void);
 
 /* Names of every stepper, NULL-terminated. */

@@ -111,7 +111,7 @@ static void solver_errors(void)
     o.rtol = 1e-12;
     CHECK_MSG(hy_ode_solve(&m, &in, 1, &o, t, 2, y, NULL, &err), err, HY_ENUM, "ODE step cap reached at t = ");
     double tb[2] = {1, 0.5};
-    CHECK_MSG(hy_ode_solve(&m, &in, 1, &(hy_ode_opts){"rkf45", 1e-6, 1e-8, 0, 1, 0}, tb, 2, y, NULL, &err), err, HY_EINVAL,
+    CHECK_MSG(hy_ode_solve(&m, &in, 1, &(hy_ode_opts){.stepper = "rkf45", .rtol = 1e-6, .atol = 1e-8, .restart = 1}, tb, 2, y, NULL, &err), err, HY_EINVAL,
               "ascending");
     hy_steady st;
     m.sigma0 = -1;
