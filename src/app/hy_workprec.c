@@ -6,6 +6,7 @@
 
 #include "hy_gamma.h"
 #include "hy_ode.h"
+#include "hy_ref.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -60,53 +61,10 @@ const char *const *hy_wp_problem_names(void)
     return problem_names;
 }
 
-/* g(v) in long double, from the model's fields (not hy_model_g). */
-static long double g_ld(const hy_model *m, long double v)
-{
-    if (m->type != hy_model_lugre)
-        return m->fc;
-    long double r = fabsl(v / m->vs);
-    return m->fc + ((long double)m->fs - m->fc) * expl(-powl(r, m->beta));
-}
-
 int hy_wp_exact_ld(const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n,
                    double *y, hy_error *err)
 {
-    if (m->type->has_filter || !in->all_linear)
-        return hy_error_set(err, HY_EUNSUP, "long-double reference needs a piecewise-linear input and no filter");
-    long double z = m->x0;   /* z at the start of piece p of period k */
-    double k = 0;
-    size_t p = 0;
-    for (size_t i = 0; i < n; i++) {
-        const hy_piece *pc = &in->pieces[p];
-        /* time within period k: k T = hi + lo exactly (fma), t - hi exact */
-        double hi = k * in->period, lo = fma(k, in->period, -hi);
-        long double tm = (long double)(t[i] - hi) - lo;
-        /* advance while t[i] is at or past the end of the current piece */
-        while (tm >= pc->t1 - hy_input_snap(hi + pc->t1)) {
-            long double v = ((long double)pc->u1 - pc->u0) / ((long double)pc->t1 - pc->t0);
-            long double lam = m->sigma0 * fabsl(v) / g_ld(m, v / gamma);
-            if (v != 0)
-                z = v / lam + (z - v / lam) * expl(-lam * ((long double)pc->t1 - pc->t0));
-            if (++p == in->npieces) {
-                p = 0;
-                k += 1;
-                hi = k * in->period;
-                lo = fma(k, in->period, -hi);
-                tm = (long double)(t[i] - hi) - lo;
-            }
-            pc = &in->pieces[p];
-        }
-        long double v = ((long double)pc->u1 - pc->u0) / ((long double)pc->t1 - pc->t0);
-        long double zz = z, zd = 0;
-        if (v != 0) {
-            long double lam = m->sigma0 * fabsl(v) / g_ld(m, v / gamma), zeq = v / lam;
-            zz = zeq + (z - zeq) * expl(-lam * (tm - pc->t0));
-            zd = -lam * (zz - zeq);
-        }
-        y[i] = (double)(m->sigma0 * zz + (long double)m->sigma1 / gamma * zd + (long double)m->sigma2 * v / gamma);
-    }
-    return HY_OK;
+    return hy_ref_gamma(m, in, gamma, t, n, y, err);
 }
 
 /* Output grid of n points over [0, span], offset so no point sits on a breakpoint. */

@@ -15,6 +15,7 @@
 #include "hy_ode.h"
 #include "hy_plot.h"
 #include "scene_boucwen.h"
+#include "scene_verify.h"
 
 static double now(void)
 {
@@ -212,6 +213,8 @@ typedef struct gamma_solve {
     double *y;         /* on the shared grid */
     double err;        /* against the exact solution, or NaN */
     const char *ref;
+    char refbuf[224];
+    int exact;         /* solved by the exact solver */
     double seconds;
 } gamma_solve;
 
@@ -264,8 +267,13 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
     int exact_ok = hy_gamma_exact_applies(&r->model, &r->input);
     if (!strcmp(solver, "exact") && exact_ok) {
         rc = hy_gamma_exact(&r->model, &r->input, g->gamma, p->t, p->npts, g->y, NULL, err);
-        g->err = 0;
-        g->ref = "exact piecewise-exponential solution";
+        g->seconds = now() - t0;
+        g->exact = 1;
+        if (!rc) { /* measured against a long-double evaluation coded apart */
+            hy_verify_gamma(r, g->gamma, p->t, g->y, p->npts, &g->err, g->refbuf, sizeof g->refbuf);
+            g->ref = g->refbuf;
+        }
+        return rc;
     } else {
         hy_ode_opts o = hy_ode_defaults();
         o.stepper = strcmp(solver, "exact") ? solver : "rk8pd";
@@ -389,7 +397,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
             return rc;
         char what[160];
         snprintf(what, sizeof what, " for gamma = %g over %zu points%s", p->solves[i].gamma, p->npts,
-                 p->solves[i].err == 0 ? " (exact)" : "");
+                 p->solves[i].exact ? " (exact)" : "");
         plan_line(r, "y_gamma solve: %.3f ms%s\n", 1e3 * p->solves[i].seconds, what);
     }
     if (!need_steady && !p->nsolves)
@@ -592,8 +600,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
             off += per + 1;
         }
         se->n = total;
-        se->err = 0;
-        se->err_ref = "closed form (Eqs. 11-14 generalised)";
+        hy_verify_loops(r, se, a, b, k, per);
     } else if (se->data == HY_DATA_G) {
         double lim[2];
         int is_auto = 1;
@@ -614,8 +621,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         sample(r, p, se, 0, per + 1, 0, T);
         se->y[per] = se->data == HY_DATA_YSTEADY ? r->steady.y_run[r->input.nruns]
                                                  : hy_ystar_k(&r->steady, r->model.x0, (double)se->k, T);
-        se->err = 0;
-        se->err_ref = "closed form";
+        hy_verify_time(r, se, NULL, per + 1);
     } else if ((se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) && r->figure_kind == FIG_LOOP) {
         /* loop figures: the last period is the steady state at this γ, the rest the transient */
         gamma_solve *g = find_solve(p, se->gamma);
@@ -658,10 +664,8 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
             se->x[i] = series_x(r, se, p->t[i]);
             se->y[i] = series_y(r, p, se, p->t[i]);
         }
-        if (se->data == HY_DATA_YSTAR) {
-            se->err = 0;
-            se->err_ref = "closed form (Eq. 4)";
-        }
+        if (se->data == HY_DATA_YSTAR)
+            hy_verify_time(r, se, p->t, p->npts);
     }
     double at;
     if (hy_scene_get_num(s, "series", se->name, "at", &at) == HY_SCENE_SET) {
@@ -812,10 +816,12 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
             const hy_run_series *se = &r->series[i];
             fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms", se->name, data_names[se->data], se->n,
                     1e3 * se->seconds);
-            if (se->err_ref)
+            if (se->err_ref && isnan(se->err))
+                fprintf(log, "  error %s", se->err_ref);
+            else if (se->err_ref)
                 fprintf(log, "  error %.3g vs %s", se->err, se->err_ref);
             else if (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT)
-                fprintf(log, "  error unknown (no exact solution for this input)");
+                fprintf(log, "  error not measured (no exact solution for this model and input)");
             fputc('\n', log);
         }
         fprintf(log, "  compute total %.3f ms (work estimate %.3g of the budget %.3g)\n", 1e3 * r->seconds_compute, r->work,

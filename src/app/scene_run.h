@@ -37,7 +37,9 @@ typedef struct hy_run_series {
     double err;               /* max error against the exact answer, or NaN       */
     double dist;              /* ygamma/transient: max |y_γ - y*_u| over the series'
                                * points when the limit is computed, else NaN       */
-    const char *err_ref;      /* what err was measured against                    */
+    const char *err_ref;      /* what err was measured against, or "not measured:
+                               * WHY" with err NaN; NULL: nothing to measure      */
+    char err_note[224];       /* storage for err_ref                              */
     double seconds;           /* compute time                                     */
     int has_mark;             /* a marker at 'at'                                 */
     double mark_x, mark_y;
