@@ -554,21 +554,34 @@ static int too_narrow(const hy_scene_run *r, hy_error *err)
                              "scale (ρ_T = %g): the major loop cannot be computed", r->input.rho_T);
 }
 
-/* The error a closed-form series has, and the refusal of a loop too narrow
- * to sample, without sampling it (hy_scene_run.numbers_only). */
+/* A closed-form series without sampling it (hy_scene_run.numbers_only): its
+ * error is "not measured" (NaN; no points, no comparison), and a loop too
+ * narrow to sample is refused. */
 static int numbers_only_series(hy_scene_run *r, hy_run_series *se, hy_error *err)
 {
     if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
         double a[64], b[64];
         if (loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64) < 0)
             return too_narrow(r, err);
-        se->err = 0;
-        se->err_ref = "closed form (Eqs. 11-14 generalised)";
-    } else if (se->data == HY_DATA_YSTEADY || se->data == HY_DATA_YK || se->data == HY_DATA_YSTAR) {
-        se->err = 0;
-        se->err_ref = se->data == HY_DATA_YSTAR ? "closed form (Eq. 4)" : "closed form";
+    }
+    if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR || se->data == HY_DATA_YSTEADY ||
+        se->data == HY_DATA_YK || se->data == HY_DATA_YSTAR) { /* nothing drawn: nothing compared (issue 11) */
+        se->err = NAN;
+        se->err_ref = "not measured: numbers only, the series is not sampled";
     }
     return HY_OK;
+}
+
+/* The solve's error and what it was measured against (copied: the solve's
+ * buffer goes with the plan). */
+static void copy_err(hy_run_series *se, const gamma_solve *g)
+{
+    se->err = g->err;
+    se->err_ref = NULL;
+    if (g->ref) {
+        snprintf(se->err_note, sizeof se->err_note, "%s", g->ref);
+        se->err_ref = se->err_note;
+    }
 }
 
 static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error *err)
@@ -645,8 +658,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
             se->x[i - i0] = hy_input_u(&r->input, p->t[i]);
             se->y[i - i0] = g->y[i];
         }
-        se->err = g->err;
-        se->err_ref = g->ref;
+        copy_err(se, g);
         se->dist = distance_to_limit(r, p, g, i0, i1);
     } else if (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) {
         gamma_solve *g = find_solve(p, se->gamma);
@@ -654,8 +666,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
             return rc;
         memcpy(se->x, p->t, p->npts * sizeof *se->x);
         memcpy(se->y, g->y, p->npts * sizeof *se->y);
-        se->err = g->err;
-        se->err_ref = g->ref;
+        copy_err(se, g);
         se->dist = distance_to_limit(r, p, g, 0, p->npts);
     } else { /* input, ystar over the time span */
         if ((rc = alloc_series(se, p->npts, err)))

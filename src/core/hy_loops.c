@@ -135,6 +135,30 @@ static double close_point(const tp *seq, size_t q, size_t last, double u)
     return seq[last].rho;
 }
 
+/* ∮ y° dψ along the path seq[ip] → ... → seq[iq] → ... until it returns to
+ * u(seq[ip]) after seq[iq] (the close of close_point), seq[last] at most.
+ * Arc lengths are differences of turning-point values of u (exact), not of ϱ
+ * values near ϱ_T, and the integrand is δ = y - y_start (∮ du = 0 removes
+ * y_start): on a run of direction s, δ relaxes towards c = s g0 - y_start,
+ *     ∫_0^d δ dr = δ0 d φ1(ad) + c a d² φ2(ad),
+ * so a loop w wide has an area of relative accuracy ~ε, not ε/w. */
+static double loop_area(const hy_steady *st, const tp *seq, size_t ip, size_t iq, size_t last, double y_start)
+{
+    double u = seq[ip].u, delta = 0, area = 0, a = st->a;
+    for (size_t i = ip; i < last; i++) {
+        double lo = fmin(seq[i].u, seq[i + 1].u), hi = fmax(seq[i].u, seq[i + 1].u);
+        if (i > iq && seq[i].u == u)
+            break;
+        int s = seq[i + 1].u > seq[i].u ? 1 : -1, closes = i >= iq && u > lo && u <= hi;
+        double d = closes ? fabs(u - seq[i].u) : hi - lo, x = a * d, c = s * st->g0 - y_start;
+        area += s * (delta * d * hy_phi1(x) + c * a * d * d * hy_phi2(x));
+        delta = exp(-x) * delta + c * -expm1(-x);
+        if (closes)
+            break;
+    }
+    return area;
+}
+
 /* By start; among equal starts the longer loop first (it contains the others). */
 static int cmp_loop(const void *a, const void *b)
 {
@@ -200,6 +224,7 @@ int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
             L->rho_start = p->rho;
             L->rho_turn = q->rho;
             L->rho_close = close_point(seq, stack[sp - 2], stack[sp - 1], p->u);
+            L->area = loop_area(st, seq, stack[sp - 3], stack[sp - 2], stack[sp - 1], hy_steady_at_rho(st, p->rho));
             L->u_start = p->u;
             L->u_turn = q->u;
             L->starts_at_max = p->is_max;
@@ -216,7 +241,6 @@ int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
         hy_loop *L = &loops[i];
         L->y_start = hy_steady_at_rho(st, L->rho_start);
         L->y_close = hy_steady_at_rho(st, L->rho_close);
-        L->area = hy_steady_area(st, L->rho_start, L->rho_close);
     }
     out->major = loops[imaj];
     out->nminor = nl - 1;
