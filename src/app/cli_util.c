@@ -47,7 +47,7 @@ void cli_model_defaults(cli_model *cm)
     memset(cm, 0, sizeof *cm);
     cm->kind = "lugre";
     cm->sigma0 = 1;
-    cm->sigma1 = 0;
+    cm->sigma1 = 1; /* Example 2: σ0 = σ1 = Fc = vs = β = 1, Fs = 2 */
     cm->fc = 1;
     cm->fs = 2;
     cm->vs = 1;

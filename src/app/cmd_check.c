@@ -446,7 +446,8 @@ static void cases_ode(cctx *cx)
         if (rc) {
             snprintf(c.result, sizeof c.result, "refused");
             snprintf(c.note, sizeof c.note, "%s", err.msg);
-            bad = !(rc == HY_ENUM && strstr(err.msg, "step cap"));
+            /* a clean refusal: the step cap, or the work estimate up front */
+            bad = !((rc == HY_ENUM && strstr(err.msg, "step cap")) || (rc == HY_EINVAL && strstr(err.msg, "refused")));
             c.error = 0;
         } else {
             hy_wp_error(y, yr, N, &c.error, NULL);

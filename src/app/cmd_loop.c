@@ -16,7 +16,7 @@
 
 static const char loop_help[] =
     "usage: hystviz loop [MODEL OPTIONS] --input SPEC [--points N] [--k K]\n"
-    "                    [--gamma G [--solver NAME] [--cycles C] [--rtol R]] [-o FILE]\n"
+    "                    [--gamma G [--solver NAME] [--cycles C] [--rtol R] [--atol A]] [-o FILE]\n"
     "       hystviz loops [MODEL OPTIONS] --input SPEC [-o FILE]\n"
     "\n"
     "loop prints CSV 't,u,y' (%.17g) over one period of the input:\n"
@@ -24,10 +24,18 @@ static const char loop_help[] =
     "  --k K          the k-cycle function y*_{u,K}(t) = y*_u(t + K T) (exact)\n"
     "  --gamma G      y_γ at finite γ over C periods from z(0) = x0 (--cycles, default 1),\n"
     "                 exact for piecewise-linear inputs, else --solver (default rkf45)\n"
+    "  --rtol R --atol A  the GSL steppers' local error control, atol + rtol |z| on\n"
+    "                 the state z (|z| <= g(0)/sigma0): default rtol 1e-10 and\n"
+    "                 atol = 1e-2 rtol g(0)/sigma0, i.e. 1e-2 rtol g(0) in y = sigma0 z\n"
+    "                 (g(0) = FS for LuGre, FC for Dahl).  A stepper that is too\n"
+    "                 stiff for the input (its work estimate from the stiffness ratio\n"
+    "                 sigma0*du/g of each piece passes 1e7 evaluations) is refused at\n"
+    "                 once (exit status 2) with the advice to use exact, bsimp or msbdf\n"
     "loops prints one CSV row per loop (the major loop first): its ϱ interval,\n"
     "the input and output where it starts and closes, and ∮ y du (energy per cycle).\n"
     "\n"
-    "model options (defaults: LuGre of Example 2):\n"
+    "model options (defaults: the LuGre of Example 2, sigma0 = sigma1 = FC = VS =\n"
+    "BETA = 1, FS = 2, sigma2 = 0, x0 = 0):\n"
     "  --model dahl|lugre|dahl-filter   --sigma0 S0 --sigma1 S1 --sigma2 S2\n"
     "  --fc FC --fs FS --vs VS --beta B (LuGre g(v) = FC + (FS-FC) e^{-|v/VS|^B})\n"
     "  --rho R (Dahl)  --tau T (filter of system (16))  --x0 Z0 (initial state)\n"
@@ -42,8 +50,8 @@ typedef struct loop_args {
     cli_model cm;
     const char *input, *out, *solver;
     long points, cycles;
-    double k, gamma, rtol;
-    int have_k, have_gamma;
+    double k, gamma, rtol, atol;
+    int have_k, have_gamma, have_atol;
 } loop_args;
 
 static int parse_args(int argc, char **argv, loop_args *a)
@@ -98,6 +106,11 @@ static int parse_args(int argc, char **argv, loop_args *a)
             if (cli_num(s, v, &a->rtol))
                 return 2;
             i++;
+        } else if (!strcmp(s, "--atol")) {
+            if (cli_num(s, v, &a->atol))
+                return 2;
+            a->have_atol = 1;
+            i++;
         } else {
             fprintf(stderr, "hystviz loop: unknown or incomplete option '%s' (see hystviz loop --help)\n", s);
             return 2;
@@ -127,7 +140,7 @@ static int compute(const loop_args *a, const hy_model *m, const hy_input *in, do
             hy_ode_opts o = hy_ode_defaults();
             o.stepper = a->solver ? a->solver : "rkf45";
             o.rtol = a->rtol;
-            o.atol = a->rtol * 1e-2;
+            o.atol = a->have_atol ? a->atol : 1e-2 * a->rtol * hy_model_g0(m) / m->sigma0; /* |z| <= g(0)/σ0 */
             rc = (a->solver && !strcmp(a->solver, "exact")) ? hy_gamma_exact(m, in, a->gamma, t, n, y, NULL, &err)
                                                             : hy_ode_solve(m, in, a->gamma, &o, t, n, y, NULL, &err);
         }

@@ -244,6 +244,7 @@ static int solve_once(const hy_wp_problem *p, hy_wp_run *r, const hy_wp_cfg *cfg
     o.atol = r->tol * 1e-2 * hy_model_g0(&p->model) / p->model.sigma0; /* |z| <= g/σ0 */
     o.restart = r->restart;
     o.max_steps = cfg->max_steps;
+    o.work_limit = 0; /* the report measures what the caps stop */
     hy_ode_stats s = {0};
     int rc = hy_ode_solve(&p->model, &p->input, p->gamma, &o, p->t, p->n, y, &s, err);
     r->nfev = s.nfev;

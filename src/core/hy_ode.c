@@ -41,7 +41,7 @@ int hy_ode_stepper_known(const char *name) { return name && find_stepper(name) !
 
 hy_ode_opts hy_ode_defaults(void)
 {
-    hy_ode_opts o = {"rkf45", 1e-8, 1e-10, 0, 1, 10000000UL, 0, NULL, NULL, 0};
+    hy_ode_opts o = {"rkf45", 1e-8, 1e-10, 0, 1, 10000000UL, 0, NULL, NULL, 0, 1e7};
     return o;
 }
 
@@ -211,6 +211,40 @@ static void serve_at_breakpoint(const ctx *c, double tb, const double y[], const
         y_out[*j] = output(c, tb, y);
 }
 
+double hy_ode_work_estimate(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
+                            double t_end, double *stiff)
+{
+    static const char *const explicit_names[] = {"rk2", "rk4", "rkf45", "rkck", "rk8pd", "msadams"};
+    int kind = 0, order = 0; /* 1: explicit; 2: one-step implicit of this order */
+    for (size_t i = 0; i < sizeof explicit_names / sizeof *explicit_names; i++)
+        if (!strcmp(o->stepper, explicit_names[i]))
+            kind = 1;
+    if (!strcmp(o->stepper, "rk1imp") || !strcmp(o->stepper, "rk2imp") || !strcmp(o->stepper, "rk4imp")) {
+        kind = 2;
+        order = o->stepper[2] - '0';
+    }
+    double cycles = ceil(t_end / in->period), per_period = 0, ratio = 0;
+    double gmax = fmax(hy_model_g0(m), m->fc); /* g ∈ [Fc, Fs]: a lower bound on λ on smooth pieces */
+    for (size_t i = 0; i < in->npieces; i++) {
+        const hy_piece *p = &in->pieces[i], *prev = &in->pieces[(i + in->npieces - 1) % in->npieces];
+        double du = fabs(p->u1 - p->u0), dt = p->t1 - p->t0;
+        if (du == 0)
+            continue;
+        double g = p->shape == HY_PIECE_LINEAR ? hy_model_g(m, (p->u1 - p->u0) / dt / gamma) : gmax;
+        double r = m->sigma0 * du / g;
+        if (m->type->has_filter)
+            r = fmax(r, gamma / m->tau * dt);
+        ratio = fmax(ratio, r);
+        if (kind == 1)
+            per_period += r; /* >= r/6 steps of >= 6 evaluations */
+        else if (kind == 2 && (prev->u1 - prev->u0) * (p->u1 - p->u0) <= 0) /* a run starts: a transient */
+            per_period += 9 * pow(fmax(o->rtol, 1e-300), -1.0 / (order + 1));
+    }
+    if (stiff)
+        *stiff = ratio;
+    return per_period * fmax(cycles, 1);
+}
+
 int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                  const double *t, size_t n, double *y_out, hy_ode_stats *stats, hy_error *err)
 {
@@ -220,6 +254,16 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
     for (size_t i = 0; i < n; i++)
         if (!isfinite(t[i]) || t[i] < 0 || (i && t[i] < t[i - 1]))
             return hy_error_set(err, HY_EINVAL, "output times must be finite, >= 0 and ascending (t[%zu] = %g)", i, t[i]);
+    double stiff, work = o->work_limit > 0 ? hy_ode_work_estimate(m, in, gamma, o, n ? t[n - 1] : 0, &stiff) : 0;
+    if (work > o->work_limit)
+        return hy_error_set(err, HY_EINVAL,
+                            "refused: %s at rtol %g needs at least %.2g evaluations of f (limit %.2g): %s (the "
+                            "stiffness ratio sigma0*du/g reaches %.3g on an input piece); use the exact solver "
+                            "(piecewise-linear inputs), bsimp or msbdf",
+                            o->stepper, o->rtol, work, o->work_limit,
+                            o->stepper[2] == 'i' || o->stepper[3] == 'i' ? "a low-order implicit method at this tolerance"
+                                                                         : "the problem is too stiff for an explicit stepper",
+                            stiff);
     hy_ode_stats local;
     if (!stats)
         stats = &local;

@@ -34,6 +34,8 @@ typedef struct hy_ode_opts {
                                * interpolant of its step ends (error O(h^4))   */
     double *trace_t, *trace_y;/* dense: step ends and y there (NULL: none)     */
     size_t trace_cap;         /* room in trace_t, trace_y                      */
+    double work_limit;        /* refuse up front (HY_EINVAL, "stiff") when
+                               * hy_ode_work_estimate exceeds it; 0: never     */
 } hy_ode_opts;
 
 typedef struct hy_ode_stats {
@@ -41,7 +43,8 @@ typedef struct hy_ode_stats {
     size_t ntrace;            /* step ends written to the trace                */
 } hy_ode_stats;
 
-/* rkf45, rtol 1e-8, atol 1e-10, restart on, 1e7 steps, output times hit. */
+/* rkf45, rtol 1e-8, atol 1e-10, restart on, 1e7 steps, output times hit,
+ * work limit 1e7 evaluations of f (about a second). */
 hy_ode_opts hy_ode_defaults(void);
 
 /* Names of every stepper, NULL-terminated. */
@@ -49,8 +52,21 @@ const char *const *hy_ode_stepper_names(void);
 /* Nonzero when name is a stepper. */
 int hy_ode_stepper_known(const char *name);
 
+/* A lower bound on the evaluations of f the stepper needs up to t_end, from
+ * the stiffness ratio λΔt = σ0|Δu|/g(v/γ) of each input piece (and γΔt/τ for
+ * the filter of system (16)), whose maximum goes to *stiff (may be NULL):
+ * explicit steppers (rk2 rk4 rkf45 rkck rk8pd msadams) are held to h < 6/λ
+ * by stability on every piece, so >= λΔt/6 steps; rk1imp, rk2imp and rk4imp
+ * by accuracy to >= rtol^{-1/(p+1)} steps (p = 1, 2, 4) on each piece that
+ * starts a run (a fresh transient); bsimp and msbdf: no bound (0).  Steps
+ * count as 6 (explicit) or 9 (implicit, Jacobian and solves) evaluations. */
+double hy_ode_work_estimate(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
+                            double t_end, double *stiff);
+
 /* y_γ at n ascending times t[] >= 0 from z(0) = m->x0.  stats may be NULL.
- * HY_EINVAL for bad model/γ/options (message names it), HY_ENUM when GSL fails
+ * HY_EINVAL for bad model/γ/options (message names it) and for a run whose
+ * work estimate passes o->work_limit (the message says "stiff", the ratio,
+ * the estimate and which solvers to use instead), HY_ENUM when GSL fails
  * or the step cap is hit (message gives the time), HY_ENOMEM. */
 int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                  const double *t, size_t n, double *y_out, hy_ode_stats *stats, hy_error *err);
