@@ -13,6 +13,9 @@
 #include <string.h>
 #include <time.h>
 
+/* Step ends kept for err_steps (16 MiB); past it, the first TRACE_CAP. */
+#define TRACE_CAP ((size_t)1 << 20)
+
 static const char *const problem_names[] = {
     "ex2-g1", "ex2-g10", "ex2-g100", "ex2-g1e4",
     "ex3-g1", "ex3-g10", "ex3-g100", "ex3-g1e4",
@@ -231,8 +234,15 @@ int hy_wp_solver_applies(const hy_wp_problem *p, const char *solver)
     return hy_ode_stepper_known(solver);
 }
 
-/* One call of the solver; fills y and the run's counters. */
-static int solve_once(const hy_wp_problem *p, hy_wp_run *r, const hy_wp_cfg *cfg, double *y, hy_error *err)
+/* The step ends of a GSL run (hy_ode's trace). */
+typedef struct trace {
+    double *t, *y;
+    size_t cap, n;
+} trace;
+
+/* One call of the solver; fills y, the run's counters and tr (may be NULL). */
+static int solve_once(const hy_wp_problem *p, hy_wp_run *r, const hy_wp_cfg *cfg, double *y, trace *tr,
+                      hy_error *err)
 {
     if (p->kind == HY_WP_BOUCWEN)
         return bw_solve(p, r->tol, y, err);
@@ -245,13 +255,33 @@ static int solve_once(const hy_wp_problem *p, hy_wp_run *r, const hy_wp_cfg *cfg
     o.restart = r->restart;
     o.max_steps = cfg->max_steps;
     o.work_limit = 0; /* the report measures what the caps stop */
+    o.dense = 1;      /* free steps, Hermite outputs: the tolerance decides */
+    o.trace_t = tr ? tr->t : NULL;
+    o.trace_y = tr ? tr->y : NULL;
+    o.trace_cap = tr ? tr->cap : 0;
     hy_ode_stats s = {0};
     int rc = hy_ode_solve(&p->model, &p->input, p->gamma, &o, p->t, p->n, y, &s, err);
+    if (tr)
+        tr->n = s.ntrace;
     r->nfev = s.nfev;
     r->njev = s.njev;
     r->steps = s.steps;
     r->fails = s.fails;
     return rc;
+}
+
+/* The reference at arbitrary ascending times: the long-double exponential,
+ * or (Example 1) rk8pd at rtol 1e-13 ending a step at every time. */
+static int step_reference(const hy_wp_problem *p, const double *t, size_t n, double *y, hy_error *err)
+{
+    if (!p->model.type->has_filter && p->input.all_linear)
+        return hy_ref_gamma(&p->model, &p->input, p->gamma, t, n, y, err);
+    hy_ode_opts o = hy_ode_defaults();
+    o.stepper = "rk8pd";
+    o.rtol = 1e-13;
+    o.atol = 1e-15;
+    o.work_limit = 0;
+    return hy_ode_solve(&p->model, &p->input, p->gamma, &o, t, n, y, NULL, err);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -275,8 +305,13 @@ int hy_wp_run_solver(const hy_wp_problem *p, const char *solver, int restart, do
     snprintf(r->solver, sizeof r->solver, "%s", solver);
     r->restart = hy_ode_stepper_known(solver) ? restart : -1;
     r->tol = tol;
-    r->err_max = r->err_l2 = r->t_med = r->t_min = r->t_max = NAN;
+    r->err_max = r->err_l2 = r->err_steps = r->t_med = r->t_min = r->t_max = NAN;
     double *y = malloc(p->n * sizeof *y), times[64];
+    trace tr = {NULL, NULL, TRACE_CAP, 0};
+    if (hy_ode_stepper_known(solver) && p->kind == HY_WP_LUGRE) {
+        tr.t = malloc(2 * TRACE_CAP * sizeof *tr.t);
+        tr.y = tr.t ? tr.t + TRACE_CAP : NULL;
+    }
     int nrep = cfg->repeats < 1 ? 1 : cfg->repeats > 64 ? 64 : cfg->repeats;
     hy_error err = {0};
     if (!y) {
@@ -286,7 +321,7 @@ int hy_wp_run_solver(const hy_wp_problem *p, const char *solver, int restart, do
     }
     for (int k = 0; k < nrep; k++) {
         double t0 = hy_wp_now();
-        int rc = solve_once(p, r, cfg, y, &err);
+        int rc = solve_once(p, r, cfg, y, tr.t ? &tr : NULL, &err);
         times[k] = hy_wp_now() - t0;
         r->repeats = k + 1;
         if (rc) {
@@ -305,8 +340,16 @@ int hy_wp_run_solver(const hy_wp_problem *p, const char *solver, int restart, do
         if (!isfinite(r->err_max)) {
             r->status = HY_WP_FAIL;
             snprintf(r->msg, sizeof r->msg, "non-finite output");
+        } else if (tr.t && tr.n) { /* the integrator alone, at its own step ends */
+            double *yr = malloc(tr.n * sizeof *yr);
+            if (yr && !step_reference(p, tr.t, tr.n, yr, &err))
+                hy_wp_error(tr.y, yr, tr.n, &r->err_steps, NULL);
+            free(yr);
+            if (tr.n == tr.cap && r->steps > tr.cap)
+                snprintf(r->msg, sizeof r->msg, "err_steps over the first %zu of %lu step ends", tr.cap, r->steps);
         }
     }
+    free(tr.t);
     qsort(times, (size_t)r->repeats, sizeof *times, cmp_double);
     r->t_min = times[0];
     r->t_max = times[r->repeats - 1];
@@ -317,7 +360,7 @@ int hy_wp_run_solver(const hy_wp_problem *p, const char *solver, int restart, do
 
 void hy_wp_csv_header(FILE *f)
 {
-    fputs("problem,solver,restart,tol,status,err_max,err_l2,time_med_s,time_min_s,time_max_s,"
+    fputs("problem,solver,restart,tol,status,err_max,err_l2,err_steps,time_med_s,time_min_s,time_max_s,"
           "repeats,nfev,njev,steps,fails,message\n", f);
 }
 
@@ -328,7 +371,7 @@ void hy_wp_csv_row(FILE *f, const hy_wp_run *r)
     for (const char *s = r->msg; *s && j + 1 < sizeof msg; s++)
         msg[j++] = (*s == ',' || *s == '"' || *s == '\n') ? ';' : *s;
     msg[j] = 0;
-    fprintf(f, "%s,%s,%s,%.6g,%s,%.6e,%.6e,%.6e,%.6e,%.6e,%d,%lu,%lu,%lu,%lu,%s\n", r->problem, r->solver,
+    fprintf(f, "%s,%s,%s,%.6g,%s,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%d,%lu,%lu,%lu,%lu,%s\n", r->problem, r->solver,
             r->restart < 0 ? "" : r->restart ? "on" : "off", r->tol, hy_wp_status_name(r->status), r->err_max,
-            r->err_l2, r->t_med, r->t_min, r->t_max, r->repeats, r->nfev, r->njev, r->steps, r->fails, msg);
+            r->err_l2, r->err_steps, r->t_med, r->t_min, r->t_max, r->repeats, r->nfev, r->njev, r->steps, r->fails, msg);
 }

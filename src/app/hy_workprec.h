@@ -5,7 +5,12 @@
  * Conventions follow DiffEqDevTools/SciMLBenchmarks: the error of a run is
  * measured on a fixed output grid against a reference solution, as the max
  * norm (L∞) and the discrete L2 norm sqrt(mean(e²)); the time is the median
- * of repeated runs (min and max kept as the spread).
+ * of repeated runs (min and max kept as the spread).  The GSL steppers run as
+ * their users run them: they choose their own steps between the input's
+ * breakpoints (no step is forced to end at an output time) and the grid
+ * values come from the cubic Hermite interpolant of the step ends (hy_ode's
+ * dense mode, its cost in the time); err_steps is the error at the step ends
+ * themselves, so the interpolant's share of err_max is visible.
  *
  *     hy_wp_problem p;  hy_error err;
  *     if (hy_wp_problem_init(&p, "ex3-g10", 0, &err)) ...
@@ -46,7 +51,7 @@ typedef struct hy_wp_problem {
 
 typedef struct hy_wp_cfg {
     int repeats;              /* timed repeats (median), >= 1                 */
-    unsigned long max_steps;  /* ODE step cap per output interval (hy_ode) */
+    unsigned long max_steps;  /* ODE step cap between two breakpoints (hy_ode) */
     double time_cap;          /* seconds: a run slower than this is not repeated
                                  and tighter tolerances of its solver are skipped */
 } hy_wp_cfg;
@@ -56,7 +61,10 @@ typedef struct hy_wp_run {
     int restart;              /* 1: restart at breakpoints, 0: straight, -1: n/a */
     double tol;               /* rtol (atol = rtol · 1e-2 · scale); Bouc-Wen: h   */
     int status;               /* HY_WP_*                                        */
-    double err_max, err_l2;   /* NaN unless status is OK                        */
+    double err_max, err_l2;   /* on the output grid; NaN unless status is OK    */
+    double err_steps;         /* GSL steppers: max error at the integrator's own
+                                 step ends (no interpolation), against the exact
+                                 reference; NaN where there is none             */
     double t_med, t_min, t_max; /* seconds                                      */
     int repeats;
     unsigned long nfev, njev, steps, fails;

@@ -151,6 +151,17 @@ static int advance(gsl_odeiv2_driver *d, double *tc, double target, double y[], 
     return step_status(st, d->sys->dimension, y, *tc, target, err);
 }
 
+/* Straight through (no fixed piece): t within snap width of a breakpoint,
+ * where u̇ and so y are two-valued; such step ends are not traced. */
+static int near_breakpoint(const ctx *c, double t)
+{
+    if (c->piece)
+        return 0;
+    double tm;
+    const hy_piece *p = &c->in->pieces[hy_input_piece_at(c->in, t, &tm, NULL)];
+    return tm - p->t0 <= snap_width(t) || p->t1 - tm <= snap_width(t);
+}
+
 /* Dense mode: free steps from *tc to tb; the outputs t[*j] <= tb below limit
  * come from the cubic Hermite interpolant of the accepted steps' ends (value
  * and slope; one extra evaluation of f per step, counted in nfev).  Step ends
@@ -174,7 +185,7 @@ static int advance_dense(gsl_odeiv2_driver *d, gsl_odeiv2_system *sys, ctx *c, c
             return st;
         rhs(*tc, y, f, c);
         double h = *tc - t0;
-        if (o->trace_t && stats->ntrace < o->trace_cap && *tc < limit) {
+        if (o->trace_t && stats->ntrace < o->trace_cap && *tc < limit && !near_breakpoint(c, *tc)) {
             o->trace_t[stats->ntrace] = *tc;
             o->trace_y[stats->ntrace++] = output(c, *tc, y);
         }
@@ -245,6 +256,14 @@ double hy_ode_work_estimate(const hy_model *m, const hy_input *in, double gamma,
     return per_period * fmax(cycles, 1);
 }
 
+/* The first step on a piece of length len: h0 if given; in dense mode the
+ * whole piece (the controller shrinks it as the tolerance asks, so a loose
+ * tolerance costs few steps); else 1e-3 of it. */
+static double first_step(const hy_ode_opts *o, double len)
+{
+    return o->h0 > 0 ? o->h0 : o->dense ? len : 1e-3 * len;
+}
+
 int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                  const double *t, size_t n, double *y_out, hy_ode_stats *stats, hy_error *err)
 {
@@ -271,7 +290,7 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
     ctx c = {m, in, gamma, NULL, 0, 0, 0};
     size_t dim = m->type->has_filter ? 2 : 1;
     gsl_odeiv2_system sys = {rhs, jac, dim, &c};
-    double h0 = o->h0 > 0 ? o->h0 : 1e-3 * in->pieces[0].t1 - 0;
+    double h0 = first_step(o, in->pieces[0].t1 - in->pieces[0].t0);
     gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(&sys, find_stepper(o->stepper), h0, o->atol, o->rtol);
     if (!d)
         return hy_error_set(err, HY_ENOMEM, "cannot allocate the GSL driver");
@@ -319,12 +338,12 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
         tc = tb;
         take_stats(d, stats);
         gsl_odeiv2_driver_reset(d);
-        gsl_odeiv2_driver_reset_hstart(d, o->h0 > 0 ? o->h0 : 1e-3 * (p->t1 - p->t0));
         stats->restarts++;
         if (++ip == in->npieces) {
             ip = 0;
             k += 1;
         }
+        gsl_odeiv2_driver_reset_hstart(d, first_step(o, in->pieces[ip].t1 - in->pieces[ip].t0));
         c.piece = &in->pieces[ip];
         c.k = k;
         if (o->trace_t && stats->ntrace < o->trace_cap) {

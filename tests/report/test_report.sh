@@ -1,8 +1,9 @@
 #!/bin/sh
 # test_report.sh RUN_CMD BUILDDIR: `report --quick` writes CSV, Markdown and
 # plots with the expected columns and rows; errors fall with the tolerance for
-# adaptive steppers on Example 3; the exact solver is within 1e-13; a step cap
-# of 1 step per output interval is recorded (stepcap, then skipped) without aborting the report.
+# adaptive steppers on Example 3 and move by 100x for every GSL stepper on the
+# stiff LuGre; the exact solver is within 1e-13; a step cap of 1 step between
+# breakpoints is recorded (stepcap, then skipped) without aborting the report.
 set -u
 RUN=$1
 OUT=$2/report-test
@@ -13,10 +14,10 @@ fail() { echo "FAIL: $*"; exit 1; }
 CSV=$OUT/q/report.csv
 [ -s "$CSV" ] || fail "no report.csv"
 [ -s "$OUT/q/report.md" ] || fail "no report.md"
-head -1 "$CSV" | grep -qx 'problem,solver,restart,tol,status,err_max,err_l2,time_med_s,time_min_s,time_max_s,repeats,nfev,njev,steps,fails,message' \
+head -1 "$CSV" | grep -qx 'problem,solver,restart,tol,status,err_max,err_l2,err_steps,time_med_s,time_min_s,time_max_s,repeats,nfev,njev,steps,fails,message' \
     || fail "CSV header: $(head -1 "$CSV")"
-# every row has 16 fields
-awk -F, 'NF != 16 { print "bad row " NR ": " $0; bad = 1 } END { exit bad }' "$CSV" || fail "CSV field count"
+# every row has 17 fields
+awk -F, 'NF != 17 { print "bad row " NR ": " $0; bad = 1 } END { exit bad }' "$CSV" || fail "CSV field count"
 for p in ex2-g1 ex2-g10 ex2-g100 ex2-g1e4 ex3-g1 ex3-g10 ex3-g100 ex3-g1e4 ex1 lugre-stiff boucwen; do
     for ext in svg png; do
         [ -s "$OUT/q/wp-$p.$ext" ] || fail "missing plot wp-$p.$ext"
@@ -38,18 +39,37 @@ grep -q '^boucwen,newmark,,' "$CSV" || fail "no Newmark rows"
 n=$(awk -F, '$2 == "exact" { if ($5 != "ok" || $6 + 0 > 1e-13) { print "exact: " $0; bad = 1 } n++ }
              END { print n; exit bad }' "$CSV") || fail "exact error > 1e-13: $n"
 [ "$n" -ge 9 ] || fail "exact rows: $n"
-# errors decrease with tolerance (1e-2, 1e-4, 1e-6) for adaptive steppers on Example 3
-for sr in rkf45,off rk8pd,off msbdf,on msbdf,off; do
-    grep "^ex3-g10,$sr," "$CSV" | awk -F, '$5 != "ok" { bad = 1 } NR > 1 && $6 + 0 >= prev { bad = 1 } { prev = $6 + 0 }
-        END { exit bad }' || fail "ex3-g10 $sr: error does not fall with tol: $(grep "^ex3-g10,$sr," "$CSV" | cut -d, -f4-6)"
+# errors decrease with tolerance (1e-2, 1e-4, 1e-6) for adaptive steppers on
+# Example 3, on the grid ($6) and at the steppers' own steps ($8); rkf45 with
+# restarts gave one run (error 5.18e-12) for every tolerance when each output
+# time ended a step
+for sr in rkf45,on rkf45,off rk8pd,off msbdf,on msbdf,off; do
+    for col in 6 8; do
+        grep "^ex3-g10,$sr," "$CSV" | awk -F, -v c=$col '$5 != "ok" || $c == "nan" { bad = 1 }
+            NR > 1 && $c + 0 >= prev { bad = 1 } { prev = $c + 0 } END { exit bad }' ||
+            fail "ex3-g10 $sr: error (column $col) does not fall with tol: $(grep "^ex3-g10,$sr," "$CSV" | cut -d, -f4-8)"
+    done
+done
+# every adaptive GSL stepper, restarts on, on the stiff LuGre over 1e-2 ... 1e-13:
+# the tolerance moves the error at the steps by at least 100x (rk1imp stops
+# at the time cap near 1e-8)
+"$RUN" report --problems lugre-stiff --repeats 1 --time-cap 0.3 -o "$OUT/full" >"$OUT.log" 2>&1 ||
+    { cat "$OUT.log"; fail "lugre-stiff full report exited non-zero"; }
+for s in rk2 rk4 rkf45 rkck rk8pd rk1imp rk2imp rk4imp bsimp msadams msbdf; do
+    grep "^lugre-stiff,$s,on," "$OUT/full/report.csv" | awk -F, '$5 == "ok" && $8 != "nan" {
+            e = $8 + 0; if (n == 0 || e > hi) hi = e; if (n == 0 || e < lo) lo = e; n++ }
+        END { exit !(n >= 3 && lo > 0 && hi / lo >= 100) }' ||
+        fail "lugre-stiff $s: the tolerance does not move the error: $(grep "^lugre-stiff,$s,on," "$OUT/full/report.csv" | cut -d, -f4,5,8 | tr '\n' ' ')"
 done
 
-# a deliberately impossible run: 1 step per output interval
+# a deliberately impossible run: 1 step between breakpoints
 "$RUN" report --quick --problems ex3-g10 --solvers rk4,rkf45,exact --max-steps 1 -o "$OUT/cap" >"$OUT.log" 2>&1 \
     || { cat "$OUT.log"; fail "capped report exited non-zero"; }
 C=$OUT/cap/report.csv
-grep -q '^ex3-g10,rk4,on,0.01,stepcap,.*step cap' "$C" || fail "rk4 under a 10-step cap not recorded as stepcap"
-grep -q '^ex3-g10,rk4,on,0.0001,skipped,' "$C" || fail "tighter tolerance after the cap not recorded as skipped"
+# (with restarts rk4 at 1e-2 takes one step per piece: it passes; straight
+# through it cannot cross the 3 periods in one step)
+grep -q '^ex3-g10,rk4,off,0.01,stepcap,.*step cap' "$C" || fail "rk4 under a 1-step cap not recorded as stepcap"
+grep -q '^ex3-g10,rk4,off,0.0001,skipped,' "$C" || fail "tighter tolerance after the cap not recorded as skipped"
 grep -q '^ex3-g10,exact,,0,ok,' "$C" || fail "exact run missing after failed runs"
 [ -s "$OUT/cap/wp-ex3-g10.svg" ] || fail "plot missing after failed runs"
 

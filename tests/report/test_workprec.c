@@ -78,9 +78,21 @@ static void test_caps(void)
     CHECK(isnan(r.err_max), "no error reported for a capped run");
     cfg.max_steps = 200000;
     cfg.time_cap = 1e-9;
+    /* rtol 1e-6: the steps are good to 5.6e-8, the Hermite grid to 3.8e-6 */
     CHECK(hy_wp_run_solver(&p, "rkf45", 1, 1e-6, &cfg, &r) == HY_WP_TIMECAP && r.repeats == 1 &&
-              r.err_max < 1e-6,
-          "time cap: status %s, %d repeats, error %g", hy_wp_status_name(r.status), r.repeats, r.err_max);
+              r.err_steps < 1e-6 && r.err_max < 1e-4,
+          "time cap: status %s, %d repeats, error %g at the steps, %g on the grid", hy_wp_status_name(r.status),
+          r.repeats, r.err_steps, r.err_max);
+    /* the tolerance moves rkf45's error with restarts (one run for every
+     * tolerance when each output time ended a step: 5.18e-12 throughout) */
+    hy_wp_run loose, tight;
+    cfg.time_cap = 2;
+    hy_wp_run_solver(&p, "rkf45", 1, 1e-2, &cfg, &loose);
+    hy_wp_run_solver(&p, "rkf45", 1, 1e-8, &cfg, &tight);
+    CHECK(loose.status == HY_WP_OK && tight.status == HY_WP_OK && loose.err_steps > 1e3 * tight.err_steps &&
+              loose.err_max > 10 * tight.err_max && loose.steps < tight.steps,
+          "rkf45 with restarts, rtol 1e-2 vs 1e-8: error at steps %g vs %g, on the grid %g vs %g, %lu vs %lu steps",
+          loose.err_steps, tight.err_steps, loose.err_max, tight.err_max, loose.steps, tight.steps);
     hy_wp_problem_free(&p);
     CHECK(hy_wp_problem_init(&p, "ex4-g1", 1, &err) == HY_EINVAL, "unknown problem refused");
     hy_wp_problem_free(&p);
