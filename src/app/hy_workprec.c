@@ -345,8 +345,10 @@ int hy_wp_run_solver(const hy_wp_problem *p, const char *solver, int restart, do
             if (yr && !step_reference(p, tr.t, tr.n, yr, &err))
                 hy_wp_error(tr.y, yr, tr.n, &r->err_steps, NULL);
             free(yr);
+            size_t len = strlen(r->msg);
             if (tr.n == tr.cap && r->steps > tr.cap)
-                snprintf(r->msg, sizeof r->msg, "err_steps over the first %zu of %lu step ends", tr.cap, r->steps);
+                snprintf(r->msg + len, sizeof r->msg - len, "%serr_steps over the first %zu of %lu step ends",
+                         len ? "; " : "", tr.cap, r->steps);
         }
     }
     free(tr.t);
