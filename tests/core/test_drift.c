@@ -172,10 +172,30 @@ static void near_breakpoints(void)
     hy_input_free(&in);
 }
 
+/* The run the work estimate refuses (rk4, σ0 = 1e300) still reports a
+ * non-finite solution by name when no limit stops it up front. */
+static void refusal_and_nonfinite(void)
+{
+    hy_model m;
+    hy_input in;
+    hy_error err;
+    hy_model_lugre_init(&m, 1e300, 1, 1, 2, 1, 1);
+    hy_input_bimodal(&in, 0, 0.2, 1, 1.5, NULL, HY_SHAPE_LINEAR, &err);
+    double t[2] = {0.5, 3}, y[2];
+    hy_ode_opts o = hy_ode_defaults();
+    o.stepper = "rk4";
+    CHECK_MSG(hy_ode_solve(&m, &in, 5, &o, t, 2, y, NULL, &err), err, HY_EINVAL, "refused: rk4 at rtol 1e-08");
+    CHECK(strstr(err.msg, "bsimp or msbdf") != NULL, "no advice: %s", err.msg);
+    o.work_limit = 0;
+    CHECK_MSG(hy_ode_solve(&m, &in, 5, &o, t, 2, y, NULL, &err), err, HY_ENUM, "ODE solution became non-finite (y[0] = ");
+    hy_input_free(&in);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
     exact_periods();
     near_breakpoints();
+    refusal_and_nonfinite();
     return tu_finish("drift");
 }
