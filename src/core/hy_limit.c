@@ -135,7 +135,9 @@ double hy_ystar_k(const hy_steady *st, double x0, double k, double t)
 double hy_ystar_at(const hy_steady *st, double x0, double t)
 {
     double k = floor(t / st->in->period);
-    double tm = t - k * st->in->period;
+    double tm = hy_input_reduce(st->in, t, k); /* k T carried exactly */
+    if (tm < 0 && k > 0)
+        tm = hy_input_reduce(st->in, t, --k);
     if (tm < 0)
         tm = 0;
     return hy_ystar_k(st, x0, k, tm);

@@ -82,16 +82,22 @@ static void sampled_and_unmeasured(void)
 {
     hy_scene_run r;
     char *sets[] = {"compute.cycles=30"};
-    if (!load("fig11_ygamma_ex3", sets, 1, &r, NULL))
+    if (load("fig11_ygamma_ex3", sets, 1, &r, NULL))
         return;
+    int sampled = 0;
     for (size_t i = 0; i < r.nseries; i++) {
         const hy_run_series *se = &r.series[i];
-        if (se->n > HY_VERIFY_POINTS)
+        if (se->n > HY_VERIFY_POINTS) {
+            sampled++;
             CHECK(se->err_ref && strstr(se->err_ref, "1 in "), "%s: %zu points, sampling not stated: %s", se->name,
                   se->n, se->err_ref ? se->err_ref : "NULL");
-        CHECK(isfinite(se->err) && se->err > 0 && se->err <= 1e-14 * hy_model_g0(&r.model), "%s (30 cycles): %.3g",
+        }
+        /* 30 periods: y* was 1.7e-14 off while k T was rounded (hy_ystar_at),
+         * 4.4e-16 with k T carried exactly; 1e-15 g(0) = 2e-15 */
+        CHECK(isfinite(se->err) && se->err > 0 && se->err <= 1e-15 * hy_model_g0(&r.model), "%s (30 cycles): %.3g",
               se->name, se->err);
     }
+    CHECK(sampled >= 4, "30 cycles: %d series sampled", sampled);
     hy_scene_run_free(&r);
     /* Example 1 (filter of system (16), sine input, GSL): no exact reference */
     char logbuf[8192] = {0};
