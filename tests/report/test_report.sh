@@ -10,7 +10,9 @@ OUT=$2/report-test
 rm -rf "$OUT"
 fail() { echo "FAIL: $*"; exit 1; }
 
-"$RUN" report --quick -o "$OUT/q" >"$OUT.log" 2>&1 || { cat "$OUT.log"; fail "report --quick exited $?"; }
+# --time-cap 5: a load spike on a shared machine (or a sanitizer build) must not
+# turn a run into 'timecap' and its tighter tolerances into 'skipped'
+"$RUN" report --quick --time-cap 5 -o "$OUT/q" >"$OUT.log" 2>&1 || { cat "$OUT.log"; fail "report --quick exited $?"; }
 CSV=$OUT/q/report.csv
 [ -s "$CSV" ] || fail "no report.csv"
 [ -s "$OUT/q/report.md" ] || fail "no report.md"
@@ -54,7 +56,7 @@ done
 # the tolerance moves the error at the steps by at least 10x over at least 3
 # measured runs (first-order rk1imp gains ~3x a decade and stops at the time
 # cap near 1e-6 ... 1e-8 depending on the build; the others gain 1e4 ... 1e11)
-"$RUN" report --problems lugre-stiff --repeats 1 --time-cap 0.3 -o "$OUT/full" >"$OUT.log" 2>&1 ||
+"$RUN" report --problems lugre-stiff --repeats 1 --time-cap 1 -o "$OUT/full" >"$OUT.log" 2>&1 ||
     { cat "$OUT.log"; fail "lugre-stiff full report exited non-zero"; }
 for s in rk2 rk4 rkf45 rkck rk8pd rk1imp rk2imp rk4imp bsimp msadams msbdf; do
     grep "^lugre-stiff,$s,on," "$OUT/full/report.csv" | awk -F, '($5 == "ok" || $5 == "timecap") && $8 != "nan" {
