@@ -554,24 +554,6 @@ static int too_narrow(const hy_scene_run *r, hy_error *err)
                              "scale (ρ_T = %g): the major loop cannot be computed", r->input.rho_T);
 }
 
-/* A closed-form series without sampling it (hy_scene_run.numbers_only): its
- * error is "not measured" (NaN; no points, no comparison), and a loop too
- * narrow to sample is refused. */
-static int numbers_only_series(hy_scene_run *r, hy_run_series *se, hy_error *err)
-{
-    if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
-        double a[64], b[64];
-        if (loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64) < 0)
-            return too_narrow(r, err);
-    }
-    if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR || se->data == HY_DATA_YSTEADY ||
-        se->data == HY_DATA_YK || se->data == HY_DATA_YSTAR) { /* nothing drawn: nothing compared (issue 11) */
-        se->err = NAN;
-        se->err_ref = "not measured: numbers only, the series is not sampled";
-    }
-    return HY_OK;
-}
-
 /* The solve's error and what it was measured against (copied: the solve's
  * buffer goes with the plan). */
 static void copy_err(hy_run_series *se, const gamma_solve *g)
@@ -594,8 +576,10 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     se->err = NAN;
     se->err_ref = NULL;
     se->dist = NAN;
-    if (r->numbers_only && se->data != HY_DATA_YGAMMA && se->data != HY_DATA_TRANSIENT)
-        return numbers_only_series(r, se, err);
+    /* numbers only: u, ψ and g are not sampled; the closed forms are, so that
+       their error is measured (issue 11) and the same as with figures */
+    if (r->numbers_only && (se->data == HY_DATA_INPUT || se->data == HY_DATA_PSI || se->data == HY_DATA_G))
+        return HY_OK;
     if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
         double a[64], b[64];
         int k = loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64);

@@ -61,9 +61,10 @@ typedef struct hy_scene_run {
     char plan[2048];          /* the plan, one step a line (render -v)            */
     double budget;            /* work budget (hy_scene_policy, --max-work)        */
     double work;              /* the estimate of the last compute                 */
-    int numbers_only;         /* set before compute: closed-form series keep their
-                               * error, areas and extremes but are not sampled
-                               * (n = 0; the table-only path of hystviz sweep)    */
+    int numbers_only;         /* set before compute: u, ψ and g are not sampled
+                               * (n = 0; the table-only path of hystviz sweep);
+                               * the closed forms are, so their measured error
+                               * is the same as with figures (issue 11)          */
     double seconds_compute;
 } hy_scene_run;
 
