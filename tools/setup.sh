@@ -15,11 +15,14 @@ set -eu
 cd "$(dirname "$0")/.."
 what=${1:-gallery}
 
-pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev fonts-dejavu-core fonts-stix parallel time"
+pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev fonts-dejavu-core fonts-stix parallel time libmicrohttpd-dev"
 # GL backends (OSMesa; EGL with Mesa's software device) and ffmpeg for the video tests
 pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # the fuzzer needs clang and its runtime libraries (libFuzzer, ASan, UBSan)
 [ "$what" = fuzz ] && pkgs="$pkgs clang libclang-rt-dev"
+# what the tests need besides: curl and bash (serve over HTTP), python3 and
+# chromium (the page in a real browser, headless)
+case "$what" in test | bench) pkgs="$pkgs curl bash python3 chromium" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"
@@ -61,8 +64,9 @@ test)
         configure build-$gl -Dgl=$gl
         meson test -C build-$gl --suite gl --print-errorlogs --num-processes 2
     done
-    # the build without GL: cairo figures work, GL tests report SKIP
-    configure build-nogl -Dgl=disabled
+    # the build without GL and libmicrohttpd: cairo figures work, GL tests
+    # report SKIP, serve exits 3 naming what is missing
+    configure build-nogl -Dgl=disabled -Dmicrohttpd=disabled
     meson test -C build-nogl --no-suite check --print-errorlogs --num-processes 2
     # GCC's -fsanitize=undefined leaves out float-cast-overflow (a double too large
     # for the integer it is converted to); it is added, and made fatal, here

@@ -15,6 +15,7 @@
 #include "cmd_loop.h"
 #include "cmd_render.h"
 #include "cmd_report.h"
+#include "cmd_serve.h"
 #include "cmd_sweep.h"
 
 static const char usage[] =
@@ -34,6 +35,8 @@ static const char usage[] =
     "  boucwen   the Bouc-Wen benchmark: Table 2, synthetic data sets as CSV\n"
     "  report    work-precision of every solver on the paper's problems (CSV, Markdown, plots)\n"
     "  check     stiff and extreme cases: finite, invariants, errors within bounds\n"
+    "  serve     live preview in the browser: sliders, reload on save, animation scrubber\n"
+    "  watch     re-render scene files on every save (one line per render)\n"
     "\n"
     "options:\n"
     "  -h, --help     this text (COMMAND --help: that command's options)\n"
@@ -67,6 +70,8 @@ static const command commands[] = {
     {"boucwen", hy_cmd_boucwen},
     {"report", hy_cmd_report},
     {"check", hy_cmd_check},
+    {"serve", hy_cmd_serve},
+    {"watch", hy_cmd_watch},
 };
 
 /* Runs hystviz-animate (next to this executable) with this argv: "animate" ...;

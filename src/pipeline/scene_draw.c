@@ -406,3 +406,34 @@ int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err)
         return hy_error_set(err, HY_EIO, "error writing the data: %s", strerror(errno));
     return HY_OK;
 }
+
+int hy_scene_run_render(const hy_scene_run *r, int format, unsigned char **buf, size_t *len, hy_panel_map *map,
+                        hy_error *err)
+{
+    *buf = NULL;
+    *len = 0;
+    fig_store st;
+    int rc = hy_scene_run_figure(r, &st, err);
+    if (!rc)
+        rc = hy_figure_render_mem_mapped(&st.fig, format, buf, len, map, map ? 1 : 0, err);
+    hy_scene_fig_free(&st);
+    return rc;
+}
+
+int hy_scene_run_csv(const hy_scene_run *r, char **buf, size_t *len, hy_error *err)
+{
+    *buf = NULL;
+    *len = 0;
+    FILE *f = open_memstream(buf, len);
+    if (!f)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the data");
+    int rc = hy_scene_run_data(r, f, err);
+    if (fclose(f) && !rc)
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory for the data");
+    if (rc) {
+        free(*buf);
+        *buf = NULL;
+        *len = 0;
+    }
+    return rc;
+}

@@ -108,6 +108,16 @@ int hy_scene_run_check_output(const hy_scene_run *r, const char *formats, hy_err
  * (duplicates dropped); HY_EINVAL naming an unknown one or an empty list. */
 int hy_scene_formats_parse(const char *list, int fmt[3], size_t *n, hy_error *err);
 
+/* Draws the figure into memory as HY_FORMAT_SVG, _PDF or _PNG: *buf
+ * (malloc'd, the caller frees) holds the *len bytes that hy_scene_run_write
+ * would write to the file of that format.  map (may be NULL) receives where
+ * the panel was drawn (for values under the cursor).  Re-entrant. */
+int hy_scene_run_render(const hy_scene_run *r, int format, unsigned char **buf, size_t *len, hy_panel_map *map,
+                        hy_error *err);
+
+/* hy_scene_run_data into memory: *buf (malloc'd, NUL-terminated) of *len bytes. */
+int hy_scene_run_csv(const hy_scene_run *r, char **buf, size_t *len, hy_error *err);
+
 /* Prints every series as CSV: header "series,x,y", values %.17g. */
 int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err);
 

@@ -1085,8 +1085,22 @@ static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
     return st;
 }
 
+static int draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *cv, hy_panel_map *maps,
+                       size_t nmaps, hy_error *err);
+
 int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *cv,
                           hy_error *err)
+{
+    return draw_layers(f, data, cv, NULL, 0, err);
+}
+
+int hy_figure_draw_mapped(const hy_figure *f, const hy_canvas *cv, hy_panel_map *maps, size_t nmaps, hy_error *err)
+{
+    return draw_layers(f, cv, cv, maps, nmaps, err);
+}
+
+static int draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *cv, hy_panel_map *maps,
+                       size_t nmaps, hy_error *err)
 {
     double W, H, dpi;
     hy__figure_size(f, &W, &H, &dpi);
@@ -1127,6 +1141,10 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
         }
         for (int i = 0; dv != cv && i < rows * cols; i++)
             draw_panel_overlay(&ps[i]);
+        for (size_t i = 0; i < nmaps && i < (size_t)(rows * cols); i++) {
+            const panel *p = &ps[i];
+            maps[i] = (hy_panel_map){p->x0, p->y0, p->w, p->h, p->xlo, p->xhi, p->ylo, p->yhi, p->xlog, p->ylog};
+        }
     }
     free(tp);
     free(ps);
@@ -1135,7 +1153,7 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
 
 int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err)
 {
-    return hy_figure_draw_layers(f, cv, cv, err);
+    return draw_layers(f, cv, cv, NULL, 0, err);
 }
 
 int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err)

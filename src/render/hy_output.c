@@ -88,14 +88,15 @@ static int svg_flush_renumbered(sink *s)
     return 0;
 }
 
-static int draw_on(cairo_surface_t *surf, const hy_figure *f, double scale, hy_error *err)
+static int draw_on(cairo_surface_t *surf, const hy_figure *f, double scale, hy_panel_map *maps, size_t nmaps,
+                   hy_error *err)
 {
     cairo_t *cr = cairo_create(surf);
     hy_cairo_canvas cc;
     hy_canvas cv = hy_canvas_cairo(&cc, cr, hy__figure_font(f));
     if (scale != 1.0)
         cairo_scale(cr, scale, scale);
-    int st = hy_figure_draw(f, &cv, err);
+    int st = hy_figure_draw_mapped(f, &cv, maps, nmaps, err);
     cairo_status_t cs = cairo_status(cr);
     cairo_destroy(cr);
     if (!st && cs != CAIRO_STATUS_SUCCESS)
@@ -104,7 +105,7 @@ static int draw_on(cairo_surface_t *surf, const hy_figure *f, double scale, hy_e
     return st;
 }
 
-static int write_vector(const hy_figure *f, int format, sink *sk, hy_error *err)
+static int write_vector(const hy_figure *f, int format, sink *sk, hy_panel_map *maps, size_t nmaps, hy_error *err)
 {
     double W, H, dpi;
     hy__figure_size(f, &W, &H, &dpi);
@@ -118,7 +119,7 @@ static int write_vector(const hy_figure *f, int format, sink *sk, hy_error *err)
         cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATOR, "hystviz");
         cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
     }
-    int st = draw_on(surf, f, 1.0, err);
+    int st = draw_on(surf, f, 1.0, maps, nmaps, err);
     cairo_surface_finish(surf);
     cairo_status_t cs = cairo_surface_status(surf);
     cairo_surface_destroy(surf);
@@ -194,7 +195,7 @@ static int png_encode(cairo_surface_t *img, double dpi, sink *sk, hy_error *err)
     return HY_OK;
 }
 
-static int write_png(const hy_figure *f, sink *sk, hy_error *err)
+static int write_png(const hy_figure *f, sink *sk, hy_panel_map *maps, size_t nmaps, hy_error *err)
 {
     double W, H, dpi;
     hy__figure_size(f, &W, &H, &dpi);
@@ -212,7 +213,7 @@ static int write_png(const hy_figure *f, sink *sk, hy_error *err)
     cairo_set_source_rgb(bg, 1.0, 1.0, 1.0);
     cairo_paint(bg);
     cairo_destroy(bg);
-    int st = draw_on(img, f, dpi / 72.0, err);
+    int st = draw_on(img, f, dpi / 72.0, maps, nmaps, err);
     cairo_surface_flush(img);
     if (!st)
         st = png_encode(img, dpi, sk, err);
@@ -259,7 +260,7 @@ int hy_figure_write_out(const hy_figure *f, hy_out *out, int format, hy_error *e
     if (st)
         return st;
     sink sk = {hy_out_file(out), 0, NULL, 0, 0, 0};
-    st = format == HY_FORMAT_PNG ? write_png(f, &sk, err) : write_vector(f, format, &sk, err);
+    st = format == HY_FORMAT_PNG ? write_png(f, &sk, NULL, 0, err) : write_vector(f, format, &sk, NULL, 0, err);
     if (!st)
         st = hy_out_finish(out, err);
     else {
@@ -282,4 +283,37 @@ int hy_figure_write(const hy_figure *f, const char *path, int format, hy_error *
     if (!st)
         st = hy_out_publish(&out, err);
     return st;
+}
+
+int hy_figure_render_mem(const hy_figure *f, int format, unsigned char **buf, size_t *len, hy_error *err)
+{
+    return hy_figure_render_mem_mapped(f, format, buf, len, NULL, 0, err);
+}
+
+int hy_figure_render_mem_mapped(const hy_figure *f, int format, unsigned char **buf, size_t *len, hy_panel_map *maps,
+                                size_t nmaps, hy_error *err)
+{
+    *buf = NULL;
+    *len = 0;
+    if (!f)
+        return hy_error_set(err, HY_EINVAL, "hy_figure_render_mem needs a figure");
+    int st = hy_figure_check(f, format, err); /* format, PNG raster limits */
+    if (st)
+        return st;
+    char *mem = NULL;
+    size_t n = 0;
+    sink sk = {open_memstream(&mem, &n), 0, NULL, 0, 0, 0};
+    if (!sk.fp)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the figure's bytes");
+    /* the same encoders as hy_figure_write, into memory: identical bytes */
+    st = format == HY_FORMAT_PNG ? write_png(f, &sk, maps, nmaps, err) : write_vector(f, format, &sk, maps, nmaps, err);
+    if (fclose(sk.fp) != 0 && !st)
+        st = hy_error_set(err, HY_ENOMEM, "out of memory for the figure's bytes");
+    if (st) {
+        free(mem);
+        return st;
+    }
+    *buf = (unsigned char *)mem;
+    *len = n;
+    return HY_OK;
 }

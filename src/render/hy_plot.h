@@ -163,6 +163,29 @@ int hy_figure_write(const hy_figure *f, const char *path, int format, hy_error *
 struct hy_out;
 int hy_figure_write_out(const hy_figure *f, struct hy_out *out, int format, hy_error *err);
 
+/* Where a panel was drawn: its frame (x0, y0, w, h) in points from the
+ * figure's top-left corner, and the axis limits mapped onto it (log10 scale
+ * where xlog/ylog): data x maps to x0 + (x - xlo) / (xhi - xlo) * w, data y
+ * to y0 + h - (y - ylo) / (yhi - ylo) * h. */
+typedef struct hy_panel_map {
+    double x0, y0, w, h;
+    double xlo, xhi, ylo, yhi;
+    int xlog, ylog;
+} hy_panel_map;
+
+/* As hy_figure_draw; also stores the first nmaps panels' maps (row-major). */
+int hy_figure_draw_mapped(const hy_figure *f, const hy_canvas *cv, hy_panel_map *maps, size_t nmaps, hy_error *err);
+
+/* Renders f as HY_FORMAT_SVG, _PDF or _PNG into memory: *buf (malloc'd, the
+ * caller frees) holds *len bytes, the same bytes hy_figure_write writes.
+ * Re-entrant: figures may be rendered from several threads at once. */
+int hy_figure_render_mem(const hy_figure *f, int format, unsigned char **buf, size_t *len, hy_error *err);
+
+/* As hy_figure_render_mem; also stores the first nmaps panels' maps (in
+ * points, as the SVG's user units). */
+int hy_figure_render_mem_mapped(const hy_figure *f, int format, unsigned char **buf, size_t *len, hy_panel_map *maps,
+                                size_t nmaps, hy_error *err);
+
 /* Format from a file name's extension (.svg .pdf .png), or -1. */
 int hy_format_from_path(const char *path);
 

@@ -1,0 +1,1326 @@
+/* cmd_serve.c: `hystviz serve [SCENE.scene|DIR]`: a live preview in the
+ * browser on libmicrohttpd (one thread per connection), with a control per
+ * numeric key, reload on save (inotify, Server-Sent Events), animation
+ * frames from hystviz-animate (out of process: no OSMesa in hystviz) and
+ * "save as new scene".  Every figure is rendered in memory by the same
+ * pipeline as `hystviz render`, so the bytes are those render writes. */
+#include "cmd_serve.h"
+
+#include "hy_config.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static const char serve_help[] =
+    "usage: hystviz serve [SCENE.scene | DIR] [--port N] [--host ADDR [--public]] [--open]\n"
+    "\n"
+    "Serves a live preview of the scenes in DIR (default: scenes) at http://127.0.0.1:PORT/\n"
+    "until Ctrl-C: the catalogue, each figure as SVG with a slider and a number box per\n"
+    "numeric key, the `hystviz render --set` line that writes the same figure, downloads\n"
+    "(SVG, PDF, PNG, CSV), \"save as new scene\", an animation scrubber, and a reload of\n"
+    "every open page when a scene file or one it includes is saved.  With SCENE.scene,\n"
+    "the page opens that scene (the others in its directory stay reachable).\n"
+    "\n"
+    "  --port N       port (default 8017; 0 picks a free one, printed)\n"
+    "  --host ADDR    address to bind (default 127.0.0.1); any other needs --public\n"
+    "  --public       allow --host to be reachable from other machines: anyone who\n"
+    "                 can reach the port can read the scenes and render figures\n"
+    "  --open         open the page in the desktop's browser (xdg-open)\n"
+    "\n"
+    "Only the directory's *.scene files and their renders are served; requests whose\n"
+    "Host header is not the bound address or localhost are refused (DNS rebinding),\n"
+    "and saving needs the token of the page.  Exit status: 0 after Ctrl-C, 1 if the\n"
+    "port cannot be bound, 2 for a bad option, 3 if built without libmicrohttpd.\n";
+
+#if !HY_HAVE_MICROHTTPD
+
+int hy_cmd_serve(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+            fputs(serve_help, stdout);
+            return 0;
+        }
+    fprintf(stderr, "hystviz serve: this hystviz was built without libmicrohttpd (Debian: apt-get install "
+                    "libmicrohttpd-dev, then meson setup --reconfigure build -Dmicrohttpd=enabled)\n");
+    return 3;
+}
+
+#else
+
+#include <arpa/inet.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <math.h>
+#include <microhttpd.h>
+#include <netinet/in.h>
+#include <pthread.h>
+#include <semaphore.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <strings.h>
+#include <sys/random.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <dirent.h>
+#include <unistd.h>
+
+#include "dirwatch.h"
+#include "scene_boucwen.h"
+#include "scene_run.h"
+#include "serve_util.h"
+
+extern char **environ;
+
+/* the page (src/app/serve/, embedded at build time) */
+extern const char hy_page_html[], hy_page_js[], hy_page_css[];
+extern const size_t hy_page_html_len, hy_page_js_len, hy_page_css_len;
+
+#define MAX_ARGS 64         /* query arguments per request */
+#define MAX_BODY 4096       /* request body bytes (no request needs one) */
+#define MAX_PAGES 128       /* pages tracked for render coalescing */
+#define SSE_PING_S 10
+
+typedef struct page_slot {
+    char id[40];
+    unsigned long latest;   /* newest sequence number seen */
+    int busy;               /* a render for this page is running */
+    double used;
+} page_slot;
+
+typedef struct server {
+    char dir[PATH_MAX];     /* the scenes directory, resolved */
+    const char *dir_arg;    /* as given (for command lines and messages) */
+    char first[256];        /* SCENE.scene given: open it first */
+    char token[33];
+    char animate[PATH_MAX]; /* hystviz-animate next to this program */
+    char host[64];          /* bound address as text */
+    int port, ipv6, public_;
+    char *page;             /* index.html with the token */
+    size_t page_len;
+    pthread_mutex_t mu;
+    pthread_cond_t cond;    /* generation changes, stop, page slots freed */
+    unsigned long gen;
+    char changed[2048];
+    int stopping;
+    page_slot pages[MAX_PAGES];
+    sem_t renders;          /* renders running at once */
+    int stop_pipe[2];
+} server;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ---- responses ------------------------------------------------------ */
+
+static enum MHD_Result send_buf(struct MHD_Connection *c, unsigned status, const char *type, void *data, size_t len,
+                                int must_free, const char *disposition)
+{
+    struct MHD_Response *r =
+        MHD_create_response_from_buffer(len, data, must_free ? MHD_RESPMEM_MUST_FREE : MHD_RESPMEM_PERSISTENT);
+    if (!r) {
+        if (must_free)
+            free(data);
+        return MHD_NO;
+    }
+    MHD_add_response_header(r, "Content-Type", type);
+    MHD_add_response_header(r, "Cache-Control", "no-store");
+    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+    MHD_add_response_header(r, "Referrer-Policy", "no-referrer");
+    MHD_add_response_header(r, "X-Frame-Options", "DENY");
+    if (disposition)
+        MHD_add_response_header(r, "Content-Disposition", disposition);
+    enum MHD_Result ret = MHD_queue_response(c, status, r);
+    MHD_destroy_response(r);
+    return ret;
+}
+
+static enum MHD_Result send_text(struct MHD_Connection *c, unsigned status, const char *msg)
+{
+    size_t n = strlen(msg);
+    char *m = malloc(n + 2);
+    if (!m)
+        return MHD_NO;
+    memcpy(m, msg, n);
+    memcpy(m + n, "\n", 2);
+    return send_buf(c, status, "text/plain; charset=utf-8", m, n + 1, 1, NULL);
+}
+
+static enum MHD_Result send_json(struct MHD_Connection *c, unsigned status, sv_buf *b)
+{
+    if (b->oom) {
+        free(b->s);
+        return send_text(c, 500, "out of memory");
+    }
+    return send_buf(c, status, "application/json", b->s, b->len, 1, NULL);
+}
+
+static enum MHD_Result send_error_json(struct MHD_Connection *c, unsigned status, const char *msg)
+{
+    sv_buf b = {0};
+    sv_puts(&b, "{\"error\":");
+    sv_json(&b, msg);
+    sv_puts(&b, "}");
+    return send_json(c, status, &b);
+}
+
+/* ---- requests: arguments, host, token ------------------------------- */
+
+typedef struct args {
+    int n, too_many;
+    const char *scene, *fmt, *page, *seq, *frame, *name, *hover;
+    const char *sets[MAX_ARGS];
+    size_t nsets;
+    int bad_nul;
+} args;
+
+static enum MHD_Result arg_it(void *cls, enum MHD_ValueKind kind, const char *key, size_t key_size, const char *value,
+                              size_t value_size)
+{
+    (void)kind;
+    args *a = cls;
+    if (++a->n > MAX_ARGS) {
+        a->too_many = 1;
+        return MHD_NO;
+    }
+    if (!value)
+        value = "";
+    if (strlen(key) != key_size || strlen(value) != value_size) { /* an encoded NUL (%00) */
+        a->bad_nul = 1;
+        return MHD_NO;
+    }
+    if (!strcmp(key, "scene"))
+        a->scene = value;
+    else if (!strcmp(key, "fmt"))
+        a->fmt = value;
+    else if (!strcmp(key, "page"))
+        a->page = value;
+    else if (!strcmp(key, "seq"))
+        a->seq = value;
+    else if (!strcmp(key, "frame"))
+        a->frame = value;
+    else if (!strcmp(key, "name"))
+        a->name = value;
+    else if (!strcmp(key, "hover"))
+        a->hover = value;
+    else if (!strcmp(key, "set"))
+        a->sets[a->nsets++] = value;
+    return MHD_YES;
+}
+
+/* The Host header names this server: localhost or the bound address (with
+ * our port, if a port is given); with --public any IP literal (a DNS
+ * rebinding attack needs a name, never an address). */
+static int host_ok(const server *s, const char *h)
+{
+    if (!h || !*h || strlen(h) > 300)
+        return 0;
+    char name[320];
+    const char *port = NULL;
+    if (h[0] == '[') { /* [v6]:port */
+        const char *close = strchr(h, ']');
+        if (!close || (close[1] && close[1] != ':'))
+            return 0;
+        snprintf(name, sizeof name, "%.*s", (int)(close - h - 1), h + 1);
+        port = close[1] == ':' ? close + 2 : NULL;
+    } else {
+        const char *colon = strchr(h, ':');
+        if (colon && strchr(colon + 1, ':'))
+            return 0; /* a bare IPv6 address is not a valid Host */
+        snprintf(name, sizeof name, "%.*s", (int)(colon ? colon - h : (long)strlen(h)), h);
+        port = colon ? colon + 1 : NULL;
+    }
+    if (port) {
+        char *end;
+        long p = strtol(port, &end, 10);
+        if (*end || p != s->port)
+            return 0;
+    }
+    if (!strcasecmp(name, "localhost") || !strcmp(name, s->host))
+        return 1;
+    unsigned char addr[16];
+    if (!strcmp(name, "127.0.0.1") && !strcmp(s->host, "127.0.0.1"))
+        return 1;
+    return s->public_ && (inet_pton(AF_INET, name, addr) == 1 || inet_pton(AF_INET6, name, addr) == 1);
+}
+
+static int token_ok(const server *s, struct MHD_Connection *c)
+{
+    const char *t = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "X-Hystviz-Token");
+    if (!t || strlen(t) != strlen(s->token))
+        return 0;
+    unsigned char d = 0; /* constant time */
+    for (size_t i = 0; t[i]; i++)
+        d |= (unsigned char)(t[i] ^ s->token[i]);
+    return d == 0;
+}
+
+/* Resolves a scene name of the catalogue to its path (dir_arg/name); 0 if it
+ * is not one: bad name, missing, not a regular file, or a symlink leading
+ * out of the directory. */
+static int scene_path(const server *s, const char *name, char *path, size_t size)
+{
+    if (!name || !sv_scene_name_ok(name))
+        return 0;
+    char full[PATH_MAX + 256], real[PATH_MAX];
+    snprintf(full, sizeof full, "%s/%s", s->dir, name);
+    if (!realpath(full, real))
+        return 0;
+    size_t n = strlen(s->dir);
+    struct stat st;
+    if (strncmp(real, s->dir, n) || real[n] != '/' || strchr(real + n + 1, '/') || stat(real, &st) ||
+        !S_ISREG(st.st_mode))
+        return 0;
+    snprintf(path, size, "%s/%s", s->dir_arg, name);
+    return 1;
+}
+
+/* ---- the catalogue and a scene's description ----------------------- */
+
+static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+/* The header comment of a scene file, without the '#'s. */
+static void caption(sv_buf *b, const char *text)
+{
+    sv_buf c = {0};
+    for (const char *p = text; *p == '#';) {
+        const char *nl = strchr(p, '\n');
+        size_t n = nl ? (size_t)(nl - p) : strlen(p);
+        const char *q = p + 1;
+        while (q < p + n && *q == ' ')
+            q++;
+        if (c.len)
+            sv_puts(&c, " ");
+        sv_add(&c, q, (size_t)(p + n - q));
+        if (!nl)
+            break;
+        p = nl + 1;
+    }
+    sv_json(b, c.s ? c.s : "");
+    free(c.s);
+}
+
+static int is_animation(const hy_scene *sc)
+{
+    return hy_scene_count(sc, "keyframe") > 0;
+}
+
+static long anim_frames(const hy_scene *sc, double *fps_out)
+{
+    double duration = 5;
+    long fps = 30;
+    const char *q = "720p30";
+    hy_scene_get_num(sc, "animation", NULL, "duration", &duration);
+    int fps_set = hy_scene_get_int(sc, "animation", NULL, "fps", &fps) == HY_SCENE_SET;
+    int q_set = hy_scene_get_enum(sc, "animation", NULL, "quality", NULL, &q) == HY_SCENE_SET;
+    double f = (double)fps;
+    if (!fps_set && q_set && strchr(q, 'p'))
+        f = atof(strchr(q, 'p') + 1); /* as hystviz animate: the preset's rate */
+    *fps_out = f;
+    double n = floor(duration * f + 0.5);
+    return n < 1 ? 1 : n > 1e7 ? 10000000L : (long)n;
+}
+
+static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
+{
+    DIR *d = opendir(s->dir);
+    if (!d)
+        return send_error_json(c, 500, "cannot read the scenes directory");
+    char **v = NULL;
+    size_t n = 0, cap = 0;
+    for (struct dirent *de; (de = readdir(d));) {
+        if (!sv_scene_name_ok(de->d_name))
+            continue;
+        if (n == cap) {
+            char **nv = realloc(v, (cap = cap ? 2 * cap : 64) * sizeof *v);
+            if (!nv)
+                break;
+            v = nv;
+        }
+        if (!(v[n] = strdup(de->d_name)))
+            break;
+        n++;
+    }
+    closedir(d);
+    if (n)
+        qsort(v, n, sizeof *v, by_name);
+    sv_buf b = {0};
+    sv_puts(&b, "{\"dir\":");
+    sv_json(&b, s->dir_arg);
+    sv_puts(&b, ",\"first\":");
+    sv_json(&b, s->first);
+    sv_puts(&b, ",\"scenes\":[");
+    int first = 1;
+    for (size_t i = 0; i < n; i++) {
+        char path[PATH_MAX + 300];
+        hy_scene *sc = NULL;
+        hy_error err;
+        if (!scene_path(s, v[i], path, sizeof path)) {
+            free(v[i]);
+            continue;
+        }
+        int bad = hy_scene_parse_file(path, &sc, &err);
+        if (!bad && hy_scene_count(sc, "series") == 0) { /* style.scene and other includes */
+            hy_scene_free(sc);
+            free(v[i]);
+            continue;
+        }
+        size_t tl;
+        char *text = sv_read_file(path, 1 << 20, &tl);
+        hy_scene_run probe = {0};
+        probe.scene = sc;
+        probe.path = path;
+        char name[256];
+        if (sc)
+            hy_scene_run_name(&probe, name, sizeof name);
+        else
+            snprintf(name, sizeof name, "%.*s", (int)(strlen(v[i]) - 6), v[i]);
+        sv_puts(&b, first ? "{\"file\":" : ",{\"file\":");
+        first = 0;
+        sv_json(&b, v[i]);
+        sv_puts(&b, ",\"name\":");
+        sv_json(&b, name);
+        sv_puts(&b, ",\"caption\":");
+        caption(&b, text ? text : "");
+        sv_printf(&b, ",\"anim\":%s", sc && is_animation(sc) ? "true" : "false");
+        if (bad) {
+            sv_puts(&b, ",\"error\":");
+            sv_json(&b, err.msg);
+        }
+        sv_puts(&b, "}");
+        free(text);
+        hy_scene_free(sc);
+        free(v[i]);
+    }
+    free(v);
+    sv_puts(&b, "]}");
+    return send_json(c, 200, &b);
+}
+
+static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args *a)
+{
+    char path[PATH_MAX + 300];
+    if (!scene_path(s, a->scene, path, sizeof path))
+        return send_error_json(c, 404, "no such scene");
+    size_t tl;
+    char *text = sv_read_file(path, 1 << 20, &tl);
+    hy_scene *sc = NULL;
+    hy_error err;
+    sv_buf b = {0};
+    sv_puts(&b, "{\"file\":");
+    sv_json(&b, a->scene);
+    sv_puts(&b, ",\"path\":");
+    sv_json(&b, path);
+    sv_puts(&b, ",\"text\":");
+    sv_json(&b, text ? text : "");
+    sv_puts(&b, ",\"caption\":");
+    caption(&b, text ? text : "");
+    free(text);
+    if (hy_scene_parse_file(path, &sc, &err)) {
+        sv_puts(&b, ",\"controls\":[],\"anim\":null,\"error\":");
+        sv_json(&b, err.msg);
+    } else {
+        hy_scene_run probe = {0};
+        probe.scene = sc;
+        probe.path = path;
+        char name[256];
+        hy_scene_run_name(&probe, name, sizeof name);
+        sv_puts(&b, ",\"name\":");
+        sv_json(&b, name);
+        sv_puts(&b, ",\"controls\":");
+        sv_controls_json(&b, sc);
+        if (is_animation(sc)) {
+            double fps;
+            long nf = anim_frames(sc, &fps);
+            sv_printf(&b, ",\"anim\":{\"frames\":%ld,\"fps\":", nf);
+            sv_num(&b, fps);
+            sv_puts(&b, "}");
+        } else
+            sv_puts(&b, ",\"anim\":null");
+        hy_scene_free(sc);
+    }
+    sv_puts(&b, "}");
+    return send_json(c, 200, &b);
+}
+
+static enum MHD_Result api_text(server *s, struct MHD_Connection *c, const char *name)
+{
+    char path[PATH_MAX + 300];
+    if (!scene_path(s, name, path, sizeof path))
+        return send_text(c, 404, "not found");
+    size_t n;
+    char *text = sv_read_file(path, 1 << 20, &n);
+    if (!text)
+        return send_text(c, 500, "cannot read the scene");
+    return send_buf(c, 200, "text/plain; charset=utf-8", text, n, 1, NULL);
+}
+
+/* ---- rendering ------------------------------------------------------ */
+
+/* Latest wins: a request for page P with sequence number q waits while a
+ * render for P runs; if a newer request for P arrived meanwhile it gives up
+ * (409) and the newer one goes next.  Returns the slot, or NULL if superseded. */
+static page_slot *page_enter(server *s, const char *id, unsigned long seq)
+{
+    pthread_mutex_lock(&s->mu);
+    page_slot *p = NULL, *old = NULL;
+    for (int i = 0; i < MAX_PAGES; i++) {
+        if (!strcmp(s->pages[i].id, id))
+            p = &s->pages[i];
+        if (!s->pages[i].busy && (!old || s->pages[i].used < old->used))
+            old = &s->pages[i];
+    }
+    if (!p && old) { /* the least recently used idle slot */
+        p = old;
+        snprintf(p->id, sizeof p->id, "%s", id);
+        p->latest = 0;
+    }
+    if (!p) { /* every slot busy: no coalescing for this one */
+        pthread_mutex_unlock(&s->mu);
+        return (page_slot *)s;
+    }
+    if (seq > p->latest)
+        p->latest = seq;
+    while (p->busy && seq == p->latest && !s->stopping)
+        pthread_cond_wait(&s->cond, &s->mu);
+    if (seq != p->latest || s->stopping || strcmp(p->id, id)) {
+        pthread_mutex_unlock(&s->mu);
+        return NULL;
+    }
+    p->busy = 1;
+    p->used = now_s();
+    pthread_mutex_unlock(&s->mu);
+    return p;
+}
+
+static void page_leave(server *s, page_slot *p)
+{
+    if ((void *)p == (void *)s)
+        return;
+    pthread_mutex_lock(&s->mu);
+    p->busy = 0;
+    pthread_cond_broadcast(&s->cond);
+    pthread_mutex_unlock(&s->mu);
+}
+
+static void command_line(sv_buf *b, const char *path, const args *a, const char *fmt)
+{
+    sv_puts(b, !strcmp(fmt, "csv") ? "hystviz data " : "hystviz render ");
+    sv_shell(b, path);
+    for (size_t i = 0; i < a->nsets; i++) {
+        sv_puts(b, " --set ");
+        sv_shell(b, a->sets[i]);
+    }
+    if (strcmp(fmt, "csv"))
+        sv_printf(b, " --format %s", fmt);
+}
+
+static void json_series(sv_buf *b, const hy_scene_run *r)
+{
+    sv_puts(b, "[");
+    for (size_t i = 0; i < r->nseries; i++) {
+        const hy_run_series *se = &r->series[i];
+        sv_puts(b, i ? ",{\"name\":" : "{\"name\":");
+        sv_json(b, se->name);
+        sv_puts(b, ",\"x\":[");
+        for (size_t j = 0; j < se->n; j++) {
+            if (j)
+                sv_puts(b, ",");
+            if (isfinite(se->x[j]) && isfinite(se->y[j]))
+                sv_printf(b, "%.9g", se->x[j]);
+            else
+                sv_puts(b, "null");
+        }
+        sv_puts(b, "],\"y\":[");
+        for (size_t j = 0; j < se->n; j++) {
+            if (j)
+                sv_puts(b, ",");
+            if (isfinite(se->x[j]) && isfinite(se->y[j]))
+                sv_printf(b, "%.9g", se->y[j]);
+            else
+                sv_puts(b, "null");
+        }
+        sv_puts(b, "]");
+        if (se->has_mark)
+            sv_printf(b, ",\"mark\":[%.9g,%.9g]", se->mark_x, se->mark_y);
+        sv_puts(b, "}");
+    }
+    sv_puts(b, "]");
+}
+
+static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const args *a)
+{
+    char path[PATH_MAX + 300];
+    if (!scene_path(s, a->scene, path, sizeof path))
+        return send_error_json(c, 404, "no such scene");
+    const char *fmt = a->fmt ? a->fmt : "svg";
+    int format = !strcmp(fmt, "svg") || !strcmp(fmt, "json") ? HY_FORMAT_SVG
+                 : !strcmp(fmt, "pdf")                       ? HY_FORMAT_PDF
+                 : !strcmp(fmt, "png")                       ? HY_FORMAT_PNG
+                 : !strcmp(fmt, "csv")                       ? -2
+                                                             : -1;
+    if (format == -1)
+        return send_error_json(c, 400, "fmt: svg, pdf, png, csv or json");
+    hy_error err;
+    for (size_t i = 0; i < a->nsets; i++)
+        if (sv_set_ok(a->sets[i], &err))
+            return send_error_json(c, 400, err.msg);
+    page_slot *slot = NULL;
+    if (a->page) {
+        char *end;
+        unsigned long seq = a->seq ? strtoul(a->seq, &end, 10) : 0;
+        if (strlen(a->page) >= sizeof slot->id || !*a->page)
+            return send_error_json(c, 400, "page: at most 39 characters");
+        slot = page_enter(s, a->page, seq);
+        if (!slot)
+            return send_error_json(c, 409, "superseded by a newer request of the same page");
+    }
+    sem_wait(&s->renders);
+    double t0 = now_s();
+    hy_scene_run run;
+    int rc = hy_scene_run_load(&run, path, (char *const *)a->sets, a->nsets, &err);
+    int loaded = !rc;
+    if (!rc && (rc = hy_scene_run_compute(&run, NULL, &err))) {
+        hy_scene_run_free(&run);
+        loaded = 0;
+    }
+    unsigned char *bytes = NULL;
+    size_t len = 0;
+    hy_panel_map map = {0};
+    char *csv = NULL;
+    if (!rc) {
+        if (format == -2)
+            rc = hy_scene_run_csv(&run, &csv, &len, &err);
+        else
+            rc = hy_scene_run_render(&run, format, &bytes, &len, &map, &err);
+    }
+    double seconds = now_s() - t0;
+    sem_post(&s->renders);
+    if (slot)
+        page_leave(s, slot);
+    enum MHD_Result ret;
+    if (rc) {
+        if (loaded)
+            hy_scene_run_free(&run);
+        return send_error_json(c, 422, err.msg);
+    }
+    char name[256];
+    hy_scene_run_name(&run, name, sizeof name);
+    if (!strcmp(fmt, "json")) {
+        sv_buf b = {0};
+        sv_printf(&b, "{\"seq\":%s,\"seconds\":", a->seq && strspn(a->seq, "0123456789") == strlen(a->seq) && *a->seq
+                                                      ? a->seq
+                                                      : "0");
+        sv_num(&b, seconds);
+        sv_puts(&b, ",\"cmd\":");
+        sv_buf cmd = {0};
+        command_line(&cmd, path, a, "svg");
+        sv_json(&b, cmd.s ? cmd.s : "");
+        free(cmd.s);
+        sv_puts(&b, ",\"errors\":[");
+        int first = 1;
+        for (size_t i = 0; i < run.nseries; i++)
+            if (!isnan(run.series[i].err)) {
+                sv_puts(&b, first ? "{\"series\":" : ",{\"series\":");
+                first = 0;
+                sv_json(&b, run.series[i].name);
+                sv_puts(&b, ",\"err\":");
+                sv_num(&b, run.series[i].err);
+                sv_puts(&b, ",\"ref\":");
+                sv_json(&b, run.series[i].err_ref ? run.series[i].err_ref : "");
+                sv_puts(&b, "}");
+            }
+        sv_puts(&b, "],\"map\":{\"x0\":");
+        sv_num(&b, map.x0);
+        sv_puts(&b, ",\"y0\":");
+        sv_num(&b, map.y0);
+        sv_puts(&b, ",\"w\":");
+        sv_num(&b, map.w);
+        sv_puts(&b, ",\"h\":");
+        sv_num(&b, map.h);
+        sv_puts(&b, ",\"xlo\":");
+        sv_num(&b, map.xlo);
+        sv_puts(&b, ",\"xhi\":");
+        sv_num(&b, map.xhi);
+        sv_puts(&b, ",\"ylo\":");
+        sv_num(&b, map.ylo);
+        sv_puts(&b, ",\"yhi\":");
+        sv_num(&b, map.yhi);
+        sv_printf(&b, ",\"xlog\":%d,\"ylog\":%d}", map.xlog, map.ylog);
+        /* the x quantity by figure kind (timeseries, loop, input, g, psi) */
+        static const char *const xname[] = {"t", "u", "t", "v", "\u03f1"};
+        sv_printf(&b, ",\"xname\":\"%s\"", run.figure_kind >= 0 && run.figure_kind < 5 ? xname[run.figure_kind] : "x");
+        if (a->hover && !strcmp(a->hover, "1")) {
+            sv_puts(&b, ",\"series\":");
+            json_series(&b, &run);
+        }
+        sv_puts(&b, ",\"svg\":");
+        bytes = realloc(bytes, len + 1);
+        if (bytes) {
+            bytes[len] = '\0';
+            sv_json(&b, (const char *)bytes);
+        } else
+            b.oom = 1;
+        sv_puts(&b, "}");
+        free(bytes);
+        hy_scene_run_free(&run);
+        return send_json(c, 200, &b);
+    }
+    char disp[400];
+    snprintf(disp, sizeof disp, "%s; filename=\"%s.%s\"", a->name && !strcmp(a->name, "download") ? "attachment" : "inline",
+             name, fmt);
+    hy_scene_run_free(&run);
+    static const char *const types[] = {"image/svg+xml", "application/pdf", "image/png"};
+    if (format == -2)
+        return send_buf(c, 200, "text/csv; charset=utf-8", csv, len, 1, disp);
+    char hdr[64];
+    snprintf(hdr, sizeof hdr, "%.6f", seconds);
+    struct MHD_Response *r = MHD_create_response_from_buffer(len, bytes, MHD_RESPMEM_MUST_FREE);
+    if (!r) {
+        free(bytes);
+        return MHD_NO;
+    }
+    MHD_add_response_header(r, "Content-Type", types[format]);
+    MHD_add_response_header(r, "Cache-Control", "no-store");
+    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+    MHD_add_response_header(r, "Content-Security-Policy", "default-src 'none'; style-src 'unsafe-inline'");
+    MHD_add_response_header(r, "Content-Disposition", disp);
+    MHD_add_response_header(r, "X-Hystviz-Seconds", hdr);
+    ret = MHD_queue_response(c, 200, r);
+    MHD_destroy_response(r);
+    return ret;
+}
+
+/* ---- animation frames: hystviz-animate, out of process ------------ */
+
+static enum MHD_Result api_frame(server *s, struct MHD_Connection *c, const args *a)
+{
+    char path[PATH_MAX + 300];
+    if (!scene_path(s, a->scene, path, sizeof path))
+        return send_error_json(c, 404, "no such scene");
+    char *end;
+    errno = 0;
+    long frame = a->frame ? strtol(a->frame, &end, 10) : -1;
+    if (!a->frame || *end || errno || frame < 0 || frame > 9999999)
+        return send_error_json(c, 400, "frame: a frame index from 0");
+    if (a->nsets)
+        return send_error_json(c, 400, "animation frames take no overrides (hystviz animate has no --set)");
+    page_slot *slot = NULL;
+    if (a->page) {
+        unsigned long seq = a->seq ? strtoul(a->seq, &end, 10) : 0;
+        if (strlen(a->page) >= sizeof slot->id || !*a->page)
+            return send_error_json(c, 400, "page: at most 39 characters");
+        slot = page_enter(s, a->page, seq);
+        if (!slot)
+            return send_error_json(c, 409, "superseded by a newer request of the same page");
+    }
+    const char *tdir = getenv("TMPDIR");
+    char tmpl[PATH_MAX];
+    snprintf(tmpl, sizeof tmpl, "%s/hystviz-serve-XXXXXX", tdir && *tdir && strlen(tdir) < 3000 ? tdir : "/tmp");
+    enum MHD_Result ret;
+    if (!mkdtemp(tmpl)) {
+        if (slot)
+            page_leave(s, slot);
+        return send_error_json(c, 500, "cannot create a temporary directory");
+    }
+    char range[64], errfile[PATH_MAX + 16];
+    snprintf(range, sizeof range, "%ld:%ld", frame, frame + 1);
+    snprintf(errfile, sizeof errfile, "%s/stderr", tmpl);
+    char *argv[] = {s->animate, "animate", path, "--frames", range, "-o", tmpl, "--quiet", "-j", "1", NULL};
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, errfile, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    pid_t pid;
+    sem_wait(&s->renders);
+    int sp = posix_spawn(&pid, s->animate, &fa, NULL, argv, environ);
+    int status = -1;
+    if (!sp)
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+            ;
+    sem_post(&s->renders);
+    posix_spawn_file_actions_destroy(&fa);
+    if (slot)
+        page_leave(s, slot);
+    /* the frame: DIR/NAME/frame_NNNNN.png, NAME the scene's output name */
+    hy_scene *sc = NULL;
+    hy_error err;
+    char name[256] = "";
+    if (!hy_scene_parse_file(path, &sc, &err)) {
+        hy_scene_run probe = {0};
+        probe.scene = sc;
+        probe.path = path;
+        hy_scene_run_name(&probe, name, sizeof name);
+        hy_scene_free(sc);
+    }
+    char png[PATH_MAX + 600], sub[PATH_MAX + 300], poster[PATH_MAX + 300];
+    snprintf(sub, sizeof sub, "%s/%s", tmpl, name);
+    snprintf(png, sizeof png, "%s/frame_%05ld.png", sub, frame);
+    snprintf(poster, sizeof poster, "%s/%s.png", tmpl, name);
+    size_t len = 0;
+    char *bytes = sp || !WIFEXITED(status) || WEXITSTATUS(status) ? NULL : sv_read_file(png, 64u << 20, &len);
+    size_t elen = 0;
+    char *etext = sv_read_file(errfile, 8192, &elen);
+    if (bytes)
+        ret = send_buf(c, 200, "image/png", bytes, len, 1, NULL);
+    else {
+        char msg[PATH_MAX + 600];
+        if (sp)
+            snprintf(msg, sizeof msg, "cannot run %s: %s", s->animate, strerror(sp));
+        else
+            snprintf(msg, sizeof msg, "%s", etext && *etext ? etext : "hystviz animate failed");
+        size_t ml = strlen(msg);
+        while (ml && msg[ml - 1] == '\n')
+            msg[--ml] = '\0';
+        ret = send_error_json(c, WIFEXITED(status) && WEXITSTATUS(status) == 3 ? 501 : 422, msg);
+    }
+    free(etext);
+    unlink(png);
+    unlink(poster);
+    unlink(errfile);
+    rmdir(sub);
+    rmdir(tmpl);
+    return ret;
+}
+
+/* ---- save as new scene ---------------------------------------------- */
+
+/* Removes every '#' that starts a line or follows a space, to the end of its line. */
+static void strip_comments(char *w)
+{
+    if (!w)
+        return;
+    char *o = w;
+    for (char *p = w; *p;) {
+        if (*p == '#' && (p == w || p[-1] == ' ' || p[-1] == '\n')) {
+            while (o > w && o[-1] == ' ')
+                o--;
+            while (*p && *p != '\n')
+                p++;
+            continue;
+        }
+        *o++ = *p++;
+    }
+    *o = '\0';
+}
+
+static enum MHD_Result api_save(server *s, struct MHD_Connection *c, const args *a)
+{
+    char path[PATH_MAX + 300];
+    if (!scene_path(s, a->scene, path, sizeof path))
+        return send_error_json(c, 404, "no such scene");
+    const char *nm = a->name;
+    size_t nl = nm ? strlen(nm) : 0;
+    if (!nm || !nl || nl > 100 || nm[0] == '.' || nm[0] == '-' || strspn(nm, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != nl)
+        return send_error_json(c, 400, "name: 1 to 100 letters, digits, '_' or '-' (the new scene is NAME.scene)");
+    hy_error err;
+    for (size_t i = 0; i < a->nsets; i++)
+        if (sv_set_ok(a->sets[i], &err))
+            return send_error_json(c, 400, err.msg);
+    char dest[PATH_MAX + 300];
+    snprintf(dest, sizeof dest, "%s/%s.scene", s->dir_arg, nm);
+    size_t tl;
+    char *text = sv_read_file(path, 1 << 20, &tl);
+    hy_scene *orig = NULL;
+    if (!text || hy_scene_parse_file(path, &orig, &err)) {
+        free(text);
+        return send_error_json(c, 422, text ? err.msg : "cannot read the scene");
+    }
+    /* the new scene must render what the page shows: the original with the
+       overrides (and the new output name) */
+    char *newtext = sv_scene_with_sets(orig, path, text, (char *const *)a->sets, a->nsets, nm, &err);
+    hy_scene_free(orig);
+    free(text);
+    if (!newtext)
+        return send_error_json(c, 422, err.msg);
+    const char *sets[MAX_ARGS + 1];
+    char outset[200];
+    snprintf(outset, sizeof outset, "output.name=%s", nm);
+    for (size_t i = 0; i < a->nsets; i++)
+        sets[i] = a->sets[i];
+    sets[a->nsets] = outset;
+    hy_scene *want = NULL, *got = NULL;
+    int rc = hy_scene_parse_file(path, &want, &err);
+    for (size_t i = 0; !rc && i <= a->nsets; i++)
+        rc = hy_scene_set(want, sets[i], &err);
+    if (!rc)
+        rc = hy_scene_parse_buffer(dest, newtext, strlen(newtext), &got, &err);
+    if (!rc) { /* same effective values: the scenes written back without origins agree */
+        char *w1 = NULL, *w2 = NULL;
+        size_t l1 = 0, l2 = 0;
+        FILE *f1 = open_memstream(&w1, &l1), *f2 = open_memstream(&w2, &l2);
+        if (f1 && f2) {
+            hy_scene_write(want, f1, 1);
+            hy_scene_write(got, f2, 1);
+        }
+        if (f1)
+            fclose(f1);
+        if (f2)
+            fclose(f2);
+        /* drop the comments (origins, the header) before comparing */
+        strip_comments(w1);
+        strip_comments(w2);
+        if (!w1 || !w2 || strcmp(w1, w2))
+            rc = hy_error_set(&err, HY_EINVAL, "the new scene would not reproduce the figure; nothing was written");
+        free(w1);
+        free(w2);
+    }
+    hy_scene_free(want);
+    hy_scene_free(got);
+    if (!rc)
+        rc = sv_write_new(dest, newtext, strlen(newtext), &err);
+    free(newtext);
+    if (rc)
+        return send_error_json(c, rc == HY_EINVAL ? 409 : 500, err.msg);
+    sv_buf b = {0};
+    sv_puts(&b, "{\"file\":");
+    char file[200];
+    snprintf(file, sizeof file, "%s.scene", nm);
+    sv_json(&b, file);
+    sv_puts(&b, ",\"path\":");
+    sv_json(&b, dest);
+    sv_puts(&b, "}");
+    return send_json(c, 201, &b);
+}
+
+/* ---- Server-Sent Events --------------------------------------------- */
+
+typedef struct sse_client {
+    server *s;
+    unsigned long seen;
+    int hello;
+} sse_client;
+
+static ssize_t sse_read(void *cls, uint64_t pos, char *buf, size_t max)
+{
+    (void)pos;
+    sse_client *cl = cls;
+    server *s = cl->s;
+    if (max < 64)
+        return 0;
+    pthread_mutex_lock(&s->mu);
+    if (s->stopping) {
+        pthread_mutex_unlock(&s->mu);
+        return MHD_CONTENT_READER_END_OF_STREAM;
+    }
+    if (!cl->hello) {
+        cl->hello = 1;
+        cl->seen = s->gen;
+        int n = snprintf(buf, max, "retry: 1000\nevent: hello\ndata: {\"gen\":%lu}\n\n", s->gen);
+        pthread_mutex_unlock(&s->mu);
+        return n;
+    }
+    struct timespec until;
+    clock_gettime(CLOCK_REALTIME, &until);
+    until.tv_sec += SSE_PING_S;
+    int timed_out = 0;
+    while (cl->seen == s->gen && !s->stopping && !timed_out)
+        timed_out = pthread_cond_timedwait(&s->cond, &s->mu, &until) == ETIMEDOUT;
+    if (s->stopping) {
+        pthread_mutex_unlock(&s->mu);
+        return MHD_CONTENT_READER_END_OF_STREAM;
+    }
+    if (cl->seen == s->gen) {
+        pthread_mutex_unlock(&s->mu);
+        return snprintf(buf, max, ": ping\n\n");
+    }
+    cl->seen = s->gen;
+    sv_buf b = {0};
+    sv_printf(&b, "event: change\ndata: {\"gen\":%lu,\"files\":", s->gen);
+    sv_json(&b, s->changed);
+    sv_puts(&b, "}\n\n");
+    pthread_mutex_unlock(&s->mu);
+    ssize_t n = 0;
+    if (!b.oom && b.len <= max) {
+        memcpy(buf, b.s, b.len);
+        n = (ssize_t)b.len;
+    } else
+        n = snprintf(buf, max, "event: change\ndata: {\"gen\":%lu,\"files\":\"\"}\n\n", cl->seen);
+    free(b.s);
+    return n;
+}
+
+static void sse_free(void *cls) { free(cls); }
+
+static enum MHD_Result events(server *s, struct MHD_Connection *c)
+{
+    sse_client *cl = calloc(1, sizeof *cl);
+    if (!cl)
+        return MHD_NO;
+    cl->s = s;
+    struct MHD_Response *r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, 4096, sse_read, cl, sse_free);
+    if (!r) {
+        free(cl);
+        return MHD_NO;
+    }
+    MHD_add_response_header(r, "Content-Type", "text/event-stream");
+    MHD_add_response_header(r, "Cache-Control", "no-store");
+    enum MHD_Result ret = MHD_queue_response(c, 200, r);
+    MHD_destroy_response(r);
+    return ret;
+}
+
+/* ---- dispatch ------------------------------------------------------- */
+
+typedef struct conn_state {
+    size_t body;
+} conn_state;
+
+static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *url, const char *method,
+                              const char *version, const char *upload, size_t *upload_size, void **con_cls)
+{
+    (void)version;
+    (void)upload;
+    server *s = cls;
+    if (!*con_cls) {
+        conn_state *cs = calloc(1, sizeof *cs);
+        if (!cs)
+            return MHD_NO;
+        *con_cls = cs;
+        return MHD_YES;
+    }
+    conn_state *cs = *con_cls;
+    if (*upload_size) { /* no request needs a body: count it, keep none */
+        cs->body += *upload_size;
+        *upload_size = 0;
+        return MHD_YES;
+    }
+    if (cs->body > MAX_BODY)
+        return send_text(c, 413, "request body too large");
+    if (!host_ok(s, MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Host")))
+        return send_text(c, 403, "Host header not allowed (use http://localhost:PORT/ or the bound address)");
+    int get = !strcmp(method, "GET") || !strcmp(method, "HEAD"), post = !strcmp(method, "POST");
+    if (!get && !post)
+        return send_text(c, 405, "method not allowed");
+    args a;
+    memset(&a, 0, sizeof a);
+    MHD_get_connection_values_n(c, MHD_GET_ARGUMENT_KIND, arg_it, &a);
+    if (a.too_many)
+        return send_text(c, 400, "too many query arguments");
+    if (a.bad_nul)
+        return send_text(c, 404, "not found");
+    if (post) {
+        if (strcmp(url, "/api/save"))
+            return send_text(c, 405, "method not allowed");
+        if (!token_ok(s, c))
+            return send_text(c, 403, "missing or wrong X-Hystviz-Token (reload the page)");
+        return api_save(s, c, &a);
+    }
+    if (!strcmp(url, "/") || !strcmp(url, "/index.html")) {
+        struct MHD_Response *r = MHD_create_response_from_buffer(s->page_len, s->page, MHD_RESPMEM_PERSISTENT);
+        if (!r)
+            return MHD_NO;
+        MHD_add_response_header(r, "Content-Type", "text/html; charset=utf-8");
+        MHD_add_response_header(r, "Cache-Control", "no-store");
+        MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+        MHD_add_response_header(r, "X-Frame-Options", "DENY");
+        MHD_add_response_header(r, "Referrer-Policy", "no-referrer");
+        MHD_add_response_header(r, "Content-Security-Policy",
+                                "default-src 'self'; img-src 'self' data: blob:; style-src 'self' 'unsafe-inline'; "
+                                "script-src 'self'; frame-ancestors 'none'");
+        enum MHD_Result ret = MHD_queue_response(c, 200, r);
+        MHD_destroy_response(r);
+        return ret;
+    }
+    if (!strcmp(url, "/app.js"))
+        return send_buf(c, 200, "text/javascript; charset=utf-8", (void *)hy_page_js, hy_page_js_len, 0, NULL);
+    if (!strcmp(url, "/app.css"))
+        return send_buf(c, 200, "text/css; charset=utf-8", (void *)hy_page_css, hy_page_css_len, 0, NULL);
+    if (!strcmp(url, "/events"))
+        return events(s, c);
+    if (!strcmp(url, "/api/scenes"))
+        return api_scenes(s, c);
+    if (!strcmp(url, "/api/scene"))
+        return api_scene(s, c, &a);
+    if (!strcmp(url, "/api/render"))
+        return api_render(s, c, &a);
+    if (!strcmp(url, "/api/frame"))
+        return api_frame(s, c, &a);
+    if (!strncmp(url, "/scenes/", 8))
+        return api_text(s, c, url + 8);
+    return send_text(c, 404, "not found");
+}
+
+static void done(void *cls, struct MHD_Connection *c, void **con_cls, enum MHD_RequestTerminationCode toe)
+{
+    (void)cls;
+    (void)c;
+    (void)toe;
+    free(*con_cls);
+    *con_cls = NULL;
+}
+
+/* ---- the watcher thread --------------------------------------------- */
+
+static void *watcher(void *arg)
+{
+    server *s = arg;
+    const char *dirs[1] = {s->dir};
+    hy_error err;
+    hy_dirwatch *w = hy_dirwatch_open(dirs, 1, &err);
+    if (!w) {
+        fprintf(stderr, "hystviz serve: %s; pages will not reload on save\n", err.msg);
+        return NULL;
+    }
+    char names[2048];
+    for (;;) {
+        int r = hy_dirwatch_wait(w, s->stop_pipe[0], -1, names, sizeof names, &err);
+        if (r <= 0) {
+            if (r < 0)
+                fprintf(stderr, "hystviz serve: %s; pages will not reload on save\n", err.msg);
+            break;
+        }
+        pthread_mutex_lock(&s->mu);
+        s->gen++;
+        /* the names relative to the directory */
+        sv_buf b = {0};
+        size_t dl = strlen(s->dir);
+        for (char *p = names; *p;) {
+            char *nl = strchr(p, '\n');
+            size_t n = nl ? (size_t)(nl - p) : strlen(p);
+            if (n > dl && !strncmp(p, s->dir, dl) && p[dl] == '/') {
+                if (b.len)
+                    sv_puts(&b, "\n");
+                sv_add(&b, p + dl + 1, n - dl - 1);
+            }
+            p += n + (nl ? 1 : 0);
+        }
+        snprintf(s->changed, sizeof s->changed, "%s", b.s ? b.s : "");
+        free(b.s);
+        pthread_cond_broadcast(&s->cond);
+        pthread_mutex_unlock(&s->mu);
+    }
+    hy_dirwatch_close(w);
+    return NULL;
+}
+
+/* ---- the command ---------------------------------------------------- */
+
+static int parse_port(const char *v, int *port)
+{
+    char *end;
+    errno = 0;
+    long p = v ? strtol(v, &end, 10) : -1;
+    if (!v || errno || *end || end == v || p < 0 || p > 65535)
+        return -1;
+    *port = (int)p;
+    return 0;
+}
+
+static int make_page(server *s)
+{
+    const char *mark = strstr(hy_page_html, "@TOKEN@");
+    if (!mark)
+        return -1;
+    size_t pre = (size_t)(mark - hy_page_html), tl = strlen(s->token);
+    s->page_len = hy_page_html_len - 7 + tl;
+    s->page = malloc(s->page_len + 1);
+    if (!s->page)
+        return -1;
+    memcpy(s->page, hy_page_html, pre);
+    memcpy(s->page + pre, s->token, tl);
+    memcpy(s->page + pre + tl, mark + 7, hy_page_html_len - pre - 7 + 1);
+    return 0;
+}
+
+int hy_cmd_serve(int argc, char **argv)
+{
+    const char *target = NULL, *host = "127.0.0.1";
+    int port = 8017, public_ = 0, open_browser = 0, host_given = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            fputs(serve_help, stdout);
+            return 0;
+        } else if (!strcmp(a, "--port")) {
+            if (parse_port(v, &port)) {
+                fprintf(stderr, "hystviz serve: --port '%s': give a port from 0 to 65535\n", v ? v : "");
+                return 2;
+            }
+            i++;
+        } else if (!strcmp(a, "--host") && v) {
+            host = argv[++i];
+            host_given = 1;
+        } else if (!strcmp(a, "--public"))
+            public_ = 1;
+        else if (!strcmp(a, "--open"))
+            open_browser = 1;
+        else if (a[0] == '-' || target) {
+            fprintf(stderr, "hystviz serve: unknown or extra argument '%s' (see hystviz serve --help)\n", a);
+            return 2;
+        } else
+            target = a;
+    }
+    (void)host_given;
+    server *s = calloc(1, sizeof *s);
+    if (!s) {
+        fprintf(stderr, "hystviz serve: out of memory\n");
+        return 1;
+    }
+    int rc = 2;
+    struct sockaddr_in6 sa6;
+    struct sockaddr_in sa4;
+    memset(&sa6, 0, sizeof sa6);
+    memset(&sa4, 0, sizeof sa4);
+    if (inet_pton(AF_INET, host, &sa4.sin_addr) == 1) {
+        sa4.sin_family = AF_INET;
+        sa4.sin_port = htons((uint16_t)port);
+    } else if (inet_pton(AF_INET6, host, &sa6.sin6_addr) == 1) {
+        sa6.sin6_family = AF_INET6;
+        sa6.sin6_port = htons((uint16_t)port);
+        s->ipv6 = 1;
+    } else {
+        fprintf(stderr, "hystviz serve: --host '%s': give an IPv4 or IPv6 address (e.g. 127.0.0.1, ::1)\n", host);
+        free(s);
+        return 2;
+    }
+    int loopback = s->ipv6 ? IN6_IS_ADDR_LOOPBACK(&sa6.sin6_addr) : (ntohl(sa4.sin_addr.s_addr) >> 24) == 127;
+    if (!loopback && !public_) {
+        fprintf(stderr, "hystviz serve: --host %s is reachable from other machines: add --public if that is meant\n",
+                host);
+        free(s);
+        return 2;
+    }
+    snprintf(s->host, sizeof s->host, "%s", host);
+    s->public_ = public_;
+    /* the directory, and the scene to open first */
+    const char *dir = target ? target : "scenes";
+    char dirbuf[PATH_MAX];
+    struct stat st;
+    if (stat(dir, &st)) {
+        fprintf(stderr, "hystviz serve: %s: %s\n", dir, strerror(errno));
+        free(s);
+        return 2;
+    }
+    if (S_ISREG(st.st_mode)) {
+        const char *slash = strrchr(dir, '/');
+        snprintf(s->first, sizeof s->first, "%s", slash ? slash + 1 : dir);
+        if (!sv_scene_name_ok(s->first)) {
+            fprintf(stderr, "hystviz serve: %s: give a NAME.scene file (letters, digits, _ - .) or a directory\n", dir);
+            free(s);
+            return 2;
+        }
+        if (slash)
+            snprintf(dirbuf, sizeof dirbuf, "%.*s", (int)(slash - dir), dir);
+        else
+            snprintf(dirbuf, sizeof dirbuf, ".");
+        if (!dirbuf[0])
+            snprintf(dirbuf, sizeof dirbuf, "/");
+        dir = dirbuf;
+    }
+    if (!realpath(dir, s->dir)) {
+        fprintf(stderr, "hystviz serve: %s: %s\n", dir, strerror(errno));
+        free(s);
+        return 2;
+    }
+    s->dir_arg = dir;
+    /* hystviz-animate next to this program */
+    char self[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (n > 0) {
+        self[n] = '\0';
+        char *slash = strrchr(self, '/');
+        if (slash)
+            *slash = '\0';
+        snprintf(s->animate, sizeof s->animate, "%.*s/hystviz-animate", (int)(sizeof s->animate - 20), self);
+    }
+    /* the per-run token */
+    unsigned char rnd[16];
+    if (getrandom(rnd, sizeof rnd, 0) != (ssize_t)sizeof rnd) {
+        fprintf(stderr, "hystviz serve: no random bytes for the page token: %s\n", strerror(errno));
+        free(s);
+        return 1;
+    }
+    for (int i = 0; i < 16; i++)
+        snprintf(s->token + 2 * i, 3, "%02x", rnd[i]);
+    if (make_page(s)) {
+        fprintf(stderr, "hystviz serve: out of memory\n");
+        free(s);
+        return 1;
+    }
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    pthread_mutex_init(&s->mu, NULL);
+    pthread_cond_init(&s->cond, NULL);
+    sem_init(&s->renders, 0, (unsigned)(ncpu > 0 ? ncpu : 1) * 2);
+    if (pipe(s->stop_pipe)) {
+        fprintf(stderr, "hystviz serve: pipe: %s\n", strerror(errno));
+        free(s->page);
+        free(s);
+        return 1;
+    }
+    /* every thread inherits the blocked signals; this one waits for them */
+    sigset_t sigs;
+    sigemptyset(&sigs);
+    sigaddset(&sigs, SIGINT);
+    sigaddset(&sigs, SIGTERM);
+    sigaddset(&sigs, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &sigs, NULL);
+    signal(SIGPIPE, SIG_IGN);
+    unsigned flags = MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_THREAD_PER_CONNECTION | (s->ipv6 ? MHD_USE_IPv6 : 0);
+    struct MHD_Daemon *d = MHD_start_daemon(
+        flags, (uint16_t)port, NULL, NULL, handle, s, MHD_OPTION_SOCK_ADDR,
+        s->ipv6 ? (struct sockaddr *)&sa6 : (struct sockaddr *)&sa4, MHD_OPTION_CONNECTION_LIMIT, (unsigned)256,
+        MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned)128, MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)120,
+        MHD_OPTION_CONNECTION_MEMORY_LIMIT, (size_t)65536, MHD_OPTION_NOTIFY_COMPLETED, done, s, MHD_OPTION_END);
+    pthread_t wt;
+    int have_wt = 0;
+    if (!d) {
+        fprintf(stderr, "hystviz serve: cannot listen on %s port %d (in use? try --port 0)\n", host, port);
+        rc = 1;
+    } else {
+        const union MHD_DaemonInfo *info = MHD_get_daemon_info(d, MHD_DAEMON_INFO_BIND_PORT);
+        s->port = info ? (int)info->port : port;
+        have_wt = !pthread_create(&wt, NULL, watcher, s);
+        if (public_)
+            fprintf(stderr, "hystviz serve: warning: listening on %s: anyone who can reach port %d can read the "
+                            "scenes in %s and render figures\n",
+                    host, s->port, s->dir);
+        printf("hystviz serve: http://%s%s%s:%d/ (scenes: %s; Ctrl-C stops)\n", s->ipv6 ? "[" : "", host,
+               s->ipv6 ? "]" : "", s->port, s->dir_arg);
+        fflush(stdout);
+        if (open_browser) {
+            char url[128];
+            snprintf(url, sizeof url, "http://%s%s%s:%d/", s->ipv6 ? "[" : "", host, s->ipv6 ? "]" : "", s->port);
+            char *oargv[] = {"xdg-open", url, NULL};
+            pid_t pid;
+            if (posix_spawnp(&pid, "xdg-open", NULL, NULL, oargv, environ))
+                fprintf(stderr, "hystviz serve: --open: cannot run xdg-open; open the URL above\n");
+        }
+        int sig = 0;
+        while (sigwait(&sigs, &sig) == EINTR)
+            ;
+        fprintf(stderr, "hystviz serve: stopping (signal %d)\n", sig);
+        rc = 0;
+    }
+    /* stop: wake every waiter, stop the watcher, then the daemon (it joins
+       the connection threads, which finish what they are writing) */
+    pthread_mutex_lock(&s->mu);
+    s->stopping = 1;
+    pthread_cond_broadcast(&s->cond);
+    pthread_mutex_unlock(&s->mu);
+    if (write(s->stop_pipe[1], "x", 1) < 0)
+        rc = rc ? rc : 1;
+    if (have_wt)
+        pthread_join(wt, NULL);
+    if (d)
+        MHD_stop_daemon(d);
+    for (int i = 0; i < 2; i++)
+        close(s->stop_pipe[i]);
+    sem_destroy(&s->renders);
+    pthread_cond_destroy(&s->cond);
+    pthread_mutex_destroy(&s->mu);
+    free(s->page);
+    free(s);
+    return rc;
+}
+
+#endif

@@ -1,0 +1,228 @@
+/* cmd_watch.c: `hystviz watch SCENE...`: render, then render again on every
+ * save of a scene or anything it includes (inotify on the scenes'
+ * directories, so rename-saves count), one line per render; scene errors are
+ * printed and watching goes on. */
+#include "cmd_serve.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <math.h>
+#include <signal.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "dirwatch.h"
+#include "scene_run.h"
+
+static const char watch_help[] =
+    "usage: hystviz watch SCENE... [-o DIR] [--set SECTION.KEY=VALUE]... [--format svg,pdf,png]\n"
+    "\n"
+    "Renders each scene as `hystviz render` does, then again whenever it or a file it\n"
+    "includes changes on disk (editors that save by renaming are\n"
+    "seen too), until Ctrl-C.  One line per render: the time, the scene, the files\n"
+    "written and the render time, and the largest error measured against an exact\n"
+    "answer; or the scene's error (the last good files stay, watching goes on).\n"
+    "\n"
+    "  -o DIR          output directory (default: each scene's [output] dir)\n"
+    "  --set S.K=V     override a scene key (as render)\n"
+    "  --format LIST   formats to write instead of the scene's\n"
+    "\n"
+    "Exit status: 0 after Ctrl-C, 1 if the directories cannot be watched, 2 for a bad option.\n";
+
+static int stop_pipe[2] = {-1, -1};
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    int e = errno;
+    if (write(stop_pipe[1], "x", 1) < 0) {
+        /* nothing to do: the pipe is full, a stop is pending already */
+    }
+    errno = e;
+}
+
+typedef struct watched {
+    const char *path;
+    uint64_t hash;     /* of the last render attempt (0: none) */
+} watched;
+
+static void stamp(char *buf, size_t n)
+{
+    time_t t = time(NULL);
+    struct tm tm;
+    localtime_r(&t, &tm);
+    strftime(buf, n, "%H:%M:%S", &tm);
+}
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Renders w if its text (with includes and overrides) changed since the last
+ * attempt, or always with force; prints one line. */
+static void render_one(watched *w, char *const *sets, size_t nsets, const char *out, const char *formats, int force)
+{
+    char ts[16];
+    hy_error err;
+    hy_scene_run run;
+    double t0 = now();
+    stamp(ts, sizeof ts);
+    /* a cheap parse first: unchanged text is not rendered again */
+    hy_scene *probe = NULL;
+    int rc = hy_scene_parse_file(w->path, &probe, &err);
+    for (size_t i = 0; !rc && i < nsets; i++)
+        rc = hy_scene_set(probe, sets[i], &err);
+    uint64_t h = rc ? 0 : hy_scene_hash(probe);
+    hy_scene_free(probe);
+    if (!rc && !force && h == w->hash)
+        return;
+    w->hash = h;
+    if (!rc)
+        rc = hy_scene_run_load(&run, w->path, sets, nsets, &err);
+    if (rc) {
+        printf("%s %s: error: %s\n", ts, w->path, err.msg);
+        fflush(stdout);
+        return;
+    }
+    char written[8192] = "";
+    rc = hy_scene_run_compute(&run, NULL, &err);
+    if (!rc)
+        rc = hy_scene_run_write(&run, out, formats, written, sizeof written, &err);
+    double dt = now() - t0;
+    if (rc)
+        printf("%s %s: error: %s\n", ts, w->path, err.msg);
+    else {
+        for (char *p = written; (p = strchr(p, '\n'));)
+            *p = p[1] ? ' ' : '\0';
+        double emax = NAN;
+        const char *ref = NULL;
+        for (size_t i = 0; i < run.nseries; i++)
+            if (!isnan(run.series[i].err) && !(run.series[i].err <= emax)) {
+                emax = run.series[i].err;
+                ref = run.series[i].err_ref;
+            }
+        printf("%s %s: %s in %.3f s", ts, w->path, written, dt);
+        if (!isnan(emax))
+            printf("; max error %.3g against the %s\n", emax, ref ? ref : "exact answer");
+        else
+            printf("; no exact answer to compare with\n");
+    }
+    fflush(stdout);
+    hy_scene_run_free(&run);
+}
+
+int hy_cmd_watch(int argc, char **argv)
+{
+    const char *out = NULL, *formats = NULL;
+    char **sets = calloc((size_t)argc, sizeof *sets);
+    watched *ws = calloc((size_t)argc, sizeof *ws);
+    size_t nsets = 0, nw = 0;
+    if (!sets || !ws) {
+        free(sets);
+        free(ws);
+        fprintf(stderr, "hystviz watch: out of memory\n");
+        return 1;
+    }
+    int rc = 0;
+    for (int i = 1; i < argc && !rc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            fputs(watch_help, stdout);
+            free(sets);
+            free(ws);
+            return 0;
+        } else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
+            out = argv[++i];
+        else if (!strcmp(a, "--set") && v)
+            sets[nsets++] = argv[++i];
+        else if (!strcmp(a, "--format") && v)
+            formats = argv[++i];
+        else if (a[0] == '-') {
+            fprintf(stderr, "hystviz watch: unknown or incomplete option '%s' (see hystviz watch --help)\n", a);
+            rc = 2;
+        } else
+            ws[nw++].path = a;
+    }
+    if (!rc && !nw) {
+        fprintf(stderr, "hystviz watch: give at least one scene file (see hystviz watch --help)\n");
+        rc = 2;
+    }
+    /* the directories to watch: each scene's (includes stay inside it) */
+    char **dirs = rc ? NULL : calloc(nw, sizeof *dirs);
+    size_t nd = 0;
+    for (size_t i = 0; !rc && i < nw; i++) {
+        char tmp[PATH_MAX], real[PATH_MAX];
+        const char *slash = strrchr(ws[i].path, '/');
+        snprintf(tmp, sizeof tmp, "%.*s", slash ? (int)(slash - ws[i].path) : 1, slash ? ws[i].path : ".");
+        if (!tmp[0])
+            snprintf(tmp, sizeof tmp, "/");
+        if (!dirs || !realpath(tmp, real)) {
+            fprintf(stderr, "hystviz watch: %s: %s\n", ws[i].path, dirs ? strerror(errno) : "out of memory");
+            rc = 2;
+            break;
+        }
+        size_t k = 0;
+        while (k < nd && strcmp(dirs[k], real))
+            k++;
+        if (k == nd && !(dirs[nd++] = strdup(real)))
+            rc = 1;
+    }
+    hy_dirwatch *w = NULL;
+    hy_error err;
+    if (!rc && !(w = hy_dirwatch_open((const char *const *)dirs, nd, &err))) {
+        fprintf(stderr, "hystviz watch: %s\n", err.msg);
+        rc = 1;
+    }
+    if (!rc && pipe(stop_pipe)) {
+        fprintf(stderr, "hystviz watch: pipe: %s\n", strerror(errno));
+        rc = 1;
+    }
+    if (!rc) {
+        /* Ctrl-C ends the wait, never a write: no partial file */
+        fcntl(stop_pipe[1], F_SETFL, O_NONBLOCK);
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_signal;
+        sa.sa_flags = SA_RESTART;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGINT, &sa, NULL);
+        sigaction(SIGTERM, &sa, NULL);
+        fprintf(stderr, "hystviz watch: watching %zu scene%s (Ctrl-C stops)\n", nw, nw == 1 ? "" : "s");
+        for (size_t i = 0; i < nw; i++)
+            render_one(&ws[i], sets, nsets, out, formats, 1);
+        char names[4096];
+        for (;;) {
+            int r = hy_dirwatch_wait(w, stop_pipe[0], -1, names, sizeof names, &err);
+            if (r < 0) {
+                fprintf(stderr, "hystviz watch: %s\n", err.msg);
+                rc = 1;
+            }
+            if (r <= 0)
+                break;
+            for (size_t i = 0; i < nw; i++)
+                render_one(&ws[i], sets, nsets, out, formats, 0);
+        }
+        signal(SIGINT, SIG_DFL);
+        signal(SIGTERM, SIG_DFL);
+    }
+    hy_dirwatch_close(w);
+    for (int i = 0; i < 2; i++)
+        if (stop_pipe[i] >= 0) {
+            close(stop_pipe[i]);
+            stop_pipe[i] = -1;
+        }
+    for (size_t i = 0; i < nd; i++)
+        free(dirs[i]);
+    free(dirs);
+    free(sets);
+    free(ws);
+    return rc;
+}

@@ -1,0 +1,338 @@
+// app.js: the page of `hystviz serve` (no libraries, works offline).
+// State lives in `hv` (also read by tests/serve/browser_test.py).
+'use strict';
+
+const hv = window.hv = {
+  token: document.querySelector('meta[name="hystviz-token"]').content,
+  page: Array.from(crypto.getRandomValues(new Uint8Array(8)), b => b.toString(16).padStart(2, '0')).join(''),
+  scenes: [], info: null, sets: {}, lastKey: null,
+  seq: 0, inflight: false, pending: false,
+  svg: null, cmd: '', renders: 0, changes: 0, error: null, serverMs: NaN, pageMs: NaN,
+  hover: null, hoverTimer: 0,
+  frame: -1, frameB64: null, frameSeq: 0, frameInflight: false, framePending: -1, playing: false,
+};
+const $ = id => document.getElementById(id);
+const enc = encodeURIComponent;
+
+function el(tag, attrs, ...kids) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs || {})) {
+    if (k === 'class') e.className = v; else if (k.startsWith('on')) e.addEventListener(k.slice(2), v);
+    else e.setAttribute(k, v);
+  }
+  for (const k of kids) e.append(k);
+  return e;
+}
+
+// ---- catalogue ----------------------------------------------------------
+
+async function loadCatalogue() {
+  const r = await fetch('/api/scenes');
+  const j = await r.json();
+  hv.scenes = j.scenes;
+  hv.dir = j.dir;
+  const nav = $('catalogue');
+  nav.replaceChildren(...j.scenes.map(s => el('a', {
+    href: '#' + s.file, class: s.error ? 'bad' : '', title: s.error || s.caption, 'data-file': s.file,
+  }, s.name + (s.anim ? ' ▶' : ''), el('small', {}, s.error ? s.error : s.caption))));
+  markCurrent();
+  return j;
+}
+
+function markCurrent() {
+  for (const a of $('catalogue').querySelectorAll('a'))
+    a.classList.toggle('on', hv.info && a.dataset.file === hv.info.file);
+}
+
+function currentFile() {
+  const h = decodeURIComponent(location.hash.slice(1));
+  return h || null;
+}
+
+// ---- a scene and its controls --------------------------------------------
+
+function fmt(v, integer) {
+  if (integer) return String(Math.round(v));
+  return String(parseFloat(v.toPrecision(4)));
+}
+function toPos(c, v) {
+  const t = c.log ? Math.log(v / c.lo) / Math.log(c.hi / c.lo) : (v - c.lo) / (c.hi - c.lo);
+  return Math.max(0, Math.min(1000, Math.round(1000 * t)));
+}
+function fromPos(c, p) {
+  const t = p / 1000;
+  return c.log ? c.lo * Math.pow(c.hi / c.lo, t) : c.lo + (c.hi - c.lo) * t;
+}
+
+async function openScene(file, keep) {
+  const r = await fetch('/api/scene?scene=' + enc(file));
+  if (r.status !== 200) { showError('no scene ' + file); return; }
+  const info = await r.json();
+  const same = hv.info && hv.info.file === file;
+  hv.info = info;
+  if (!keep || !same) { hv.sets = {}; hv.lastKey = null; hv.svg = null; $('figure').replaceChildren(); hv.hover = null; }
+  $('title').textContent = info.name || file;
+  $('caption').textContent = info.caption;
+  $('text').textContent = info.text;
+  $('newname').value = '';
+  $('saved').textContent = '';
+  markCurrent();
+  buildControls(info);
+  setupAnim(info, same && keep);
+  if (info.error) { showError(info.error); return; }
+  requestRender();
+}
+
+function buildControls(info) {
+  const box = $('controls');
+  const kids = [el('div', { class: 'row' },
+    el('button', { type: 'button', onclick: () => { hv.sets = {}; buildControls(hv.info); requestRender(); } }, 'reset to file'))];
+  for (const c of info.controls) {
+    const cur = hv.sets[c.key] !== undefined ? hv.sets[c.key] : c.value;
+    const range = el('input', { type: 'range', min: 0, max: 1000, step: 1, 'data-key': c.key, 'aria-label': c.key });
+    const box = el('input', { type: 'text', value: cur, 'data-key': c.key, 'aria-label': c.key + ' value' });
+    const err = el('div', { class: 'err', 'data-key': c.key });
+    const div = el('div', { class: 'ctl' + (hv.sets[c.key] !== undefined ? ' changed' : ''), 'data-key': c.key },
+      el('label', { title: c.doc + (c.range ? ' (' + c.range + ')' : '') },
+        el('span', { class: 'k' }, c.key), el('span', { class: 'file' }, 'file: ' + c.value + (c.set ? '' : ' (default)'))),
+      range, el('div', { class: 'row' }, box, el('span', { class: 'note' }, c.range + (c.log ? ' · log slider' : ''))), err);
+    range.value = toPos(c, parseFloat(cur));
+    const apply = (v) => {
+      if (v === c.value) delete hv.sets[c.key]; else hv.sets[c.key] = v;
+      div.classList.toggle('changed', hv.sets[c.key] !== undefined);
+      hv.lastKey = c.key;
+      requestRender();
+    };
+    range.addEventListener('input', () => {
+      const v = fmt(fromPos(c, +range.value), c.int);
+      box.value = v;
+      apply(v);
+    });
+    box.addEventListener('change', () => {
+      const v = box.value.trim();
+      const x = parseFloat(v);
+      if (isFinite(x)) range.value = toPos(c, x);
+      apply(v);
+    });
+    kids.push(div);
+  }
+  box.replaceChildren(...kids);
+}
+
+// ---- rendering -------------------------------------------------------------
+
+function query() {
+  let q = 'scene=' + enc(hv.info.file);
+  for (const [k, v] of Object.entries(hv.sets)) q += '&set=' + enc(k + '=' + v);
+  return q;
+}
+
+function requestRender() {
+  if (!hv.info) return;
+  if (hv.inflight) { hv.pending = true; return; }
+  doRender();
+}
+
+async function doRender() {
+  hv.inflight = true;
+  hv.pending = false;
+  const my = ++hv.seq, t0 = performance.now();
+  const q = query();
+  try {
+    const r = await fetch('/api/render?' + q + '&fmt=json&page=' + hv.page + '&seq=' + my);
+    const j = await r.json();
+    if (r.status === 200) show(j, q, t0);
+    else if (r.status !== 409) showError(j.error || ('HTTP ' + r.status));
+  } catch (e) {
+    showError('the server did not answer: ' + e);
+  }
+  hv.inflight = false;
+  if (hv.pending) doRender();
+}
+
+function show(j, q, t0) {
+  const fig = $('figure');
+  fig.innerHTML = j.svg;
+  fig.classList.remove('stale');
+  hv.svg = j.svg;
+  hv.cmd = j.cmd;
+  hv.error = null;
+  hv.map = j.map;
+  hv.serverMs = 1000 * j.seconds;
+  hv.pageMs = performance.now() - t0;
+  hv.renders++;
+  $('cmd').textContent = j.cmd;
+  $('message').hidden = true;
+  for (const e of document.querySelectorAll('.ctl .err')) e.textContent = '';
+  $('status').textContent = 'live · render ' + hv.serverMs.toFixed(1) + ' ms on the server, ' + hv.pageMs.toFixed(1) + ' ms in the page';
+  $('measured').textContent = j.errors.length
+    ? j.errors.map(e => e.series + ': max error ' + e.err.toPrecision(3) + ' against the ' + (e.ref || 'exact answer')).join(' · ')
+    : 'no exact answer to compare with';
+  const dl = $('downloads');
+  dl.replaceChildren('download:', ...['svg', 'pdf', 'png', 'csv'].map(f =>
+    el('a', { href: '/api/render?' + q + '&fmt=' + f + '&name=download', download: '' }, f.toUpperCase())));
+  hv.hover = null;
+  clearTimeout(hv.hoverTimer);
+  hv.hoverTimer = setTimeout(() => loadHover(q), 300);
+  document.dispatchEvent(new CustomEvent('hv-rendered'));
+}
+
+function showError(msg) {
+  hv.error = msg;
+  $('message').textContent = msg;
+  $('message').hidden = false;
+  $('figure').classList.add('stale');
+  // next to the control the message names, else the one moved last
+  let key = null;
+  if (hv.info) for (const c of hv.info.controls) if (msg.includes(c.key + '=')) key = c.key;
+  key = key || hv.lastKey;
+  for (const e of document.querySelectorAll('.ctl .err')) e.textContent = e.dataset.key === key ? msg : '';
+  document.dispatchEvent(new CustomEvent('hv-error'));
+}
+
+// ---- values under the cursor -------------------------------------------------
+
+async function loadHover(q) {
+  if (q !== query()) return;
+  try {
+    const r = await fetch('/api/render?' + q + '&fmt=json&hover=1');
+    if (r.status !== 200) return;
+    const j = await r.json();
+    if (q === query()) hv.hover = j;
+  } catch (e) { /* no hover this time */ }
+}
+
+function nearest(px, py) {
+  const m = hv.hover.map;
+  const tr = (v, lg) => lg ? Math.log10(v) : v;
+  const sx = x => m.x0 + (tr(x, m.xlog) - tr(m.xlo, m.xlog)) / (tr(m.xhi, m.xlog) - tr(m.xlo, m.xlog)) * m.w;
+  const sy = y => m.y0 + m.h - (tr(y, m.ylog) - tr(m.ylo, m.ylog)) / (tr(m.yhi, m.ylog) - tr(m.ylo, m.ylog)) * m.h;
+  let best = null, bd = Infinity;
+  for (const s of hv.hover.series) {
+    for (let i = 0; i < s.x.length; i++) {
+      if (s.x[i] === null) continue;
+      const dx = sx(s.x[i]) - px, dy = sy(s.y[i]) - py, d = dx * dx + dy * dy;
+      if (d < bd) { bd = d; best = { name: s.name, x: s.x[i], y: s.y[i] }; }
+    }
+  }
+  return bd <= 144 ? best : null; // within 12 pt
+}
+
+$('figure').addEventListener('mousemove', ev => {
+  const svg = $('figure').querySelector('svg'), tip = $('tip');
+  if (!svg || !hv.hover) { tip.hidden = true; return; }
+  const pt = svg.createSVGPoint();
+  pt.x = ev.clientX; pt.y = ev.clientY;
+  const p = pt.matrixTransform(svg.getScreenCTM().inverse());
+  const hit = nearest(p.x, p.y);
+  if (!hit) { tip.hidden = true; return; }
+  const xn = hv.hover.xname || 'x';
+  tip.textContent = hit.name + ': ' + xn + ' = ' + hit.x.toPrecision(5) + ', y = ' + hit.y.toPrecision(5);
+  const box = $('figbox').getBoundingClientRect();
+  tip.style.left = (ev.clientX - box.left + 12) + 'px';
+  tip.style.top = (ev.clientY - box.top + 12) + 'px';
+  tip.hidden = false;
+});
+$('figure').addEventListener('mouseleave', () => { $('tip').hidden = true; });
+
+// ---- animations ------------------------------------------------------------------
+
+function setupAnim(info, keep) {
+  const sec = $('anim');
+  if (!info.anim) { sec.hidden = true; hv.playing = false; return; }
+  sec.hidden = false;
+  const n = info.anim.frames;
+  $('scrub').max = n - 1;
+  if (!keep) { $('scrub').value = 0; hv.frame = -1; }
+  $('framenote').textContent = 'Frame i is the PNG that `hystviz animate ' + info.path + ' --frames i:i+1` writes '
+    + '(OpenGL, rendered by hystviz-animate in its own process; the sliders above change the still figure only).';
+  requestFrame(+$('scrub').value);
+}
+
+function requestFrame(i) {
+  if (hv.frameInflight) { hv.framePending = i; return; }
+  loadFrame(i);
+}
+
+async function loadFrame(i) {
+  hv.frameInflight = true;
+  hv.framePending = -1;
+  const my = ++hv.frameSeq;
+  $('frameinfo').textContent = 'frame ' + i + ' / ' + hv.info.anim.frames + ' (rendering…)';
+  try {
+    const r = await fetch('/api/frame?scene=' + enc(hv.info.file) + '&frame=' + i + '&page=' + hv.page + 'f&seq=' + my);
+    if (r.status === 200) {
+      const buf = await r.arrayBuffer();
+      const old = $('frame').src;
+      $('frame').src = URL.createObjectURL(new Blob([buf], { type: 'image/png' }));
+      if (old.startsWith('blob:')) URL.revokeObjectURL(old);
+      let s = '';
+      const u8 = new Uint8Array(buf);
+      for (let k = 0; k < u8.length; k += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(k, k + 0x8000));
+      hv.frameB64 = btoa(s);
+      hv.frame = i;
+      $('frameinfo').textContent = 'frame ' + i + ' / ' + hv.info.anim.frames;
+      document.dispatchEvent(new CustomEvent('hv-frame'));
+    } else if (r.status !== 409) {
+      const j = await r.json();
+      $('frameinfo').textContent = 'frame ' + i + ': ' + j.error;
+      hv.playing = false;
+      $('play').textContent = 'play';
+    }
+  } catch (e) {
+    $('frameinfo').textContent = 'frame ' + i + ': the server did not answer';
+  }
+  hv.frameInflight = false;
+  if (hv.framePending >= 0) loadFrame(hv.framePending);
+  else if (hv.playing) {
+    const n = hv.info.anim.frames, next = (hv.frame + 1) % n;
+    $('scrub').value = next;
+    loadFrame(next);
+  }
+}
+
+$('scrub').addEventListener('input', () => requestFrame(+$('scrub').value));
+$('play').addEventListener('click', () => {
+  hv.playing = !hv.playing;
+  $('play').textContent = hv.playing ? 'pause' : 'play';
+  if (hv.playing && !hv.frameInflight) requestFrame((+$('scrub').value + 1) % hv.info.anim.frames);
+});
+
+// ---- sharing --------------------------------------------------------------------------
+
+$('copy').addEventListener('click', () => {
+  if (navigator.clipboard) navigator.clipboard.writeText(hv.cmd);
+});
+
+$('save').addEventListener('click', async () => {
+  const name = $('newname').value.trim();
+  const r = await fetch('/api/save?' + query() + '&name=' + enc(name), {
+    method: 'POST', headers: { 'X-Hystviz-Token': hv.token },
+  });
+  const j = await r.json();
+  $('saved').replaceChildren(r.status === 201
+    ? el('span', {}, 'saved as ', el('a', { href: '#' + j.file }, j.path))
+    : el('span', { class: 'err' }, j.error || ('HTTP ' + r.status)));
+});
+
+// ---- reload on save -----------------------------------------------------------------------
+
+function listen() {
+  const es = new EventSource('/events');
+  es.addEventListener('hello', () => { $('status').textContent = 'live'; });
+  es.addEventListener('change', async () => {
+    hv.changes++;
+    await loadCatalogue();
+    if (hv.info) await openScene(hv.info.file, true);
+  });
+  es.onerror = () => { $('status').textContent = 'connection lost, retrying…'; };
+}
+
+window.addEventListener('hashchange', () => { const f = currentFile(); if (f) openScene(f, false); });
+
+(async () => {
+  const j = await loadCatalogue();
+  listen();
+  const f = currentFile() || j.first || (j.scenes[0] && j.scenes[0].file);
+  if (f) openScene(f, false);
+})();

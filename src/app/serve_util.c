@@ -1,0 +1,443 @@
+/* serve_util.c: see serve_util.h. */
+#include "serve_util.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+
+/* ---- text buffer ---------------------------------------------------- */
+
+void sv_add(sv_buf *b, const char *s, size_t n)
+{
+    if (b->oom)
+        return;
+    if (b->len + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 1024;
+        while (cap < b->len + n + 1)
+            cap *= 2;
+        char *ns = realloc(b->s, cap);
+        if (!ns) {
+            b->oom = 1;
+            return;
+        }
+        b->s = ns;
+        b->cap = cap;
+    }
+    memcpy(b->s + b->len, s, n);
+    b->len += n;
+    b->s[b->len] = '\0';
+}
+
+void sv_puts(sv_buf *b, const char *s) { sv_add(b, s, strlen(s)); }
+
+void sv_printf(sv_buf *b, const char *fmt, ...)
+{
+    char tmp[512];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (n < 0) {
+        b->oom = 1;
+        return;
+    }
+    if ((size_t)n < sizeof tmp) {
+        sv_add(b, tmp, (size_t)n);
+        return;
+    }
+    char *big = malloc((size_t)n + 1);
+    if (!big) {
+        b->oom = 1;
+        return;
+    }
+    va_start(ap, fmt);
+    vsnprintf(big, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    sv_add(b, big, (size_t)n);
+    free(big);
+}
+
+void sv_json(sv_buf *b, const char *s)
+{
+    sv_add(b, "\"", 1);
+    const char *run = s;
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c >= 0x20 && c != '"' && c != '\\' && c != '<' && c != '>' && c != '&')
+            continue;
+        sv_add(b, run, (size_t)(s - run));
+        run = s + 1;
+        switch (c) {
+        case '"': sv_add(b, "\\\"", 2); break;
+        case '\\': sv_add(b, "\\\\", 2); break;
+        case '\n': sv_add(b, "\\n", 2); break;
+        case '\t': sv_add(b, "\\t", 2); break;
+        case '\r': sv_add(b, "\\r", 2); break;
+        default: sv_printf(b, "\\u%04x", c); break; /* controls, and < > & (safe inside HTML) */
+        }
+    }
+    sv_add(b, run, (size_t)(s - run));
+    sv_add(b, "\"", 1);
+}
+
+void sv_shell(sv_buf *b, const char *s)
+{
+    int plain = *s != '\0';
+    for (const char *p = s; *p; p++)
+        if (!strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.,/:=+@%", *p))
+            plain = 0;
+    if (plain) {
+        sv_puts(b, s);
+        return;
+    }
+    sv_add(b, "'", 1);
+    for (const char *p = s; *p; p++)
+        if (*p == '\'')
+            sv_puts(b, "'\\''");
+        else
+            sv_add(b, p, 1);
+    sv_add(b, "'", 1);
+}
+
+void sv_num(sv_buf *b, double v)
+{
+    if (!isfinite(v)) {
+        sv_puts(b, "null");
+        return;
+    }
+    char tmp[40];
+    for (int p = 1; p <= 17; p++) {
+        snprintf(tmp, sizeof tmp, "%.*g", p, v);
+        if (strtod(tmp, NULL) == v)
+            break;
+    }
+    sv_puts(b, tmp);
+}
+
+/* ---- names and overrides -------------------------------------------- */
+
+int sv_scene_name_ok(const char *name)
+{
+    size_t n = strlen(name);
+    if (n <= 6 || n > 200 || name[0] == '.' || strcmp(name + n - 6, ".scene"))
+        return 0;
+    for (size_t i = 0; i < n; i++) {
+        char c = name[i];
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+              c == '.'))
+            return 0;
+    }
+    return !strstr(name, "..");
+}
+
+int sv_set_ok(const char *set, hy_error *err)
+{
+    if (strlen(set) > 300)
+        return hy_error_set(err, HY_EINVAL, "--set: an override longer than 300 bytes is refused here");
+    const char *eq = strchr(set, '=');
+    const char *dot = strchr(set, '.');
+    if (!eq || !dot || dot > eq)
+        return hy_error_set(err, HY_EINVAL, "--set %s: expected section.key=value or section.NAME.key=value", set);
+    char sec[32];
+    snprintf(sec, sizeof sec, "%.*s", (int)(dot - set < 31 ? dot - set : 31), set);
+    const char *k = eq;
+    while (k > set && k[-1] != '.')
+        k--;
+    char key[64];
+    snprintf(key, sizeof key, "%.*s", (int)(eq - k < 63 ? eq - k : 63), k);
+    int si = hy_scene_schema_section(sec);
+    if (si < 0 || !strcmp(sec, "output"))
+        return hy_error_set(err, HY_EINVAL, "--set %s: the server takes overrides of [model], [input], [compute], "
+                                            "[figure], [series], [annotation], [animation] and [keyframe] keys",
+                            set);
+    int ki = hy_scene_schema_key(si, key);
+    size_t n;
+    const hy_scene_section_spec *spec = hy_scene_schema(&n);
+    if (ki >= 0 && spec[si].keys[ki].kind == HY_KIND_PATH)
+        return hy_error_set(err, HY_EINVAL, "--set %s: a file path cannot be overridden from the page", set);
+    return HY_OK; /* the rest is checked by hy_scene_set, with the CLI's message */
+}
+
+/* ---- controls ------------------------------------------------------- */
+
+void sv_slider_range(const hy_scene_key_spec *k, double v, double *lo, double *hi, int *log)
+{
+    int has_min = (k->flags & HY_SPEC_MIN) != 0, has_max = (k->flags & HY_SPEC_MAX) != 0;
+    int integer = k->kind == HY_KIND_INTEGER;
+    *log = 0;
+    if (has_min && k->min >= 0 && v > 0) {
+        *lo = v / 100, *hi = v * 100;
+        if (integer)
+            *lo = ceil(*lo), *hi = floor(*hi);
+        if (*lo < k->min || (*lo == k->min && (k->flags & HY_SPEC_MIN_EXCL)))
+            *lo = (k->flags & HY_SPEC_MIN_EXCL) ? (k->min > 0 ? k->min * 1.000001 : v / 100) : k->min;
+        if (has_max && (*hi > k->max))
+            *hi = k->max;
+        if (integer && *lo < 1)
+            *lo = 1;
+        *log = *lo > 0 && *hi / *lo >= 50;
+        if (!*log && integer && !has_max)
+            *hi = *lo + 100;
+    } else if (has_min && k->min >= 0) { /* v = 0 */
+        *lo = k->min;
+        *hi = has_max ? k->max : k->min + (integer ? 100 : 1);
+    } else {
+        double w = fabs(v) > 0 ? fabs(v) : 1;
+        *lo = v - w, *hi = v + w;
+        if (has_min && *lo < k->min)
+            *lo = k->min;
+        if (has_max && *hi > k->max)
+            *hi = k->max;
+    }
+    if (!(*hi > *lo))
+        *hi = *lo + 1;
+}
+
+static int wanted(const char *sec, const char *kind, const char *key)
+{
+    static const char *const lugre[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "x0", NULL};
+    static const char *const dahl[] = {"rho", "fc", "x0", NULL};
+    static const char *const filt[] = {"rho", "fc", "tau", "x0", NULL};
+    static const char *const bimodal[] = {"umin1", "umin2", "umax1", "umax2", NULL};
+    const char *const *l = NULL;
+    if (!strcmp(sec, "model"))
+        l = !strcmp(kind, "dahl") ? dahl : !strcmp(kind, "dahl-filter") ? filt : !strcmp(kind, "lugre") ? lugre : NULL;
+    else if (!strcmp(sec, "input") && !strcmp(kind, "bimodal"))
+        l = bimodal;
+    for (size_t i = 0; l && l[i]; i++)
+        if (!strcmp(l[i], key))
+            return 1;
+    return 0;
+}
+
+static void control(sv_buf *b, int *first, const hy_scene *s, const hy_scene_key_spec *k, const char *sec,
+                    const char *label, int set)
+{
+    double v;
+    if (hy_scene_get_num(s, sec, label, k->name, &v) < 0)
+        return;
+    double lo, hi;
+    int lg;
+    sv_slider_range(k, v, &lo, &hi, &lg);
+    char range[64];
+    hy_scene_range_text(k, range, sizeof range);
+    sv_puts(b, *first ? "{\"key\":" : ",{\"key\":");
+    *first = 0;
+    char full[160];
+    if (label)
+        snprintf(full, sizeof full, "%s.%s.%s", sec, label, k->name);
+    else
+        snprintf(full, sizeof full, "%s.%s", sec, k->name);
+    sv_json(b, full);
+    sv_puts(b, ",\"value\":\"");
+    sv_num(b, v);
+    sv_printf(b, "\",\"set\":%s,\"int\":%s,\"lo\":", set ? "true" : "false", k->kind == HY_KIND_INTEGER ? "true" : "false");
+    sv_num(b, lo);
+    sv_puts(b, ",\"hi\":");
+    sv_num(b, hi);
+    sv_printf(b, ",\"log\":%s,\"range\":", lg ? "true" : "false");
+    sv_json(b, range);
+    sv_puts(b, ",\"doc\":");
+    sv_json(b, k->doc ? k->doc : "");
+    sv_puts(b, "}");
+}
+
+void sv_controls_json(sv_buf *b, const hy_scene *s)
+{
+    static const char *const secs[] = {"model", "input", "compute", "series"};
+    size_t nsec;
+    const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
+    int first = 1;
+    sv_puts(b, "[");
+    for (size_t i = 0; i < sizeof secs / sizeof secs[0]; i++) {
+        int si = hy_scene_schema_section(secs[i]);
+        if (si < 0)
+            continue;
+        const hy_scene_section_spec *ss = &spec[si];
+        const char *kind = "";
+        int idx;
+        if (!strcmp(secs[i], "model") || !strcmp(secs[i], "input"))
+            hy_scene_get_enum(s, secs[i], NULL, "kind", &idx, &kind);
+        size_t nlab = ss->takes_name ? hy_scene_count(s, secs[i]) : 1;
+        for (size_t l = 0; l < nlab; l++) {
+            const char *label = ss->takes_name ? hy_scene_name_at(s, secs[i], l) : NULL;
+            for (size_t j = 0; j < ss->nkeys; j++) {
+                const hy_scene_key_spec *k = &ss->keys[j];
+                if (k->kind != HY_KIND_NUMBER && k->kind != HY_KIND_INTEGER)
+                    continue;
+                double v;
+                int got = hy_scene_get_num(s, secs[i], label, k->name, &v);
+                if (got == HY_SCENE_SET || (got == HY_SCENE_DEFAULT && wanted(secs[i], kind, k->name)))
+                    control(b, &first, s, k, secs[i], label, got == HY_SCENE_SET);
+            }
+        }
+    }
+    sv_puts(b, "]");
+}
+
+/* ---- save as new scene ---------------------------------------------- */
+
+char *sv_read_file(const char *path, size_t max, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = malloc(max + 1);
+    size_t n = buf ? fread(buf, 1, max + 1, f) : 0;
+    int bad = !buf || ferror(f) || n > max;
+    fclose(f);
+    if (bad) {
+        free(buf);
+        errno = buf ? EFBIG : ENOMEM;
+        return NULL;
+    }
+    buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+typedef struct line_edit {
+    int after;      /* insert after this line (1-based); 0: append at the end */
+    int replace;    /* replace this line instead (1-based), or 0 */
+    char text[400];
+} line_edit;
+
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return !strcmp(a, b) || (!stat(a, &sa) && !stat(b, &sb) && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino);
+}
+
+char *sv_scene_with_sets(const hy_scene *s, const char *path, const char *text, char *const *sets, size_t nsets,
+                         const char *out_name, hy_error *err)
+{
+    line_edit *ed = calloc(nsets + 1, sizeof *ed);
+    if (!ed)
+        return hy_error_set(err, HY_ENOMEM, "out of memory"), NULL;
+    size_t ned = 0;
+    char outset[300];
+    snprintf(outset, sizeof outset, "output.name=%s", out_name);
+    for (size_t i = 0; i <= nsets; i++) {
+        const char *a = i < nsets ? sets[i] : outset;
+        const char *eq = strchr(a, '=');
+        const char *d1 = eq ? memchr(a, '.', (size_t)(eq - a)) : NULL;
+        const char *d2 = eq;
+        while (d2 && d2 > a && d2[-1] != '.')
+            d2--;
+        if (!eq || !d1 || d2 - 1 < d1) {
+            free(ed);
+            return hy_error_set(err, HY_EINVAL, "--set %s: expected section.key=value", a), NULL;
+        }
+        char sec[64], label[128] = "", key[64];
+        snprintf(sec, sizeof sec, "%.*s", (int)(d1 - a), a);
+        snprintf(key, sizeof key, "%.*s", (int)(eq - d2), d2);
+        if (d2 - 1 > d1)
+            snprintf(label, sizeof label, "%.*s", (int)(d2 - 1 - d1 - 1), d1 + 1);
+        const char *lb = label[0] ? label : NULL;
+        line_edit *e = &ed[ned++];
+        hy_scene_loc loc;
+        snprintf(e->text, sizeof e->text, "%s = %s", key, eq + 1);
+        if (hy_scene_get_loc(s, sec, lb, key, &loc) == 1 && loc.line > 0 && same_file(loc.file, path))
+            e->replace = loc.line;
+        else if (hy_scene_get_loc(s, sec, lb, NULL, &loc) == 1 && loc.line > 0 && same_file(loc.file, path))
+            e->after = loc.line;
+        else if (lb) { /* a named section from an include: hy_scene_set refused it already */
+            free(ed);
+            return hy_error_set(err, HY_EINVAL, "--set %s: [%s %s] is not in %s", a, sec, lb, path), NULL;
+        } else {
+            /* a section the file lacks: one new section for all its keys */
+            char head[80];
+            snprintf(head, sizeof head, "\n[%s]\n", sec);
+            line_edit *prev = NULL;
+            for (size_t j = 0; j + 1 < ned; j++)
+                if (!ed[j].after && !ed[j].replace && !strncmp(ed[j].text, head, strlen(head)))
+                    prev = &ed[j];
+            if (prev) {
+                size_t l = strlen(prev->text);
+                snprintf(prev->text + l, sizeof prev->text - l, "\n%s = %s", key, eq + 1);
+                ned--;
+            } else
+                snprintf(e->text, sizeof e->text, "%s%s = %s", head, key, eq + 1);
+        }
+    }
+    sv_buf b = {0};
+    sv_printf(&b, "# saved by hystviz serve from %s", path);
+    for (size_t i = 0; i < nsets; i++)
+        sv_printf(&b, " --set %s", sets[i]);
+    sv_puts(&b, "\n");
+    int line = 1;
+    const char *p = text;
+    while (*p) {
+        const char *nl = strchr(p, '\n');
+        size_t n = nl ? (size_t)(nl - p) : strlen(p);
+        int replaced = 0;
+        for (size_t i = 0; i < ned; i++)
+            if (ed[i].replace == line && !replaced) {
+                sv_puts(&b, ed[i].text);
+                replaced = 1;
+            }
+        if (!replaced)
+            sv_add(&b, p, n);
+        sv_puts(&b, "\n");
+        for (size_t i = 0; i < ned; i++)
+            if (ed[i].after == line) {
+                sv_puts(&b, ed[i].text);
+                sv_puts(&b, "\n");
+            }
+        p += n + (nl ? 1 : 0);
+        line++;
+    }
+    for (size_t i = 0; i < ned; i++)
+        if (!ed[i].after && !ed[i].replace) {
+            sv_puts(&b, ed[i].text);
+            sv_puts(&b, "\n");
+        }
+    free(ed);
+    if (b.oom) {
+        free(b.s);
+        return hy_error_set(err, HY_ENOMEM, "out of memory"), NULL;
+    }
+    return b.s;
+}
+
+int sv_write_new(const char *path, const char *text, size_t len, hy_error *err)
+{
+    const char *slash = strrchr(path, '/');
+    char tmp[4200];
+    if (slash)
+        snprintf(tmp, sizeof tmp, "%.*s/.%s.tmp.XXXXXX", (int)(slash - path), path, slash + 1);
+    else
+        snprintf(tmp, sizeof tmp, ".%s.tmp.XXXXXX", path);
+    int fd = mkstemp(tmp);
+    if (fd < 0)
+        return hy_error_set(err, HY_EIO, "cannot write next to %s: %s", path, strerror(errno));
+    fchmod(fd, 0644);
+    size_t done = 0;
+    int e = 0;
+    while (done < len && !e) {
+        ssize_t w = write(fd, text + done, len - done);
+        if (w < 0 && errno != EINTR)
+            e = errno;
+        else if (w > 0)
+            done += (size_t)w;
+    }
+    if (!e && fsync(fd))
+        e = errno;
+    if (close(fd) && !e)
+        e = errno;
+    int rc = HY_OK;
+    if (e)
+        rc = hy_error_set(err, HY_EIO, "cannot write %s: %s", path, strerror(e));
+    else if (link(tmp, path)) /* never replaces: EEXIST if the name is taken */
+        rc = errno == EEXIST ? hy_error_set(err, HY_EINVAL, "%s exists already: choose another name", path)
+                             : hy_error_set(err, HY_EIO, "cannot write %s: %s", path, strerror(errno));
+    unlink(tmp);
+    return rc;
+}

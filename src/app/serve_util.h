@@ -1,0 +1,69 @@
+/* serve_util.h: pieces of `hystviz serve` that need no HTTP library (and are
+ * tested alone): a growable text buffer with JSON escaping, scene names,
+ * the controls of a scene, override checks, shell quoting and "save as new
+ * scene". */
+#ifndef HY_SERVE_UTIL_H
+#define HY_SERVE_UTIL_H
+
+#include <stddef.h>
+
+#include "hy_scene.h"
+#include "hy_status.h"
+
+/* A growable NUL-terminated buffer; oom is set once an append failed. */
+typedef struct sv_buf {
+    char *s;
+    size_t len, cap;
+    int oom;
+} sv_buf;
+
+void sv_add(sv_buf *b, const char *s, size_t n);
+void sv_puts(sv_buf *b, const char *s);
+void sv_printf(sv_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* s as a JSON string with its quotes. */
+void sv_json(sv_buf *b, const char *s);
+/* s quoted for a POSIX shell when it needs it (single quotes). */
+void sv_shell(sv_buf *b, const char *s);
+/* The shortest %.Ng (N = 1..17) that reads back as v. */
+void sv_num(sv_buf *b, double v);
+
+/* Whether name is a scene file name that may be served: letters, digits,
+ * '_', '-', '.', not starting with '.', ending in ".scene", at most 200
+ * bytes (so no '/', no "..", no NUL). */
+int sv_scene_name_ok(const char *name);
+
+/* Checks an override "section.key=value" or "section.NAME.key=value" that a
+ * page may send: at most 300 bytes, a known section other than output, and
+ * not a PATH key (a page must not make the server read other files).
+ * Returns HY_OK or HY_EINVAL with a message. */
+int sv_set_ok(const char *set, hy_error *err);
+
+/* Appends the JSON array of the scene's numeric controls: for every NUMBER
+ * or INTEGER key the scene sets in [model], [input], [compute] and its
+ * [series NAME] sections, and the model kind's parameters and a bimodal
+ * input's extrema (with their defaults):
+ *   {"key":"model.sigma0","value":"6","set":true,"int":false,
+ *    "lo":0.06,"hi":600,"log":true,"range":"> 0","doc":"..."} */
+void sv_controls_json(sv_buf *b, const hy_scene *s);
+
+/* Slider range for a key spec and its current value: [lo, hi], logarithmic
+ * when the range spans decades; kept inside the documented bounds. */
+void sv_slider_range(const hy_scene_key_spec *k, double v, double *lo, double *hi, int *log);
+
+/* The text of a new scene: the original text with every override written in
+ * (a key the file sets is replaced on its line, a key it does not set goes
+ * under its section's header, or into a new section at the end) and
+ * [output] name = out_name.  s is the original scene parsed from path (not
+ * overridden).  Returns malloc'd text or NULL with err set. */
+char *sv_scene_with_sets(const hy_scene *s, const char *path, const char *text, char *const *sets, size_t nsets,
+                         const char *out_name, hy_error *err);
+
+/* Writes text to path atomically (a temporary name in the same directory,
+ * then link(2)), never replacing an existing file: HY_EINVAL if path exists,
+ * HY_EIO on failure; no partial file either way. */
+int sv_write_new(const char *path, const char *text, size_t len, hy_error *err);
+
+/* Reads a whole (small) file; NULL on error (errno set). */
+char *sv_read_file(const char *path, size_t max, size_t *len);
+
+#endif

@@ -1,0 +1,250 @@
+#!/bin/bash
+# tests/serve/test_serve.sh HYSTVIZ SCENES_DIR: `hystviz serve` over HTTP (curl):
+# byte identity with `render --set` / `data`, every refusal, save as new
+# scene, reload after a rename-save through Server-Sent Events, 50 concurrent
+# clients, malformed requests and dropped connections, shutdown on SIGINT.
+set -u
+hv=$(realpath "$1")
+src=$(realpath "$2")
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+ok() { echo "ok: $*"; }
+
+command -v curl >/dev/null || { echo "SKIP: curl is not installed"; exit 77; }
+
+T=$(mktemp -d)
+srv=
+cleanup() { [ -n "$srv" ] && kill -9 "$srv" 2>/dev/null; rm -rf "$T"; }
+trap cleanup EXIT
+
+# ---- options --------------------------------------------------------------
+"$hv" serve --help | grep -q "usage: hystviz serve" || fail "serve --help"
+"$hv" serve --port 70000 2>/dev/null; [ $? -eq 2 ] || fail "--port 70000 must exit 2"
+"$hv" serve --bogus 2>/dev/null; [ $? -eq 2 ] || fail "unknown option must exit 2"
+"$hv" serve --host 0.0.0.0 "$src" 2>"$T/err"; rc=$?
+[ $rc -eq 2 ] && grep -q -- "--public" "$T/err" || fail "--host 0.0.0.0 without --public must exit 2 naming --public (rc $rc)"
+"$hv" serve --host example.org "$src" 2>/dev/null; [ $? -eq 2 ] || fail "--host with a name must exit 2"
+"$hv" serve "$T/missing" 2>/dev/null; [ $? -eq 2 ] || fail "a missing directory must exit 2"
+"$hv" serve --port 0 "$src" >/dev/null 2>"$T/err" </dev/null &
+pid=$!
+sleep 0.3
+if ! kill -0 $pid 2>/dev/null; then
+    wait $pid; rc=$?
+    if [ $rc -eq 3 ] && grep -q "libmicrohttpd" "$T/err"; then
+        echo "SKIP: built without libmicrohttpd; serve exits 3 naming it"
+        exit 77
+    fi
+    fail "serve exited $rc at start: $(cat "$T/err")"
+    exit 1
+fi
+kill -INT $pid; wait $pid
+
+# ---- a scenes directory of our own --------------------------------------------
+mkdir -p "$T/scenes" "$T/out"
+cp "$src"/*.scene "$T/scenes/"
+echo "secret" > "$T/outside.scene"
+ln -s "$T/outside.scene" "$T/scenes/link_out.scene"
+ln -s /etc/passwd "$T/scenes/passwd.scene"
+cd "$T" || exit 1
+
+start() { # extra options...
+    "$hv" serve scenes --port 0 "$@" >"$T/serve.out" 2>"$T/serve.err" &
+    srv=$!
+    for _ in $(seq 100); do
+        port=$(sed -n 's|.*http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$T/serve.out")
+        [ -n "$port" ] && break
+        sleep 0.1
+    done
+    [ -n "$port" ] || { echo "FAIL: no URL printed: $(cat "$T/serve.err")"; exit 1; }
+    base="http://127.0.0.1:$port"
+}
+start
+code() { curl -s -o /dev/null -w "%{http_code}" "$@"; }
+
+# ---- byte identity with render --set and data -------------------------------------
+F=fig15_minor_loop_ex4
+q="scene=$F.scene&set=model.sigma0%3D3.162&set=input.umin2%3D0.3"
+for fmt in svg pdf png; do
+    curl -s -o "$T/got.$fmt" "$base/api/render?$q&fmt=$fmt"
+    rm -rf "$T/r"
+    "$hv" render "scenes/$F.scene" --set model.sigma0=3.162 --set input.umin2=0.3 --format $fmt -o "$T/r" ||
+        fail "render $fmt"
+    cmp -s "$T/got.$fmt" "$T/r/$F.$fmt" && ok "$fmt from serve == render --set" || fail "$fmt from serve differs from render --set"
+done
+curl -s -o "$T/got.csv" "$base/api/render?$q&fmt=csv"
+"$hv" data "scenes/$F.scene" --set model.sigma0=3.162 --set input.umin2=0.3 -o "$T/want.csv"
+cmp -s "$T/got.csv" "$T/want.csv" && ok "csv from serve == data --set" || fail "csv differs from data --set"
+# the JSON the page uses carries the same SVG text and the command line
+curl -s -o "$T/got.json" "$base/api/render?$q&fmt=json"
+if command -v python3 >/dev/null; then
+    rm -rf "$T/rsvg"; "$hv" render "scenes/$F.scene" --set model.sigma0=3.162 --set input.umin2=0.3 --format svg -o "$T/rsvg"
+    python3 - "$T/got.json" "$T/rsvg/$F.svg" <<'EOF' && ok "page JSON: same SVG, command line" || fail "page JSON"
+import json, sys
+j = json.load(open(sys.argv[1]))
+svg = open(sys.argv[2], encoding="utf-8").read()
+assert j["svg"] == svg, "svg differs"
+assert j["cmd"] == "hystviz render scenes/fig15_minor_loop_ex4.scene --set model.sigma0=3.162 --set input.umin2=0.3 --format svg", j["cmd"]
+EOF
+fi
+# a figure with a GSL solve and one with Newmark, no overrides
+for G in fig11_ygamma_ex3 bw_fig1a_quasistatic_loop; do
+    curl -s -o "$T/got.svg" "$base/api/render?scene=$G.scene&fmt=svg"
+    rm -rf "$T/r"; "$hv" render "scenes/$G.scene" --format svg -o "$T/r"
+    cmp -s "$T/got.svg" "$T/r/$G.svg" && ok "$G svg == render" || fail "$G svg differs from render"
+done
+
+# ---- invalid combination: the CLI's message, HTTP 422 --------------------------------
+curl -s -o "$T/e.json" -w "%{http_code}" "$base/api/render?scene=$F.scene&set=input.umin2%3D1.2&fmt=json" >"$T/code"
+"$hv" render "scenes/$F.scene" --set input.umin2=1.2 -o "$T/r" 2>"$T/cli.err"
+[ "$(cat "$T/code")" = 422 ] || fail "invalid combination: HTTP $(cat "$T/code"), want 422"
+want=$(sed 's/^hystviz: //' "$T/cli.err")
+if command -v python3 >/dev/null; then
+    got=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["error"])' "$T/e.json")
+    [ "$got" = "$want" ] && ok "invalid combination: the CLI's message" || fail "message '$got' != CLI '$want'"
+fi
+
+# ---- refusals ------------------------------------------------------------------
+expect() { # code url [curl options...]
+    local want=$1 url=$2; shift 2
+    local got; got=$(code "$@" "$base$url")
+    [ "$got" = "$want" ] && ok "$want $url $*" || fail "$url $*: HTTP $got, want $want"
+}
+expect 404 "/scenes/..%2f..%2fetc%2fpasswd"
+expect 404 "/scenes/%2e%2e/outside.scene" --path-as-is
+expect 404 "/scenes/../outside.scene" --path-as-is
+expect 404 "/scenes/%2e%2e%2foutside.scene"
+expect 404 "/scenes/link_out.scene"
+expect 404 "/scenes/passwd.scene"
+expect 404 "/scenes/%2Fetc%2Fpasswd"
+expect 404 "/scenes//etc/passwd" --path-as-is
+expect 404 "/api/render?scene=..%2Foutside.scene"
+expect 404 "/api/render?scene=%2Fetc%2Fpasswd"
+expect 404 "/api/render?scene=link_out.scene"
+expect 404 "/api/render?scene=$F.scene%00.scene"
+expect 404 "/api/scene?scene=passwd.scene"
+expect 404 "/nothing"
+expect 200 "/scenes/$F.scene"
+expect 400 "/api/render?scene=$F.scene&set=input.file%3D%2Fetc%2Fpasswd"
+expect 400 "/api/render?scene=$F.scene&set=output.dir%3D%2Ftmp"
+expect 400 "/api/render?scene=$F.scene&fmt=exe"
+many=""; for i in $(seq 70); do many="$many&set=model.sigma0%3D$i"; done
+expect 400 "/api/render?scene=$F.scene$many"
+expect 403 "/" -H "Host: evil.example"
+expect 403 "/" -H "Host: evil.example:$port"
+expect 403 "/" -H "Host: 127.0.0.1:1"
+expect 403 "/api/scenes" -H "Host: 10.1.2.3:$port"
+expect 403 "/" -H "Host:"
+expect 200 "/" -H "Host: localhost:$port"
+expect 200 "/" -H "Host: localhost"
+expect 405 "/" -X PUT
+expect 405 "/api/render" -X DELETE
+expect 403 "/api/save?scene=$F.scene&name=x" -X POST
+expect 403 "/api/save?scene=$F.scene&name=x" -X POST -H "X-Hystviz-Token: 00000000000000000000000000000000"
+head -c 100000 /dev/zero >"$T/big"
+expect 413 "/api/render?scene=$F.scene" --data-binary "@$T/big"
+[ ! -e scenes/x.scene ] || fail "a refused save wrote a file"
+
+# ---- save as new scene (with the page's token) -------------------------------------
+token=$(curl -s "$base/" | sed -n 's/.*name="hystviz-token" content="\([0-9a-f]*\)".*/\1/p')
+[ ${#token} -eq 32 ] || fail "no token in the page"
+saveq="scene=$F.scene&set=model.sigma0%3D2.5&set=compute.points%3D300&set=series.minor.width%3D2pt"
+expect 201 "/api/save?$saveq&name=mine" -X POST -H "X-Hystviz-Token: $token"
+if [ -f scenes/mine.scene ]; then
+    rm -rf "$T/r" "$T/r2"
+    "$hv" render scenes/mine.scene --format svg -o "$T/r" &&
+        "$hv" render "scenes/$F.scene" --set model.sigma0=2.5 --set compute.points=300 --set series.minor.width=2pt \
+            --format svg -o "$T/r2" &&
+        cmp -s "$T/r/mine.svg" "$T/r2/$F.svg" && ok "saved scene renders the figure it was saved from" ||
+        fail "saved scene renders something else"
+    cp scenes/mine.scene "$T/mine.before"
+    expect 409 "/api/save?$saveq&name=mine" -X POST -H "X-Hystviz-Token: $token"
+    cmp -s scenes/mine.scene "$T/mine.before" || fail "a second save overwrote mine.scene"
+else
+    fail "save wrote no scenes/mine.scene"
+fi
+expect 400 "/api/save?$saveq&name=..%2Fevil" -X POST -H "X-Hystviz-Token: $token"
+expect 400 "/api/save?$saveq&name=.hidden" -X POST -H "X-Hystviz-Token: $token"
+[ ! -e "$T/evil.scene" ] || fail "save escaped the directory"
+ls -a scenes | grep -q "tmp" && fail "temporary files left in scenes/: $(ls -a scenes | grep tmp)"
+
+# ---- reload on save: Server-Sent Events after a rename-save ---------------------------------
+curl -s -N "$base/events" >"$T/sse" &
+sse=$!
+sleep 0.5
+grep -q "event: hello" "$T/sse" || fail "SSE: no hello event"
+# save as Vim does: write a new file, rename it over the old one
+sed 's/^sigma0 = 6$/sigma0 = 5/' "scenes/$F.scene" >"scenes/.$F.scene.swp.new"
+t0=$(date +%s%N)
+mv "scenes/.$F.scene.swp.new" "scenes/$F.scene"
+seen=0
+for _ in $(seq 40); do
+    if grep -q "event: change" "$T/sse"; then seen=1; break; fi
+    sleep 0.025
+done
+t1=$(date +%s%N)
+ms=$(((t1 - t0) / 1000000))
+if [ $seen = 1 ] && grep -q "$F.scene" "$T/sse"; then
+    [ $ms -le 1000 ] && ok "SSE change event $ms ms after a rename-save" || fail "SSE change after $ms ms (> 1 s)"
+else
+    fail "SSE: no change event naming $F.scene within 1 s: $(cat "$T/sse")"
+fi
+# a burst of writes is one event (debounced)
+n0=$(grep -c "event: change" "$T/sse")
+for i in 1 2 3 4 5; do echo "# burst $i" >>scenes/style.scene; done
+sleep 0.8
+n1=$(grep -c "event: change" "$T/sse")
+[ $((n1 - n0)) -eq 1 ] && ok "a burst of 5 writes gives one event" || fail "a burst of 5 writes gave $((n1 - n0)) events"
+# the page's next render follows the file: sigma0 = 5 now
+curl -s -o "$T/got.svg" "$base/api/render?scene=$F.scene&fmt=svg"
+rm -rf "$T/r"; "$hv" render "scenes/$F.scene" --set model.sigma0=5 --format svg -o "$T/r"
+cmp -s "$T/got.svg" "$T/r/$F.svg" && ok "render after the save shows the new file" || fail "render after the save is stale"
+
+# ---- 50 concurrent clients dragging sliders, malformed requests, dropped connections ------------
+for c in $(seq 50); do
+    (
+        for k in 1 2 3 4; do
+            curl -s -o /dev/null -w "%{http_code}\n" --max-time 60 \
+                "$base/api/render?scene=$F.scene&set=model.sigma0%3D$c.$k&fmt=json&page=p$((c % 10))&seq=$k"
+        done
+    ) >"$T/cl_$c" &
+done
+# meanwhile: garbage, a request cut in the middle, a download dropped mid-way
+exec 3<>"/dev/tcp/127.0.0.1/$port" && printf 'GARBAGE \x01\x02 HTTP/9\r\n\r\n' >&3 && exec 3>&-
+exec 3<>"/dev/tcp/127.0.0.1/$port" && printf 'GET /api/render?scene=%s.scene HTTP/1.1\r\nHost: 127.0.0.1:%s\r\nContent-Le' "$F" "$port" >&3 && exec 3>&-
+exec 3<>"/dev/tcp/127.0.0.1/$port" && printf 'GET /api/render?scene=%s.scene&fmt=png HTTP/1.1\r\nHost: 127.0.0.1:%s\r\n\r\n' "$F" "$port" >&3 && exec 3>&-
+curl -s -o /dev/null --limit-rate 2k --max-time 0.5 "$base/api/render?scene=$F.scene&fmt=pdf"
+wait_clients() { for c in $(seq 50); do while [ "$(wc -l <"$T/cl_$c")" -lt 4 ]; do sleep 0.1; done; done; }
+wait_clients
+bad=$(cat "$T"/cl_* | grep -v -x -e 200 -e 409 | wc -l)
+n200=$(cat "$T"/cl_* | grep -c -x 200)
+[ "$bad" -eq 0 ] && ok "50 clients x 4 renders: $n200 rendered, the rest superseded (409)" ||
+    fail "50 clients: $bad answers neither 200 nor 409: $(cat "$T"/cl_* | sort | uniq -c)"
+# the last request of each page is never superseded
+expect 200 "/api/render?scene=$F.scene&fmt=json&page=p1&seq=99"
+kill -0 $srv 2>/dev/null && ok "server alive after the storm" || fail "server died"
+
+# ---- shutdown on SIGINT -----------------------------------------------------------------
+t0=$(date +%s%N)
+kill -INT $srv
+wait $srv
+rc=$?
+t1=$(date +%s%N)
+srv=
+kill $sse 2>/dev/null
+[ $rc -eq 0 ] && ok "SIGINT: exit 0 after $(((t1 - t0) / 1000000)) ms" || fail "SIGINT: exit status $rc"
+ls -a scenes | grep -q "tmp" && fail "temporary files left after shutdown"
+
+# ---- --public: a warning; IP literals are accepted as Host, names are not --------------------
+"$hv" serve scenes --host 127.0.0.2 --public --port 0 >"$T/serve.out" 2>"$T/serve.err" &
+srv=$!
+for _ in $(seq 100); do grep -q http "$T/serve.out" && break; sleep 0.1; done
+grep -q "warning: .*anyone who can reach" "$T/serve.err" && ok "--public prints a warning" ||
+    fail "--public: no warning: $(cat "$T/serve.out" "$T/serve.err")"
+port=$(sed -n 's|.*http://127.0.0.2:\([0-9]*\)/.*|\1|p' "$T/serve.out")
+base="http://127.0.0.2:$port"
+expect 200 "/" -H "Host: 192.168.1.7:$port"
+expect 403 "/" -H "Host: attacker.example:$port"
+kill -INT $srv; wait $srv; srv=
+
+[ $fails -eq 0 ] || { echo "$fails failure(s)"; exit 1; }
+echo "all serve tests passed"
