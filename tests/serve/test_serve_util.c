@@ -1,0 +1,172 @@
+/* test_serve_util.c: the HTTP-free parts of `hystviz serve`: scene names,
+ * override checks, JSON and shell quoting, shortest numbers, slider ranges,
+ * "save as new scene" text and the never-overwriting writer. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "serve_util.h"
+
+static int fails;
+#define CHECK(c)                                                         \
+    do {                                                                 \
+        if (!(c)) {                                                      \
+            fprintf(stderr, "%s:%d: FAIL: %s\n", __FILE__, __LINE__, #c); \
+            fails++;                                                     \
+        }                                                                \
+    } while (0)
+
+static const char *json(const char *s)
+{
+    static sv_buf b;
+    free(b.s);
+    memset(&b, 0, sizeof b);
+    sv_json(&b, s);
+    return b.s;
+}
+
+static const char *shell(const char *s)
+{
+    static sv_buf b;
+    free(b.s);
+    memset(&b, 0, sizeof b);
+    sv_shell(&b, s);
+    return b.s;
+}
+
+static const char *num(double v)
+{
+    static sv_buf b;
+    free(b.s);
+    memset(&b, 0, sizeof b);
+    sv_num(&b, v);
+    return b.s;
+}
+
+static const hy_scene_key_spec *spec(const char *sec, const char *key)
+{
+    size_t n;
+    const hy_scene_section_spec *s = hy_scene_schema(&n);
+    int si = hy_scene_schema_section(sec);
+    return &s[si].keys[hy_scene_schema_key(si, key)];
+}
+
+int main(void)
+{
+    /* names */
+    CHECK(sv_scene_name_ok("fig15_minor_loop_ex4.scene"));
+    CHECK(sv_scene_name_ok("a-b.c.scene"));
+    CHECK(!sv_scene_name_ok("../x.scene"));
+    CHECK(!sv_scene_name_ok("a/b.scene"));
+    CHECK(!sv_scene_name_ok(".hidden.scene"));
+    CHECK(!sv_scene_name_ok("a..b.scene"));
+    CHECK(!sv_scene_name_ok("x.scene.txt"));
+    CHECK(!sv_scene_name_ok(".scene"));
+    CHECK(!sv_scene_name_ok("/etc/passwd"));
+    CHECK(!sv_scene_name_ok("a b.scene"));
+    CHECK(!sv_scene_name_ok("a%2f.scene"));
+
+    /* overrides a page may send */
+    hy_error err;
+    CHECK(sv_set_ok("model.sigma0=3", &err) == HY_OK);
+    CHECK(sv_set_ok("series.minor.width=2pt", &err) == HY_OK);
+    CHECK(sv_set_ok("input.file=/etc/passwd", &err) == HY_EINVAL && strstr(err.msg, "file path"));
+    CHECK(sv_set_ok("output.dir=/tmp", &err) == HY_EINVAL);
+    CHECK(sv_set_ok("output.name=x", &err) == HY_EINVAL);
+    CHECK(sv_set_ok("nosuch.key=1", &err) == HY_EINVAL);
+    CHECK(sv_set_ok("sigma0", &err) == HY_EINVAL);
+    char longset[400];
+    memset(longset, 'a', sizeof longset - 1);
+    longset[sizeof longset - 1] = '\0';
+    memcpy(longset, "model.sigma0=", 13);
+    CHECK(sv_set_ok(longset, &err) == HY_EINVAL);
+
+    /* JSON: quotes, backslashes, controls, and < > & escaped for HTML */
+    CHECK(!strcmp(json("a\"b\\c"), "\"a\\\"b\\\\c\""));
+    CHECK(!strcmp(json("x\ny\t\x01"), "\"x\\ny\\t\\u0001\""));
+    CHECK(!strcmp(json("</script>&"), "\"\\u003c/script\\u003e\\u0026\""));
+    CHECK(!strcmp(json("σ0"), "\"σ0\""));
+
+    /* shell quoting */
+    CHECK(!strcmp(shell("model.sigma0=3.5"), "model.sigma0=3.5"));
+    CHECK(!strcmp(shell("series.x.label=a b"), "'series.x.label=a b'"));
+    CHECK(!strcmp(shell("it's"), "'it'\\''s'"));
+    CHECK(!strcmp(shell(""), "''"));
+
+    /* shortest round-trip numbers */
+    CHECK(!strcmp(num(0.1), "0.1"));
+    CHECK(!strcmp(num(6), "6"));
+    CHECK(!strcmp(num(1.0 / 3), "0.3333333333333333"));
+    CHECK(!strcmp(num(1e-300), "1e-300"));
+    CHECK(!strcmp(num(NAN), "null"));
+
+    /* slider ranges: sigma0 (> 0) log over four decades around the value */
+    double lo, hi;
+    int lg;
+    sv_slider_range(spec("model", "sigma0"), 6, &lo, &hi, &lg);
+    CHECK(lg && fabs(lo - 0.06) < 1e-15 && fabs(hi - 600) < 1e-12);
+    /* sigma2 = 0 (>= 0): linear from 0 */
+    sv_slider_range(spec("model", "sigma2"), 0, &lo, &hi, &lg);
+    CHECK(!lg && lo == 0 && hi > 0);
+    /* umin2 (unbounded): linear around the value */
+    sv_slider_range(spec("input", "umin2"), 0.5, &lo, &hi, &lg);
+    CHECK(!lg && lo == 0 && hi == 1);
+    /* dpi in [36, 2400]: kept inside the documented bounds */
+    sv_slider_range(spec("figure", "dpi"), 200, &lo, &hi, &lg);
+    CHECK(lo >= 36 && hi <= 2400 && lo < 200 && hi > 200);
+    /* rtol in (0, 1]: never above 1, never 0 */
+    sv_slider_range(spec("compute", "rtol"), 1e-8, &lo, &hi, &lg);
+    CHECK(lg && lo > 0 && hi <= 1);
+
+    /* save as new scene: replaced lines, inserted keys, a new section */
+    char dir[] = "/tmp/hy_serve_util_XXXXXX";
+    CHECK(mkdtemp(dir) != NULL);
+    char path[256], newpath[256];
+    snprintf(path, sizeof path, "%s/a.scene", dir);
+    snprintf(newpath, sizeof newpath, "%s/b.scene", dir);
+    const char *text = "# a scene\n[model]\nkind = lugre\nsigma0 = 6 # stiff\n\n[input]\nkind = bimodal\n\n"
+                       "[series s]\ndata = ystar\n\n[output]\nname = a\n";
+    CHECK(sv_write_new(path, text, strlen(text), &err) == HY_OK);
+    CHECK(sv_write_new(path, "x", 1, &err) == HY_EINVAL); /* never overwrites */
+    size_t len;
+    char *back = sv_read_file(path, 1 << 16, &len);
+    CHECK(back && !strcmp(back, text));
+    free(back);
+    hy_scene *s = NULL;
+    CHECK(hy_scene_parse_file(path, &s, &err) == HY_OK);
+    char *sets[] = {"model.sigma0=2.5", "model.fc=3", "compute.points=300", "compute.cycles=2", "series.s.width=2pt"};
+    char *nt = s ? sv_scene_with_sets(s, path, text, sets, 5, "b", &err) : NULL;
+    CHECK(nt != NULL);
+    hy_scene *want = NULL, *got = NULL;
+    if (nt) {
+        CHECK(strstr(nt, "sigma0 = 2.5\n") && !strstr(nt, "sigma0 = 6"));
+        CHECK(strstr(nt, "[model]\nfc = 3\n"));
+        CHECK(strstr(nt, "\n[compute]\npoints = 300\ncycles = 2\n"));
+        CHECK(strstr(nt, "[series s]\nwidth = 2pt\n"));
+        CHECK(strstr(nt, "name = b\n") && !strstr(nt, "name = a\n"));
+        CHECK(hy_scene_parse_buffer(newpath, nt, strlen(nt), &got, &err) == HY_OK);
+        CHECK(hy_scene_parse_file(path, &want, &err) == HY_OK);
+        for (size_t i = 0; want && i < 5; i++)
+            CHECK(hy_scene_set(want, sets[i], &err) == HY_OK);
+        CHECK(want && hy_scene_set(want, "output.name=b", &err) == HY_OK);
+        double v1, v2;
+        long p1, p2;
+        CHECK(got && hy_scene_get_num(got, "model", NULL, "sigma0", &v1) == HY_SCENE_SET && v1 == 2.5);
+        CHECK(got && hy_scene_get_num(got, "model", NULL, "fc", &v2) == HY_SCENE_SET && v2 == 3);
+        CHECK(got && hy_scene_get_int(got, "compute", NULL, "points", &p1) == HY_SCENE_SET && p1 == 300);
+        CHECK(got && hy_scene_get_int(got, "compute", NULL, "cycles", &p2) == HY_SCENE_SET && p2 == 2);
+        CHECK(got && want && hy_scene_get_length_pt(got, "series", "s", "width", &v1) == HY_SCENE_SET &&
+              hy_scene_get_length_pt(want, "series", "s", "width", &v2) == HY_SCENE_SET && v1 == v2);
+    }
+    hy_scene_free(want);
+    hy_scene_free(got);
+    hy_scene_free(s);
+    free(nt);
+    unlink(path);
+    rmdir(dir);
+    if (fails)
+        fprintf(stderr, "%d failure(s)\n", fails);
+    return fails != 0;
+}
