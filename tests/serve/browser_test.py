@@ -1,0 +1,407 @@
+#!/usr/bin/python3
+"""tests/serve/browser_test.py HYSTVIZ SCENES_DIR [--screenshot PNG] [--bench N]
+
+The page of `hystviz serve` in a real browser: Debian's chromium, headless,
+driven over the DevTools protocol (a WebSocket client in the standard
+library; no network, no packages).  It drags Fig. 15's sigma0 slider with
+mouse events and checks that the SVG the page shows is byte for byte what
+`hystviz render --set model.sigma0=V --format svg` writes; types an invalid
+u_min,2 and checks the CLI's message appears next to the control while the
+figure stays; hovers a curve; saves an edit of style.scene by renaming (as
+Vim does) and checks the page followed without a click; scrubs the
+animation to frame 10 and checks the PNG equals `hystviz animate --frames
+10:11`.  Exit 77 (SKIP) with a message where chromium is absent; the frame
+check is skipped where hystviz-animate was built without OSMesa.
+
+--bench N: instead, N slider moves per figure (Fig. 15, Fig. 11, bw_fig1a),
+printing the median and 95th percentile of the server's render time and of
+the page's time from the input event to the new SVG in the DOM.
+"""
+import base64
+import json
+import os
+import re
+import shutil
+import signal
+import socket
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+FAILS = []
+
+
+def check(cond, what):
+    print(("ok: " if cond else "FAIL: ") + what, flush=True)
+    if not cond:
+        FAILS.append(what)
+
+
+# ---- a minimal WebSocket client (RFC 6455), enough for DevTools -------------
+
+class WebSocket:
+    def __init__(self, url):
+        m = re.match(r"ws://([^/:]+):(\d+)(/.*)", url)
+        self.sock = socket.create_connection((m.group(1), int(m.group(2))), timeout=60)
+        key = base64.b64encode(os.urandom(16)).decode()
+        req = (f"GET {m.group(3)} HTTP/1.1\r\nHost: {m.group(1)}:{m.group(2)}\r\nUpgrade: websocket\r\n"
+               f"Connection: Upgrade\r\nSec-WebSocket-Key: {key}\r\nSec-WebSocket-Version: 13\r\n\r\n")
+        self.sock.sendall(req.encode())
+        head = b""
+        while b"\r\n\r\n" not in head:
+            chunk = self.sock.recv(1)
+            if not chunk:
+                raise OSError("websocket handshake: connection closed")
+            head += chunk
+        if b" 101 " not in head.split(b"\r\n")[0]:
+            raise OSError("websocket handshake refused: " + head.decode(errors="replace"))
+
+    def send(self, text):
+        data = text.encode()
+        hdr = bytes([0x81])
+        n = len(data)
+        if n < 126:
+            hdr += bytes([0x80 | n])
+        elif n < 65536:
+            hdr += bytes([0x80 | 126]) + struct.pack(">H", n)
+        else:
+            hdr += bytes([0x80 | 127]) + struct.pack(">Q", n)
+        mask = os.urandom(4)
+        self.sock.sendall(hdr + mask + bytes(b ^ mask[i % 4] for i, b in enumerate(data)))
+
+    def _read(self, n):
+        buf = b""
+        while len(buf) < n:
+            chunk = self.sock.recv(n - len(buf))
+            if not chunk:
+                raise OSError("websocket closed")
+            buf += chunk
+        return buf
+
+    def recv(self):
+        msg = b""
+        while True:
+            b0, b1 = self._read(2)
+            n = b1 & 0x7F
+            if n == 126:
+                n = struct.unpack(">H", self._read(2))[0]
+            elif n == 127:
+                n = struct.unpack(">Q", self._read(8))[0]
+            if b1 & 0x80:
+                mask = self._read(4)
+                data = bytes(b ^ mask[i % 4] for i, b in enumerate(self._read(n)))
+            else:
+                data = self._read(n)
+            op = b0 & 0x0F
+            if op == 0x9:  # ping: answer, keep reading
+                continue
+            if op == 0x8:
+                raise OSError("websocket closed by the browser")
+            msg += data
+            if b0 & 0x80:
+                return msg.decode()
+
+
+class DevTools:
+    def __init__(self, ws_url):
+        self.ws = WebSocket(ws_url)
+        self.id = 0
+
+    def call(self, method, **params):
+        self.id += 1
+        self.ws.send(json.dumps({"id": self.id, "method": method, "params": params}))
+        while True:
+            m = json.loads(self.ws.recv())
+            if m.get("id") == self.id:
+                if "error" in m:
+                    raise RuntimeError(f"{method}: {m['error']}")
+                return m.get("result", {})
+
+    def js(self, expr, timeout=30):
+        r = self.call("Runtime.evaluate", expression=expr, awaitPromise=True, returnByValue=True,
+                      timeout=timeout * 1000)
+        if "exceptionDetails" in r:
+            raise RuntimeError(f"{expr[:80]}...: {r['exceptionDetails']}")
+        return r["result"].get("value")
+
+    def wait(self, cond, timeout=20, what=""):
+        """Waits until the JS expression cond is true; returns whether it became true."""
+        t0 = time.time()
+        while time.time() - t0 < timeout:
+            if self.js(f"!!({cond})"):
+                return True
+            time.sleep(0.02)
+        print(f"   (timed out after {timeout} s waiting for {what or cond})")
+        return False
+
+    def mouse(self, kind, x, y, buttons=0, button="none"):
+        self.call("Input.dispatchMouseEvent", type=kind, x=x, y=y, button=button, buttons=buttons, clickCount=1)
+
+    def key(self, code, key):
+        for kind in ("rawKeyDown", "keyUp"):
+            self.call("Input.dispatchKeyEvent", type=kind, key=key, code=code, windowsVirtualKeyCode=39 if key == "ArrowRight" else 0)
+
+
+# ---- helpers ------------------------------------------------------------------
+
+def render_svg(hv, scene, sets, out):
+    args = [hv, "render", scene, "--format", "svg", "-o", out]
+    for s in sets:
+        args += ["--set", s]
+    subprocess.run(args, check=True, capture_output=True)
+    name = re.search(r"^name = (\S+)", open(scene).read(), re.M)
+    with open(os.path.join(out, name.group(1) + ".svg"), encoding="utf-8") as f:
+        return f.read()
+
+
+def rename_save(path, old, new):
+    text = open(path).read()
+    assert old in text, f"{old!r} not in {path}"
+    tmp = os.path.join(os.path.dirname(path), ".edit.swp")
+    with open(tmp, "w") as f:
+        f.write(text.replace(old, new))
+    os.rename(tmp, path)
+
+
+def settle(dt):
+    """Waits until the page has no render running or queued."""
+    return dt.wait("hv.renders > 0 && !hv.inflight && !hv.pending", 30, "the renders to settle")
+
+
+def slider_box(dt, key):
+    return dt.js(f"""(() => {{ const r = document.querySelector('input[type=range][data-key="{key}"]');
+        r.scrollIntoView({{block: 'center'}}); const b = r.getBoundingClientRect();
+        return [b.left, b.top, b.width, b.height]; }})()""")
+
+
+def drag(dt, key, frac_from, frac_to, steps=8):
+    x, y, w, h = slider_box(dt, key)
+    cy = y + h / 2
+    x0, x1 = x + 8 + (w - 16) * frac_from, x + 8 + (w - 16) * frac_to
+    dt.mouse("mouseMoved", x0, cy)
+    dt.mouse("mousePressed", x0, cy, 1, "left")
+    for i in range(1, steps + 1):
+        dt.mouse("mouseMoved", x0 + (x1 - x0) * i / steps, cy, 1, "left")
+        time.sleep(0.01)
+    dt.mouse("mouseReleased", x1, cy, 0, "left")
+
+
+def start_chromium(tmp):
+    exe = shutil.which("chromium") or shutil.which("chromium-browser")
+    if not exe:
+        return None, None
+    prof = os.path.join(tmp, "profile")
+    p = subprocess.Popen([exe, "--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run",
+                          "--disable-extensions", "--disable-background-networking", "--disable-sync",
+                          "--remote-debugging-port=0", f"--user-data-dir={prof}", "--window-size=1400,1000",
+                          "about:blank"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    url = None
+    t0 = time.time()
+    while time.time() - t0 < 60:
+        line = p.stderr.readline()
+        if not line:
+            break
+        m = re.search(r"DevTools listening on (ws://\S+)", line)
+        if m:
+            url = m.group(1)
+            break
+    if not url:
+        p.kill()
+        return None, None
+    port = re.match(r"ws://[^:]+:(\d+)/", url).group(1)
+    targets = json.load(urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list"))
+    page = next(t for t in targets if t["type"] == "page")
+    return p, page["webSocketDebuggerUrl"]
+
+
+def start_server(hv, scenes):
+    p = subprocess.Popen([hv, "serve", scenes, "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    line = p.stdout.readline()
+    m = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
+    if not m:
+        p.kill()
+        raise RuntimeError("serve printed no URL: " + line + p.stderr.read())
+    return p, m.group(1)
+
+
+def pct(v, q):
+    v = sorted(v)
+    return v[min(len(v) - 1, int(round(q / 100 * (len(v) - 1))))]
+
+
+# ---- the tests -----------------------------------------------------------------
+
+def test_page(dt, hv, base, scenes, tmp, screenshot):
+    F = "fig15_minor_loop_ex4"
+    scene = os.path.join(scenes, F + ".scene")
+    dt.call("Page.navigate", url=base + "#" + F + ".scene")
+    check(dt.wait("window.hv && hv.renders >= 1 && hv.svg", 30, "the first figure"), "the page shows Fig. 15")
+    first = dt.js("hv.svg")
+    check(first == render_svg(hv, scene, [], os.path.join(tmp, "r0")), "first figure == hystviz render")
+    check(dt.js("document.querySelector('#figure svg') !== null && document.querySelectorAll('.ctl').length > 5"),
+          "inline SVG and the controls are in the DOM")
+
+    # drag sigma0 from the left quarter to 3/4 of the slider: several renders while dragging
+    n0 = dt.js("hv.renders")
+    drag(dt, "model.sigma0", 0.25, 0.75)
+    settle(dt)
+    val = dt.js("hv.sets['model.sigma0']")
+    check(val is not None and dt.js("hv.renders") > n0, f"dragging sigma0 re-rendered (sigma0 = {val}, "
+          f"{dt.js('hv.renders') - n0} renders while dragging)")
+    want = render_svg(hv, scene, [f"model.sigma0={val}"], os.path.join(tmp, "r1"))
+    check(dt.js("hv.svg") == want, f"page SVG == hystviz render --set model.sigma0={val} --format svg")
+    check(dt.js("hv.svg") != first, "the figure changed")
+    check(dt.js("document.getElementById('figure').innerHTML.length > 1000"), "the DOM holds the new SVG")
+    cmd = dt.js("document.getElementById('cmd').textContent")
+    check(cmd == f"hystviz render {scene} --set model.sigma0={val} --format svg", f"the page shows the command: {cmd}")
+
+    # hover: the nearest drawn point of a curve
+    dt.wait("hv.hover !== null", 10, "the hover data")
+    pos = dt.js("""(() => { const m = hv.hover.map, s = hv.hover.series.find(s => s.name === 'minor');
+        let i = s.x.findIndex(v => v !== null) + 7; const svg = document.querySelector('#figure svg');
+        const p = svg.createSVGPoint();
+        p.x = m.x0 + (s.x[i] - m.xlo) / (m.xhi - m.xlo) * m.w; p.y = m.y0 + m.h - (s.y[i] - m.ylo) / (m.yhi - m.ylo) * m.h;
+        const q = p.matrixTransform(svg.getScreenCTM()); return [q.x, q.y, s.x[i], s.y[i]]; })()""")
+    dt.mouse("mouseMoved", pos[0], pos[1])
+    tip = dt.js("document.getElementById('tip').hidden ? '' : document.getElementById('tip').textContent")
+    check(tip.startswith("minor: u = ") and f"{pos[2]:.5g}"[:4] in tip, f"hover shows the series and point: '{tip}'")
+
+    # an invalid combination: the CLI's message next to the control, the figure stays
+    good = dt.js("hv.svg")
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="input.umin2"]');
+        b.value = '1.2'; b.dispatchEvent(new Event('change')); })()""")
+    dt.wait("hv.error !== null && !hv.inflight", 20, "the error")
+    cli = subprocess.run([hv, "render", scene, "--set", f"model.sigma0={val}", "--set", "input.umin2=1.2", "-o",
+                          os.path.join(tmp, "rx")], capture_output=True, text=True).stderr.strip()
+    msg = dt.js("document.querySelector('.err[data-key=\"input.umin2\"]').textContent")
+    check(cli.startswith("hystviz: ") and msg == cli[len("hystviz: "):], f"the CLI's message next to the control: '{msg}'")
+    check(dt.js("hv.svg") == good and dt.js("document.getElementById('figure').innerHTML.length > 1000"),
+          "the last good figure stays")
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="input.umin2"]');
+        b.value = '0.5'; b.dispatchEvent(new Event('change')); })()""")
+    settle(dt)
+    check(dt.js("hv.error") is None and dt.js("hv.svg") == good, "a valid value again: the figure is back")
+
+    if screenshot:
+        shot = dt.call("Page.captureScreenshot", format="png")
+        with open(screenshot, "wb") as f:
+            f.write(base64.b64decode(shot["data"]))
+        print(f"   screenshot: {screenshot}")
+
+    # an edit of style.scene saved by rename: the page follows with no click
+    n1, c1 = dt.js("hv.renders"), dt.js("hv.changes")
+    t0 = time.time()
+    rename_save(os.path.join(scenes, "style.scene"), "fontsize = 9pt", "fontsize = 11pt")
+    followed = dt.wait(f"hv.changes > {c1} && hv.renders > {n1} && !hv.inflight && !hv.pending", 5, "the reload")
+    dt_ms = 1000 * (time.time() - t0)
+    want = render_svg(hv, scene, [f"model.sigma0={val}"], os.path.join(tmp, "r2"))
+    check(followed and dt.js("hv.svg") == want and want != good,
+          f"after saving style.scene the page shows the new figure ({dt_ms:.0f} ms), sliders kept")
+    check(dt_ms < 1000, f"the page followed the save within a second ({dt_ms:.0f} ms)")
+
+
+def test_anim(dt, hv, base, scenes, tmp):
+    A = "anim_minor_loop_ex4"
+    scene = os.path.join(scenes, A + ".scene")
+    out = os.path.join(tmp, "anim")
+    r = subprocess.run([hv, "animate", scene, "--frames", "10:11", "-o", out, "--quiet"], capture_output=True, text=True)
+    if r.returncode == 3:
+        print("SKIP (frame check): hystviz-animate was built without OSMesa: " + r.stderr.strip())
+        return
+    check(r.returncode == 0, "hystviz animate --frames 10:11 " + r.stderr.strip())
+    want = open(os.path.join(out, A, "frame_00010.png"), "rb").read()
+    dt.call("Page.navigate", url=base + "#" + A + ".scene")
+    check(dt.wait("hv.info && hv.info.file === '" + A + ".scene' && hv.frame === 0 && !hv.frameInflight", 60,
+                  "frame 0"), "the scrubber shows frame 0")
+    # scrub with the keyboard: ten steps to the right, latest wins
+    dt.js("document.getElementById('scrub').focus()")
+    for _ in range(10):
+        dt.key("ArrowRight", "ArrowRight")
+    check(dt.wait("hv.frame === 10 && !hv.frameInflight && hv.framePending < 0", 60, "frame 10"),
+          "scrubbed to frame 10")
+    got = base64.b64decode(dt.js("hv.frameB64") or "")
+    check(got == want, f"frame 10 in the page == hystviz animate --frames 10:11 ({len(got)} bytes)")
+
+
+def bench(dt, base, n):
+    figs = [("fig15_minor_loop_ex4", "model.sigma0"), ("fig11_ygamma_ex3", "model.sigma0"),
+            ("bw_fig1a_quasistatic_loop", None)]
+    for f, key in figs:
+        dt.call("Page.navigate", url=base + "#" + f + ".scene")
+        dt.wait(f"hv.info && hv.info.file === '{f}.scene' && hv.renders >= 1 && !hv.inflight", 60)
+        if key is None or not dt.js(f"!!document.querySelector('input[type=range][data-key=\"{key}\"]')"):
+            key = dt.js("hv.info.controls[0].key")
+        srv, e2e = [], []
+        for i in range(n):
+            # one control change: an input event, then the time until the new SVG is in the DOM
+            r = dt.js(f"""new Promise(res => {{
+                const el = document.querySelector('input[type=range][data-key="{key}"]');
+                const t0 = performance.now();
+                document.addEventListener('hv-rendered', () => res([hv.serverMs, performance.now() - t0]), {{once: true}});
+                el.value = {300 + (i * 37) % 400}; el.dispatchEvent(new Event('input'));
+            }})""", timeout=60)
+            srv.append(r[0])
+            e2e.append(r[1])
+        print(f"bench-serve {f} ({key}, {n} changes): server render median {pct(srv, 50):.1f} ms p95 {pct(srv, 95):.1f} ms;"
+              f" browser end-to-end median {pct(e2e, 50):.1f} ms p95 {pct(e2e, 95):.1f} ms", flush=True)
+
+
+def main():
+    hv, src = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2])
+    screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
+    nbench = int(sys.argv[sys.argv.index("--bench") + 1]) if "--bench" in sys.argv else 0
+    if not (shutil.which("chromium") or shutil.which("chromium-browser")):
+        print("SKIP: chromium is not installed (Debian: apt-get install chromium; sh tools/setup.sh test does)")
+        return 77
+    tmp = tempfile.mkdtemp(prefix="hystviz-browser-")
+    scenes = os.path.join(tmp, "scenes")
+    os.mkdir(scenes)
+    for f in os.listdir(src):
+        if f.endswith(".scene"):
+            shutil.copy(os.path.join(src, f), scenes)
+    os.chdir(tmp)
+    scenes = "scenes"
+    srv = chrome = None
+    try:
+        srv, base = start_server(hv, scenes)
+        if srv.poll() is not None:
+            return 1
+        chrome, ws = start_chromium(tmp)
+        if not chrome:
+            print("SKIP: chromium did not start headless")
+            return 77
+        dt = DevTools(ws)
+        dt.call("Page.enable")
+        dt.call("Runtime.enable")
+        dt.call("Emulation.setDeviceMetricsOverride", width=1400, height=1000, deviceScaleFactor=1, mobile=False)
+        if nbench:
+            bench(dt, base, nbench)
+        else:
+            test_page(dt, hv, base, scenes, tmp, screenshot)
+            test_anim(dt, hv, base, scenes, tmp)
+    finally:
+        if chrome:
+            chrome.kill()
+            chrome.wait()
+        if srv:
+            srv.send_signal(signal.SIGINT)
+            try:
+                rc = srv.wait(timeout=10)
+                if not nbench:
+                    check(rc == 0, f"serve exited {rc} on SIGINT")
+            except subprocess.TimeoutExpired:
+                srv.kill()
+                check(False, "serve did not stop within 10 s of SIGINT")
+        shutil.rmtree(tmp, ignore_errors=True)
+    if FAILS:
+        print(f"{len(FAILS)} failure(s)")
+        return 1
+    print("all browser tests passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
