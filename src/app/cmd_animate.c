@@ -54,6 +54,7 @@ static const char animate_help[] =
     "                     built, else egl); frames are the same on either with the software rasteriser\n"
     "  --list             the animations and what they show, then the GL backend and renderer\n"
     "  --gl-info          the GL backends built, the one used, its EGL devices and renderer\n"
+    "  --info             print 'frames N fps F size WxH duration S' for these options and stop\n"
     "\n"
     "environment:\n"
     "  HYSTVIZ_GL=osmesa|egl    the backend when --gl is not given\n"
@@ -72,7 +73,7 @@ typedef struct anim_args {
     hy_scene_policy pol;      /* --include-dir, --max-work (scene animations) */
     const char *dirs[64];
     const char *name, *quality, *gl;
-    int w, h, have_size, have_fps, have_duration, have_quality, list, gl_info, have_frames;
+    int w, h, have_size, have_fps, have_duration, have_quality, list, gl_info, have_frames, info;
     double fps, duration;
     const char *assemble;     /* --assemble FMT */
     long shard_k, shard_n;    /* --shard K/N (shard_n 0: none) */
@@ -116,6 +117,8 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
     long n;
     if (!strcmp(s, "-h") || !strcmp(s, "--help"))
         return fputs(animate_help, stdout), 1;
+    if (!strcmp(s, "--info"))
+        return a->info = 1, 0;
     if (!strcmp(s, "--list"))
         return a->list = 1, 0;
     if (!strcmp(s, "--gl-info"))
@@ -307,6 +310,13 @@ static int settle_scene(anim_args *a, const scene_anim *sa)
     return check_range(a);
 }
 
+/* --info: what the options resolve to (hystviz serve reads the frame count). */
+static void print_info(const anim_args *a)
+{
+    printf("frames %ld fps %.17g size %dx%d duration %.17g\n", hy_anim_nframes(&a->p), a->p.fps, a->p.width, a->p.height,
+           a->p.duration);
+}
+
 static int ends_with(const char *s, const char *tail)
 {
     size_t n = strlen(s), m = strlen(tail);
@@ -324,6 +334,10 @@ static int animate_scene(anim_args *a)
         return err.code == HY_ENOMEM ? 1 : 2; /* an unreadable or invalid scene */
     }
     int r = settle_scene(a, &sa);
+    if (!r && a->info) {
+        print_info(a);
+        return scene_anim_free(&sa), 0;
+    }
     if (!r)
         r = split_or_assemble(a); /* -1: render */
     if (r >= 0)
@@ -365,6 +379,8 @@ static int animate(int argc, char **argv)
     }
     if ((r = settle(&a, sc)))
         return r;
+    if (a.info)
+        return print_info(&a), 0;
     if ((r = split_or_assemble(&a)) >= 0)
         return r;
     gsl_set_error_handler_off();

@@ -110,6 +110,9 @@ typedef struct server {
     int stopping;
     page_slot pages[MAX_PAGES];
     sem_t renders;          /* renders running at once */
+    char builtin[32][32];   /* hystviz animate --list: the built-in animations */
+    char builtin_doc[32][200];
+    int nbuiltin;
     int stop_pipe[2];
 } server;
 
@@ -284,6 +287,112 @@ static int scene_path(const server *s, const char *name, char *path, size_t size
     return 1;
 }
 
+/* ---- hystviz-animate, out of process ---------------------------------- */
+
+/* Runs argv with stdout and stderr into out (NUL-terminated, truncated to
+ * size); returns the exit status, or -1 if it could not run. */
+static int run_capture(char *const *argv, char *out, size_t size)
+{
+    int fd[2];
+    out[0] = '\0';
+    if (pipe(fd))
+        return -1;
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_adddup2(&fa, fd[1], 1);
+    posix_spawn_file_actions_adddup2(&fa, fd[1], 2);
+    posix_spawn_file_actions_addclose(&fa, fd[0]);
+    pid_t pid;
+    int sp = posix_spawn(&pid, argv[0], &fa, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    close(fd[1]);
+    size_t n = 0;
+    for (;;) {
+        char tmp[4096];
+        ssize_t r = read(fd[0], tmp, sizeof tmp);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            break;
+        size_t k = (size_t)r < size - 1 - n ? (size_t)r : size - 1 - n;
+        memcpy(out + n, tmp, k);
+        n += k;
+    }
+    out[n] = '\0';
+    close(fd[0]);
+    if (sp)
+        return -1;
+    int status;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+static void list_builtins(server *s)
+{
+    char out[8192];
+    char *argv[] = {s->animate, "animate", "--list", NULL};
+    if (!s->animate[0] || run_capture(argv, out, sizeof out) != 0)
+        return; /* no hystviz-animate, or built without OSMesa */
+    for (char *line = out; *line && s->nbuiltin < 32;) {
+        char *nl = strchr(line, '\n');
+        if (nl)
+            *nl = '\0';
+        char *sp = strchr(line, ' ');
+        if (sp && sp - line < 32) {
+            snprintf(s->builtin[s->nbuiltin], sizeof s->builtin[0], "%.*s", (int)(sp - line), line);
+            while (*sp == ' ')
+                sp++;
+            snprintf(s->builtin_doc[s->nbuiltin], sizeof s->builtin_doc[0], "%s", sp);
+            s->nbuiltin++;
+        }
+        if (!nl)
+            break;
+        line = nl + 1;
+    }
+}
+
+/* "@NAME" of a built-in animation: its index, or -1. */
+static int builtin_index(const server *s, const char *name)
+{
+    for (int i = 0; name && name[0] == '@' && i < s->nbuiltin; i++)
+        if (!strcmp(name + 1, s->builtin[i]))
+            return i;
+    return -1;
+}
+
+/* hystviz animate WHAT --info: frames and fps; 0 or -1 with msg set. */
+static int anim_info(const server *s, const char *what, long *frames, double *fps, char *msg, size_t size)
+{
+    char out[2048];
+    char *argv[] = {(char *)s->animate, "animate", (char *)what, "--info", NULL};
+    int rc = run_capture(argv, out, sizeof out);
+    if (rc == 0 && sscanf(out, "frames %ld fps %lf", frames, fps) == 2)
+        return 0;
+    size_t n = strlen(out);
+    while (n && out[n - 1] == '\n')
+        out[--n] = '\0';
+    snprintf(msg, size, "%s", rc < 0 ? "cannot run hystviz-animate (it is built next to hystviz)" : out);
+    return -1;
+}
+
+static void json_anim(sv_buf *b, const server *s, const char *what)
+{
+    long frames;
+    double fps;
+    char msg[2048];
+    if (anim_info(s, what, &frames, &fps, msg, sizeof msg)) {
+        sv_puts(b, ",\"anim\":{\"frames\":0,\"error\":");
+        sv_json(b, msg);
+        sv_puts(b, "}");
+        return;
+    }
+    sv_printf(b, ",\"anim\":{\"frames\":%ld,\"fps\":", frames);
+    sv_num(b, fps);
+    sv_puts(b, "}");
+}
+
 /* ---- the catalogue and a scene's description ----------------------- */
 
 static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
@@ -312,22 +421,6 @@ static void caption(sv_buf *b, const char *text)
 static int is_animation(const hy_scene *sc)
 {
     return hy_scene_count(sc, "keyframe") > 0;
-}
-
-static long anim_frames(const hy_scene *sc, double *fps_out)
-{
-    double duration = 5;
-    long fps = 30;
-    const char *q = "720p30";
-    hy_scene_get_num(sc, "animation", NULL, "duration", &duration);
-    int fps_set = hy_scene_get_int(sc, "animation", NULL, "fps", &fps) == HY_SCENE_SET;
-    int q_set = hy_scene_get_enum(sc, "animation", NULL, "quality", NULL, &q) == HY_SCENE_SET;
-    double f = (double)fps;
-    if (!fps_set && q_set && strchr(q, 'p'))
-        f = atof(strchr(q, 'p') + 1); /* as hystviz animate: the preset's rate */
-    *fps_out = f;
-    double n = floor(duration * f + 0.5);
-    return n < 1 ? 1 : n > 1e7 ? 10000000L : (long)n;
 }
 
 static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
@@ -402,12 +495,40 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
         free(v[i]);
     }
     free(v);
+    for (int i = 0; i < s->nbuiltin; i++) {
+        char at[40];
+        snprintf(at, sizeof at, "@%s", s->builtin[i]);
+        sv_puts(&b, first ? "{\"file\":" : ",{\"file\":");
+        first = 0;
+        sv_json(&b, at);
+        sv_puts(&b, ",\"builtin\":true,\"anim\":true,\"name\":");
+        sv_json(&b, s->builtin[i]);
+        sv_puts(&b, ",\"caption\":");
+        sv_json(&b, s->builtin_doc[i]);
+        sv_puts(&b, "}");
+    }
     sv_puts(&b, "]}");
     return send_json(c, 200, &b);
 }
 
 static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args *a)
 {
+    int bi = builtin_index(s, a->scene);
+    if (bi >= 0) {
+        sv_buf b = {0};
+        sv_puts(&b, "{\"file\":");
+        sv_json(&b, a->scene);
+        sv_puts(&b, ",\"builtin\":true,\"path\":");
+        sv_json(&b, s->builtin[bi]);
+        sv_puts(&b, ",\"name\":");
+        sv_json(&b, s->builtin[bi]);
+        sv_puts(&b, ",\"caption\":");
+        sv_json(&b, s->builtin_doc[bi]);
+        sv_puts(&b, ",\"text\":\"\",\"controls\":[]");
+        json_anim(&b, s, s->builtin[bi]);
+        sv_puts(&b, "}");
+        return send_json(c, 200, &b);
+    }
     char path[PATH_MAX + 300];
     if (!scene_path(s, a->scene, path, sizeof path))
         return send_error_json(c, 404, "no such scene");
@@ -438,13 +559,9 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
         sv_json(&b, name);
         sv_puts(&b, ",\"controls\":");
         sv_controls_json(&b, sc);
-        if (is_animation(sc)) {
-            double fps;
-            long nf = anim_frames(sc, &fps);
-            sv_printf(&b, ",\"anim\":{\"frames\":%ld,\"fps\":", nf);
-            sv_num(&b, fps);
-            sv_puts(&b, "}");
-        } else
+        if (is_animation(sc))
+            json_anim(&b, s, path);
+        else
             sv_puts(&b, ",\"anim\":null");
         hy_scene_free(sc);
     }
@@ -705,7 +822,10 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
 static enum MHD_Result api_frame(server *s, struct MHD_Connection *c, const args *a)
 {
     char path[PATH_MAX + 300];
-    if (!scene_path(s, a->scene, path, sizeof path))
+    int bi = builtin_index(s, a->scene);
+    if (bi >= 0)
+        snprintf(path, sizeof path, "%s", s->builtin[bi]);
+    else if (!scene_path(s, a->scene, path, sizeof path))
         return send_error_json(c, 404, "no such scene");
     char *end;
     errno = 0;
@@ -755,7 +875,9 @@ static enum MHD_Result api_frame(server *s, struct MHD_Connection *c, const args
     hy_scene *sc = NULL;
     hy_error err;
     char name[256] = "";
-    if (!hy_scene_parse_file(path, &sc, &err)) {
+    if (bi >= 0)
+        snprintf(name, sizeof name, "%s", s->builtin[bi]);
+    else if (!hy_scene_parse_file(path, &sc, &err)) {
         hy_scene_run probe = {0};
         probe.scene = sc;
         probe.path = path;
@@ -1233,6 +1355,7 @@ int hy_cmd_serve(int argc, char **argv)
             *slash = '\0';
         snprintf(s->animate, sizeof s->animate, "%.*s/hystviz-animate", (int)(sizeof s->animate - 20), self);
     }
+    list_builtins(s);
     /* the per-run token */
     unsigned char rnd[16];
     if (getrandom(rnd, sizeof rnd, 0) != (ssize_t)sizeof rnd) {

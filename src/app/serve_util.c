@@ -113,7 +113,9 @@ void sv_num(sv_buf *b, double v)
         return;
     }
     char tmp[40];
-    for (int p = 1; p <= 17; p++) {
+    /* at least as many digits as the integer part has, so 30 is "30", not "3e+01" */
+    int p0 = fabs(v) >= 1 ? (int)floor(log10(fabs(v))) + 1 : 1;
+    for (int p = p0 < 17 ? p0 : 17; p <= 17; p++) {
         snprintf(tmp, sizeof tmp, "%.*g", p, v);
         if (strtod(tmp, NULL) == v)
             break;

@@ -101,6 +101,11 @@ int main(void)
     CHECK(!strcmp(num(1.0 / 3), "0.3333333333333333"));
     CHECK(!strcmp(num(1e-300), "1e-300"));
     CHECK(!strcmp(num(NAN), "null"));
+    CHECK(!strcmp(num(30), "30"));
+    CHECK(!strcmp(num(600), "600"));
+    CHECK(!strcmp(num(-2400), "-2400"));
+    CHECK(!strcmp(num(1e20), "1e+20"));
+    CHECK(!strcmp(num(123456.5), "123456.5"));
 
     /* slider ranges: sigma0 (> 0) log over four decades around the value */
     double lo, hi;

@@ -78,9 +78,12 @@ async function openScene(file, keep) {
   $('saved').textContent = '';
   markCurrent();
   buildControls(info);
+  // a built-in animation has frames only: no still figure, no controls
+  $('stage').hidden = $('share').hidden = !!info.builtin;
+  $('message').hidden = true;
   setupAnim(info, same && keep);
   if (info.error) { showError(info.error); return; }
-  requestRender();
+  if (!info.builtin) requestRender();
 }
 
 function buildControls(info) {
@@ -241,11 +244,16 @@ function setupAnim(info, keep) {
   const sec = $('anim');
   if (!info.anim) { sec.hidden = true; hv.playing = false; return; }
   sec.hidden = false;
+  if (info.anim.error) {
+    $('frameinfo').textContent = info.anim.error;
+    $('framenote').textContent = '';
+    return;
+  }
   const n = info.anim.frames;
   $('scrub').max = n - 1;
   if (!keep) { $('scrub').value = 0; hv.frame = -1; }
   $('framenote').textContent = 'Frame i is the PNG that `hystviz animate ' + info.path + ' --frames i:i+1` writes '
-    + '(OpenGL, rendered by hystviz-animate in its own process; the sliders above change the still figure only).';
+    + '(OpenGL, rendered by hystviz-animate in its own process' + (info.builtin ? ').' : '; the sliders above change the still figure only).');
   requestFrame(+$('scrub').value);
 }
 
