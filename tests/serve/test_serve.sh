@@ -229,9 +229,9 @@ if "$hv" animate --list >/dev/null 2>&1; then
     info=$("$hv" animate scenes/anim_minor_loop_ex4.scene --info | sed 's/^frames \([0-9]*\) fps \([0-9.]*\).*/"frames":\1,"fps":\2/')
     curl -s "$base/api/scene?scene=anim_minor_loop_ex4.scene" | grep -q "\"anim\":{$info}" &&
         ok "animation scene: frames and fps as animate --info ($info)" || fail "animation scene info != $info"
-    curl -s "$base/api/scenes" | grep -q '"file":"@ribbon","builtin":true' && ok "built-in animations listed" ||
+    curl -s "$base/api/scenes" | grep -q '"file":"@minor-loop-ex4","builtin":true' && ok "built-in animations listed" ||
         fail "no built-in animations in the catalogue"
-    for spec in "@ribbon 7 ribbon" "anim_gamma_sweep_ex3.scene 3 scenes/anim_gamma_sweep_ex3.scene"; do
+    for spec in "@minor-loop-ex4 7 minor-loop-ex4" "anim_gamma_sweep_ex3.scene 3 scenes/anim_gamma_sweep_ex3.scene"; do
         set -- $spec
         rm -rf "$T/fr"
         curl -s -o "$T/frame.png" "$base/api/frame?scene=$1&frame=$2"
@@ -241,9 +241,9 @@ if "$hv" animate --list >/dev/null 2>&1; then
     done
     expect 404 "/api/frame?scene=@nosuch&frame=1"
     expect 404 "/api/frame?scene=@..%2Fx&frame=1"
-    expect 400 "/api/frame?scene=@ribbon&frame=-1"
-    expect 400 "/api/frame?scene=@ribbon&frame=1x"
-    expect 422 "/api/frame?scene=@ribbon&frame=100000"
+    expect 400 "/api/frame?scene=@minor-loop-ex4&frame=-1"
+    expect 400 "/api/frame?scene=@minor-loop-ex4&frame=1x"
+    expect 422 "/api/frame?scene=@minor-loop-ex4&frame=100000"
 else
     echo "SKIP (frames): hystviz-animate was built without OSMesa"
 fi
