@@ -722,19 +722,8 @@ static void index_links(FILE *f, const entry *e)
     fputs("</p>\n", f);
 }
 
-/* Where a scene goes in the catalogue, from its file name: the minor-loops
- * paper's figures (figNN_), the Bouc-Wen benchmark's (bw_figNx_), figures
- * beyond the papers, then animations (anim_); in file-name order within. */
-static int catalogue_part(const char *file)
-{
-    if (!strncmp(file, "fig", 3) && file[3] >= '0' && file[3] <= '9')
-        return 0;
-    if (!strncmp(file, "bw_fig", 6))
-        return 1;
-    if (!strncmp(file, "anim_", 5))
-        return 3;
-    return 2;
-}
+/* Where a scene goes in the catalogue: hy_scene_catalogue_part (scene_run.h). */
+#define catalogue_part hy_scene_catalogue_part
 
 static const char *const part_title[4] = {
     "Minor loops of the Dahl and LuGre models (Ikhouane, Ma\xc3\xb1osa, Pujol)",
@@ -743,15 +732,10 @@ static const char *const part_title[4] = {
 /* The heading of a figure: "Fig. 4", "Fig. 1a", or the output name. */
 static void figure_heading(FILE *f, const job *j)
 {
-    const char *p = j->file + (catalogue_part(j->file) == 1 ? 6 : 3);
-    if (catalogue_part(j->file) <= 1) {
-        int num = atoi(p);
-        fprintf(f, "Fig. %d", num);
-        while (*p >= '0' && *p <= '9')
-            p++;
-        if (*p >= 'a' && *p <= 'z' && p[1] == '_')
-            fputc(*p, f);
-        fputs(" <small>", f);
+    char label[32];
+    hy_scene_figure_label(j->file, label, sizeof label);
+    if (label[0]) {
+        fprintf(f, "%s <small>", label);
         htmls(f, j->name);
         fputs("</small>", f);
     } else

@@ -395,8 +395,6 @@ static void json_anim(sv_buf *b, const server *s, const char *what)
 
 /* ---- the catalogue and a scene's description ----------------------- */
 
-static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
-
 /* The header comment of a scene file, without the '#'s. */
 static void caption(sv_buf *b, const char *text)
 {
@@ -416,6 +414,24 @@ static void caption(sv_buf *b, const char *text)
     }
     sv_json(b, c.s ? c.s : "");
     free(c.s);
+}
+
+/* The gallery's order: by catalogue part, then by file name. */
+static int by_name(const void *a, const void *b)
+{
+    const char *x = *(char *const *)a, *y = *(char *const *)b;
+    int d = hy_scene_catalogue_part(x) - hy_scene_catalogue_part(y);
+    return d ? d : strcmp(x, y);
+}
+
+/* The caption: the scene's [figure] caption (as the gallery), else its header comment. */
+static void scene_caption(sv_buf *b, const hy_scene *sc, const char *text)
+{
+    const char *cap = NULL;
+    if (sc && hy_scene_get_str(sc, "figure", NULL, "caption", &cap) == HY_SCENE_SET && cap && *cap)
+        sv_json(b, cap);
+    else
+        caption(b, text);
 }
 
 static int is_animation(const hy_scene *sc)
@@ -483,7 +499,10 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
         sv_puts(&b, ",\"name\":");
         sv_json(&b, name);
         sv_puts(&b, ",\"caption\":");
-        caption(&b, text ? text : "");
+        scene_caption(&b, sc, text ? text : "");
+        char label[32];
+        hy_scene_figure_label(v[i], label, sizeof label);
+        sv_printf(&b, ",\"label\":\"%s\",\"part\":%d", label, hy_scene_catalogue_part(v[i]));
         sv_printf(&b, ",\"anim\":%s", sc && is_animation(sc) ? "true" : "false");
         if (bad) {
             sv_puts(&b, ",\"error\":");
@@ -501,7 +520,7 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
         sv_puts(&b, first ? "{\"file\":" : ",{\"file\":");
         first = 0;
         sv_json(&b, at);
-        sv_puts(&b, ",\"builtin\":true,\"anim\":true,\"name\":");
+        sv_puts(&b, ",\"builtin\":true,\"anim\":true,\"part\":4,\"label\":\"\",\"name\":");
         sv_json(&b, s->builtin[i]);
         sv_puts(&b, ",\"caption\":");
         sv_json(&b, s->builtin_doc[i]);
@@ -543,10 +562,11 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
     sv_json(&b, path);
     sv_puts(&b, ",\"text\":");
     sv_json(&b, text ? text : "");
+    int bad = hy_scene_parse_file(path, &sc, &err);
     sv_puts(&b, ",\"caption\":");
-    caption(&b, text ? text : "");
+    scene_caption(&b, bad ? NULL : sc, text ? text : "");
     free(text);
-    if (hy_scene_parse_file(path, &sc, &err)) {
+    if (bad) {
         sv_puts(&b, ",\"controls\":[],\"anim\":null,\"error\":");
         sv_json(&b, err.msg);
     } else {

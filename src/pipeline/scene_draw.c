@@ -14,6 +14,34 @@
 static const char *const default_xlabel[] = {"t", "u", "t", "\\nu", "\\varrho"};
 static const char *const default_ylabel[] = {"y", "y", "u(t)", "g(\\nu)", "\\psi_u(\\varrho)"};
 
+int hy_scene_catalogue_part(const char *file)
+{
+    if (!strncmp(file, "fig", 3) && file[3] >= '0' && file[3] <= '9')
+        return 0;
+    if (!strncmp(file, "bw_fig", 6))
+        return 1;
+    if (!strncmp(file, "anim_", 5))
+        return 3;
+    return 2;
+}
+
+void hy_scene_figure_label(const char *file, char *buf, size_t size)
+{
+    int part = hy_scene_catalogue_part(file);
+    if (size)
+        buf[0] = '\0';
+    if (part > 1 || !size)
+        return;
+    const char *p = file + (part == 1 ? 6 : 3);
+    int num = atoi(p);
+    while (*p >= '0' && *p <= '9')
+        p++;
+    if (*p >= 'a' && *p <= 'z' && p[1] == '_')
+        snprintf(buf, size, "Fig. %d%c", num, *p);
+    else
+        snprintf(buf, size, "Fig. %d", num);
+}
+
 void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size)
 {
     const char *name;

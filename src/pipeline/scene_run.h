@@ -121,6 +121,16 @@ int hy_scene_run_csv(const hy_scene_run *r, char **buf, size_t *len, hy_error *e
 /* Prints every series as CSV: header "series,x,y", values %.17g. */
 int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err);
 
+/* Where a scene file goes in the catalogue (gallery page, hystviz serve), from
+ * its name: 0 the minor-loops paper's figures (figNN_), 1 the Bouc-Wen
+ * benchmark's (bw_figNx_), 2 figures beyond the papers, 3 animations (anim_);
+ * file-name order within a part. */
+int hy_scene_catalogue_part(const char *file);
+
+/* The paper's figure number of a part 0 or 1 file ("Fig. 4", "Fig. 1a"),
+ * else an empty string. */
+void hy_scene_figure_label(const char *file, char *buf, size_t size);
+
 /* The output base name: [output] name, or the scene file's name without .scene. */
 void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size);
 

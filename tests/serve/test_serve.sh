@@ -86,6 +86,22 @@ assert j["svg"] == svg, "svg differs"
 assert j["cmd"] == "hystviz render scenes/fig15_minor_loop_ex4.scene --set model.sigma0=3.162 --set input.umin2=0.3 --format svg", j["cmd"]
 EOF
 fi
+# the catalogue: the gallery's order (paper figures, Bouc-Wen, beyond, animations) and captions
+if command -v python3 >/dev/null; then
+    curl -s "$base/api/scenes" >"$T/cat.json"
+    python3 - "$T/cat.json" scenes/$F.scene <<'EOF' && ok "catalogue in the gallery's order with captions" || fail "catalogue order or captions"
+import json, re, sys
+j = json.load(open(sys.argv[1]))["scenes"]
+files = [s["file"] for s in j if not s.get("builtin")]
+def part(f):
+    return 0 if re.match(r"fig\d", f) else 1 if f.startswith("bw_fig") else 3 if f.startswith("anim_") else 2
+assert files == sorted(files, key=lambda f: (part(f), f)), files
+assert "style.scene" not in files                       # an include, no figure
+cap = re.search(r'^caption = "(.*)"$', open(sys.argv[2]).read(), re.M).group(1)
+fig15 = next(s for s in j if s["file"] == "fig15_minor_loop_ex4.scene")
+assert fig15["caption"] == cap and fig15["label"] == "Fig. 15", fig15
+EOF
+fi
 # a figure with a GSL solve and one with Newmark, no overrides
 for G in fig11_ygamma_ex3 bw_fig1a_quasistatic_loop; do
     curl -s -o "$T/got.svg" "$base/api/render?scene=$G.scene&fmt=svg"

@@ -32,9 +32,17 @@ async function loadCatalogue() {
   hv.scenes = j.scenes;
   hv.dir = j.dir;
   const nav = $('catalogue');
-  nav.replaceChildren(...j.scenes.map(s => el('a', {
-    href: '#' + s.file, class: s.error ? 'bad' : '', title: s.error || s.caption, 'data-file': s.file,
-  }, s.name + (s.anim ? ' ▶' : ''), el('small', {}, s.error ? s.error : s.caption))));
+  // the gallery's parts and order
+  const parts = ['Minor loops of the Dahl and LuGre models', 'The Bouc-Wen benchmark', "Beyond the papers' figures",
+    'Animations (scenes)', 'Animations (built in)'];
+  const kids = [];
+  let part = -1;
+  for (const s of j.scenes) {
+    if (s.part !== part) { part = s.part; kids.push(el('h4', {}, parts[part] || '')); }
+    kids.push(el('a', { href: '#' + s.file, class: s.error ? 'bad' : '', title: s.error || s.caption, 'data-file': s.file },
+      (s.label ? s.label + ' · ' : '') + s.name + (s.anim ? ' ▶' : ''), el('small', {}, s.error ? s.error : s.caption)));
+  }
+  nav.replaceChildren(...kids);
   markCurrent();
   return j;
 }
@@ -71,7 +79,8 @@ async function openScene(file, keep) {
   const same = hv.info && hv.info.file === file;
   hv.info = info;
   if (!keep || !same) { hv.sets = {}; hv.lastKey = null; hv.svg = null; $('figure').replaceChildren(); hv.hover = null; }
-  $('title').textContent = info.name || file;
+  const entry = hv.scenes.find(s => s.file === file);
+  $('title').textContent = (entry && entry.label ? entry.label + ' · ' : '') + (info.name || file);
   $('caption').textContent = info.caption;
   $('text').textContent = info.text;
   $('newname').value = '';
