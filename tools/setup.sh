@@ -22,7 +22,7 @@ pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 [ "$what" = fuzz ] && pkgs="$pkgs clang libclang-rt-dev"
 # what the tests need besides: curl and bash (serve over HTTP), python3 and
 # chromium (the page in a real browser, headless)
-case "$what" in test | bench) pkgs="$pkgs curl bash python3 chromium" ;; esac
+case "$what" in test) pkgs="$pkgs curl bash python3 chromium" ;; bench) pkgs="$pkgs curl bash python3 chromium python3-matplotlib" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"

@@ -1,0 +1,100 @@
+/* bench_serve.c SCENES_DIR [N]: the server side of a control change in
+ * `hystviz serve`, in one warm process as the server runs it: scene text +
+ * one override -> parse, plan, compute, draw, SVG bytes in memory
+ * (hy_scene_run_load/compute/render).  Fig. 15 (analytic), Fig. 11 (GSL) and
+ * bw_fig1a (Newmark); a new value per change, as a slider drag sends.
+ * Prints median, 95th percentile and minimum; asserts nothing. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <gsl/gsl_errno.h>
+
+#include "scene_run.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double pct(double *v, int n, double q)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp);
+    int i = (int)lround(q / 100 * (n - 1));
+    return v[i];
+}
+
+/* One change: key=value(i); returns seconds (or -1 on error, printed). */
+static double change(const char *path, const char *key, double value, size_t *bytes)
+{
+    char set[128];
+    snprintf(set, sizeof set, "%s=%.4g", key, value);
+    char *sets[1] = {set};
+    double t0 = now();
+    hy_scene_run r;
+    hy_error err;
+    if (hy_scene_run_load(&r, path, sets, 1, &err) || (hy_scene_run_compute(&r, NULL, &err) && (hy_scene_run_free(&r), 1))) {
+        fprintf(stderr, "bench_serve: %s\n", err.msg);
+        return -1;
+    }
+    unsigned char *buf;
+    size_t len;
+    int rc = hy_scene_run_render(&r, HY_FORMAT_SVG, &buf, &len, NULL, &err);
+    hy_scene_run_free(&r);
+    if (rc) {
+        fprintf(stderr, "bench_serve: %s\n", err.msg);
+        return -1;
+    }
+    free(buf);
+    *bytes = len;
+    return now() - t0;
+}
+
+int main(int argc, char **argv)
+{
+    gsl_set_error_handler_off();
+    const char *dir = argc > 1 ? argv[1] : "scenes";
+    int n = argc > 2 ? atoi(argv[2]) : 100;
+    static const struct {
+        const char *file, *key;
+        double lo, hi;
+        int n_div;
+    } figs[] = {{"fig15_minor_loop_ex4.scene", "model.sigma0", 1, 60, 1},
+                {"fig11_ygamma_ex3.scene", "model.sigma0", 1, 60, 2},
+                {"bw_fig1a_quasistatic_loop.scene", "input.period", 0.9, 1.1, 4}};
+    for (size_t f = 0; f < sizeof figs / sizeof figs[0]; f++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", dir, figs[f].file);
+        int m = n / figs[f].n_div > 5 ? n / figs[f].n_div : 5;
+        double *t = malloc((size_t)m * sizeof *t);
+        size_t bytes = 0;
+        if (!t || change(path, figs[f].key, figs[f].lo, &bytes) < 0) /* warm: fonts, caches */
+            return 1;
+        int ok = 0, failed = 0;
+        for (int i = 0; i < m; i++) {
+            double v = figs[f].lo * pow(figs[f].hi / figs[f].lo, (double)(i % 50) / 49.0);
+            double dt = change(path, figs[f].key, v, &bytes);
+            if (dt < 0)
+                failed++; /* a scene error (printed): the page would show it */
+            else
+                t[ok++] = dt;
+        }
+        if (!ok)
+            return 1;
+        double med = pct(t, ok, 50), p95 = pct(t, ok, 95), mn = t[0];
+        printf("bench-serve-render %s (%s, %d changes, %d refused, %zu-byte SVG): median %.2f ms, p95 %.2f ms, "
+               "min %.2f ms\n", figs[f].file, figs[f].key, ok, failed, bytes, 1e3 * med, 1e3 * p95, 1e3 * mn);
+        free(t);
+    }
+    return 0;
+}
