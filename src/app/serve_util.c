@@ -414,9 +414,9 @@ int sv_write_new(const char *path, const char *text, size_t len, hy_error *err)
     const char *slash = strrchr(path, '/');
     char tmp[4200];
     if (slash)
-        snprintf(tmp, sizeof tmp, "%.*s/.%s.tmp.XXXXXX", (int)(slash - path), path, slash + 1);
+        snprintf(tmp, sizeof tmp, "%.*s/.%s.hystviz-tmp.XXXXXX", (int)(slash - path), path, slash + 1);
     else
-        snprintf(tmp, sizeof tmp, ".%s.tmp.XXXXXX", path);
+        snprintf(tmp, sizeof tmp, ".%s.hystviz-tmp.XXXXXX", path); /* hy_out's temporary names */
     int fd = mkstemp(tmp);
     if (fd < 0)
         return hy_error_set(err, HY_EIO, "cannot write next to %s: %s", path, strerror(errno));

@@ -42,7 +42,12 @@ kill -INT $pid; wait $pid
 # ---- a scenes directory of our own --------------------------------------------
 mkdir -p "$T/scenes" "$T/out"
 cp "$src"/*.scene "$T/scenes/"
-echo "secret" > "$T/outside.scene"
+printf '[model]\nsigma0 = 7\n' > "$T/outside.scene"
+mkdir -p "$T/scenes/sub"
+printf '[figure]\nfontsize = 10pt\n' > "$T/scenes/sub/inc.scene"
+# a scene whose include leaves the directory, and one whose include stays inside it
+sed 's|^include "style.scene"$|include "../outside.scene"|' "$src/fig15_minor_loop_ex4.scene" > "$T/scenes/escape.scene"
+sed 's|^include "style.scene"$|include "sub/inc.scene"|' "$src/fig15_minor_loop_ex4.scene" > "$T/scenes/inside.scene"
 ln -s "$T/outside.scene" "$T/scenes/link_out.scene"
 ln -s /etc/passwd "$T/scenes/passwd.scene"
 cd "$T" || exit 1
@@ -139,6 +144,12 @@ expect 404 "/api/render?scene=link_out.scene"
 expect 404 "/api/render?scene=$F.scene%00.scene"
 expect 404 "/api/scene?scene=passwd.scene"
 expect 404 "/nothing"
+expect 422 "/api/render?scene=escape.scene"
+curl -s "$base/api/render?scene=escape.scene&fmt=json" | grep -q "outside the served directory" &&
+    ok "an include leaving the directory is named and refused" || fail "escape.scene: no refusal message"
+expect 422 "/api/frame?scene=escape.scene&frame=0"
+expect 422 "/api/save?scene=escape.scene&name=esc2" -X POST -H "X-Hystviz-Token: $(curl -s "$base/" | sed -n 's/.*name="hystviz-token" content="\([0-9a-f]*\)".*/\1/p')"
+expect 200 "/api/render?scene=inside.scene"
 expect 200 "/scenes/$F.scene"
 expect 400 "/api/render?scene=$F.scene&set=input.file%3D%2Fetc%2Fpasswd"
 expect 400 "/api/render?scene=$F.scene&set=output.dir%3D%2Ftmp"
