@@ -205,21 +205,24 @@ t0=$(date +%s%N)
 mv "scenes/.$F.scene.swp.new" "scenes/$F.scene"
 seen=0
 for _ in $(seq 200); do
-    if grep -q "event: change" "$T/sse"; then seen=1; break; fi
+    # (an earlier event may name the scene saved above: wait for this one)
+    if grep -q "^data: .*\"files\":\".*$F.scene" "$T/sse"; then seen=1; break; fi
     sleep 0.025
 done
 t1=$(date +%s%N)
 ms=$(((t1 - t0) / 1000000))
 # the latency target (< 1 s) is measured by the benchmark; here: the event comes, naming the file
-if [ $seen = 1 ] && grep -q "$F.scene" "$T/sse"; then
+if [ $seen = 1 ]; then
     ok "SSE change event naming $F.scene $ms ms after a rename-save"
 else
     fail "SSE: no change event naming $F.scene within 5 s: $(tr '\n' '|' <"$T/sse")"
 fi
 # a burst of writes is one event (debounced)
+sleep 0.5 # earlier events settle
 n0=$(grep -c "event: change" "$T/sse")
 for i in 1 2 3 4 5; do echo "# burst $i" >>scenes/style.scene; done
-sleep 0.8
+for _ in $(seq 60); do [ "$(grep -c "event: change" "$T/sse")" -gt "$n0" ] && break; sleep 0.05; done
+sleep 0.6 # a second event, if the burst were not debounced, would come within this
 n1=$(grep -c "event: change" "$T/sse")
 [ $((n1 - n0)) -eq 1 ] && ok "a burst of 5 writes gives one event" || fail "a burst of 5 writes gave $((n1 - n0)) events"
 # the page's next render follows the file: sigma0 = 5 now

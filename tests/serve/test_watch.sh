@@ -22,8 +22,8 @@ F=scenes/fig15_minor_loop_ex4.scene
 "$hv" watch "$F" -o out --format svg >"$T/log" 2>"$T/err" &
 w=$!
 lines() { grep -c "" "$T/log"; }
-wait_lines() { # n: wait up to 5 s for n lines
-    for _ in $(seq 100); do [ "$(lines)" -ge "$1" ] && return 0; sleep 0.05; done
+wait_lines() { # n: wait up to 15 s for n lines
+    for _ in $(seq 300); do [ "$(lines)" -ge "$1" ] && return 0; sleep 0.05; done
     return 1
 }
 wait_lines 1 && grep -q "out/fig15_minor_loop_ex4.svg in .* s; max error .* against" "$T/log" &&
