@@ -242,11 +242,6 @@ const char *hy_scene_source(const hy_scene *s)
     return s->nfiles ? s->files[0] : "";
 }
 
-const char *hy_scene_file_at(const hy_scene *s, size_t i)
-{
-    return i < s->nfiles ? s->files[i] : NULL;
-}
-
 /* ---- getters ---- */
 
 /* Finds the value of section/name/key if its kind is one of kinds (bitmask of

@@ -161,10 +161,6 @@ int hy_scene_write(const hy_scene *s, FILE *f, int defaults);
 /* The path or display name the scene was parsed from (owned by the scene). */
 const char *hy_scene_source(const hy_scene *s);
 
-/* The i-th file read (0: the scene itself, then its includes as opened, in
- * reading order) or override applied ("--set ..."), NULL past the end. */
-const char *hy_scene_file_at(const hy_scene *s, size_t i);
-
 #include "hy_scene_policy.h"
 
 #endif

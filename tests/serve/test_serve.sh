@@ -145,7 +145,8 @@ expect 404 "/api/render?scene=$F.scene%00.scene"
 expect 404 "/api/scene?scene=passwd.scene"
 expect 404 "/nothing"
 expect 422 "/api/render?scene=escape.scene"
-curl -s "$base/api/render?scene=escape.scene&fmt=json" | grep -q "outside the served directory" &&
+# (the scene file policy: a scene reads only files below its directory, the served one)
+curl -s "$base/api/render?scene=escape.scene&fmt=json" | grep -q "outside the scene's directory" &&
     ok "an include leaving the directory is named and refused" || fail "escape.scene: no refusal message"
 expect 422 "/api/frame?scene=escape.scene&frame=0"
 expect 422 "/api/save?scene=escape.scene&name=esc2" -X POST -H "X-Hystviz-Token: $(curl -s "$base/" | sed -n 's/.*name="hystviz-token" content="\([0-9a-f]*\)".*/\1/p')"
@@ -261,6 +262,9 @@ if "$hv" animate --list >/dev/null 2>&1; then
         ok "animation scene: frames and fps as animate --info ($info)" || fail "animation scene info != $info"
     curl -s "$base/api/scenes" | grep -q '"file":"@minor-loop-ex4","builtin":true' && ok "built-in animations listed" ||
         fail "no built-in animations in the catalogue"
+    nb=$(curl -s "$base/api/scenes" | grep -o '"builtin":true' | wc -l)
+    nl=$("$hv" animate --list | sed '/^$/q' | grep -c '^[a-z0-9-]* ')
+    [ "$nb" -eq "$nl" ] && ok "as many built-ins as animate --list names ($nb)" || fail "$nb built-ins, animate --list names $nl"
     for spec in "@minor-loop-ex4 7 minor-loop-ex4" "anim_gamma_sweep_ex3.scene 3 scenes/anim_gamma_sweep_ex3.scene"; do
         set -- $spec
         rm -rf "$T/fr"

@@ -165,23 +165,6 @@ int main(void)
         CHECK(got && want && hy_scene_get_length_pt(got, "series", "s", "width", &v1) == HY_SCENE_SET &&
               hy_scene_get_length_pt(want, "series", "s", "width", &v2) == HY_SCENE_SET && v1 == v2);
     }
-    /* the files a scene read, for the server's include check */
-    char inc[256];
-    snprintf(inc, sizeof inc, "%s/inc.scene", dir);
-    const char *itext = "[figure]\ndpi = 100\n";
-    CHECK(sv_write_new(inc, itext, strlen(itext), &err) == HY_OK);
-    const char *ttext = "include \"inc.scene\"\n[series s]\ndata = ystar\n";
-    hy_scene *t = NULL;
-    CHECK(hy_scene_parse_buffer(newpath, ttext, strlen(ttext), &t, &err) == HY_OK);
-    if (t) {
-        CHECK(!strcmp(hy_scene_file_at(t, 0), newpath));
-        CHECK(hy_scene_file_at(t, 1) && strstr(hy_scene_file_at(t, 1), "inc.scene"));
-        CHECK(hy_scene_file_at(t, 2) == NULL);
-        CHECK(hy_scene_set(t, "figure.dpi=90", &err) == HY_OK);
-        CHECK(hy_scene_file_at(t, 2) && !strncmp(hy_scene_file_at(t, 2), "--set", 5));
-    }
-    hy_scene_free(t);
-    unlink(inc);
     hy_scene_free(want);
     hy_scene_free(got);
     hy_scene_free(s);
