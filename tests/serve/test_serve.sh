@@ -151,6 +151,8 @@ curl -s "$base/api/render?scene=escape.scene&fmt=json" | grep -q "outside the sc
 expect 422 "/api/frame?scene=escape.scene&frame=0"
 expect 422 "/api/save?scene=escape.scene&name=esc2" -X POST -H "X-Hystviz-Token: $(curl -s "$base/" | sed -n 's/.*name="hystviz-token" content="\([0-9a-f]*\)".*/\1/p')"
 expect 200 "/api/render?scene=inside.scene"
+# a page cannot ask for unbounded work: the scene work budget refuses it before computing
+expect 422 "/api/render?scene=$F.scene&set=compute.points%3D10000000&set=compute.cycles%3D100000"
 expect 200 "/scenes/$F.scene"
 expect 400 "/api/render?scene=$F.scene&set=input.file%3D%2Fetc%2Fpasswd"
 expect 400 "/api/render?scene=$F.scene&set=output.dir%3D%2Ftmp"
