@@ -207,10 +207,15 @@ int hy_boucwen_step(const hy_boucwen_params *p, const hy_newmark_opts *o,
            Z = zp + ch Zd carry a few ulps of their terms, which cancel near a
            velocity reversal (|V| << |vp|), and f passes that on times fv and
            fz.  4 ulps each: the Newton update then flips A by one ulp forever
-           (-7.1e-15 N at u = 40 N) unless it stops here. */
+           (-7.1e-15 N at u = 40 N) unless it stops here.  ÿ itself is then
+           known only to ffloor / j11, and ż depends on it through
+           V = vp + ah ÿ: its floor carries fv ah ffloor / j11 as well (without
+           it, ÿ's flip of 1.4e-14 N / j11 moved ż by 1.6e-14 N/s against a
+           floor of 1.5e-16 at amp = 100 N in bw_fig1a, and the step failed). */
         double ffloor = 4 * DBL_EPSILON * fscale;
         double zfloor = 4 * DBL_EPSILON * (fabs(Zd) + fabs(fv) * (fabs(vp) + fabs(ah * A)) +
-                                           fabs(fz) * (fabs(zp) + fabs(ch * Zd)));
+                                           fabs(fz) * (fabs(zp) + fabs(ch * Zd))) +
+                        fabs(fv) * ah * ffloor / j11;
         if (fabs(dA) * j11 <= o->tol * fscale + ffloor && fabs(dZ) <= o->tol * zscale + zfloor) {
             s->t += h;
             s->a = A;
