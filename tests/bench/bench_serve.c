@@ -71,7 +71,7 @@ int main(int argc, char **argv)
         int n_div;
     } figs[] = {{"fig15_minor_loop_ex4.scene", "model.sigma0", 1, 60, 1},
                 {"fig11_ygamma_ex3.scene", "model.sigma0", 1, 60, 2},
-                {"bw_fig1a_quasistatic_loop.scene", "input.period", 0.9, 1.1, 4}};
+                {"bw_fig1a_quasistatic_loop.scene", "input.amp", 60, 180, 4}};
     for (size_t f = 0; f < sizeof figs / sizeof figs[0]; f++) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", dir, figs[f].file);

@@ -330,7 +330,7 @@ def test_anim(dt, hv, base, scenes, tmp):
 
 def bench(dt, base, n, scenes):
     figs = [("fig15_minor_loop_ex4", "model.sigma0"), ("fig11_ygamma_ex3", "model.sigma0"),
-            ("bw_fig1a_quasistatic_loop", "input.period")]
+            ("bw_fig1a_quasistatic_loop", "input.amp")]
     for f, key in figs:
         dt.call("Page.navigate", url=base + "#" + f + ".scene")
         dt.wait(f"hv.info && hv.info.file === '{f}.scene' && hv.renders >= 1 && !hv.inflight", 60)
