@@ -663,6 +663,23 @@ static void command_line(sv_buf *b, const char *path, const args *a, const char 
         sv_printf(b, " --format %s", fmt);
 }
 
+
+/* One coordinate array of a series as JSON: null where the point is not
+ * finite in x or y (a break between pieces). */
+static void json_coords(sv_buf *b, const hy_run_series *se, const double *v)
+{
+    sv_puts(b, "[");
+    for (size_t j = 0; j < se->n; j++) {
+        if (j)
+            sv_puts(b, ",");
+        if (isfinite(se->x[j]) && isfinite(se->y[j]))
+            sv_printf(b, "%.9g", v[j]);
+        else
+            sv_puts(b, "null");
+    }
+    sv_puts(b, "]");
+}
+
 static void json_series(sv_buf *b, const hy_scene_run *r)
 {
     sv_puts(b, "[");
@@ -670,25 +687,10 @@ static void json_series(sv_buf *b, const hy_scene_run *r)
         const hy_run_series *se = &r->series[i];
         sv_puts(b, i ? ",{\"name\":" : "{\"name\":");
         sv_json(b, se->name);
-        sv_puts(b, ",\"x\":[");
-        for (size_t j = 0; j < se->n; j++) {
-            if (j)
-                sv_puts(b, ",");
-            if (isfinite(se->x[j]) && isfinite(se->y[j]))
-                sv_printf(b, "%.9g", se->x[j]);
-            else
-                sv_puts(b, "null");
-        }
-        sv_puts(b, "],\"y\":[");
-        for (size_t j = 0; j < se->n; j++) {
-            if (j)
-                sv_puts(b, ",");
-            if (isfinite(se->x[j]) && isfinite(se->y[j]))
-                sv_printf(b, "%.9g", se->y[j]);
-            else
-                sv_puts(b, "null");
-        }
-        sv_puts(b, "]");
+        sv_puts(b, ",\"x\":");
+        json_coords(b, se, se->x);
+        sv_puts(b, ",\"y\":");
+        json_coords(b, se, se->y);
         if (se->has_mark)
             sv_printf(b, ",\"mark\":[%.9g,%.9g]", se->mark_x, se->mark_y);
         sv_puts(b, "}");
