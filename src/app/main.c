@@ -47,7 +47,7 @@ static const char usage[] =
     "  1  failure while running (a file could not be written, a computation failed)\n"
     "  2  usage error or invalid input (bad option, bad scene, refused parameter);\n"
     "     found before anything is computed or written\n"
-    "  3  feature not built into this hystviz (e.g. animations without OSMesa)\n"
+    "  3  feature not built into this hystviz (animations without OSMesa or EGL, serve without libmicrohttpd)\n"
     "A failure prints what failed and leaves no partial file: a command's files\n"
     "are written whole, all of them or none (FILE '-' is standard output).\n"
     "\n"
