@@ -780,22 +780,17 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
                 sv_json(&b, run.series[i].err_ref ? run.series[i].err_ref : "");
                 sv_puts(&b, "}");
             }
-        sv_puts(&b, "],\"map\":{\"x0\":");
-        sv_num(&b, map.x0);
-        sv_puts(&b, ",\"y0\":");
-        sv_num(&b, map.y0);
-        sv_puts(&b, ",\"w\":");
-        sv_num(&b, map.w);
-        sv_puts(&b, ",\"h\":");
-        sv_num(&b, map.h);
-        sv_puts(&b, ",\"xlo\":");
-        sv_num(&b, map.xlo);
-        sv_puts(&b, ",\"xhi\":");
-        sv_num(&b, map.xhi);
-        sv_puts(&b, ",\"ylo\":");
-        sv_num(&b, map.ylo);
-        sv_puts(&b, ",\"yhi\":");
-        sv_num(&b, map.yhi);
+        /* where the panel was drawn, for hover: pixel box and data ranges */
+        const struct {
+            const char *key;
+            double v;
+        } mf[] = {{"x0", map.x0},   {"y0", map.y0},   {"w", map.w},     {"h", map.h},
+                  {"xlo", map.xlo}, {"xhi", map.xhi}, {"ylo", map.ylo}, {"yhi", map.yhi}};
+        sv_puts(&b, "],\"map\":{");
+        for (size_t k = 0; k < sizeof mf / sizeof mf[0]; k++) {
+            sv_printf(&b, "%s\"%s\":", k ? "," : "", mf[k].key);
+            sv_num(&b, mf[k].v);
+        }
         sv_printf(&b, ",\"xlog\":%d,\"ylog\":%d}", map.xlog, map.ylog);
         /* the x quantity by figure kind (timeseries, loop, input, g, psi) */
         static const char *const xname[] = {"t", "u", "t", "v", "\u03f1"};

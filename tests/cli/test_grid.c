@@ -7,16 +7,7 @@
 
 #include "hy_grid.h"
 
-static int fails;
-#define CHECK(c, ...)                                                                                                  \
-    do {                                                                                                               \
-        if (!(c)) {                                                                                                    \
-            fails++;                                                                                                   \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                                                \
-            printf(__VA_ARGS__);                                                                                       \
-            printf("\n");                                                                                              \
-        }                                                                                                              \
-    } while (0)
+#include "../render/rcheck.h"
 
 /* Every value text of a range reads back within 4 ulp-ish of the formula
  * (1e-15 relative: pow/log10 rounding), endpoints exactly. */

@@ -15,16 +15,7 @@
 
 #include "hy_out.h"
 
-static int fails;
-#define CHECK(c, ...)                                                   \
-    do {                                                                \
-        if (!(c)) {                                                     \
-            fails++;                                                    \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                 \
-            printf(__VA_ARGS__);                                        \
-            printf("\n");                                               \
-        }                                                               \
-    } while (0)
+#include "../render/rcheck.h"
 
 /* Entries of dir other than . and .. */
 static int entries(const char *dir)
