@@ -49,13 +49,14 @@ static double cdf(int dist, double z)
     return atan2(1.0, -z) / PI;
 }
 
-/* P(z <= Z <= z + w), w >= 0, without cancellation: the Gaussian by erf or
+/* P(z <= Z <= x), x = z + w >= z, without cancellation (x and w are both
+ * given, each computed from the data directly, so neither loses digits when
+ * |z| is large or w small): the Gaussian by erf or
  * erfc on the side where the two terms do not cancel, or by Gauss-Legendre on
  * [z, z + w] when they would (then w is short against φ's scale); the
  * Lorentzian by atan x - atan z = atan2(w, 1 + x z). */
-static double cdf_diff(const hy_preisach *p, int dist, double z, double w)
+static double cdf_diff(const hy_preisach *p, int dist, double z, double x, double w)
 {
-    double x = z + w;
     if (dist == HY_PREISACH_LORENTZIAN)
         return atan2(w, 1.0 + x * z) / PI;
     if (z < 0 && x > 0)
@@ -171,8 +172,23 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* A tail beyond the outermost split, α = c ± L/t: for densities falling as
+ * 1/α² (the Lorentzian) the integrand becomes nearly constant in t. */
+typedef struct tail_ctx {
+    gsl_function *f;
+    double c, L;    /* α = c + L/t, L signed */
+} tail_ctx;
+
+static double tail_f(double t, void *v)
+{
+    const tail_ctx *c = v;
+    return GSL_FN_EVAL(c->f, c->c + c->L / t) * fabs(c->L) / (t * t);
+}
+
 /* ∫_lo^hi f (lo may be -∞, hi +∞), split at m ± k s of both axes; every piece
- * to QUAD_RTOL, the sum accepted when its error bound is within QUAD_ACCEPT. */
+ * to QUAD_RTOL, the sum accepted when its error bound is within QUAD_ACCEPT.
+ * Beyond the outermost split (only the Lorentzian's 2^33 widths reach there)
+ * the piece is mapped onto t in (0, 1] by α = c ± L/t. */
 static int integrate(const hy_preisach *p, gsl_function *f, double lo, double hi, double *out,
                      const char *what, hy_error *err)
 {
@@ -191,15 +207,16 @@ static int integrate(const hy_preisach *p, gsl_function *f, double lo, double hi
     if (!ws)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     double sum = 0, abserr_sum = 0, worst_at = 0, worst = 0;
+    double cmax = fmax(p->ma, p->mb), cmin = fmin(p->ma, p->mb);
     for (size_t i = 0; i + 1 < np; i++) {
         double r = 0, e = 0, a0 = pts[i], a1 = pts[i + 1];
-        if (isinf(a0) && isinf(a1))
-            gsl_integration_qagi(f, 0, QUAD_RTOL, QUAD_LIMIT, ws, &r, &e);
-        else if (isinf(a0))
-            gsl_integration_qagil(f, a1, 0, QUAD_RTOL, QUAD_LIMIT, ws, &r, &e);
-        else if (isinf(a1))
-            gsl_integration_qagiu(f, a0, 0, QUAD_RTOL, QUAD_LIMIT, ws, &r, &e);
-        else
+        if (a0 >= b[nb - 1] || a1 <= b[0]) {
+            int right = a0 >= b[nb - 1];
+            tail_ctx tc = {f, right ? cmax : cmin, right ? a0 - cmax : a1 - cmin};
+            double far = right ? a1 : a0, t1 = isinf(far) ? 0 : tc.L / (far - tc.c);
+            gsl_function g = {tail_f, &tc};
+            gsl_integration_qag(&g, t1, 1.0, 0, QUAD_RTOL, QUAD_LIMIT, GSL_INTEG_GAUSS21, ws, &r, &e);
+        } else
             gsl_integration_qag(f, a0, a1, 0, QUAD_RTOL, QUAD_LIMIT, GSL_INTEG_GAUSS21, ws, &r, &e);
         sum += r;
         abserr_sum += e;
@@ -234,7 +251,7 @@ static double everett_f(double al, void *v)
         return 0;
     if (c->binf)
         return fa * cdf(p->dist, (al - p->mb) / p->sb);
-    return fa * cdf_diff(p, p->dist, c->zb, (al - c->b) / p->sb);
+    return fa * cdf_diff(p, p->dist, c->zb, (al - p->mb) / p->sb, (al - c->b) / p->sb);
 }
 
 int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_error *err)
@@ -396,8 +413,8 @@ static double area_f(double u, void *v)
 {
     const area_ctx *c = v;
     const hy_preisach *p = c->p;
-    double fa = cdf_diff(p, p->dist, (u - p->ma) / p->sa, (c->hi - u) / p->sa);
-    double gb = cdf_diff(p, p->dist, (c->lo - p->mb) / p->sb, (u - c->lo) / p->sb);
+    double fa = cdf_diff(p, p->dist, (u - p->ma) / p->sa, (c->hi - p->ma) / p->sa, (c->hi - u) / p->sa);
+    double gb = cdf_diff(p, p->dist, (c->lo - p->mb) / p->sb, (u - p->mb) / p->sb, (u - c->lo) / p->sb);
     return fa * gb;
 }
 
