@@ -5,6 +5,7 @@
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -186,15 +187,17 @@ static double tail_f(double t, void *v)
 }
 
 /* ∫_lo^hi f (lo may be -∞, hi +∞), split at m ± k s of both axes; every piece
- * to QUAD_RTOL, the sum accepted when its error bound is within QUAD_ACCEPT.
+ * to QUAD_RTOL, the sum accepted when its error bound is within QUAD_ACCEPT
+ * (or, for relays far narrower than their fields, within what those fields'
+ * ulps allow).  The variable is α - shift, so that α - b is exact near b.
  * Beyond the outermost split (only the Lorentzian's 2^33 widths reach there)
  * the piece is mapped onto t in (0, 1] by α = c ± L/t. */
-static int integrate(const hy_preisach *p, gsl_function *f, double lo, double hi, double *out,
+static int integrate(const hy_preisach *p, gsl_function *f, double shift, double lo, double hi, double *out,
                      const char *what, hy_error *err)
 {
     double b[MAX_BREAKS];
-    size_t nb = add_breaks(p, p->ma, p->sa, b, 0);
-    nb = add_breaks(p, p->mb, p->sb, b, nb);
+    size_t nb = add_breaks(p, p->ma - shift, p->sa, b, 0);
+    nb = add_breaks(p, p->mb - shift, p->sb, b, nb);
     qsort(b, nb, sizeof *b, cmp_double);
     double pts[MAX_BREAKS + 2];
     size_t np = 0;
@@ -207,7 +210,7 @@ static int integrate(const hy_preisach *p, gsl_function *f, double lo, double hi
     if (!ws)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     double sum = 0, abserr_sum = 0, worst_at = 0, worst = 0;
-    double cmax = fmax(p->ma, p->mb), cmin = fmin(p->ma, p->mb);
+    double cmax = fmax(p->ma, p->mb) - shift, cmin = fmin(p->ma, p->mb) - shift;
     for (size_t i = 0; i + 1 < np; i++) {
         double r = 0, e = 0, a0 = pts[i], a1 = pts[i + 1];
         if (a0 >= b[nb - 1] || a1 <= b[0]) {
@@ -226,7 +229,12 @@ static int integrate(const hy_preisach *p, gsl_function *f, double lo, double hi
         }
     }
     gsl_integration_workspace_free(ws);
-    if (!isfinite(sum) || abserr_sum > QUAD_ACCEPT * fabs(sum) + 1e-300)
+    /* a relay width far below the fields' magnitude limits what double can resolve */
+    double cond = fmax(fabs(p->ma) / p->sa, fabs(p->mb) / p->sb);
+    if (isfinite(shift))
+        cond = fmax(cond, fabs(shift) / fmin(p->sa, p->sb));
+    double accept = fmax(QUAD_ACCEPT, 64 * DBL_EPSILON * cond);
+    if (!isfinite(sum) || abserr_sum > accept * fabs(sum) + 1e-300)
         return hy_error_set(err, HY_ENUM,
                             "Preisach %s: quadrature over [%g, %g] reached only %.3g relative (worst near %g)", what,
                             lo, hi, sum != 0 ? abserr_sum / fabs(sum) : abserr_sum, worst_at);
@@ -242,16 +250,18 @@ typedef struct ev_ctx {
     int binf;
 } ev_ctx;
 
-static double everett_f(double al, void *v)
+/* The integrand at α = b + τ (b finite) or α = τ (b = -∞). */
+static double everett_f(double tau, void *v)
 {
     const ev_ctx *c = v;
     const hy_preisach *p = c->p;
+    double al = c->binf ? tau : c->b + tau;
     double fa = pdf(p->dist, (al - p->ma) / p->sa) / p->sa;
     if (fa == 0)
         return 0;
     if (c->binf)
         return fa * cdf(p->dist, (al - p->mb) / p->sb);
-    return fa * cdf_diff(p, p->dist, c->zb, (al - p->mb) / p->sb, (al - c->b) / p->sb);
+    return fa * cdf_diff(p, p->dist, c->zb, (al - p->mb) / p->sb, tau / p->sb);
 }
 
 int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_error *err)
@@ -274,7 +284,8 @@ int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_
     ev_ctx c = {p, b, isinf(b) ? 0 : (b - p->mb) / p->sb, isinf(b)};
     gsl_function f = {everett_f, &c};
     double r;
-    int rc = integrate(p, &f, lo, hi, &r, "Everett function", err);
+    double shift = isinf(b) ? 0 : b;
+    int rc = integrate(p, &f, shift, lo - shift, hi - shift, &r, "Everett function", err);
     if (rc)
         return rc;
     *E = p->scale * r;
@@ -425,7 +436,7 @@ int hy_preisach_loop_area(const hy_preisach *p, double lo, double hi, double *ar
     area_ctx c = {p, lo, hi};
     gsl_function f = {area_f, &c};
     double r;
-    int rc = integrate(p, &f, lo, hi, &r, "loop area", err);
+    int rc = integrate(p, &f, 0, lo, hi, &r, "loop area", err);
     if (rc)
         return rc;
     *area = 2.0 * p->scale * r;
