@@ -152,92 +152,141 @@ int hy_preisach_symmetric(hy_preisach *p, int dist, double hc, double sigma, dou
 
 /* ---- quadrature over [lo, hi] split at the densities' features --------- */
 
-static size_t add_breaks(const hy_preisach *p, double m, double s, double *b, size_t n)
+/* Every split point is an anchor (a centre m_α, m_β, or an end of the range)
+ * plus an offset, and each piece is integrated in v = α - o from the anchor o
+ * nearest to it, with every difference to an anchor formed as (o - anchor) + v:
+ * the quantity that matters on that piece (α - m_α inside a narrow density,
+ * α - b in a thin triangle) is then exact in v, however far the fields are
+ * from 0 or from each other. */
+typedef double (*q_fn)(double v, double o, const void *ctx);
+
+typedef struct qpt {
+    double al;      /* the point itself                       */
+    int anchor;     /* index into quad.anchor, -1: none (±∞)  */
+    double off;     /* al = anchor + off                      */
+} qpt;
+
+typedef struct quad {
+    q_fn f;
+    const void *ctx;
+    double anchor[4];
+    int nanchor;
+} quad;
+
+typedef struct piece_ctx {
+    const quad *q;
+    double o, L;    /* regular: α = o + v; tail: α = o + L/t    */
+} piece_ctx;
+
+static double piece_f(double v, void *c)
 {
-    b[n++] = m;
+    const piece_ctx *pc = c;
+    return pc->q->f(v, pc->o, pc->q->ctx);
+}
+
+/* A tail beyond the outermost split, α = o + L/t: for densities falling as
+ * 1/α² (the Lorentzian) the integrand becomes nearly constant in t. */
+static double tail_f(double t, void *c)
+{
+    const piece_ctx *pc = c;
+    return pc->q->f(pc->L / t, pc->o, pc->q->ctx) * fabs(pc->L) / (t * t);
+}
+
+static size_t add_breaks(const hy_preisach *p, int anchor, double m, double s, qpt *b, size_t n)
+{
     double k = 0.5, kmax = p->dist == HY_PREISACH_GAUSSIAN ? 32.0 : 0x1p33;
+    b[n++] = (qpt){m, anchor, 0};
     for (; k <= kmax; k *= 2) {
-        b[n++] = m - k * s;
-        b[n++] = m + k * s;
+        b[n++] = (qpt){m - k * s, anchor, -k * s};
+        b[n++] = (qpt){m + k * s, anchor, k * s};
     }
     if (p->dist == HY_PREISACH_GAUSSIAN) {
-        b[n++] = m - GAUSS_CUT * s;
-        b[n++] = m + GAUSS_CUT * s;
+        b[n++] = (qpt){m - GAUSS_CUT * s, anchor, -GAUSS_CUT * s};
+        b[n++] = (qpt){m + GAUSS_CUT * s, anchor, GAUSS_CUT * s};
     }
     return n;
 }
 
-static int cmp_double(const void *a, const void *b)
+static int cmp_qpt(const void *a, const void *b)
 {
-    double x = *(const double *)a, y = *(const double *)b;
+    double x = ((const qpt *)a)->al, y = ((const qpt *)b)->al;
     return (x > y) - (x < y);
 }
 
-/* A tail beyond the outermost split, α = c ± L/t: for densities falling as
- * 1/α² (the Lorentzian) the integrand becomes nearly constant in t. */
-typedef struct tail_ctx {
-    gsl_function *f;
-    double c, L;    /* α = c + L/t, L signed */
-} tail_ctx;
-
-static double tail_f(double t, void *v)
+/* v of point P from anchor index o */
+static double offset_from(const quad *q, const qpt *P, int o)
 {
-    const tail_ctx *c = v;
-    return GSL_FN_EVAL(c->f, c->c + c->L / t) * fabs(c->L) / (t * t);
+    return P->anchor == o ? P->off : P->al - q->anchor[o];
 }
 
-/* ∫_lo^hi f (lo may be -∞, hi +∞), split at m ± k s of both axes; every piece
- * to QUAD_RTOL, the sum accepted when its error bound is within QUAD_ACCEPT
- * (or, for relays far narrower than their fields, within what those fields'
- * ulps allow).  The variable is α - shift, so that α - b is exact near b.
- * Beyond the outermost split (only the Lorentzian's 2^33 widths reach there)
- * the piece is mapped onto t in (0, 1] by α = c ± L/t. */
-static int integrate(const hy_preisach *p, gsl_function *f, double shift, double lo, double hi, double *out,
-                     const char *what, hy_error *err)
+/* The anchor nearest to [a0, a1]. */
+static int nearest_anchor(const quad *q, double a0, double a1)
 {
-    double b[MAX_BREAKS];
-    size_t nb = add_breaks(p, p->ma - shift, p->sa, b, 0);
-    nb = add_breaks(p, p->mb - shift, p->sb, b, nb);
-    qsort(b, nb, sizeof *b, cmp_double);
-    double pts[MAX_BREAKS + 2];
+    int best = 0;
+    double bd = INFINITY;
+    for (int i = 0; i < q->nanchor; i++) {
+        double x = q->anchor[i], d = x < a0 ? a0 - x : (x > a1 ? x - a1 : 0);
+        if (d < bd) {
+            bd = d;
+            best = i;
+        }
+    }
+    return best;
+}
+
+/* ∫ over [lo, hi] (lo.al may be -∞, hi.al +∞) of q->f; q->anchor[0], [1] are
+ * m_α, m_β.  Every piece to QUAD_RTOL; the sum accepted when its error bound
+ * is within QUAD_ACCEPT (or, for relays far narrower than their fields, within
+ * what those fields' ulps allow). */
+static int integrate(const hy_preisach *p, const quad *q, qpt lo, qpt hi, double *out, const char *what,
+                     hy_error *err)
+{
+    qpt b[MAX_BREAKS], pts[MAX_BREAKS + 2];
+    size_t nb = add_breaks(p, 0, p->ma, p->sa, b, 0);
+    nb = add_breaks(p, 1, p->mb, p->sb, b, nb);
+    qsort(b, nb, sizeof *b, cmp_qpt);
     size_t np = 0;
     pts[np++] = lo;
     for (size_t i = 0; i < nb; i++)
-        if (b[i] > pts[np - 1] && b[i] < hi)
+        if (b[i].al > pts[np - 1].al && b[i].al < hi.al)
             pts[np++] = b[i];
     pts[np++] = hi;
     gsl_integration_workspace *ws = gsl_integration_workspace_alloc(QUAD_LIMIT);
     if (!ws)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     double sum = 0, abserr_sum = 0, worst_at = 0, worst = 0;
-    double cmax = fmax(p->ma, p->mb) - shift, cmin = fmin(p->ma, p->mb) - shift;
+    int right_c = p->ma >= p->mb ? 0 : 1;
     for (size_t i = 0; i + 1 < np; i++) {
-        double r = 0, e = 0, a0 = pts[i], a1 = pts[i + 1];
-        if (a0 >= b[nb - 1] || a1 <= b[0]) {
-            int right = a0 >= b[nb - 1];
-            tail_ctx tc = {f, right ? cmax : cmin, right ? a0 - cmax : a1 - cmin};
-            double far = right ? a1 : a0, t1 = isinf(far) ? 0 : tc.L / (far - tc.c);
-            gsl_function g = {tail_f, &tc};
+        const qpt *P0 = &pts[i], *P1 = &pts[i + 1];
+        double r = 0, e = 0;
+        if (P0->al >= b[nb - 1].al || P1->al <= b[0].al) { /* a far tail */
+            int right = P0->al >= b[nb - 1].al, c = right ? right_c : 1 - right_c;
+            const qpt *near = right ? P0 : P1, *far = right ? P1 : P0;
+            piece_ctx pc = {q, q->anchor[c], offset_from(q, near, c)};
+            double t1 = isinf(far->al) ? 0 : pc.L / offset_from(q, far, c);
+            gsl_function g = {tail_f, &pc};
             gsl_integration_qag(&g, t1, 1.0, 0, QUAD_RTOL, QUAD_LIMIT, GSL_INTEG_GAUSS21, ws, &r, &e);
-        } else
-            gsl_integration_qag(f, a0, a1, 0, QUAD_RTOL, QUAD_LIMIT, GSL_INTEG_GAUSS21, ws, &r, &e);
+        } else {
+            int o = nearest_anchor(q, P0->al, P1->al);
+            piece_ctx pc = {q, q->anchor[o], 0};
+            gsl_function g = {piece_f, &pc};
+            gsl_integration_qag(&g, offset_from(q, P0, o), offset_from(q, P1, o), 0, QUAD_RTOL, QUAD_LIMIT,
+                                GSL_INTEG_GAUSS21, ws, &r, &e);
+        }
         sum += r;
         abserr_sum += e;
         if (e > worst) {
             worst = e;
-            worst_at = isinf(a0) ? a1 : a0;
+            worst_at = isinf(P0->al) ? P1->al : P0->al;
         }
     }
     gsl_integration_workspace_free(ws);
-    /* a relay width far below the fields' magnitude limits what double can resolve */
     double cond = fmax(fabs(p->ma) / p->sa, fabs(p->mb) / p->sb);
-    if (isfinite(shift))
-        cond = fmax(cond, fabs(shift) / fmin(p->sa, p->sb));
     double accept = fmax(QUAD_ACCEPT, 64 * DBL_EPSILON * cond);
     if (!isfinite(sum) || abserr_sum > accept * fabs(sum) + 1e-300)
         return hy_error_set(err, HY_ENUM,
                             "Preisach %s: quadrature over [%g, %g] reached only %.3g relative (worst near %g)", what,
-                            lo, hi, sum != 0 ? abserr_sum / fabs(sum) : abserr_sum, worst_at);
+                            lo.al, hi.al, sum != 0 ? abserr_sum / fabs(sum) : abserr_sum, worst_at);
     *out = sum;
     return HY_OK;
 }
@@ -250,18 +299,18 @@ typedef struct ev_ctx {
     int binf;
 } ev_ctx;
 
-/* The integrand at α = b + τ (b finite) or α = τ (b = -∞). */
-static double everett_f(double tau, void *v)
+/* f_α(α) P(b <= β <= α) at α = o + v (P(β <= α) when b = -∞) */
+static double everett_f(double v, double o, const void *ctx)
 {
-    const ev_ctx *c = v;
+    const ev_ctx *c = ctx;
     const hy_preisach *p = c->p;
-    double al = c->binf ? tau : c->b + tau;
-    double fa = pdf(p->dist, (al - p->ma) / p->sa) / p->sa;
+    double fa = pdf(p->dist, ((o - p->ma) + v) / p->sa) / p->sa;
     if (fa == 0)
         return 0;
+    double x = ((o - p->mb) + v) / p->sb;
     if (c->binf)
-        return fa * cdf(p->dist, (al - p->mb) / p->sb);
-    return fa * cdf_diff(p, p->dist, c->zb, (al - p->mb) / p->sb, tau / p->sb);
+        return fa * cdf(p->dist, x);
+    return fa * cdf_diff(p, p->dist, c->zb, x, ((o - c->b) + v) / p->sb);
 }
 
 int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_error *err)
@@ -272,20 +321,29 @@ int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_
         *E = p->ys;
         return HY_OK;
     }
-    double lo = b, hi = a;
-    if (p->dist == HY_PREISACH_GAUSSIAN) { /* f_α vanishes beyond GAUSS_CUT widths */
-        lo = fmax(lo, p->ma - GAUSS_CUT * p->sa);
-        hi = fmin(hi, p->ma + GAUSS_CUT * p->sa);
+    ev_ctx c = {p, b, isinf(b) ? 0 : (b - p->mb) / p->sb, isinf(b)};
+    quad q = {everett_f, &c, {p->ma, p->mb, 0, 0}, 2};
+    qpt lo = {b, -1, 0}, hi = {a, -1, 0};
+    if (isfinite(b)) {
+        q.anchor[q.nanchor] = b;
+        lo = (qpt){b, q.nanchor++, 0};
     }
-    if (!(hi > lo)) {
+    if (isfinite(a)) {
+        q.anchor[q.nanchor] = a;
+        hi = (qpt){a, q.nanchor++, 0};
+    }
+    if (p->dist == HY_PREISACH_GAUSSIAN) { /* f_α vanishes beyond GAUSS_CUT widths */
+        if (lo.al < p->ma - GAUSS_CUT * p->sa)
+            lo = (qpt){p->ma - GAUSS_CUT * p->sa, 0, -GAUSS_CUT * p->sa};
+        if (hi.al > p->ma + GAUSS_CUT * p->sa)
+            hi = (qpt){p->ma + GAUSS_CUT * p->sa, 0, GAUSS_CUT * p->sa};
+    }
+    if (!(hi.al > lo.al)) {
         *E = 0;
         return HY_OK;
     }
-    ev_ctx c = {p, b, isinf(b) ? 0 : (b - p->mb) / p->sb, isinf(b)};
-    gsl_function f = {everett_f, &c};
     double r;
-    double shift = isinf(b) ? 0 : b;
-    int rc = integrate(p, &f, shift, lo - shift, hi - shift, &r, "Everett function", err);
+    int rc = integrate(p, &q, lo, hi, &r, "Everett function", err);
     if (rc)
         return rc;
     *E = p->scale * r;
@@ -419,13 +477,13 @@ typedef struct area_ctx {
     double lo, hi;
 } area_ctx;
 
-/* μ of the rectangle β in [lo, u], α in [u, hi] (α >= β holds there) / K */
-static double area_f(double u, void *v)
+/* μ/K of the rectangle β in [lo, u], α in [u, hi] (α >= β holds there), u = o + v */
+static double area_f(double v, double o, const void *ctx)
 {
-    const area_ctx *c = v;
+    const area_ctx *c = ctx;
     const hy_preisach *p = c->p;
-    double fa = cdf_diff(p, p->dist, (u - p->ma) / p->sa, (c->hi - p->ma) / p->sa, (c->hi - u) / p->sa);
-    double gb = cdf_diff(p, p->dist, (c->lo - p->mb) / p->sb, (u - p->mb) / p->sb, (u - c->lo) / p->sb);
+    double fa = cdf_diff(p, p->dist, ((o - p->ma) + v) / p->sa, (c->hi - p->ma) / p->sa, ((c->hi - o) - v) / p->sa);
+    double gb = cdf_diff(p, p->dist, (c->lo - p->mb) / p->sb, ((o - p->mb) + v) / p->sb, ((o - c->lo) + v) / p->sb);
     return fa * gb;
 }
 
@@ -434,9 +492,9 @@ int hy_preisach_loop_area(const hy_preisach *p, double lo, double hi, double *ar
     if (!isfinite(lo) || !isfinite(hi) || !(lo < hi))
         return hy_error_set(err, HY_EINVAL, "Preisach loop area needs finite lo < hi (got %g, %g)", lo, hi);
     area_ctx c = {p, lo, hi};
-    gsl_function f = {area_f, &c};
+    quad q = {area_f, &c, {p->ma, p->mb, lo, hi}, 4};
     double r;
-    int rc = integrate(p, &f, 0, lo, hi, &r, "loop area", err);
+    int rc = integrate(p, &q, (qpt){lo, 2, 0}, (qpt){hi, 3, 0}, &r, "loop area", err);
     if (rc)
         return rc;
     *area = 2.0 * p->scale * r;
