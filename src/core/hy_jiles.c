@@ -13,27 +13,31 @@
 #define DEN_MIN 1e-9       /* 1 - α χ_e below this: no physical solution             */
 #define GUARD_TOL 1e-13    /* (M_an - M) δ / Ms beyond which the guard switches back  */
 
-/* x / L(x) = 3 + x²/(5 + x²/(7 + ...)) for |x| < 2 (Lambert). */
-static double lambert_q(double x)
+/* q = x / L(x) = 3 + x²/(5 + x²/(7 + ...)) for |x| < 2 (Lambert), and dq/dx. */
+static double lambert_q(double x, double *dq)
 {
-    double x2 = x * x, q = 2.0 * LAMBERT_N + 1;
-    for (int j = LAMBERT_N - 1; j >= 1; j--)
+    double x2 = x * x, q = 2.0 * LAMBERT_N + 1, d = 0;
+    for (int j = LAMBERT_N - 1; j >= 1; j--) {
+        d = 2 * x / q - x2 * d / (q * q);
         q = (2.0 * j + 1) + x2 / q;
+    }
+    if (dq)
+        *dq = d;
     return q;
 }
 
 double hy_langevin(double x)
 {
     if (fabs(x) < 2)
-        return x / lambert_q(x);
+        return x / lambert_q(x, NULL);
     return 1.0 / tanh(x) - 1.0 / x;
 }
 
 double hy_langevin_d(double x)
 {
-    if (fabs(x) < 2) { /* L' = 1 - coth² x + 1/x² = 1 - L² - 2 L/x, L/x = 1/q */
-        double q = lambert_q(x), l = x / q;
-        return 1.0 - l * l - 2.0 / q;
+    if (fabs(x) < 2) { /* (x/q)' = (q - x q')/q², no cancellation: q - x q' = 3 - x²/5 + ... */
+        double dq, q = lambert_q(x, &dq);
+        return (q - x * dq) / (q * q);
     }
     double s = sinh(x);
     return 1.0 / (x * x) - 1.0 / (s * s);
@@ -119,7 +123,7 @@ static int ja_rhs(double H, const double y[], double f[], void *params)
         c->bad = 1;
         c->bad_h = H;
         c->bad_m = y[0] * j->ms;
-        return GSL_EBADFUNC;
+        return GSL_FAILURE; /* evolve retries with a smaller step: a trial stage may probe past the trajectory */
     }
     f[0] = chi / den;
     f[1] = H / j->ms + y[0];
@@ -223,6 +227,7 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
     unsigned long steps = 0, fails = 0;
     while (x != H) {
         double x0 = x, y0[2] = {y[0], y[1]};
+        c.bad = 0;
         int st = gsl_odeiv2_evolve_apply(sv->ev, sv->ctl, sv->step, &sys, &x, H, &h, y);
         if (st) {
             rc = ja_fail(&c, st, x, err);

@@ -75,10 +75,12 @@ void hy_jiles_state_init(const hy_jiles *j, hy_jiles_state *s, double H0);
 double hy_jiles_b(const hy_jiles_state *s);
 
 /* Moves the field monotonically from s->H to H (any direction; δ is its
- * sign).  stats (may be NULL) is added to.  HY_EINVAL when the denominator
- * 1 - α χ_e stops being positive (alpha too large for this k: the message
- * names alpha, k, H and M) or H is not finite; HY_ENUM when GSL fails (message
- * gives H and the reason).  On error s is left at the last good step. */
+ * sign).  stats (may be NULL) is added to.  HY_EINVAL when the trajectory
+ * reaches a denominator 1 - α χ_e <= 1e-9 (no physical solution from there:
+ * alpha too large for this k, e.g. from |M_an - M| > k/α; the message names
+ * alpha, k, H and M; a trial stage that probes such a state only shrinks the
+ * step) or H is not finite; HY_ENUM when GSL fails (message gives H and the
+ * reason).  On error s is left at the last good step. */
 int hy_jiles_apply(const hy_jiles *j, hy_jiles_state *s, double H, hy_jiles_stats *stats, hy_error *err);
 
 /* M and B (either may be NULL) at ascending times t[0..n-1] for an input of

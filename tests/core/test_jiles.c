@@ -1,1 +1,342 @@
-int main(void) { return 0; }
+/* test_jiles.c: the Jiles-Atherton model (src/core/hy_jiles.c) against an
+ * implementation written apart here: long double, the Langevin function by its
+ * Taylor series and coshl/sinhl, classical RK4 on a uniform grid in H with the
+ * guard's switch located by bisection, Richardson-extrapolated from two step
+ * sizes.  Then the 1986 parameters' major loop (coercive field, remanence),
+ * refusals, every input kind and the minor loop of Fig. 2's bimodal input. */
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "hy_jiles.h"
+#include "tutil.h"
+
+/* ---- the independent implementation ------------------------------------------ */
+
+typedef struct ref_ja {
+    long double ms, a, k, c, al;
+} ref_ja;
+
+static long double ref_L(long double x)
+{
+    if (fabsl(x) < 0.1L) {
+        long double x2 = x * x;
+        return x * (1.0L / 3 + x2 * (-1.0L / 45 + x2 * (2.0L / 945 + x2 * (-1.0L / 4725 + x2 * (2.0L / 93555 +
+               x2 * (-1382.0L / 638512875 + x2 * (4.0L / 18243225)))))));
+    }
+    return coshl(x) / sinhl(x) - 1.0L / x;
+}
+
+static long double ref_dL(long double x)
+{
+    if (fabsl(x) < 0.1L) {
+        long double x2 = x * x;
+        return 1.0L / 3 + x2 * (-1.0L / 15 + x2 * (2.0L / 189 + x2 * (-1.0L / 675 + x2 * (2.0L / 10395 +
+               x2 * (-15202.0L / 638512875 + x2 * (52.0L / 18243225))))));
+    }
+    long double s = sinhl(x);
+    return 1.0L / (x * x) - 1.0L / (s * s);
+}
+
+/* (M_an - M) δ, in A/m */
+static long double ref_g(const ref_ja *j, long double H, long double M, int delta)
+{
+    return (j->ms * ref_L((H + j->al * M) / j->a) - M) * delta;
+}
+
+/* d/dH of (M, ∫ (H + M) dH) */
+static void ref_rhs(const ref_ja *j, long double H, const long double y[2], int delta, int guard, long double f[2])
+{
+    long double he = (H + j->al * y[0]) / j->a;
+    long double chi = j->c * j->ms * ref_dL(he) / j->a;
+    if (!guard)
+        chi += (j->ms * ref_L(he) - y[0]) / (j->k * delta);
+    f[0] = chi / (1 - j->al * chi);
+    f[1] = H + y[0];
+}
+
+static void ref_rk4(const ref_ja *j, long double H, long double y[2], long double h, int delta, int guard)
+{
+    long double k1[2], k2[2], k3[2], k4[2], t[2];
+    ref_rhs(j, H, y, delta, guard, k1);
+    for (int i = 0; i < 2; i++)
+        t[i] = y[i] + h / 2 * k1[i];
+    ref_rhs(j, H + h / 2, t, delta, guard, k2);
+    for (int i = 0; i < 2; i++)
+        t[i] = y[i] + h / 2 * k2[i];
+    ref_rhs(j, H + h / 2, t, delta, guard, k3);
+    for (int i = 0; i < 2; i++)
+        t[i] = y[i] + h * k3[i];
+    ref_rhs(j, H + h, t, delta, guard, k4);
+    for (int i = 0; i < 2; i++)
+        y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+}
+
+/* From (H0, y) to H1 with steps of at most hmax; the guard switches where
+ * (M_an - M) δ crosses 0, found by bisecting the step that crossed it. */
+static void ref_sweep(const ref_ja *j, long double H0, long double H1, long double y[2], long double hmax)
+{
+    int delta = H1 > H0 ? 1 : -1;
+    int guard = ref_g(j, H0, y[0], delta) < 0;
+    long double H = H0;
+    while (H != H1) {
+        long double rest = H1 - H;
+        long n = (long)ceill(fabsl(rest) / hmax);
+        long double h = rest / n, yt[2] = {y[0], y[1]};
+        if (n == 1)
+            h = rest;
+        ref_rk4(j, H, yt, h, delta, guard);
+        long double g = ref_g(j, H + h, yt[0], delta);
+        if ((guard && g > 0) || (!guard && g < -1e-7L * j->ms)) {
+            long double lo = 0, hi = h;
+            for (int it = 0; it < 90; it++) {
+                long double mid = (lo + hi) / 2, ym[2] = {y[0], y[1]};
+                ref_rk4(j, H, ym, mid, delta, guard);
+                if ((ref_g(j, H + mid, ym[0], delta) > 0) == (g > 0))
+                    hi = mid;
+                else
+                    lo = mid;
+            }
+            yt[0] = y[0];
+            yt[1] = y[1];
+            ref_rk4(j, H, yt, hi, delta, guard);
+            h = hi;
+            guard = !guard;
+        }
+        y[0] = yt[0];
+        y[1] = yt[1];
+        H = (h == rest) ? H1 : H + h;
+    }
+}
+
+/* M and ∫ (H + M) dH after each field of path[], from M = 0 at path[0];
+ * Richardson from steps hmax and hmax/2. */
+static void ref_path(const ref_ja *j, const double *path, int n, long double hmax, long double *M, long double *hb)
+{
+    long double y1[2] = {0, 0}, y2[2] = {0, 0};
+    for (int i = 1; i < n; i++) {
+        ref_sweep(j, path[i - 1], path[i], y1, hmax);
+        ref_sweep(j, path[i - 1], path[i], y2, hmax / 2);
+        M[i] = y2[0] + (y2[0] - y1[0]) / 15;
+        hb[i] = y2[1] + (y2[1] - y1[1]) / 15;
+    }
+}
+
+/* ---- tests ---------------------------------------------------------------------- */
+
+static void test_langevin(void)
+{
+    double worst = 0, worstd = 0;
+    for (int i = 0; i < 400; i++) {
+        double x = (i % 2 ? -1 : 1) * tu_logunif(1e-12, 800);
+        long double l = ref_L(x), d = ref_dL(x);
+        worst = fmax(worst, (double)fabsl((hy_langevin(x) - l) / l));
+        worstd = fmax(worstd, (double)fabsl((hy_langevin_d(x) - d) / d));
+    }
+    printf("Langevin: worst relative error L %.3g, L' %.3g (x from 1e-12 to 800)\n", worst, worstd);
+    CHECK(worst <= 4e-16, "L(x) off by %.3g relative", worst);
+    CHECK(worstd <= 1e-15, "L'(x) off by %.3g relative", worstd);
+    CHECK(hy_langevin(0) == 0 && hy_langevin_d(0) == 1.0 / 3, "L(0) = %g, L'(0) = %g", hy_langevin(0),
+          hy_langevin_d(0));
+}
+
+static const double ja86[5] = {1.6e6, 1100, 400, 0.2, 1.6e-3}; /* Ms a k c α, Jiles & Atherton 1986 */
+
+static void test_against_reference(void)
+{
+    hy_error err;
+    hy_jiles j;
+    CHECK(!hy_jiles_init(&j, ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], &err), "init: %s", err.msg);
+    /* initial curve, major loop, minor loops inside it */
+    const double path[] = {0, 6000, -6000, 6000, 1500, -2500, 4000, -700, 300};
+    enum { N = sizeof path / sizeof path[0] };
+    long double M[N], hb[N];
+    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4]};
+    ref_path(&r, path, N, 0.5L, M, hb);
+    hy_jiles_state s;
+    hy_jiles_state_init(&j, &s, 0);
+    hy_jiles_stats st = {0};
+    double worst = 0, worst_hb = 0;
+    for (int i = 1; i < N; i++) {
+        int rc = hy_jiles_apply(&j, &s, path[i], &st, &err);
+        CHECK(!rc, "apply %g: %s", path[i], err.msg);
+        double e = (double)fabsl((s.M - M[i]) / M[i]), ehb = (double)fabsl((s.hb - hb[i]) / hb[i]);
+        worst = fmax(worst, e);
+        worst_hb = fmax(worst_hb, ehb);
+        CHECK(e <= 1e-9, "H = %g: M = %.15g, reference %.15Lg (rel %.3g)", path[i], s.M, M[i], e);
+        CHECK(ehb <= 1e-9, "H = %g: integral of (H+M) dH = %.15g, reference %.15Lg (rel %.3g)", path[i], s.hb, hb[i],
+              ehb);
+    }
+    printf("against long double RK4 + Richardson: worst relative error M %.3g, int (H+M) dH %.3g "
+           "(rk8pd: %lu steps, %lu rejected, %lu evaluations, %lu guard switches)\n",
+           worst, worst_hb, st.steps, st.fails, st.nfev, st.switches);
+    CHECK(st.switches >= 4, "expected a located guard switch after reversals, saw %lu", st.switches);
+}
+
+static void test_1986_loop(void)
+{
+    hy_error err;
+    hy_jiles j;
+    hy_jiles_init(&j, ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], &err);
+    hy_jiles_loop L10, L20, Lr;
+    CHECK(!hy_jiles_major_loop(&j, 10000, &L10, &err), "major loop: %s", err.msg);
+    CHECK(!hy_jiles_major_loop(&j, 20000, &L20, &err), "major loop: %s", err.msg);
+    j.rtol = 1e-10;
+    CHECK(!hy_jiles_major_loop(&j, 10000, &Lr, &err), "major loop: %s", err.msg);
+    printf("1986 parameters, drive +-10 kA/m: Hc = %.10g A/m (B = 0), Hci = %.10g A/m (M = 0), Br = %.10g T, "
+           "Mr = %.10g A/m, Bmax = %.10g T, %d cycles\n",
+           L10.hc, L10.hci, L10.br, L10.mr, L10.bmax, L10.cycles);
+    printf("  +-20 kA/m: Hc = %.10g, Br = %.10g; rtol 1e-10: Hc = %.10g, Br = %.10g\n", L20.hc, L20.br, Lr.hc, Lr.br);
+    CHECK(fabs(L20.hc - L10.hc) <= 1e-9 * L10.hc && fabs(L20.br - L10.br) <= 1e-9 * L10.br,
+          "the major loop is not saturated at 10 kA/m: Hc %.12g vs %.12g, Br %.12g vs %.12g", L10.hc, L20.hc, L10.br,
+          L20.br);
+    CHECK(fabs(Lr.hc - L10.hc) <= 1e-8 * L10.hc && fabs(Lr.br - L10.br) <= 1e-8 * L10.br,
+          "loop features move with the tolerance: Hc %.12g vs %.12g, Br %.12g vs %.12g", L10.hc, Lr.hc, L10.br, Lr.br);
+    /* physically sensible: coercivity below k, M = 0 after B = 0 on the way down,
+       remanence a fraction of saturation, Br = μ0 Mr at H = 0 */
+    CHECK(L10.hc > 0.5 * ja86[2] && L10.hc < ja86[2], "Hc = %g outside (k/2, k)", L10.hc);
+    CHECK(L10.hci > L10.hc && L10.hci - L10.hc < 0.01 * L10.hc, "Hci = %g vs Hc = %g", L10.hci, L10.hc);
+    CHECK(L10.mr > 0.1 * ja86[0] && L10.mr < 0.9 * ja86[0], "Mr/Ms = %g", L10.mr / ja86[0]);
+    CHECK(fabs(L10.br - HY_MU0 * L10.mr) <= 1e-15 * L10.br, "Br %.17g != mu0 Mr %.17g", L10.br, HY_MU0 * L10.mr);
+    CHECK(L10.bmax > L10.br && L10.bmax < HY_MU0 * (10000 + ja86[0]), "Bmax = %g", L10.bmax);
+    /* the same features from the reference implementation: Mr at H = 0, then M = 0 */
+    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4]};
+    const double path[] = {0, 10000, -10000, 10000, -10000, 10000, 0, -L10.hci};
+    long double M[8], hb[8];
+    ref_path(&r, path, 8, 0.5L, M, hb);
+    CHECK(fabsl(M[6] - L10.mr) <= 1e-9L * L10.mr, "Mr %.15g, reference %.15Lg", L10.mr, M[6]);
+    CHECK(fabsl(M[7]) <= 1e-9L * L10.mr, "M at -Hci is %.6Lg A/m in the reference (should be 0)", M[7]);
+}
+
+static void test_refusals(void)
+{
+    hy_error err;
+    hy_jiles j;
+    CHECK_MSG(hy_jiles_init(&j, -1, 1100, 400, 0.2, 1.6e-3, &err), err, HY_EINVAL, "Ms");
+    CHECK_MSG(hy_jiles_init(&j, 1.6e6, 0, 400, 0.2, 1.6e-3, &err), err, HY_EINVAL, "a (anhysteretic");
+    CHECK_MSG(hy_jiles_init(&j, 1.6e6, 1100, -4, 0.2, 1.6e-3, &err), err, HY_EINVAL, "k (pinning");
+    CHECK_MSG(hy_jiles_init(&j, 1.6e6, 1100, 400, 1.0, 1.6e-3, &err), err, HY_EINVAL, "c (reversibility");
+    CHECK_MSG(hy_jiles_init(&j, 1.6e6, 1100, 400, -0.1, 1.6e-3, &err), err, HY_EINVAL, "c (reversibility");
+    CHECK_MSG(hy_jiles_init(&j, 1.6e6, 1100, 400, 0.2, -1e-3, &err), err, HY_EINVAL, "alpha");
+    CHECK_MSG(hy_jiles_init(&j, 1.6e6, 1100, 400, 0.2, 2.1e-3, &err), err, HY_EINVAL, "alpha = 0.0021 is too large");
+    CHECK_MSG(hy_jiles_init(&j, NAN, 1100, 400, 0.2, 1.6e-3, &err), err, HY_EINVAL, "Ms");
+    /* accepted by the bounds, but from M = -0.9 Ms the irreversible law's denominator
+       1 - alpha (M_an - M)/k is negative: no solution from that state */
+    CHECK(!hy_jiles_init(&j, 1.6e6, 1100, 400, 0.2, 1.6e-3, &err), "init: %s", err.msg);
+    j.m0 = -0.9 * j.ms;
+    hy_jiles_state s;
+    hy_jiles_state_init(&j, &s, 0);
+    CHECK_MSG(hy_jiles_apply(&j, &s, 100, NULL, &err), err, HY_EINVAL, "alpha = 0.0016 is too large for k = 400");
+    CHECK(s.H == 0 && s.M == j.m0, "a refused stretch moved the state to H = %g, M = %g", s.H, s.M);
+    hy_jiles_loop L;
+    hy_jiles_init(&j, 1.6e6, 1100, 400, 0.2, 1.6e-3, &err);
+    j.m0 = 2e6;
+    CHECK_MSG(hy_jiles_validate(&j, &err), err, HY_EINVAL, "m0");
+    j.m0 = 0;
+    j.rtol = 0;
+    CHECK_MSG(hy_jiles_validate(&j, &err), err, HY_EINVAL, "rtol");
+    j.rtol = 1e-13;
+    hy_jiles_state_init(&j, &s, 0);
+    CHECK_MSG(hy_jiles_apply(&j, &s, INFINITY, NULL, &err), err, HY_EINVAL, "finite");
+    CHECK_MSG(hy_jiles_major_loop(&j, -3, &L, &err), err, HY_EINVAL, "hmax");
+    /* stiff but physical: a small a with no mean field, c near 1 */
+    CHECK(!hy_jiles_init(&j, 1.6e6, 1e-3, 400, 0.2, 0, &err), "a = 1e-3: %s", err.msg);
+    CHECK(!hy_jiles_major_loop(&j, 5000, &L, &err), "a = 1e-3 major loop: %s", err.msg);
+    CHECK(isfinite(L.hc) && L.hc > 0 && L.hc <= 400, "a = 1e-3: Hc = %g", L.hc);
+    CHECK(!hy_jiles_init(&j, 1.6e6, 1100, 400, 0.999999, 1.6e-3, &err), "c near 1: %s", err.msg);
+    CHECK(!hy_jiles_major_loop(&j, 5000, &L, &err), "c near 1: %s", err.msg);
+    CHECK(L.hc >= 0 && L.hc < 1, "c -> 1 leaves almost no hysteresis: Hc = %g", L.hc);
+}
+
+static void test_inputs_and_minor_loop(void)
+{
+    hy_error err;
+    hy_jiles j;
+    hy_jiles_init(&j, ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], &err);
+    /* Fig. 2's bimodal input (0, 0.2, 1, 1.5 at t = 1, 2.2, 3.2, 5, half-cosines), as H = 1000 u - 750 A/m:
+       its minor loop crosses the coercive field */
+    hy_input in;
+    CHECK(!hy_input_parse(&in, "bimodal:-750,-550,250,750,1,2.2,3.2,5:cosine", &err), "%s", err.msg);
+    hy_minor_loop L;
+    int rc = hy_jiles_minor_loop(&j, &in, &L, &err);
+    CHECK(!rc, "minor loop: %s", err.msg);
+    printf("Fig. 2's input, H = 1000 u - 750 A/m: minor loop [%g, %g] A/m, energy %.10g J/m^3, per period %.10g "
+           "J/m^3, B at start %.10g T, at return %.10g T (gap %.3g T), steady after %d periods\n",
+           L.u_turn, L.u_start, L.area, L.area_period, L.y_start, L.y_close, L.y_close - L.y_start, L.cycles);
+    CHECK(L.area > 0 && L.area_period > L.area, "areas %g, %g not dissipative", L.area, L.area_period);
+    /* no return-point memory: the loop misses its start by a visible, bounded gap */
+    CHECK(fabs(L.y_close - L.y_start) > 1e-3 && fabs(L.y_close - L.y_start) < 0.1, "minor loop gap %g T",
+          L.y_close - L.y_start);
+    /* the same loop from the reference implementation */
+    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4]};
+    double path[4 * 12 + 4];
+    int n = 0;
+    path[n++] = -750;
+    for (int c = 0; c < L.cycles; c++) {
+        path[n++] = 250;
+        path[n++] = -550;
+        path[n++] = 750;
+        path[n++] = -750;
+    }
+    path[n++] = 250;
+    path[n++] = -550;
+    path[n++] = 250;
+    long double M[60], hb[60];
+    CHECK(L.cycles <= 12, "%d periods to settle", L.cycles);
+    if (L.cycles <= 12) {
+        ref_path(&r, path, n, 0.5L, M, hb);
+        double area = (double)(-HY_MU0 * (hb[n - 1] - hb[n - 3]));
+        CHECK(fabs(area - L.area) <= 1e-8 * L.area, "minor loop energy %.12g, reference %.12g", L.area, area);
+        double yc = (double)(HY_MU0 * (250 + M[n - 1]));
+        CHECK(fabs(yc - L.y_close) <= 1e-9 * fabs(yc), "B at return %.15g, reference %.15g", L.y_close, yc);
+    }
+    /* drive: samples at the extrema of period 1 equal the fed sequence */
+    double t[4] = {1, 2.2, 3.2, 5}, Md[4], Bd[4];
+    CHECK(!hy_jiles_drive(&j, &in, t, 4, Md, Bd, &err), "drive: %s", err.msg);
+    hy_jiles_state s;
+    hy_jiles_state_init(&j, &s, -750);
+    const double ext[4] = {250, -550, 750, -750};
+    for (int i = 0; i < 4; i++) {
+        hy_jiles_apply(&j, &s, ext[i], NULL, &err);
+        CHECK(fabs(Md[i] - s.M) <= 1e-12 * fabs(s.M) && fabs(Bd[i] - hy_jiles_b(&s)) <= 1e-12 * fabs(Bd[i]),
+              "drive at t = %g: M %.15g vs %.15g", t[i], Md[i], s.M);
+    }
+    hy_input_free(&in);
+    /* every other input kind: finite, bounded, and B rises with H on a rising stretch */
+    const char *specs[] = {"multimodal:-8000,6000,-2000,3000,-500,8000", "sine:9000,2", "triangle:-5000,5000,2",
+                           "pwl:0,0,1,4000,1.5,-3000,2,1000,3,0", NULL};
+    for (int i = 0; specs[i]; i++) {
+        hy_input_parse(&in, specs[i], &err);
+        enum { NT = 60 };
+        double tt[2 * NT], B[2 * NT];
+        for (int k = 0; k < 2 * NT; k++)
+            tt[k] = in.period * k / NT;
+        rc = hy_jiles_drive(&j, &in, tt, 2 * NT, NULL, B, &err);
+        CHECK(!rc, "%s: %s", in.desc, err.msg);
+        int ok = 1;
+        for (int k = 0; k < 2 * NT; k++)
+            ok &= isfinite(B[k]) && fabs(B[k]) < HY_MU0 * (1e4 + ja86[0]);
+        CHECK(ok, "%s: B not finite or beyond saturation", in.desc);
+        hy_input_free(&in);
+    }
+    const char *txt = "0 0\n1 5000\n2 -5000\n3 0\n";
+    CHECK(!hy_input_text(&in, txt, strlen(txt), "inline.dat", 1, &err), "%s", err.msg);
+    double tt[3] = {1, 2, 4}, B[3];
+    CHECK(!hy_jiles_drive(&j, &in, tt, 3, NULL, B, &err) && B[0] > 0 && B[1] < 0 && B[2] > 0,
+          "file input: B = %g, %g, %g", B[0], B[1], B[2]);
+    hy_input_free(&in);
+    hy_input_parse(&in, "sine:1,1", &err);
+    CHECK_MSG(hy_jiles_minor_loop(&j, &in, &L, &err), err, HY_EINVAL, "not a bimodal input");
+    hy_input_free(&in);
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    test_langevin();
+    test_against_reference();
+    test_1986_loop();
+    test_refusals();
+    test_inputs_and_minor_loop();
+    return tu_finish("jiles");
+}
