@@ -231,6 +231,17 @@ static void test_reversals(void)
     CHECK(fabs((yc[3] - yc[2]) - (yd[4] - yd[3])) <= 1e-14, "loops between -0.2 and 0.5 not congruent: %.17g vs %.17g",
           yc[3] - yc[2], yd[4] - yd[3]);
     CHECK(fabs(yc[3] - yd[4]) > 0.1, "the two histories should sit at different heights (%.17g, %.17g)", yc[3], yd[4]);
+    /* from positive saturation a symmetric density mirrors: y+(u) = -y-(-u) */
+    const double e[] = {0.3, -0.9, 0.4, -0.1, 1.3};
+    double ym[5], yp[5], neg[5];
+    for (int k = 0; k < 5; k++)
+        neg[k] = -e[k];
+    hy_preisach_apply(&p, neg, 5, ym, &err);
+    p.start = 1;
+    hy_preisach_apply(&p, e, 5, yp, &err);
+    p.start = -1;
+    for (int k = 0; k < 5; k++)
+        CHECK(fabs(yp[k] + ym[k]) <= 1e-14, "start +1 at %g: %.17g, mirrored %.17g", e[k], yp[k], -ym[k]);
     /* the memory keeps only dominant extrema */
     hy_preisach_mem m;
     hy_preisach_mem_init(&m, &p, 0, &err);
