@@ -106,7 +106,7 @@ int cli_model_build(const cli_model *cm, hy_model *m)
     else
         hy_model_dahl_filter_init(m, cm->rho, cm->fc, cm->tau);
     m->x0 = cm->x0;
-    hy_error err;
+    hy_error err = {0};
     if (hy_model_validate(m, &err)) {
         fprintf(stderr, "hystviz: model %s: %s\n", cm->kind, err.msg);
         return -1;

@@ -163,7 +163,7 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
             return fprintf(stderr, "hystviz animate: --frames '%s' is not A:B with 0 <= A < B (or A:)\n", v), 2;
         a->have_frames = 1;
     } else if (!strcmp(s, "--shard")) {
-        hy_error err;
+        hy_error err = {0};
         if (hy_shard_parse(v, &a->shard_k, &a->shard_n, &err))
             return fprintf(stderr, "hystviz animate: %s\n", err.msg), 2;
     } else if (!strcmp(s, "--assemble")) {
@@ -205,7 +205,7 @@ static int parse_args(int argc, char **argv, anim_args *a)
 static int split_or_assemble(anim_args *a)
 {
     if (a->assemble) {
-        hy_error err;
+        hy_error err = {0};
         int st = hy_anim_assemble(&a->p, a->assemble, &err);
         if (st)
             fprintf(stderr, "hystviz animate: %s\n", err.msg);
@@ -231,7 +231,7 @@ static int split_or_assemble(anim_args *a)
  * backend not built or without a device. */
 static int pick_backend(const char *name, int only_name)
 {
-    hy_error err;
+    hy_error err = {0};
     int st = name ? hy_gl_select(name, &err) : HY_OK;
     if (!st)
         st = only_name ? (hy_gl_backend_name(&err) ? HY_OK : err.code) : hy_gl_check(&err);
@@ -245,7 +245,7 @@ static int pick_backend(const char *name, int only_name)
  * HYSTVIZ_EGL_DEVICE (the reason on stderr too). */
 static int gl_info(void)
 {
-    hy_error err;
+    hy_error err = {0};
     fflush(stdout);
     int st = hy_gl_info(stdout, &err);
     if (st)
@@ -277,7 +277,7 @@ static int check_range(const anim_args *a)
 
 static int settle(anim_args *a, const anim_scene *sc)
 {
-    hy_error err;
+    hy_error err = {0};
     double fps;
     if (hy_anim_quality(a->quality, &a->p.width, &a->p.height, &fps, &err)) {
         fprintf(stderr, "hystviz animate: %s\n", err.msg);
@@ -294,7 +294,7 @@ static int settle(anim_args *a, const anim_scene *sc)
 /* Options beat the scene's [animation] values; the frame range must fit. */
 static int settle_scene(anim_args *a, const scene_anim *sa)
 {
-    hy_error err;
+    hy_error err = {0};
     double fps;
     const char *q = a->have_quality ? a->quality : sa->quality;
     if (hy_anim_quality(q, &a->p.width, &a->p.height, &fps, &err)) {
@@ -326,7 +326,7 @@ static int ends_with(const char *s, const char *tail)
 /* `hystviz animate SCENE.scene ...`: validate every frame, then render. */
 static int animate_scene(anim_args *a)
 {
-    hy_error err;
+    hy_error err = {0};
     scene_anim sa;
     gsl_set_error_handler_off();
     if (scene_anim_load_policy(&sa, a->name, &a->pol, &err)) {
@@ -384,7 +384,7 @@ static int animate(int argc, char **argv)
     if ((r = split_or_assemble(&a)) >= 0)
         return r;
     gsl_set_error_handler_off();
-    hy_error err;
+    hy_error err = {0};
     void *state = NULL;
     hy_anim_stats stats;
     int st = sc->prepare(&state, &a.p, &err);

@@ -194,7 +194,7 @@ static int parse_opts(int argc, char **argv, int first, opts *o)
 {
     for (int i = first; i < argc; i++) {
         const char *a = argv[i], *v;
-        hy_error err;
+        hy_error err = {0};
         if (strcmp(a, "--single-stage") == 0) {
             o->staged = 0;
             continue;
@@ -255,7 +255,7 @@ static int parse_opts(int argc, char **argv, int first, opts *o)
 static int cmd_table2(const opts *o)
 {
     hy_boucwen_modal md;
-    hy_error err;
+    hy_error err = {0};
     if (hy_boucwen_table2(&o->p, &md, &err)) {
         fprintf(stderr, "hystviz boucwen: %s\n", err.msg);
         return err.code == HY_EINVAL ? 2 : 1;
@@ -513,7 +513,7 @@ static void write_rows(FILE *f, const series *s)
 
 static int cmd_data(opts *o)
 {
-    hy_error err;
+    hy_error err = {0};
     series s = {0};
     if (!o->signal)
         o->signal = o->input ? "file" : NULL;

@@ -100,7 +100,7 @@ static void ref_runs(const hy_input *in, double sigma0, double g0, long double *
 static int check_steady(const hy_model *m, const hy_input *in, size_t npts, ccase *c)
 {
     hy_steady st;
-    hy_error err;
+    hy_error err = {0};
     if (hy_steady_init(&st, m, in, &err)) {
         snprintf(c->note, sizeof c->note, "hy_steady_init: %s", err.msg);
         return -1;
@@ -193,7 +193,7 @@ static void cases_amplitude(cctx *cx)
         double t[200], y[200], yr[200], e;
         for (int j = 0; j < 200; j++)
             t[j] = 2 * in.period * (j + 0.37) / 200;
-        hy_error err;
+        hy_error err = {0};
         if (!bad && (hy_gamma_exact(&m, &in, 10, t, 200, y, NULL, &err) ||
                      hy_wp_exact_ld(&m, &in, 10, t, 200, yr, &err)))
             bad = 1, snprintf(c.note, sizeof c.note, "%s", err.msg);
@@ -228,7 +228,7 @@ static void cases_gamma(cctx *cx)
     for (int i = 0; i < n; i++) {
         double g = cx->quick ? quick[i] : full[i], e, dist;
         ccase c;
-        hy_error err;
+        hy_error err = {0};
         case_start(&c, "gamma exact+monotone", 1e-12);
         snprintf(c.params, sizeof c.params, "gamma=%g ex3 (sigma1=1)", g);
         int bad = hy_gamma_exact(&m, &in, g, t, N, y, NULL, &err) || hy_wp_exact_ld(&m, &in, g, t, N, yr, &err);
@@ -309,7 +309,7 @@ static void cases_degenerate(cctx *cx)
         snprintf(c.params, sizeof c.params, "%s sigma0=6", what[i]);
         hy_input in;
         hy_model m;
-        hy_error err;
+        hy_error err = {0};
         hy_model_lugre_init(&m, 6, 1, 1, 2, 1, 1);
         if (hy_input_bimodal(&in, b[i][0], b[i][1], b[i][2], b[i][3], NULL, HY_SHAPE_LINEAR, &err)) {
             snprintf(c.note, sizeof c.note, "%s", err.msg);
@@ -350,7 +350,7 @@ static void case_many_extrema(cctx *cx)
     double *e = malloc(n * sizeof *e);
     hy_input in;
     hy_model m;
-    hy_error err;
+    hy_error err = {0};
     int bad = 1;
     hy_model_lugre_init(&m, 1, 1, 1, 2, 1, 1);
     unsigned long s = 12345;
@@ -392,7 +392,7 @@ static void cases_theorem_a(cctx *cx)
         ccase c;
         hy_theorem_a th;
         hy_input in;
-        hy_error err;
+        hy_error err = {0};
         case_start(&c, "theorem A", 1e-12);
         snprintf(c.params, sizeof c.params, "sigma0=%g g0=2 0,0.5,1,1.5", s0s[i]);
         hy_input_bimodal(&in, 0, 0.5, 1, 1.5, NULL, HY_SHAPE_LINEAR, NULL);
@@ -428,7 +428,7 @@ static void cases_ode(cctx *cx)
         enum { N = 200 };
         double t[N], y[N], yr[N];
         hy_model m;
-        hy_error err;
+        hy_error err = {0};
         ccase c;
         case_start(&c, "ode stiff (step cap)", cs[i].bound);
         snprintf(c.params, sizeof c.params, "%s rtol=%g sigma0=%g cap=%lu ex3 g=1", cs[i].stepper, cs[i].rtol,
@@ -466,7 +466,7 @@ static void case_boucwen(cctx *cx, const char *what, double nu, double beta, dou
     static double u[2 * N], y1[N], y2[2 * N];
     hy_boucwen_params p;
     hy_newmark_opts o;
-    hy_error err;
+    hy_error err = {0};
     ccase c;
     case_start(&c, "bouc-wen", 1e-2);
     hy_boucwen_params_default(&p);

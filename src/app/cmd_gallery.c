@@ -421,7 +421,7 @@ static void job_plan(const opts *o, job *jobs, size_t i, entry *man, size_t nman
         return;
     }
     hy_scene_run probe;
-    hy_error err;
+    hy_error err = {0};
     memset(&probe, 0, sizeof probe);
     probe.path = j->path;
     if (hy_scene_parse_file_policy(j->path, &o->pol, &probe.scene, &err)) {
@@ -504,7 +504,7 @@ static void render_one(const opts *o, job *j)
     size_t loglen = 0;
     FILE *log = open_memstream(&logbuf, &loglen); /* asks compute to measure every error it can */
     hy_scene_run run;
-    hy_error err;
+    hy_error err = {0};
     int rc = hy_scene_run_load_policy(&run, j->path, NULL, 0, &o->pol, &err);
     if (!rc) {
         char written[4096] = "";
@@ -939,7 +939,7 @@ static int parse_opts(int argc, char **argv, opts *o)
         else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
             o->quiet = 1;
         else if (!strcmp(a, "--shard") && v) {
-            hy_error err;
+            hy_error err = {0};
             if (hy_shard_parse(argv[++i], &o->shard_k, &o->shard_n, &err)) {
                 fprintf(stderr, "hystviz gallery: %s\n", err.msg);
                 return 2;
@@ -1268,7 +1268,7 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
         }
     }
     if (o->shard_n) {
-        hy_error werr;
+        hy_error werr = {0};
         if (shard_write(o, jobs, n, &werr)) {
             fprintf(stderr, "hystviz gallery: %s\n", werr.msg);
             rc = 1;
@@ -1281,7 +1281,7 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
     remove_stale(o, jobs, n);
     remove_deleted(o, jobs, n, man, nman);
     char *mpath = join(o->out, ".manifest");
-    hy_error err;
+    hy_error err = {0};
     int written = 1;
     if (!mpath || manifest_write(mpath, jobs, n, &err)) {
         fprintf(stderr, "hystviz gallery: %s\n", mpath ? err.msg : "out of memory");

@@ -126,7 +126,7 @@ static int parse_args(int argc, char **argv, loop_args *a)
 static int compute(const loop_args *a, const hy_model *m, const hy_input *in, double *t, double *u,
                    double *y, size_t n)
 {
-    hy_error err;
+    hy_error err = {0};
     double span = in->period * (a->have_gamma ? (double)a->cycles : 1.0);
     for (size_t i = 0; i < n; i++) {
         t[i] = span * (double)i / (double)(n - 1);
@@ -166,7 +166,7 @@ static int compute(const loop_args *a, const hy_model *m, const hy_input *in, do
  * fails at once, and a failed computation leaves nothing. */
 static int open_out(const char *cmd, const char *path, hy_out *o)
 {
-    hy_error err;
+    hy_error err = {0};
     if (hy_out_open(o, path ? path : "-", 0, &err)) {
         fprintf(stderr, "hystviz %s: %s\n", cmd, err.msg);
         return 1;
@@ -176,7 +176,7 @@ static int open_out(const char *cmd, const char *path, hy_out *o)
 
 static int close_out(const char *cmd, hy_out *o)
 {
-    hy_error err;
+    hy_error err = {0};
     if (hy_out_commit(o, &err)) {
         fprintf(stderr, "hystviz %s: %s\n", cmd, err.msg);
         return 1;
@@ -214,7 +214,7 @@ int hy_cmd_loop(int argc, char **argv)
     if (cli_model_build(&a.cm, &m))
         return 2;
     hy_input in;
-    hy_error err;
+    hy_error err = {0};
     if (hy_input_parse(&in, a.input, &err)) {
         fprintf(stderr, "hystviz loop: --input: %s\n", err.msg);
         return 2;

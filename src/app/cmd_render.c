@@ -41,7 +41,7 @@ static int worse(int a, int b)
 static int load(hy_scene_run *run, const char *scene, const char *formats, char **sets, size_t nsets,
                 const hy_scene_policy *pol, int check)
 {
-    hy_error err;
+    hy_error err = {0};
     if (hy_scene_run_load_policy(run, scene, sets, nsets, pol, &err)) {
         fprintf(stderr, "hystviz: %s\n", err.msg);
         return err.code == HY_ENOMEM ? 1 : 2; /* an unreadable or invalid scene: invalid input */
@@ -56,7 +56,7 @@ static int load(hy_scene_run *run, const char *scene, const char *formats, char 
 
 static int compute(hy_scene_run *run, int verbose)
 {
-    hy_error err;
+    hy_error err = {0};
     if (hy_scene_run_compute(run, verbose ? stderr : NULL, &err)) {
         fprintf(stderr, "hystviz: %s\n", err.msg);
         return cli_exit_status(err.code);
@@ -69,7 +69,7 @@ static int render_one(const char *scene, const char *out, const char *formats, c
                       const hy_scene_policy *pol, int verbose)
 {
     hy_scene_run run;
-    hy_error err;
+    hy_error err = {0};
     int st = load(&run, scene, formats, sets, nsets, pol, 1);
     if (st)
         return st;
@@ -95,7 +95,7 @@ static int render_data(const char *scene, const char *out, char **sets, size_t n
                        int verbose)
 {
     hy_scene_run run;
-    hy_error err;
+    hy_error err = {0};
     hy_out o;
     int st = load(&run, scene, NULL, sets, nsets, pol, 0);
     if (st)
@@ -171,7 +171,7 @@ int hy_cmd_render(int argc, char **argv)
     }
     int fmt[3];
     size_t nfmt;
-    hy_error err;
+    hy_error err = {0};
     if (!rc && formats && hy_scene_formats_parse(formats, fmt, &nfmt, &err)) {
         fprintf(stderr, "hystviz %s: %s\n", argv[0], err.msg);
         rc = 2;

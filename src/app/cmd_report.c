@@ -230,7 +230,7 @@ static int run_problem(const hy_wp_problem *p, const ropts *o, runlist *L)
 static FILE *open_out(hy_out *o, const char *dir, const char *name)
 {
     char path[1100];
-    hy_error err;
+    hy_error err = {0};
     snprintf(path, sizeof path, "%s/%s", dir, name);
     if (hy_out_open(o, path, 0, &err)) {
         fprintf(stderr, "hystviz report: %s\n", err.msg);
@@ -241,7 +241,7 @@ static FILE *open_out(hy_out *o, const char *dir, const char *name)
 
 static int close_out(hy_out *o)
 {
-    hy_error err;
+    hy_error err = {0};
     if (hy_out_commit(o, &err)) {
         fprintf(stderr, "hystviz report: %s\n", err.msg);
         return -1;
@@ -420,7 +420,7 @@ static int plot_problem(const ropts *o, const hy_wp_problem *p, const runlist *L
     int fmt[2] = {HY_FORMAT_SVG, HY_FORMAT_PNG};
     for (int k = 0; k < 2; k++) {
         char path[1100];
-        hy_error err;
+        hy_error err = {0};
         snprintf(path, sizeof path, "%s/wp-%s.%s", o->dir, p->name, ext[k]);
         if (hy_figure_write(&fig, path, fmt[k], &err)) {
             fprintf(stderr, "hystviz report: %s\n", err.msg);
@@ -506,7 +506,7 @@ int hy_cmd_report(int argc, char **argv)
     }
     hy_out_sweep(o.dir); /* temporaries of killed runs */
     for (; np < o.nproblems; np++) {
-        hy_error err;
+        hy_error err = {0};
         if (hy_wp_problem_init(&P[np], o.problems[np], o.quick, &err)) {
             fprintf(stderr, "hystviz report: %s\n", err.msg);
             rc = err.code == HY_EINVAL ? 2 : 1;

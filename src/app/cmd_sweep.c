@@ -140,7 +140,7 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
         fprintf(stderr, "hystviz sweep: out of memory\n");
         return 2;
     }
-    hy_error err;
+    hy_error err = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int po = cli_policy_option(&o->pol, o->dirs, "sweep", argc, argv, &i);
@@ -398,7 +398,7 @@ static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
         snprintf(pb->text + used, pb->text_size - used, "output.name=\"%s\"", name);
     }
     hy_scene_run r;
-    hy_error err;
+    hy_error err = {0};
     err.msg[0] = '\0';
     int loaded = 0, rc = hy_scene_run_load_policy(&r, o->scene, pb->sets, nsets, &o->pol, &err);
     if (!rc) {
@@ -562,7 +562,7 @@ static int check_study(study *s, uint64_t *hash)
 {
     const sweep_opts *o = s->o;
     const hy_grid *g = &o->grid;
-    hy_error err;
+    hy_error err = {0};
     hy_scene *base = NULL;
     if (hy_scene_parse_file_policy(o->scene, &o->pol, &base, &err)) {
         fprintf(stderr, "hystviz sweep: %s\n", err.msg);
@@ -718,7 +718,7 @@ static int sweep(const sweep_opts *o)
     else
         snprintf(s.table_path, sizeof s.table_path, "%s/sweep.csv", o->out);
     hy_out_sweep(o->out); /* temporaries of killed runs (a running shard's are locked: kept) */
-    hy_error err;
+    hy_error err = {0};
     if (hy_out_open(&s.out, s.table_path, 0, &err)) {
         fprintf(stderr, "hystviz sweep: %s\n", err.msg);
         study_free(&s);
@@ -748,7 +748,7 @@ static int sweep(const sweep_opts *o)
                 now() - t0, rc ? "no table written" : s.table_path);
     }
     if (!rc && o->plot && !o->sharded) {
-        hy_error perr;
+        hy_error perr = {0};
         if (hy_sweep_plot(o->out, o->plot, &perr)) {
             fprintf(stderr, "hystviz sweep: %s\n", perr.msg);
             rc = perr.code == HY_EINVAL ? 2 : 1;

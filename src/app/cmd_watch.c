@@ -71,7 +71,7 @@ static double now(void)
 static void render_one(watched *w, char *const *sets, size_t nsets, const char *out, const char *formats, int force)
 {
     char ts[16];
-    hy_error err;
+    hy_error err = {0};
     hy_scene_run run;
     double t0 = now();
     stamp(ts, sizeof ts);
@@ -176,7 +176,7 @@ int hy_cmd_watch(int argc, char **argv)
             rc = 1;
     }
     hy_dirwatch *w = NULL;
-    hy_error err;
+    hy_error err = {0};
     if (!rc && !(w = hy_dirwatch_open((const char *const *)dirs, nd, &err))) {
         fprintf(stderr, "hystviz watch: %s\n", err.msg);
         rc = 1;

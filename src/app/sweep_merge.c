@@ -215,7 +215,7 @@ int hy_sweep_merge(const char *dir, const char *plot, int quiet)
     char path[4400];
     snprintf(path, sizeof path, "%s/sweep.csv", dir);
     hy_out o;
-    hy_error err;
+    hy_error err = {0};
     int opened = 0;
     if (!rc && hy_out_open(&o, path, 0, &err)) {
         fprintf(stderr, "hystviz sweep --merge: %s\n", err.msg);
@@ -243,7 +243,7 @@ int hy_sweep_merge(const char *dir, const char *plot, int quiet)
     free(header);
     if (rc)
         return rc;
-    hy_error perr;
+    hy_error perr = {0};
     if (plot && hy_sweep_plot(dir, plot, &perr)) {
         fprintf(stderr, "hystviz sweep --merge: %s\n", perr.msg);
         return perr.code == HY_EINVAL ? 2 : 1;

@@ -150,6 +150,13 @@ void hy_sweep_validation(hy_sweep *sw)
     sw->rate = 10.0 / 60.0;
 }
 
+/* The sweep's sample count as a double (finite once the duration is checked);
+ * the slack keeps whole products whole: 204 s x 750 Hz is 153000. */
+static double sweep_samples(const hy_sweep *sw, double fs)
+{
+    return ceil((sw->f1 - sw->f0) / sw->rate * fs - 1e-9);
+}
+
 static int sweep_check(const hy_sweep *sw, double fs, hy_error *err)
 {
     if (!(isfinite(sw->amp)))
@@ -169,6 +176,11 @@ static int sweep_check(const hy_sweep *sw, double fs, hy_error *err)
                             "a sweep from %g to %g Hz at %g Hz/s lasts %g s: %.3g samples at fs = %g Hz, "
                             "more than the %.0f a sweep may hold", sw->f0, sw->f1, sw->rate, dur,
                             dur * fs, fs, HY_SWEEP_MAX_SAMPLES);
+    /* the length hy_sweep_length gives, so a sweep that passes has a sample */
+    if (!(sweep_samples(sw, fs) >= 1))
+        return hy_error_set(err, HY_EINVAL,
+                            "a sweep from %g to %g Hz at %g Hz/s lasts %g s: less than one sample at fs = %g Hz",
+                            sw->f0, sw->f1, sw->rate, dur, fs);
     return HY_OK;
 }
 
@@ -176,8 +188,7 @@ size_t hy_sweep_length(const hy_sweep *sw, double fs)
 {
     if (sweep_check(sw, fs, NULL))
         return 0;
-    /* the slack keeps whole products whole: 204 s x 750 Hz is 153000 */
-    return (size_t)ceil((sw->f1 - sw->f0) / sw->rate * fs - 1e-9);
+    return (size_t)sweep_samples(sw, fs);
 }
 
 int hy_sweep_fill(const hy_sweep *sw, double fs, double *u, size_t n,

@@ -5,6 +5,46 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Length of the UTF-8 character at p that a terminal shows as text (not a
+ * C1 control, not overlong, not a surrogate), or 0. */
+static size_t text_char(const unsigned char *p)
+{
+    if (*p >= 0x20 && *p < 0x7f)
+        return 1;
+    size_t n = *p >= 0xc2 && *p <= 0xdf ? 2 : *p >= 0xe0 && *p <= 0xef ? 3 : *p >= 0xf0 && *p <= 0xf4 ? 4 : 0;
+    for (size_t k = 1; k < n; k++)
+        if ((p[k] & 0xc0) != 0x80)
+            return 0;
+    if ((n == 2 && *p == 0xc2 && p[1] < 0xa0) || (n == 3 && *p == 0xe0 && p[1] < 0xa0) ||
+        (n == 3 && *p == 0xed && p[1] >= 0xa0) || (n == 4 && *p == 0xf0 && p[1] < 0x90) ||
+        (n == 4 && *p == 0xf4 && p[1] >= 0x90))
+        return 0;
+    return n;
+}
+
+void hy_text_shown(const char *src, char *dst, size_t size)
+{
+    const unsigned char *p = (const unsigned char *)src;
+    size_t o = 0;
+    if (!size)
+        return;
+    while (*p) {
+        size_t n = text_char(p);
+        if (n) {
+            if (o + n >= size)
+                break;
+            memcpy(dst + o, p, n);
+            o += n, p += n;
+        } else {
+            if (o + 4 >= size)
+                break;
+            snprintf(dst + o, size - o, "\\x%02x", *p++);
+            o += 4;
+        }
+    }
+    dst[o] = '\0';
+}
+
 int hy_error_set(hy_error *e, int code, const char *fmt, ...)
 {
     if (e) {
@@ -15,7 +55,7 @@ int hy_error_set(hy_error *e, int code, const char *fmt, ...)
         vsnprintf(msg, sizeof msg, fmt, ap);
         va_end(ap);
         e->code = code;
-        memcpy(e->msg, msg, sizeof msg);
+        hy_text_shown(msg, e->msg, sizeof e->msg);
     }
     return code;
 }
@@ -42,4 +82,6 @@ void hy_error_prefix(hy_error *e, const char *fmt, ...)
         m = room - 1;
     memcpy(e->msg + n + 2, old, m);
     e->msg[n + 2 + m] = '\0';
+    hy_text_shown(e->msg, old, sizeof old); /* the prefix is text as well */
+    memcpy(e->msg, old, sizeof old);
 }

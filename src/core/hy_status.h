@@ -29,15 +29,22 @@ typedef struct hy_error {
 
 /* Formats the message into e (if e is not NULL) and returns code.  The
  * arguments may include e->msg itself (the old message is read before the new
- * one is written). */
+ * one is written).  The message is made text a terminal shows as it is
+ * (hy_text_shown): a scene's bytes quoted in it cannot retitle or recolour
+ * the terminal of whoever reads it (issue 20 item 10). */
 int hy_error_set(hy_error *e, int code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
+/* Copies src into dst (size bytes, NUL-terminated, cut at a character):
+ * printable ASCII and UTF-8 characters other than controls as they are,
+ * every other byte (C0 and C1 controls, DEL, invalid UTF-8) as \xNN. */
+void hy_text_shown(const char *src, char *dst, size_t size);
+
 /* Prefixes an existing message with "prefix: " (used to add file:line); the
- * arguments may include e->msg. */
+ * arguments may include e->msg.  The result is text as with hy_error_set. */
 void hy_error_prefix(hy_error *e, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))

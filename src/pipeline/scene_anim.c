@@ -206,7 +206,7 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
             break;
         }
         for (size_t i = 0; i < a->nkf && !rc; i++) {
-            hy_error e2;
+            hy_error e2 = {0};
             if (hy_scene_set(s, sets[i], &e2)) {
                 const char *why = strstr(e2.msg, ": ");
                 rc = hy_scene_error_at(a->scene, "keyframe", a->kf[i].label, "values", err, HY_EINVAL,
@@ -215,7 +215,7 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
             }
         }
         hy_scene_run r;
-        hy_error e3;
+        hy_error e3 = {0};
         double w = 0;
         if (!rc && (a->nkf || f == 0) && hy_scene_run_load_policy(&r, a->path, sets, a->nkf, &a->pol, &e3))
             rc = a->nkf ? hy_scene_error_at(a->scene, "keyframe", a->kf[0].label, NULL, err, e3.code,

@@ -39,7 +39,7 @@ static void not_measured(hy_run_series *se, const char *why)
 /* The reference, or "not measured" in se when it cannot judge (returns -1). */
 static int ref_init(const hy_scene_run *r, hy_ref_limit *R, hy_run_series *se)
 {
-    hy_error err;
+    hy_error err = {0};
     if (!r->have_steady || hy_ref_limit_init(R, r->model.sigma0, r->steady.g0, &r->input, &err)) {
         not_measured(se, r->have_steady ? err.msg : "no steady state");
         return -1;
@@ -151,7 +151,7 @@ void hy_verify_gamma(const hy_scene_run *r, double gamma, const double *t, const
     }
     size_t stride = stride_of(n), m = (n + stride - 1) / stride;
     double *ts = calloc(2 * m, sizeof *ts);
-    hy_error e;
+    hy_error e = {0};
     if (!ts) {
         snprintf(ref, refsize, "not measured: out of memory");
         return;

@@ -246,7 +246,7 @@ static const unsigned char *egl_frame(hy_gl_surface *s)
 
 static void egl_info(FILE *f)
 {
-    hy_error err;
+    hy_error err = {0};
     devices d;
     int pick = -1;
     if (list_devices(&d, &err)) {

@@ -6,6 +6,7 @@
 
 #include "hy_scene.h"
 #include "hy_scene_policy.h"
+#include "hy_file.h"
 
 enum { HY__UNIT_PT, HY__UNIT_CM, HY__UNIT_MM, HY__UNIT_IN, HY__UNIT_PX };
 
@@ -80,6 +81,10 @@ void hy__value_clear(hy__value *v);
 
 /* True if text at p starts a comment ('#' not opening a #rrggbb colour). */
 int hy__is_comment(const char *p, const char *end);
+
+/* How many bytes of a scene's value a message quotes (hy_file_shown cuts
+ * there and escapes what is not printable). */
+#define HY_SCENE_SHOWN_MAX 40
 
 /* Writes ch as it should appear in a message: itself if printable, else \xNN. */
 const char *hy__char_text(int ch, char buf[8]);

@@ -27,7 +27,15 @@ typedef struct vctx {
     int *errcol;
     char *msg;
     size_t msgsz;
+    char shown[2][HY_SCENE_SHOWN_MAX * 4 + 4]; /* quoted values, for messages */
 } vctx;
+
+/* A scene's text as a message quotes it: at most HY_SCENE_SHOWN_MAX bytes
+ * ("..." after), non-printable bytes as \xNN (issue 20 item 10); slot 0 or 1. */
+static const char *shown(vctx *c, int slot, const char *text)
+{
+    return hy_file_shown(text, strlen(text), HY_SCENE_SHOWN_MAX, c->shown[slot], sizeof c->shown[slot]);
+}
 
 static int fail(vctx *c, int col, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -222,9 +230,9 @@ static int magnitude_fail(vctx *c, const item *it)
     hy_scene_range_text(c->spec, r, sizeof r);
     if (r[0])
         return fail(c, it->col, "'%s' in %s must be %s and at least %.17g in magnitude (subnormal numbers are "
-                    "refused), got %s", c->spec->name, c->where, r, HY_SCENE_NUM_MIN, it->text);
+                    "refused), got %s", c->spec->name, c->where, r, HY_SCENE_NUM_MIN, shown(c, 0, it->text));
     return fail(c, it->col, "'%s' in %s must be 0 or at least %.17g in magnitude (subnormal numbers are refused), "
-                "got %s", c->spec->name, c->where, HY_SCENE_NUM_MIN, it->text);
+                "got %s", c->spec->name, c->where, HY_SCENE_NUM_MIN, shown(c, 0, it->text));
 }
 
 static int strict_integer(const char *s, long *out)
@@ -266,7 +274,7 @@ static int check_range(vctx *c, const item *it, double v)
     char r[96];
     hy_scene_range_text(c->spec, r, sizeof r);
     return fail(c, it->col, "'%s' in %s must be %s, got %s", c->spec->name, c->where, r,
-                it->text);
+                shown(c, 0, it->text));
 }
 
 static int num_item(vctx *c, const item *it, double *out)
@@ -279,10 +287,10 @@ static int num_item(vctx *c, const item *it, double *out)
         return magnitude_fail(c, it);
     if (rc == 2)
         return fail(c, it->col, "'%s' in %s: %s does not fit a double", c->spec->name,
-                    c->where, it->text);
+                    c->where, shown(c, 0, it->text));
     if (rc)
         return fail(c, it->col, "'%s' in %s expects a finite decimal number, got '%s'",
-                    c->spec->name, c->where, it->text);
+                    c->spec->name, c->where, shown(c, 0, it->text));
     return check_range(c, it, *out);
 }
 
@@ -291,10 +299,10 @@ static int int_item(vctx *c, const item *it, long *out)
     int rc = it->quoted ? 1 : strict_integer(it->text, out);
     if (rc == 2)
         return fail(c, it->col, "'%s' in %s: %s does not fit an integer", c->spec->name,
-                    c->where, it->text);
+                    c->where, shown(c, 0, it->text));
     if (rc)
         return fail(c, it->col, "'%s' in %s expects an integer, got '%s'", c->spec->name,
-                    c->where, it->text);
+                    c->where, shown(c, 0, it->text));
     return check_range(c, it, (double)*out);
 }
 
@@ -315,9 +323,9 @@ static int enum_item(vctx *c, const item *it, long *out)
     const char *sug = hy__suggest(it->text, e, n);
     if (sug)
         return fail(c, it->col, "'%s' in %s must be one of %s, got '%s'; did you mean '%s'?",
-                    c->spec->name, c->where, list, it->text, sug);
+                    c->spec->name, c->where, list, shown(c, 0, it->text), sug);
     return fail(c, it->col, "'%s' in %s must be one of %s, got '%s'", c->spec->name, c->where,
-                list, it->text);
+                list, shown(c, 0, it->text));
 }
 
 static int length_item(vctx *c, const item *it, double *val, int *unit)
@@ -338,7 +346,7 @@ static int length_item(vctx *c, const item *it, double *val, int *unit)
             u++;
         if (u == sizeof units / sizeof units[0])
             return fail(c, it->col, "'%s' in %s: unknown unit in '%s' (use pt, cm, mm, in or px)",
-                        c->spec->name, c->where, it->text);
+                        c->spec->name, c->where, shown(c, 0, it->text));
         *unit = units[u].u;
         num[n - 2] = '\0';
     }
@@ -347,7 +355,7 @@ static int length_item(vctx *c, const item *it, double *val, int *unit)
         return magnitude_fail(c, it);
     if (rc)
         return fail(c, it->col, "'%s' in %s expects a length such as 9pt, 1.2cm, 3mm, 1in or 12px, got '%s'",
-                    c->spec->name, c->where, it->text);
+                    c->spec->name, c->where, shown(c, 0, it->text));
     return check_range(c, it, *val);
 }
 
@@ -372,7 +380,7 @@ static int color_item(vctx *c, const item *it, hy_scene_color *out)
     if (!it->quoted && strict_integer(t, &idx) == 0) {
         if (idx < 1 || idx > 8)
             return fail(c, it->col, "'%s' in %s: Okabe-Ito colour index must be in [1, 8], got %s",
-                        c->spec->name, c->where, t);
+                        c->spec->name, c->where, shown(c, 0, t));
         set_rgb(out, okabe_ito[idx - 1].rgb, (int)idx);
         return HY_OK;
     }
@@ -395,7 +403,7 @@ static int color_item(vctx *c, const item *it, hy_scene_color *out)
     const char *sug = hy__suggest(t, names, 8);
     return fail(c, it->col,
                 "'%s' in %s expects a colour (1-8, an Okabe-Ito name or #rrggbb), got '%s'%s%s%s",
-                c->spec->name, c->where, t, sug ? "; did you mean '" : "", sug ? sug : "",
+                c->spec->name, c->where, shown(c, 0, t), sug ? "; did you mean '" : "", sug ? sug : "",
                 sug ? "'?" : "");
 }
 
@@ -426,7 +434,7 @@ static int text_value(vctx *c, const item *it, const char *dir, hy__value *out)
     hy_scene_kind k = c->spec->kind;
     if (k == HY_KIND_NAME && !valid_name(it->text))
         return fail(c, it->col, "'%s' in %s must be a name of letters, digits, '_', '-' and '.', got '%s'",
-                    c->spec->name, c->where, it->text);
+                    c->spec->name, c->where, shown(c, 0, it->text));
     if (k == HY_KIND_PATH && !it->text[0])
         return fail(c, it->col, "'%s' in %s: empty path", c->spec->name, c->where);
     if (k == HY_KIND_PATH && it->text[0] != '/' && dir && strcmp(dir, ".") != 0)
@@ -482,7 +490,7 @@ static int limits_drawable(vctx *c, const lexed *l, double lo, double hi)
     double mag = fmax(fabs(lo), fabs(hi));
     if (!isfinite(hi - lo))
         return fail(c, l->it[1].col, "'%s' in %s spans %s to %s, a width beyond the largest double: "
-                    "the axis cannot be drawn", c->spec->name, c->where, l->it[0].text, l->it[1].text);
+                    "the axis cannot be drawn", c->spec->name, c->where, shown(c, 0, l->it[0].text), shown(c, 1, l->it[1].text));
     if (hi - lo < HY_LIMITS_MIN_REL * mag)
         return fail(c, l->it[1].col, "'%s' in %s spans %s to %s, a width of %.3g, below %g of its magnitude "
                     "%.3g: the axis cannot be drawn (widen the range)", c->spec->name, c->where,
@@ -507,7 +515,7 @@ static int pair_value(vctx *c, const lexed *l, hy__value *out)
                                       : num_item(c, &l->it[i], &out->a[i]);
     if (!rc && k != HY_KIND_LENGTH_PAIR && !(out->a[0] < out->a[1]))
         return fail(c, l->it[1].col, "'%s' in %s needs first < second, got %s, %s",
-                    c->spec->name, c->where, l->it[0].text, l->it[1].text);
+                    c->spec->name, c->where, shown(c, 0, l->it[0].text), shown(c, 1, l->it[1].text));
     if (!rc && k == HY_KIND_LIMITS)
         return limits_drawable(c, l, out->a[0], out->a[1]);
     return rc;
@@ -533,7 +541,7 @@ static int one_value(vctx *c, const lexed *l, const char *dir, hy__value *out)
             return HY_OK;
         }
         return fail(c, it->col, "'%s' in %s expects true or false, got '%s'", c->spec->name,
-                    c->where, it->text);
+                    c->where, shown(c, 0, it->text));
     case HY_KIND_ENUM: return enum_item(c, it, &out->ival);
     case HY_KIND_LENGTH: return length_item(c, it, &out->a[0], &out->unit[0]);
     case HY_KIND_COLOR: return color_item(c, it, &out->color);
@@ -545,7 +553,7 @@ int hy__value_parse(const hy_scene_key_spec *spec, const char *where, const char
                     const char *text, size_t len, int col0, hy__value *out, int *errcol,
                     char *msg, size_t msgsz)
 {
-    vctx c = {spec, where, errcol, msg, msgsz};
+    vctx c = {.spec = spec, .where = where, .errcol = errcol, .msg = msg, .msgsz = msgsz};
     lexed l = {0};
     memset(out, 0, sizeof *out);
     out->kind = spec->kind;

@@ -253,6 +253,8 @@ static void test_refused(void)
     BAD("[input]\nkind = multisine\nband = 1e299, 1e300\n", "5:1", "must stay below fs/2");
     BAD("[input]\nkind = sine\nfs = 1e300\n", "5:1", "period x fs = 2 x 1e+300 = 2e+300 samples is more than");
     BAD("[input]\nkind = sweep\nrate = 1e-300\n", "5:1", "more than the 1099511627776 a sweep may hold");
+    /* issue 20 item 4: shorter than one sample passed the check and printed an unset message */
+    BAD("[input]\nkind = sweep\nrate = 1e20\n", "5:1", "less than one sample at fs = 750 Hz");
     BAD("[input]\nkind = sine\nperiod = 1\n[compute]\ncycles = 100000\n", "7:1", "integration samples");
     BAD("[input]\nkind = sine\nperiod = 1\n[annotation a]\ntext = \"{energy}\"\nx = 0\ny = 0\n", "7:1",
         "placeholders");

@@ -119,9 +119,29 @@ static void solver_errors(void)
     hy_input_free(&in);
 }
 
+/* issue 20 item 10: a message is text a terminal shows as it is, whatever
+ * bytes its arguments carry (ESC, BEL, DEL, C1 controls, invalid UTF-8);
+ * printable UTF-8 stays. */
+static void message_text(void)
+{
+    hy_error err = {0};
+    hy_error_set(&err, HY_EINVAL, "got '%s'", "a\x1b]0;PWNED\x07\x1b[31mRED\x7f\xff\xc2\x9b\xce\xb3\xe2\x82");
+    CHECK(!strcmp(err.msg, "got 'a\\x1b]0;PWNED\\x07\\x1b[31mRED\\x7f\\xff\\xc2\\x9b\xce\xb3\\xe2\\x82'"),
+          "escaped message '%s'", err.msg);
+    hy_error_prefix(&err, "f\x1b.scene:1:1");
+    const char *want = "f\\x1b.scene:1:1: got 'a\\x1b]";
+    CHECK(!strncmp(err.msg, want, strlen(want)), "prefixed message '%s'", err.msg);
+    char big[2048];
+    memset(big, 0x1b, sizeof big - 1);
+    big[sizeof big - 1] = '\0';
+    hy_error_set(&err, HY_EINVAL, "%s", big);
+    CHECK(strlen(err.msg) < sizeof err.msg && !strchr(err.msg, 0x1b), "long escaped message not cut cleanly");
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
+    message_text();
     model_errors();
     input_errors();
     solver_errors();

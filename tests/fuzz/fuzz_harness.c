@@ -332,7 +332,40 @@ static void broken(const char *what, const char *detail)
     abort();
 }
 
-/* A failed call must say why: a message that does not end at a colon. */
+/* What err holds before each call: a message that still contains it was
+ * never written by the call (issue 20 item 4: an unset message printed). */
+#define UNSET_MARK "[hy_fuzz: message not set]"
+
+static void poison(hy_error *err)
+{
+    snprintf(err->msg, sizeof err->msg, "\x01\xff" UNSET_MARK);
+}
+
+/* Whether s is text a terminal shows as it is: UTF-8 without control
+ * characters (C0, DEL, C1). */
+static int is_text(const char *s)
+{
+    const unsigned char *p = (const unsigned char *)s;
+    while (*p) {
+        if (*p < 0x20 || *p == 0x7f)
+            return 0;
+        if (*p < 0x80) {
+            p++;
+            continue;
+        }
+        int n = (*p & 0xe0) == 0xc0 ? 1 : (*p & 0xf0) == 0xe0 ? 2 : (*p & 0xf8) == 0xf0 ? 3 : -1;
+        if (n < 0 || *p < 0xc2 || *p > 0xf4 || (*p == 0xc2 && p[1] < 0xa0))
+            return 0; /* a bad lead byte or overlong form, or a C1 control */
+        for (int k = 1; k <= n; k++)
+            if ((p[k] & 0xc0) != 0x80)
+                return 0;
+        p += n + 1;
+    }
+    return 1;
+}
+
+/* A failed call must say why: a message that does not end at a colon,
+ * written by the call, and text (no control characters, valid UTF-8). */
 static void check_message(int rc, const hy_error *err, const char *stage)
 {
     if (rc)
@@ -341,6 +374,15 @@ static void check_message(int rc, const hy_error *err, const char *stage)
         return;
     if (!memchr(err->msg, '\0', sizeof err->msg))
         broken("unterminated error message", stage);
+    if (strstr(err->msg, UNSET_MARK)) {
+        fprintf(stderr, "hy_fuzz: %s: message '%s'\n", stage, err->msg);
+        broken("an error message holds text the failing call never wrote", stage);
+    }
+    if (!is_text(err->msg)) {
+        fprintf(stderr, "hy_fuzz: %s: message of %zu bytes with control characters or invalid UTF-8\n", stage,
+                strlen(err->msg));
+        broken("an error message is not text", stage);
+    }
     /* "file:3:1: " with nothing after it is as empty as "" (a message that
      * fills the buffer was cut, perhaps after a colon: not judged) */
     size_t n = strlen(err->msg);
@@ -490,6 +532,7 @@ int hy_fuzz_one(const uint8_t *data, size_t size)
     hy_scene *s = NULL;
     hy_error err;
     memset(&err, 0, sizeof err);
+    poison(&err);
     int rc = hy_scene_parse_buffer(path, (const char *)data, size, &s, &err);
     check_message(rc, &err, "parse");
     last_stage = rc ? 0 : 1;
@@ -508,6 +551,7 @@ int hy_fuzz_one(const uint8_t *data, size_t size)
     }
     sb_on = 1;
     hy_scene_run run;
+    poison(&err);
     rc = hy_scene_run_load(&run, path, NULL, 0, &err);
     check_message(rc, &err, "load");
     if (!rc) {
@@ -518,6 +562,7 @@ int hy_fuzz_one(const uint8_t *data, size_t size)
             sb_on = 0;
             return 0;
         }
+        poison(&err);
         rc = hy_scene_run_compute(&run, NULL, &err);
         check_message(rc, &err, "compute");
         if (!rc) {
@@ -525,6 +570,7 @@ int hy_fuzz_one(const uint8_t *data, size_t size)
             size_t len = 0;
             FILE *f = open_memstream(&csv, &len);
             if (f) {
+                poison(&err);
                 rc = hy_scene_run_data(&run, f, &err);
                 check_message(rc, &err, "data");
                 fclose(f);

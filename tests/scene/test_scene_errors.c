@@ -12,6 +12,10 @@ static void syntax(void)
     PARSE_FAILS("[model] x\n", "t.scene:1:9: unexpected 'x' after the section header");
     PARSE_FAILS("  [series a!]\n", "t.scene:1:12: bad section header: expected ']' after the section name");
     PARSE_FAILS("[model]\n\x01\n", "t.scene:2:1: expected 'key = value', '[section]' or 'include \"file\"', got '\\x01'");
+    /* issue 20 item 10: a refused value is quoted cut to 40 bytes, controls as \xNN */
+    PARSE_FAILS("[figure]\nkind = a\x1b]0;PWNED-TITLE\x07\x1b[31mRED\xffxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\n",
+                "t.scene:2:8: 'kind' in [figure] must be one of timeseries, loop, input, g, psi, got "
+                "'a\\x1b]0;PWNED-TITLE\\x07\\x1b[31mRED\\xffxxxxxxxxxxxxxx...'");
     PARSE_FAILS("sigma0 = 1\n", "t.scene:1:1: key 'sigma0' outside any section (start one with a [section] header)");
     PARSE_FAILS("[figure]\ntitle = \"x\" junk\n",
                 "t.scene:2:13: unexpected 'j' after the value of 'title' (quote text that contains spaces)");

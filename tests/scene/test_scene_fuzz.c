@@ -125,8 +125,10 @@ int main(void)
             while (at < len && buf[at] != '\n' && k + 1 < sizeof set)
                 set[k++] = buf[at++];
             set[k] = '\0';
-            char prefix[160];
-            snprintf(prefix, sizeof prefix, "--set %s", set);
+            char prefix[sizeof err.msg];
+            char raw[160];
+            snprintf(raw, sizeof raw, "--set %s", set);
+            hy_text_shown(raw, prefix, sizeof prefix); /* messages are text (issue 20 item 10) */
             if (hy_scene_set(s, set, &err) && !well_formed(err.msg, prefix)) {
                 fprintf(stderr, "badly formed override error: %s\n", err.msg);
                 st_failures++;
