@@ -534,7 +534,7 @@ static int cmd_data(opts *o)
     /* the output is opened first: a directory or a missing folder fails before
      * the synthesis, and a failed synthesis leaves nothing (hy_out.h) */
     hy_out out;
-    if (hy_out_open(&out, o->out ? o->out : "-", 0, &err)) {
+    if (hy_out_open(&out, o->out ? o->out : "-", HY_OUT_FOLLOW, &err)) {
         fprintf(stderr, "hystviz boucwen: %s\n", err.msg);
         return 1;
     }

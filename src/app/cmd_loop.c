@@ -167,7 +167,7 @@ static int compute(const loop_args *a, const hy_model *m, const hy_input *in, do
 static int open_out(const char *cmd, const char *path, hy_out *o)
 {
     hy_error err = {0};
-    if (hy_out_open(o, path ? path : "-", 0, &err)) {
+    if (hy_out_open(o, path ? path : "-", HY_OUT_FOLLOW, &err)) {
         fprintf(stderr, "hystviz %s: %s\n", cmd, err.msg);
         return 1;
     }

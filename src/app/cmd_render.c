@@ -100,7 +100,7 @@ static int render_data(const char *scene, const char *out, char **sets, size_t n
     int st = load(&run, scene, NULL, sets, nsets, pol, 0);
     if (st)
         return st;
-    if (hy_out_open(&o, out ? out : "-", 0, &err)) {
+    if (hy_out_open(&o, out ? out : "-", HY_OUT_FOLLOW, &err)) { /* the user's own file: as the shell's > */
         fprintf(stderr, "hystviz data: %s\n", err.msg);
         hy_scene_run_free(&run);
         return 1;

@@ -1,6 +1,7 @@
-/* hy_out.c: the one output writer: mkstemp + flock + rename for files,
- * direct writes for FIFOs and character devices, "-" for standard output,
+/* hy_out.c: the one output writer: a temporary (O_EXCL) + flock + renameat in
+ * the target's open directory for files, direct writes for FIFOs and character devices, "-" for standard output,
  * and the sweep of temporaries left by killed writers (hy_out.h). */
+#define _GNU_SOURCE /* O_PATH */
 #include "hy_out.h"
 
 #include <dirent.h>
@@ -8,10 +9,14 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <pthread.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
+#include <sys/random.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define TMP_TAG ".hystviz-tmp."
@@ -71,6 +76,9 @@ static void release(hy_out *o)
 {
     if (o->fd >= 0)
         close(o->fd);
+    if (o->dfd >= 0)
+        close(o->dfd);
+    o->dfd = -1;
     free(o->path);
     free(o->final);
     free(o->tmp);
@@ -96,26 +104,56 @@ static char *tmp_name(const char *final)
     return t;
 }
 
-/* Creates and locks the temporary.  A sweeper that took the lock of a file
- * just created (between mkstemp and flock) unlinks it: the writer sees its
- * name no longer leads to its file and makes another. */
+/* The last component of a path. */
+static const char *base_of(const char *p)
+{
+    const char *slash = strrchr(p, '/');
+    return slash ? slash + 1 : p;
+}
+
+/* Replaces the trailing "XXXXXX" of name with random letters and digits. */
+static void random_suffix(char *name)
+{
+    static const char set[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+    unsigned char r[6];
+    if (getrandom(r, sizeof r, GRND_NONBLOCK) != (ssize_t)sizeof r) {
+        struct timespec ts; /* no entropy yet: the clock and the pid, O_EXCL does the rest */
+        clock_gettime(CLOCK_MONOTONIC, &ts);
+        uint64_t x = (uint64_t)ts.tv_nsec * 2654435761u ^ (uint64_t)getpid() << 20 ^ (uint64_t)(uintptr_t)name;
+        for (size_t i = 0; i < sizeof r; i++, x >>= 7)
+            r[i] = (unsigned char)x;
+    }
+    char *x = name + strlen(name) - 6;
+    for (size_t i = 0; i < sizeof r; i++)
+        x[i] = set[r[i] % (sizeof set - 1)];
+}
+
+/* Creates and locks the temporary in o->dfd (the target's directory, held
+ * open: a directory renamed or a link planted on the way after the checks
+ * does not move where the file goes).  A sweeper that took the lock of a
+ * file just created (between its creation and flock) unlinks it: the writer
+ * sees its name no longer leads to its file and makes another. */
 static int open_tmp(hy_out *o, hy_error *err)
 {
     for (int tries = 0; tries < 16; tries++) {
         free(o->tmp);
         if (!(o->tmp = tmp_name(o->final)))
             return fail(err, o->path, ENOMEM);
-        int fd = mkstemp(o->tmp);
+        random_suffix(o->tmp);
+        const char *tb = base_of(o->tmp);
+        int fd = openat(o->dfd, tb, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+        if (fd < 0 && errno == EEXIST)
+            continue;
         if (fd < 0)
             return fail(err, o->path, errno);
         struct stat a, b;
         if (flock(fd, LOCK_EX) || fstat(fd, &a)) {
             int e = errno;
             close(fd);
-            unlink(o->tmp);
+            unlinkat(o->dfd, tb, 0);
             return fail(err, o->path, e);
         }
-        if (lstat(o->tmp, &b) || a.st_ino != b.st_ino || a.st_dev != b.st_dev) {
+        if (fstatat(o->dfd, tb, &b, AT_SYMLINK_NOFOLLOW) || a.st_ino != b.st_ino || a.st_dev != b.st_dev) {
             close(fd); /* swept away under us: another name */
             continue;
         }
@@ -128,7 +166,7 @@ static int open_tmp(hy_out *o, hy_error *err)
             if (keep >= 0)
                 close(keep);
             close(fd);
-            unlink(o->tmp);
+            unlinkat(o->dfd, tb, 0);
             return fail(err, o->path, e);
         }
         o->fd = keep;
@@ -138,10 +176,13 @@ static int open_tmp(hy_out *o, hy_error *err)
     return fail_msg(err, o->path, "its temporary files keep disappearing");
 }
 
-/* A FIFO or character device: opened as it is, never replaced. */
+/* A FIFO or character device: opened as it is, never replaced (the user's
+ * own path: as the shell opens it, /dev/stdout's link to a pipe included;
+ * else in its checked directory, no link followed). */
 static int open_direct(hy_out *o, const struct stat *st, hy_error *err)
 {
-    int fd = open(o->final, O_WRONLY | O_NOCTTY | O_CLOEXEC);
+    int fd = o->follow ? open(o->final, O_WRONLY | O_NOCTTY | O_CLOEXEC)
+                       : openat(o->dfd, base_of(o->final), O_WRONLY | O_NOCTTY | O_CLOEXEC | O_NOFOLLOW);
     struct stat now;
     if (fd < 0)
         return fail(err, o->path, errno);
@@ -172,12 +213,18 @@ static int classify(hy_out *o, struct stat *st, hy_error *err)
         return (o->final = dupstr(o->path)) ? 0 : -fail(err, o->path, ENOMEM);
     }
     if (S_ISLNK(st->st_mode)) {
-        char *r = realpath(o->path, NULL);
+        if (stat(o->path, st))
+            return -(errno == ENOENT ? fail_msg(err, o->path, "it is a symbolic link to a missing file")
+                                     : fail(err, o->path, errno));
+        /* the user's link to a FIFO or device is opened as the shell does:
+         * /dev/stdout leads to "pipe:[N]", which no path names */
+        int direct = S_ISFIFO(st->st_mode) || S_ISCHR(st->st_mode);
+        char *r = o->follow && direct ? dupstr(o->path) : realpath(o->path, NULL);
         if (!r)
             return -(errno == ENOENT ? fail_msg(err, o->path, "it is a symbolic link to a missing file")
                                      : fail(err, o->path, errno));
         o->final = r;
-        if (stat(r, st))
+        if (!o->follow && stat(r, st))
             return -fail(err, o->path, errno);
     } else if (!(o->final = dupstr(o->path)))
         return -fail(err, o->path, ENOMEM);
@@ -190,11 +237,96 @@ static int classify(hy_out *o, struct stat *st, hy_error *err)
                                                           : "it is not a regular file, FIFO or character device");
 }
 
+/* A descriptor (O_PATH) of the directory that holds path's last component,
+ * or -1 with errno. */
+static int open_dir_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        return open(".", O_PATH | O_DIRECTORY | O_CLOEXEC);
+    if (slash == path)
+        return open("/", O_PATH | O_DIRECTORY | O_CLOEXEC);
+    char *d = malloc((size_t)(slash - path) + 1);
+    if (!d)
+        return errno = ENOMEM, -1;
+    memcpy(d, path, (size_t)(slash - path));
+    d[slash - path] = '\0';
+    int fd = open(d, O_PATH | O_DIRECTORY | O_CLOEXEC);
+    int e = errno;
+    free(d);
+    errno = e;
+    return fd;
+}
+
+/* 1 if directory dfd is root or lies below it (walking up through ".."
+ * from the descriptor: what the directory is now, not what a path said),
+ * 0 if not, -1 with errno. */
+static int dir_below(int dfd, const struct stat *root)
+{
+    int cur = openat(dfd, ".", O_PATH | O_DIRECTORY | O_CLOEXEC), rc = -1;
+    for (int depth = 0; cur >= 0 && depth < 4096; depth++) {
+        struct stat a, b;
+        if (fstat(cur, &a))
+            break;
+        if (a.st_dev == root->st_dev && a.st_ino == root->st_ino) {
+            rc = 1;
+            break;
+        }
+        int up = openat(cur, "..", O_PATH | O_DIRECTORY | O_CLOEXEC);
+        if (up < 0 || fstat(up, &b)) {
+            if (up >= 0)
+                close(up);
+            break;
+        }
+        close(cur);
+        cur = up;
+        if (a.st_dev == b.st_dev && a.st_ino == b.st_ino) { /* "/": its own parent */
+            rc = 0;
+            break;
+        }
+    }
+    if (cur >= 0)
+        close(cur);
+    return rc;
+}
+
+/* Opens o->dfd, the directory o->final goes into; unless the path is the
+ * user's own (HY_OUT_FOLLOW) it must be the directory of the path as given
+ * or below it: a link planted at the name does not lead the file out. */
+static int open_target_dir(hy_out *o, hy_error *err)
+{
+    if ((o->dfd = open_dir_of(o->final)) < 0)
+        return fail(err, o->path, errno);
+    if (o->follow || !strcmp(o->final, o->path))
+        return HY_OK;
+    struct stat root;
+    int rfd = open_dir_of(o->path);
+    int below = rfd >= 0 && !fstat(rfd, &root) ? dir_below(o->dfd, &root) : -1;
+    int e = errno;
+    if (rfd >= 0)
+        close(rfd);
+    if (below < 0)
+        return fail(err, o->path, e);
+    if (!below) {
+        char dir[256];
+        const char *slash = strrchr(o->path, '/');
+        size_t n = slash ? (size_t)(slash - o->path) + (slash == o->path) : 1;
+        snprintf(dir, sizeof dir, "%.*s", (int)(n < sizeof dir ? n : sizeof dir - 1), slash ? o->path : ".");
+        return hy_error_set(err, HY_EINVAL,
+                            "refusing to write '%s': it is a symbolic link to '%s', outside '%s'; a file whose "
+                            "name comes from a scene or an output directory is written only below that directory "
+                            "(docs/SCENES.md, \"Files a scene may read and write\")", o->path, o->final, dir);
+    }
+    return HY_OK;
+}
+
 int hy_out_open(hy_out *o, const char *path, int flags, hy_error *err)
 {
     memset(o, 0, sizeof *o);
     o->fd = -1;
+    o->dfd = -1;
     o->hold = (flags & HY_OUT_HOLD) != 0;
+    o->follow = (flags & HY_OUT_FOLLOW) != 0;
     if (!path || !*path)
         return hy_error_set(err, HY_EINVAL, "cannot write a file without a name");
     int rc = HY_OK;
@@ -206,7 +338,9 @@ int hy_out_open(hy_out *o, const char *path, int flags, hy_error *err)
     } else {
         struct stat st;
         int kind = classify(o, &st, err);
-        rc = kind < 0 ? -kind : kind ? open_direct(o, &st, err) : open_tmp(o, err);
+        rc = kind < 0 ? -kind : open_target_dir(o, err);
+        if (!rc)
+            rc = kind ? open_direct(o, &st, err) : open_tmp(o, err);
     }
     if (!rc && o->hold && o->direct && !(o->fp = open_memstream(&o->membuf, &o->memlen)))
         rc = fail(err, path, errno);
@@ -229,7 +363,7 @@ void hy_out_abort(hy_out *o)
     if (o->fp && o->fp != stdout)
         fclose(o->fp);
     if (o->tmp)
-        unlink(o->tmp);
+        unlinkat(o->dfd, base_of(o->tmp), 0);
     release(o);
 }
 
@@ -248,7 +382,7 @@ int hy_out_finish(hy_out *o, hy_error *err)
     if (e) {
         int code = fail_out(err, o, e);
         if (o->tmp)
-            unlink(o->tmp);
+            unlinkat(o->dfd, base_of(o->tmp), 0);
         release(o);
         return code;
     }
@@ -277,9 +411,11 @@ int hy_out_publish(hy_out *o, hy_error *err)
         return hy_error_set(err, HY_EINVAL, "hy_out_publish: output not finished");
     int e = 0;
     if (o->tmp) {
-        if (rename(o->tmp, o->final)) {
+        /* renameat replaces whatever the name is now, a link planted since
+         * included, and never follows it */
+        if (renameat(o->dfd, base_of(o->tmp), o->dfd, base_of(o->final))) {
             e = errno;
-            unlink(o->tmp);
+            unlinkat(o->dfd, base_of(o->tmp), 0);
         }
     } else if (o->hold && o->direct == 1) {
         if (fwrite(o->membuf, 1, o->memlen, stdout) != o->memlen || fflush(stdout))

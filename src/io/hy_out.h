@@ -11,14 +11,24 @@
  * What a target path gets:
  *   "-"                 standard output (flushed and checked, never closed).
  *   missing or regular  a temporary file in the same directory, named
- *                       ".NAME.hystviz-tmp.XXXXXX" by mkstemp (O_EXCL, never a
+ *                       ".NAME.hystviz-tmp.XXXXXX" (O_EXCL with a random suffix, never a
  *                       predictable name), mode 0666 & ~umask, flock'ed while
  *                       it is written, renamed onto the path when complete.
  *   FIFO, char device   written directly and never replaced (-o /dev/null,
  *                       /dev/stdout, a named pipe).
- *   symbolic link       followed, as the shell's '>' does: the file it names is
- *                       replaced atomically (the link stays); a link to a
- *                       missing file is refused.
+ *   symbolic link       followed only to a file in the path's own directory
+ *                       or below it (after resolving every link; the check is
+ *                       made on the open directory, and the file is created
+ *                       and renamed relative to it, so a link planted after
+ *                       the check is replaced, never followed); a link out of
+ *                       it is refused by name (HY_EINVAL).  This is the rule
+ *                       for every name that comes from a scene or an output
+ *                       directory (docs/SCENES.md).  With HY_OUT_FOLLOW (the
+ *                       user's own -o FILE) a link is followed wherever it
+ *                       leads, as the shell's '>' does: the file it names is
+ *                       replaced atomically (the link stays), a link to a
+ *                       FIFO or device (/dev/stdout into a pipe) is opened as
+ *                       it is.  A link to a missing file is refused.
  *   directory, socket,  refused with a message.
  *   block device
  *
@@ -42,7 +52,9 @@
 
 #include "hy_status.h"
 
-enum { HY_OUT_HOLD = 1 };
+/* HY_OUT_HOLD: all or nothing over several files (below).
+ * HY_OUT_FOLLOW: the path is the user's own (-o FILE): links followed anywhere. */
+enum { HY_OUT_HOLD = 1, HY_OUT_FOLLOW = 2 };
 
 typedef struct hy_out {
     char *path;   /* the path as given, for messages                      */
@@ -50,6 +62,8 @@ typedef struct hy_out {
     char *tmp;    /* the temporary file, NULL for a direct target          */
     FILE *fp;     /* what the caller writes to                             */
     int fd;       /* direct: the target; temporary: a dup holding the lock */
+    int dfd;      /* the directory final lies in (O_PATH), or -1           */
+    int follow;   /* HY_OUT_FOLLOW                                         */
     int direct;   /* 0 temporary + rename, 1 standard output, 2 device/FIFO */
     int hold;     /* a direct target's bytes are held in membuf            */
     char *membuf;
@@ -57,7 +71,7 @@ typedef struct hy_out {
     int state;    /* 0 unused, 1 open, 2 finished, 3 done                  */
 } hy_out;
 
-/* Opens an output for path (see above); flags: 0 or HY_OUT_HOLD.
+/* Opens an output for path (see above); flags: 0, HY_OUT_HOLD, HY_OUT_FOLLOW.
  * On failure o needs no cleanup. */
 int hy_out_open(hy_out *o, const char *path, int flags, hy_error *err);
 

@@ -118,6 +118,46 @@ sh -c 'ln -s "$1" "$2.tmp.$$" && exec "$3" loop --input "$4" -o "$2"' sh "$tmp/v
     bad "the planted PATH.tmp.PID symlink was followed: victim now $(head -c 40 "$tmp/victim")"
 rm -f "$tmp"/plant.csv.tmp.*
 
+# issue 20 item 1: a file whose name comes from a scene or an output directory
+# is written only below that directory; a symbolic link planted at the
+# figure's name (a stranger's scene tree) must not lead the file out
+mkdir -p "$tmp/pr/scenes" "$tmp/pr/victim" "$tmp/pr/gallery"
+echo 'victim data' > "$tmp/pr/victim/bashrc"
+printf '[model]\nkind = lugre\n[input]\nkind = bimodal\n[compute]\npoints = 50\n[series ystar]\ndata = ystar\n[output]\nformats = svg\n' \
+    > "$tmp/pr/scenes/evil.scene"
+ln -s ../victim/bashrc "$tmp/pr/scenes/evil.svg"
+ln -s ../victim/bashrc "$tmp/pr/gallery/evil.svg"
+run render "$tmp/pr/scenes/evil.scene"
+[ $st -eq 2 ] && has "refusing to write '$tmp/pr/scenes/evil.svg'" && [ "$(cat "$tmp/pr/victim/bashrc")" = 'victim data' ] &&
+    [ -L "$tmp/pr/scenes/evil.svg" ] && [ "$(tmps "$tmp/pr")" -eq 0 ] && ok ||
+    bad "render followed a planted link out of the scene's directory: status $st, victim $(head -c 40 "$tmp/pr/victim/bashrc"), $(cat "$tmp/e")"
+run render "$tmp/pr/scenes/evil.scene" -o "$tmp/pr/gallery"
+[ $st -eq 2 ] && has "refusing to write" && [ "$(cat "$tmp/pr/victim/bashrc")" = 'victim data' ] && ok ||
+    bad "render -o DIR followed a planted link out of DIR: status $st, $(cat "$tmp/e")"
+run gallery --scenes "$tmp/pr/scenes" -o "$tmp/pr/gallery" -j 1 -q
+[ $st -ne 0 ] && has "refusing to write" && [ "$(cat "$tmp/pr/victim/bashrc")" = 'victim data' ] && ok ||
+    bad "gallery followed a planted link out of its directory: status $st, $(cat "$tmp/e")"
+# a link that stays below the directory is followed (its file replaced, the link kept)
+rm "$tmp/pr/scenes/evil.svg"
+echo old > "$tmp/pr/scenes/kept.svg"
+ln -s kept.svg "$tmp/pr/scenes/evil.svg"
+run render "$tmp/pr/scenes/evil.scene"
+[ $st -eq 0 ] && [ -L "$tmp/pr/scenes/evil.svg" ] && grep -q '<svg' "$tmp/pr/scenes/kept.svg" && ok ||
+    bad "a link inside the scene's directory: status $st, $(cat "$tmp/e")"
+# the user's own -o FILE keeps the shell's '>' semantics: followed anywhere
+ln -s ../victim/out.csv "$tmp/pr/scenes/mine.csv"
+echo old > "$tmp/pr/victim/out.csv"
+run data "$tmp/pr/scenes/evil.scene" -o "$tmp/pr/scenes/mine.csv"
+[ $st -eq 0 ] && head -n 1 "$tmp/pr/victim/out.csv" | grep -q '^series,x,y' && ok ||
+    bad "data -o LINK (the user's own file) was not followed: status $st, $(cat "$tmp/e")"
+# issue 20 item 11: -o /dev/stdout into a pipe (a link to "pipe:[N]")
+if [ -e /dev/stdout ]; then
+    "$hv" data "$tmp/pr/scenes/evil.scene" -o /dev/stdout 2> "$tmp/e" | head -n 1 > "$tmp/o"
+    grep -q '^series,x,y' "$tmp/o" && ok || bad "data -o /dev/stdout into a pipe: $(cat "$tmp/e")"
+    "$hv" loop --input "$loop_in" -o /dev/stdout 2> "$tmp/e" | cat > "$tmp/o"
+    cmp -s "$tmp/o" "$tmp/want.csv" && ok || bad "loop -o /dev/stdout into a pipe: $(cat "$tmp/e")"
+fi
+
 # modes come from the umask, for every command
 mode() { stat -c %a "$1"; }
 rm -rf "$tmp/m" && mkdir "$tmp/m"

@@ -147,6 +147,53 @@ static void test_failures(void)
     CHECK(hy_out_publish(&o, &err) == HY_EIO && strstr(err.msg, "gone/x.csv"), "%s", err.msg);
 }
 
+/* issue 20 item 1: a name's link is followed only below the name's own
+ * directory; HY_OUT_FOLLOW (the user's -o FILE) follows it anywhere. */
+static void test_links(void)
+{
+    hy_out o;
+    hy_error err = {0};
+    mkdir("tree", 0755);
+    mkdir("tree/sub", 0755);
+    mkdir("outside", 0755);
+    FILE *f = fopen("outside/victim", "w");
+    if (f)
+        fputs("victim\n", f), fclose(f);
+    CHECK(!symlink("../outside/victim", "tree/evil.svg") && !symlink("../../outside", "tree/sub/up"),
+          "symlink: %s", strerror(errno));
+    CHECK(hy_out_open(&o, "tree/evil.svg", 0, &err) == HY_EINVAL && strstr(err.msg, "refusing to write 'tree/evil.svg'") &&
+              strstr(err.msg, "outside 'tree'"), "a link out of the directory: %s", err.msg);
+    CHECK(!strcmp(slurp("outside/victim"), "victim\n") && entries("outside") == 1 && entries("tree") == 2,
+          "the refused open touched a file");
+    /* a link through a directory link out of the tree, too */
+    CHECK(!symlink("sub/up/victim", "tree/evil2.svg"), "symlink");
+    CHECK(hy_out_open(&o, "tree/evil2.svg", HY_OUT_HOLD, &err) == HY_EINVAL, "a link via a directory link out: %s",
+          err.msg);
+    /* a link that stays below: its file replaced, the link kept */
+    CHECK(!symlink("sub/in.svg", "tree/ok.svg"), "symlink");
+    f = fopen("tree/sub/in.svg", "w");
+    if (f)
+        fputs("old\n", f), fclose(f);
+    CHECK(!hy_out_open(&o, "tree/ok.svg", 0, &err), "a link below: %s", err.msg);
+    fputs("new\n", hy_out_file(&o));
+    CHECK(!hy_out_commit(&o, &err), "%s", err.msg);
+    struct stat st;
+    CHECK(!strcmp(slurp("tree/sub/in.svg"), "new\n") && !lstat("tree/ok.svg", &st) && S_ISLNK(st.st_mode),
+          "a link below was not followed");
+    /* the user's own file follows the link out */
+    CHECK(!hy_out_open(&o, "tree/evil.svg", HY_OUT_FOLLOW, &err), "HY_OUT_FOLLOW: %s", err.msg);
+    fputs("mine\n", hy_out_file(&o));
+    CHECK(!hy_out_commit(&o, &err) && !strcmp(slurp("outside/victim"), "mine\n"), "HY_OUT_FOLLOW: %s", err.msg);
+    /* a link swapped in after open is replaced by the rename, never followed */
+    unlink("tree/sub/in.svg");
+    CHECK(!hy_out_open(&o, "tree/sub/in.svg", 0, &err), "%s", err.msg);
+    CHECK(!symlink("../../outside/victim", "tree/sub/in.svg"), "symlink");
+    fputs("late\n", hy_out_file(&o));
+    CHECK(!hy_out_commit(&o, &err), "%s", err.msg);
+    CHECK(!strcmp(slurp("outside/victim"), "mine\n") && !lstat("tree/sub/in.svg", &st) && S_ISREG(st.st_mode),
+          "a link planted after the check was followed");
+}
+
 int main(void)
 {
     umask(027); /* before the first open: the writer reads the umask once */
@@ -159,6 +206,7 @@ int main(void)
     test_hold_stdout();
     test_sweep();
     test_failures();
+    test_links();
     printf("%s\n", fails ? "FAILED" : "ok");
     return fails ? 1 : 0;
 }
