@@ -26,9 +26,15 @@
 #include "sweep_merge.h"
 #include "sweep_plot.h"
 
+/* Errors are measured at points i with i mod VERIFY_EVERY = 0 (--verify: all). */
+#define VERIFY_EVERY 1000
+#define STR_(x) #x
+#define STR(x) STR_(x)
+
 static const char sweep_help[] =
     "usage: hystviz sweep SCENE --grid SECTION.KEY=SPEC... [-o DIR] [-j N] [--shard K/N]\n"
-    "                     [--formats LIST|none] [--set SECTION.KEY=VALUE]... [--times] [--plot COLUMN] [-q]\n"
+    "                     [--formats LIST|none] [--set SECTION.KEY=VALUE]... [--verify] [--times]\n"
+    "                     [--plot COLUMN] [-q]\n"
     "       hystviz sweep --merge DIR [--plot COLUMN]\n"
     "\n"
     "A parameter study: the scene is rendered at every point of the grid, the\n"
@@ -44,10 +50,15 @@ static const char sweep_help[] =
     "failed: computing or writing failed), name, one column per grid key, [compute_s],\n"
     "ysteady_min, ysteady_max (y° extremes), nminor, major_area, minor1_area,\n"
     "minor_areas (every minor loop's ∮ y du, ';'-separated), energy (∮ y° du over a\n"
-    "period), SERIES.err (error against the exact answer) for every series,\n"
+    "period), err_measured_1_in_K (1 where the errors were measured, else 0),\n"
+    "SERIES.err (error against the exact answer) for every series,\n"
     "SERIES.dist (max |y_γ - y*_u|) for every ygamma/transient series, message.\n"
-    "A GSL solve's error is measured against the exact solution where one exists\n"
-    "(piecewise-linear inputs), as render -v does.\n"
+    "Errors are measured, as render -v measures them (closed forms against\n"
+    "long-double references, a GSL solve against the exact solution where one\n"
+    "exists), on a sample: the points whose index is a multiple of K = "
+    STR(VERIFY_EVERY) ", or\n"
+    "every point (K = 1) with --verify; elsewhere SERIES.err is empty, and with\n"
+    "--formats none no curve is sampled there: only the table's scalars are computed.\n"
     "Empty: not computed by this scene.  Numbers are %.17g.\n"
     "\n"
     "  --grid K=SPEC      a grid axis (repeatable)\n"
@@ -66,6 +77,7 @@ static const char sweep_help[] =
     "                     from), besides the scene's own (repeatable)\n"
     "  --max-work N       the work budget of each point, as render's (default 1e8;\n"
     "                     docs/SCENES.md); a point over it is an invalid row\n"
+    "  --verify           measure the errors at every point (default: 1 in " STR(VERIFY_EVERY) ")\n"
     "  --times            add compute_s (compute time of the point, seconds); the\n"
     "                     table is then no longer byte-stable between runs\n"
     "  -q, --quiet        print only errors\n"
@@ -82,6 +94,7 @@ typedef struct sweep_opts {
     hy_scene_policy pol;   /* --include-dir, --max-work: as render's, per point */
     const char **dirs;
     long jobs, shard_k, shard_n;
+    long verify_every;     /* errors measured at points i with i mod this = 0 */
     int sharded, times, quiet, figures;
 } sweep_opts;
 
@@ -131,6 +144,7 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
     hy_grid_init(&o->grid);
     o->out = "sweep";
     o->figures = 1;
+    o->verify_every = VERIFY_EVERY;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     o->jobs = ncpu > 0 ? ncpu : 1;
     o->pol = hy_scene_policy_default();
@@ -181,6 +195,8 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
             o->plot = argv[++i];
         else if (!strcmp(a, "--times"))
             o->times = 1;
+        else if (!strcmp(a, "--verify"))
+            o->verify_every = 1;
         else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
             o->quiet = 1;
         else if (a[0] == '-' || o->scene) {
@@ -298,6 +314,7 @@ static void write_header(const study *s, FILE *f)
     if (s->o->times)
         fputs(",compute_s", f);
     fputs(",ysteady_min,ysteady_max,nminor,major_area,minor1_area,minor_areas,energy", f);
+    fprintf(f, ",err_measured_1_in_%ld", s->o->verify_every);
     for (size_t k = 0; k < s->nseries; k++) {
         fputc(',', f);
         char col[300];
@@ -356,6 +373,10 @@ static void write_row(const study *s, FILE *f, size_t i, const char *name, const
     for (size_t k = 0; L && k < L->nminor; k++)
         fprintf(f, "%s%.17g", k ? ";" : "", L->minor[k].area);
     csv_num(f, L ? L->area_period : NAN);
+    if (ok)
+        fputs(i % (size_t)s->o->verify_every ? ",0" : ",1", f);
+    else
+        fputc(',', f);
     for (size_t k = 0; k < s->nseries; k++) {
         const hy_run_series *se = ok ? find_series(r, s->series[k]) : NULL;
         csv_num(f, se && se->err_ref ? se->err : NAN);
@@ -373,12 +394,34 @@ static void write_row(const study *s, FILE *f, size_t i, const char *name, const
 /* ---- one point -------------------------------------------------------- */
 
 typedef struct point_buf {
-    char **sets;      /* the user's sets, then KEY=VALUE per axis, then output.name */
+    char **sets;      /* KEY=VALUE per axis, then output.name */
     char *text;       /* the KEY=VALUE texts */
     size_t text_size;
-    FILE *log;        /* /dev/null: given to compute so that it measures every
-                       * error it can (a GSL solve against the exact solution) */
+    FILE *log;        /* /dev/null: given to compute at the points whose errors
+                       * are measured, so that it measures every error it can
+                       * (a GSL solve against the exact solution) */
+    hy_scene *scene;  /* the worker's scene, parsed once with the user's --set
+                       * applied and marked: each point restores it to that
+                       * and applies its own overrides (hy_scene_mark) */
+    int scene_rc;     /* parsing it failed: every point reports scene_err */
+    hy_error scene_err;
+    FILE *rowf;       /* a memory stream the rows are formatted in, reused */
+    char *rowbuf;
+    size_t rowlen;
 } point_buf;
+
+/* The worker's scene: parsed under the policy, the user's --set applied,
+ * marked.  On failure pb->scene_rc and scene_err say why. */
+static void worker_scene(const sweep_opts *o, point_buf *pb)
+{
+    pb->scene = NULL;
+    pb->scene_err = (hy_error){0};
+    pb->scene_rc = hy_scene_parse_file_policy(o->scene, &o->pol, &pb->scene, &pb->scene_err);
+    for (size_t k = 0; !pb->scene_rc && k < o->nsets; k++)
+        pb->scene_rc = hy_scene_set(pb->scene, o->sets[k], &pb->scene_err);
+    if (!pb->scene_rc)
+        pb->scene_rc = hy_scene_mark(pb->scene);
+}
 
 /* Loads, computes and writes point i; returns its row (malloc'ed) and counts
  * its status into *kind (0 ok, 1 invalid, 2 failed). */
@@ -388,7 +431,7 @@ static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
     const hy_grid *g = &o->grid;
     char name[256];
     point_name(s, i, name, sizeof name);
-    size_t used = 0, nsets = o->nsets;
+    size_t used = 0, nsets = 0;
     for (size_t a = 0; a < g->naxes; a++) {
         pb->sets[nsets++] = pb->text + used;
         used += (size_t)snprintf(pb->text + used, pb->text_size - used, "%s=%s", g->axes[a].key, hy_grid_value(g, i, a)) + 1;
@@ -398,29 +441,37 @@ static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
         snprintf(pb->text + used, pb->text_size - used, "output.name=\"%s\"", name);
     }
     hy_scene_run r;
-    hy_error err = {0};
-    err.msg[0] = '\0';
-    int loaded = 0, rc = hy_scene_run_load_policy(&r, o->scene, pb->sets, nsets, &o->pol, &err);
+    hy_error err = pb->scene_err;
+    int loaded = 0, rc = pb->scene_rc, measured = i % (size_t)o->verify_every == 0;
+    if (!rc) { /* the parsed scene as the file + the user's --set, then this point's overrides */
+        hy_scene_restore(pb->scene);
+        for (size_t k = 0; k < nsets && !rc; k++)
+            rc = hy_scene_set(pb->scene, pb->sets[k], &err);
+    }
+    if (!rc)
+        rc = hy_scene_run_load_scene(&r, pb->scene, o->scene, hy_scene_policy_budget(&o->pol), &err);
     if (!rc) {
         loaded = 1;
         r.numbers_only = !o->figures;
+        r.no_verify = !measured;
         if (o->figures) /* formats and raster limits, before computing */
             rc = hy_scene_run_check_output(&r, o->formats, &err);
         if (!rc)
-            rc = hy_scene_run_compute(&r, pb->log, &err);
+            rc = hy_scene_run_compute(&r, measured ? pb->log : NULL, &err);
     }
     if (!rc && o->figures)
         rc = hy_scene_run_write(&r, o->out, o->formats, NULL, 0, &err);
     *kind = !rc ? 0 : err.code == HY_EINVAL ? 1 : 2;
     char *row = NULL;
-    size_t len = 0;
-    FILE *f = open_memstream(&row, &len);
-    if (f) {
+    FILE *f = pb->rowf;
+    if (f) { /* formatted in the worker's stream, then copied out */
+        rewind(f);
         write_row(s, f, i, name, loaded && !rc ? &r : NULL, *kind == 0 ? "ok" : *kind == 1 ? "invalid" : "failed",
                   rc ? err.msg : "");
-        if (fclose(f)) {
-            free(row);
-            row = NULL;
+        long n = fflush(f) || ferror(f) ? -1 : ftell(f);
+        if (n >= 0 && (row = malloc((size_t)n + 1))) {
+            memcpy(row, pb->rowbuf, (size_t)n);
+            row[n] = '\0';
         }
     }
     if (loaded)
@@ -444,7 +495,7 @@ static void *worker(void *arg)
     study *s = arg;
     const sweep_opts *o = s->o;
     point_buf pb;
-    pb.sets = calloc(o->nsets + o->grid.naxes + 1, sizeof *pb.sets);
+    pb.sets = calloc(o->grid.naxes + 1, sizeof *pb.sets);
     pb.text_size = 512;
     for (size_t a = 0; a < o->grid.naxes; a++)
         pb.text_size += strlen(o->grid.axes[a].key) + 64;
@@ -458,8 +509,9 @@ static void *worker(void *arg)
     }
     pb.text = malloc(pb.text_size);
     pb.log = fopen("/dev/null", "w");
-    if (pb.sets)
-        memcpy(pb.sets, o->sets, o->nsets * sizeof *pb.sets);
+    pb.rowbuf = NULL;
+    pb.rowf = open_memstream(&pb.rowbuf, &pb.rowlen);
+    worker_scene(o, &pb);
     pthread_mutex_lock(&s->mu);
     if (!pb.sets || !pb.text)
         s->io_error = 1;
@@ -492,6 +544,10 @@ static void *worker(void *arg)
     pthread_mutex_unlock(&s->mu);
     free(pb.sets);
     free(pb.text);
+    hy_scene_free(pb.scene);
+    if (pb.rowf)
+        fclose(pb.rowf);
+    free(pb.rowbuf);
     if (pb.log)
         fclose(pb.log);
     return NULL;
@@ -579,6 +635,8 @@ static int check_study(study *s, uint64_t *hash)
     snprintf(num, sizeof num, "%016" PRIx64, hy_scene_hash(base));
     h = fnv(fnv(fnv(h, "hystviz sweep 1"), HY_VERSION), num);
     h = fnv(fnv(h, o->figures ? (o->formats ? o->formats : "scene formats") : "none"), o->times ? "times" : "");
+    snprintf(num, sizeof num, "verify %ld", o->verify_every); /* which rows hold errors */
+    h = fnv(h, num);
     snprintf(num, sizeof num, "%.17g", hy_scene_policy_budget(&o->pol)); /* it decides which points are refused */
     h = fnv(h, num);
     int rc = 0;

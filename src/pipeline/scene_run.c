@@ -159,6 +159,8 @@ static int build_input(hy_scene_run *r, hy_error *err)
     return HY_OK;
 }
 
+static int build_run(hy_scene_run *r, hy_error *err);
+
 int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err)
 {
     return hy_scene_run_load_policy(r, path, sets, nsets, NULL, err);
@@ -173,15 +175,33 @@ int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *set
     int rc = hy_scene_parse_file_policy(path, pol, &r->scene, err);
     for (size_t i = 0; !rc && i < nsets; i++)
         rc = hy_scene_set(r->scene, sets[i], err);
-    if (!rc) {
-        int idx = 0;
-        const char *t;
-        hy_scene_get_enum(r->scene, "figure", NULL, "kind", &idx, &t);
-        r->figure_kind = idx;
-        rc = hy_scene_boucwen_load(r, err);
-        if (!rc && !hy_scene_is_boucwen(r->scene))
-            rc = build_model(r, err);
-    }
+    if (!rc)
+        rc = build_run(r, err);
+    else
+        hy_scene_run_free(r);
+    return rc;
+}
+
+int hy_scene_run_load_scene(hy_scene_run *r, hy_scene *scene, const char *path, double budget, hy_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->path = path;
+    r->budget = budget;
+    r->scene = scene;
+    r->scene_borrowed = 1;
+    return build_run(r, err);
+}
+
+/* The model and input of the parsed scene r->scene; r freed on error. */
+static int build_run(hy_scene_run *r, hy_error *err)
+{
+    int idx = 0;
+    const char *t;
+    hy_scene_get_enum(r->scene, "figure", NULL, "kind", &idx, &t);
+    r->figure_kind = idx;
+    int rc = hy_scene_boucwen_load(r, err);
+    if (!rc && !hy_scene_is_boucwen(r->scene))
+        rc = build_model(r, err);
     if (!rc && !hy_scene_is_boucwen(r->scene))
         rc = build_input(r, err);
     if (rc)
@@ -202,7 +222,8 @@ void hy_scene_run_free(hy_scene_run *r)
         hy_steady_free(&r->steady);
     if (r->have_input)
         hy_input_free(&r->input);
-    hy_scene_free(r->scene);
+    if (!r->scene_borrowed)
+        hy_scene_free(r->scene);
     memset(r, 0, sizeof *r);
 }
 
@@ -229,9 +250,13 @@ typedef struct plan {
     int verbose;
 } plan;
 
-static void plan_line(hy_scene_run *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void plan_line(hy_scene_run *r, const char *fmt, ...)
+/* Appends a line to r->plan when the plan is logged (p->verbose): the
+ * formatting is a good part of a table-only sweep point's time. */
+static void plan_line(const plan *p, hy_scene_run *r, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void plan_line(const plan *p, hy_scene_run *r, const char *fmt, ...)
 {
+    if (!p->verbose)
+        return;
     size_t len = strlen(r->plan);
     va_list ap;
     va_start(ap, fmt);
@@ -269,10 +294,11 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
         rc = hy_gamma_exact(&r->model, &r->input, g->gamma, p->t, p->npts, g->y, NULL, err);
         g->seconds = now() - t0;
         g->exact = 1;
-        if (!rc) { /* measured against a long-double evaluation coded apart */
+        if (!rc && !r->no_verify) /* measured against a long-double evaluation coded apart */
             hy_verify_gamma(r, g->gamma, p->t, g->y, p->npts, &g->err, g->refbuf, sizeof g->refbuf);
-            g->ref = g->refbuf;
-        }
+        else if (!rc)
+            snprintf(g->refbuf, sizeof g->refbuf, "%s", HY_NOT_SAMPLED);
+        g->ref = g->refbuf;
         return rc;
     } else {
         hy_ode_opts o = hy_ode_defaults();
@@ -280,7 +306,7 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
         o.rtol = num(s, "compute", NULL, "rtol", 1e-8);
         o.atol = num(s, "compute", NULL, "atol", 1e-10);
         rc = hy_ode_solve(&r->model, &r->input, g->gamma, &o, p->t, p->npts, g->y, NULL, err);
-        if (!rc && exact_ok && p->verbose) { /* the error, measured only when asked */
+        if (!rc && exact_ok && p->verbose && !r->no_verify) { /* the error, measured only when asked */
             double *ye = malloc(p->npts * sizeof *ye);
             if (ye && !hy_gamma_exact(&r->model, &r->input, g->gamma, p->t, p->npts, ye, NULL, err)) {
                 g->err = 0;
@@ -289,7 +315,8 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
                 g->ref = "exact piecewise-exponential solution";
             }
             free(ye);
-        }
+        } else if (!rc && exact_ok && p->verbose)
+            g->ref = HY_NOT_SAMPLED;
         if (rc)
             return hy_scene_error_at(s, "compute", NULL, "solver", err, rc, "gamma = %g: %s", g->gamma, err->msg);
     }
@@ -332,14 +359,11 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
                                  "%g points per period over %g periods is more than 2e7 points", (double)pts, periods);
     p->npts = (size_t)np + 1;
     p->per_period = (size_t)pts;
-    p->t = malloc(p->npts * sizeof *p->t);
     size_t ns = hy_scene_count(s, "series");
     p->solves = calloc(ns ? ns : 1, sizeof *p->solves);
-    if (!p->t || !p->solves)
-        return hy_error_set(err, HY_ENOMEM, "out of memory for %zu points", p->npts);
-    for (size_t i = 0; i < p->npts; i++)
-        p->t[i] = p->t0 + (p->t1 - p->t0) * (double)i / (double)(p->npts - 1);
-    int need_steady = 0, need_loops = 0;
+    if (!p->solves)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    int need_steady = 0, need_loops = 0, need_grid = !(r->numbers_only && r->no_verify);
     for (size_t i = 0; i < ns; i++) {
         const char *name = hy_scene_name_at(s, "series", i);
         int d = -1;
@@ -361,6 +385,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
                                          name, data_names[d]);
             if (!find_solve(p, g))
                 p->solves[p->nsolves++].gamma = g;
+            need_grid = 1;
         }
         if (d == HY_DATA_YK) {
             long k;
@@ -374,6 +399,12 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
             hy_scene_text_has_placeholder(text))
             need_steady = need_loops = 1;
     }
+    if (need_grid) { /* the time grid (the table-only path outside the error sample samples no curve) */
+        if (!(p->t = malloc(p->npts * sizeof *p->t)))
+            return hy_error_set(err, HY_ENOMEM, "out of memory for %zu points", p->npts);
+        for (size_t i = 0; i < p->npts; i++)
+            p->t[i] = p->t0 + (p->t1 - p->t0) * (double)i / (double)(p->npts - 1);
+    }
     if (need_steady) {
         double t0 = now();
         static const char *const mkeys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
@@ -381,7 +412,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         if (rc)
             return located(s, "model", mkeys, err); /* at the key the message names, else at [model] */
         r->have_steady = 1;
-        plan_line(r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
+        plan_line(p, r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
     }
     if (need_loops) {
         double t0 = now();
@@ -389,7 +420,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         if (rc)
             return rc;
         r->have_loops = 1;
-        plan_line(r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (now() - t0));
+        plan_line(p, r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (now() - t0));
     }
     for (size_t i = 0; i < p->nsolves; i++) {
         int rc = solve_gamma(r, p, &p->solves[i], err);
@@ -398,10 +429,10 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         char what[160];
         snprintf(what, sizeof what, " for gamma = %g over %zu points%s", p->solves[i].gamma, p->npts,
                  p->solves[i].exact ? " (exact)" : "");
-        plan_line(r, "y_gamma solve: %.3f ms%s\n", 1e3 * p->solves[i].seconds, what);
+        plan_line(p, r, "y_gamma solve: %.3f ms%s\n", 1e3 * p->solves[i].seconds, what);
     }
     if (!need_steady && !p->nsolves)
-        plan_line(r, "analytic only: no steady state, no ODE solve\n");
+        plan_line(p, r, "analytic only: no steady state, no ODE solve\n");
     return HY_OK;
 }
 
@@ -566,6 +597,14 @@ static void copy_err(hy_run_series *se, const gamma_solve *g)
     }
 }
 
+/* The error of a series computed with no_verify: not measured, and said so. */
+static void not_sampled(hy_run_series *se)
+{
+    se->err = NAN;
+    snprintf(se->err_note, sizeof se->err_note, "%s", HY_NOT_SAMPLED);
+    se->err_ref = se->err_note;
+}
+
 static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error *err)
 {
     const hy_scene *s = r->scene;
@@ -580,7 +619,18 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
        their error is measured (issue 11) and the same as with figures */
     if (r->numbers_only && (se->data == HY_DATA_INPUT || se->data == HY_DATA_PSI || se->data == HY_DATA_G))
         return HY_OK;
-    if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
+    /* numbers only, errors not measured: the closed forms are not sampled
+       either (the table holds none of their points), markers are evaluated at
+       their point only */
+    int closed = se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR || se->data == HY_DATA_YSTEADY ||
+                 se->data == HY_DATA_YK || se->data == HY_DATA_YSTAR;
+    if (closed && r->numbers_only && r->no_verify) {
+        double a[64], b[64];
+        if ((se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) &&
+            loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64) < 0)
+            return too_narrow(r, err); /* refused as when sampled */
+        not_sampled(se);
+    } else if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
         double a[64], b[64];
         int k = loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64);
         if (k < 0)
@@ -597,7 +647,10 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
             off += per + 1;
         }
         se->n = total;
-        hy_verify_loops(r, se, a, b, k, per);
+        if (r->no_verify)
+            not_sampled(se);
+        else
+            hy_verify_loops(r, se, a, b, k, per);
     } else if (se->data == HY_DATA_G) {
         double lim[2];
         int is_auto = 1;
@@ -618,7 +671,10 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         sample(r, p, se, 0, per + 1, 0, T);
         se->y[per] = se->data == HY_DATA_YSTEADY ? r->steady.y_run[r->input.nruns]
                                                  : hy_ystar_k(&r->steady, r->model.x0, (double)se->k, T);
-        hy_verify_time(r, se, NULL, per + 1);
+        if (r->no_verify)
+            not_sampled(se);
+        else
+            hy_verify_time(r, se, NULL, per + 1);
     } else if ((se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) && r->figure_kind == FIG_LOOP) {
         /* loop figures: the last period is the steady state at this γ, the rest the transient */
         gamma_solve *g = find_solve(p, se->gamma);
@@ -659,7 +715,9 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
             se->x[i] = series_x(r, se, p->t[i]);
             se->y[i] = series_y(r, p, se, p->t[i]);
         }
-        if (se->data == HY_DATA_YSTAR)
+        if (se->data == HY_DATA_YSTAR && r->no_verify)
+            not_sampled(se);
+        else if (se->data == HY_DATA_YSTAR)
             hy_verify_time(r, se, p->t, p->npts);
     }
     double at;
@@ -771,12 +829,14 @@ int hy_scene_run_over_budget(const hy_scene *s, double work, double budget, cons
 int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
     char what[200];
-    int erc = hy_scene_run_estimate(r, &r->work, what, sizeof what, err);
+    int erc = hy_scene_run_estimate(r, &r->work, NULL, 0, err);
     if (erc)
         return erc;
     double budget = r->budget > 0 ? r->budget : HY_SCENE_WORK_DEFAULT;
-    if (r->work > budget)
+    if (r->work > budget) { /* the breakdown only for the message */
+        hy_scene_run_estimate(r, &r->work, what, sizeof what, err);
         return hy_scene_run_over_budget(r->scene, r->work, budget, what, err);
+    }
     if (hy_scene_is_boucwen(r->scene))
         return hy_scene_boucwen_compute(r, log, err);
     double t_start = now();

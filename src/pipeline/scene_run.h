@@ -45,6 +45,9 @@ typedef struct hy_run_series {
     double mark_x, mark_y;
 } hy_run_series;
 
+/* err_ref of a series whose error was not measured because of no_verify. */
+#define HY_NOT_SAMPLED "not measured: the run was asked for no error measurement (outside hystviz sweep's sample)"
+
 typedef struct hy_scene_run {
     hy_scene *scene;
     const char *path;
@@ -65,6 +68,13 @@ typedef struct hy_scene_run {
                                * (n = 0; the table-only path of hystviz sweep);
                                * the closed forms are, so their measured error
                                * is the same as with figures (issue 11)          */
+    int no_verify;            /* set before compute: closed-form series and exact
+                               * y_γ solves are not measured against the
+                               * long-double references (err NaN, err_ref "not
+                               * measured: ..."); with numbers_only the
+                               * closed-form series are then not sampled at all
+                               * (hystviz sweep's points outside the sample)    */
+    int scene_borrowed;       /* scene belongs to the caller (not freed)          */
     double seconds_compute;
 } hy_scene_run;
 
@@ -75,6 +85,12 @@ int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size
 /* As hy_scene_run_load under pol (include dirs, work budget; NULL: defaults). */
 int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *sets, size_t nsets,
                              const hy_scene_policy *pol, hy_error *err);
+
+/* As hy_scene_run_load on a scene the caller parsed and overrode: r->scene
+ * is scene, which r does not free (the caller keeps it alive while r lives,
+ * and unchanged); budget as hy_scene_policy_budget gives it.  On error r is
+ * freed (not the scene). */
+int hy_scene_run_load_scene(hy_scene_run *r, hy_scene *scene, const char *path, double budget, hy_error *err);
 
 /* The work the scene asks for, before computing: for Dahl/LuGre scenes the
  * grid points of every distinct gamma solve plus the points of every series;

@@ -95,6 +95,9 @@ void hy_scene_free(hy_scene *s)
     for (size_t i = 0; i < s->nincdirs; i++)
         free(s->incdirs[i]);
     free(s->incdirs);
+    for (size_t i = 0; i < s->nundo; i++)
+        hy__value_clear(&s->undo[i].old.v);
+    free(s->undo);
     if (s->defaults && s->defoff) {
         for (size_t i = 0; i < nsec; i++)
             for (size_t j = 0; j < spec[i].nkeys; j++)
@@ -247,13 +250,15 @@ const char *hy_scene_source(const hy_scene *s)
 /* Finds the value of section/name/key if its kind is one of kinds (bitmask of
  * 1u << kind); returns SET, DEFAULT, ABSENT or BADKEY. */
 static int lookup(const hy_scene *s, const char *section, const char *name, const char *key,
-                  unsigned kinds, const hy__value **v, const hy__slot **slot)
+                  unsigned kinds, const hy__value **v, const hy__slot **slot, const hy_scene_key_spec **ks)
 {
     int sec = hy_scene_schema_section(section);
     int k = hy_scene_schema_key(sec, key);
     if (k < 0)
         return HY_SCENE_BADKEY;
     const hy_scene_section_spec *spec = hy_scene_schema(NULL) + sec;
+    if (ks)
+        *ks = &spec->keys[k];
     if (!(kinds & (1u << spec->keys[k].kind)) || (spec->takes_name != (name != NULL)))
         return HY_SCENE_BADKEY;
     const hy__section *x = hy__scene_find(s, sec, name);
@@ -275,7 +280,7 @@ int hy_scene_get_num(const hy_scene *s, const char *section, const char *name,
                      const char *key, double *out)
 {
     const hy__value *v;
-    int rc = lookup(s, section, name, key, BIT(HY_KIND_NUMBER) | BIT(HY_KIND_INTEGER), &v, NULL);
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_NUMBER) | BIT(HY_KIND_INTEGER), &v, NULL, NULL);
     if (rc >= 0)
         *out = v->num;
     return rc;
@@ -285,7 +290,7 @@ int hy_scene_get_int(const hy_scene *s, const char *section, const char *name,
                      const char *key, long *out)
 {
     const hy__value *v;
-    int rc = lookup(s, section, name, key, BIT(HY_KIND_INTEGER), &v, NULL);
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_INTEGER), &v, NULL, NULL);
     if (rc >= 0)
         *out = v->ival;
     return rc;
@@ -295,7 +300,7 @@ int hy_scene_get_bool(const hy_scene *s, const char *section, const char *name,
                       const char *key, int *out)
 {
     const hy__value *v;
-    int rc = lookup(s, section, name, key, BIT(HY_KIND_BOOL), &v, NULL);
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_BOOL), &v, NULL, NULL);
     if (rc >= 0)
         *out = (int)v->ival;
     return rc;
@@ -305,10 +310,9 @@ int hy_scene_get_enum(const hy_scene *s, const char *section, const char *name,
                       const char *key, int *index, const char **text)
 {
     const hy__value *v;
-    int rc = lookup(s, section, name, key, BIT(HY_KIND_ENUM), &v, NULL);
+    const hy_scene_key_spec *k;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_ENUM), &v, NULL, &k);
     if (rc >= 0) {
-        int sec = hy_scene_schema_section(section);
-        const hy_scene_key_spec *k = &hy_scene_schema(NULL)[sec].keys[hy_scene_schema_key(sec, key)];
         if (index)
             *index = (int)v->ival;
         if (text)
@@ -322,7 +326,7 @@ int hy_scene_get_str(const hy_scene *s, const char *section, const char *name,
 {
     const hy__value *v;
     int rc = lookup(s, section, name, key,
-                    BIT(HY_KIND_STRING) | BIT(HY_KIND_NAME) | BIT(HY_KIND_PATH), &v, NULL);
+                    BIT(HY_KIND_STRING) | BIT(HY_KIND_NAME) | BIT(HY_KIND_PATH), &v, NULL, NULL);
     if (rc >= 0)
         *out = v->str;
     return rc;
@@ -333,7 +337,7 @@ int hy_scene_get_list(const hy_scene *s, const char *section, const char *name,
 {
     const hy__value *v;
     int rc = lookup(s, section, name, key,
-                    BIT(HY_KIND_NUMBER_LIST) | BIT(HY_KIND_INTEGER_LIST), &v, NULL);
+                    BIT(HY_KIND_NUMBER_LIST) | BIT(HY_KIND_INTEGER_LIST), &v, NULL, NULL);
     if (rc >= 0) {
         *vals = v->list;
         *n = v->n;
@@ -345,13 +349,12 @@ int hy_scene_get_enum_at(const hy_scene *s, const char *section, const char *nam
                          const char *key, size_t i, const char **text, size_t *n)
 {
     const hy__value *v;
-    int rc = lookup(s, section, name, key, BIT(HY_KIND_ENUM_LIST), &v, NULL);
+    const hy_scene_key_spec *k;
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_ENUM_LIST), &v, NULL, &k);
     if (rc < 0)
         return rc;
     if (i >= v->n)
         return HY_SCENE_BADKEY;
-    int sec = hy_scene_schema_section(section);
-    const hy_scene_key_spec *k = &hy_scene_schema(NULL)[sec].keys[hy_scene_schema_key(sec, key)];
     if (text)
         *text = k->enums[(size_t)v->list[i]];
     if (n)
@@ -378,7 +381,7 @@ int hy_scene_get_length_pt(const hy_scene *s, const char *section, const char *n
                            const char *key, double *out)
 {
     const hy__value *v;
-    int rc = lookup(s, section, name, key, BIT(HY_KIND_LENGTH), &v, NULL);
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_LENGTH), &v, NULL, NULL);
     if (rc >= 0)
         *out = to_pt(s, v->a[0], v->unit[0]);
     return rc;
@@ -388,7 +391,7 @@ int hy_scene_get_length_pair_pt(const hy_scene *s, const char *section, const ch
                                 const char *key, double out[2])
 {
     const hy__value *v;
-    int rc = lookup(s, section, name, key, BIT(HY_KIND_LENGTH_PAIR), &v, NULL);
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_LENGTH_PAIR), &v, NULL, NULL);
     if (rc >= 0) {
         out[0] = to_pt(s, v->a[0], v->unit[0]);
         out[1] = to_pt(s, v->a[1], v->unit[1]);
@@ -400,7 +403,7 @@ int hy_scene_get_pair(const hy_scene *s, const char *section, const char *name,
                       const char *key, double out[2], int *is_auto)
 {
     const hy__value *v;
-    int rc = lookup(s, section, name, key, BIT(HY_KIND_PAIR) | BIT(HY_KIND_LIMITS), &v, NULL);
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_PAIR) | BIT(HY_KIND_LIMITS), &v, NULL, NULL);
     if (rc >= 0) {
         if (is_auto)
             *is_auto = v->is_auto;
@@ -416,7 +419,7 @@ int hy_scene_get_color(const hy_scene *s, const char *section, const char *name,
                        const char *key, hy_scene_color *out)
 {
     const hy__value *v;
-    int rc = lookup(s, section, name, key, BIT(HY_KIND_COLOR), &v, NULL);
+    int rc = lookup(s, section, name, key, BIT(HY_KIND_COLOR), &v, NULL, NULL);
     if (rc >= 0)
         *out = v->color;
     return rc;
@@ -553,6 +556,66 @@ static int check_target(const hy_scene *s, const char *a, const char *secname, c
     return HY_OK;
 }
 
+/* Keeps the slot's old value (moved: the slot's is then the log's) for
+ * hy_scene_restore; -1 on allocation failure, the slot untouched. */
+static int undo_push(hy_scene *s, size_t sec, size_t key, const hy__slot *slot)
+{
+    if (s->nundo == s->capundo) {
+        size_t cap = s->capundo ? 2 * s->capundo : 16;
+        hy__undo *u = realloc(s->undo, cap * sizeof *u);
+        if (!u)
+            return -1;
+        s->undo = u;
+        s->capundo = cap;
+    }
+    s->undo[s->nundo++] = (hy__undo){sec, key, *slot};
+    return 0;
+}
+
+int hy_scene_mark(hy_scene *s)
+{
+    for (size_t i = 0; i < s->nundo; i++) /* the old values of the last mark's overrides */
+        hy__value_clear(&s->undo[i].old.v);
+    s->nundo = 0;
+    s->marked = 1;
+    s->mark_files = s->nfiles;
+    s->mark_secs = s->nsecs;
+    s->mark_hash = s->hash;
+    return HY_OK;
+}
+
+void hy_scene_restore(hy_scene *s)
+{
+    if (!s->marked)
+        return;
+    const hy_scene_section_spec *spec = hy_scene_schema(NULL);
+    while (s->nundo) { /* newest first: a key set twice ends at its first old value */
+        hy__undo *u = &s->undo[--s->nundo];
+        hy__slot *slot = &s->secs[u->sec].slots[u->key];
+        hy__value_clear(&slot->v);
+        *slot = u->old;
+    }
+    if (s->nsecs > s->mark_secs) { /* sections the overrides created: gone, the table rebuilt */
+        for (size_t i = s->mark_secs; i < s->nsecs; i++) {
+            hy__section *x = &s->secs[i];
+            for (size_t j = 0; j < spec[x->spec].nkeys; j++)
+                hy__value_clear(&x->slots[j].v);
+            free(x->slots);
+            free(x->name);
+            hy__kind_list *k = &s->kinds[x->spec];
+            while (k->n && k->idx[k->n - 1] >= s->mark_secs)
+                k->n--;
+        }
+        s->nsecs = s->mark_secs;
+        memset(s->table, 0, s->captable * sizeof *s->table);
+        for (size_t i = 0; i < s->nsecs; i++)
+            s->table[table_slot(s, s->secs[i].spec, s->secs[i].name)] = i + 1;
+    }
+    while (s->nfiles > s->mark_files)
+        free(s->files[--s->nfiles]);
+    s->hash = s->mark_hash;
+}
+
 static int apply_override(hy_scene *s, const char *a, int sec, const char *name, int k,
                           const char *value, hy_error *err)
 {
@@ -578,7 +641,12 @@ static int apply_override(hy_scene *s, const char *a, int sec, const char *name,
         return hy_error_set(err, HY_ENOMEM, "--set %s: out of memory", a);
     }
     hy__slot *slot = &x->slots[k];
-    hy__value_clear(&slot->v);
+    if (s->marked && undo_push(s, (size_t)(x - s->secs), (size_t)k, slot)) {
+        hy__value_clear(&v);
+        return hy_error_set(err, HY_ENOMEM, "--set %s: out of memory", a);
+    }
+    if (!s->marked)
+        hy__value_clear(&slot->v);
     slot->v = v;
     slot->set = 1;
     slot->inst = inst;

@@ -72,6 +72,18 @@ void hy_scene_free(hy_scene *s);
  * On error the scene is unchanged. */
 int hy_scene_set(hy_scene *s, const char *assignment, hy_error *err);
 
+/* Notes the scene as it is now, so that hy_scene_restore can undo the
+ * overrides applied after it (hystviz sweep parses a scene once and applies
+ * each point's overrides to it).  A new mark replaces the old one.  Returns
+ * HY_OK. */
+int hy_scene_mark(hy_scene *s);
+
+/* Undoes every hy_scene_set since hy_scene_mark: values, their locations,
+ * sections the overrides created, the override names and the hash are as at
+ * the mark, so the scene equals a fresh parse plus the overrides made before
+ * the mark.  The mark stays.  Nothing happens without a mark. */
+void hy_scene_restore(hy_scene *s);
+
 /* 64-bit FNV-1a over the bytes of every file read (in reading order) and of
  * every override applied: equal hashes mean the same scene text. */
 uint64_t hy_scene_hash(const hy_scene *s);

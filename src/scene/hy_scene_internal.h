@@ -40,6 +40,13 @@ typedef struct hy__section {
     hy__slot *slots; /* one per key of the spec */
 } hy__section;
 
+/* A slot as it was before an override made after hy_scene_mark. */
+typedef struct hy__undo {
+    size_t sec; /* index in secs */
+    size_t key;
+    hy__slot old;
+} hy__undo;
+
 /* The sections of one kind in order of first appearance (indices in secs). */
 typedef struct hy__kind_list {
     size_t *idx;
@@ -62,6 +69,13 @@ struct hy_scene {
     hy__value *defaults;  /* flattened: defoff[sec] + key */
     size_t *defoff;
     uint64_t hash;
+    /* hy_scene_mark / hy_scene_restore: the state at the mark and the slots
+     * overridden since (oldest first) */
+    int marked;
+    size_t mark_files, mark_secs;
+    uint64_t mark_hash;
+    hy__undo *undo;
+    size_t nundo, capundo;
 };
 
 /* Writes the value of key spec parsed from text[0..len) (the text after '=',

@@ -242,7 +242,7 @@ const hy_scene_section_spec *hy_scene_schema(size_t *n)
 int hy_scene_schema_section(const char *name)
 {
     for (size_t i = 0; i < NKEYS(sections); i++)
-        if (strcmp(sections[i].name, name) == 0)
+        if (sections[i].name[0] == name[0] && strcmp(sections[i].name, name) == 0) /* first byte: a cheap filter */
             return (int)i;
     return -1;
 }
@@ -252,7 +252,7 @@ int hy_scene_schema_key(int sec, const char *key)
     if (sec < 0 || (size_t)sec >= NKEYS(sections))
         return -1;
     for (size_t j = 0; j < sections[sec].nkeys; j++)
-        if (strcmp(sections[sec].keys[j].name, key) == 0)
+        if (sections[sec].keys[j].name[0] == key[0] && strcmp(sections[sec].keys[j].name, key) == 0)
             return (int)j;
     return -1;
 }

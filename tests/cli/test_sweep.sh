@@ -77,11 +77,32 @@ sed -n 2p "$tmp/t/sweep.csv" | cut -d, -f5 | grep -Eq '^[0-9.e-]+$' && ok || bad
 
 # ---- the measured error of a GSL solve (Fig. 11 with rkf45 against the exact
 # solution, the input being piecewise linear): numbers, below rtol 1e-8 x 100
-"$hv" sweep "$scenes/fig11_ygamma_ex3.scene" --set compute.solver=rkf45 --grid model.sigma0=1,6 -o "$tmp/g" -q --formats none
-head -1 "$tmp/g/sweep.csv" | grep -q ',g1.err,g10.err,g100.err,g1.dist,g10.dist,g100.dist,message$' && ok || bad "fig11 header: $(head -1 "$tmp/g/sweep.csv")"
-errs=$(tail -n +2 "$tmp/g/sweep.csv" | cut -d, -f13-15 | tr ',\n' '  ')
+"$hv" sweep "$scenes/fig11_ygamma_ex3.scene" --set compute.solver=rkf45 --grid model.sigma0=1,6 -o "$tmp/g" -q --formats none --verify
+head -1 "$tmp/g/sweep.csv" | grep -q ',err_measured_1_in_1,ystar.err,g1.err,g10.err,g100.err,g1.dist,g10.dist,g100.dist,message$' && ok || bad "fig11 header: $(head -1 "$tmp/g/sweep.csv")"
+errs=$(tail -n +2 "$tmp/g/sweep.csv" | cut -d, -f14-16 | tr ',\n' '  ')
 [ "$(echo $errs | wc -w)" -eq 6 ] && echo $errs | awk '{ for (i = 1; i <= NF; i++) if (!($i >= 0 && $i < 1e-6)) exit 1 }' && ok ||
     bad "fig11 rkf45 errors: '$errs'"
+
+# ---- errors measured on a sample (1 in 1000 points), every point with --verify;
+# the other numbers do not depend on it, and a point outside the sample shows
+# no error (none was measured there)
+g1000="--grid model.sigma0=1:10:log1001 --grid input.umin2=0.2,0.3"
+"$hv" sweep "$fig15" $g1000 -o "$tmp/s" -q --formats none
+"$hv" sweep "$fig15" $g1000 -o "$tmp/sv" -q --formats none --verify
+head -1 "$tmp/s/sweep.csv" | grep -q ',energy,err_measured_1_in_1000,major.err,minor.err,t1.err,t5.err,message$' && ok ||
+    bad "sampled header: $(head -1 "$tmp/s/sweep.csv")"
+[ "$(cut -d, -f1-12,18 "$tmp/s/sweep.csv" | sed 1d | md5sum)" = "$(cut -d, -f1-12,18 "$tmp/sv/sweep.csv" | sed 1d | md5sum)" ] &&
+    ok || bad "the sample changed the table's other numbers"
+# measured: rows 0, 1000, 2000 (and only they), with the errors --verify gives there
+[ "$(awk -F, 'NR > 1 && $13 == 1 { printf "%s ", $1 }' "$tmp/s/sweep.csv")" = "0 1000 2000 " ] && ok ||
+    bad "measured rows: $(awk -F, 'NR > 1 && $13 == 1 { printf "%s ", $1 }' "$tmp/s/sweep.csv")"
+[ "$(grep -E '^(0|1000|2000),' "$tmp/s/sweep.csv" | cut -d, -f1-12,14-)" = "$(grep -E '^(0|1000|2000),' "$tmp/sv/sweep.csv" | cut -d, -f1-12,14-)" ] &&
+    ok || bad "a sampled row differs from --verify's"
+[ "$(awk -F, 'NR > 1 && $13 == 0 && ($14 != "" || $15 != "" || $16 != "" || $17 != "")' "$tmp/s/sweep.csv" | wc -l)" -eq 0 ] &&
+    ok || bad "an error printed where none was measured"
+[ "$(awk -F, 'NR > 1 && $13 == 1 && $14 + 0 > 0 && $14 + 0 < 1e-12' "$tmp/sv/sweep.csv" | wc -l)" -eq 2002 ] && ok ||
+    bad "--verify: not every row has a measured error"
+"$hv" sweep --help | grep -q 'multiple of K = 1000' && ok || bad "--help does not give K"
 
 # ---- grid values ------------------------------------------------------------
 "$hv" sweep "$fig15" --grid model.sigma0=1:1e3:log4 --grid input.umin2=0.25:0.25:1 -o "$tmp/v" -q --formats none

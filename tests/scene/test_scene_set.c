@@ -122,10 +122,82 @@ static void repeated(void)
     hy_scene_free(NULL);
 }
 
+/* The scene as scene text (hy_scene_write with defaults), malloc'ed. */
+static char *text_of(const hy_scene *s)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    CHECK(f && hy_scene_write(s, f, 1) == HY_OK);
+    if (f)
+        fclose(f);
+    return buf;
+}
+
+/* hy_scene_mark / hy_scene_restore (hystviz sweep): a point's overrides on the
+ * marked scene give the scene a fresh parse and the same overrides give, and
+ * restoring undoes them, sections they created included, over many points. */
+static void mark_restore(void)
+{
+    hy_error err;
+    hy_scene *s = PARSE_OK("m.scene", scene_text);
+    CHECK(s && hy_scene_set(s, "figure.dpi=100", &err) == 0);
+    char *before = text_of(s);
+    uint64_t h_mark = hy_scene_hash(s);
+    CHECK(hy_scene_mark(s) == HY_OK);
+    for (int i = 0; i < 300; i++) {
+        char set1[64], set2[64];
+        snprintf(set1, sizeof set1, "model.sigma0=%d", i + 1);
+        snprintf(set2, sizeof set2, "compute.points=%d", 100 + i); /* [compute]: not in the file */
+        hy_scene_restore(s);
+        CHECK(hy_scene_set(s, set1, &err) == 0 && hy_scene_set(s, set2, &err) == 0);
+        CHECK(hy_scene_set(s, set1, &err) == 0); /* a key set twice */
+        hy_scene *fresh = PARSE_OK("m.scene", scene_text);
+        CHECK(fresh && hy_scene_set(fresh, "figure.dpi=100", &err) == 0 && hy_scene_set(fresh, set1, &err) == 0 &&
+              hy_scene_set(fresh, set2, &err) == 0 && hy_scene_set(fresh, set1, &err) == 0);
+        CHECK(hy_scene_hash(s) == hy_scene_hash(fresh));
+        char *a = text_of(s), *b = text_of(fresh);
+        CHECK(a && b && !strcmp(a, b));
+        hy_scene_loc loc;
+        CHECK(hy_scene_get_loc(s, "model", NULL, "sigma0", &loc) == 1);
+        char label[80];
+        snprintf(label, sizeof label, "--set %s", set1);
+        CHECK_STR(loc.file, label);
+        free(a);
+        free(b);
+        hy_scene_free(fresh);
+    }
+    hy_scene_restore(s);
+    char *after = text_of(s);
+    CHECK(before && after && !strcmp(before, after));
+    CHECK(hy_scene_hash(s) == h_mark);
+    double v = 0;
+    long pts = 0;
+    CHECK(hy_scene_get_num(s, "model", NULL, "sigma0", &v) == HY_SCENE_SET && v == 6);
+    CHECK(hy_scene_get_int(s, "compute", NULL, "points", &pts) == HY_SCENE_DEFAULT);
+    CHECK(hy_scene_get_int(s, "figure", NULL, "dpi", &pts) == HY_SCENE_SET && pts == 100);
+    hy_scene_loc loc;
+    CHECK(hy_scene_get_loc(s, "model", NULL, "sigma0", &loc) == 1 && loc.line == 2);
+    /* a failed override changes nothing; restore without a new mark keeps working */
+    CHECK(hy_scene_set(s, "model.sigma0=-1", &err) != 0);
+    hy_scene_restore(s);
+    CHECK(hy_scene_hash(s) == h_mark);
+    free(before);
+    free(after);
+    hy_scene_free(s);
+    /* no mark: restore does nothing */
+    s = PARSE_OK("m.scene", scene_text);
+    CHECK(s && hy_scene_set(s, "model.sigma0=2", &err) == 0);
+    hy_scene_restore(s);
+    CHECK(hy_scene_get_num(s, "model", NULL, "sigma0", &v) == HY_SCENE_SET && v == 2);
+    hy_scene_free(s);
+}
+
 int main(void)
 {
     valid();
     invalid();
     repeated();
+    mark_restore();
     return st_result("test_scene_set");
 }
