@@ -139,7 +139,7 @@ static char *text_of(const hy_scene *s)
  * restoring undoes them, sections they created included, over many points. */
 static void mark_restore(void)
 {
-    hy_error err;
+    hy_error err = {0};
     hy_scene *s = PARSE_OK("m.scene", scene_text);
     CHECK(s && hy_scene_set(s, "figure.dpi=100", &err) == 0);
     char *before = text_of(s);
