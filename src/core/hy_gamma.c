@@ -97,8 +97,8 @@ int hy_gamma_exact(const hy_model *m, const hy_input *in, double gamma, const do
         return rc;
     if (!hy_gamma_exact_applies(m, in))
         return hy_error_set(err, HY_EUNSUP,
-                            "no exact solution for %s with an input of smooth (sine or half-cosine) pieces at finite gamma (needs a piecewise-linear input or a rate-independent model); choose an ODE solver",
-                            m->type->name);
+                            "no exact solution for %s with %s at finite gamma (needs a piecewise-linear input or a rate-independent model); choose an ODE solver",
+                            m->type->name, in->desc);
     for (size_t i = 0; i < n; i++)
         if (!isfinite(t[i]) || t[i] < 0 || (i && t[i] < t[i - 1]))
             return hy_error_set(err, HY_EINVAL, "output times must be finite, >= 0 and ascending (t[%zu] = %g)", i, t[i]);

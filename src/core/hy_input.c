@@ -191,7 +191,10 @@ int hy_input_pwl(hy_input *in, const double *t, const double *u, size_t n, hy_er
         return hy_error_set(err, HY_ENOMEM, "out of memory for %zu pieces", n - 1);
     for (size_t i = 0; i + 1 < n; i++)
         piece_linear(&p[i], t[i], t[i + 1], u[i], u[i + 1]);
-    return finish(in, p, n - 1, err);
+    rc = finish(in, p, n - 1, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "piecewise-linear input, %zu points", n);
+    return rc;
 }
 
 int hy_input_multimodal(hy_input *in, const double *e, size_t n, const double *tm, int shape,
@@ -243,7 +246,11 @@ int hy_input_multimodal(hy_input *in, const double *e, size_t n, const double *t
             piece_linear(&p[i], t, t1, a, b);
         t = t1;
     }
-    return finish(in, p, n, err);
+    rc = finish(in, p, n, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "multimodal input, %zu extrema%s", n,
+                 shape == HY_SHAPE_COSINE ? ", half-cosine pieces" : "");
+    return rc;
 }
 
 int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, double umax2,
@@ -299,7 +306,10 @@ int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, dou
             piece_linear(&p[i], tc, t1, a, b);
         tc = t1;
     }
-    return finish(in, p, 4, err);
+    int rc = finish(in, p, 4, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "bimodal input (%g, %g, %g, %g)", umin1, umin2, umax1, umax2);
+    return rc;
 }
 
 int hy_input_triangle(hy_input *in, double umin, double umax, double period, hy_error *err)
@@ -309,7 +319,10 @@ int hy_input_triangle(hy_input *in, double umin, double umax, double period, hy_
     if (!isfinite(period) || !(period > 0))
         return hy_error_set(err, HY_EINVAL, "triangle period must be > 0 (got %g)", period);
     double t[3] = {0, 0.5 * period, period}, u[3] = {umin, umax, umin};
-    return hy_input_pwl(in, t, u, 3, err);
+    int rc = hy_input_pwl(in, t, u, 3, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "triangle %g..%g, period %g", umin, umax, period);
+    return rc;
 }
 
 int hy_input_sine(hy_input *in, double amp, double period, double offset, hy_error *err)
@@ -334,7 +347,10 @@ int hy_input_sine(hy_input *in, double amp, double period, double offset, hy_err
         p[i].omega = w;
         p[i].phase = 0;
     }
-    return finish(in, p, 3, err);
+    int rc = finish(in, p, 3, err);
+    if (!rc)
+        snprintf(in->desc, sizeof in->desc, "sine, amplitude %g, period %g", amp, period);
+    return rc;
 }
 
 /* The text of a message about content: a short excerpt if quote, else nothing. */
@@ -469,6 +485,8 @@ int hy_input_text(hy_input *in, const char *text, size_t len, const char *name, 
     rc = hy_input_pwl(in, t, u, n, err);
     if (rc)
         hy_error_prefix(err, "%s", name);
+    else
+        snprintf(in->desc, sizeof in->desc, "sampled input from %s", name);
     free(t);
     free(u);
     return rc;

@@ -45,6 +45,7 @@ typedef struct hy_input {
     double period;      /* T                                                */
     double rho_T;       /* ρ_u(T), the variation over one period            */
     int all_linear;     /* every piece has constant u̇                       */
+    char desc[160];     /* what was asked for, for messages and legends    */
 } hy_input;
 
 /* Piecewise-linear periodic input through (t[i], u[i]), i < n, t[0] = 0,
