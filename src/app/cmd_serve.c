@@ -4,6 +4,7 @@
  * frames from hystviz-animate (out of process: no OSMesa in hystviz) and
  * "save as new scene".  Every figure is rendered in memory by the same
  * pipeline as `hystviz render`, so the bytes are those render writes. */
+#define _GNU_SOURCE /* POLLRDHUP: a peer that closed its end */
 #include "cmd_serve.h"
 
 #include "hy_config.h"
@@ -13,24 +14,41 @@
 
 static const char serve_help[] =
     "usage: hystviz serve [SCENE.scene | DIR] [--port N] [--host ADDR [--public]] [--open]\n"
+    "                     [--max-work W] [--allow-save]\n"
     "\n"
     "Serves a live preview of the scenes in DIR (default: scenes) at http://127.0.0.1:PORT/\n"
     "until Ctrl-C: the catalogue, each figure as SVG with a slider and a number box per\n"
     "numeric key, the `hystviz render --set` line that writes the same figure, downloads\n"
-    "(SVG, PDF, PNG, CSV), \"save as new scene\", an animation scrubber, and a reload of\n"
-    "every open page when a scene file or one it includes is saved.  With SCENE.scene,\n"
-    "the page opens that scene (the others in its directory stay reachable).\n"
+    "(SVG, PDF, PNG, CSV), an animation scrubber, a reload of every open page when a\n"
+    "scene file or one it includes is saved, and (with --allow-save) \"save as new scene\".\n"
+    "With SCENE.scene, the page opens that scene (the others in its directory stay reachable).\n"
     "\n"
     "  --port N       port (default 8017; 0 picks a free one, printed)\n"
     "  --host ADDR    address to bind (default 127.0.0.1); any other needs --public\n"
-    "  --public       allow --host to be reachable from other machines: anyone who\n"
-    "                 can reach the port can read the scenes and render figures\n"
+    "  --public       allow --host to be reachable from other machines: anyone who can\n"
+    "                 reach the port reads every scene file of DIR (and what they include)\n"
+    "                 and makes this machine render figures (CPU and memory within the\n"
+    "                 budgets below); with --allow-save also writes new scenes into DIR\n"
     "  --open         open the page in the desktop's browser (xdg-open)\n"
+    "  --max-work W   work budget of one render (default 2e6, 50 times the largest\n"
+    "                 gallery figure; `hystviz render` allows 1e8):\n"
+    "                 a page's request for more is refused before computing (422)\n"
+    "  --allow-save   enable \"save as new scene\": the page carries a token that lets it\n"
+    "                 write NEW.scene files into DIR (never replacing one), at most 100\n"
+    "                 per run and one a second; anyone who can load the page can save\n"
+    "\n"
+    "A page may set (as `render --set`) numbers, switches, choices, lengths and colours of\n"
+    "[model], [input], [compute], [series], [figure] and [annotation]; never a file path,\n"
+    "text, [output] or an animation.  Budgets: one answer is at most 32 MB; renders run a\n"
+    "few at a time (requests without a page id get half of them; 64 wait, more get 503 with\n"
+    "Retry-After); a request whose client has gone is dropped before computing; idle\n"
+    "connections close after 10 s; 32 event streams in all, 2 per page.\n"
     "\n"
     "Only the directory's *.scene files and their renders are served; requests whose\n"
-    "Host header is not the bound address or localhost are refused (DNS rebinding),\n"
-    "and saving needs the token of the page.  Exit status: 0 after Ctrl-C, 1 if the\n"
-    "port cannot be bound, 2 for a bad option, 3 if built without libmicrohttpd.\n";
+    "Host header is not the bound address or localhost are refused (DNS rebinding), as\n"
+    "are requests another site's page makes (Sec-Fetch-Site).  Exit status: 0 after\n"
+    "Ctrl-C, 1 if the port cannot be bound, 2 for a bad option, 3 if built without\n"
+    "libmicrohttpd.\n";
 
 #if !HY_HAVE_MICROHTTPD
 
@@ -52,11 +70,12 @@ int hy_cmd_serve(int argc, char **argv)
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <malloc.h>
 #include <math.h>
 #include <microhttpd.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <pthread.h>
-#include <semaphore.h>
 #include <signal.h>
 #include <spawn.h>
 #include <stdint.h>
@@ -71,6 +90,7 @@ int hy_cmd_serve(int argc, char **argv)
 #include <unistd.h>
 
 #include "dirwatch.h"
+#include "hy_scene_policy.h"
 #include "scene_boucwen.h"
 #include "scene_run.h"
 #include "serve_util.h"
@@ -82,9 +102,21 @@ extern const char hy_page_html[], hy_page_js[], hy_page_css[];
 extern const size_t hy_page_html_len, hy_page_js_len, hy_page_css_len;
 
 #define MAX_ARGS 64         /* query arguments per request */
+#define MAX_QUERY 256       /* ... counted before libmicrohttpd stores them */
 #define MAX_BODY 4096       /* request body bytes (no request needs one) */
 #define MAX_PAGES 128       /* pages tracked for render coalescing */
-#define SSE_PING_S 10
+#define SSE_PING_S 5        /* below CONN_TIMEOUT_S: a live stream is never idle that long */
+#define SSE_MAX 32          /* event streams in all ... */
+#define SSE_PER_PAGE 2      /* ... and per page (?page=ID; streams without one share "") */
+#define CONN_TIMEOUT_S 10   /* an idle connection (no bytes either way) is closed */
+#define CONN_MAX 1000       /* connections in all, and from one address */
+#define CONN_PER_IP 900
+#define QUEUE_MAX 64        /* renders waiting for a slot; more: 503 + Retry-After */
+#define SERVE_WORK_DEFAULT 2e6       /* serve's work budget per render (--max-work raises it) */
+#define SERVE_OUTPUT_MAX (32u << 20) /* bytes of one answer (SVG, PDF, PNG, CSV, JSON) */
+#define ANIM_CACHE 64       /* `hystviz-animate --info` answers kept, by scene hash */
+#define SAVE_MAX 100        /* saves per run (--allow-save) ... */
+#define SAVE_EVERY_S 1.0    /* ... at most one a second */
 
 typedef struct page_slot {
     char id[40];
@@ -93,14 +125,29 @@ typedef struct page_slot {
     double used;
 } page_slot;
 
+typedef struct sse_page {
+    char id[40];
+    int n;
+} sse_page;
+
+typedef struct anim_entry {
+    uint64_t hash;          /* hy_scene_hash of the scene (its files and includes) */
+    long frames;
+    double fps;
+    int ok;
+    char msg[512];
+} anim_entry;
+
 typedef struct server {
     char dir[PATH_MAX];     /* the scenes directory, resolved */
+    int dirfd;              /* ... opened once: every scene is read beneath it */
     const char *dir_arg;    /* as given (for command lines and messages) */
     char first[256];        /* SCENE.scene given: open it first */
     char token[33];
     char animate[PATH_MAX]; /* hystviz-animate next to this program */
     char host[64];          /* bound address as text */
-    int port, ipv6, public_;
+    int port, ipv6, public_, allow_save;
+    double max_work;        /* work budget of one render (SERVE_WORK_DEFAULT, --max-work) */
     char *page;             /* index.html with the token */
     size_t page_len;
     pthread_mutex_t mu;
@@ -109,7 +156,14 @@ typedef struct server {
     char changed[2048];
     int stopping;
     page_slot pages[MAX_PAGES];
-    sem_t renders;          /* renders running at once */
+    int nslots;             /* renders (and hystviz-animate children) at once */
+    int running, running_anon, waiting;
+    sse_page sse[SSE_MAX];  /* event streams by page */
+    int nsse;
+    anim_entry anim[ANIM_CACHE];
+    size_t anim_next;
+    int nsaved;
+    double last_save;
     char builtin[32][32];   /* hystviz animate --list: the built-in animations */
     char builtin_doc[32][200];
     int nbuiltin;
@@ -267,24 +321,109 @@ static int token_ok(const server *s, struct MHD_Connection *c)
     return d == 0;
 }
 
-/* Resolves a scene name of the catalogue to its path (dir_arg/name); 0 if it
- * is not one: bad name, missing, not a regular file, or a symlink leading
- * out of the directory. */
-static int scene_path(const server *s, const char *name, char *path, size_t size)
+/* Reads the catalogue scene name through one descriptor opened beneath the
+ * directory (sv_read_beneath: no check-then-open race with a link swapped
+ * in) and writes the path shown in messages and command lines
+ * (dir_arg/name) to path.  Returns the malloc'd text, or NULL if name is not
+ * one: a bad name, missing, not a regular file, a link out of the directory. */
+static char *scene_read(const server *s, const char *name, char *path, size_t size, size_t *len)
 {
-    if (!name || !sv_scene_name_ok(name))
-        return 0;
-    char full[PATH_MAX + 256], real[PATH_MAX];
-    snprintf(full, sizeof full, "%s/%s", s->dir, name);
-    if (!realpath(full, real))
-        return 0;
-    size_t n = strlen(s->dir);
-    struct stat st;
-    if (strncmp(real, s->dir, n) || real[n] != '/' || strchr(real + n + 1, '/') || stat(real, &st) ||
-        !S_ISREG(st.st_mode))
-        return 0;
-    snprintf(path, size, "%s/%s", s->dir_arg, name);
-    return 1;
+    char *text = name ? sv_read_beneath(s->dirfd, name, HY_SCENE_MAX_FILE_BYTES, len) : NULL;
+    if (text)
+        snprintf(path, size, "%s/%s", s->dir_arg, name);
+    return text;
+}
+
+/* Whether the peer of socket fd has gone (closed or reset its end). */
+static int peer_gone(int fd)
+{
+    struct pollfd p = {.fd = fd, .events = POLLRDHUP};
+    return fd >= 0 && poll(&p, 1, 0) > 0 && (p.revents & (POLLRDHUP | POLLHUP | POLLERR));
+}
+
+static int client_gone(struct MHD_Connection *c)
+{
+    const union MHD_ConnectionInfo *ci = MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD);
+    return ci && peer_gone(ci->connect_fd);
+}
+
+/* ---- render slots ----------------------------------------------------- */
+
+enum { SLOT_OK, SLOT_GONE, SLOT_FULL, SLOT_STOP };
+
+/* Waits for one of the nslots render slots.  Fairness: requests without a
+ * page id (an <img>, a script) hold at most half of the slots, so a page
+ * being dragged always finds one; at most QUEUE_MAX wait (SLOT_FULL: answer
+ * 503).  A request whose client has gone (SLOT_GONE) or a stopping server
+ * (SLOT_STOP) gives up its turn: nothing is computed for nobody. */
+static int slot_take(server *s, struct MHD_Connection *c, int anon)
+{
+    int cap_anon = s->nslots > 1 ? s->nslots / 2 : 1;
+    pthread_mutex_lock(&s->mu);
+    if (s->waiting >= QUEUE_MAX) {
+        pthread_mutex_unlock(&s->mu);
+        return SLOT_FULL;
+    }
+    s->waiting++;
+    int rc = SLOT_OK;
+    while (!s->stopping && (s->running >= s->nslots || (anon && s->running_anon >= cap_anon))) {
+        struct timespec until;
+        clock_gettime(CLOCK_REALTIME, &until);
+        until.tv_nsec += 200000000L;
+        if (until.tv_nsec >= 1000000000L)
+            until.tv_sec++, until.tv_nsec -= 1000000000L;
+        pthread_cond_timedwait(&s->cond, &s->mu, &until);
+        if (c && client_gone(c)) {
+            rc = SLOT_GONE;
+            break;
+        }
+    }
+    s->waiting--;
+    if (s->stopping)
+        rc = SLOT_STOP;
+    if (rc == SLOT_OK && c && client_gone(c))
+        rc = SLOT_GONE;
+    if (rc == SLOT_OK) {
+        s->running++;
+        s->running_anon += anon;
+    }
+    pthread_mutex_unlock(&s->mu);
+    return rc;
+}
+
+/* Frees the slot; the last one out gives the freed memory back to the system
+ * (glibc keeps the arenas of every connection thread otherwise). */
+static void slot_give(server *s, int anon)
+{
+    pthread_mutex_lock(&s->mu);
+    s->running--;
+    s->running_anon -= anon;
+    int idle = s->running == 0;
+    pthread_cond_broadcast(&s->cond);
+    pthread_mutex_unlock(&s->mu);
+    if (idle)
+        malloc_trim(0);
+}
+
+static enum MHD_Result send_busy(struct MHD_Connection *c, int why)
+{
+    if (why == SLOT_GONE || why == SLOT_STOP)
+        return MHD_NO; /* nobody to answer */
+    sv_buf b = {0};
+    sv_puts(&b, "{\"error\":\"the server is busy: try again in a second\"}");
+    if (b.oom)
+        return MHD_NO;
+    struct MHD_Response *r = MHD_create_response_from_buffer(b.len, b.s, MHD_RESPMEM_MUST_FREE);
+    if (!r) {
+        free(b.s);
+        return MHD_NO;
+    }
+    MHD_add_response_header(r, "Content-Type", "application/json");
+    MHD_add_response_header(r, "Cache-Control", "no-store");
+    MHD_add_response_header(r, "Retry-After", "1");
+    enum MHD_Result ret = MHD_queue_response(c, 503, r);
+    MHD_destroy_response(r);
+    return ret;
 }
 
 /* ---- hystviz-animate, out of process ---------------------------------- */
@@ -364,27 +503,57 @@ static int builtin_index(const server *s, const char *name)
     return -1;
 }
 
-/* hystviz animate WHAT --info: frames and fps; 0 or -1 with msg set. */
-static int anim_info(const server *s, const char *what, long *frames, double *fps, char *msg, size_t size)
+/* hystviz animate WHAT --info: frames and fps; 0 or -1 with msg set.  The
+ * answer is cached by hash (hy_scene_hash: the scene's text and its
+ * includes), so reloading a page runs no child; a child runs in a render slot
+ * (bounded with the renders) and is reaped before this returns. */
+static int anim_info(server *s, struct MHD_Connection *c, uint64_t hash, const char *what, long *frames, double *fps,
+                     char *msg, size_t size)
 {
+    pthread_mutex_lock(&s->mu);
+    for (size_t i = 0; i < ANIM_CACHE; i++)
+        if (s->anim[i].hash == hash && (s->anim[i].ok || s->anim[i].msg[0])) {
+            anim_entry e = s->anim[i];
+            pthread_mutex_unlock(&s->mu);
+            *frames = e.frames, *fps = e.fps;
+            snprintf(msg, size, "%s", e.msg);
+            return e.ok ? 0 : -1;
+        }
+    pthread_mutex_unlock(&s->mu);
+    int slot = slot_take(s, c, 0);
+    if (slot != SLOT_OK) {
+        snprintf(msg, size, "the server is busy: reload the page");
+        return -1;
+    }
     char out[2048];
     char *argv[] = {(char *)s->animate, "animate", (char *)what, "--info", NULL};
     int rc = run_capture(argv, out, sizeof out);
-    if (rc == 0 && sscanf(out, "frames %ld fps %lf", frames, fps) == 2)
-        return 0;
-    size_t n = strlen(out);
-    while (n && out[n - 1] == '\n')
-        out[--n] = '\0';
-    snprintf(msg, size, "%s", rc < 0 ? "cannot run hystviz-animate (it is built next to hystviz)" : out);
-    return -1;
+    slot_give(s, 0);
+    anim_entry e = {.hash = hash};
+    if (rc == 0 && sscanf(out, "frames %ld fps %lf", &e.frames, &e.fps) == 2)
+        e.ok = 1;
+    else {
+        size_t n = strlen(out);
+        while (n && out[n - 1] == '\n')
+            out[--n] = '\0';
+        snprintf(e.msg, sizeof e.msg, "%s", rc < 0 ? "cannot run hystviz-animate (it is built next to hystviz)" : out);
+    }
+    if (rc >= 0) { /* a failure to start is not cached: it may be a passing shortage */
+        pthread_mutex_lock(&s->mu);
+        s->anim[s->anim_next++ % ANIM_CACHE] = e;
+        pthread_mutex_unlock(&s->mu);
+    }
+    *frames = e.frames, *fps = e.fps;
+    snprintf(msg, size, "%s", e.msg);
+    return e.ok ? 0 : -1;
 }
 
-static void json_anim(sv_buf *b, const server *s, const char *what)
+static void json_anim(sv_buf *b, server *s, struct MHD_Connection *c, uint64_t hash, const char *what)
 {
-    long frames;
-    double fps;
+    long frames = 0;
+    double fps = 0;
     char msg[2048];
-    if (anim_info(s, what, &frames, &fps, msg, sizeof msg)) {
+    if (anim_info(s, c, hash, what, &frames, &fps, msg, sizeof msg)) {
         sv_puts(b, ",\"anim\":{\"frames\":0,\"error\":");
         sv_json(b, msg);
         sv_puts(b, "}");
@@ -393,6 +562,15 @@ static void json_anim(sv_buf *b, const server *s, const char *what)
     sv_printf(b, ",\"anim\":{\"frames\":%ld,\"fps\":", frames);
     sv_num(b, fps);
     sv_puts(b, "}");
+}
+
+/* FNV-1a of a built-in animation's name (its cache key). */
+static uint64_t name_hash(const char *name)
+{
+    uint64_t h = 0xcbf29ce484222325ull ^ 0x40; /* apart from scene hashes' start */
+    for (; *name; name++)
+        h = (h ^ (unsigned char)*name) * 0x100000001b3ull;
+    return h;
 }
 
 /* ---- the catalogue and a scene's description ----------------------- */
@@ -474,19 +652,20 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
     for (size_t i = 0; i < n; i++) {
         char path[PATH_MAX + 300];
         hy_scene *sc = NULL;
-        hy_error err;
-        if (!scene_path(s, v[i], path, sizeof path)) {
+        hy_error err = {0};
+        size_t tl;
+        char *text = scene_read(s, v[i], path, sizeof path, &tl);
+        if (!text) {
             free(v[i]);
             continue;
         }
-        int bad = hy_scene_parse_file(path, &sc, &err);
+        int bad = hy_scene_parse_buffer(path, text, tl, &sc, &err);
         if (!bad && hy_scene_count(sc, "series") == 0) { /* style.scene and other includes */
             hy_scene_free(sc);
+            free(text);
             free(v[i]);
             continue;
         }
-        size_t tl;
-        char *text = sv_read_file(path, 1 << 20, &tl);
         hy_scene_run probe = {0};
         probe.scene = sc;
         probe.path = path;
@@ -501,7 +680,7 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
         sv_puts(&b, ",\"name\":");
         sv_json(&b, name);
         sv_puts(&b, ",\"caption\":");
-        scene_caption(&b, sc, text ? text : "");
+        scene_caption(&b, sc, text);
         char label[32];
         hy_scene_figure_label(v[i], label, sizeof label);
         sv_printf(&b, ",\"label\":\"%s\",\"part\":%d", label, hy_scene_catalogue_part(v[i]));
@@ -546,27 +725,27 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
         sv_puts(&b, ",\"caption\":");
         sv_json(&b, s->builtin_doc[bi]);
         sv_puts(&b, ",\"text\":\"\",\"controls\":[]");
-        json_anim(&b, s, s->builtin[bi]);
+        json_anim(&b, s, c, name_hash(s->builtin[bi]), s->builtin[bi]);
         sv_puts(&b, "}");
         return send_json(c, 200, &b);
     }
     char path[PATH_MAX + 300];
-    if (!scene_path(s, a->scene, path, sizeof path))
-        return send_error_json(c, 404, "no such scene");
     size_t tl;
-    char *text = sv_read_file(path, 1 << 20, &tl);
+    char *text = scene_read(s, a->scene, path, sizeof path, &tl);
+    if (!text)
+        return send_error_json(c, 404, "no such scene");
     hy_scene *sc = NULL;
-    hy_error err;
+    hy_error err = {0};
     sv_buf b = {0};
     sv_puts(&b, "{\"file\":");
     sv_json(&b, a->scene);
     sv_puts(&b, ",\"path\":");
     sv_json(&b, path);
     sv_puts(&b, ",\"text\":");
-    sv_json(&b, text ? text : "");
-    int bad = hy_scene_parse_file(path, &sc, &err);
+    sv_json(&b, text);
+    int bad = hy_scene_parse_buffer(path, text, tl, &sc, &err);
     sv_puts(&b, ",\"caption\":");
-    scene_caption(&b, bad ? NULL : sc, text ? text : "");
+    scene_caption(&b, bad ? NULL : sc, text);
     free(text);
     if (bad) {
         sv_puts(&b, ",\"controls\":[],\"anim\":null,\"error\":");
@@ -582,7 +761,7 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
         sv_puts(&b, ",\"controls\":");
         sv_controls_json(&b, sc);
         if (is_animation(sc))
-            json_anim(&b, s, path);
+            json_anim(&b, s, c, hy_scene_hash(sc), path);
         else
             sv_puts(&b, ",\"anim\":null");
         hy_scene_free(sc);
@@ -594,12 +773,10 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
 static enum MHD_Result api_text(server *s, struct MHD_Connection *c, const char *name)
 {
     char path[PATH_MAX + 300];
-    if (!scene_path(s, name, path, sizeof path))
-        return send_text(c, 404, "not found");
     size_t n;
-    char *text = sv_read_file(path, 1 << 20, &n);
+    char *text = scene_read(s, name, path, sizeof path, &n);
     if (!text)
-        return send_text(c, 500, "cannot read the scene");
+        return send_text(c, 404, "not found");
     return send_buf(c, 200, "text/plain; charset=utf-8", text, n, 1, NULL);
 }
 
@@ -700,9 +877,6 @@ static void json_series(sv_buf *b, const hy_scene_run *r)
 
 static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const args *a)
 {
-    char path[PATH_MAX + 300];
-    if (!scene_path(s, a->scene, path, sizeof path))
-        return send_error_json(c, 404, "no such scene");
     const char *fmt = a->fmt ? a->fmt : "svg";
     int format = !strcmp(fmt, "svg") || !strcmp(fmt, "json") ? HY_FORMAT_SVG
                  : !strcmp(fmt, "pdf")                       ? HY_FORMAT_PDF
@@ -711,24 +885,42 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
                                                              : -1;
     if (format == -1)
         return send_error_json(c, 400, "fmt: svg, pdf, png, csv or json");
-    hy_error err;
+    hy_error err = {0};
     for (size_t i = 0; i < a->nsets; i++)
         if (sv_set_ok(a->sets[i], &err))
             return send_error_json(c, 400, err.msg);
+    char path[PATH_MAX + 300];
+    size_t tl;
+    char *text = scene_read(s, a->scene, path, sizeof path, &tl);
+    if (!text)
+        return send_error_json(c, 404, "no such scene");
     page_slot *slot = NULL;
     if (a->page) {
         char *end;
         unsigned long seq = a->seq ? strtoul(a->seq, &end, 10) : 0;
-        if (strlen(a->page) >= sizeof slot->id || !*a->page)
+        if (strlen(a->page) >= sizeof slot->id || !*a->page) {
+            free(text);
             return send_error_json(c, 400, "page: at most 39 characters");
+        }
         slot = page_enter(s, a->page, seq);
-        if (!slot)
+        if (!slot) {
+            free(text);
             return send_error_json(c, 409, "superseded by a newer request of the same page");
+        }
     }
-    sem_wait(&s->renders);
+    int anon = !a->page, got = slot_take(s, c, anon);
+    if (got != SLOT_OK) {
+        free(text);
+        if (slot)
+            page_leave(s, slot);
+        return send_busy(c, got);
+    }
     double t0 = now_s();
     hy_scene_run run;
-    int rc = hy_scene_run_load(&run, path, (char *const *)a->sets, a->nsets, &err);
+    hy_scene_policy pol = hy_scene_policy_default();
+    pol.max_work = s->max_work;
+    int rc = hy_scene_run_load_text(&run, path, text, tl, (char *const *)a->sets, a->nsets, &pol, &err);
+    free(text);
     int loaded = !rc;
     if (!rc && (rc = hy_scene_run_compute(&run, NULL, &err))) {
         hy_scene_run_free(&run);
@@ -745,13 +937,20 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
             rc = hy_scene_run_render(&run, format, &bytes, &len, &map, &err);
     }
     double seconds = now_s() - t0;
-    sem_post(&s->renders);
+    if (!rc && len > SERVE_OUTPUT_MAX) {
+        rc = hy_error_set(&err, HY_EINVAL, "%s: the %s is %.0f MB, over serve's output budget of %u MB per answer "
+                          "(hystviz render writes it)", path, fmt, (double)len / (1 << 20), SERVE_OUTPUT_MAX >> 20);
+        free(bytes);
+        free(csv);
+        bytes = NULL, csv = NULL;
+    }
     if (slot)
         page_leave(s, slot);
     enum MHD_Result ret;
     if (rc) {
         if (loaded)
             hy_scene_run_free(&run);
+        slot_give(s, anon);
         return send_error_json(c, 422, err.msg);
     }
     char name[256];
@@ -809,8 +1008,16 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
         sv_puts(&b, "}");
         free(bytes);
         hy_scene_run_free(&run);
+        if (b.len > SERVE_OUTPUT_MAX) {
+            free(b.s);
+            slot_give(s, anon);
+            return send_error_json(c, 422, "the figure with its points is over serve's output budget per answer; "
+                                           "turn hover off or ask for fewer points");
+        }
+        slot_give(s, anon);
         return send_json(c, 200, &b);
     }
+    slot_give(s, anon);
     char disp[400];
     snprintf(disp, sizeof disp, "%s; filename=\"%s.%s\"", a->name && !strcmp(a->name, "download") ? "attachment" : "inline",
              name, fmt);
@@ -840,19 +1047,27 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
 
 static enum MHD_Result api_frame(server *s, struct MHD_Connection *c, const args *a)
 {
-    char path[PATH_MAX + 300];
+    char path[PATH_MAX + 300], name[256] = "";
     int bi = builtin_index(s, a->scene);
-    if (bi >= 0)
+    if (bi >= 0) {
         snprintf(path, sizeof path, "%s", s->builtin[bi]);
-    else if (!scene_path(s, a->scene, path, sizeof path))
-        return send_error_json(c, 404, "no such scene");
-    if (bi < 0) {
+        snprintf(name, sizeof name, "%s", s->builtin[bi]);
+    } else { /* checked through one descriptor; hystviz-animate then opens the path itself */
+        size_t tl;
+        char *text = scene_read(s, a->scene, path, sizeof path, &tl);
+        if (!text)
+            return send_error_json(c, 404, "no such scene");
         hy_scene *chk = NULL;
-        hy_error cerr;
-        int bad = hy_scene_parse_file(path, &chk, &cerr);
-        hy_scene_free(chk);
+        hy_error cerr = {0};
+        int bad = hy_scene_parse_buffer(path, text, tl, &chk, &cerr);
+        free(text);
         if (bad)
             return send_error_json(c, 422, cerr.msg);
+        hy_scene_run probe = {0};
+        probe.scene = chk;
+        probe.path = path;
+        hy_scene_run_name(&probe, name, sizeof name);
+        hy_scene_free(chk);
     }
     char *end;
     errno = 0;
@@ -888,29 +1103,23 @@ static enum MHD_Result api_frame(server *s, struct MHD_Connection *c, const args
     posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&fa, 2, errfile, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     pid_t pid;
-    sem_wait(&s->renders);
-    int sp = posix_spawn(&pid, s->animate, &fa, NULL, argv, environ);
-    int status = -1;
-    if (!sp)
-        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-            ;
-    sem_post(&s->renders);
+    int got = slot_take(s, c, !a->page), sp = -1, status = -1;
+    if (got == SLOT_OK) {
+        sp = posix_spawn(&pid, s->animate, &fa, NULL, argv, environ);
+        if (!sp)
+            while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+                ;
+        slot_give(s, !a->page);
+    }
     posix_spawn_file_actions_destroy(&fa);
     if (slot)
         page_leave(s, slot);
-    /* the frame: DIR/NAME/frame_NNNNN.png, NAME the scene's output name */
-    hy_scene *sc = NULL;
-    hy_error err;
-    char name[256] = "";
-    if (bi >= 0)
-        snprintf(name, sizeof name, "%s", s->builtin[bi]);
-    else if (!hy_scene_parse_file(path, &sc, &err)) {
-        hy_scene_run probe = {0};
-        probe.scene = sc;
-        probe.path = path;
-        hy_scene_run_name(&probe, name, sizeof name);
-        hy_scene_free(sc);
+    if (got != SLOT_OK) {
+        unlink(errfile);
+        rmdir(tmpl);
+        return send_busy(c, got);
     }
+    /* the frame: DIR/NAME/frame_NNNNN.png, NAME the scene's output name */
     char png[PATH_MAX + 600], sub[PATH_MAX + 300], poster[PATH_MAX + 300];
     snprintf(sub, sizeof sub, "%s/%s", tmpl, name);
     snprintf(png, sizeof png, "%s/frame_%05ld.png", sub, frame);
@@ -962,44 +1171,84 @@ static void strip_comments(char *w)
     *o = '\0';
 }
 
-static enum MHD_Result api_save(server *s, struct MHD_Connection *c, const args *a)
+/* Saving is opt-in (--allow-save) and limited: SAVE_MAX files a run, one
+ * every SAVE_EVERY_S.  Returns 1 after answering 429 (with Retry-After) when
+ * over a limit, 0 when the save may go on: it is counted now (so two at once
+ * cannot both pass) and *prev receives the time to restore if it fails. */
+static int save_refused(server *s, struct MHD_Connection *c, double *prev)
+{
+    pthread_mutex_lock(&s->mu);
+    double t = now_s();
+    int full = s->nsaved >= SAVE_MAX, soon = !full && s->nsaved && t - s->last_save < SAVE_EVERY_S;
+    if (!full && !soon) {
+        *prev = s->last_save;
+        s->nsaved++;
+        s->last_save = t;
+    }
+    pthread_mutex_unlock(&s->mu);
+    if (!full && !soon)
+        return 0;
+    sv_buf b = {0};
+    sv_puts(&b, full ? "{\"error\":\"this server has saved its limit of scenes; restart it to save more\"}"
+                     : "{\"error\":\"one save a second: try again\"}");
+    struct MHD_Response *r = b.oom ? NULL : MHD_create_response_from_buffer(b.len, b.s, MHD_RESPMEM_MUST_FREE);
+    if (!r) {
+        free(b.s);
+        return 1;
+    }
+    MHD_add_response_header(r, "Content-Type", "application/json");
+    if (soon)
+        MHD_add_response_header(r, "Retry-After", "1");
+    MHD_queue_response(c, 429, r);
+    MHD_destroy_response(r);
+    return 1;
+}
+
+/* The save itself: *written = 1 once the new file exists. */
+static enum MHD_Result save_new(server *s, struct MHD_Connection *c, const args *a, int *written)
 {
     char path[PATH_MAX + 300];
-    if (!scene_path(s, a->scene, path, sizeof path))
+    size_t tl;
+    char *text = scene_read(s, a->scene, path, sizeof path, &tl);
+    if (!text)
         return send_error_json(c, 404, "no such scene");
     const char *nm = a->name;
     size_t nl = nm ? strlen(nm) : 0;
-    if (!nm || !nl || nl > 100 || nm[0] == '.' || nm[0] == '-' || strspn(nm, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != nl)
+    if (!nm || !nl || nl > 100 || nm[0] == '.' || nm[0] == '-' || strspn(nm, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != nl) {
+        free(text);
         return send_error_json(c, 400, "name: 1 to 100 letters, digits, '_' or '-' (the new scene is NAME.scene)");
-    hy_error err;
+    }
+    hy_error err = {0};
     for (size_t i = 0; i < a->nsets; i++)
-        if (sv_set_ok(a->sets[i], &err))
+        if (sv_set_ok(a->sets[i], &err)) {
+            free(text);
             return send_error_json(c, 400, err.msg);
+        }
     char dest[PATH_MAX + 300];
     snprintf(dest, sizeof dest, "%s/%s.scene", s->dir_arg, nm);
-    size_t tl;
-    char *text = sv_read_file(path, 1 << 20, &tl);
-    hy_scene *orig = NULL;
-    if (!text || hy_scene_parse_file(path, &orig, &err)) {
+    hy_scene *orig = NULL, *want = NULL;
+    if (hy_scene_parse_buffer(path, text, tl, &orig, &err) || hy_scene_parse_buffer(path, text, tl, &want, &err)) {
         hy_scene_free(orig);
         free(text);
-        return send_error_json(c, 422, text ? err.msg : "cannot read the scene");
+        return send_error_json(c, 422, err.msg);
     }
     /* the new scene must render what the page shows: the original with the
        overrides (and the new output name) */
     char *newtext = sv_scene_with_sets(orig, path, text, (char *const *)a->sets, a->nsets, nm, &err);
     hy_scene_free(orig);
     free(text);
-    if (!newtext)
+    if (!newtext) {
+        hy_scene_free(want);
         return send_error_json(c, 422, err.msg);
+    }
     const char *sets[MAX_ARGS + 1];
     char outset[200];
     snprintf(outset, sizeof outset, "output.name=%s", nm);
     for (size_t i = 0; i < a->nsets; i++)
         sets[i] = a->sets[i];
     sets[a->nsets] = outset;
-    hy_scene *want = NULL, *got = NULL;
-    int rc = hy_scene_parse_file(path, &want, &err);
+    hy_scene *got = NULL;
+    int rc = HY_OK;
     for (size_t i = 0; !rc && i <= a->nsets; i++)
         rc = hy_scene_set(want, sets[i], &err);
     if (!rc)
@@ -1029,8 +1278,10 @@ static enum MHD_Result api_save(server *s, struct MHD_Connection *c, const args 
     if (!rc)
         rc = sv_write_new(dest, newtext, strlen(newtext), &err);
     free(newtext);
+
     if (rc)
         return send_error_json(c, rc == HY_EINVAL ? 409 : 500, err.msg);
+    *written = 1;
     sv_buf b = {0};
     sv_puts(&b, "{\"file\":");
     char file[200];
@@ -1042,13 +1293,33 @@ static enum MHD_Result api_save(server *s, struct MHD_Connection *c, const args 
     return send_json(c, 201, &b);
 }
 
+static enum MHD_Result api_save(server *s, struct MHD_Connection *c, const args *a)
+{
+    double prev = 0;
+    if (save_refused(s, c, &prev))
+        return MHD_YES;
+    int written = 0;
+    enum MHD_Result ret = save_new(s, c, a, &written);
+    if (!written) { /* nothing written: the attempt does not count */
+        pthread_mutex_lock(&s->mu);
+        s->nsaved--;
+        s->last_save = prev;
+        pthread_mutex_unlock(&s->mu);
+    }
+    return ret;
+}
+
 /* ---- Server-Sent Events --------------------------------------------- */
 
 typedef struct sse_client {
     server *s;
     unsigned long seen;
     int hello;
+    int fd;                 /* the connection's socket: a closed peer frees the slot at once */
+    sse_page *page;         /* the slot counted in s->sse */
+    double last;            /* when something was last sent */
 } sse_client;
+
 
 static ssize_t sse_read(void *cls, uint64_t pos, char *buf, size_t max)
 {
@@ -1069,16 +1340,26 @@ static ssize_t sse_read(void *cls, uint64_t pos, char *buf, size_t max)
         pthread_mutex_unlock(&s->mu);
         return n;
     }
-    struct timespec until;
-    clock_gettime(CLOCK_REALTIME, &until);
-    until.tv_sec += SSE_PING_S;
-    int timed_out = 0;
-    while (cl->seen == s->gen && !s->stopping && !timed_out)
-        timed_out = pthread_cond_timedwait(&s->cond, &s->mu, &until) == ETIMEDOUT;
+    /* wait for a change in slices of 0.2 s, looking at the peer between them */
+    int gone = 0;
+    while (cl->seen == s->gen && !s->stopping && now_s() - cl->last < SSE_PING_S && !gone) {
+        struct timespec until;
+        clock_gettime(CLOCK_REALTIME, &until);
+        until.tv_nsec += 200000000L;
+        if (until.tv_nsec >= 1000000000L)
+            until.tv_sec++, until.tv_nsec -= 1000000000L;
+        pthread_cond_timedwait(&s->cond, &s->mu, &until);
+        gone = peer_gone(cl->fd);
+    }
+    if (gone) {
+        pthread_mutex_unlock(&s->mu);
+        return MHD_CONTENT_READER_END_WITH_ERROR;
+    }
     if (s->stopping) {
         pthread_mutex_unlock(&s->mu);
         return MHD_CONTENT_READER_END_OF_STREAM;
     }
+    cl->last = now_s();
     if (cl->seen == s->gen) {
         pthread_mutex_unlock(&s->mu);
         return snprintf(buf, max, ": ping\n\n");
@@ -1099,17 +1380,69 @@ static ssize_t sse_read(void *cls, uint64_t pos, char *buf, size_t max)
     return n;
 }
 
-static void sse_free(void *cls) { free(cls); }
-
-static enum MHD_Result events(server *s, struct MHD_Connection *c)
+static void sse_free(void *cls)
 {
+    sse_client *cl = cls;
+    server *s = cl->s;
+    pthread_mutex_lock(&s->mu);
+    if (cl->page && --cl->page->n == 0)
+        cl->page->id[0] = '\0';
+    s->nsse--;
+    pthread_mutex_unlock(&s->mu);
+    free(cl);
+}
+
+/* Counts a new stream of page id; NULL when over SSE_MAX in all or
+ * SSE_PER_PAGE for the page. */
+static sse_page *sse_enter(server *s, const char *id)
+{
+    pthread_mutex_lock(&s->mu);
+    sse_page *p = NULL, *free_slot = NULL;
+    for (int i = 0; i < SSE_MAX; i++) {
+        if (s->sse[i].n && !strcmp(s->sse[i].id, id))
+            p = &s->sse[i];
+        else if (!s->sse[i].n && !free_slot)
+            free_slot = &s->sse[i];
+    }
+    if (s->nsse >= SSE_MAX || (p && p->n >= SSE_PER_PAGE) || (!p && !free_slot)) {
+        pthread_mutex_unlock(&s->mu);
+        return NULL;
+    }
+    if (!p) {
+        p = free_slot;
+        snprintf(p->id, sizeof p->id, "%s", id);
+    }
+    p->n++;
+    s->nsse++;
+    pthread_mutex_unlock(&s->mu);
+    return p;
+}
+
+static enum MHD_Result events(server *s, struct MHD_Connection *c, const args *a)
+{
+    const char *id = a->page ? a->page : "";
+    if (strlen(id) >= sizeof s->sse[0].id)
+        return send_text(c, 400, "page: at most 39 characters");
+    sse_page *pg = sse_enter(s, id);
+    if (!pg)
+        return send_busy(c, SLOT_FULL);
     sse_client *cl = calloc(1, sizeof *cl);
-    if (!cl)
+    if (!cl) {
+        pthread_mutex_lock(&s->mu);
+        if (--pg->n == 0)
+            pg->id[0] = '\0';
+        s->nsse--;
+        pthread_mutex_unlock(&s->mu);
         return MHD_NO;
+    }
     cl->s = s;
+    cl->page = pg;
+    cl->last = now_s();
+    const union MHD_ConnectionInfo *ci = MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD);
+    cl->fd = ci ? ci->connect_fd : -1;
     struct MHD_Response *r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, 4096, sse_read, cl, sse_free);
     if (!r) {
-        free(cl);
+        sse_free(cl);
         return MHD_NO;
     }
     MHD_add_response_header(r, "Content-Type", "text/event-stream");
@@ -1123,7 +1456,31 @@ static enum MHD_Result events(server *s, struct MHD_Connection *c)
 
 typedef struct conn_state {
     size_t body;
+    int started;            /* handle() has seen the headers */
+    int too_many;           /* more than MAX_QUERY query arguments: answered 400 */
 } conn_state;
+
+/* Called with the request line's URI before libmicrohttpd stores the query
+ * arguments (each costs memory from the connection's pool; about 1,000 ran it
+ * out and the connection was closed with no answer).  Past MAX_QUERY the
+ * query is cut in place, in the buffer libmicrohttpd itself rewrites while
+ * parsing, so none is stored, and handle() answers 400. */
+static void *uri_seen(void *cls, const char *uri, struct MHD_Connection *c)
+{
+    (void)cls;
+    (void)c;
+    conn_state *cs = calloc(1, sizeof *cs);
+    char *q = uri ? strchr(uri, '?') : NULL;
+    size_t n = 0;
+    for (const char *p = q; p && *p; p++)
+        n += *p == '&';
+    if (q && n + 1 > MAX_QUERY) {
+        q[1] = '\0';
+        if (cs)
+            cs->too_many = 1;
+    }
+    return cs;
+}
 
 static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *url, const char *method,
                               const char *version, const char *upload, size_t *upload_size, void **con_cls)
@@ -1131,14 +1488,13 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
     (void)version;
     (void)upload;
     server *s = cls;
-    if (!*con_cls) {
-        conn_state *cs = calloc(1, sizeof *cs);
-        if (!cs)
-            return MHD_NO;
-        *con_cls = cs;
+    conn_state *cs = *con_cls;
+    if (!cs)
+        return MHD_NO; /* out of memory in uri_seen */
+    if (!cs->started) {
+        cs->started = 1;
         return MHD_YES;
     }
-    conn_state *cs = *con_cls;
     if (*upload_size) { /* no request needs a body: count it, keep none */
         cs->body += *upload_size;
         *upload_size = 0;
@@ -1148,19 +1504,26 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
         return send_text(c, 413, "request body too large");
     if (!host_ok(s, MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Host")))
         return send_text(c, 403, "Host header not allowed (use http://localhost:PORT/ or the bound address)");
+    /* another site's page (an <img> flood, a form): chromium and firefox say
+       so; nothing here is meant to be embedded, so it is refused before any work */
+    const char *site = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Sec-Fetch-Site");
+    if (site && strcmp(site, "same-origin") && strcmp(site, "none"))
+        return send_text(c, 403, "requests from other sites are refused");
     int get = !strcmp(method, "GET") || !strcmp(method, "HEAD"), post = !strcmp(method, "POST");
     if (!get && !post)
         return send_text(c, 405, "method not allowed");
     args a;
     memset(&a, 0, sizeof a);
     MHD_get_connection_values_n(c, MHD_GET_ARGUMENT_KIND, arg_it, &a);
-    if (a.too_many)
+    if (a.too_many || cs->too_many)
         return send_text(c, 400, "too many query arguments");
     if (a.bad_nul)
         return send_text(c, 404, "not found");
     if (post) {
         if (strcmp(url, "/api/save"))
             return send_text(c, 405, "method not allowed");
+        if (!s->allow_save)
+            return send_text(c, 403, "saving is off: start hystviz serve with --allow-save");
         if (!token_ok(s, c))
             return send_text(c, 403, "missing or wrong X-Hystviz-Token (reload the page)");
         return api_save(s, c, &a);
@@ -1186,7 +1549,7 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
     if (!strcmp(url, "/app.css"))
         return send_buf(c, 200, "text/css; charset=utf-8", (void *)hy_page_css, hy_page_css_len, 0, NULL);
     if (!strcmp(url, "/events"))
-        return events(s, c);
+        return events(s, c, &a);
     if (!strcmp(url, "/api/scenes"))
         return api_scenes(s, c);
     if (!strcmp(url, "/api/scene"))
@@ -1271,13 +1634,15 @@ static int make_page(server *s)
     const char *mark = strstr(hy_page_html, "@TOKEN@");
     if (!mark)
         return -1;
-    size_t pre = (size_t)(mark - hy_page_html), tl = strlen(s->token);
+    /* without --allow-save the page gets no token (and shows no save button) */
+    const char *token = s->allow_save ? s->token : "";
+    size_t pre = (size_t)(mark - hy_page_html), tl = strlen(token);
     s->page_len = hy_page_html_len - 7 + tl;
     s->page = malloc(s->page_len + 1);
     if (!s->page)
         return -1;
     memcpy(s->page, hy_page_html, pre);
-    memcpy(s->page + pre, s->token, tl);
+    memcpy(s->page + pre, token, tl);
     memcpy(s->page + pre + tl, mark + 7, hy_page_html_len - pre - 7 + 1);
     return 0;
 }
@@ -1285,7 +1650,8 @@ static int make_page(server *s)
 int hy_cmd_serve(int argc, char **argv)
 {
     const char *target = NULL, *host = "127.0.0.1";
-    int port = 8017, public_ = 0, open_browser = 0, host_given = 0;
+    int port = 8017, public_ = 0, open_browser = 0, host_given = 0, allow_save = 0;
+    double max_work = SERVE_WORK_DEFAULT;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -1300,7 +1666,18 @@ int hy_cmd_serve(int argc, char **argv)
         } else if (!strcmp(a, "--host") && v) {
             host = argv[++i];
             host_given = 1;
-        } else if (!strcmp(a, "--public"))
+        } else if (!strcmp(a, "--max-work")) {
+            char *end;
+            errno = 0;
+            max_work = v ? strtod(v, &end) : NAN;
+            if (!v || errno || *end || end == v || !(max_work >= 1) || !isfinite(max_work)) {
+                fprintf(stderr, "hystviz serve: --max-work '%s': give a number of at least 1 (e.g. 1e8)\n", v ? v : "");
+                return 2;
+            }
+            i++;
+        } else if (!strcmp(a, "--allow-save"))
+            allow_save = 1;
+        else if (!strcmp(a, "--public"))
             public_ = 1;
         else if (!strcmp(a, "--open"))
             open_browser = 1;
@@ -1342,6 +1719,8 @@ int hy_cmd_serve(int argc, char **argv)
     }
     snprintf(s->host, sizeof s->host, "%s", host);
     s->public_ = public_;
+    s->allow_save = allow_save;
+    s->max_work = max_work;
     /* the directory, and the scene to open first */
     const char *dir = target ? target : "scenes";
     char dirbuf[PATH_MAX];
@@ -1373,6 +1752,11 @@ int hy_cmd_serve(int argc, char **argv)
         return 2;
     }
     s->dir_arg = dir;
+    if ((s->dirfd = open(s->dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC)) < 0) {
+        fprintf(stderr, "hystviz serve: %s: %s\n", dir, strerror(errno));
+        free(s);
+        return 2;
+    }
     /* hystviz-animate next to this program */
     char self[PATH_MAX];
     ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
@@ -1388,6 +1772,7 @@ int hy_cmd_serve(int argc, char **argv)
     unsigned char rnd[16];
     if (getrandom(rnd, sizeof rnd, 0) != (ssize_t)sizeof rnd) {
         fprintf(stderr, "hystviz serve: no random bytes for the page token: %s\n", strerror(errno));
+        close(s->dirfd);
         free(s);
         return 1;
     }
@@ -1395,15 +1780,20 @@ int hy_cmd_serve(int argc, char **argv)
         snprintf(s->token + 2 * i, 3, "%02x", rnd[i]);
     if (make_page(s)) {
         fprintf(stderr, "hystviz serve: out of memory\n");
+        close(s->dirfd);
         free(s);
         return 1;
     }
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     pthread_mutex_init(&s->mu, NULL);
     pthread_cond_init(&s->cond, NULL);
-    sem_init(&s->renders, 0, (unsigned)(ncpu > 0 ? ncpu : 1) * 2);
+    s->nslots = (int)(ncpu > 0 && ncpu < 64 ? ncpu : ncpu > 0 ? 64 : 1) + 1;
+    /* few arenas: the memory of a heavy request is given back (malloc_trim)
+       rather than kept by each connection thread's arena */
+    mallopt(M_ARENA_MAX, 2);
     if (pipe(s->stop_pipe)) {
         fprintf(stderr, "hystviz serve: pipe: %s\n", strerror(errno));
+        close(s->dirfd);
         free(s->page);
         free(s);
         return 1;
@@ -1416,12 +1806,15 @@ int hy_cmd_serve(int argc, char **argv)
     sigaddset(&sigs, SIGHUP);
     pthread_sigmask(SIG_BLOCK, &sigs, NULL);
     signal(SIGPIPE, SIG_IGN);
-    unsigned flags = MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_THREAD_PER_CONNECTION | (s->ipv6 ? MHD_USE_IPv6 : 0);
+    /* idle sockets are closed after CONN_TIMEOUT_S (a request's headers must
+       come, and an answer must be read, at that pace); poll, not select, so
+       descriptors past 1024 work */
+    unsigned flags = MHD_USE_POLL_INTERNAL_THREAD | MHD_USE_THREAD_PER_CONNECTION | (s->ipv6 ? MHD_USE_IPv6 : 0);
     struct MHD_Daemon *d = MHD_start_daemon(
         flags, (uint16_t)port, NULL, NULL, handle, s, MHD_OPTION_SOCK_ADDR,
-        s->ipv6 ? (struct sockaddr *)&sa6 : (struct sockaddr *)&sa4, MHD_OPTION_CONNECTION_LIMIT, (unsigned)256,
-        MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned)128, MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)120,
-        MHD_OPTION_CONNECTION_MEMORY_LIMIT, (size_t)65536, MHD_OPTION_NOTIFY_COMPLETED, done, s, MHD_OPTION_END);
+        s->ipv6 ? (struct sockaddr *)&sa6 : (struct sockaddr *)&sa4, MHD_OPTION_CONNECTION_LIMIT, (unsigned)CONN_MAX,
+        MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned)CONN_PER_IP, MHD_OPTION_CONNECTION_TIMEOUT,
+        (unsigned)CONN_TIMEOUT_S, MHD_OPTION_CONNECTION_MEMORY_LIMIT, (size_t)65536, MHD_OPTION_NOTIFY_COMPLETED, done, s, MHD_OPTION_URI_LOG_CALLBACK, uri_seen, s, MHD_OPTION_END);
     pthread_t wt;
     int have_wt = 0;
     if (!d) {
@@ -1466,7 +1859,7 @@ int hy_cmd_serve(int argc, char **argv)
         MHD_stop_daemon(d);
     for (int i = 0; i < 2; i++)
         close(s->stop_pipe[i]);
-    sem_destroy(&s->renders);
+    close(s->dirfd);
     pthread_cond_destroy(&s->cond);
     pthread_mutex_destroy(&s->mu);
     free(s->page);

@@ -9,7 +9,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
+
+#if defined(__linux__) && __has_include(<linux/openat2.h>)
+#include <linux/openat2.h>
+#define SV_HAVE_OPENAT2 1
+#endif
 
 
 /* ---- text buffer ---------------------------------------------------- */
@@ -139,33 +145,53 @@ int sv_scene_name_ok(const char *name)
     return !strstr(name, "..");
 }
 
+/* What a page may set: by section, the kinds of key (an allow-list: a key
+ * of any other section or kind, a PATH above all, is refused).  The README
+ * ("hystviz serve") and serve --help describe this table. */
+#define K(kind) (1u << (kind))
+#define PAGE_VALUES                                                                                              \
+    (K(HY_KIND_NUMBER) | K(HY_KIND_INTEGER) | K(HY_KIND_BOOL) | K(HY_KIND_ENUM) | K(HY_KIND_LENGTH) |            \
+     K(HY_KIND_LENGTH_PAIR) | K(HY_KIND_COLOR) | K(HY_KIND_PAIR) | K(HY_KIND_LIMITS) | K(HY_KIND_NUMBER_LIST) | \
+     K(HY_KIND_INTEGER_LIST))
+static const struct {
+    const char *section;
+    unsigned kinds;
+} page_settable[] = {
+    {"model", PAGE_VALUES},  {"input", PAGE_VALUES},  {"compute", PAGE_VALUES},
+    {"series", PAGE_VALUES}, {"figure", PAGE_VALUES}, {"annotation", PAGE_VALUES},
+};
+
+const char *sv_settable_sections(void) { return "model, input, compute, series, figure and annotation"; }
+
 int sv_set_ok(const char *set, hy_error *err)
 {
     if (strlen(set) > 300)
         return hy_error_set(err, HY_EINVAL, "--set: an override longer than 300 bytes is refused here");
-    const char *eq = strchr(set, '=');
-    const char *dot = strchr(set, '.');
-    if (!eq || !dot || dot > eq)
-        return hy_error_set(err, HY_EINVAL, "--set %s: expected section.key=value or section.NAME.key=value", set);
-    char sec[32];
-    snprintf(sec, sizeof sec, "%.*s", (int)(dot - set < 31 ? dot - set : 31), set);
-    const char *k = eq;
-    while (k > set && k[-1] != '.')
-        k--;
-    char key[64];
-    snprintf(key, sizeof key, "%.*s", (int)(eq - k < 63 ? eq - k : 63), k);
-    int si = hy_scene_schema_section(sec);
-    if (si < 0 || !strcmp(sec, "output"))
-        return hy_error_set(err, HY_EINVAL, "--set %s: the server takes overrides of [model], [input], [compute], "
-                                            "[figure], [series], [annotation], [animation] and [keyframe] keys",
-                            set);
-    int ki = hy_scene_schema_key(si, key);
+    char *sec, *name, *key;
+    const char *value;
+    /* the parser hy_scene_set applies: what is checked here is what is set */
+    int rc = hy_scene_set_split(set, &sec, &name, &key, &value, err);
+    unsigned kinds = 0;
+    for (size_t i = 0; !rc && i < sizeof page_settable / sizeof page_settable[0]; i++)
+        if (!strcmp(sec, page_settable[i].section))
+            kinds = page_settable[i].kinds;
+    int si = rc ? -1 : hy_scene_schema_section(sec);
+    int ki = si < 0 ? -1 : hy_scene_schema_key(si, key);
     size_t n;
     const hy_scene_section_spec *spec = hy_scene_schema(&n);
-    if (ki >= 0 && spec[si].keys[ki].kind == HY_KIND_PATH)
-        return hy_error_set(err, HY_EINVAL, "--set %s: a file path cannot be overridden from the page", set);
-    return HY_OK; /* the rest is checked by hy_scene_set, with the CLI's message */
+    if (!rc && !kinds)
+        rc = hy_error_set(err, HY_EINVAL, "--set %s: a page may set keys of [%s] only", set,
+                          sv_settable_sections());
+    else if (!rc && ki >= 0 && !(kinds & K(spec[si].keys[ki].kind)))
+        rc = hy_error_set(err, HY_EINVAL, "--set %s: %s is a %s; a page may set numbers, switches, choices, lengths "
+                          "and colours, never a file path or text", set, key,
+                          spec[si].keys[ki].kind == HY_KIND_PATH ? "file path" : "text key");
+    free(sec);
+    free(name);
+    free(key);
+    return rc; /* an unknown key is left to hy_scene_set, with the CLI's message */
 }
+#undef K
 
 /* ---- controls ------------------------------------------------------- */
 
@@ -298,6 +324,67 @@ char *sv_read_file(const char *path, size_t max, size_t *len)
     if (bad) {
         free(buf);
         errno = buf ? EFBIG : ENOMEM;
+        return NULL;
+    }
+    buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+/* Opens name below dirfd once: openat2 with RESOLVE_BENEATH (links that stay
+ * inside are followed) where the kernel has it, else openat with O_NOFOLLOW
+ * (name is one component, so no link at all). */
+static int open_beneath(int dirfd, const char *name)
+{
+    int flags = O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK;
+#ifdef SV_HAVE_OPENAT2
+    struct open_how how;
+    memset(&how, 0, sizeof how);
+    how.flags = (unsigned long long)flags;
+    how.resolve = RESOLVE_BENEATH | RESOLVE_NO_MAGICLINKS;
+    long fd = syscall(SYS_openat2, dirfd, name, &how, sizeof how);
+    if (fd >= 0 || (errno != ENOSYS && errno != EPERM))
+        return (int)fd;
+#endif
+    return openat(dirfd, name, flags | O_NOFOLLOW);
+}
+
+char *sv_read_beneath(int dirfd, const char *name, size_t max, size_t *len)
+{
+    if (!sv_scene_name_ok(name)) {
+        errno = ENOENT;
+        return NULL;
+    }
+    int fd = open_beneath(dirfd, name);
+    if (fd < 0)
+        return NULL;
+    struct stat st;
+    char *buf = NULL;
+    int e = 0;
+    if (fstat(fd, &st))
+        e = errno;
+    else if (!S_ISREG(st.st_mode))
+        e = EINVAL; /* a FIFO, a device, a directory: never read */
+    else if (st.st_size < 0 || (size_t)st.st_size > max)
+        e = EFBIG;
+    else if (!(buf = malloc((size_t)st.st_size + 1)))
+        e = ENOMEM;
+    size_t n = 0;
+    while (!e) { /* through the descriptor checked above; a file that grew is refused */
+        ssize_t r = read(fd, buf + n, (size_t)st.st_size + 1 - n);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0)
+            e = errno;
+        else if (r == 0)
+            break;
+        else if ((n += (size_t)r) > (size_t)st.st_size)
+            e = EFBIG;
+    }
+    close(fd);
+    if (e) {
+        free(buf);
+        errno = e;
         return NULL;
     }
     buf[n] = '\0';

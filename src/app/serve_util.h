@@ -33,10 +33,15 @@ void sv_num(sv_buf *b, double v);
 int sv_scene_name_ok(const char *name);
 
 /* Checks an override "section.key=value" or "section.NAME.key=value" that a
- * page may send: at most 300 bytes, a known section other than output, and
- * not a PATH key (a page must not make the server read other files).
+ * page may send: at most 300 bytes, split by hy_scene_set_split (the parser
+ * the override itself goes through), and its section and key kind on the
+ * allow-list (numbers, switches, choices, lengths, colours of [model],
+ * [input], [compute], [series], [figure], [annotation]; never a PATH or text).
  * Returns HY_OK or HY_EINVAL with a message. */
 int sv_set_ok(const char *set, hy_error *err);
+
+/* The sections a page may set keys of, as text for messages and --help. */
+const char *sv_settable_sections(void);
 
 /* Appends the JSON array of the scene's numeric controls: for every NUMBER
  * or INTEGER key the scene sets in [model], [input], [compute] and its
@@ -62,6 +67,14 @@ char *sv_scene_with_sets(const hy_scene *s, const char *path, const char *text, 
  * then link(2)), never replacing an existing file: HY_EINVAL if path exists,
  * HY_EIO on failure; no partial file either way. */
 int sv_write_new(const char *path, const char *text, size_t len, hy_error *err);
+
+/* Reads the scene file name (sv_scene_name_ok, one component) of the
+ * directory dirfd through one descriptor: opened beneath dirfd (openat2
+ * RESOLVE_BENEATH, else O_NOFOLLOW), checked with fstat to be a regular file
+ * of at most max bytes, and read through it, so no link swapped in between a
+ * check and the read can redirect it.  Returns malloc'd NUL-terminated text
+ * or NULL with errno set (ENOENT, ELOOP, EXDEV, EINVAL not regular, EFBIG). */
+char *sv_read_beneath(int dirfd, const char *name, size_t max, size_t *len);
 
 /* Reads a whole (small) file; NULL on error (errno set). */
 char *sv_read_file(const char *path, size_t max, size_t *len);

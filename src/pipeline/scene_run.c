@@ -166,13 +166,9 @@ int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size
     return hy_scene_run_load_policy(r, path, sets, nsets, NULL, err);
 }
 
-int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *sets, size_t nsets,
-                             const hy_scene_policy *pol, hy_error *err)
+/* The steps after parsing (rc: the parse's status): overrides, model, input. */
+static int load_parsed(hy_scene_run *r, int rc, char *const *sets, size_t nsets, hy_error *err)
 {
-    memset(r, 0, sizeof *r);
-    r->path = path;
-    r->budget = hy_scene_policy_budget(pol);
-    int rc = hy_scene_parse_file_policy(path, pol, &r->scene, err);
     for (size_t i = 0; !rc && i < nsets; i++)
         rc = hy_scene_set(r->scene, sets[i], err);
     if (!rc)
@@ -207,6 +203,24 @@ static int build_run(hy_scene_run *r, hy_error *err)
     if (rc)
         hy_scene_run_free(r);
     return rc;
+}
+
+int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *sets, size_t nsets,
+                             const hy_scene_policy *pol, hy_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->path = path;
+    r->budget = hy_scene_policy_budget(pol);
+    return load_parsed(r, hy_scene_parse_file_policy(path, pol, &r->scene, err), sets, nsets, err);
+}
+
+int hy_scene_run_load_text(hy_scene_run *r, const char *path, const char *text, size_t len, char *const *sets,
+                           size_t nsets, const hy_scene_policy *pol, hy_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->path = path;
+    r->budget = hy_scene_policy_budget(pol);
+    return load_parsed(r, hy_scene_parse_buffer_policy(path, text, len, pol, &r->scene, err), sets, nsets, err);
 }
 
 void hy_scene_run_free(hy_scene_run *r)

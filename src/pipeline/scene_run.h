@@ -92,6 +92,12 @@ int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *set
  * freed (not the scene). */
 int hy_scene_run_load_scene(hy_scene_run *r, hy_scene *scene, const char *path, double budget, hy_error *err);
 
+/* As hy_scene_run_load_policy from the scene's text, already read (the
+ * caller opened the file once); path names it in messages and is where its
+ * includes and relative paths are looked up. */
+int hy_scene_run_load_text(hy_scene_run *r, const char *path, const char *text, size_t len, char *const *sets,
+                           size_t nsets, const hy_scene_policy *pol, hy_error *err);
+
 /* The work the scene asks for, before computing: for Dahl/LuGre scenes the
  * grid points of every distinct gamma solve plus the points of every series;
  * for Bouc-Wen scenes the Newmark steps plus the series samples (docs/SCENES.md,

@@ -481,10 +481,11 @@ int hy_scene_error_at(const hy_scene *s, const char *section, const char *name,
 
 /* ---- overrides ---- */
 
-/* Splits "section[.name].key=value"; returns 0 or an error. */
-static int split_assignment(const char *a, char **sec, char **name, char **key,
-                            const char **value, hy_error *err)
+int hy_scene_set_split(const char *a, char **sec, char **name, char **key, const char **value,
+                       hy_error *err)
 {
+    *sec = *name = *key = NULL;
+    *value = NULL;
     const char *eq = strchr(a, '=');
     if (!eq)
         return hy_error_set(err, HY_EINVAL, "--set %s: expected section.key=value", a);
@@ -661,7 +662,7 @@ int hy_scene_set(hy_scene *s, const char *assignment, hy_error *err)
     char *secname = NULL, *name = NULL, *key = NULL;
     const char *value = NULL;
     int sec = -1, k = -1;
-    int rc = split_assignment(assignment, &secname, &name, &key, &value, err);
+    int rc = hy_scene_set_split(assignment, &secname, &name, &key, &value, err);
     if (!rc)
         rc = check_target(s, assignment, secname, name, key, &sec, &k, err);
     if (!rc)

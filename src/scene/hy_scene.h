@@ -84,6 +84,15 @@ int hy_scene_mark(hy_scene *s);
  * the mark.  The mark stays.  Nothing happens without a mark. */
 void hy_scene_restore(hy_scene *s);
 
+/* The one parser of an override: splits "section[.NAME].key=value" (blanks
+ * around the section, name and key trimmed) into malloc'd *sec, *name (NULL
+ * without one) and *key, and *value pointing into a.  hy_scene_set applies
+ * what it returns; whoever checks an override first (hystviz serve) checks
+ * these parts, never the raw text.  On error all three are NULL or to be
+ * freed (free(NULL) is fine either way). */
+int hy_scene_set_split(const char *a, char **sec, char **name, char **key, const char **value,
+                       hy_error *err);
+
 /* 64-bit FNV-1a over the bytes of every file read (in reading order) and of
  * every override applied: equal hashes mean the same scene text. */
 uint64_t hy_scene_hash(const hy_scene *s);

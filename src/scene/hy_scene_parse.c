@@ -510,6 +510,12 @@ int hy_scene_parse_buffer(const char *name, const char *text, size_t len, hy_sce
     return parse_top(name, text, len, NULL, out, err);
 }
 
+int hy_scene_parse_buffer_policy(const char *name, const char *text, size_t len,
+                                 const hy_scene_policy *pol, hy_scene **out, hy_error *err)
+{
+    return parse_top(name, text, len, pol, out, err);
+}
+
 int hy_scene_parse_file_policy(const char *path, const hy_scene_policy *pol, hy_scene **out,
                                hy_error *err)
 {

@@ -47,6 +47,12 @@ double hy_scene_policy_budget(const hy_scene_policy *pol);
 int hy_scene_parse_file_policy(const char *path, const hy_scene_policy *pol, hy_scene **out,
                                hy_error *err);
 
+/* As hy_scene_parse_buffer, under pol: text already read (by a caller that
+ * opened the file once, e.g. hystviz serve) named name for messages, includes
+ * and relative paths. */
+int hy_scene_parse_buffer_policy(const char *name, const char *text, size_t len,
+                                 const hy_scene_policy *pol, hy_scene **out, hy_error *err);
+
 /* Reads the file named by the PATH key section[.name].key into *buf (NUL
  * terminated, caller frees) and *len.  A path written in a scene file must
  * lie below the scene's directory or an include dir; one set by --set is the

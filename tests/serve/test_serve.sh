@@ -63,7 +63,7 @@ start() { # extra options...
     [ -n "$port" ] || { echo "FAIL: no URL printed: $(cat "$T/serve.err")"; exit 1; }
     base="http://127.0.0.1:$port"
 }
-start
+start --allow-save # (saving is opt-in; test_serve_attack.sh tests it off)
 code() { curl -s -o /dev/null -w "%{http_code}" "$@"; }
 
 # ---- byte identity with render --set and data -------------------------------------

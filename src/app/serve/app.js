@@ -321,12 +321,14 @@ $('copy').addEventListener('click', () => {
   if (navigator.clipboard) navigator.clipboard.writeText(hv.cmd);
 });
 
+// saving is on only when the server was started with --allow-save (the page then has a token)
+$('saverow').hidden = !hv.token;
 $('save').addEventListener('click', async () => {
   const name = $('newname').value.trim();
   const r = await fetch('/api/save?' + query() + '&name=' + enc(name), {
     method: 'POST', headers: { 'X-Hystviz-Token': hv.token },
   });
-  const j = await r.json();
+  const j = await r.json().catch(() => ({}));
   $('saved').replaceChildren(r.status === 201
     ? el('span', {}, 'saved as ', el('a', { href: '#' + j.file }, j.path))
     : el('span', { class: 'err' }, j.error || ('HTTP ' + r.status)));
@@ -335,7 +337,7 @@ $('save').addEventListener('click', async () => {
 // ---- reload on save -----------------------------------------------------------------------
 
 function listen() {
-  const es = new EventSource('/events');
+  const es = new EventSource('/events?page=' + hv.page);
   es.addEventListener('hello', () => { $('status').textContent = 'live'; });
   es.addEventListener('change', async () => {
     hv.changes++;
