@@ -1,10 +1,13 @@
 /* test_serve_util.c: the HTTP-free parts of `hystviz serve`: scene names,
  * override checks, JSON and shell quoting, shortest numbers, slider ranges,
  * "save as new scene" text and the never-overwriting writer. */
+#include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "serve_util.h"
@@ -77,6 +80,15 @@ int main(void)
     CHECK(sv_set_ok("output.name=x", &err) == HY_EINVAL);
     CHECK(sv_set_ok("nosuch.key=1", &err) == HY_EINVAL);
     CHECK(sv_set_ok("sigma0", &err) == HY_EINVAL);
+    /* issue 20: the check parses as hy_scene_set does (blanks before '=' are
+       trimmed by both), and it is an allow-list */
+    CHECK(sv_set_ok("input.file =/etc/passwd", &err) == HY_EINVAL && strstr(err.msg, "file path"));
+    CHECK(sv_set_ok("input.file\t=/etc/passwd", &err) == HY_EINVAL);
+    CHECK(sv_set_ok(" input.file \t =/etc/passwd", &err) == HY_EINVAL);
+    CHECK(sv_set_ok(" output.dir=/tmp", &err) == HY_EINVAL);
+    CHECK(sv_set_ok("figure.title=x", &err) == HY_EINVAL);
+    CHECK(sv_set_ok("model.sigma0 = 3", &err) == HY_OK);
+    CHECK(sv_set_ok("input.kind=sine", &err) == HY_OK);
     char longset[400];
     memset(longset, 'a', sizeof longset - 1);
     longset[sizeof longset - 1] = '\0';
@@ -169,6 +181,39 @@ int main(void)
     hy_scene_free(got);
     hy_scene_free(s);
     free(nt);
+
+    /* sv_read_beneath: the file itself, a link inside; never a link out, a
+       directory or a FIFO (issue 20: read through the descriptor checked) */
+    char sub[300], lin[300], lout[300], fifo[300], outside[300];
+    snprintf(sub, sizeof sub, "%s/d.scene", dir);
+    snprintf(lin, sizeof lin, "%s/in.scene", dir);
+    snprintf(lout, sizeof lout, "%s/out.scene", dir);
+    snprintf(fifo, sizeof fifo, "%s/f.scene", dir);
+    snprintf(outside, sizeof outside, "%s.outside", dir);
+    CHECK(mkdir(sub, 0700) == 0 && symlink("a.scene", lin) == 0 && symlink(outside, lout) == 0 &&
+          mkfifo(fifo, 0600) == 0);
+    FILE *o = fopen(outside, "w");
+    CHECK(o && fputs("outside\n", o) >= 0 && fclose(o) == 0);
+    int dfd = open(dir, O_RDONLY | O_DIRECTORY);
+    CHECK(dfd >= 0);
+    char *t = sv_read_beneath(dfd, "a.scene", 1 << 16, &len);
+    CHECK(t && !strcmp(t, text));
+    free(t);
+    CHECK(!sv_read_beneath(dfd, "a.scene", 10, &len) && errno == EFBIG);
+    CHECK(!sv_read_beneath(dfd, "out.scene", 1 << 16, &len));
+    CHECK(!sv_read_beneath(dfd, "d.scene", 1 << 16, &len));
+    CHECK(!sv_read_beneath(dfd, "f.scene", 1 << 16, &len)); /* and it did not block on the FIFO */
+    CHECK(!sv_read_beneath(dfd, "../x.scene", 1 << 16, &len));
+    CHECK(!sv_read_beneath(dfd, "missing.scene", 1 << 16, &len) && errno == ENOENT);
+    t = sv_read_beneath(dfd, "in.scene", 1 << 16, &len); /* a link inside: followed only where openat2 exists */
+    CHECK(!t || !strcmp(t, text));
+    free(t);
+    close(dfd);
+    unlink(lin);
+    unlink(lout);
+    unlink(fifo);
+    unlink(outside);
+    rmdir(sub);
     unlink(path);
     rmdir(dir);
     if (fails)
