@@ -536,7 +536,8 @@ static int anim_info(server *s, struct MHD_Connection *c, uint64_t hash, const c
         size_t n = strlen(out);
         while (n && out[n - 1] == '\n')
             out[--n] = '\0';
-        snprintf(e.msg, sizeof e.msg, "%s", rc < 0 ? "cannot run hystviz-animate (it is built next to hystviz)" : out);
+        const char *why = rc < 0 ? "cannot run hystviz-animate (it is built next to hystviz)" : out;
+        snprintf(e.msg, sizeof e.msg, "%.*s", (int)sizeof e.msg - 1, why);
     }
     if (rc >= 0) { /* a failure to start is not cached: it may be a passing shortage */
         pthread_mutex_lock(&s->mu);
