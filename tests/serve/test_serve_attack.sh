@@ -62,12 +62,14 @@ start() { # extra options...
     fi
     base="http://127.0.0.1:$port"
 }
-stop() {
+stop() { # SIGINT; a sanitizer's report in serve's stderr is a failure
+    [ -n "$srv" ] || return
     kill -INT $srv 2>/dev/null
     for _ in $(seq 100); do kill -0 $srv 2>/dev/null || break; sleep 0.1; done
     kill -9 $srv 2>/dev/null
     wait $srv 2>/dev/null
     srv=
+    grep -E -A12 "ERROR: (Address|Leak)Sanitizer|runtime error" "$T/serve.err" && fail "serve: sanitizer report above"
 }
 code() { curl -s -o /dev/null --max-time 20 -w "%{http_code}" "$@"; }
 expect() { # code url [curl options...]
@@ -202,6 +204,8 @@ for _ in $(seq 300); do kill -0 $srv 2>/dev/null || break; sleep 0.05; done
 ms=$((($(date +%s%N) - t0) / 1000000))
 kill -0 $srv 2>/dev/null && fail "serve still running 15 s after SIGINT during 40 renders" ||
     ok "SIGINT during 40 renders: stopped in $ms ms"
+wait $srv; rc=$?
+[ $rc -eq 0 ] || fail "serve exited $rc after SIGINT"
 stop
 for p in "${bg[@]}"; do kill -9 "$p" 2>/dev/null; done
 bg=()
