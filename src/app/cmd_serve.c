@@ -1483,8 +1483,8 @@ static void *uri_seen(void *cls, const char *uri, struct MHD_Connection *c)
     return cs;
 }
 
-static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *url, const char *method,
-                              const char *version, const char *upload, size_t *upload_size, void **con_cls)
+static enum MHD_Result handle_request(void *cls, struct MHD_Connection *c, const char *url, const char *method,
+                                      const char *version, const char *upload, size_t *upload_size, void **con_cls)
 {
     (void)version;
     (void)upload;
@@ -1562,6 +1562,19 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
     if (!strncmp(url, "/scenes/", 8))
         return api_text(s, c, url + 8);
     return send_text(c, 404, "not found");
+}
+
+/* The idle timeout is for the network: it is off while the request is being
+ * answered (waiting for a render slot, rendering) and on again, counted from
+ * now, for sending the answer (libmicrohttpd checks it after the handler
+ * returns, and dropped answers that took longer than the timeout to make). */
+static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *url, const char *method,
+                              const char *version, const char *upload, size_t *upload_size, void **con_cls)
+{
+    MHD_set_connection_option(c, MHD_CONNECTION_OPTION_TIMEOUT, 0u);
+    enum MHD_Result ret = handle_request(cls, c, url, method, version, upload, upload_size, con_cls);
+    MHD_set_connection_option(c, MHD_CONNECTION_OPTION_TIMEOUT, (unsigned)CONN_TIMEOUT_S);
+    return ret;
 }
 
 static void done(void *cls, struct MHD_Connection *c, void **con_cls, enum MHD_RequestTerminationCode toe)
