@@ -1175,7 +1175,7 @@ static void strip_comments(char *w)
 /* Saving is opt-in (--allow-save) and limited: SAVE_MAX files a run, one
  * every SAVE_EVERY_S.  Returns 1 after answering 429 (with Retry-After) when
  * over a limit, 0 when the save may go on: it is counted now (so two at once
- * cannot both pass) and *prev receives the time to restore if it fails. */
+ * cannot both pass) and *prev receives the time to restore if writing fails. */
 static int save_refused(server *s, struct MHD_Connection *c, double *prev)
 {
     pthread_mutex_lock(&s->mu);
@@ -1205,8 +1205,10 @@ static int save_refused(server *s, struct MHD_Connection *c, double *prev)
     return 1;
 }
 
-/* The save itself: *written = 1 once the new file exists. */
-static enum MHD_Result save_new(server *s, struct MHD_Connection *c, const args *a, int *written)
+/* Save as new scene: NAME.scene with the page's overrides written in, after
+ * checking that it renders what the page shows; the rate limit is applied
+ * just before writing, so a refused request (400, 409, 422) does not count. */
+static enum MHD_Result api_save(server *s, struct MHD_Connection *c, const args *a)
 {
     char path[PATH_MAX + 300];
     size_t tl;
@@ -1276,38 +1278,32 @@ static enum MHD_Result save_new(server *s, struct MHD_Connection *c, const args 
     }
     hy_scene_free(want);
     hy_scene_free(got);
-    if (!rc)
-        rc = sv_write_new(dest, newtext, strlen(newtext), &err);
-    free(newtext);
-
-    if (rc)
-        return send_error_json(c, rc == HY_EINVAL ? 409 : 500, err.msg);
-    *written = 1;
-    sv_buf b = {0};
-    sv_puts(&b, "{\"file\":");
     char file[200];
     snprintf(file, sizeof file, "%s.scene", nm);
-    sv_json(&b, file);
-    sv_puts(&b, ",\"path\":");
-    sv_json(&b, dest);
-    sv_puts(&b, "}");
-    return send_json(c, 201, &b);
-}
-
-static enum MHD_Result api_save(server *s, struct MHD_Connection *c, const args *a)
-{
+    struct stat st;
+    if (!rc && !fstatat(s->dirfd, file, &st, AT_SYMLINK_NOFOLLOW)) /* link(2) below decides; this names it early */
+        rc = hy_error_set(&err, HY_EINVAL, "%s exists already: choose another name", dest);
     double prev = 0;
-    if (save_refused(s, c, &prev))
+    if (!rc && save_refused(s, c, &prev)) { /* answered 429 */
+        free(newtext);
         return MHD_YES;
-    int written = 0;
-    enum MHD_Result ret = save_new(s, c, a, &written);
-    if (!written) { /* nothing written: the attempt does not count */
+    }
+    if (!rc && (rc = sv_write_new(dest, newtext, strlen(newtext), &err))) { /* nothing written: not counted */
         pthread_mutex_lock(&s->mu);
         s->nsaved--;
         s->last_save = prev;
         pthread_mutex_unlock(&s->mu);
     }
-    return ret;
+    free(newtext);
+    if (rc)
+        return send_error_json(c, rc == HY_EINVAL ? 409 : 500, err.msg);
+    sv_buf b = {0};
+    sv_puts(&b, "{\"file\":");
+    sv_json(&b, file);
+    sv_puts(&b, ",\"path\":");
+    sv_json(&b, dest);
+    sv_puts(&b, "}");
+    return send_json(c, 201, &b);
 }
 
 /* ---- Server-Sent Events --------------------------------------------- */
