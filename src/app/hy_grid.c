@@ -1,7 +1,9 @@
 /* hy_grid.c: grid specs (list, linear and log ranges), the row-major point
- * numbering of their Cartesian product and the i mod N shard partition. */
+ * numbering of their Cartesian product, the i mod N shard partition and the
+ * shard files of a split (sweep, export). */
 #include "hy_grid.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -220,4 +222,74 @@ int hy_shard_parse(const char *s, long *k, long *n, hy_error *err)
 size_t hy_shard_count(size_t n, long k, long nshards)
 {
     return (size_t)k < n ? (n - (size_t)k + (size_t)nshards - 1) / (size_t)nshards : 0;
+}
+
+/* K and N of a shard file's name PREFIX K-of-N SUFFIX; 0 if name is not one
+ * (no "+1" or "01" aliases). */
+static int shard_name(const char *name, const char *prefix, const char *suffix, long *k, long *n)
+{
+    size_t lp = strlen(prefix), ls = strlen(suffix), ln = strlen(name);
+    int end = 0;
+    if (ln <= lp + ls || strncmp(name, prefix, lp) || strcmp(name + ln - ls, suffix) ||
+        sscanf(name + lp, "%ld-of-%ld%n", k, n, &end) != 2 || (size_t)end != ln - lp - ls || *n < 1 ||
+        *n > HY_SHARD_MAX || *k < 0 || *k >= *n)
+        return 0;
+    char canon[64];
+    snprintf(canon, sizeof canon, "%ld-of-%ld", *k, *n);
+    return strlen(canon) == (size_t)end && !strncmp(canon, name + lp, (size_t)end);
+}
+
+int hy_shard_find(const char *dir, const char *prefix, const char *suffix, long *nshards, unsigned char **present,
+                  hy_error *err)
+{
+    DIR *d = opendir(dir);
+    *present = NULL;
+    if (!d)
+        return hy_error_set(err, HY_EINVAL, "%s: cannot open the directory: %s", dir, strerror(errno));
+    long n = 0, other = 0;
+    for (struct dirent *de; (de = readdir(d));) {
+        long k, nn;
+        if (!shard_name(de->d_name, prefix, suffix, &k, &nn))
+            continue;
+        if (n && nn != n) {
+            other = nn;
+            continue;
+        }
+        if (!n) {
+            n = nn;
+            if (!(*present = calloc((size_t)n, 1))) {
+                closedir(d);
+                return hy_error_set(err, HY_ENOMEM, "out of memory");
+            }
+        }
+        (*present)[k] = 1;
+    }
+    closedir(d);
+    if (!n)
+        return hy_error_set(err, HY_EINVAL, "%s holds no shard manifests (%sK-of-N%s)", dir, prefix, suffix);
+    if (other) {
+        free(*present);
+        *present = NULL;
+        return hy_error_set(err, HY_EINVAL,
+                            "%s holds shards of two splits (of %ld and of %ld): remove the stale ones (%s*-of-N%s) "
+                            "and merge again",
+                            dir, n, other, prefix, suffix);
+    }
+    *nshards = n;
+    return HY_OK;
+}
+
+long hy_shard_missing(long n, const unsigned char *present, char *buf, size_t size)
+{
+    long missing = 0, shown = 0;
+    size_t len = 0;
+    buf[0] = '\0';
+    for (long k = 0; k < n; k++)
+        if (!present[k] && ++missing && shown < 20 && len < size) {
+            len += (size_t)snprintf(buf + len, size - len, "%s %ld/%ld", shown ? "," : "", k, n);
+            shown++;
+        }
+    if (missing > shown && len < size)
+        snprintf(buf + len, size - len, ", ...");
+    return missing;
 }

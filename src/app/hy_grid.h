@@ -78,4 +78,15 @@ int hy_shard_parse(const char *s, long *k, long *n, hy_error *err);
 /* How many of n items shard k of nshards holds (items k, k + nshards, ...). */
 size_t hy_shard_count(size_t n, long k, long nshards);
 
+/* The shard files of one split in dir, named PREFIX K-of-N SUFFIX
+ * ("sweep.shard-" "3-of-8" ".csv"): *nshards gets N and *present (malloc'd,
+ * N bytes) which K are there.  HY_EINVAL with a message naming dir when there
+ * are none or shards of two splits. */
+int hy_shard_find(const char *dir, const char *prefix, const char *suffix, long *nshards, unsigned char **present,
+                  hy_error *err);
+
+/* How many of the n shards are not present; buf gets " K/N, K/N" for the
+ * first 20 of them (", ..." if more). */
+long hy_shard_missing(long n, const unsigned char *present, char *buf, size_t size);
+
 #endif

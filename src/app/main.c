@@ -11,6 +11,7 @@
 #include "cli_util.h"
 #include "cmd_boucwen.h"
 #include "cmd_check.h"
+#include "cmd_export.h"
 #include "cmd_gallery.h"
 #include "cmd_loop.h"
 #include "cmd_render.h"
@@ -30,6 +31,7 @@ static const char usage[] =
     "  animate   render an animation (off-screen OpenGL: OSMesa or EGL) as PNG frames or a video\n"
     "  gallery   render every scene into gallery/ (parallel, skips unchanged) with an index page\n"
     "  sweep     a parameter study: a figure and a table row per point of a grid, in shards\n"
+    "  export    an interactive figure as one offline HTML file: a slider per grid key\n"
     "  loop      print a steady hysteresis loop, y*_{u,k} or y_gamma as CSV\n"
     "  loops     print the major and minor loops of an input with their areas\n"
     "  boucwen   the Bouc-Wen benchmark: Table 2, synthetic data sets as CSV\n"
@@ -65,6 +67,7 @@ static const command commands[] = {
     {"data", hy_cmd_render},
     {"gallery", hy_cmd_gallery},
     {"sweep", hy_cmd_sweep},
+    {"export", hy_cmd_export},
     {"loop", hy_cmd_loop},
     {"loops", hy_cmd_loop},
     {"boucwen", hy_cmd_boucwen},

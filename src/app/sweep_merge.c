@@ -4,7 +4,6 @@
  * from the same study, complete. */
 #include "sweep_merge.h"
 
-#include <dirent.h>
 #include <errno.h>
 #include <inttypes.h>
 #include <stdlib.h>
@@ -25,83 +24,24 @@ void hy_sweep_shard_head(FILE *f, long k, long n, size_t npoints, uint64_t hash)
     fprintf(f, "# hystviz sweep shard %ld/%ld points %zu study %016" PRIx64 "\n", k, n, npoints, hash);
 }
 
-/* K and N of a shard manifest's file name; 0 if name is not one. */
-static int shard_name(const char *name, long *k, long *n)
+/* The N of DIR's shard manifests, checked complete; 2 with a message when
+ * there are none, several splits or missing shards. */
+static int find_shards(const char *dir, long *nshards)
 {
-    int end = 0;
-    if (sscanf(name, "sweep.shard-%ld-of-%ld.csv%n", k, n, &end) != 2 || name[end] || *n < 1 || *n > HY_SHARD_MAX ||
-        *k < 0 || *k >= *n)
-        return 0;
-    char canon[96];
-    snprintf(canon, sizeof canon, "sweep.shard-%ld-of-%ld.csv", *k, *n);
-    return !strcmp(canon, name); /* no "+1" or "01" aliases */
-}
-
-/* The N of DIR's shard manifests and which K are there (*present, n bytes);
- * 2 with a message when there are none or several splits. */
-static int find_shards(const char *dir, long *nshards, unsigned char **present)
-{
-    DIR *d = opendir(dir);
-    if (!d) {
-        fprintf(stderr, "hystviz sweep --merge: %s: cannot open the study directory: %s\n", dir, strerror(errno));
+    unsigned char *present = NULL;
+    hy_error err;
+    if (hy_shard_find(dir, "sweep.shard-", ".csv", nshards, &present, &err)) {
+        fprintf(stderr, "hystviz sweep --merge: %s\n", err.msg);
         return 2;
     }
-    long n = 0, other = 0;
-    *present = NULL;
-    for (struct dirent *de; (de = readdir(d));) {
-        long k, nn;
-        if (!shard_name(de->d_name, &k, &nn))
-            continue;
-        if (n && nn != n) {
-            other = nn;
-            continue;
-        }
-        if (!n) {
-            n = nn;
-            if (!(*present = calloc((size_t)n, 1))) {
-                closedir(d);
-                fprintf(stderr, "hystviz sweep --merge: out of memory\n");
-                return 2;
-            }
-        }
-        (*present)[k] = 1;
-    }
-    closedir(d);
-    if (!n) {
-        fprintf(stderr, "hystviz sweep --merge: %s holds no shard manifests (sweep.shard-K-of-N.csv)\n", dir);
-        return 2;
-    }
-    if (other) {
-        fprintf(stderr,
-                "hystviz sweep --merge: %s holds shards of two splits (of %ld and of %ld): remove the stale ones "
-                "(sweep.shard-*-of-N.csv) and merge again\n",
-                dir, n, other);
-        free(*present);
-        *present = NULL;
-        return 2;
-    }
-    *nshards = n;
-    return 0;
-}
-
-/* Prints the missing shards (at most 20 named); returns how many. */
-static long report_missing(const char *dir, long n, const unsigned char *present)
-{
-    long missing = 0;
-    for (long k = 0; k < n; k++)
-        missing += !present[k];
-    if (!missing)
-        return 0;
-    fprintf(stderr, "hystviz sweep --merge: %s: %ld of %ld shards missing:", dir, missing, n);
-    long shown = 0;
-    for (long k = 0; k < n && shown < 20; k++)
-        if (!present[k]) {
-            fprintf(stderr, "%s %ld/%ld", shown ? "," : "", k, n);
-            shown++;
-        }
-    fprintf(stderr, "%s\n  (run the same `hystviz sweep ... --shard K/%ld` for each, then merge again)\n",
-            missing > shown ? ", ..." : "", n);
-    return missing;
+    char list[512];
+    long missing = hy_shard_missing(*nshards, present, list, sizeof list);
+    free(present);
+    if (missing)
+        fprintf(stderr, "hystviz sweep --merge: %s: %ld of %ld shards missing:%s\n"
+                "  (run the same `hystviz sweep ... --shard K/%ld` for each, then merge again)\n",
+                dir, missing, *nshards, list, *nshards);
+    return missing ? 2 : 0;
 }
 
 typedef struct shard_in {
@@ -190,15 +130,9 @@ static int join_rows(const char *dir, long n, shard_in *in, size_t npoints, FILE
 int hy_sweep_merge(const char *dir, const char *plot, int quiet)
 {
     long n = 0;
-    unsigned char *present = NULL;
-    int rc = find_shards(dir, &n, &present);
+    int rc = find_shards(dir, &n);
     if (rc)
         return rc;
-    if (report_missing(dir, n, present)) {
-        free(present);
-        return 2;
-    }
-    free(present);
     struct rlimit rl; /* every shard is open at once: allow that many files */
     if (!getrlimit(RLIMIT_NOFILE, &rl) && rl.rlim_cur < rl.rlim_max && rl.rlim_cur < (rlim_t)n + 16) {
         rl.rlim_cur = rl.rlim_max;

@@ -1,0 +1,318 @@
+#!/usr/bin/python3
+"""tests/export/export_test.py HYSTVIZ SCENES_DIR [--screenshot PNG] [--bench N]
+
+`hystviz export`: the page's payload decoded here with the standard library
+(base64, gzip, json, and the coded path lines of src/app/export_page.h)
+gives, for every position, the bytes of `hystviz render --set ... --format
+svg`; a refused point carries render's message; shards merged equal the
+unsharded page byte for byte; the Fig. 15 grid (sigma0: 20 log-spaced values
+x u_min,2: 10 values) fits in 2 MB; bad input exits 2 and writes nothing.
+Then the page in headless chromium (the DevTools client of
+tests/serve/browser_test.py), opened from file:// with no server: at
+1024x768 the figure and every slider are on screen, moving a slider shows
+render --set's bytes, a refused position says so.  The chromium part SKIPs
+(exit 77 if it is all that is left) where chromium is absent.
+
+--bench N: instead, the export's size and build time for the Fig. 15 grid
+(-j 1 and -j 2) and N slider moves in the page: input event -> new figure
+in the DOM and laid out, and -> the next frame (median, p95).
+"""
+import base64
+import gzip
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "serve"))
+import browser_test as bt  # noqa: E402  (DevTools client, chromium start-up, check, pct)
+
+check, pct = bt.check, bt.pct
+NUMS = {"M": 2, "L": 2, "C": 6, "Z": 0}
+FIG15_GRID = ["--grid", "model.sigma0=0.1:1000:log20",
+              "--grid", "input.umin2=0.05,0.15,0.25,0.35,0.45,0.55,0.65,0.75,0.85,0.95"]
+
+
+# ---- the payload, decoded as the page decodes it ---------------------------------
+
+def fmt256(k):
+    neg = k < 0
+    q, r = divmod(abs(k) * 15625, 4)
+    if r == 3 or (r == 2 and q % 2):
+        q += 1
+    ip, fp = divmod(q, 1000000)
+    s = str(ip) + ("." + ("%06d" % fp).rstrip("0") if fp else "")
+    return "-" + s if neg else s
+
+
+def decode_path(c):
+    out, k, d, j = [c["h"]], [0, 0], [0, 0], 0
+    for cmd in c["c"]:
+        out += [cmd, " "]
+        for _ in range(NUMS[cmd]):
+            p = j & 1
+            d[p] += c["x"][j]
+            k[p] += d[p]
+            out += [fmt256(k[p]), " "]
+            j += 1
+    if not c["s"]:
+        out.pop()
+    out.append(c["e"])
+    return "".join(out)
+
+
+def decode_page(path):
+    """The page's meta and, per point, ('ok', svg bytes) or ('refused', message)."""
+    html = open(path, encoding="utf-8").read()
+    meta = json.loads(re.search(r'<script id="meta" type="application/json">(.*?)</script>', html, re.S).group(1))
+    b64 = re.search(r'<script id="payload" type="application/octet-stream">(.*?)</script>', html, re.S).group(1)
+    data = json.loads(gzip.decompress(base64.b64decode("".join(b64.split()))))
+    assert data["format"] == "hystviz-export 1", data["format"]
+    chunks = [c if isinstance(c, str) else decode_path(c) for c in data["chunks"]]
+    pts = [("refused", p) if isinstance(p, str) else ("ok", "".join(chunks[i] for i in p).encode()) for p in data["points"]]
+    coded = sum(1 for c in data["chunks"] if not isinstance(c, str))
+    return meta, pts, coded
+
+
+def sets_of(meta, i):
+    """The --set values of point i (row-major, first axis outermost)."""
+    sets, rest = [], i
+    for ax in reversed(meta["axes"]):
+        n = len(ax["values"])
+        sets.append(f"{ax['key']}={ax['values'][rest % n]}")
+        rest //= n
+    return list(meta["sets"]) + sets[::-1]
+
+
+def render(hv, scene, sets, tmp):
+    """render --set ... --format svg: (0, bytes) or (status, message)."""
+    out = tempfile.mkdtemp(dir=tmp)
+    args = [hv, "render", scene, "--format", "svg", "-o", out]
+    for s in sets:
+        args += ["--set", s]
+    r = subprocess.run(args, capture_output=True, text=True)
+    try:
+        if r.returncode:
+            return r.returncode, r.stderr.strip()
+        files = os.listdir(out)
+        return 0, open(os.path.join(out, files[0]), "rb").read()
+    finally:
+        shutil.rmtree(out)
+
+
+def export(hv, args, timeout=300):
+    return subprocess.run([hv, "export"] + args, capture_output=True, text=True, timeout=timeout)
+
+
+# ---- the tests ------------------------------------------------------------------------
+
+def test_payload(hv, scenes, tmp):
+    fig15 = os.path.join(scenes, "fig15_minor_loop_ex4.scene")
+    small = os.path.join(tmp, "small.html")
+    # u_min,2 = 1.2 > u_max,1 = 1: refused at both sigma0
+    grid = ["--grid", "model.sigma0=1,6", "--grid", "input.umin2=0.2,0.5,1.2", "--set", "model.fs=2.5"]
+    r = export(hv, [fig15] + grid + ["-o", small, "-j", "2"])
+    check(r.returncode == 0 and os.path.exists(small), f"export of a 2 x 3 grid with 2 refused points: exit {r.returncode} "
+          f"{r.stderr.strip()}")
+    check("2 refused" in r.stderr, "it says how many points the scene refused: " + r.stderr.strip())
+    meta, pts, coded = decode_page(small)
+    check(len(pts) == 6 and [a["key"] for a in meta["axes"]] == ["model.sigma0", "input.umin2"],
+          f"6 positions, the grid keys in order ({len(pts)})")
+    check(coded > 0, f"the curves are coded paths ({coded} chunks)")
+    for i, (kind, body) in enumerate(pts):
+        st, want = render(hv, fig15, sets_of(meta, i), tmp)
+        if kind == "ok":
+            check(st == 0 and body == want, f"position {i} ({' '.join(sets_of(meta, i))}) == render --set, "
+                  f"{len(body)} bytes")
+        else:
+            check(st == 2 and want == "hystviz: " + body, f"position {i} refused with render's message: '{body}'")
+
+    # shards: three, merged, equal the unsharded page byte for byte
+    sh = os.path.join(tmp, "sh", "page.html")
+    os.mkdir(os.path.dirname(sh))
+    for k in range(3):
+        r = export(hv, [fig15] + grid + ["-o", sh, "-j", "1", "--shard", f"{k}/3", "-q"])
+        check(r.returncode == 0 and os.path.exists(f"{sh}.shard-{k}-of-3"), f"shard {k}/3: exit {r.returncode} {r.stderr}")
+    moved = f"{sh}.shard-1-of-3"
+    os.rename(moved, moved + ".away")
+    r = export(hv, ["--merge", sh])
+    check(r.returncode == 2 and "1 of 3 shards missing: 1/3" in r.stderr and not os.path.exists(sh),
+          f"a missing shard: exit 2, named, nothing written ({r.returncode}: {r.stderr.strip()})")
+    os.rename(moved + ".away", moved)
+    r = export(hv, ["--merge", sh, "-q"])
+    same = os.path.exists(sh) and open(sh, "rb").read() == open(small, "rb").read()
+    check(r.returncode == 0 and same, f"--merge of 3 shards == the unsharded page, byte for byte ({r.stderr.strip()})")
+    check(not any(".shard-" in f for f in os.listdir(os.path.dirname(sh))), "the merge removed the shards")
+
+    # the Fig. 15 grid of the issue: 200 positions in <= 2 MB; a sample equals render
+    big = os.path.join(tmp, "fig15.html")
+    t0 = time.time()
+    r = export(hv, [fig15] + FIG15_GRID + ["-o", big, "-q"])
+    dt = time.time() - t0
+    size = os.path.getsize(big) if os.path.exists(big) else -1
+    check(r.returncode == 0 and 0 < size <= 2 * 1024 * 1024,
+          f"Fig. 15, 20 x 10 grid: {size} bytes <= 2 MB (built in {dt:.1f} s) {r.stderr.strip()}")
+    meta, pts, _ = decode_page(big)
+    check(len(pts) == 200 and all(k == "ok" for k, _ in pts), "200 positions, none refused")
+    for i in (0, 37, 111, 199):  # a sample: all 200 would take a render each
+        st, want = render(hv, fig15, sets_of(meta, i), tmp)
+        check(st == 0 and pts[i][1] == want, f"Fig. 15 position {i} == render --set {' '.join(sets_of(meta, i))}")
+    return big, small
+
+
+def test_errors(hv, scenes, tmp):
+    fig15 = os.path.join(scenes, "fig15_minor_loop_ex4.scene")
+    out = os.path.join(tmp, "e.html")
+    cases = [
+        ([fig15, "-o", out], 2, "at least one --grid"),
+        ([fig15, "--grid", "model.sigma0=1:2:x", "-o", out], 2, "--grid"),
+        ([fig15, "--grid", "input.umin2=1.2,1.3", "-o", out], 2, "refuses every point"),
+        ([fig15, "--grid", "model.nosuch=1,2", "-o", out], 2, "refuses every point"),
+        ([os.path.join(tmp, "missing.scene"), "--grid", "model.sigma0=1", "-o", out], 2, "missing.scene"),
+        ([fig15, "--grid", "model.sigma0=1", "--bogus", "-o", out], 2, "unknown or incomplete option"),
+        (["--merge", os.path.join(tmp, "none.html")], 2, "no shard manifests"),
+        ([fig15, "--grid", "model.sigma0=1,2", "-o", tmp], 1, "directory"),
+    ]
+    for args, want, text in cases:
+        r = export(hv, args)
+        check(r.returncode == want and text in r.stderr and not os.path.exists(out),
+              f"export {' '.join(os.path.basename(a) for a in args)}: exit {r.returncode} (want {want}), "
+              f"nothing written: {r.stderr.strip()[:120]}")
+    r = export(hv, ["--help"])
+    check(r.returncode == 0 and "--grid" in r.stdout and "--shard" in r.stdout, "export --help")
+    check(not [f for f in os.listdir(tmp) if "hystviz-tmp" in f], "no temporaries left")
+
+
+def open_page(dt, path):
+    dt.call("Page.navigate", url="file://" + path)
+    return dt.wait("window.hv && hv.ready && hv.cached >= 1", 60, "the page to decode")
+
+
+def set_slider(dt, a, v):
+    """Sets slider a to position v and fires its input event; returns the time to the new figure (ms)."""
+    return dt.js(f"""(() => {{ const s = document.getElementById('s{a}'); const t0 = performance.now();
+        s.value = {v}; s.dispatchEvent(new Event('input'));
+        document.getElementById('figbox').getBoundingClientRect(); return performance.now() - t0; }})()""")
+
+
+def test_browser(dt, hv, scenes, tmp, big, small, screenshot):
+    fig15 = os.path.join(scenes, "fig15_minor_loop_ex4.scene")
+    dt.call("Emulation.setDeviceMetricsOverride", width=1024, height=768, deviceScaleFactor=1, mobile=False)
+    check(open_page(dt, big), "the exported page decodes from file:// with no server")
+    meta, pts, _ = decode_page(big)
+    check(dt.js("location.protocol") == "file:", "it is opened from file://")
+    check(dt.js("hv.index") == 0 and dt.js("hv.svg") == pts[0][1].decode(), "position 0 shows render's SVG")
+    # at 1024x768: the figure and every slider with its value inside the viewport
+    boxes = dt.js("""[...document.querySelectorAll('#figure svg, .ctl input, .ctl .v')].map(e => {
+        const b = e.getBoundingClientRect(); return [e.tagName, b.left, b.top, b.right, b.bottom]; })""")
+    inside = all(b[1] >= 0 and b[2] >= 0 and b[3] <= 1024 and b[4] <= 768 for b in boxes)
+    fig = dt.js("(() => { const b = document.querySelector('#figure svg').getBoundingClientRect(); return b.width * b.height; })()")
+    check(inside and len(boxes) == 5 and fig >= 0.4 * 1024 * 768,
+          f"at 1024x768 the figure ({fig / (1024 * 768):.0%} of the screen) and both sliders with their values are on screen")
+    # move sigma0 with the keyboard (three steps) and u_min,2 with the mouse's value
+    dt.js("document.getElementById('s0').focus()")
+    for _ in range(3):
+        dt.key("ArrowRight", "ArrowRight")
+    set_slider(dt, 1, 6)
+    i = dt.js("hv.index")
+    st, want = render(hv, fig15, sets_of(meta, i), tmp)
+    check(i == 3 * 10 + 6 and st == 0 and dt.js("hv.svg") == want.decode() and dt.js("hv.shown") == i,
+          f"after moving the sliders (position {i}) the page shows render --set {' '.join(sets_of(meta, i))}, byte for byte")
+    shown = dt.js("[...document.querySelectorAll('.ctl .v')].map(e => e.textContent)")
+    check(shown == [meta["axes"][0]["values"][3] + " (4/20)", "0.65 (7/10)"], f"each key's value is shown: {shown}")
+    check(dt.js("document.getElementById('cmd').textContent") == "hystviz render " + " ".join(
+        [fig15] + [f"--set {s}" for s in sets_of(meta, i)]) + " --format svg", "the page shows the render command")
+    if screenshot:
+        dt.wait("hv.allCached", 30, "every figure parsed")
+        shot = dt.call("Page.captureScreenshot", format="png")
+        with open(screenshot, "wb") as f:
+            f.write(base64.b64decode(shot["data"]))
+        print(f"   screenshot: {screenshot}")
+    # a refused position says so, and the next valid one is back
+    check(open_page(dt, small), "the small page decodes")
+    set_slider(dt, 1, 2)
+    msg = dt.js("document.getElementById('refused').hidden ? '' : document.getElementById('refused').textContent")
+    _, want = render(hv, fig15, ["model.fs=2.5", "model.sigma0=1", "input.umin2=1.2"], tmp)
+    check(dt.js("hv.svg") is None and msg.endswith(want[len("hystviz: "):]) and "refuses" in msg,
+          f"a refused position shows the scene's message: '{msg[:100]}'")
+    set_slider(dt, 1, 1)
+    _, want = render(hv, fig15, ["model.fs=2.5", "model.sigma0=1", "input.umin2=0.5"], tmp)
+    check(dt.js("hv.svg") == want.decode() and dt.js("document.getElementById('refused').hidden"),
+          "moving back to a valid position shows its figure")
+
+
+def bench(dt, hv, scenes, tmp, n):
+    fig15 = os.path.join(scenes, "fig15_minor_loop_ex4.scene")
+    page = os.path.join(tmp, "bench.html")
+    for j in (1, 2):
+        t0 = time.time()
+        r = export(hv, [fig15] + FIG15_GRID + ["-o", page, "-q", "-j", str(j)])
+        if r.returncode:
+            print("bench-export: export failed: " + r.stderr)
+            return
+        print(f"bench-export Fig. 15, 20 x 10 grid, -j {j}: {os.path.getsize(page) / 1e6:.3f} MB "
+              f"(target <= 2 MB) built in {time.time() - t0:.2f} s", flush=True)
+    dt.call("Emulation.setDeviceMetricsOverride", width=1024, height=768, deviceScaleFactor=1, mobile=False)
+    open_page(dt, page)
+    dt.wait("hv.allCached", 60, "every figure parsed")
+    print(f"bench-export page: payload decoded in {dt.js('hv.decodeMs'):.0f} ms; every figure parsed up front", flush=True)
+    swap, frame = [], []
+    for k in range(n):
+        a, v = k % 2, (k * 7) % (20 if k % 2 == 0 else 10)
+        r = dt.js(f"""new Promise(res => {{ const s = document.getElementById('s{a}'); const t0 = performance.now();
+            s.value = {v}; s.dispatchEvent(new Event('input'));
+            document.getElementById('figure').getBoundingClientRect(); const t1 = performance.now();
+            requestAnimationFrame(() => setTimeout(() => res([t1 - t0, performance.now() - t0]), 0)); }})""")
+        swap.append(r[0])
+        frame.append(r[1])
+    print(f"bench-export slider -> figure in the page, {n} moves at 1024x768: new SVG in the DOM and laid out "
+          f"median {pct(swap, 50):.2f} ms p95 {pct(swap, 95):.2f} ms; to the next frame (rAF + task) median "
+          f"{pct(frame, 50):.1f} ms p95 {pct(frame, 95):.1f} ms (target <= 16 ms)", flush=True)
+
+
+def main():
+    hv, scenes = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2])
+    screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
+    nbench = int(sys.argv[sys.argv.index("--bench") + 1]) if "--bench" in sys.argv else 0
+    have_chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    tmp = tempfile.mkdtemp(prefix="hystviz-export-")
+    chrome = None
+    try:
+        if nbench:
+            if not have_chromium:
+                print("SKIP: chromium is not installed (Debian: apt-get install chromium)")
+                return 77
+            chrome, ws = bt.start_chromium(tmp)
+            bench(bt.DevTools(ws), hv, scenes, tmp, nbench)
+            return 0
+        big, small = test_payload(hv, scenes, tmp)
+        test_errors(hv, scenes, tmp)
+        if not have_chromium:
+            print("SKIP (browser part): chromium is not installed (Debian: apt-get install chromium)")
+        else:
+            chrome, ws = bt.start_chromium(tmp)
+            if not chrome:
+                print("SKIP (browser part): chromium did not start headless")
+            else:
+                dt = bt.DevTools(ws)
+                dt.call("Page.enable")
+                dt.call("Runtime.enable")
+                test_browser(dt, hv, scenes, tmp, big, small, screenshot)
+    finally:
+        if chrome:
+            chrome.kill()
+            chrome.wait()
+        shutil.rmtree(tmp, ignore_errors=True)
+    if bt.FAILS:
+        print(f"{len(bt.FAILS)} failure(s)")
+        return 1
+    print("all export tests passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
