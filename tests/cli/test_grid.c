@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "hy_grid.h"
 
@@ -102,8 +103,45 @@ static void shards(void)
         CHECK(hy_shard_parse(bad[i], &k, &n, &err) == HY_EINVAL, "--shard '%s' accepted", bad[i]);
 }
 
+/* hy_shard_find / hy_shard_missing: the shard files of one split in a
+ * directory (sweep --merge, export --merge), no aliases, two splits refused. */
+static void shard_files(void)
+{
+    char dir[] = "/tmp/test_grid.XXXXXX", path[256], list[256];
+    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    const char *names[] = {"p.html.shard-0-of-3", "p.html.shard-2-of-3", "p.html.shard-01-of-3",
+                           "p.html.shard-+1-of-3", "q.html.shard-1-of-3", "p.html.shard-1-of-3.x"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        FILE *f = fopen(path, "w");
+        CHECK(f && !fclose(f), "cannot create %s", path);
+    }
+    long n = 0;
+    unsigned char *present = NULL;
+    hy_error err;
+    CHECK(!hy_shard_find(dir, "p.html.shard-", "", &n, &present, &err) && n == 3, "find: %s", err.msg);
+    CHECK(present && present[0] && !present[1] && present[2], "shard 1/3 (only as aliases) counted present");
+    CHECK(present && hy_shard_missing(n, present, list, sizeof list) == 1 && !strcmp(list, " 1/3"), "missing: '%s'", list);
+    free(present);
+    CHECK(hy_shard_find(dir, "r.html.shard-", "", &n, &present, &err) == HY_EINVAL && strstr(err.msg, "no shard"),
+          "no shards: %s", err.msg);
+    snprintf(path, sizeof path, "%s/p.html.shard-0-of-4", dir);
+    FILE *f = fopen(path, "w");
+    CHECK(f && !fclose(f), "cannot create %s", path);
+    CHECK(hy_shard_find(dir, "p.html.shard-", "", &n, &present, &err) == HY_EINVAL && strstr(err.msg, "two splits") &&
+              !present, "two splits: %s", err.msg);
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        remove(path);
+    }
+    snprintf(path, sizeof path, "%s/p.html.shard-0-of-4", dir);
+    remove(path);
+    CHECK(!rmdir(dir), "test directory left non-empty");
+}
+
 int main(void)
 {
+    shard_files();
     ranges();
     formats();
     refusals();
