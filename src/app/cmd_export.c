@@ -103,7 +103,7 @@ static int parse_opts(int argc, char **argv, export_opts *o)
         fprintf(stderr, "hystviz export: out of memory\n");
         return 2;
     }
-    hy_error err;
+    hy_error err = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int po = cli_policy_option(&o->pol, o->dirs, "export", argc, argv, &i);
@@ -180,7 +180,7 @@ static int parse_opts(int argc, char **argv, export_opts *o)
 static int describe(const export_opts *o, char **meta, uint64_t *hash)
 {
     hy_scene *base = NULL;
-    hy_error err;
+    hy_error err = {0};
     if (hy_scene_parse_file_policy(o->scene, &o->pol, &base, &err)) {
         fprintf(stderr, "hystviz export: %s\n", err.msg);
         return err.code == HY_ENOMEM ? 1 : 2;
@@ -261,7 +261,7 @@ static void render_point(const export_opts *o, size_t i, point_res *res)
     for (size_t a = 0; a < nax && !bad; a++)
         sets[o->nsets + a] = text + offs[a];
     hy_scene_run r;
-    hy_error err;
+    hy_error err = {0};
     err.msg[0] = '\0';
     int rc = bad ? hy_error_set(&err, HY_ENOMEM, "out of memory")
                  : hy_scene_run_load_policy(&r, o->scene, sets, o->nsets + nax, &o->pol, &err);
@@ -360,7 +360,7 @@ typedef struct page_ctx {
  * the export (status 1). */
 static int add_point(page_ctx *c, size_t i, int kind, const char *svg, size_t len, const char *msg)
 {
-    hy_error err;
+    hy_error err = {0};
     int rc;
     if (kind == 2) {
         fprintf(stderr, "hystviz export: point %zu: %s\n", i, msg);
@@ -387,7 +387,7 @@ static int take_page(void *ctx, size_t i, point_res *r)
 static int write_page(page_ctx *c, const char *meta, hy_out *out, int quiet)
 {
     size_t nref, n = exp_page_points(c->pg, &nref);
-    hy_error err;
+    hy_error err = {0};
     if (nref == n) {
         hy_out_abort(out);
         fprintf(stderr, "hystviz export: the scene refuses every point of the grid (%s); nothing written\n",
@@ -413,8 +413,8 @@ static int write_page(page_ctx *c, const char *meta, hy_out *out, int quiet)
 /* Opens the page's output; 1 with a message on failure. */
 static int open_out(hy_out *out, const char *path)
 {
-    hy_error err;
-    if (hy_out_open(out, path, 0, &err)) {
+    hy_error err = {0};
+    if (hy_out_open(out, path, HY_OUT_FOLLOW, &err)) { /* the user's own file: as the shell's > */
         fprintf(stderr, "hystviz export: %s\n", err.msg);
         return 1;
     }
@@ -433,7 +433,7 @@ static int put_gz(FILE *f, const void *text, size_t len)
 {
     unsigned char *gz;
     size_t gzlen;
-    hy_error err;
+    hy_error err = {0};
     if (exp_gzip(text, len, &gz, &gzlen, &err))
         return -1;
     size_t w = fwrite(gz, 1, gzlen, f);
@@ -477,7 +477,7 @@ static int export_run(const export_opts *o)
         char path[4200];
         shard_path(o->out, o->shard_k, o->shard_n, path, sizeof path);
         hy_out out;
-        hy_error err;
+        hy_error err = {0};
         if (hy_out_open(&out, path, 0, &err)) {
             fprintf(stderr, "hystviz export: %s\n", err.msg);
             free(meta);
@@ -642,7 +642,7 @@ static int export_merge(const char *out, int quiet)
     snprintf(prefix, sizeof prefix, "%s.shard-", slash ? slash + 1 : out);
     long n = 0;
     unsigned char *present = NULL;
-    hy_error err;
+    hy_error err = {0};
     if (hy_shard_find(dir, prefix, "", &n, &present, &err)) {
         fprintf(stderr, "hystviz export --merge: %s\n", err.msg);
         return err.code == HY_ENOMEM ? 1 : 2;

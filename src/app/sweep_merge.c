@@ -29,7 +29,7 @@ void hy_sweep_shard_head(FILE *f, long k, long n, size_t npoints, uint64_t hash)
 static int find_shards(const char *dir, long *nshards)
 {
     unsigned char *present = NULL;
-    hy_error err;
+    hy_error err = {0};
     if (hy_shard_find(dir, "sweep.shard-", ".csv", nshards, &present, &err)) {
         fprintf(stderr, "hystviz sweep --merge: %s\n", err.msg);
         return 2;

@@ -118,7 +118,7 @@ static void shard_files(void)
     }
     long n = 0;
     unsigned char *present = NULL;
-    hy_error err;
+    hy_error err = {0};
     CHECK(!hy_shard_find(dir, "p.html.shard-", "", &n, &present, &err) && n == 3, "find: %s", err.msg);
     CHECK(present && present[0] && !present[1] && present[2], "shard 1/3 (only as aliases) counted present");
     CHECK(present && hy_shard_missing(n, present, list, sizeof list) == 1 && !strcmp(list, " 1/3"), "missing: '%s'", list);

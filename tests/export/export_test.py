@@ -104,7 +104,7 @@ def render(hv, scene, sets, tmp):
         shutil.rmtree(out)
 
 
-def export(hv, args, timeout=300):
+def export(hv, args, timeout=400):
     return subprocess.run([hv, "export"] + args, capture_output=True, text=True, timeout=timeout)
 
 
