@@ -28,10 +28,14 @@ void hy_frame_composite(int w, int h, const unsigned char *gl_rgba_bottom_up, co
                         int argb_stride, unsigned char *rgb);
 
 typedef struct hy_png_opts {
-    int level;        /* zlib level 0..9 */
-    int filter;       /* HY_PNG_FILTER_* */
+    int level;        /* zlib level 0..9, or libdeflate's 0..12 with engine */
+    int filter;       /* HY_PNG_FILTER_* (zlib only; libdeflate: none)     */
     int strategy;     /* zlib strategy: 0 default, 1 filtered, 3 RLE */
+    int engine;       /* HY_PNG_ZLIB (libpng), or HY_PNG_LIBDEFLATE: the IDAT
+                       * stream compressed by libdeflate in one call, the
+                       * chunks written here (zlib where not built with it) */
 } hy_png_opts;
+enum { HY_PNG_ZLIB = 0, HY_PNG_LIBDEFLATE = 1 };
 enum { HY_PNG_FILTER_NONE = 0, HY_PNG_FILTER_SUB, HY_PNG_FILTER_UP, HY_PNG_FILTER_PAETH, HY_PNG_FILTER_ALL };
 
 /* Whether the host stores a uint32 low byte first: a cairo RGB24 pixel is

@@ -103,7 +103,7 @@ static void bench_png(const one *o)
     for (size_t l = 0; l < sizeof levels / sizeof levels[0]; l++)
         for (int sg = 0; sg < 2; sg++)
             for (int fl = 0; fl < 5; fl++) {
-                hy_png_opts po = {levels[l], fl, strategies[sg]};
+                hy_png_opts po = {levels[l], fl, strategies[sg], HY_PNG_ZLIB};
                 hy_error err;
                 double t0 = now();
                 for (int r = 0; r < 5; r++)

@@ -70,16 +70,36 @@ static void one(int w, int h, int density)
     free(gl), free(ov), free(out);
 }
 
-static void xrgb_png(int w, int h)
+/* The frame encoders: libpng + zlib, and libdeflate at its levels (zlib
+ * where not built with it); each must decode to the pixels written. */
+static const hy_png_opts encoders[] = {
+    {1, HY_PNG_FILTER_NONE, 0, HY_PNG_ZLIB},      {0, HY_PNG_FILTER_NONE, 0, HY_PNG_LIBDEFLATE},
+    {2, HY_PNG_FILTER_NONE, 0, HY_PNG_LIBDEFLATE}, {6, HY_PNG_FILTER_NONE, 0, HY_PNG_LIBDEFLATE},
+    {12, HY_PNG_FILTER_NONE, 0, HY_PNG_LIBDEFLATE},
+};
+
+/* pngcheck (Debian pngcheck), where installed, finds the file a valid PNG
+ * (chunk CRCs, IHDR, the zlib stream). */
+static void png_valid(const char *path)
+{
+    if (system("command -v pngcheck > /dev/null 2>&1"))
+        return;
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "pngcheck -q %s > /dev/null 2>&1", path);
+    CHECK(system(cmd) == 0, "pngcheck finds %s invalid", path);
+}
+
+static void xrgb_png(int w, int h, const hy_png_opts *enc)
 {
     int stride = 4 * w + 8;           /* wider than the row, as cairo may make it */
     unsigned char *px = malloc((size_t)stride * h);
     for (size_t i = 0; i < (size_t)stride * h; i++)
         px[i] = (unsigned char)rnd();
     hy_error err;
-    hy_png_opts o = hy_png_frame_defaults();
+    hy_png_opts o = enc ? *enc : hy_png_frame_defaults();
     int rc = hy_png_write_xrgb("composite_xrgb.png", w, h, px, stride, &o, &err);
     CHECK(rc == 0, "write: %s", rc ? err.msg : "");
+    png_valid("composite_xrgb.png");
     cairo_surface_t *s = cairo_image_surface_create_from_png("composite_xrgb.png");
     CHECK(cairo_surface_status(s) == CAIRO_STATUS_SUCCESS && cairo_image_surface_get_width(s) == w &&
               cairo_image_surface_get_height(s) == h, "read back %dx%d", w, h);
@@ -106,9 +126,12 @@ static void xrgb_png(int w, int h)
 
 int main(void)
 {
-    xrgb_png(1, 1);
-    xrgb_png(7, 5);
-    xrgb_png(333, 17);
+    for (size_t e = 0; e <= sizeof encoders / sizeof *encoders; e++) { /* the last: the frames' default */
+        const hy_png_opts *enc = e < sizeof encoders / sizeof *encoders ? &encoders[e] : NULL;
+        xrgb_png(1, 1, enc);
+        xrgb_png(7, 5, enc);
+        xrgb_png(333, 17, enc);
+    }
     const int widths[] = {1, 2, 3, 4, 5, 7, 8, 9, 17, 64, 333};
     const int dens[] = {0, 3, 50, 100};
     for (size_t i = 0; i < sizeof widths / sizeof *widths; i++)
