@@ -15,14 +15,14 @@ set -eu
 cd "$(dirname "$0")/.."
 what=${1:-gallery}
 
-pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev fonts-dejavu-core fonts-stix parallel time libmicrohttpd-dev"
+pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev libdeflate-dev fonts-dejavu-core fonts-stix parallel time libmicrohttpd-dev"
 # GL backends (OSMesa; EGL with Mesa's software device) and ffmpeg for the video tests
 pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # the fuzzer needs clang and its runtime libraries (libFuzzer, ASan, UBSan)
 [ "$what" = fuzz ] && pkgs="$pkgs clang libclang-rt-dev"
 # what the tests need besides: curl and bash (serve over HTTP), python3 and
 # chromium (the page in a real browser, headless)
-case "$what" in test) pkgs="$pkgs curl bash python3 chromium" ;; bench) pkgs="$pkgs curl bash python3 chromium python3-matplotlib" ;; esac
+case "$what" in test) pkgs="$pkgs curl bash python3 chromium pngcheck" ;; bench) pkgs="$pkgs curl bash python3 chromium python3-matplotlib python3-numpy" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"
