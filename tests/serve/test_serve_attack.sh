@@ -182,7 +182,13 @@ expect 403 "/api/save?scene=$F.scene&name=x1" -X POST -H "X-Hystviz-Token: "
 stop
 "$hv" serve --help | grep -q -- "--allow-save" && "$hv" serve --help | grep -A3 -- "--public" | grep -q "reads every scene" &&
     ok "--help names --allow-save and what --public exposes" || fail "--help: --allow-save / --public"
-start --allow-save
+start --allow-save --max-work 2e7
+# --max-work raises serve's budget: the 1e7 refused above renders now; its
+# 208 MB of CSV are over the output budget of an answer
+expect 200 "/api/render?scene=$F.scene&set=compute.points%3D1000000&fmt=svg" --max-time 60
+curl -s --max-time 60 "$base/api/render?scene=$F.scene&set=compute.points%3D1000000&fmt=csv" | head -c 300 >"$T/body"
+grep -q "output budget" "$T/body" && ok "208 MB of CSV: refused, naming the output budget" ||
+    fail "208 MB of CSV: $(cat "$T/body")"
 token=$(curl -s --max-time 10 "$base/" | sed -n 's/.*name="hystviz-token" content="\([0-9a-f]*\)".*/\1/p')
 [ ${#token} -eq 32 ] || fail "--allow-save: no token in the page"
 expect 201 "/api/save?scene=$F.scene&name=r1" -X POST -H "X-Hystviz-Token: $token"
