@@ -114,6 +114,7 @@ extern const size_t hy_page_html_len, hy_page_js_len, hy_page_css_len;
 #define QUEUE_MAX 64        /* renders waiting for a slot; more: 503 + Retry-After */
 #define SERVE_WORK_DEFAULT 2e6       /* serve's work budget per render (--max-work raises it) */
 #define SERVE_OUTPUT_MAX (32u << 20) /* bytes of one answer (SVG, PDF, PNG, CSV, JSON) */
+#define CHILD_TIMEOUT_S 60  /* hystviz-animate --info / --list: killed after this */
 #define ANIM_CACHE 64       /* `hystviz-animate --info` answers kept, by scene hash */
 #define SAVE_MAX 100        /* saves per run (--allow-save) ... */
 #define SAVE_EVERY_S 1.0    /* ... at most one a second */
@@ -429,7 +430,8 @@ static enum MHD_Result send_busy(struct MHD_Connection *c, int why)
 /* ---- hystviz-animate, out of process ---------------------------------- */
 
 /* Runs argv with stdout and stderr into out (NUL-terminated, truncated to
- * size); returns the exit status, or -1 if it could not run. */
+ * size); returns the exit status, or -1 if it could not run or was killed
+ * after CHILD_TIMEOUT_S.  The child is reaped before this returns. */
 static int run_capture(char *const *argv, char *out, size_t size)
 {
     int fd[2];
@@ -446,8 +448,17 @@ static int run_capture(char *const *argv, char *out, size_t size)
     posix_spawn_file_actions_destroy(&fa);
     close(fd[1]);
     size_t n = 0;
+    double deadline = now_s() + CHILD_TIMEOUT_S;
+    int killed = 0;
     for (;;) {
         char tmp[4096];
+        struct pollfd pf = {.fd = fd[0], .events = POLLIN};
+        double left = deadline - now_s();
+        if (!sp && (left <= 0 || poll(&pf, 1, (int)(left * 1000) + 1) == 0)) {
+            kill(pid, SIGKILL); /* hung: its slot and its pipe are freed */
+            killed = 1;
+            break;
+        }
         ssize_t r = read(fd[0], tmp, sizeof tmp);
         if (r < 0 && errno == EINTR)
             continue;
@@ -465,7 +476,7 @@ static int run_capture(char *const *argv, char *out, size_t size)
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR)
             return -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return !killed && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 static void list_builtins(server *s)
