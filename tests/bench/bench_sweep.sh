@@ -1,55 +1,118 @@
 #!/bin/sh
-# Benchmark of `hystviz sweep` (issue 13), whole processes:
+# Benchmark of `hystviz sweep` (issues 13, 23), whole processes:
 #   1. a 1,000-point sweep of Fig. 15 (analytic: closed forms) with its figures
 #      (the scene's formats: SVG, PDF, PNG) at -j 1 and -j 2: points per second
 #   2. the same for Fig. 11 with compute.solver = rkf45 (GSL odeiv2, three y_γ
-#      solves per point, each also measured against the exact solution)
-#   3. the table-only fast path (--formats none) of Fig. 15: points per second
-#      of wall time and per CPU second (user + system: per core), goal >= 10,000
-#   4. peak memory (max RSS) of table-only sweeps of 1,000 / 10,000 / 100,000
-#      points and of figure sweeps of 100 / 1,000 points: it must not grow with
-#      the number of points (the table is streamed)
+#      solves per point)
+#   3. the table-only fast path (--formats none) of Fig. 15 from 1,000 to
+#      1,000,000 points: points per second of wall time and per CPU second
+#      (user + system: per core), goal >= 100,000 per CPU second; peak memory
+#      (max RSS) must not grow with the number of points (the table is streamed)
+#   4. paired with the NumPy yardstick (tests/bench/np_sweep.py, the same
+#      closed form and scalars in a Python loop, checked against hystviz's
+#      table first): ROUNDS alternating runs of the issue's 10,000-point grid,
+#      medians and the ratio hystviz / NumPy (goal < 0.25)
+# Rows are printed as the README's table rows (README.md, "Speed" under
+# "Parameter studies"), in its units; `bench_sweep.sh --rows` prints the rows'
+# labels only, without running anything: tests/cli/test_readme_bench.sh checks
+# that the README's table has exactly these rows, in this order.
 # Everything is written under a temporary directory.  Asserts nothing but that
-# the runs work.  Needs /usr/bin/time (Debian package `time`).
-# usage: bench_sweep.sh HYSTVIZ SCENES_DIR
+# the runs work.  Needs /usr/bin/time (Debian `time`) and python3-numpy.
+# usage: bench_sweep.sh HYSTVIZ SCENES_DIR [ROUNDS] | bench_sweep.sh --rows
 set -u
-hv=$1
-scenes=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+labels_only=0
+if [ "${1:-}" = "--rows" ]; then
+    labels_only=1
+else
+    hv=$1
+    scenes=$2
+    rounds=${3:-5}
+    tmp=$(mktemp -d)
+    trap 'rm -rf "$tmp"' EXIT
+fi
 fail() { echo "bench_sweep: $*" >&2; exit 1; }
-[ -x /usr/bin/time ] || fail "/usr/bin/time is missing (apt-get install time)"
-fig15=$scenes/fig15_minor_loop_ex4.scene
-fig11=$scenes/fig11_ygamma_ex3.scene
-echo "sweep benchmark: $(getconf _NPROCESSORS_ONLN) online CPUs, load $(cut -d' ' -f1-3 /proc/loadavg)"
+here=$(dirname "$0")
+load() { cut -d' ' -f1-3 /proc/loadavg; }
+# 1234567.8 -> 1,234,568
+commas='function c(x,  s, r) { s = sprintf("%.0f", x); r = ""; while (length(s) > 3) { r = "," substr(s, length(s) - 2) r; s = substr(s, 1, length(s) - 3) } return s r }'
 
-# run LABEL POINTS ARGS...: one timed sweep into $tmp/out; prints points/s
-# (wall and per CPU second) and max RSS
+if [ $labels_only = 0 ]; then
+    [ -x /usr/bin/time ] || fail "/usr/bin/time is missing (apt-get install time)"
+    fig15=$scenes/fig15_minor_loop_ex4.scene
+    fig11=$scenes/fig11_ygamma_ex3.scene
+    echo "sweep benchmark: $(getconf _NPROCESSORS_ONLN) online CPUs, load $(load)"
+    echo
+    echo "| sweep | wall | points/s | points per CPU second | max RSS |"
+    echo "|---|---|---|---|---|"
+fi
+
+# run LABEL POINTS ARGS...: one timed sweep into $tmp/out, printed as a README
+# table row (with --rows: the label only).  BENCH_SWEEP_FROM=N runs only the
+# rows from the Nth on (the 1,000-point figure sweeps, rows 1-4, take minutes
+# on a loaded machine).
+nrow=0
 run() {
     label=$1
     pts=$2
     shift 2
+    nrow=$((nrow + 1))
+    if [ $labels_only = 1 ]; then
+        echo "$label"
+        return
+    fi
+    [ "$nrow" -ge "${BENCH_SWEEP_FROM:-1}" ] || return 0
     rm -rf "$tmp/out"
     /usr/bin/time -f '%e %U %S %M' -o "$tmp/time" "$hv" sweep "$@" -o "$tmp/out" -q || fail "$label: sweep failed"
     rows=$(($(wc -l < "$tmp/out/sweep.csv") - 1))
     [ "$rows" -eq "$pts" ] || fail "$label: $rows rows, expected $pts"
     grep -q ',failed,\|,invalid,' "$tmp/out/sweep.csv" && fail "$label: a point failed"
-    awk -v l="$label" -v n="$pts" '{ cpu = $2 + $3; printf "%-52s %8.2f s wall %9.0f points/s  %9.0f points/CPU-s  max RSS %6.1f MB\n",
-        l, $1, n / ($1 > 0 ? $1 : 1e-9), n / (cpu > 0 ? cpu : 1e-9), $4 / 1024 }' "$tmp/time"
+    awk -v l="$label" -v n="$pts" "$commas"'{ cpu = $2 + $3; printf "| %s | %.2f s | %s | %s | %.1f MB |\n",
+        l, $1, c(n / ($1 > 0 ? $1 : 0.005)), c(n / (cpu > 0 ? cpu : 0.005)), $4 / 1024 }' "$tmp/time"
 }
 
-g15="$fig15 --grid model.sigma0=1:10:log40 --grid input.umin2=0.1:0.5:25"   # 40 x 25 = 1,000 points
-g11="$fig11 --set compute.solver=rkf45 --grid model.sigma0=1:10:log40 --grid input.umin2=0.05:0.5:25"
-run "Fig. 15, 1,000 points, svg+pdf+png, -j 1" 1000 $g15 -j 1
-run "Fig. 15, 1,000 points, svg+pdf+png, -j 2" 1000 $g15 -j 2
-run "Fig. 11 (rkf45), 1,000 points, svg+pdf+png, -j 1" 1000 $g11 -j 1
-run "Fig. 11 (rkf45), 1,000 points, svg+pdf+png, -j 2" 1000 $g11 -j 2
-run "Fig. 11 (rkf45), 1,000 points, table only, -j 1" 1000 $g11 -j 1 --formats none
-for n in 1000 10000 100000; do
-    run "Fig. 15, $n points, table only (--formats none), -j 1" $n "$fig15" --grid "model.sigma0=1:10:log$((n / 10))" \
-        --grid input.umin2=0.1:0.5:10 --formats none -j 1
-done
-run "Fig. 15, 100,000 points, table only, -j 2" 100000 "$fig15" --grid model.sigma0=1:10:log10000 \
-    --grid input.umin2=0.1:0.5:10 --formats none -j 2
-run "Fig. 15, 100 points, svg+pdf+png, -j 1 (memory)" 100 "$fig15" --grid model.sigma0=1:10:log10 \
+g15="--grid model.sigma0=1:10:log40 --grid input.umin2=0.1:0.5:25"   # 40 x 25 = 1,000 points
+g11="--set compute.solver=rkf45 --grid model.sigma0=1:10:log40 --grid input.umin2=0.05:0.5:25"
+run "Fig. 15 (analytic), 1,000 points, SVG+PDF+PNG, \`-j 1\`" 1000 "${fig15:-}" $g15 -j 1
+run "the same, \`-j 2\`" 1000 "${fig15:-}" $g15 -j 2
+run "Fig. 11 with \`compute.solver=rkf45\` (GSL, 3 solves a point), 1,000 points, SVG+PDF+PNG, \`-j 1\`" 1000 "${fig11:-}" $g11 -j 1
+run "the same, \`-j 2\`" 1000 "${fig11:-}" $g11 -j 2
+run "Fig. 11 rkf45, 1,000 points, table only" 1000 "${fig11:-}" $g11 -j 1 --formats none
+run "Fig. 15, 100 points, SVG+PDF+PNG, \`-j 1\` (memory)" 100 "${fig15:-}" --grid model.sigma0=1:10:log10 \
     --grid input.umin2=0.1:0.5:10 -j 1
+for n in 1000 10000 100000 1000000; do
+    run "Fig. 15, table only (\`--formats none\`), $(echo $n | awk "$commas"'{ print c($1) }') points, \`-j 1\`" $n \
+        "${fig15:-}" --grid "model.sigma0=1:100:log$((n / 50))" --grid input.umin2=0.1:0.5:50 --formats none -j 1
+done
+run "… 1,000,000 points, \`-j 2\`" 1000000 "${fig15:-}" --grid model.sigma0=1:100:log20000 \
+    --grid input.umin2=0.1:0.5:50 --formats none -j 2
+
+# ---- paired with the NumPy loop --------------------------------------------
+# the issue's grid: 200 x 50 = 10,000 points
+np_label="Fig. 15, table only, 10,000 points, \`-j 1\`, against a NumPy loop (median of alternating runs)"
+if [ $labels_only = 1 ]; then
+    echo "$np_label"
+    exit 0
+fi
+/usr/bin/python3 -c 'import numpy' 2> /dev/null || fail "python3-numpy is missing (apt-get install python3-numpy)"
+grid="--grid model.sigma0=1:100:log200 --grid input.umin2=0.1:0.5:50"
+"$hv" sweep "$fig15" $grid --formats none -o "$tmp/hv" -q -j 1 || fail "the NumPy grid: sweep failed"
+/usr/bin/python3 "$here/np_sweep.py" 1 100 200 0.1 0.5 50 "$tmp/np.csv" "$tmp/hv/sweep.csv" > "$tmp/check" ||
+    fail "np_sweep: $(cat "$tmp/check")"
+: > "$tmp/pairs"
+r=0
+while [ $r -lt "$rounds" ]; do # alternating: hystviz, NumPy, hystviz, ...
+    /usr/bin/time -f '%e %U %S' -o "$tmp/time" "$hv" sweep "$fig15" $grid --formats none -o "$tmp/hv" -q -j 1 ||
+        fail "sweep failed"
+    /usr/bin/python3 "$here/np_sweep.py" 1 100 200 0.1 0.5 50 "$tmp/np.csv" > "$tmp/np" || fail "np_sweep failed"
+    echo "$(cat "$tmp/time") $(awk '{ print $4, $7 }' "$tmp/np") $(load)" >> "$tmp/pairs"
+    r=$((r + 1))
+done
+# columns: hv wall, user, sys, np wall, np cpu, load1, load5, load15
+awk -v l="$np_label" "$commas"'
+    function med(a, n,  i, j, t) { for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
+                                    return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2 }
+    { n++; hw[n] = $1; hc[n] = $2 + $3; nw[n] = $4; nc[n] = $5; rw[n] = $1 / $4; rc[n] = ($2 + $3) / $5; ld = ld " " $6 }
+    END { w = med(hw, n); cpu = med(hc, n); printf "| %s | %.3f s | %s | %s | (NumPy loop %.3f s wall, %.3f s CPU; ratio hystviz/NumPy %.2f wall, %.2f CPU) |\n",
+              l, w, c(10000 / w), c(10000 / cpu), med(nw, n), med(nc, n), med(rw, n), med(rc, n)
+          printf "\n%d alternating pairs; load (1 min) at each: %s\n", n, ld }' "$tmp/pairs"
+cat "$tmp/check"
