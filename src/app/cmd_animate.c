@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli_util.h"
+#include "hy_jobs.h"
 
 #if HY_HAVE_GL
 #include "anim_assemble.h"
@@ -45,7 +46,9 @@ static const char animate_help[] =
     "  --assemble FMT     render nothing: encode the frames DIR/NAME/frame_*.png, rendered\n"
     "                     in pieces (--frames, --shard; same size, fps, duration), into\n"
     "                     DIR/NAME.FMT with ffmpeg; refused, listing them, if frames are missing\n"
-    "  -j, --jobs N       threads, each with its own GL context (frames are identical for any N)\n"
+    "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
+    "                     (at most 64): each thread has its own GL context; the\n"
+    "                     frames are identical for any N\n"
     "  --quiet            no progress bar (it is shown only when stderr is a terminal)\n"
     "  --video FMT        also encode DIR/NAME.FMT by piping frames to ffmpeg (must be on PATH);\n"
     "                     the file appears only when the whole clip is encoded\n"
@@ -116,7 +119,7 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
     const char *s = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
     long n;
     if (!strcmp(s, "-h") || !strcmp(s, "--help"))
-        return fputs(animate_help, stdout), 1;
+        return hy_jobs_help(stdout, animate_help), 1;
     if (!strcmp(s, "--info"))
         return a->info = 1, 0;
     if (!strcmp(s, "--list"))
@@ -182,6 +185,8 @@ static int parse_args(int argc, char **argv, anim_args *a)
     memset(a, 0, sizeof *a);
     a->p = hy_anim_defaults();
     a->p.outdir = "frames";
+    long jobs = hy_jobs_default();
+    a->p.jobs = jobs < 64 ? (int)jobs : 64;
     a->quality = "720p30";
     for (int i = 1; i < argc; i++) {
         if (argv[i][0] != '-' && !a->name) {
@@ -408,7 +413,7 @@ int hy_cmd_animate(int argc, char **argv) { return animate(argc, argv); }
 int hy_cmd_animate(int argc, char **argv)
 {
     if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-        fputs(animate_help, stdout);
+        hy_jobs_help(stdout, animate_help);
         return 0;
     }
     fprintf(stderr, "hystviz animate: this hystviz was built without OSMesa and EGL, so it cannot render "

@@ -23,6 +23,7 @@
 #include "cli_util.h"
 #include "hy_file.h"
 #include "hy_grid.h"
+#include "hy_jobs.h"
 #include "hy_out.h"
 #include "scene_run.h"
 
@@ -39,7 +40,7 @@ static const char gallery_help[] =
     "is not rendered again.  A failing scene is reported as file:line:col, keeps\n"
     "its previous outputs, is retried next time and makes the exit status 1.\n"
     "\n"
-    "  -j, --jobs N       worker threads (default: the number of online CPUs)\n"
+    "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
     "  --scenes DIR       where the scenes are (default: scenes)\n"
     "  -o, --output DIR   the gallery directory (default: gallery)\n"
     "  --force            render every scene, changed or not\n"
@@ -900,12 +901,11 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
 
 static int parse_opts(int argc, char **argv, opts *o)
 {
-    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    *o = (opts){.scenes = "scenes", .out = "gallery", .jobs = ncpu > 0 ? ncpu : 1};
+    *o = (opts){.scenes = "scenes", .out = "gallery", .jobs = hy_jobs_default()};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(gallery_help, stdout);
+            hy_jobs_help(stdout, gallery_help);
             return 1;
         } else if ((!strcmp(a, "-j") || !strcmp(a, "--jobs")) && v) {
             char *end;

@@ -90,6 +90,7 @@ int hy_cmd_serve(int argc, char **argv)
 #include <unistd.h>
 
 #include "dirwatch.h"
+#include "hy_jobs.h"
 #include "hy_scene_policy.h"
 #include "scene_boucwen.h"
 #include "scene_run.h"
@@ -1805,7 +1806,7 @@ int hy_cmd_serve(int argc, char **argv)
         free(s);
         return 1;
     }
-    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    long ncpu = hy_jobs_default(); /* the CPUs this process may use, as -j of sweep */
     pthread_mutex_init(&s->mu, NULL);
     pthread_cond_init(&s->cond, NULL);
     s->nslots = (int)(ncpu > 0 && ncpu < 64 ? ncpu : ncpu > 0 ? 64 : 1) + 1;

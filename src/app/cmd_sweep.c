@@ -21,6 +21,7 @@
 #include "cli_util.h"
 #include "hy_config.h"
 #include "hy_grid.h"
+#include "hy_jobs.h"
 #include "hy_out.h"
 #include "scene_run.h"
 #include "sweep_merge.h"
@@ -64,7 +65,7 @@ static const char sweep_help[] =
     "  --grid K=SPEC      a grid axis (repeatable)\n"
     "  --set S.K=V        a fixed override applied to every point before the grid\n"
     "  -o, --output DIR   the study directory (default: sweep)\n"
-    "  -j, --jobs N       worker threads (default: the number of online CPUs)\n"
+    "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
     "  --formats LIST     svg,pdf,png (default: the scene's), or none: the table only\n"
     "  --shard K/N        only points with index mod N = K (0 <= K < N); the rows go\n"
     "                     to DIR/sweep.shard-K-of-N.csv for --merge\n"
@@ -145,8 +146,7 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
     o->out = "sweep";
     o->figures = 1;
     o->verify_every = VERIFY_EVERY;
-    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    o->jobs = ncpu > 0 ? ncpu : 1;
+    o->jobs = hy_jobs_default();
     o->pol = hy_scene_policy_default();
     o->sets = calloc((size_t)argc, sizeof *o->sets);
     o->dirs = calloc((size_t)argc, sizeof *o->dirs);
@@ -163,7 +163,7 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
         if (po > 0)
             continue;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(sweep_help, stdout);
+            hy_jobs_help(stdout, sweep_help);
             return 1;
         } else if (!strcmp(a, "--grid") && v) {
             if (refused_key(a, v))
