@@ -101,6 +101,9 @@ int hy_anim_assemble(const hy_anim_params *p, const char *fmt, hy_error *err)
         argv[a++] = "-pix_fmt";
         argv[a++] = "yuv420p";
     }
+    char *bitexact[] = {"-fflags", "+bitexact", "-flags:v", "+bitexact"}; /* as hy_anim.c open_video */
+    for (size_t i = 0; i < sizeof bitexact / sizeof bitexact[0]; i++)
+        argv[a++] = bitexact[i];
     argv[a++] = "-f";
     argv[a++] = (char *)fmt;
     argv[a++] = (char *)hy_out_tmp_path(&o);

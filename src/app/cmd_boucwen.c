@@ -77,7 +77,7 @@ static const char usage_data[] =
     "  --input FILE         input force file (implies --signal file)\n"
     "  --data-dir DIR       folder of uval_multisine.txt (validation; default\n"
     "                       $HY_BOUCWEN_DATA, then the installed copy in\n"
-    "                       " HY_DATA_DIR "/boucwen,\n"
+    "                       @DATA_DIR@/boucwen,\n"
     "                       then tests/data/boucwen of the source tree)\n"
     "  --periods P          number of periods written (periodic signals)\n"
     "  --noise RMS          output noise RMS in metres, Gaussian band-limited\n"
@@ -267,12 +267,54 @@ static int cmd_table2(const opts *o)
     return 0;
 }
 
+/* The source tree's tests/data/boucwen for a program run from its build
+ * directory, into buf: the build writes its source root into the file
+ * HY_SOURCE_ROOT_FILE at the top of the build directory, found from the
+ * program's own location upwards (so that no build path is compiled into the
+ * program); NULL if there is none. */
+static const char *source_data_dir(char *buf, size_t size)
+{
+    char dir[4096], root[4096];
+    ssize_t n = readlink("/proc/self/exe", dir, sizeof dir - 1);
+    if (n <= 0)
+        return NULL;
+    dir[n] = 0;
+    for (char *slash; (slash = strrchr(dir, '/')) && slash > dir;) {
+        *slash = 0;
+        char path[4200];
+        snprintf(path, sizeof path, "%s/" HY_SOURCE_ROOT_FILE, dir);
+        FILE *f = fopen(path, "r");
+        if (!f)
+            continue;
+        int ok = fgets(root, sizeof root, f) != NULL;
+        fclose(f);
+        root[strcspn(root, "\n")] = 0;
+        if (!ok || !root[0] || snprintf(buf, size, "%s/tests/data/boucwen", root) >= (int)size)
+            return NULL;
+        return buf;
+    }
+    return NULL;
+}
+
+/* The help text, with the installed data directory (not compiled into a
+ * string literal: a long install prefix would pass C's 4095-character limit). */
+static void print_usage(void)
+{
+    static const char mark[] = "@DATA_DIR@";
+    fputs(usage, stdout);
+    const char *at = strstr(usage_data, mark);
+    fwrite(usage_data, 1, (size_t)(at - usage_data), stdout);
+    fputs(HY_DATA_DIR, stdout);
+    fputs(at + sizeof mark - 1, stdout);
+}
+
 /* Finds uval_multisine.txt: --data-dir, $HY_BOUCWEN_DATA, the installed
  * copy, the source tree's (a build run before `meson install`). */
 static int validation_path(const opts *o, char *path, size_t size)
 {
+    char src[4200];
     const char *cand[] = {o->data_dir, getenv("HY_BOUCWEN_DATA"), HY_DATA_DIR "/boucwen",
-                          HY_SOURCE_DIR "/tests/data/boucwen"};
+                          source_data_dir(src, sizeof src)};
     for (size_t i = 0; i < sizeof cand / sizeof *cand; i++) {
         struct stat st;
         if (!cand[i])
@@ -569,8 +611,7 @@ int hy_cmd_boucwen(int argc, char **argv)
         return bad_usage("%s", "needs 'table2', 'data' or '--help'");
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {
-        fputs(usage, stdout);
-        fputs(usage_data, stdout);
+        print_usage();
         return 0;
     }
     int is_table = strcmp(argv[1], "table2") == 0;
@@ -578,8 +619,7 @@ int hy_cmd_boucwen(int argc, char **argv)
         return bad_usage("unknown subcommand '%s' (table2, data)", argv[1]);
     for (int i = 2; i < argc; i++)
         if (strcmp(argv[i], "--help") == 0) {
-            fputs(usage, stdout);
-            fputs(usage_data, stdout);
+            print_usage();
             return 0;
         }
     int rc = parse_opts(argc, argv, 2, &o);

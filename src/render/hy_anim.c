@@ -353,9 +353,11 @@ static int open_video(run *r, hy_error *err)
     }
     if (st)
         return st;
-    /* the container named with -f: the temporary name has no telling extension */
+    /* the container named with -f: the temporary name has no telling extension;
+     * bitexact: no random segment UID, no encoder version (identical runs give
+     * identical files; anim_assemble.c does the same) */
     snprintf(cmd, sizeof cmd, "ffmpeg -loglevel error -y -f rawvideo -pix_fmt %s -s %dx%d -r %g -i - "
-             "%s -f %s '%s'", hy_little_endian() ? "bgr0" : "0rgb", p->width, p->height, p->fps, codec, v,
+             "%s -fflags +bitexact -flags:v +bitexact -f %s '%s'", hy_little_endian() ? "bgr0" : "0rgb", p->width, p->height, p->fps, codec, v,
              hy_out_tmp_path(&r->video_out));
     r->video = popen(cmd, "w");
     if (!r->video) {

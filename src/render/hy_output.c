@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "hy_cairo.h"
 #include "hy_out.h"
@@ -105,6 +106,23 @@ static int draw_on(cairo_surface_t *surf, const hy_figure *f, double scale, hy_p
     return st;
 }
 
+/* The PDF creation date into buf: $SOURCE_DATE_EPOCH (seconds since
+ * 1970-01-01 UTC, reproducible-builds.org) when it is a whole number up to
+ * year 9999, else a fixed 2000-01-01T00:00:00Z: identical runs give identical
+ * files either way. */
+static void pdf_date(char *buf, size_t size)
+{
+    const char *s = getenv("SOURCE_DATE_EPOCH");
+    char *end = NULL;
+    errno = 0;
+    long long v = s && *s >= '0' && *s <= '9' ? strtoll(s, &end, 10) : -1;
+    time_t t = (time_t)v;
+    struct tm tm;
+    if (v < 0 || *end || errno || v > 253402300799LL || !gmtime_r(&t, &tm) ||
+        !strftime(buf, size, "%Y-%m-%dT%H:%M:%SZ", &tm))
+        snprintf(buf, size, "2000-01-01T00:00:00Z");
+}
+
 static int write_vector(const hy_figure *f, int format, sink *sk, hy_panel_map *maps, size_t nmaps, hy_error *err)
 {
     double W, H, dpi;
@@ -117,7 +135,9 @@ static int write_vector(const hy_figure *f, int format, sink *sk, hy_panel_map *
     } else {
         surf = cairo_pdf_surface_create_for_stream(sink_write, sk, W, H);
         cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATOR, "hystviz");
-        cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
+        char date[40];
+        pdf_date(date, sizeof date);
+        cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATE_DATE, date);
     }
     int st = draw_on(surf, f, 1.0, maps, nmaps, err);
     cairo_surface_finish(surf);
