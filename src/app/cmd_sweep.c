@@ -97,6 +97,7 @@ typedef struct sweep_opts {
     long jobs, shard_k, shard_n;
     long verify_every;     /* errors measured at points i with i mod this = 0 */
     int sharded, times, quiet, figures;
+    char *rerun;           /* a shard's re-run text for its manifest (or NULL) */
 } sweep_opts;
 
 typedef struct study {
@@ -784,7 +785,7 @@ static int sweep(const sweep_opts *o)
     }
     s.table = hy_out_file(&s.out);
     if (o->sharded)
-        hy_sweep_shard_head(s.table, o->shard_k, o->shard_n, npoints, hash);
+        hy_sweep_shard_head(s.table, o->shard_k, o->shard_n, npoints, hash, o->rerun);
     write_header(&s, s.table);
     double t0 = now();
     tzset(); /* cairo's PDF writer reads the time zone: set it up before the threads */
@@ -820,11 +821,14 @@ int hy_cmd_sweep(int argc, char **argv)
 {
     sweep_opts o;
     int rc = parse_opts(argc, argv, &o);
+    if (!rc && o.sharded)
+        o.rerun = hy_sweep_shard_rerun(argc, argv);
     if (!rc)
         rc = o.merge ? hy_sweep_merge(o.merge, o.plot, o.quiet) : sweep(&o);
     else if (rc == 1)
         rc = 0;
     hy_grid_free(&o.grid);
+    free(o.rerun);
     free(o.sets);
     free(o.dirs);
     return rc;

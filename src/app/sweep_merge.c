@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include "hy_grid.h"
 #include "hy_out.h"
@@ -19,9 +20,167 @@ void hy_sweep_shard_path(const char *dir, long k, long n, char *buf, size_t size
     snprintf(buf, size, "%s/sweep.shard-%ld-of-%ld.csv", dir, k, n);
 }
 
-void hy_sweep_shard_head(FILE *f, long k, long n, size_t npoints, uint64_t hash)
+void hy_sweep_shard_head(FILE *f, long k, long n, size_t npoints, uint64_t hash, const char *rerun)
 {
-    fprintf(f, "# hystviz sweep shard %ld/%ld points %zu study %016" PRIx64 "\n", k, n, npoints, hash);
+    fprintf(f, "# hystviz sweep shard %ld/%ld points %zu study %016" PRIx64 "%s\n", k, n, npoints, hash,
+            rerun ? rerun : "");
+}
+
+/* A growing text; err set once a realloc failed. */
+typedef struct text {
+    char *b;
+    size_t len, cap;
+    int err;
+} text;
+
+static void text_add(text *t, const char *s, size_t n)
+{
+    if (!t->err && t->len + n + 1 > t->cap) {
+        size_t cap = 2 * (t->len + n + 1);
+        char *nb = realloc(t->b, cap);
+        if (nb) {
+            t->b = nb;
+            t->cap = cap;
+        } else
+            t->err = 1;
+    }
+    if (t->err)
+        return;
+    memcpy(t->b + t->len, s, n);
+    t->len += n;
+    t->b[t->len] = 0;
+}
+
+/* Appends s quoted for sh: as is when it holds only safe characters, else
+ * in single quotes ('\'' for a quote). */
+static void text_quote(text *t, const char *s)
+{
+    if (*s && strspn(s, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_@%+=:,./-") == strlen(s)) {
+        text_add(t, s, strlen(s));
+        return;
+    }
+    text_add(t, "'", 1);
+    for (const char *c = s; *c; c++)
+        text_add(t, *c == '\'' ? "'\\''" : c, *c == '\'' ? 4 : 1);
+    text_add(t, "'", 1);
+}
+
+char *hy_sweep_shard_rerun(int argc, char **argv)
+{
+    char cwd[4096];
+    if (!getcwd(cwd, sizeof cwd) || strpbrk(cwd, "\t\n"))
+        return NULL;
+    text t = {NULL, 0, 0, 0};
+    text_add(&t, "\t", 1);
+    text_quote(&t, cwd);
+    text_add(&t, "\t", 1);
+    for (int i = 0; i < argc; i++) {
+        if (strpbrk(argv[i], "\t\n"))
+            t.err = 1;
+        else if (i && i + 1 < argc &&
+                 (!strcmp(argv[i], "-j") || !strcmp(argv[i], "--jobs") || !strcmp(argv[i], "--shard")))
+            i++; /* the re-run gives its own */
+        else {
+            if (i)
+                text_add(&t, " ", 1);
+            text_quote(&t, argv[i]);
+        }
+    }
+    if (t.err) {
+        free(t.b);
+        return NULL;
+    }
+    return t.b;
+}
+
+/* The re-run text (see sweep_merge.h) of DIR's shard k/n into *cwd and
+ * *args (quoted for sh; pointers into buf); 0 if it has none. */
+static int read_rerun(const char *dir, long k, long n, char *buf, size_t size, char **cwd, char **args)
+{
+    char path[4400];
+    hy_sweep_shard_path(dir, k, n, path, sizeof path);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return 0;
+    int ok = fgets(buf, (int)size, f) != NULL;
+    fclose(f);
+    char *nl = ok ? strchr(buf, '\n') : NULL;
+    *cwd = ok ? strchr(buf, '\t') : NULL;
+    *args = *cwd ? strchr(*cwd + 1, '\t') : NULL;
+    if (!nl || !*args)
+        return 0;
+    *nl = 0;
+    *(*cwd)++ = 0;
+    *(*args)++ = 0;
+    return 1;
+}
+
+/* Prints the commands that re-run the missing shards: each by hand (or
+ * from GNU parallel), all as one Slurm array of tools/cluster/shard.sbatch. */
+static void print_reruns(long n, const unsigned char *present, long missing, const char *qcwd, const char *args)
+{
+    char here[4096];
+    text t = {NULL, 0, 0, 0};
+    if (getcwd(here, sizeof here))
+        text_quote(&t, here);
+    int same_dir = !t.err && t.b && !strcmp(t.b, qcwd);
+    free(t.b);
+    const char *hv = getenv("HYSTVIZ"), *cl = getenv("HYSTVIZ_CLUSTER");
+    text prog = {NULL, 0, 0, 0};
+    text_quote(&prog, hv && *hv ? hv : "hystviz");
+    fprintf(stderr, "  re-run %s by hand (or in tools/cluster/parallel.sh's place), then merge again:\n",
+            missing > 1 ? "each" : "it");
+    long shown = 0;
+    for (long k = 0; k < n && shown < 20; k++)
+        if (!present[k]) {
+            fprintf(stderr, "    %s%s%s%s %s --shard %ld/%ld\n", same_dir ? "" : "cd ", same_dir ? "" : qcwd,
+                    same_dir ? "" : " && ", prog.err ? "hystviz" : prog.b, args, k, n);
+            shown++;
+        }
+    if (missing > shown)
+        fprintf(stderr, "    ... (%ld more: the same with their --shard K/%ld)\n", missing - shown, n);
+    text arr = {NULL, 0, 0, 0}; /* the missing K as Slurm's --array list: 1,4-6 */
+    for (long k = 0; k < n; k++)
+        if (!present[k] && (k == 0 || present[k - 1])) {
+            long e = k;
+            while (e + 1 < n && !present[e + 1])
+                e++;
+            char r[64];
+            int len = e > k ? snprintf(r, sizeof r, "%s%ld-%ld", arr.len ? "," : "", k, e)
+                            : snprintf(r, sizeof r, "%s%ld", arr.len ? "," : "", k);
+            text_add(&arr, r, (size_t)len);
+        }
+    text sh = {NULL, 0, 0, 0};
+    if (cl && *cl) {
+        text_quote(&sh, cl);
+        text_add(&sh, "/shard.sbatch", 13);
+    } else
+        text_add(&sh, "tools/cluster/shard.sbatch", 26);
+    if (!arr.err && !sh.err) {
+        fprintf(stderr, "  or as Slurm array tasks, then merge again:\n    ");
+        if (hv && *hv && !prog.err)
+            fprintf(stderr, "HYSTVIZ=%s ", prog.b);
+        fprintf(stderr, "sbatch%s%s --array=%s %s %ld %s\n", same_dir ? "" : " --chdir=", same_dir ? "" : qcwd,
+                arr.b, sh.b, n, args);
+    }
+    free(arr.b);
+    free(sh.b);
+    free(prog.b);
+}
+
+/* When a present shard's manifest tells how it was run, prints the commands
+ * that re-run the missing ones, else the general advice. */
+static void rerun_help(const char *dir, long n, const unsigned char *present, long missing)
+{
+    long any = 0;
+    while (any < n && !present[any])
+        any++;
+    static char line[65536];
+    char *cwd, *args;
+    if (any < n && read_rerun(dir, any, n, line, sizeof line, &cwd, &args))
+        print_reruns(n, present, missing, cwd, args);
+    else
+        fprintf(stderr, "  (run the same `hystviz sweep ... --shard K/%ld` for each, then merge again)\n", n);
 }
 
 /* The N of DIR's shard manifests, checked complete; 2 with a message when
@@ -36,11 +195,11 @@ static int find_shards(const char *dir, long *nshards)
     }
     char list[512];
     long missing = hy_shard_missing(*nshards, present, list, sizeof list);
+    if (missing) {
+        fprintf(stderr, "hystviz sweep --merge: %s: %ld of %ld shards missing:%s\n", dir, missing, *nshards, list);
+        rerun_help(dir, *nshards, present, missing);
+    }
     free(present);
-    if (missing)
-        fprintf(stderr, "hystviz sweep --merge: %s: %ld of %ld shards missing:%s\n"
-                "  (run the same `hystviz sweep ... --shard K/%ld` for each, then merge again)\n",
-                dir, missing, *nshards, list, *nshards);
     return missing ? 2 : 0;
 }
 

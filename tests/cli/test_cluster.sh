@@ -3,11 +3,15 @@
 # this machine with N = 1, 3, 7 shards plus the merge equals the single run
 # byte for byte (sweep: the Fig. 15 study of the done-when at N = 3; gallery);
 # GNU parallel's --sshlogin form with ':' (this machine through the same code
-# path); the Slurm array script with SLURM_ARRAY_TASK_* set by hand covers
-# every point exactly once (N = 1, 3, 7, an array 1-3), refuses a stepped
-# array, and with the merge script gives the single run; slurm-submit.sh asks
-# sbatch (a stand-in that records its arguments) for the array and an afterany
-# merge job.
+# path); the Slurm array script with SLURM_ARRAY_TASK_ID set by hand and the
+# shard count N its argument covers every point exactly once (N = 1, 3, 7),
+# refuses an index >= N or no N, and with the merge script gives the single
+# run; a task re-run alone (--array=1 of N = 3: SLURM_ARRAY_TASK_COUNT 1) runs
+# shard 1/3 only; the merge prints the commands that re-run a missing shard
+# (by hand and as `sbatch --array=K ... shard.sbatch N ...`) and they work;
+# slurm-submit.sh asks sbatch (a stand-in that records its arguments) for the
+# array with N and an afterany merge job.  tests/cli/test_slurm.sh runs it all
+# on a real Slurm.
 # usage: test_cluster.sh HYSTVIZ SOURCE_ROOT
 set -u
 hv=$1
@@ -69,35 +73,64 @@ sh "$cl/parallel.sh" 2 render "$fig15" 2> /dev/null
 [ $? -eq 2 ] && ok || bad "parallel.sh with render accepted"
 
 # ---- Slurm: the array script with the variables set by hand ------------------
-# run_array MIN MAX DIR: every task of --array=MIN-MAX
+# run_array N DIR: every task of --array=0-(N-1) of shard.sbatch N
 run_array() {
-    id=$1
-    while [ "$id" -le "$2" ]; do
-        SLURM_ARRAY_TASK_ID=$id SLURM_ARRAY_TASK_COUNT=$(($2 - $1 + 1)) SLURM_ARRAY_TASK_MIN=$1 SLURM_ARRAY_TASK_MAX=$2 \
-            sh "$cl/shard.sbatch" sweep "$fig15" $small -o "$3" -q || return 1
+    id=0
+    while [ "$id" -lt "$1" ]; do
+        SLURM_ARRAY_TASK_ID=$id SLURM_ARRAY_TASK_COUNT=$1 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=$(($1 - 1)) \
+            sh "$cl/shard.sbatch" "$1" sweep "$fig15" $small -o "$2" -q || return 1
         id=$((id + 1))
     done
 }
 # the union of the shards' rows: every point exactly once
 covered() { cat "$1"/sweep.shard-*.csv | grep -E '^[0-9]+,' | cut -d, -f1 | sort -n | tr '\n' ' '; }
 for n in 1 3 7; do
-    run_array 0 $((n - 1)) "sl$n" && ok || bad "array 0-$((n - 1)) task failed"
+    run_array $n "sl$n" && ok || bad "array 0-$((n - 1)) task failed"
     [ "$(covered "sl$n")" = "0 1 2 3 4 5 6 7 " ] && ok || bad "array of $n: points covered: $(covered "sl$n")"
     sh "$cl/merge.sbatch" sweep --merge "sl$n" -q && diff -r one8 "sl$n" > /dev/null && ok || bad "array of $n + merge differs"
 done
-run_array 1 3 sl13 && [ "$(covered sl13)" = "0 1 2 3 4 5 6 7 " ] && ok || bad "array 1-3: $(covered sl13)"
-# a stepped array (--array=0-6:2: 4 tasks 0,2,4,6) would skip points: refused
-SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=4 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=6 \
-    sh "$cl/shard.sbatch" sweep "$fig15" $small -o step -q 2> err
-[ $? -eq 2 ] && grep -q contiguous err && [ ! -e step ] && ok || bad "stepped array accepted: $(cat err)"
-sh "$cl/shard.sbatch" sweep "$fig15" $small -o noarr -q 2> err
+# an index that is no shard of N, no N, no array: refused, nothing written
+SLURM_ARRAY_TASK_ID=3 SLURM_ARRAY_TASK_COUNT=4 sh "$cl/shard.sbatch" 3 sweep "$fig15" $small -o over -q 2> err
+[ $? -eq 2 ] && grep -q 'not a shard of 3' err && [ ! -e over ] && ok || bad "index 3 of N = 3 accepted: $(cat err)"
+SLURM_ARRAY_TASK_ID=0 sh "$cl/shard.sbatch" sweep "$fig15" $small -o non -q 2> err
+[ $? -eq 2 ] && grep -q 'shard count' err && [ ! -e non ] && ok || bad "shard.sbatch without N accepted: $(cat err)"
+sh "$cl/shard.sbatch" 3 sweep "$fig15" $small -o noarr -q 2> err
 [ $? -eq 2 ] && [ ! -e noarr ] && ok || bad "shard.sbatch outside an array accepted"
-# one task missing: the merge lists it
+# a task re-run alone (sbatch --array=1 ... shard.sbatch 3: an array of one
+# task) runs shard 1/3, not the whole study as 0/1
+SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_COUNT=1 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_MAX=1 \
+    sh "$cl/shard.sbatch" 3 sweep "$fig15" $small -o alone -q
+[ "$(cd alone && ls sweep.shard-*)" = "sweep.shard-1-of-3.csv" ] && [ "$(covered alone)" = "1 4 7 " ] && ok ||
+    bad "task 1 of 3 re-run alone: $(ls alone) $(covered alone)"
+# one task missing: the merge names it and prints the commands that re-run it
 rm sl3/sweep.csv
-SLURM_ARRAY_TASK_ID=0 SLURM_ARRAY_TASK_COUNT=3 sh "$cl/shard.sbatch" sweep "$fig15" $small -o sl3 -q
-SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=3 sh "$cl/shard.sbatch" sweep "$fig15" $small -o sl3 -q
-sh "$cl/merge.sbatch" sweep --merge sl3 2> err
+for k in 0 2; do SLURM_ARRAY_TASK_ID=$k sh "$cl/shard.sbatch" 3 sweep "$fig15" $small -o sl3 -q; done
+HYSTVIZ_CLUSTER=$cl sh "$cl/merge.sbatch" sweep --merge sl3 2> err
 [ $? -eq 2 ] && grep -q 'missing: 1/3' err && ok || bad "merge job with a task missing: $(cat err)"
+grep -q -- "^    HYSTVIZ=.* sbatch --array=1 $cl/shard.sbatch 3 sweep $fig15 --grid model.sigma0=1:10:log4 --grid input.umin2=0.2,0.4 --formats svg -o sl3 -q\$" err &&
+    ok || bad "merge: no sbatch re-run line: $(cat err)"
+grep -q -- " sweep $fig15 --grid model.sigma0=1:10:log4 --grid input.umin2=0.2,0.4 --formats svg -o sl3 -q --shard 1/3\$" err &&
+    ok || bad "merge: no re-run line by hand: $(cat err)"
+# the printed lines, run as printed (sbatch a stand-in running the task here), complete the study
+mkdir fake
+cat > fake/sbatch <<'EOF2'
+#!/bin/sh
+# a stand-in for sbatch --array=K: runs the script once with SLURM_ARRAY_TASK_ID=K
+a=${1#--array=}
+shift
+SLURM_ARRAY_TASK_ID=$a sh "$@"
+EOF2
+chmod +x fake/sbatch
+line=$(grep '^    HYSTVIZ=.* sbatch ' err)
+(PATH="$tmp/fake:$PATH"; eval "$line") && sh "$cl/merge.sbatch" sweep --merge sl3 -q && diff -r one8 sl3 > /dev/null && ok ||
+    bad "the printed sbatch line did not complete the study: $line"
+rm sl3/sweep.csv
+for k in 0 2; do SLURM_ARRAY_TASK_ID=$k sh "$cl/shard.sbatch" 3 sweep "$fig15" $small -o sl3 -q; done
+# merged from another directory: the line changes to the shards' one first
+(cd / && "$hv" sweep --merge "$tmp/sl3") 2> err
+line=$(grep -- '--shard 1/3$' err)
+(cd / && eval "$line") && "$hv" sweep --merge sl3 -q && diff -r one8 sl3 > /dev/null && ok ||
+    bad "the printed line by hand did not complete the study: $line"
 
 # ---- slurm-submit.sh with a stand-in sbatch ----------------------------------
 mkdir bin
@@ -110,7 +143,7 @@ EOF
 chmod +x bin/sbatch
 PATH="$tmp/bin:$PATH" SBATCH_LOG="$tmp/sbatch.log" sh "$cl/slurm-submit.sh" 5 sweep "$fig15" $small -o study > out 2> err
 [ $? -eq 0 ] && grep -q 'array job 1001 (5 shards), merge job 1002' out && ok || bad "slurm-submit: $(cat out err)"
-sed -n 1p sbatch.log | grep -q -- "--array=0-4 --cpus-per-task=1 $cl/shard.sbatch sweep $fig15 --grid" && ok ||
+sed -n 1p sbatch.log | grep -q -- "--array=0-4 --cpus-per-task=1 $cl/shard.sbatch 5 sweep $fig15 --grid" && ok ||
     bad "array submission: $(sed -n 1p sbatch.log)"
 sed -n 2p sbatch.log | grep -q -- "--dependency=afterany:1001 $cl/merge.sbatch sweep --merge study\$" && ok ||
     bad "merge submission: $(sed -n 2p sbatch.log)"
