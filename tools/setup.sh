@@ -21,8 +21,9 @@ pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # the fuzzer needs clang and its runtime libraries (libFuzzer, ASan, UBSan)
 [ "$what" = fuzz ] && pkgs="$pkgs clang libclang-rt-dev"
 # what the tests need besides: curl and bash (serve over HTTP), python3 and
-# chromium (the page in a real browser, headless)
-case "$what" in test) pkgs="$pkgs curl bash python3 chromium pngcheck" ;; bench) pkgs="$pkgs curl bash python3 chromium python3-matplotlib python3-numpy" ;; esac
+# chromium (the page in a real browser, headless); slurm-wlm, munge and
+# iproute2 (a single-node Slurm on loopback: tests/cli/test_slurm.sh)
+case "$what" in test) pkgs="$pkgs curl bash python3 chromium pngcheck slurm-wlm munge iproute2" ;; bench) pkgs="$pkgs curl bash python3 chromium python3-matplotlib python3-numpy" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"
@@ -58,6 +59,9 @@ gallery)
 test)
     configure build
     meson test -C build --print-errorlogs --num-processes 2
+    # the README's Slurm example on a real single-node Slurm of its own
+    # (tools/cluster/slurm-local.sh); once, not per build configuration
+    sh tests/cli/test_slurm.sh build/src/app/hystviz .
     # each GL backend alone (build/ has both: its gl suite ran on each, and
     # compared their frames); -Dgl=egl is the machine without OSMesa
     for gl in osmesa egl; do
