@@ -25,6 +25,7 @@
 #include "cli_util.h"
 #include "export_page.h"
 #include "hy_grid.h"
+#include "hy_jobs.h"
 #include "hy_out.h"
 #include "hy_plot.h"
 #include "scene_run.h"
@@ -53,7 +54,7 @@ static const char export_help[] =
     "20000 points in all)\n"
     "  --set S.K=V        a fixed override applied to every point before the grid\n"
     "  -o, --output FILE  the page (default: the scene's name with .html, here)\n"
-    "  -j, --jobs N       render threads (default: the number of online CPUs)\n"
+    "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
     "  --shard K/N        only points with index mod N = K (0 <= K < N), into\n"
     "                     FILE.shard-K-of-N for --merge\n"
     "  --merge FILE       join FILE's N shards (FILE.shard-K-of-N) into FILE, the\n"
@@ -94,8 +95,7 @@ static int parse_opts(int argc, char **argv, export_opts *o)
 {
     memset(o, 0, sizeof *o);
     hy_grid_init(&o->grid);
-    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    o->jobs = ncpu > 0 ? ncpu : 1;
+    o->jobs = hy_jobs_default();
     o->pol = hy_scene_policy_default();
     o->sets = calloc((size_t)argc, sizeof *o->sets);
     o->dirs = calloc((size_t)argc, sizeof *o->dirs);
@@ -112,7 +112,7 @@ static int parse_opts(int argc, char **argv, export_opts *o)
         if (po > 0)
             continue;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(export_help, stdout);
+            hy_jobs_help(stdout, export_help);
             return 1;
         } else if (!strcmp(a, "--grid") && v) {
             if (hy_grid_add(&o->grid, argv[++i], &err)) {

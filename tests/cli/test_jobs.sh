@@ -1,5 +1,5 @@
 #!/bin/sh
-# The default -j of every command with -j (sweep, gallery, animate) is the
+# The default -j of every command with -j (sweep, gallery, export, animate) is the
 # CPUs the process may run on: pinned to one CPU (taskset -c 0) each --help
 # shows "here 1"; unpinned it shows hy_jobs_default's value, at most nproc.
 # usage: test_jobs.sh HYSTVIZ
@@ -12,7 +12,7 @@ bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 command -v taskset > /dev/null || { echo "FAIL: taskset (util-linux) is not installed"; exit 1; }
 cpu=$(taskset -pc $$ | sed 's/.*: *//; s/[,-].*//')   # the first CPU this shell may use
 n=$(nproc)
-for c in sweep gallery animate; do
+for c in sweep gallery export animate; do
     out=$(taskset -c "$cpu" "$hv" $c --help)
     echo "$out" | grep -q 'rounded up: here 1)$' && ok || bad "$c --help under taskset -c $cpu: $(echo "$out" | grep -A2 -- '--jobs N')"
     echo "$out" | grep -q 'affinity' && ok || bad "$c --help does not describe the default"
