@@ -2,7 +2,7 @@
 # Reproducible outputs and build (issue 19): every output written twice by
 # identical runs is byte-identical: render's SVG, PDF and PNG, a sweep (its
 # figures, sweep.csv, the summary plot), a gallery (figures and index.html;
-# its .manifest keeps render times, by design), boucwen's CSV, and with GL
+# its .manifest keeps render times, by design), boucwen's CSV, export's HTML, and with GL
 # an animation's PNG frames, poster and MP4, WebM (16 bytes of a random
 # segment UID differed before -fflags +bitexact) and GIF, piped and
 # assembled.  SOURCE_DATE_EPOCH sets the PDF creation date (without it a
@@ -44,6 +44,7 @@ for i in 1 2; do
     cp "$src/scenes/style.scene" "$src/scenes/fig05_g_stribeck.scene" "$fig15" sc/
     "$hv" gallery --scenes sc -o "g$i" -q -j 2 || bad "gallery run $i"
     "$hv" boucwen data --signal multisine --periods 1 -o "b$i.csv" || bad "boucwen run $i"
+    "$hv" export "$fig15" --grid model.sigma0=1,2 -o "x$i.html" -q -j 2 || bad "export run $i"
 done
 same r1 r2 "render svg,pdf,png"
 [ "$(ls r1 | wc -l)" -eq 3 ] && ok || bad "render wrote $(ls r1)"
@@ -51,6 +52,7 @@ same s1 s2 "sweep (figures, sweep.csv, plot)"
 [ -s s1/sweep.csv ] && [ -s s1/sweep_minor1_area.svg ] && ok || bad "sweep wrote $(ls s1 | head -3)"
 same g1 g2 "gallery" -x .manifest -x .lock
 cmp -s b1.csv b2.csv && [ -s b1.csv ] && ok || bad "boucwen CSV differs between identical runs"
+cmp -s x1.html x2.html && [ -s x1.html ] && ok || bad "export's HTML differs between identical runs"
 
 # the PDF creation date: SOURCE_DATE_EPOCH, else fixed
 pdf=r1/fig15_minor_loop_ex4.pdf
