@@ -39,6 +39,8 @@ static const char gallery_help[] =
     "are unchanged since the last run (gallery/.manifest) and whose outputs exist\n"
     "is not rendered again.  A failing scene is reported as file:line:col, keeps\n"
     "its previous outputs, is retried next time and makes the exit status 1.\n"
+    "A scene file name with a control character is refused before anything is\n"
+    "rendered or written (exit 2).\n"
     "\n"
     "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
     "  --scenes DIR       where the scenes are (default: scenes)\n"
@@ -416,11 +418,6 @@ static void job_plan(const opts *o, job *jobs, size_t i, entry *man, size_t nman
             j->old = &man[k];
     snprintf(j->name, sizeof j->name, "%.*s", (int)(strlen(j->file) - 6), j->file);
     j->state = J_PENDING;
-    if (!printable_name(j->file)) {
-        job_fail(j, "a scene file name with a control character (tab, line break, form feed, ...) is not "
-                    "supported: rename the file");
-        return;
-    }
     hy_scene_run probe;
     hy_error err = {0};
     memset(&probe, 0, sizeof probe);
@@ -1239,6 +1236,19 @@ static void shard_remove(const opts *o)
 static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
 {
     double t0 = now();
+    /* a name the page cannot carry is invalid input: refused before anything
+     * is rendered or written (no index.html listing the others) */
+    int bad_name = 0;
+    for (size_t i = 0; i < n; i++)
+        if (!printable_name(jobs[i].file)) {
+            char shown[256];
+            fprintf(stderr, "hystviz gallery: %s/%s: a scene file name with a control character (tab, line break, "
+                            "form feed, ...) is not supported: rename the file\n",
+                    o->scenes, hy_file_shown(jobs[i].file, strlen(jobs[i].file), 60, shown, sizeof shown));
+            bad_name = 1;
+        }
+    if (bad_name)
+        return 2;
     for (size_t i = 0; i < n; i++)
         job_plan(o, jobs, i, man, nman);
     if (o->merge) {

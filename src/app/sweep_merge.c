@@ -4,6 +4,7 @@
  * from the same study, complete. */
 #include "sweep_merge.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <inttypes.h>
 #include <stdlib.h>
@@ -286,9 +287,73 @@ static int join_rows(const char *dir, long n, shard_in *in, size_t npoints, FILE
     return rc;
 }
 
+/* Whether DIR holds the sweep.csv a merge (or an unsharded run) wrote, its
+ * rows well formed; counts them and their statuses (may be NULL). */
+static int merged_before(const char *dir, size_t *npoints, size_t count[3])
+{
+    char path[4400];
+    snprintf(path, sizeof path, "%s/sweep.csv", dir);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return 0;
+    char *line = NULL;
+    size_t cap = 0, rows = 0, c[3] = {0, 0, 0};
+    ssize_t len = getline(&line, &cap, f); /* the header */
+    int ok = len > 0 && line[len - 1] == '\n';
+    while (ok && (len = getline(&line, &cap, f)) > 0) {
+        size_t idx;
+        char status[16] = "";
+        ok = line[len - 1] == '\n' && sscanf(line, "%zu,%15[a-z],", &idx, status) == 2 && idx == rows;
+        c[!strcmp(status, "ok") ? 0 : !strcmp(status, "invalid") ? 1 : 2]++;
+        rows++;
+    }
+    ok = ok && !ferror(f) && rows > 0;
+    free(line);
+    fclose(f);
+    if (ok && npoints)
+        *npoints = rows;
+    for (int k = 0; ok && count && k < 3; k++)
+        count[k] = c[k];
+    return ok;
+}
+
+/* Whether DIR holds any sweep shard manifest (sweep.shard-*.csv). */
+static int has_shards(const char *dir)
+{
+    DIR *d = opendir(dir);
+    int found = 0;
+    for (struct dirent *de; d && !found && (de = readdir(d));) {
+        size_t n = strlen(de->d_name);
+        found = !strncmp(de->d_name, "sweep.shard-", 12) && n > 16 && !strcmp(de->d_name + n - 4, ".csv");
+    }
+    if (d)
+        closedir(d);
+    return found;
+}
+
+/* A merge run again after one that joined (and removed) the manifests: the
+ * same sweep.csv, summary figure and exit status (issue 20 item 11: it
+ * failed with "no shard manifests"). */
+static int merge_again(const char *dir, const char *plot, int quiet)
+{
+    size_t npoints = 0, count[3] = {0, 0, 0};
+    merged_before(dir, &npoints, count);
+    hy_error perr = {0};
+    if (plot && hy_sweep_plot(dir, plot, &perr)) {
+        fprintf(stderr, "hystviz sweep --merge: %s\n", perr.msg);
+        return perr.code == HY_EINVAL ? 2 : 1;
+    }
+    if (!quiet)
+        fprintf(stderr, "sweep --merge: already merged, %zu points: %zu ok, %zu invalid, %zu failed; %s/sweep.csv\n",
+                npoints, count[0], count[1], count[2], dir);
+    return count[1] ? 2 : count[2] ? 1 : 0;
+}
+
 int hy_sweep_merge(const char *dir, const char *plot, int quiet)
 {
     long n = 0;
+    if (!has_shards(dir) && merged_before(dir, NULL, NULL))
+        return merge_again(dir, plot, quiet);
     int rc = find_shards(dir, &n);
     if (rc)
         return rc;

@@ -22,6 +22,18 @@ static size_t text_char(const unsigned char *p)
     return n;
 }
 
+long hy_text_check(const char *s)
+{
+    const unsigned char *p = (const unsigned char *)s;
+    while (*p) {
+        size_t n = *p == '\t' ? 1 : text_char(p);
+        if (!n)
+            return (long)(p - (const unsigned char *)s);
+        p += n;
+    }
+    return -1;
+}
+
 void hy_text_shown(const char *src, char *dst, size_t size)
 {
     const unsigned char *p = (const unsigned char *)src;

@@ -43,6 +43,10 @@ int hy_error_set(hy_error *e, int code, const char *fmt, ...)
  * every other byte (C0 and C1 controls, DEL, invalid UTF-8) as \xNN. */
 void hy_text_shown(const char *src, char *dst, size_t size);
 
+/* The offset of the first byte of s that is not such text (a control
+ * character other than tab, DEL, a C1 control or invalid UTF-8), or -1. */
+long hy_text_check(const char *s);
+
 /* Prefixes an existing message with "prefix: " (used to add file:line); the
  * arguments may include e->msg.  The result is text as with hy_error_set. */
 void hy_error_prefix(hy_error *e, const char *fmt, ...)

@@ -320,6 +320,8 @@ static int open_target_dir(hy_out *o, hy_error *err)
     return HY_OK;
 }
 
+static void sweep_own(const hy_out *o);
+
 int hy_out_open(hy_out *o, const char *path, int flags, hy_error *err)
 {
     memset(o, 0, sizeof *o);
@@ -339,6 +341,8 @@ int hy_out_open(hy_out *o, const char *path, int flags, hy_error *err)
         struct stat st;
         int kind = classify(o, &st, err);
         rc = kind < 0 ? -kind : open_target_dir(o, err);
+        if (!rc && !kind && o->follow)
+            sweep_own(o); /* a directory of its own sweeps itself; the user's file is swept here */
         if (!rc)
             rc = kind ? open_direct(o, &st, err) : open_tmp(o, err);
     }
@@ -459,14 +463,18 @@ static int is_legacy_tmp(const char *name)
     return 0;
 }
 
-int hy_out_sweep(const char *dir)
+/* Removes the stale temporaries in the directory d reads (opened on dfd):
+ * every one, or with base only those of that target name. */
+static int sweep_dir(DIR *d, const char *base)
 {
-    DIR *d = opendir(dir);
-    if (!d)
-        return 0;
     int dfd = dirfd(d), removed = 0;
+    size_t blen = base ? strlen(base) : 0, t = sizeof TMP_TAG - 1;
+    if (blen > 200)
+        blen = 200; /* as tmp_name cuts it */
     for (struct dirent *de; (de = readdir(d));) {
-        if (!hy_out_is_tmp_name(de->d_name) && !is_legacy_tmp(de->d_name))
+        if (base ? !(hy_out_is_tmp_name(de->d_name) && strlen(de->d_name) == 1 + blen + t + 6 &&
+                     !memcmp(de->d_name + 1, base, blen) && !memcmp(de->d_name + 1 + blen, TMP_TAG, t))
+                 : !hy_out_is_tmp_name(de->d_name) && !is_legacy_tmp(de->d_name))
             continue;
         int fd = openat(dfd, de->d_name, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
         struct stat a, b;
@@ -481,4 +489,22 @@ int hy_out_sweep(const char *dir)
     }
     closedir(d);
     return removed;
+}
+
+int hy_out_sweep(const char *dir)
+{
+    DIR *d = opendir(dir);
+    return d ? sweep_dir(d, NULL) : 0;
+}
+
+/* The stale temporaries of o's own target (a killed run of the same
+ * command, e.g. `data -o FILE`), in its open directory. */
+static void sweep_own(const hy_out *o)
+{
+    int fd = openat(o->dfd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    DIR *d = fd >= 0 ? fdopendir(fd) : NULL;
+    if (d)
+        sweep_dir(d, base_of(o->final));
+    else if (fd >= 0)
+        close(fd);
 }

@@ -39,7 +39,9 @@
  *
  * Stale temporaries: a writer killed by kill -9 leaves its temporary behind.
  * hy_out_sweep(DIR) removes the ones whose writer is gone (their flock is
- * free); a running writer's file is never touched.
+ * free); a running writer's file is never touched.  Opening the user's own
+ * file (HY_OUT_FOLLOW: `data -o FILE`) removes the stale temporaries of that
+ * name the same way, so a killed run's leftovers go at the next run.
  *
  * Errors: HY_EIO (HY_ENOMEM) with "cannot write 'PATH': reason"; after any
  * failure no temporary is left.  Not thread-safe per object; distinct objects

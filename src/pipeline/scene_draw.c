@@ -71,11 +71,18 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
             continue;
         }
         const char *e = strchr(c, '}');
-        if (!e || e - c > 40)
-            return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL, "unterminated '{' in annotation text");
+        if (!e)
+            return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
+                                     "unterminated '{' in annotation text (no '}' after it)");
         char key[48];
-        snprintf(key, sizeof key, "%.*s", (int)(e - c - 1), c + 1);
-        if (!hy_scene_is_placeholder(key)) { /* a markup group such as u_{min,2}: kept */
+        size_t klen = (size_t)(e - c - 1);
+        snprintf(key, sizeof key, "%.*s", (int)(klen < sizeof key ? klen : sizeof key - 1), c + 1);
+        /* a group of any length is markup; a placeholder name is short */
+        int ph = klen < sizeof key ? hy_scene_is_placeholder(key) : memchr(c + 1, '.', klen) != NULL;
+        if (ph && klen >= sizeof key)
+            return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
+                                     "unknown placeholder {%.40s...}: longer than any placeholder name", key);
+        if (!ph) { /* a markup group such as u_{min,2}: kept */
             size_t n = (size_t)(e - c + 1);
             if (o + n >= size)
                 break;
@@ -168,6 +175,83 @@ void hy_scene_fig_free(hy_scene_fig *st)
     free(st->marks);
     free(st->texts);
     free(st->textbuf);
+}
+
+/* Whether key names a placeholder this scene could fill, before computing
+ * (the minor loop count is known only after it; expand checks it then). */
+static int placeholder_known(const hy_scene *s, const char *key)
+{
+    static const char *const whole[] = {"major.area", "major.own", "energy", "nminor"};
+    static const char *const minor[] = {"area", "turn", "own", "ystart", "yclose"};
+    for (size_t i = 0; i < sizeof whole / sizeof whole[0]; i++)
+        if (!strcmp(key, whole[i]))
+            return 1;
+    unsigned idx;
+    char field[16];
+    if (sscanf(key, "minor%u.%15s", &idx, field) == 2 && idx >= 1) {
+        for (size_t i = 0; i < sizeof minor / sizeof minor[0]; i++)
+            if (!strcmp(field, minor[i]))
+                return 1;
+        return 0;
+    }
+    const char *dot = strrchr(key, '.');
+    if (!dot)
+        return 0;
+    char sect[48];
+    snprintf(sect, sizeof sect, "%.*s", (int)(dot - key), key);
+    const char *data;
+    if (hy_scene_get_enum(s, "series", sect, "data", NULL, &data) >= 0 &&
+        (!strcmp(data, "ygamma") || !strcmp(data, "transient")) && (!strcmp(dot + 1, "gamma") || !strcmp(dot + 1, "dist")))
+        return 1;
+    double x;
+    return dot - key < 16 && hy_scene_get_num(s, sect, NULL, dot + 1, &x) >= 0;
+}
+
+int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    size_t na = hy_scene_count(s, "annotation");
+    if (!hy_scene_count(s, "series") && !na)
+        return hy_error_set(err, HY_EINVAL, "%s:1:1: the scene draws nothing: it has no [series NAME] (or [annotation NAME]) section; "
+                                 "a file of shared settings is included by scenes, not rendered", hy_scene_source(s));
+    for (size_t i = 0; i < na; i++) {
+        const char *name = hy_scene_name_at(s, "annotation", i), *text = "";
+        hy_scene_get_str(s, "annotation", name, "text", &text);
+        for (const char *c = strchr(text, '{'); c; c = strchr(c + 1, '{')) {
+            const char *e = strchr(c, '}');
+            if (!e)
+                return hy_scene_error_at(s, "annotation", name, "text", err, HY_EINVAL,
+                                         "unterminated '{' in annotation text (no '}' after it)");
+            char key[48];
+            size_t n = (size_t)(e - c - 1);
+            snprintf(key, sizeof key, "%.*s", (int)(n < sizeof key ? n : sizeof key - 1), c + 1);
+            int ph = n < sizeof key ? hy_scene_is_placeholder(key) : memchr(c + 1, '.', n) != NULL;
+            if (ph && (n >= sizeof key || !placeholder_known(s, key)))
+                return hy_scene_error_at(s, "annotation", name, "text", err, HY_EINVAL,
+                                         "unknown placeholder {%s%s} (major.area, major.own, energy, nminor, "
+                                         "minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose; "
+                                         "SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key "
+                                         "of a numeric key)", key, n >= sizeof key ? "..." : "");
+        }
+        double v;
+        if (hy_scene_get_num(s, "annotation", name, "x", &v) < 0 || hy_scene_get_num(s, "annotation", name, "y", &v) < 0)
+            return hy_scene_error_at(s, "annotation", name, NULL, err, HY_EINVAL, "annotation '%s' needs x and y", name);
+        if ((hy_scene_get_num(s, "annotation", name, "point_x", &v) >= 0) !=
+            (hy_scene_get_num(s, "annotation", name, "point_y", &v) >= 0))
+            return hy_scene_error_at(s, "annotation", name, NULL, err, HY_EINVAL,
+                                     "annotation '%s' needs both point_x and point_y, or neither", name);
+    }
+    double zx[2], zy[2];
+    int zxa = 1, zya = 1;
+    int hzx = hy_scene_get_pair(s, "figure", NULL, "zoom_x", zx, &zxa) == HY_SCENE_SET && !zxa;
+    int hzy = hy_scene_get_pair(s, "figure", NULL, "zoom_y", zy, &zya) == HY_SCENE_SET && !zya;
+    if (hzx != hzy)
+        return hy_scene_error_at(s, "figure", NULL, hzx ? "zoom_x" : "zoom_y", err, HY_EINVAL,
+                                 "a zoomed inset needs both zoom_x and zoom_y");
+    if (hzx && (!(zx[0] < zx[1]) || !(zy[0] < zy[1])))
+        return hy_scene_error_at(s, "figure", NULL, "zoom_x", err, HY_EINVAL,
+                                 "zoom_x and zoom_y must each be lo, hi with lo < hi");
+    return HY_OK;
 }
 
 int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)

@@ -200,6 +200,8 @@ static int build_run(hy_scene_run *r, hy_error *err)
         rc = build_model(r, err);
     if (!rc && !hy_scene_is_boucwen(r->scene))
         rc = build_input(r, err);
+    if (!rc)
+        rc = hy_scene_run_validate(r, err);
     if (rc)
         hy_scene_run_free(r);
     return rc;
@@ -564,9 +566,12 @@ int hy_scene_text_has_placeholder(const char *text)
     for (const char *c = strchr(text, '{'); c; c = strchr(c + 1, '{')) {
         const char *e = strchr(c, '}');
         char inner[48];
-        if (!e || e - c > 40)
+        size_t n = e ? (size_t)(e - c - 1) : 0;
+        if (!e || (n >= sizeof inner && memchr(c + 1, '.', n)))
             return 1;                 /* malformed: let the expansion report it */
-        snprintf(inner, sizeof inner, "%.*s", (int)(e - c - 1), c + 1);
+        if (n >= sizeof inner)
+            continue;                 /* a long markup group */
+        snprintf(inner, sizeof inner, "%.*s", (int)n, c + 1);
         if (hy_scene_is_placeholder(inner))
             return 1;
     }

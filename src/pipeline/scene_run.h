@@ -82,6 +82,12 @@ typedef struct hy_scene_run {
  * model and input.  Errors name file:line:col.  On error r is freed. */
 int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err);
 
+/* What can be checked before computing and is not a single value's range:
+ * a scene that draws nothing, annotations (x and y, point_x with point_y,
+ * braces, placeholder names), the inset's zoom_x/zoom_y.  hy_scene_run_load
+ * calls it (issue 20 item 11: refused after seconds of computing before). */
+int hy_scene_run_validate(const hy_scene_run *r, hy_error *err);
+
 /* As hy_scene_run_load under pol (include dirs, work budget; NULL: defaults). */
 int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *sets, size_t nsets,
                              const hy_scene_policy *pol, hy_error *err);

@@ -437,6 +437,15 @@ static int text_value(vctx *c, const item *it, const char *dir, hy__value *out)
                     c->spec->name, c->where, shown(c, 0, it->text));
     if (k == HY_KIND_PATH && !it->text[0])
         return fail(c, it->col, "'%s' in %s: empty path", c->spec->name, c->where);
+    /* text is drawn (titles, labels) or names a file: UTF-8 without control
+     * characters, refused here rather than when the figure is drawn (an
+     * include's name is the policy's to judge: it quotes it escaped) */
+    long bad = strcmp(c->spec->name, "include") ? hy_text_check(it->text) : -1;
+    if (bad >= 0) {
+        unsigned char b = (unsigned char)it->text[bad];
+        return fail(c, it->col + it->quoted + (int)bad, "'%s' in %s %s (byte \\x%02x)", c->spec->name, c->where,
+                    b < 0x20 || b == 0x7f ? "holds a control character" : "is not valid UTF-8 text", b);
+    }
     if (k == HY_KIND_PATH && it->text[0] != '/' && dir && strcmp(dir, ".") != 0)
         out->str = join_path(dir, it->text);
     else

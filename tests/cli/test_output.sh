@@ -158,6 +158,13 @@ if [ -e /dev/stdout ]; then
     cmp -s "$tmp/o" "$tmp/want.csv" && ok || bad "loop -o /dev/stdout into a pipe: $(cat "$tmp/e")"
 fi
 
+# issue 20 item 11: a killed `data -o FILE` left its temporary; the next run sweeps it
+mkdir -p "$tmp/k"
+: > "$tmp/k/.x.csv.hystviz-tmp.AbCdEf"
+run data "$tmp/pr/scenes/evil.scene" -o "$tmp/k/x.csv"
+[ $st -eq 0 ] && [ ! -e "$tmp/k/.x.csv.hystviz-tmp.AbCdEf" ] && [ "$(tmps "$tmp/k")" -eq 0 ] && ok ||
+    bad "data -o: a killed run's temporary was not swept: status $st, $(ls -a "$tmp/k")"
+
 # modes come from the umask, for every command
 mode() { stat -c %a "$1"; }
 rm -rf "$tmp/m" && mkdir "$tmp/m"

@@ -36,6 +36,8 @@ for n in 1 2 3 4 5 6 7 20; do
     [ "$(grep -c 'sweep.shard-' "$tmp/s/names")" -eq "$n" ] && ok || bad "N=$n: not one manifest per shard"
     "$hv" sweep --merge "$tmp/all" -q && ok || bad "N=$n: merge status"
     diff -r "$tmp/one" "$tmp/all" > "$tmp/diff" && ok || bad "N=$n: merged study differs from the unsharded run: $(head -3 "$tmp/diff")"
+    # issue 20 item 11: a merge run again (a retried job) succeeds with the same table
+    "$hv" sweep --merge "$tmp/all" -q && diff -r "$tmp/one" "$tmp/all" > /dev/null && ok || bad "N=$n: a second merge failed or changed the study"
 done
 # the summary figure drawn by the merge is the unsharded run's
 "$hv" sweep "$fig15" $grid -o "$tmp/p1" -q --formats none --plot minor1_area

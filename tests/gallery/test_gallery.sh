@@ -234,8 +234,9 @@ fi
 "$hv" gallery --help | grep -q 'usage: hystviz gallery' && ok || bad "--help"
 
 # 9. names: a scene file name with a form feed and markup is refused (it would
-#    be markup in index.html); one with a space, quotes and '&' works, is
-#    escaped everywhere and is not rendered again on the next run
+#    be markup in index.html) before anything is rendered or written (issue 20
+#    item 11: exit 1 and index.html written before); one with a space, quotes
+#    and '&' works, is escaped everywhere and is not rendered again on the next run
 H=$tmp/hostile
 mkdir "$H"
 cp "$S/look.scene" "$H/"
@@ -243,16 +244,19 @@ ff=$(printf 'x\f<svg onload=alert(1)>.scene')
 printf 'include "look.scene"\n[figure]\nkind = input\n[series u]\ndata = input\n' > "$H/$ff"
 printf 'include "look.scene"\n[figure]\nkind = input\n[series u]\ndata = input\n' > "$H/my fig & \"q\" 's.scene"
 "$hv" gallery --scenes "$H" -o "$tmp/hg" --no-times > /dev/null 2> "$tmp/h1.err"
-[ $? -eq 1 ] && grep -q 'control character' "$tmp/h1.err" && ok || bad "form-feed name: $(cat "$tmp/h1.err")"
-grep -qi '<svg' "$tmp/hg/index.html" && bad "markup from a file name reached index.html" || ok
-LC_ALL=C grep -q "$(printf '\f')" "$tmp/hg/index.html" && bad "a control byte reached index.html" || ok
+[ $? -eq 2 ] && grep -q 'control character' "$tmp/h1.err" && grep -qF 'x\x0c<svg' "$tmp/h1.err" && ok ||
+    bad "form-feed name: $(cat "$tmp/h1.err")"
+[ ! -e "$tmp/hg/index.html" ] && [ ! -e "$tmp/hg/.manifest" ] && [ -z "$(ls "$tmp/hg" 2> /dev/null | grep -v '^\.lock$')" ] && ok ||
+    bad "a refused gallery wrote: $(ls -a "$tmp/hg")"
+LC_ALL=C grep -q "$(printf '\f')" "$tmp/h1.err" && bad "a control byte reached the terminal" || ok
+rm "$H/$ff"
+"$hv" gallery --scenes "$H" -o "$tmp/hg" --no-times > /dev/null 2> "$tmp/h1.err"
 grep -q 'href="my%20fig%20%26%20%22q%22%20%27s.png"' "$tmp/hg/index.html" &&
     grep -q '<h2>my fig &amp; &quot;q&quot; &#39;s</h2>' "$tmp/hg/index.html" && ok || bad "name with a space: not escaped/linked"
 [ -s "$tmp/hg/my fig & \"q\" 's.png" ] && ok || bad "name with a space: no PNG"
 if command -v xmllint > /dev/null 2>&1; then
     xmllint --noout "$tmp/hg/index.html" && ok || bad "hostile index.html is not well-formed"
 fi
-rm "$H/$ff"
 "$hv" gallery --scenes "$H" -o "$tmp/hg" --no-times > /dev/null 2> "$tmp/h2.err"
 grep -q '^gallery: 0 rendered, 1 unchanged, 0 failed' "$tmp/h2.err" && ok || bad "a name with a space is rendered every run: $(cat "$tmp/h2.err")"
 

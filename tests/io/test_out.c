@@ -194,6 +194,27 @@ static void test_links(void)
           "a link planted after the check was followed");
 }
 
+/* issue 20 item 11: the user's own file sweeps its stale temporaries (a
+ * killed `data -o FILE`), never a live writer's or another name's. */
+static void test_own_sweep(void)
+{
+    hy_out live, o;
+    hy_error err = {0};
+    mkdir("own", 0755);
+    CHECK(!hy_out_open(&live, "own/s.csv", HY_OUT_FOLLOW, &err), "%s", err.msg);
+    FILE *f = fopen("own/.s.csv.hystviz-tmp.STALE1", "w");
+    if (f)
+        fclose(f);
+    f = fopen("own/.t.csv.hystviz-tmp.STALE2", "w");
+    if (f)
+        fclose(f);
+    CHECK(!hy_out_open(&o, "own/s.csv", HY_OUT_FOLLOW, &err), "%s", err.msg);
+    CHECK(access("own/.s.csv.hystviz-tmp.STALE1", F_OK) != 0, "the stale temporary of the same file stayed");
+    CHECK(access("own/.t.csv.hystviz-tmp.STALE2", F_OK) == 0, "another file's temporary was swept");
+    CHECK(access(hy_out_tmp_path(&live), F_OK) == 0, "a live writer's temporary was swept");
+    CHECK(!hy_out_commit(&o, &err) && !hy_out_commit(&live, &err), "%s", err.msg);
+}
+
 int main(void)
 {
     umask(027); /* before the first open: the writer reads the umask once */
@@ -207,6 +228,7 @@ int main(void)
     test_sweep();
     test_failures();
     test_links();
+    test_own_sweep();
     printf("%s\n", fails ? "FAILED" : "ok");
     return fails ? 1 : 0;
 }

@@ -98,6 +98,12 @@ static void bools_enums_strings(void)
     PARSE_FAILS("[model]\nkind = coulomb\n",
                 "t.scene:2:8: 'kind' in [model] must be one of dahl, lugre, dahl-filter, boucwen, got 'coulomb'");
     PARSE_FAILS("[figure]\ntitle = \"abc\n", "t.scene:2:9: unterminated string (missing closing '\"')");
+    /* issue 20 item 11: text that is not UTF-8, or holds control characters, is
+       refused where it is written (it failed when the figure was drawn) */
+    PARSE_FAILS("[figure]\ntitle = \"ab\xff\"\n", "t.scene:2:12: 'title' in [figure] is not valid UTF-8 text (byte \\xff)");
+    PARSE_FAILS("[figure]\nxlabel = \"u \xc3(\"\n", "t.scene:2:13: 'xlabel' in [figure] is not valid UTF-8 text (byte \\xc3)");
+    PARSE_FAILS("[figure]\ntitle = \"a\x1b[31m\"\n", "t.scene:2:11: 'title' in [figure] holds a control character (byte \\x1b)");
+    hy_scene_free(PARSE_OK("u.scene", "[figure]\ntitle = \"\xce\xb3 \xe2\x86\xbb\tloops\"\n"));
     PARSE_FAILS("[figure]\ntitle = Hello world\n",
                 "t.scene:2:15: unexpected 'w' after the value of 'title' (quote text that contains spaces)");
     PARSE_FAILS("[figure]\ntitle = \"a\" \"b\"\n",

@@ -427,7 +427,10 @@ static void key_placeholder(void)
           "[input]\nkind = bimodal\numin1 = 0\numin2 = 0.5\numax1 = 1\numax2 = 1.5\n"
           "[figure]\nkind = timeseries\n[series u]\ndata = input\n"
           "[annotation a]\ntext = \"\\sigma_0 = {model.sigma0}, u_{min,2} = {input.umin2}\"\nx = 0\ny = 0\n"
-          "[annotation b]\ntext = \"u_{max,1}\"\nx = 0\ny = 0\n", f);
+          "[annotation b]\ntext = \"u_{max,1}\"\nx = 0\ny = 0\n"
+          /* issue 20 item 11: a markup group over 40 bytes was "unterminated '{'" */
+          "[annotation c]\ntext = \"u_{a long subscript of more than forty bytes, kept as markup} {model.sigma0}\"\n"
+          "x = 0\ny = 0\n", f);
     fclose(f);
     char set[] = "input.umin2=0.25";
     hy_scene_run r;
@@ -436,11 +439,17 @@ static void key_placeholder(void)
         return;
     CHECK(!strcmp(st.texts[0].text, "\\sigma_0 = 6, u_{min,2} = 0.25"), "expanded: '%s'", st.texts[0].text);
     CHECK(!strcmp(st.texts[1].text, "u_{max,1}"), "markup only: '%s'", st.texts[1].text);
+    CHECK(!strcmp(st.texts[2].text, "u_{a long subscript of more than forty bytes, kept as markup} 6"),
+          "a long markup group: '%s'", st.texts[2].text);
     /* placeholders made it compute the steady state; a text of markup only would not */
     CHECK(r.have_steady, "a placeholder computes the steady state");
     hy_scene_fig_free(&st);
     hy_scene_run_free(&r);
     CHECK(hy_scene_text_has_placeholder("u_{max,1} and y^{*}") == 0, "markup groups are not placeholders");
+    CHECK(hy_scene_text_has_placeholder("u_{a long subscript of more than forty-eight bytes, markup}") == 0,
+          "a long markup group is not a placeholder");
+    CHECK(hy_scene_text_has_placeholder("x_{a long group of more than forty-eight bytes} {energy}") == 1,
+          "a placeholder after a long markup group");
     CHECK(hy_scene_text_has_placeholder("area {minor1.area}") == 1 && hy_scene_text_has_placeholder("{energy}") == 1,
           "placeholders are found");
 }
@@ -464,8 +473,33 @@ static void scene_error(const char *text, const char *want)
     CHECK(rc != 0 && strstr(err.msg, want), "expected error containing '%s', got %d: %s", want, rc, rc ? err.msg : "");
 }
 
+/* issue 20 item 11: refused by hy_scene_run_load itself, before any computing
+ * (an annotation's bad placeholder was found after seconds of solving) */
+static void load_refused(const char *text, const char *want)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/bad_load.scene", BLD);
+    FILE *f = fopen(path, "w");
+    fputs(text, f);
+    fclose(f);
+    hy_scene_run r;
+    hy_error err = {0};
+    int rc = hy_scene_run_load(&r, path, NULL, 0, &err);
+    if (!rc)
+        hy_scene_run_free(&r);
+    CHECK(rc == HY_EINVAL && strstr(err.msg, want), "load: expected '%s', got %d: %s", want, rc, rc ? err.msg : "");
+}
+
 static void errors(void)
 {
+    load_refused("[model]\nkind = lugre\n", "bad_load.scene:1:1: the scene draws nothing");
+    load_refused("", "bad_load.scene:1:1: the scene draws nothing");
+    load_refused("[figure]\nkind = loop\n[series a]\ndata = ysteady\n[annotation t]\ntext = \"{minor1.aera}\"\nx = 0\n"
+                 "y = 0\n", "bad_load.scene:6:1: unknown placeholder {minor1.aera}");
+    load_refused("[figure]\nkind = loop\n[series a]\ndata = ysteady\n[annotation t]\ntext = \"{model.nosuch}\"\nx = 0\n"
+                 "y = 0\n", "bad_load.scene:6:1: unknown placeholder {model.nosuch}");
+    load_refused("[series a]\ndata = input\n[annotation t]\ntext = \"a\"\nx = 0\n", "annotation 't' needs x and y");
+    load_refused("[series a]\ndata = input\n[figure]\nzoom_x = 0, 1\n", "a zoomed inset needs both zoom_x and zoom_y");
     scene_error("[model]\nsigma0 = 1\n[series a]\ndata = ygamma\n", "bad.scene:4:1: series 'a' (data = ygamma) needs 'gamma'");
     scene_error("[figure]\nkind = timeseries\n[series m]\ndata = minor\n",
                 "bad.scene:4:1: data = minor cannot be drawn in a figure of kind timeseries");
@@ -478,6 +512,8 @@ static void errors(void)
     scene_error("[model]\nkind = lugre\nfs = 2\n[figure]\nkind = loop\n[series a]\ndata = ysteady\n[annotation t]\n"
                 "text = \"{model.sigma1} {model.nosuch}\"\nx = 0\ny = 0\n",
                 "bad.scene:9:1: unknown placeholder {model.nosuch}");
+    scene_error("[figure]\nkind = loop\n[series a]\ndata = ysteady\n[annotation t]\ntext = \"{a\"\nx = 0\ny = 0\n",
+                "bad.scene:6:1: unterminated '{' in annotation text");
     scene_error("[input]\nkind = multimodal\nextrema = 0, 1, 0.5\n[series a]\ndata = input\n", "even number");
     /* issue 10 item 3: a core message re-raised at its key was formatted into
        itself and reached the user empty (file input, bimodal t) or garbled (ODE) */
