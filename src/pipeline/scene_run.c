@@ -789,10 +789,14 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
 {
     const hy_scene *s = r->scene;
     *work = 0;
+    /* placing an annotation tries up to HY_PLACE_SPOTS spots (issue 20 item 8) */
+    size_t na = hy_scene_count(s, "annotation");
+    double place = (double)na * HY_PLACE_SPOTS;
     if (hy_scene_is_boucwen(s)) {
         int rc = hy_scene_boucwen_work(r, work, err);
+        *work += place;
         if (what && size)
-            snprintf(what, size, "Newmark steps and series samples");
+            snprintf(what, size, "Newmark steps and series samples, %zu annotations x %d spots", na, HY_PLACE_SPOTS);
         return rc;
     }
     long pts = 2000, cycles = 1;
@@ -821,10 +825,10 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
         }
     }
     free(gam);
-    *work = (double)ng * npts + pointsum;
+    *work = (double)ng * npts + pointsum + place;
     if (what && size)
-        snprintf(what, size, "%zu series, %zu distinct gamma solves over %.0f points (%ld per period, %g periods)", ns, ng,
-                 npts, pts, fmax(1.0, periods));
+        snprintf(what, size, "%zu series, %zu distinct gamma solves over %.0f points (%ld per period, %g periods), "
+                 "%zu annotations x %d spots", ns, ng, npts, pts, fmax(1.0, periods), na, HY_PLACE_SPOTS);
     return HY_OK;
 }
 

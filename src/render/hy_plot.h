@@ -189,4 +189,9 @@ int hy_figure_render_mem_mapped(const hy_figure *f, int format, unsigned char **
 /* Format from a file name's extension (.svg .pdf .png), or -1. */
 int hy_format_from_path(const char *path);
 
+/* The most spots the layout tries for one annotation (2 passes of 30 rings
+ * of 24 directions and the spot itself): the unit of placement work in the
+ * work budget (docs/SCENES.md). */
+#define HY_PLACE_SPOTS 1442
+
 #endif
