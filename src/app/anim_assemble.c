@@ -45,21 +45,15 @@ static long missing_frames(const char *dir, long n, char *msg, size_t size)
     return missing;
 }
 
-/* Runs argv (argv[0] on PATH); 0 when it exits with status 0. */
+/* Runs argv (argv[0] on PATH) through hy_out_spawn (a signal that ends this
+ * process stops it first); 0 when it exits with status 0. */
 static int run_wait(char *const argv[])
 {
-    pid_t pid = fork();
-    if (pid < 0)
+    pid_t pid;
+    if (hy_out_spawn(argv, NULL, &pid))
         return -1;
-    if (pid == 0) {
-        execvp(argv[0], argv);
-        _exit(127);
-    }
-    int status;
-    while (waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR)
-            return -1;
-    return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
+    int status = hy_out_wait(pid);
+    return status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
 }
 
 int hy_anim_assemble(const hy_anim_params *p, const char *fmt, hy_error *err)

@@ -3,12 +3,18 @@
  * (OSMesa and LLVM cost ~17 ms at every process start): a cairo figure,
  * `hystviz render`, never initialises GL.  argv as after "hystviz". */
 #include <gsl/gsl_errno.h>
+#include <pthread.h>
+#include <signal.h>
 
 #include "cli_util.h"
 #include "cmd_animate.h"
 
 int main(int argc, char **argv)
 {
+    sigset_t stop;
+    cli_signals_block(&stop); /* first: a signal at any moment of start-up is taken (README "Signals") */
+    if (cli_signals_end())
+        pthread_sigmask(SIG_UNBLOCK, &stop, NULL);
     gsl_set_error_handler_off();
     if (argc < 2) {
         static char name[] = "animate", *args[] = {name, NULL};

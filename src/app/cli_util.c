@@ -2,11 +2,15 @@
 #include "cli_util.h"
 
 #include <errno.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stddef.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#include "hy_out.h"
 
 int cli_num(const char *opt, const char *s, double *out)
 {
@@ -162,4 +166,56 @@ int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, 
     }
     pol->max_work = w;
     return 1;
+}
+
+/* The signals a command takes: INT and TERM (and HUP where not ignored). */
+static void stop_signals(sigset_t *set)
+{
+    sigemptyset(set);
+    sigaddset(set, SIGINT);
+    sigaddset(set, SIGTERM);
+    sigaddset(set, SIGHUP);
+}
+
+void cli_signals_block(sigset_t *set)
+{
+    stop_signals(set);
+    pthread_sigmask(SIG_BLOCK, set, NULL);
+    /* an ignored signal is discarded even while blocked: a background job of
+     * a non-interactive shell starts with SIGINT ignored (SIGHUP ignored is
+     * nohup's wish and stays) */
+    struct sigaction sa;
+    int stop[] = {SIGINT, SIGTERM};
+    for (int i = 0; i < 2; i++)
+        if (!sigaction(stop[i], NULL, &sa) && sa.sa_handler == SIG_IGN)
+            signal(stop[i], SIG_DFL);
+}
+
+/* The thread of cli_signals_end: the first signal removes the temporaries
+ * and ends the process by that signal. */
+static void *ender(void *arg)
+{
+    (void)arg;
+    sigset_t set;
+    stop_signals(&set);
+    int sig = 0;
+    while (sigwait(&set, &sig))
+        ;
+    hy_out_end();
+    signal(sig, SIG_DFL);
+    sigset_t one;
+    sigemptyset(&one);
+    sigaddset(&one, sig);
+    pthread_sigmask(SIG_UNBLOCK, &one, NULL);
+    raise(sig);
+    _exit(128 + sig); /* not reached: the default action of sig ends the process */
+}
+
+int cli_signals_end(void)
+{
+    pthread_t t;
+    if (pthread_create(&t, NULL, ender, NULL))
+        return -1;
+    pthread_detach(t);
+    return 0;
 }

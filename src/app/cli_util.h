@@ -4,6 +4,7 @@
 #ifndef HY_CLI_UTIL_H
 #define HY_CLI_UTIL_H
 
+#include <signal.h>
 #include <stdio.h>
 #include "hy_model.h"
 #include "hy_scene_policy.h"
@@ -44,5 +45,20 @@ int cli_stdout_status(const char *cmd, int rc);
  * its value), 0 if not, -1 on error (message printed, prefixed with cmd). */
 int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, int argc, char **argv,
                       int *i);
+
+/* Signals, from the first instruction of main (README "Signals"): blocks
+ * SIGINT, SIGTERM and SIGHUP in the calling thread, so every thread started
+ * later has them blocked, and sets SIGINT and SIGTERM back to their default
+ * action where the parent left them ignored (a background job of a shell
+ * script); a signal sent at any moment of start-up stays pending until the
+ * command takes it.  *set receives the three. */
+void cli_signals_block(sigset_t *set);
+
+/* For a command without its own signal handling (all but serve and watch,
+ * which sigwait): a thread takes the blocked signals; at the first one it
+ * stops the programs writing this process's temporaries, removes the
+ * temporaries (hy_out_end) and ends the process by that signal (status
+ * 128 + N in the shell).  0, or -1 when the thread cannot start. */
+int cli_signals_end(void);
 
 #endif

@@ -1820,7 +1820,8 @@ int hy_cmd_serve(int argc, char **argv)
         free(s);
         return 1;
     }
-    /* every thread inherits the blocked signals; this one waits for them */
+    /* every thread inherits the blocked signals (main blocked them before
+       anything else: one sent during start-up is pending); this one waits */
     sigset_t sigs;
     sigemptyset(&sigs);
     sigaddset(&sigs, SIGINT);
@@ -1858,7 +1859,16 @@ int hy_cmd_serve(int argc, char **argv)
             snprintf(url, sizeof url, "http://%s%s%s:%d/", s->ipv6 ? "[" : "", host, s->ipv6 ? "]" : "", s->port);
             char *oargv[] = {"xdg-open", url, NULL};
             pid_t pid;
-            if (posix_spawnp(&pid, "xdg-open", NULL, NULL, oargv, environ))
+            /* the browser gets default signal handling, not this process's blocked set */
+            posix_spawnattr_t at;
+            sigset_t none;
+            sigemptyset(&none);
+            posix_spawnattr_init(&at);
+            posix_spawnattr_setsigmask(&at, &none);
+            posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK);
+            int sp = posix_spawnp(&pid, "xdg-open", NULL, &at, oargv, environ);
+            posix_spawnattr_destroy(&at);
+            if (sp)
                 fprintf(stderr, "hystviz serve: --open: cannot run xdg-open; open the URL above\n");
         }
         int sig = 0;

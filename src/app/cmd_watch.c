@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/signalfd.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -33,18 +34,6 @@ static const char watch_help[] =
     "  --format LIST   formats to write instead of the scene's\n"
     "\n"
     "Exit status: 0 after Ctrl-C, 1 if the directories cannot be watched, 2 for a bad option.\n";
-
-static int stop_pipe[2] = {-1, -1};
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    int e = errno;
-    if (write(stop_pipe[1], "x", 1) < 0) {
-        /* nothing to do: the pipe is full, a stop is pending already */
-    }
-    errno = e;
-}
 
 typedef struct watched {
     const char *path;
@@ -119,6 +108,18 @@ static void render_one(watched *w, char *const *sets, size_t nsets, const char *
     hy_scene_run_free(&run);
 }
 
+/* Whether one of stop's signals is pending. */
+static int stop_pending(const sigset_t *stop)
+{
+    sigset_t pend;
+    if (sigpending(&pend))
+        return 0;
+    for (int sig = 1; sig < 32; sig++)
+        if (sigismember(stop, sig) && sigismember(&pend, sig))
+            return 1;
+    return 0;
+}
+
 int hy_cmd_watch(int argc, char **argv)
 {
     const char *out = NULL, *formats = NULL;
@@ -181,26 +182,26 @@ int hy_cmd_watch(int argc, char **argv)
         fprintf(stderr, "hystviz watch: %s\n", err.msg);
         rc = 1;
     }
-    if (!rc && pipe(stop_pipe)) {
-        fprintf(stderr, "hystviz watch: pipe: %s\n", strerror(errno));
+    /* the signals main blocked before anything else (cli_signals_block),
+     * pending since then if one came: readable here */
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    sigaddset(&stop, SIGHUP);
+    int sfd = rc ? -1 : signalfd(-1, &stop, SFD_CLOEXEC);
+    if (!rc && sfd < 0) {
+        fprintf(stderr, "hystviz watch: signalfd: %s\n", strerror(errno));
         rc = 1;
     }
     if (!rc) {
         /* Ctrl-C ends the wait, never a write: no partial file */
-        fcntl(stop_pipe[1], F_SETFL, O_NONBLOCK);
-        struct sigaction sa;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_signal;
-        sa.sa_flags = SA_RESTART;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGINT, &sa, NULL);
-        sigaction(SIGTERM, &sa, NULL);
         fprintf(stderr, "hystviz watch: watching %zu scene%s (Ctrl-C stops)\n", nw, nw == 1 ? "" : "s");
-        for (size_t i = 0; i < nw; i++)
+        for (size_t i = 0; i < nw && !stop_pending(&stop); i++)
             render_one(&ws[i], sets, nsets, out, formats, 1);
         char names[4096];
         for (;;) {
-            int r = hy_dirwatch_wait(w, stop_pipe[0], -1, names, sizeof names, &err);
+            int r = hy_dirwatch_wait(w, sfd, -1, names, sizeof names, &err);
             if (r < 0) {
                 fprintf(stderr, "hystviz watch: %s\n", err.msg);
                 rc = 1;
@@ -210,15 +211,10 @@ int hy_cmd_watch(int argc, char **argv)
             for (size_t i = 0; i < nw; i++)
                 render_one(&ws[i], sets, nsets, out, formats, 0);
         }
-        signal(SIGINT, SIG_DFL);
-        signal(SIGTERM, SIG_DFL);
     }
     hy_dirwatch_close(w);
-    for (int i = 0; i < 2; i++)
-        if (stop_pipe[i] >= 0) {
-            close(stop_pipe[i]);
-            stop_pipe[i] = -1;
-        }
+    if (sfd >= 0)
+        close(sfd);
     for (size_t i = 0; i < nd; i++)
         free(dirs[i]);
     free(dirs);

@@ -4,6 +4,8 @@
 #include <gsl/gsl_errno.h>
 #include <errno.h>
 #include <limits.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <unistd.h>
 #include <string.h>
@@ -52,6 +54,8 @@ static const char usage[] =
     "  3  feature not built into this hystviz (animations without OSMesa or EGL, serve without libmicrohttpd)\n"
     "A failure prints what failed and leaves no partial file: a command's files\n"
     "are written whole, all of them or none (FILE '-' is standard output).\n"
+    "SIGINT/SIGTERM: serve and watch exit 0; any other command removes its\n"
+    "temporaries and ends by the signal (status 130/143 in the shell).\n"
     "\n"
     "example:\n"
     "  hystviz loop --model lugre --sigma0 6 --fc 1 --fs 2 --vs 1 --beta 1 \\\n"
@@ -60,21 +64,22 @@ static const char usage[] =
 typedef struct command {
     const char *name;
     int (*run)(int argc, char **argv);
+    int own_signals; /* 1: takes SIGINT/SIGTERM itself (sigwait) and exits 0 */
 } command;
 
 static const command commands[] = {
-    {"render", hy_cmd_render},
-    {"data", hy_cmd_render},
-    {"gallery", hy_cmd_gallery},
-    {"sweep", hy_cmd_sweep},
-    {"export", hy_cmd_export},
-    {"loop", hy_cmd_loop},
-    {"loops", hy_cmd_loop},
-    {"boucwen", hy_cmd_boucwen},
-    {"report", hy_cmd_report},
-    {"check", hy_cmd_check},
-    {"serve", hy_cmd_serve},
-    {"watch", hy_cmd_watch},
+    {"render", hy_cmd_render, 0},
+    {"data", hy_cmd_render, 0},
+    {"gallery", hy_cmd_gallery, 0},
+    {"sweep", hy_cmd_sweep, 0},
+    {"export", hy_cmd_export, 0},
+    {"loop", hy_cmd_loop, 0},
+    {"loops", hy_cmd_loop, 0},
+    {"boucwen", hy_cmd_boucwen, 0},
+    {"report", hy_cmd_report, 0},
+    {"check", hy_cmd_check, 0},
+    {"serve", hy_cmd_serve, 1},
+    {"watch", hy_cmd_watch, 1},
 };
 
 /* Runs hystviz-animate (next to this executable) with this argv: "animate" ...;
@@ -100,6 +105,8 @@ static int run_animate(char **argv)
 
 int main(int argc, char **argv)
 {
+    sigset_t stop;
+    cli_signals_block(&stop); /* first: a signal at any moment of start-up is taken (README "Signals") */
     gsl_set_error_handler_off(); /* every GSL status is checked where it is returned */
     if (argc < 2) {
         fputs(usage, stderr);
@@ -114,10 +121,13 @@ int main(int argc, char **argv)
         return cli_stdout_status(NULL, 0);
     }
     if (!strcmp(argv[1], "animate"))
-        return run_animate(argv);
+        return run_animate(argv); /* the signals stay blocked (and pending) across exec */
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (!strcmp(argv[1], commands[i].name)) /* every command's output checked here */
+        if (!strcmp(argv[1], commands[i].name)) { /* every command's output checked here */
+            if (!commands[i].own_signals && cli_signals_end())
+                pthread_sigmask(SIG_UNBLOCK, &stop, NULL); /* no thread: the default action, at least */
             return cli_stdout_status(argv[1], commands[i].run(argc - 1, argv + 1));
+        }
     fprintf(stderr, "hystviz: unknown command '%s' (try hystviz --help)\n", argv[1]);
     return 2;
 }

@@ -1,7 +1,7 @@
 /* hy_out.c: the one output writer: a temporary (O_EXCL) + flock + renameat in
  * the target's open directory for files, direct writes for FIFOs and character devices, "-" for standard output,
  * and the sweep of temporaries left by killed writers (hy_out.h). */
-#define _GNU_SOURCE /* O_PATH */
+#define _GNU_SOURCE /* O_PATH, pipe2 */
 #include "hy_out.h"
 
 #include <dirent.h>
@@ -9,6 +9,8 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <pthread.h>
+#include <signal.h>
+#include <spawn.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,8 +18,11 @@
 #include <sys/file.h>
 #include <sys/random.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+
+extern char **environ;
 
 #define TMP_TAG ".hystviz-tmp."
 
@@ -44,6 +49,45 @@ static void mode_init(void)
         umask(mask);
     }
     file_mode = 0666 & ~mask;
+}
+
+/* What hy_out_end removes: every open temporary (the hy_out's own tmp
+ * string and its directory's descriptor, registered while reg_mu is held
+ * from the file's creation on) and the pids of the programs hy_out_spawn
+ * started.  hy_out_end keeps reg_mu locked. */
+typedef struct reg_tmp_entry {
+    const char *tmp;
+    int dfd;
+} reg_tmp_entry;
+static pthread_mutex_t reg_mu = PTHREAD_MUTEX_INITIALIZER;
+static reg_tmp_entry *reg_tmp;
+static pid_t *reg_pid;
+static size_t reg_ntmp, reg_cap_tmp, reg_npid, reg_cap_pid;
+
+/* Appends v to a registry array (reg_mu held); 0 or ENOMEM. */
+static int reg_add(void **arr, size_t *n, size_t *cap, size_t size, const void *v)
+{
+    if (*n == *cap) {
+        size_t c = *cap ? 2 * *cap : 16;
+        void *a = realloc(*arr, c * size);
+        if (!a)
+            return ENOMEM;
+        *arr = a, *cap = c;
+    }
+    memcpy((char *)*arr + *n * size, v, size);
+    (*n)++;
+    return 0;
+}
+
+static void reg_drop_tmp(const char *tmp)
+{
+    pthread_mutex_lock(&reg_mu);
+    for (size_t i = 0; i < reg_ntmp; i++)
+        if (reg_tmp[i].tmp == tmp) {
+            reg_tmp[i] = reg_tmp[--reg_ntmp];
+            break;
+        }
+    pthread_mutex_unlock(&reg_mu);
 }
 
 static char *dupstr(const char *s)
@@ -74,6 +118,8 @@ static int fail_out(hy_error *err, const hy_out *o, int e)
 
 static void release(hy_out *o)
 {
+    if (o->tmp)
+        reg_drop_tmp(o->tmp);
     if (o->fd >= 0)
         close(o->fd);
     if (o->dfd >= 0)
@@ -136,16 +182,27 @@ static void random_suffix(char *name)
 static int open_tmp(hy_out *o, hy_error *err)
 {
     for (int tries = 0; tries < 16; tries++) {
+        if (o->tmp)
+            reg_drop_tmp(o->tmp);
         free(o->tmp);
         if (!(o->tmp = tmp_name(o->final)))
             return fail(err, o->path, ENOMEM);
         random_suffix(o->tmp);
         const char *tb = base_of(o->tmp);
-        int fd = openat(o->dfd, tb, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-        if (fd < 0 && errno == EEXIST)
+        /* created and registered at once: hy_out_end sees every temporary */
+        pthread_mutex_lock(&reg_mu);
+        int fd = openat(o->dfd, tb, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600), e = errno;
+        if (fd >= 0 && (e = reg_add((void **)&reg_tmp, &reg_ntmp, &reg_cap_tmp, sizeof *reg_tmp,
+                                    &(reg_tmp_entry){o->tmp, o->dfd}))) {
+            close(fd);
+            unlinkat(o->dfd, tb, 0);
+            fd = -1;
+        }
+        pthread_mutex_unlock(&reg_mu);
+        if (fd < 0 && e == EEXIST)
             continue;
         if (fd < 0)
-            return fail(err, o->path, errno);
+            return fail(err, o->path, e);
         struct stat a, b;
         if (flock(fd, LOCK_EX) || fstat(fd, &a)) {
             int e = errno;
@@ -159,7 +216,7 @@ static int open_tmp(hy_out *o, hy_error *err)
         }
         pthread_once(&mode_once, mode_init);
         fchmod(fd, file_mode);
-        int keep = dup(fd); /* holds the lock once the stream is closed */
+        int keep = fcntl(fd, F_DUPFD_CLOEXEC, 0); /* holds the lock once the stream is closed */
         FILE *fp = keep >= 0 ? fdopen(fd, "wb") : NULL;
         if (!fp) {
             int e = errno;
@@ -507,4 +564,80 @@ static void sweep_own(const hy_out *o)
         sweep_dir(d, base_of(o->final));
     else if (fd >= 0)
         close(fd);
+}
+
+int hy_out_spawn(char *const argv[], int *in_fd, pid_t *pid)
+{
+    int p[2] = {-1, -1};
+    if (in_fd && pipe2(p, O_CLOEXEC))
+        return errno;
+    posix_spawn_file_actions_t fa;
+    posix_spawnattr_t at;
+    sigset_t none, dfl;
+    sigemptyset(&none);
+    sigemptyset(&dfl);
+    sigaddset(&dfl, SIGINT);
+    sigaddset(&dfl, SIGTERM);
+    sigaddset(&dfl, SIGPIPE);
+    posix_spawn_file_actions_init(&fa);
+    posix_spawnattr_init(&at);
+    if (in_fd)
+        posix_spawn_file_actions_adddup2(&fa, p[0], 0);
+    else
+        posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawnattr_setsigmask(&at, &none);
+    posix_spawnattr_setsigdefault(&at, &dfl);
+    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+    pthread_mutex_lock(&reg_mu); /* started and registered at once */
+    int e = posix_spawnp(pid, argv[0], &fa, &at, argv, environ);
+    if (!e && (e = reg_add((void **)&reg_pid, &reg_npid, &reg_cap_pid, sizeof *reg_pid, pid))) {
+        kill(*pid, SIGKILL);
+        waitpid(*pid, NULL, 0);
+    }
+    pthread_mutex_unlock(&reg_mu);
+    posix_spawn_file_actions_destroy(&fa);
+    posix_spawnattr_destroy(&at);
+    if (in_fd) {
+        close(p[0]);
+        if (e)
+            close(p[1]);
+        else
+            *in_fd = p[1];
+    }
+    return e;
+}
+
+int hy_out_wait(pid_t pid)
+{
+    /* waited for without reaping, dropped from the registry, then reaped: a
+     * pid hy_out_end could kill is never one the system gave to another */
+    siginfo_t si;
+    while (waitid(P_PID, (id_t)pid, &si, WEXITED | WNOWAIT) < 0)
+        if (errno != EINTR)
+            return -1;
+    pthread_mutex_lock(&reg_mu);
+    for (size_t i = 0; i < reg_npid; i++)
+        if (reg_pid[i] == pid) {
+            reg_pid[i] = reg_pid[--reg_npid];
+            break;
+        }
+    pthread_mutex_unlock(&reg_mu);
+    int status;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return -1;
+    return status;
+}
+
+void hy_out_end(void)
+{
+    pthread_mutex_lock(&reg_mu); /* kept: no temporary or program starts after this */
+    for (size_t i = 0; i < reg_npid; i++)
+        kill(reg_pid[i], SIGKILL);
+    siginfo_t si;
+    for (size_t i = 0; i < reg_npid; i++) /* gone before their files: none writes one again */
+        while (waitid(P_PID, (id_t)reg_pid[i], &si, WEXITED | WNOWAIT) < 0 && errno == EINTR)
+            ;
+    for (size_t i = 0; i < reg_ntmp; i++)
+        unlinkat(reg_tmp[i].dfd, base_of(reg_tmp[i].tmp), 0);
 }

@@ -37,6 +37,8 @@
  * hy_out_abort each.  HY_OUT_HOLD keeps what goes to a direct target (stdout,
  * FIFO, device) in memory until publish, so nothing reaches it on failure.
  *
+ * Signals: a command ending at SIGINT/SIGTERM removes its temporaries first
+ * (hy_out_end, called by cli_util.c's signal thread).
  * Stale temporaries: a writer killed by kill -9 leaves its temporary behind.
  * hy_out_sweep(DIR) removes the ones whose writer is gone (their flock is
  * free); a running writer's file is never touched.  Opening the user's own
@@ -51,6 +53,7 @@
 #define HY_OUT_H
 
 #include <stdio.h>
+#include <sys/types.h>
 
 #include "hy_status.h"
 
@@ -104,6 +107,23 @@ void hy_out_abort(hy_out *o);
  * earlier hystviz versions (EXT svg, pdf, png, csv, html, manifest).
  * Returns how many it removed; a missing DIR is 0. */
 int hy_out_sweep(const char *dir);
+
+/* Starts argv[0] (searched on PATH) as a program that writes a temporary
+ * of this writer (ffmpeg filling hy_out_tmp_path), with default signal
+ * handling and nothing blocked whatever this process blocks.  Its standard
+ * input is a pipe whose write end (close-on-exec) goes to *in_fd, or
+ * /dev/null when in_fd is NULL.  Returns 0 or an errno value; a started
+ * program is waited for with hy_out_wait. */
+int hy_out_spawn(char *const argv[], int *in_fd, pid_t *pid);
+
+/* Waits for a program of hy_out_spawn; its waitpid status, -1 on error. */
+int hy_out_wait(pid_t pid);
+
+/* For a process that ends now (at a signal, cli_util.c): kills the programs
+ * of hy_out_spawn, waits until they are gone, and removes every temporary
+ * still open.  Afterwards no temporary can be opened (hy_out_open blocks);
+ * the caller ends the process.  Not for signal handlers (it takes a mutex). */
+void hy_out_end(void);
 
 /* Whether name is a temporary of this writer (".NAME.hystviz-tmp.XXXXXX"). */
 int hy_out_is_tmp_name(const char *name);

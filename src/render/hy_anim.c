@@ -126,7 +126,8 @@ typedef struct run {
     void *state;
     long nframes, first, last, next, done, piped;
     char dir[4096];
-    FILE *video;
+    FILE *video;              /* ffmpeg's standard input */
+    pid_t video_pid;
     hy_out video_out;         /* ffmpeg writes its temporary; renamed when complete */
     pthread_mutex_t mu;
     pthread_cond_t cv;
@@ -337,31 +338,41 @@ static int open_video(run *r, hy_error *err)
                             "(Debian: apt-get install ffmpeg), or render the PNG frames and encode them "
                             "later with: ffmpeg -framerate %g -i %s/%s/frame_%%05d.png %s/%s.%s",
                             v, p->fps, p->outdir, p->name, p->outdir, p->name, v);
-    const char *codec = !strcmp(v, "mp4") ? "-c:v libx264 -pix_fmt yuv420p"
-                        : !strcmp(v, "webm") ? "-c:v libvpx-vp9 -pix_fmt yuv420p" : "";
-    char cmd[8800];
-    if (strchr(p->outdir, '\'') || strchr(p->name, '\''))
-        return hy_error_set(err, HY_EINVAL, "output names for --video may not contain a quote");
+    const char *codec = !strcmp(v, "mp4") ? "libx264" : !strcmp(v, "webm") ? "libvpx-vp9" : NULL;
     char path[4200];
     if (snprintf(path, sizeof path, "%s/%s.%s", p->outdir, p->name, v) >= (int)sizeof path)
         return hy_error_set(err, HY_EINVAL, "output directory name is too long");
     /* an empty temporary, locked, that ffmpeg fills (-y) and publish renames */
     int st = hy_out_open(&r->video_out, path, 0, err);
-    if (!st && (st = hy_out_finish(&r->video_out, err)) == HY_OK && strchr(hy_out_tmp_path(&r->video_out), '\'')) {
-        hy_out_abort(&r->video_out);
-        st = hy_error_set(err, HY_EINVAL, "output names for --video may not contain a quote");
-    }
+    if (!st)
+        st = hy_out_finish(&r->video_out, err);
     if (st)
         return st;
+    char size[64], rate[40];
+    snprintf(size, sizeof size, "%dx%d", p->width, p->height);
+    snprintf(rate, sizeof rate, "%g", p->fps);
     /* the container named with -f: the temporary name has no telling extension;
      * bitexact: no random segment UID, no encoder version (identical runs give
      * identical files; anim_assemble.c does the same) */
-    snprintf(cmd, sizeof cmd, "ffmpeg -loglevel error -y -f rawvideo -pix_fmt %s -s %dx%d -r %g -i - "
-             "%s -fflags +bitexact -flags:v +bitexact -f %s '%s'", hy_little_endian() ? "bgr0" : "0rgb", p->width, p->height, p->fps, codec, v,
-             hy_out_tmp_path(&r->video_out));
-    r->video = popen(cmd, "w");
-    if (!r->video) {
-        int e = errno;
+    char *argv[32] = {"ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt",
+                      hy_little_endian() ? "bgr0" : "0rgb", "-s", size, "-r", rate, "-i", "-"};
+    int a = 14;
+    if (codec) {
+        argv[a++] = "-c:v", argv[a++] = (char *)codec;
+        argv[a++] = "-pix_fmt", argv[a++] = "yuv420p";
+    }
+    argv[a++] = "-fflags", argv[a++] = "+bitexact", argv[a++] = "-flags:v", argv[a++] = "+bitexact";
+    argv[a++] = "-f", argv[a++] = (char *)v;
+    argv[a++] = (char *)hy_out_tmp_path(&r->video_out);
+    argv[a] = NULL;
+    /* started through hy_out: a signal that ends this process stops it first */
+    int fd = -1, e = hy_out_spawn(argv, &fd, &r->video_pid);
+    if (!e && !(r->video = fdopen(fd, "w"))) {
+        e = errno;
+        close(fd);
+        hy_out_wait(r->video_pid);
+    }
+    if (e) {
         hy_out_abort(&r->video_out);
         return hy_error_set(err, HY_EIO, "cannot start ffmpeg: %s", strerror(e));
     }
@@ -428,7 +439,7 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
     int st = start(&r, err);
     if (st) {
         if (r.video)
-            pclose(r.video);
+            fclose(r.video), hy_out_wait(r.video_pid);
         hy_out_abort(&r.video_out);
         if (p->video)
             sigaction(SIGPIPE, &old_pipe, NULL);
@@ -452,7 +463,12 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
     pthread_mutex_lock(&r.mu);
     progress(&r, 1);
     pthread_mutex_unlock(&r.mu);
-    if (r.video && pclose(r.video) != 0 && !r.failed)
+    int ff = 0; /* ffmpeg reads to the end of its input, then exits */
+    if (r.video) {
+        ff = fclose(r.video) != 0;
+        ff = hy_out_wait(r.video_pid) != 0 || ff;
+    }
+    if (ff && !r.failed)
         hy_error_set(&r.err, HY_EIO, "ffmpeg failed to encode '%s'", r.video_out.path), r.failed = 1;
     if (r.video && !r.failed && hy_out_publish(&r.video_out, &r.err))
         r.failed = 1;
