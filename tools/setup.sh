@@ -3,8 +3,10 @@
 #   sh tools/setup.sh gallery   install what is missing, build, render the gallery
 #   sh tools/setup.sh test      install what is missing, build, run every test suite
 #                               (the gl suite on each GL backend: both in build/,
-#                               -Dgl=osmesa, -Dgl=egl; again without GL, and again
-#                               under ASan+UBSan)
+#                               -Dgl=osmesa, -Dgl=egl; the suites that depend on
+#                               the configuration again without GL, and every
+#                               suite again under ASan+UBSan), each run with
+#                               $TMPDIR a fresh directory that must stay empty
 #   sh tools/setup.sh bench     build, run the benchmarks
 #   sh tools/setup.sh fuzz MIN  build the libFuzzer target with clang in build-fuzz/ and
 #                               fuzz the scene parser and `data` path for MIN minutes
@@ -41,14 +43,47 @@ fi
 werror=false
 [ "${CI:-}" = "true" ] && werror=true
 
-configure() { # dir, extra options...
+setup_dir() { # dir, extra options...
     dir=$1; shift
     if [ -d "$dir" ]; then
         meson setup --reconfigure "$dir" -Dwerror=$werror "$@" >/dev/null
     else
         meson setup "$dir" -Dwerror=$werror "$@" >/dev/null
     fi
-    meson compile -C "$dir"
+}
+configure() { # dir, extra options...: set up and build everything
+    setup_dir "$@"
+    meson compile -C "$1"
+}
+# configure_for DIR "SUITE..." OPTIONS...: set up DIR and build only what the
+# tests of those suites run (their executables and the targets they name,
+# from meson's introspection), not the whole project
+configure_for() {
+    dir=$1 suites=$2; shift 2
+    setup_dir "$dir" "$@"
+    # shellcheck disable=SC2046,SC2086 # the targets and suites are words
+    meson compile -C "$dir" $( (cd "$dir" && meson introspect --tests --targets) | python3 -c '
+import json, sys
+j = json.load(sys.stdin)
+want = set(sys.argv[1:])
+names = {t["id"]: t["name"] for t in j["targets"]}
+need = {names[d] for t in j["tests"] if want & {s.split(":")[-1] for s in t["suite"]} for d in t["depends"]}
+print(" ".join(sorted(need)))' $suites)
+}
+# run_tests DIR MESON-TEST-OPTIONS...: the tests with $TMPDIR a fresh directory,
+# which must be empty afterwards: a test leaves nothing behind
+run_tests() {
+    dir=$1; shift
+    tmp=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-tests.XXXXXX")
+    st=0
+    TMPDIR=$tmp meson test -C "$dir" --print-errorlogs --num-processes 2 "$@" || st=$?
+    left=$(ls -A "$tmp")
+    rm -rf "$tmp"
+    if [ -n "$left" ]; then
+        echo "setup: the tests in $dir left in \$TMPDIR: $(echo "$left" | tr '\n' ' ')" >&2
+        [ "$st" -ne 0 ] || st=1
+    fi
+    return "$st"
 }
 
 case "$what" in
@@ -58,20 +93,23 @@ gallery)
     ;;
 test)
     configure build
-    meson test -C build --print-errorlogs --num-processes 2
+    run_tests build
     # the README's Slurm example on a real single-node Slurm of its own
     # (tools/cluster/slurm-local.sh); once, not per build configuration
     sh tests/cli/test_slurm.sh build/src/app/hystviz .
     # each GL backend alone (build/ has both: its gl suite ran on each, and
-    # compared their frames); -Dgl=egl is the machine without OSMesa
+    # compared their frames); -Dgl=egl is the machine without OSMesa; only
+    # what the gl suite runs is built
     for gl in osmesa egl; do
-        configure build-$gl -Dgl=$gl
-        meson test -C build-$gl --suite gl --print-errorlogs --num-processes 2
+        configure_for build-$gl gl -Dgl=$gl
+        run_tests build-$gl --no-rebuild --suite gl
     done
     # the build without GL and libmicrohttpd: cairo figures work, GL tests
-    # report SKIP, serve exits 3 naming what is missing
-    configure build-nogl -Dgl=disabled -Dmicrohttpd=disabled
-    meson test -C build-nogl --no-suite check --print-errorlogs --num-processes 2
+    # report SKIP, serve exits 3 naming what is missing.  Only the suites whose
+    # code depends on the configuration run again (gl, serve, and the tests
+    # tagged 'config': tests/meson.build); the rest ran in build/
+    configure_for build-nogl "gl serve config" -Dgl=disabled -Dmicrohttpd=disabled
+    run_tests build-nogl --no-rebuild --suite gl --suite serve --suite config
     # GCC's -fsanitize=undefined leaves out float-cast-overflow (a double too large
     # for the integer it is converted to); it is added, and made fatal, here
     san="-fsanitize=float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
@@ -79,9 +117,9 @@ test)
         -Dc_args="$san" -Dc_link_args="$san"
     # every suite but the benchmarks-like ones again under ASan + UBSan
     # (fontconfig keeps a process-lifetime cache: suppressed in tests/render/lsan.supp)
-    UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
-        LSAN_OPTIONS=suppressions="$PWD/tests/render/lsan.supp" \
-        meson test -C build-san --no-suite check --print-errorlogs --num-processes 2
+    export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
+        LSAN_OPTIONS=suppressions="$PWD/tests/render/lsan.supp"
+    run_tests build-san --no-suite check
     ;;
 bench)
     configure build

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <unistd.h>
+#include "../tmpdir.h"
 
 /* Runs hy_cmd_boucwen with the NULL-terminated arguments. */
 static int run(const char *a0, ...)
@@ -47,8 +48,8 @@ static size_t read_csv(const char *path, double **u, double **y)
 
 int main(void)
 {
-    char dir[] = "/tmp/hy_bw_cmd_XXXXXX", out[256], tab[256];
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    char dir[200], out[256], tab[256];
+    CHECK(mkdtemp(test_tmppath(dir, sizeof dir, "cmd_XXXXXX")) != NULL, "mkdtemp");
     snprintf(out, sizeof out, "%s/y.csv", dir);
     snprintf(tab, sizeof tab, "%s/table2.txt", dir);
 

@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <unistd.h>
+#include "../tmpdir.h"
 
 static void expect(int rc, int code, const hy_error *e, const char *needle)
 {
@@ -29,8 +30,8 @@ static void bad_param(const char *name, double v, const char *needle)
 
 static void bad_file(const char *text, const char *needle)
 {
-    char path[] = "/tmp/hy_bw_refuse_XXXXXX";
-    int fd = mkstemp(path);
+    char path[4200];
+    int fd = mkstemp(test_tmppath(path, sizeof path, "refuse_XXXXXX"));
     CHECK(fd >= 0, "mkstemp");
     if (fd < 0)
         return;
@@ -50,10 +51,9 @@ static void bad_file(const char *text, const char *needle)
 }
 
 /* Writes len bytes to a temporary file; returns its path in path. */
-static int temp_file(char path[32], const char *bytes, size_t len)
+static int temp_file(char path[4200], const char *bytes, size_t len)
 {
-    strcpy(path, "/tmp/hy_bw_file_XXXXXX");
-    int fd = mkstemp(path);
+    int fd = mkstemp(test_tmppath(path, 4200, "file_XXXXXX"));
     FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
     if (!f)
         return -1;
@@ -74,7 +74,7 @@ static void printed_times(void)
     };
     for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
         size_t cap = (size_t)cases[k].n * 48, len = 0;
-        char *text = malloc(cap), path[32];
+        char *text = malloc(cap), path[4200];
         for (long i = cases[k].i0; i < cases[k].i0 + cases[k].n; i++) {
             double t = (double)i / 750;
             len += (size_t)snprintf(text + len, cap - len, cases[k].fmt, t, 40 * sin(2 * M_PI * (18 * t + t * t / 12)));
@@ -88,6 +88,7 @@ static void printed_times(void)
            so 1/fs is within q / (n - 1) of 1/750 */
         CHECK(rc == HY_OK && n == (size_t)cases[k].n && fabs(fs - 750) < 1e-6 * 750,
               "%s: rc %d, %zu samples, fs %.17g: %s", cases[k].fmt, rc, n, fs, e.msg);
+        unlink(path);
         free(u);
         u = NULL;
         /* drop the 101st line: a gap of one sample is refused at its line */
@@ -106,7 +107,7 @@ static void printed_times(void)
         free(text);
     }
     /* times too coarse for the spacing: 6 digits at 3720 s are 0.01 s apart */
-    char path[32], want[64];
+    char path[4200], want[4300];
     const char coarse[] = "3720,1\n3720,2\n3720.01,3\n";
     double *u = NULL, fs;
     size_t n;

@@ -9,6 +9,7 @@
 #include <complex.h>
 #include <math.h>
 #include <unistd.h>
+#include "../tmpdir.h"
 
 #define SCENES HY_SOURCE_DIR "/scenes/"
 
@@ -216,8 +217,8 @@ static void refused(const char *dir, const char *text, const char *want_loc, con
 
 static void test_refused(void)
 {
-    char dir[] = "/tmp/hy_bw_scenes_XXXXXX";
-    if (!mkdtemp(dir)) {
+    char dir[200];
+    if (!mkdtemp(test_tmppath(dir, sizeof dir, "scenes_XXXXXX"))) {
         CHECK(0, "mkdtemp");
         return;
     }

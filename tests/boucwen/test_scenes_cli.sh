@@ -11,6 +11,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 
 "$hv" data "$scenes/bw_fig1b_linear_loop.scene" -o "$tmp/f1b.csv" && ok || bad "data fig1b"
 [ "$(head -1 "$tmp/f1b.csv")" = "series,x,y" ] && ok || bad "data header"

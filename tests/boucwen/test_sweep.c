@@ -14,8 +14,9 @@
 #include <math.h>
 #include <stdarg.h>
 #include <unistd.h>
+#include "../tmpdir.h"
 
-static char dir[] = "/tmp/hy_bw_sweep_XXXXXX";
+static char dir[200]; /* below $TMPDIR (tests/tmpdir.h) */
 
 /* Runs hy_cmd_boucwen with the NULL-terminated arguments. */
 static int run(const char *a0, ...)
@@ -373,7 +374,7 @@ static void test_refused(void)
 
 int main(void)
 {
-    if (!mkdtemp(dir)) {
+    if (!mkdtemp(test_tmppath(dir, sizeof dir, "sweep_XXXXXX"))) {
         perror("mkdtemp");
         return 1;
     }

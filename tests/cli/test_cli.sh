@@ -9,6 +9,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 
 "$hv" --help > "$tmp/h" 2>&1 && grep -q 'usage: hystviz COMMAND' "$tmp/h" && grep -q 'loop' "$tmp/h" && ok || bad "--help"
 "$hv" --version | grep -Eq '^hystviz [0-9]+\.[0-9]+\.[0-9]+$' && ok || bad "--version"

@@ -24,6 +24,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 export HYSTVIZ="$hv"
 export HOME="$tmp/home"   # GNU parallel keeps its state (and citation notice) under $HOME
 mkdir -p "$HOME/.parallel" && touch "$HOME/.parallel/will-cite"

@@ -10,6 +10,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 ex3="--sigma0 1 --sigma1 1 --fc 1 --fs 2 --vs 1 --beta 1 --x0 0 --input bimodal:0,0.2,1,1.5"
 stiff="--sigma0 1e5 --sigma1 316.22776601683796 --fc 1 --fs 1.5 --vs 1e-3 --beta 2 --x0 0"
 

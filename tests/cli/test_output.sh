@@ -20,6 +20,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 umask 022
 fig=$scenes/fig15_minor_loop_ex4.scene
 loop_in=bimodal:0,0.5,1,1.5

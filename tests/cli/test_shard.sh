@@ -16,6 +16,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 fig15=$scenes/fig15_minor_loop_ex4.scene
 grid="--grid model.sigma0=1:10:log5 --grid input.umin2=0.1,0.3,0.5"   # 15 points
 
@@ -59,7 +60,8 @@ done
 
 # the table-only study in 3 shards written into one directory, as GNU parallel does
 rm -rf "$tmp/t"
-for k in 0 1 2; do "$hv" sweep "$fig15" $grid -o "$tmp/t" -q --formats none --shard "$k/3" & done
+# (each bounded: timeout ends a shard that hangs, and wait then returns)
+for k in 0 1 2; do timeout 120 "$hv" sweep "$fig15" $grid -o "$tmp/t" -q --formats none --shard "$k/3" & done
 wait
 "$hv" sweep "$fig15" $grid -o "$tmp/t1" -q --formats none
 "$hv" sweep --merge "$tmp/t" -q && cmp -s "$tmp/t/sweep.csv" "$tmp/t1/sweep.csv" && ok || bad "concurrent shards in one directory"

@@ -9,6 +9,7 @@
 #include "hy_limit.h"
 #include "hy_ode.h"
 #include "tutil.h"
+#include "../tmpdir.h"
 
 static void model_errors(void)
 {
@@ -63,12 +64,12 @@ static void input_errors(void)
     CHECK_MSG(hy_input_parse(&in, "bimodal:0,0.2,1", &err), err, HY_EINVAL, "bimodal takes umin1,umin2,umax1,umax2");
     CHECK_MSG(hy_input_parse(&in, "bimodal:0,0.2,1,1.5:wavy", &err), err, HY_EINVAL, "unknown shape 'wavy'");
     CHECK_MSG(hy_input_parse(&in, "file:/nonexistent/u.txt", &err), err, HY_EIO, "/nonexistent/u.txt: cannot open input file");
-    char path[] = "/tmp/hy_bad_XXXXXX";
-    int fd = mkstemp(path);
+    char path[4200];
+    int fd = mkstemp(test_tmppath(path, sizeof path, "bad_XXXXXX"));
     FILE *f = fdopen(fd, "w");
     fprintf(f, "0 0\n1 1\n0.5 0\n");
     fclose(f);
-    char want[128];
+    char want[4400];
     snprintf(want, sizeof want, "%s:3: time 0.5 is not greater than the previous time 1", path);
     CHECK_MSG(hy_input_file(&in, path, &err), err, HY_EINVAL, want);
     f = fopen(path, "w");

@@ -7,6 +7,7 @@
 
 #include "hy_input.h"
 #include "tutil.h"
+#include "../tmpdir.h"
 
 static double absdu(double t, void *p) { return fabs(hy_input_du(p, t)); }
 
@@ -69,8 +70,8 @@ int main(void)
     CHECK(fabs(u - t) > 0.1 && fabs(hy_input_psi(&in, hy_input_rho(&in, t)) - u) < 1e-14, "ψ_u differs from u");
     hy_input_free(&in);
     /* a sampled file: written here, read back, closed to u(0) */
-    char path[] = "/tmp/hy_input_XXXXXX";
-    int fd = mkstemp(path);
+    char path[4200];
+    int fd = mkstemp(test_tmppath(path, sizeof path, "input_XXXXXX"));
     FILE *f = fdopen(fd, "w");
     fprintf(f, "# t u\n0 0\n0.5, 1\n1 0.25\n1.5 0.8\n");
     fclose(f);

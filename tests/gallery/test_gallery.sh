@@ -13,6 +13,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 S=$tmp/scenes
 G=$tmp/gallery
 mkdir "$S"

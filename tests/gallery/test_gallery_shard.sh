@@ -17,6 +17,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 S=$tmp/scenes
 mkdir "$S"
 cat > "$S/look.scene" <<'EOF'
@@ -106,7 +107,8 @@ diff -r -x .manifest "$tmp/one" "$G" > /dev/null && ok || bad "second sharded ru
 
 # shards at the same time in one directory (they share its lock)
 rm -rf "$G"
-for k in 0 1 2; do "$hv" gallery --scenes "$S" -o "$G" -j 1 -q --shard "$k/3" 2> /dev/null & done
+# (each bounded: timeout ends a shard that hangs, and wait then returns)
+for k in 0 1 2; do timeout 120 "$hv" gallery --scenes "$S" -o "$G" -j 1 -q --shard "$k/3" 2> /dev/null & done
 wait
 "$hv" gallery --scenes "$S" -o "$G" --merge -q 2> /dev/null
 diff -r -x .manifest "$tmp/one" "$G" > /dev/null && ok || bad "concurrent shards in one directory: gallery differs"

@@ -17,6 +17,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 A=minor-loop-ex4
 O="--size 320x180 --fps 10 --duration 1.5 --quiet"   # 15 frames
 

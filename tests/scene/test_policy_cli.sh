@@ -10,6 +10,7 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 mkdir -p "$tmp/proj/scenes" "$tmp/elsewhere" "$tmp/styles"
 s=$tmp/proj/scenes
 

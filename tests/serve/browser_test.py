@@ -113,7 +113,12 @@ class DevTools:
     def call(self, method, **params):
         self.id += 1
         self.ws.send(json.dumps({"id": self.id, "method": method, "params": params}))
+        t0 = time.time()
         while True:
+            # each read waits 60 s at most (the socket's timeout); events that
+            # keep coming without our answer end after 120 s
+            if time.time() - t0 > 120:
+                raise OSError(f"{method}: no answer from chromium within 120 s")
             m = json.loads(self.ws.recv())
             if m.get("id") == self.id:
                 if "error" in m:
@@ -151,7 +156,7 @@ def render_svg(hv, scene, sets, out):
     args = [hv, "render", scene, "--format", "svg", "-o", out]
     for s in sets:
         args += ["--set", s]
-    subprocess.run(args, check=True, capture_output=True)
+    subprocess.run(args, check=True, capture_output=True, timeout=120)
     name = re.search(r"^name = (\S+)", open(scene).read(), re.M)
     with open(os.path.join(out, name.group(1) + ".svg"), encoding="utf-8") as f:
         return f.read()
@@ -189,43 +194,72 @@ def drag(dt, key, frac_from, frac_to, steps=8):
     dt.mouse("mouseReleased", x1, cy, 0, "left")
 
 
+def wait_line(path, pattern, proc, deadline, what):
+    """The first match of pattern in the file path, which proc writes; None
+    when proc exits first or after deadline seconds (with a message)."""
+    t0 = time.time()
+    while time.time() - t0 < deadline:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            m = re.search(pattern, f.read())
+        if m:
+            return m
+        if proc.poll() is not None:
+            return None
+        time.sleep(0.05)
+    print(f"   (timed out after {deadline} s waiting for {what})", flush=True)
+    return None
+
+
+def stop_group(p):
+    """Kills p and every process it started (its own session) and reaps p."""
+    try:
+        os.killpg(p.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    p.wait(timeout=30)
+
+
 def start_chromium(tmp):
     exe = shutil.which("chromium") or shutil.which("chromium-browser")
     if not exe:
         return None, None
     prof = os.path.join(tmp, "profile")
-    p = subprocess.Popen([exe, "--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run",
-                          "--disable-extensions", "--disable-background-networking", "--disable-sync",
-                          "--remote-debugging-port=0", f"--user-data-dir={prof}", "--window-size=1400,1000",
-                          "about:blank"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    url = None
-    t0 = time.time()
-    while time.time() - t0 < 60:
-        line = p.stderr.readline()
-        if not line:
-            break
-        m = re.search(r"DevTools listening on (ws://\S+)", line)
-        if m:
-            url = m.group(1)
-            break
-    if not url:
-        p.kill()
+    log = os.path.join(tmp, "chromium.err")
+    # its own session: stop_group ends its renderer and GPU processes too; its
+    # messages go to a file (a pipe nobody reads would block it once full)
+    with open(log, "w") as err:
+        p = subprocess.Popen([exe, "--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run",
+                              "--disable-extensions", "--disable-background-networking", "--disable-sync",
+                              "--remote-debugging-port=0", f"--user-data-dir={prof}", "--window-size=1400,1000",
+                              "about:blank"], stdout=subprocess.DEVNULL, stderr=err, start_new_session=True)
+    m = wait_line(log, r"DevTools listening on (ws://\S+)", p, 60, "chromium's DevTools URL")
+    if not m:
+        stop_group(p)
         return None, None
+    url = m.group(1)
     port = re.match(r"ws://[^:]+:(\d+)/", url).group(1)
-    targets = json.load(urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list"))
+    targets = json.load(urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=30))
     page = next(t for t in targets if t["type"] == "page")
     return p, page["webSocketDebuggerUrl"]
 
 
 def start_server(hv, scenes):
-    p = subprocess.Popen([hv, "serve", scenes, "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    line = p.stdout.readline()
-    m = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
-    if not m and p.wait() == 3:
-        return p, None  # built without libmicrohttpd
+    out, err = os.path.abspath("serve.out"), os.path.abspath("serve.err")
+    with open(out, "w") as o, open(err, "w") as e:
+        p = subprocess.Popen([hv, "serve", scenes, "--port", "0"], stdout=o, stderr=e, stdin=subprocess.DEVNULL)
+    m = wait_line(out, r"(http://127\.0\.0\.1:\d+/)", p, 30, "serve's URL")
+    if m:
+        return p, m.group(1)
+    try:
+        rc = p.wait(timeout=10)
+    except subprocess.TimeoutExpired:
         p.kill()
-        raise RuntimeError("serve printed no URL: " + line + p.stderr.read())
-    return p, m.group(1)
+        p.wait()
+        rc = None
+    if rc == 3:
+        return p, None  # built without libmicrohttpd
+    with open(err, encoding="utf-8", errors="replace") as f:
+        raise RuntimeError(f"serve printed no URL within 30 s (status {rc}): " + f.read())
 
 
 def pct(v, q):
@@ -276,7 +310,7 @@ def test_page(dt, hv, base, scenes, tmp, screenshot):
         b.value = '1.2'; b.dispatchEvent(new Event('change')); })()""")
     dt.wait("hv.error !== null && !hv.inflight", 20, "the error")
     cli = subprocess.run([hv, "render", scene, "--set", f"model.sigma0={val}", "--set", "input.umin2=1.2", "-o",
-                          os.path.join(tmp, "rx")], capture_output=True, text=True).stderr.strip()
+                          os.path.join(tmp, "rx")], capture_output=True, text=True, timeout=120).stderr.strip()
     msg = dt.js("document.querySelector('.err[data-key=\"input.umin2\"]').textContent")
     check(cli.startswith("hystviz: ") and msg == cli[len("hystviz: "):], f"the CLI's message next to the control: '{msg}'")
     check(dt.js("hv.svg") == good and dt.js("document.getElementById('figure').innerHTML.length > 1000"),
@@ -309,7 +343,8 @@ def test_anim(dt, hv, base, scenes, tmp):
     A = "anim_minor_loop_ex4"
     scene = os.path.join(scenes, A + ".scene")
     out = os.path.join(tmp, "anim")
-    r = subprocess.run([hv, "animate", scene, "--frames", "10:11", "-o", out, "--quiet"], capture_output=True, text=True)
+    r = subprocess.run([hv, "animate", scene, "--frames", "10:11", "-o", out, "--quiet"], capture_output=True, text=True,
+                       timeout=120)
     if r.returncode == 3:
         print("SKIP (frame check): hystviz-animate was built without OSMesa: " + r.stderr.strip())
         return
@@ -379,6 +414,9 @@ def bench(dt, base, n, scenes):
 
 
 def main():
+    # meson's timeout (SIGTERM) and Ctrl-C run the finally below: chromium,
+    # in a session of its own, and serve are stopped, the directory removed
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))
     hv, src = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2])
     screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
     nbench = int(sys.argv[sys.argv.index("--bench") + 1]) if "--bench" in sys.argv else 0
@@ -415,8 +453,7 @@ def main():
             test_anim(dt, hv, base, scenes, tmp)
     finally:
         if chrome:
-            chrome.kill()
-            chrome.wait()
+            stop_group(chrome)
         if srv:
             srv.send_signal(signal.SIGINT)
             try:

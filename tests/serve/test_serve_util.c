@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "serve_util.h"
+#include "../tmpdir.h"
 
 static int fails;
 #define CHECK(c)                                                         \
@@ -138,8 +139,8 @@ int main(void)
     CHECK(lg && lo > 0 && hi <= 1);
 
     /* save as new scene: replaced lines, inserted keys, a new section */
-    char dir[] = "/tmp/hy_serve_util_XXXXXX";
-    CHECK(mkdtemp(dir) != NULL);
+    char dir[200];
+    CHECK(mkdtemp(test_tmppath(dir, sizeof dir, "serve_util_XXXXXX")) != NULL);
     char path[256], newpath[256];
     snprintf(path, sizeof path, "%s/a.scene", dir);
     snprintf(newpath, sizeof newpath, "%s/b.scene", dir);

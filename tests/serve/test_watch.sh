@@ -9,9 +9,11 @@ src=$(realpath "$2")
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
 ok() { echo "ok: $*"; }
+. "$(dirname "$0")/../lib/wait.sh"
 T=$(mktemp -d)
 w=
 trap '[ -n "$w" ] && kill -9 $w 2>/dev/null; rm -rf "$T"' EXIT
+trap 'exit 1' INT TERM
 mkdir -p "$T/scenes" "$T/out"
 cp "$src/fig15_minor_loop_ex4.scene" "$src/style.scene" "$T/scenes/"
 cd "$T" || exit 1
@@ -62,7 +64,7 @@ sed -i 's/^sigma0 = -1$/sigma0 = 6/' "$F"
 wait_lines 6 && tail -1 "$T/log" | grep -q "max error" && ok "fixed scene rendered" || fail "no render after the fix"
 
 kill -INT $w
-wait $w
+wait_pid $w 10 "watch after SIGINT"
 rc=$?
 w=
 [ $rc -eq 0 ] && ok "SIGINT: exit 0" || fail "SIGINT: exit $rc"
