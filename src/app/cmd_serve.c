@@ -81,7 +81,9 @@ int hy_cmd_serve(int argc, char **argv)
 #include <stdint.h>
 #include <stdlib.h>
 #include <strings.h>
+#include <poll.h>
 #include <sys/random.h>
+#include <sys/signalfd.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -431,9 +433,11 @@ static enum MHD_Result send_busy(struct MHD_Connection *c, int why)
 /* ---- hystviz-animate, out of process ---------------------------------- */
 
 /* Runs argv with stdout and stderr into out (NUL-terminated, truncated to
- * size); returns the exit status, or -1 if it could not run or was killed
- * after CHILD_TIMEOUT_S.  The child is reaped before this returns. */
-static int run_capture(char *const *argv, char *out, size_t size)
+ * size); returns the exit status, -1 if it could not run or was killed
+ * after CHILD_TIMEOUT_S, -2 if stop_fd (a signalfd, or -1 for none) became
+ * readable first (the child is killed).  The child is reaped before this
+ * returns. */
+static int run_capture(char *const *argv, char *out, size_t size, int stop_fd)
 {
     int fd[2];
     out[0] = '\0';
@@ -450,12 +454,18 @@ static int run_capture(char *const *argv, char *out, size_t size)
     close(fd[1]);
     size_t n = 0;
     double deadline = now_s() + CHILD_TIMEOUT_S;
-    int killed = 0;
+    int killed = 0, stopped = 0;
     for (;;) {
         char tmp[4096];
-        struct pollfd pf = {.fd = fd[0], .events = POLLIN};
+        struct pollfd pf[2] = {{fd[0], POLLIN, 0}, {stop_fd, POLLIN, 0}};
         double left = deadline - now_s();
-        if (!sp && (left <= 0 || poll(&pf, 1, (int)(left * 1000) + 1) == 0)) {
+        int pr = sp ? 1 : left <= 0 ? 0 : poll(pf, stop_fd >= 0 ? 2 : 1, (int)(left * 1000) + 1);
+        if (!sp && stop_fd >= 0 && pr > 0 && (pf[1].revents & POLLIN)) {
+            kill(pid, SIGKILL); /* a signal for serve during start-up */
+            stopped = 1;
+            break;
+        }
+        if (!sp && pr == 0) {
             kill(pid, SIGKILL); /* hung: its slot and its pipe are freed */
             killed = 1;
             break;
@@ -477,15 +487,20 @@ static int run_capture(char *const *argv, char *out, size_t size)
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR)
             return -1;
-    return !killed && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return stopped ? -2 : !killed && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-static void list_builtins(server *s)
+/* The built-in animations (hystviz-animate animate --list); -1 when a
+ * signal came meanwhile (stop_fd readable), else 0. */
+static int list_builtins(server *s, int stop_fd)
 {
     char out[8192];
     char *argv[] = {s->animate, "animate", "--list", NULL};
-    if (!s->animate[0] || run_capture(argv, out, sizeof out) != 0)
-        return; /* no hystviz-animate, or built without OSMesa */
+    int rc = s->animate[0] ? run_capture(argv, out, sizeof out, stop_fd) : 1;
+    if (rc == -2)
+        return -1;
+    if (rc != 0)
+        return 0; /* no hystviz-animate, or built without OSMesa */
     for (char *line = out; *line && s->nbuiltin < 32;) {
         char *nl = strchr(line, '\n');
         if (nl)
@@ -504,6 +519,7 @@ static void list_builtins(server *s)
             break;
         line = nl + 1;
     }
+    return 0;
 }
 
 /* "@NAME" of a built-in animation: its index, or -1. */
@@ -539,7 +555,7 @@ static int anim_info(server *s, struct MHD_Connection *c, uint64_t hash, const c
     }
     char out[2048];
     char *argv[] = {(char *)s->animate, "animate", (char *)what, "--info", NULL};
-    int rc = run_capture(argv, out, sizeof out);
+    int rc = run_capture(argv, out, sizeof out, -1);
     slot_give(s, 0);
     anim_entry e = {.hash = hash};
     if (rc == 0 && sscanf(out, "frames %ld fps %lf", &e.frames, &e.fps) == 2)
@@ -1789,7 +1805,23 @@ int hy_cmd_serve(int argc, char **argv)
             *slash = '\0';
         snprintf(s->animate, sizeof s->animate, "%.*s/hystviz-animate", (int)(sizeof s->animate - 20), self);
     }
-    list_builtins(s);
+    /* start-up's long step (hystviz-animate loads GL): a signal ends it, and
+       serve, at once (the signals are blocked since main: a signalfd sees them) */
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    sigaddset(&stop, SIGHUP);
+    int sfd = signalfd(-1, &stop, SFD_CLOEXEC);
+    int stopped = list_builtins(s, sfd);
+    if (sfd >= 0)
+        close(sfd);
+    if (stopped) {
+        fprintf(stderr, "hystviz serve: stopping (signal during start-up)\n");
+        close(s->dirfd);
+        free(s);
+        return 0;
+    }
     /* the per-run token */
     unsigned char rnd[16];
     if (getrandom(rnd, sizeof rnd, 0) != (ssize_t)sizeof rnd) {

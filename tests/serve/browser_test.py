@@ -225,13 +225,17 @@ def start_chromium(tmp):
         return None, None
     prof = os.path.join(tmp, "profile")
     log = os.path.join(tmp, "chromium.err")
+    # its temporaries (org.chromium.Chromium.*, left when it is killed) in tmp
+    ctmp = os.path.join(tmp, "chromium-tmp")
+    os.mkdir(ctmp)
     # its own session: stop_group ends its renderer and GPU processes too; its
     # messages go to a file (a pipe nobody reads would block it once full)
     with open(log, "w") as err:
         p = subprocess.Popen([exe, "--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run",
                               "--disable-extensions", "--disable-background-networking", "--disable-sync",
                               "--remote-debugging-port=0", f"--user-data-dir={prof}", "--window-size=1400,1000",
-                              "about:blank"], stdout=subprocess.DEVNULL, stderr=err, start_new_session=True)
+                              "about:blank"], stdout=subprocess.DEVNULL, stderr=err, start_new_session=True,
+                             env=dict(os.environ, TMPDIR=ctmp))
     m = wait_line(log, r"DevTools listening on (ws://\S+)", p, 60, "chromium's DevTools URL")
     if not m:
         stop_group(p)
