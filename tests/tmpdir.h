@@ -1,7 +1,8 @@
 /* tests/tmpdir.h: where a C test keeps its files.  test_tmpdir() makes one
  * directory $TMPDIR/hy_test.XXXXXX (/tmp when TMPDIR is unset) at its first
  * call and removes it, with everything in it, when the test exits (also
- * after failed checks), so a test leaves nothing behind.
+ * after failed checks; by the process that made it, not by its forked
+ * children), so a test leaves nothing behind.
  *
  *     char path[4200];
  *     int fd = mkstemp(test_tmppath(path, sizeof path, "input_XXXXXX"));
@@ -17,6 +18,7 @@
 #include <unistd.h>
 
 static char test_tmp_dir[4096];
+static pid_t test_tmp_owner; /* a forked child's exit leaves the directory alone */
 
 /* Removes path and, for a directory, everything below it. */
 static inline void test_tmp_remove(const char *path)
@@ -42,7 +44,7 @@ static inline void test_tmp_remove(const char *path)
 
 static inline void test_tmp_cleanup(void)
 {
-    if (test_tmp_dir[0])
+    if (test_tmp_dir[0] && getpid() == test_tmp_owner)
         test_tmp_remove(test_tmp_dir);
 }
 
@@ -56,6 +58,7 @@ static inline const char *test_tmpdir(void)
             perror("mkdtemp");
             exit(1);
         }
+        test_tmp_owner = getpid();
         atexit(test_tmp_cleanup);
     }
     return test_tmp_dir;

@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "fuzz_harness.h"
+#include "../tmpdir.h"
 
 static unsigned timeout_s = 10;
 static int verbose;
@@ -335,6 +336,10 @@ static int sandbox_test(void)
 int main(int argc, char **argv)
 {
     int bad = 0, nfiles = 0, nargs = 0;
+    /* every sandbox of the children (hy_fuzz_init: $TMPDIR/hyfuzz.XXXXXX,
+       left behind by a child the time limit kills) inside one directory that
+       this process removes at exit */
+    setenv("TMPDIR", test_tmpdir(), 1);
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--sandbox-test"))
             return sandbox_test();
