@@ -115,11 +115,12 @@ test)
     san="-fsanitize=float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
     configure build-san -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug \
         -Dc_args="$san" -Dc_link_args="$san"
-    # every suite but the benchmarks-like ones again under ASan + UBSan
+    # every suite again under ASan + UBSan but the full check and the tests
+    # tagged no-san (tests/meson.build: their C paths run here in other tests)
     # (fontconfig keeps a process-lifetime cache: suppressed in tests/render/lsan.supp)
     export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
         LSAN_OPTIONS=suppressions="$PWD/tests/render/lsan.supp"
-    run_tests build-san --no-suite check
+    run_tests build-san --no-suite check --no-suite no-san
     ;;
 bench)
     configure build

@@ -239,6 +239,8 @@ def start_chromium(tmp):
     m = wait_line(log, r"DevTools listening on (ws://\S+)", p, 60, "chromium's DevTools URL")
     if not m:
         stop_group(p)
+        with open(log, encoding="utf-8", errors="replace") as f:
+            print(f"   (chromium, status {p.returncode}, said: {f.read()[-1500:]})", flush=True)
         return None, None
     url = m.group(1)
     port = re.match(r"ws://[^:]+:(\d+)/", url).group(1)

@@ -64,7 +64,7 @@ sed -i 's/^sigma0 = -1$/sigma0 = 6/' "$F"
 wait_lines 6 && tail -1 "$T/log" | grep -q "max error" && ok "fixed scene rendered" || fail "no render after the fix"
 
 kill -INT $w
-wait_pid $w 10 "watch after SIGINT"
+wait_pid $w 30 "watch after SIGINT"
 rc=$?
 w=
 [ $rc -eq 0 ] && ok "SIGINT: exit 0" || fail "SIGINT: exit $rc"
