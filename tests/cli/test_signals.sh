@@ -79,7 +79,11 @@ run() {
     done
 }
 
-run serve 0 0 "$hv" serve --port 0 "$scenes"
+if "$hv" serve "$T/missing" 2>&1 | grep -q libmicrohttpd; then
+    echo "SKIP (serve): built without libmicrohttpd"
+else
+    run serve 0 0 "$hv" serve --port 0 "$scenes"
+fi
 run watch 0 0 "$hv" watch "$fig15" -o "$T/out"
 run sweep 130 143 "$hv" sweep "$fig15" --grid model.sigma0=1:10:log10 --grid input.umin2=0.1:0.5:5 \
     -o "$T/out" -j 2 -q
