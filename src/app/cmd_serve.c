@@ -181,6 +181,18 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* Waits on cond (mu held) for at most 0.2 s, so the caller can look at its
+ * client or the stop flag between slices. */
+static void cond_wait_slice(pthread_cond_t *cond, pthread_mutex_t *mu)
+{
+    struct timespec until;
+    clock_gettime(CLOCK_REALTIME, &until);
+    until.tv_nsec += 200000000L;
+    if (until.tv_nsec >= 1000000000L)
+        until.tv_sec++, until.tv_nsec -= 1000000000L;
+    pthread_cond_timedwait(cond, mu, &until);
+}
+
 /* ---- responses ------------------------------------------------------ */
 
 static enum MHD_Result send_buf(struct MHD_Connection *c, unsigned status, const char *type, void *data, size_t len,
@@ -371,12 +383,7 @@ static int slot_take(server *s, struct MHD_Connection *c, int anon)
     s->waiting++;
     int rc = SLOT_OK;
     while (!s->stopping && (s->running >= s->nslots || (anon && s->running_anon >= cap_anon))) {
-        struct timespec until;
-        clock_gettime(CLOCK_REALTIME, &until);
-        until.tv_nsec += 200000000L;
-        if (until.tv_nsec >= 1000000000L)
-            until.tv_sec++, until.tv_nsec -= 1000000000L;
-        pthread_cond_timedwait(&s->cond, &s->mu, &until);
+        cond_wait_slice(&s->cond, &s->mu);
         if (c && client_gone(c)) {
             rc = SLOT_GONE;
             break;
@@ -1368,12 +1375,7 @@ static ssize_t sse_read(void *cls, uint64_t pos, char *buf, size_t max)
     /* wait for a change in slices of 0.2 s, looking at the peer between them */
     int gone = 0;
     while (cl->seen == s->gen && !s->stopping && now_s() - cl->last < SSE_PING_S && !gone) {
-        struct timespec until;
-        clock_gettime(CLOCK_REALTIME, &until);
-        until.tv_nsec += 200000000L;
-        if (until.tv_nsec >= 1000000000L)
-            until.tv_sec++, until.tv_nsec -= 1000000000L;
-        pthread_cond_timedwait(&s->cond, &s->mu, &until);
+        cond_wait_slice(&s->cond, &s->mu);
         gone = peer_gone(cl->fd);
     }
     if (gone) {

@@ -656,6 +656,23 @@ static void pg_cells(const place_grid *g, double x, double y, int *cx, int *cy)
     *cy = fy < 0 ? 0 : fy >= g->ny ? g->ny - 1 : (int)fy;
 }
 
+/* The columns [*a, *b] of row r that the segment (x1, y1)-(x2, y2) reaches, one more
+ * each side, within its bounding cells c0..c1 (rows r0..r1). */
+static void pg_row_span(const place_grid *g, double x1, double y1, double x2, double y2, int r, int r0, int r1,
+                        int c0, int c1, int *a, int *b)
+{
+    *a = c0, *b = c1;
+    if (y1 != y2 && r1 > r0) {
+        double ya = fmax(fmin(y1, y2), g->gy0 + r * g->cs), yb = fmin(fmax(y1, y2), g->gy0 + (r + 1) * g->cs);
+        double xa = x1 + (ya - y1) * (x2 - x1) / (y2 - y1), xb = x1 + (yb - y1) * (x2 - x1) / (y2 - y1);
+        int dummy;
+        pg_cells(g, fmin(xa, xb), ya, a, &dummy);
+        pg_cells(g, fmax(xa, xb), ya, b, &dummy);
+        *a = *a > c0 ? *a - 1 : c0;
+        *b = *b < c1 ? *b + 1 : c1;
+    }
+}
+
 /* Calls out for every cell the segment (clipped to the grid) may touch:
  * per row, the columns between its x at the row's edges, one more each side.
  * fill 0 counts into start[c + 1], 1 writes id at pos[c]++. */
@@ -668,16 +685,8 @@ static void pg_segment(place_grid *g, double x1, double y1, double x2, double y2
     pg_cells(g, fmin(x1, x2), fmin(y1, y2), &c0, &r0);
     pg_cells(g, fmax(x1, x2), fmax(y1, y2), &c1, &r1);
     for (int r = r0; r <= r1; r++) {
-        int a = c0, b = c1;
-        if (y1 != y2 && r1 > r0) {
-            double ya = fmax(fmin(y1, y2), g->gy0 + r * g->cs), yb = fmin(fmax(y1, y2), g->gy0 + (r + 1) * g->cs);
-            double xa = x1 + (ya - y1) * (x2 - x1) / (y2 - y1), xb = x1 + (yb - y1) * (x2 - x1) / (y2 - y1);
-            int dummy;
-            pg_cells(g, fmin(xa, xb), ya, &a, &dummy);
-            pg_cells(g, fmax(xa, xb), ya, &b, &dummy);
-            a = a > c0 ? a - 1 : c0;
-            b = b < c1 ? b + 1 : c1;
-        }
+        int a, b;
+        pg_row_span(g, x1, y1, x2, y2, r, r0, r1, c0, c1, &a, &b);
         for (int c = a; c <= b; c++) {
             int cell = r * g->nx + c;
             if (*last == cell)
@@ -917,16 +926,8 @@ static int pg_leader_crosses(const panel *p, double x1, double y1, double x2, do
     pg_cells(g, fmin(x1, x2), fmin(y1, y2), &c0, &r0);
     pg_cells(g, fmax(x1, x2), fmax(y1, y2), &c1, &r1);
     for (int r = r0; r <= r1; r++) {
-        int a = c0, b = c1;
-        if (y1 != y2 && r1 > r0) {
-            double ya = fmax(fmin(y1, y2), g->gy0 + r * g->cs), yb = fmin(fmax(y1, y2), g->gy0 + (r + 1) * g->cs);
-            double xa = x1 + (ya - y1) * (x2 - x1) / (y2 - y1), xb = x1 + (yb - y1) * (x2 - x1) / (y2 - y1);
-            int dummy;
-            pg_cells(g, fmin(xa, xb), ya, &a, &dummy);
-            pg_cells(g, fmax(xa, xb), ya, &b, &dummy);
-            a = a > c0 ? a - 1 : c0;
-            b = b < c1 ? b + 1 : c1;
-        }
+        int a, b;
+        pg_row_span(g, x1, y1, x2, y2, r, r0, r1, c0, c1, &a, &b);
         for (int c = a; c <= b; c++) {
             int cell = r * g->nx + c;
             for (size_t k = g->start[cell]; k < g->start[cell + 1]; k++) {
