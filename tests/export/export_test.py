@@ -309,6 +309,8 @@ def main():
         big, small = test_payload(hv, scenes, tmp)
         test_errors(hv, scenes, tmp)
         if not have_chromium:
+            if bt.need_chromium():
+                raise RuntimeError("chromium is not installed (CI=true: sh tools/setup.sh test installs it)")
             print("SKIP (browser part): chromium is not installed (Debian: apt-get install chromium)")
         else:
             chrome, ws = bt.start_chromium(tmp)

@@ -17,6 +17,7 @@ check is skipped where hystviz-animate was built without OSMesa.
 printing the median and 95th percentile of the server's render time and of
 the page's time from the input event to the new SVG in the DOM.
 """
+import atexit
 import base64
 import json
 import os
@@ -219,15 +220,44 @@ def stop_group(p):
     p.wait(timeout=30)
 
 
+def need_chromium():
+    """Whether a browser that cannot be had fails the test instead of SKIPping it:
+    in CI (CI=true), where tools/setup.sh installs chromium, a SKIP would hide
+    the browser tests (as a too-long socket path once did)."""
+    return os.environ.get("CI") == "true"
+
+
 def start_chromium(tmp):
+    """chromium headless with DevTools on a free port: (process, page WebSocket URL),
+    or (None, None) where it is absent or does not start (after a second try);
+    under CI (need_chromium) that raises instead."""
     exe = shutil.which("chromium") or shutil.which("chromium-browser")
     if not exe:
+        if need_chromium():
+            raise RuntimeError("chromium is not installed (CI=true: tools/setup.sh test installs it)")
         return None, None
-    prof = os.path.join(tmp, "profile")
-    log = os.path.join(tmp, "chromium.err")
-    # its temporaries (org.chromium.Chromium.*, left when it is killed) in tmp
-    ctmp = os.path.join(tmp, "chromium-tmp")
-    os.mkdir(ctmp)
+    for attempt in (1, 2):
+        p, ws = start_chromium_once(exe, tmp, attempt)
+        if p:
+            return p, ws
+    if need_chromium():
+        raise RuntimeError("chromium did not start headless (twice; its messages are above)")
+    return None, None
+
+
+def start_chromium_once(exe, tmp, attempt):
+    prof = os.path.join(tmp, f"profile{attempt}")
+    log = os.path.join(tmp, f"chromium{attempt}.err")
+    # its temporaries (org.chromium.Chromium.*, left when it is killed) in tmp,
+    # whose name must stay short: chromium's SingletonSocket below it is a Unix
+    # socket (108 bytes at most; a nested $TMPDIR once made it too long and the
+    # test SKIPped); where tmp is too deep, a directory of its own in /tmp
+    ctmp = os.path.join(tmp, f"c{attempt}")
+    if len(ctmp) > 56:
+        ctmp = tempfile.mkdtemp(prefix="hyc", dir="/tmp")
+        atexit.register(shutil.rmtree, ctmp, True)
+    else:
+        os.mkdir(ctmp)
     # its own session: stop_group ends its renderer and GPU processes too; its
     # messages go to a file (a pipe nobody reads would block it once full)
     with open(log, "w") as err:
@@ -427,6 +457,9 @@ def main():
     screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
     nbench = int(sys.argv[sys.argv.index("--bench") + 1]) if "--bench" in sys.argv else 0
     if not (shutil.which("chromium") or shutil.which("chromium-browser")):
+        if need_chromium():
+            print("FAIL: chromium is not installed (CI=true: sh tools/setup.sh test installs it)")
+            return 1
         print("SKIP: chromium is not installed (Debian: apt-get install chromium; sh tools/setup.sh test does)")
         return 77
     tmp = tempfile.mkdtemp(prefix="hystviz-browser-")
