@@ -323,9 +323,8 @@ def main():
                 test_browser(dt, hv, scenes, tmp, big, small, screenshot)
     finally:
         if chrome:
-            chrome.kill()
-            chrome.wait()
-        shutil.rmtree(tmp, ignore_errors=True)
+            bt.stop_group(chrome)  # its renderers too: they write into tmp until gone
+        bt.remove_tree(tmp)
     if bt.FAILS:
         print(f"{len(bt.FAILS)} failure(s)")
         return 1

@@ -220,6 +220,18 @@ def stop_group(p):
     p.wait(timeout=30)
 
 
+def remove_tree(path):
+    """Removes path; a process that was just killed may still be ending (chromium's
+    renderers write into its profile until they are gone), so it tries again
+    for up to 10 s rather than leave a directory behind in $TMPDIR."""
+    deadline = time.monotonic() + 10
+    while True:
+        shutil.rmtree(path, ignore_errors=True)
+        if not os.path.exists(path) or time.monotonic() > deadline:
+            return
+        time.sleep(0.2)
+
+
 def need_chromium():
     """Whether a browser that cannot be had fails the test instead of SKIPping it:
     in CI (CI=true), where tools/setup.sh installs chromium, a SKIP would hide
@@ -255,7 +267,7 @@ def start_chromium_once(exe, tmp, attempt):
     ctmp = os.path.join(tmp, f"c{attempt}")
     if len(ctmp) > 56:
         ctmp = tempfile.mkdtemp(prefix="hyc", dir="/tmp")
-        atexit.register(shutil.rmtree, ctmp, True)
+        atexit.register(remove_tree, ctmp)
     else:
         os.mkdir(ctmp)
     # its own session: stop_group ends its renderer and GPU processes too; its
@@ -502,7 +514,7 @@ def main():
             except subprocess.TimeoutExpired:
                 srv.kill()
                 check(False, "serve did not stop within 10 s of SIGINT")
-        shutil.rmtree(tmp, ignore_errors=True)
+        remove_tree(tmp)
     if FAILS:
         print(f"{len(FAILS)} failure(s)")
         return 1
