@@ -56,6 +56,8 @@ during() { # label command...: measure while the command runs in the background
     sleep 1.5
     measure "$label"
     kill "${bg[-1]}" 2>/dev/null
+    sleep 0.2
+    kill -9 "${bg[-1]}" 2>/dev/null # one that ignores TERM must not hang the benchmark
     wait "${bg[-1]}" 2>/dev/null
     sleep 0.5
 }

@@ -52,6 +52,7 @@ start() { # extra options...
         sleep 0.1
     done
     if [ -z "$port" ]; then
+        kill -9 $srv 2>/dev/null # still running without a URL: the wait below must end
         wait $srv 2>/dev/null; rc=$?
         if [ $rc -eq 3 ] && grep -q "libmicrohttpd" "$T/serve.err"; then
             echo "SKIP: built without libmicrohttpd"
@@ -210,6 +211,7 @@ for _ in $(seq 300); do kill -0 $srv 2>/dev/null || break; sleep 0.05; done
 ms=$((($(date +%s%N) - t0) / 1000000))
 kill -0 $srv 2>/dev/null && fail "serve still running 15 s after SIGINT during 40 renders" ||
     ok "SIGINT during 40 renders: stopped in $ms ms"
+kill -9 $srv 2>/dev/null # (failed above if it was still running): the wait must end
 wait $srv; rc=$?
 [ $rc -eq 0 ] || fail "serve exited $rc after SIGINT"
 stop
