@@ -207,6 +207,23 @@ static int placeholder_known(const hy_scene *s, const char *key)
     return dot - key < 16 && hy_scene_get_num(s, sect, NULL, dot + 1, &x) >= 0;
 }
 
+/* The inset's zoom_x and zoom_y: *has 1 with both set (lo < hi each), 0 with
+ * neither; a scene error naming the key otherwise. */
+static int read_zoom(const hy_scene *s, double zx[2], double zy[2], int *has, hy_error *err)
+{
+    int zxa = 1, zya = 1;
+    int hzx = hy_scene_get_pair(s, "figure", NULL, "zoom_x", zx, &zxa) == HY_SCENE_SET && !zxa;
+    int hzy = hy_scene_get_pair(s, "figure", NULL, "zoom_y", zy, &zya) == HY_SCENE_SET && !zya;
+    *has = hzx;
+    if (hzx != hzy)
+        return hy_scene_error_at(s, "figure", NULL, hzx ? "zoom_x" : "zoom_y", err, HY_EINVAL,
+                                 "a zoomed inset needs both zoom_x and zoom_y");
+    if (hzx && (!(zx[0] < zx[1]) || !(zy[0] < zy[1])))
+        return hy_scene_error_at(s, "figure", NULL, "zoom_x", err, HY_EINVAL,
+                                 "zoom_x and zoom_y must each be lo, hi with lo < hi");
+    return HY_OK;
+}
+
 int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
 {
     const hy_scene *s = r->scene;
@@ -242,15 +259,9 @@ int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
                                      "annotation '%s' needs both point_x and point_y, or neither", name);
     }
     double zx[2], zy[2];
-    int zxa = 1, zya = 1;
-    int hzx = hy_scene_get_pair(s, "figure", NULL, "zoom_x", zx, &zxa) == HY_SCENE_SET && !zxa;
-    int hzy = hy_scene_get_pair(s, "figure", NULL, "zoom_y", zy, &zya) == HY_SCENE_SET && !zya;
-    if (hzx != hzy)
-        return hy_scene_error_at(s, "figure", NULL, hzx ? "zoom_x" : "zoom_y", err, HY_EINVAL,
-                                 "a zoomed inset needs both zoom_x and zoom_y");
-    if (hzx && (!(zx[0] < zx[1]) || !(zy[0] < zy[1])))
-        return hy_scene_error_at(s, "figure", NULL, "zoom_x", err, HY_EINVAL,
-                                 "zoom_x and zoom_y must each be lo, hi with lo < hi");
+    int hzx, zrc = read_zoom(s, zx, zy, &hzx, err);
+    if (zrc)
+        return zrc;
     return HY_OK;
 }
 
@@ -350,15 +361,9 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
         ax->band_hi = band[1];
     }
     double zx[2], zy[2];
-    int zxa = 1, zya = 1;
-    int hzx = hy_scene_get_pair(s, "figure", NULL, "zoom_x", zx, &zxa) == HY_SCENE_SET && !zxa;
-    int hzy = hy_scene_get_pair(s, "figure", NULL, "zoom_y", zy, &zya) == HY_SCENE_SET && !zya;
-    if (hzx != hzy)
-        return hy_scene_error_at(s, "figure", NULL, hzx ? "zoom_x" : "zoom_y", err, HY_EINVAL,
-                                 "a zoomed inset needs both zoom_x and zoom_y");
-    if (hzx && (!(zx[0] < zx[1]) || !(zy[0] < zy[1])))
-        return hy_scene_error_at(s, "figure", NULL, "zoom_x", err, HY_EINVAL,
-                                 "zoom_x and zoom_y must each be lo, hi with lo < hi");
+    int hzx, zrc = read_zoom(s, zx, zy, &hzx, err);
+    if (zrc)
+        return zrc;
     if (hzx) {
         ax->zoom_x = (hy_range){zx[0], zx[1], ax->x.log, 0};
         ax->zoom_y = (hy_range){zy[0], zy[1], ax->y.log, 0};
