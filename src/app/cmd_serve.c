@@ -115,6 +115,7 @@ extern const size_t hy_page_html_len, hy_page_js_len, hy_page_css_len;
 #define CONN_MAX 1000       /* connections in all, and from one address */
 #define CONN_PER_IP 900
 #define QUEUE_MAX 64        /* renders waiting for a slot; more: 503 + Retry-After */
+#define ADDR_MAX 64         /* client addresses with renders running or waiting */
 #define SERVE_WORK_DEFAULT 2e6       /* serve's work budget per render (--max-work raises it) */
 #define SERVE_OUTPUT_MAX (32u << 20) /* bytes of one answer (SVG, PDF, PNG, CSV, JSON) */
 #define CHILD_TIMEOUT_S 60  /* hystviz-animate --info / --list: killed after this */
@@ -162,6 +163,12 @@ typedef struct server {
     page_slot pages[MAX_PAGES];
     int nslots;             /* renders (and hystviz-animate children) at once */
     int running, running_anon, waiting;
+    struct {
+        unsigned char key[17]; /* family, then the IPv4 address or IPv6 /64 */
+        int running, waiting;
+    } addr[ADDR_MAX];         /* per client address (slot_take's fairness)  */
+    unsigned long ncancelled; /* renders stopped because their client went */
+    double last_cancel_note;
     sse_page sse[SSE_MAX];  /* event streams by page */
     int nsse;
     anim_entry anim[ANIM_CACHE];
@@ -365,24 +372,101 @@ static int client_gone(struct MHD_Connection *c)
 
 /* ---- render slots ----------------------------------------------------- */
 
+/* What a render polls between its steps (hy_scene_run.cancelled): the work
+ * stops when its client has gone or the server is stopping (issue 20 item 6:
+ * requests sent and closed at once kept computing for nobody). */
+typedef struct {
+    server *s;
+    struct MHD_Connection *c;
+} render_watch;
+
+/* Counts a stopped render and says so on stderr, at most once a second (a
+ * flood of abandoned requests must not flood the terminal). */
+static void cancelled_count(server *s)
+{
+    pthread_mutex_lock(&s->mu);
+    unsigned long n = ++s->ncancelled;
+    double t = now_s();
+    int note = t - s->last_cancel_note >= 1.0;
+    if (note)
+        s->last_cancel_note = t;
+    pthread_mutex_unlock(&s->mu);
+    if (note)
+        fprintf(stderr, "hystviz serve: stopped a render whose client had gone (%lu so far)\n", n);
+}
+
+static int render_unwanted(void *ctx)
+{
+    const render_watch *w = ctx;
+    int stopping;
+    pthread_mutex_lock(&w->s->mu);
+    stopping = w->s->stopping;
+    pthread_mutex_unlock(&w->s->mu);
+    return stopping || client_gone(w->c);
+}
+
 enum { SLOT_OK, SLOT_GONE, SLOT_FULL, SLOT_STOP };
 
-/* Waits for one of the nslots render slots.  Fairness: requests without a
- * page id (an <img>, a script) hold at most half of the slots, so a page
- * being dragged always finds one; at most QUEUE_MAX wait (SLOT_FULL: answer
- * 503).  A request whose client has gone (SLOT_GONE) or a stopping server
+/* The client address of c as a key: its family and the IPv4 address, or
+ * the /64 prefix of an IPv6 address (one host has a whole /64 to pick from). */
+static void addr_key(struct MHD_Connection *c, unsigned char key[17])
+{
+    memset(key, 0, 17);
+    const union MHD_ConnectionInfo *ci = c ? MHD_get_connection_info(c, MHD_CONNECTION_INFO_CLIENT_ADDRESS) : NULL;
+    const struct sockaddr *sa = ci ? ci->client_addr : NULL;
+    if (sa && sa->sa_family == AF_INET) {
+        key[0] = 4;
+        memcpy(key + 1, &((const struct sockaddr_in *)(const void *)sa)->sin_addr, 4);
+    } else if (sa && sa->sa_family == AF_INET6) {
+        key[0] = 6;
+        memcpy(key + 1, &((const struct sockaddr_in6 *)(const void *)sa)->sin6_addr, 8);
+    }
+}
+
+/* The entry of key (s->mu held), made if there is none; NULL if the table
+ * is full of addresses with work. */
+static int addr_find(server *s, const unsigned char key[17])
+{
+    int fresh = -1;
+    for (int i = 0; i < ADDR_MAX; i++) {
+        if ((s->addr[i].running || s->addr[i].waiting) && !memcmp(s->addr[i].key, key, 17))
+            return i;
+        if (fresh < 0 && !s->addr[i].running && !s->addr[i].waiting)
+            fresh = i;
+    }
+    if (fresh >= 0)
+        memcpy(s->addr[fresh].key, key, 17);
+    return fresh;
+}
+
+/* Waits for one of the nslots render slots.  Fairness:
+ *  - requests without a page id (an <img>, a script) hold at most half of
+ *    the slots, so a page being dragged always finds one;
+ *  - per client address (issue 20 item 6: a flood from one client cannot
+ *    starve another): at most QUEUE_MAX / 2 of its requests wait, and while
+ *    another address waits, one address holds at most nslots - 1 slots, so
+ *    the next free slot goes to the other.  Local users all come from
+ *    127.0.0.1 and share one entry; serve cannot tell them apart;
+ *  - at most QUEUE_MAX wait in all (SLOT_FULL: answer 503).
+ * A request whose client has gone (SLOT_GONE) or a stopping server
  * (SLOT_STOP) gives up its turn: nothing is computed for nobody. */
 static int slot_take(server *s, struct MHD_Connection *c, int anon)
 {
     int cap_anon = s->nslots > 1 ? s->nslots / 2 : 1;
+    int cap_addr = s->nslots > 1 ? s->nslots - 1 : 1;
+    unsigned char key[17];
+    addr_key(c, key);
     pthread_mutex_lock(&s->mu);
-    if (s->waiting >= QUEUE_MAX) {
+    int a = addr_find(s, key);
+    if (s->waiting >= QUEUE_MAX || a < 0 || s->addr[a].waiting >= QUEUE_MAX / 2) {
         pthread_mutex_unlock(&s->mu);
         return SLOT_FULL;
     }
     s->waiting++;
+    s->addr[a].waiting++;
     int rc = SLOT_OK;
-    while (!s->stopping && (s->running >= s->nslots || (anon && s->running_anon >= cap_anon))) {
+    while (!s->stopping && (s->running >= s->nslots || (anon && s->running_anon >= cap_anon) ||
+                            (s->addr[a].running >= cap_addr && s->waiting > s->addr[a].waiting))) {
         cond_wait_slice(&s->cond, &s->mu);
         if (c && client_gone(c)) {
             rc = SLOT_GONE;
@@ -390,6 +474,7 @@ static int slot_take(server *s, struct MHD_Connection *c, int anon)
         }
     }
     s->waiting--;
+    s->addr[a].waiting--;
     if (s->stopping)
         rc = SLOT_STOP;
     if (rc == SLOT_OK && c && client_gone(c))
@@ -397,18 +482,28 @@ static int slot_take(server *s, struct MHD_Connection *c, int anon)
     if (rc == SLOT_OK) {
         s->running++;
         s->running_anon += anon;
+        s->addr[a].running++;
     }
+    pthread_cond_broadcast(&s->cond); /* the waiting counts changed */
     pthread_mutex_unlock(&s->mu);
     return rc;
 }
 
-/* Frees the slot; the last one out gives the freed memory back to the system
- * (glibc keeps the arenas of every connection thread otherwise). */
-static void slot_give(server *s, int anon)
+/* Frees the slot slot_take gave c's request; the last one out gives the
+ * freed memory back to the system (glibc keeps the arenas of every
+ * connection thread otherwise). */
+static void slot_give(server *s, struct MHD_Connection *c, int anon)
 {
+    unsigned char key[17];
+    addr_key(c, key);
     pthread_mutex_lock(&s->mu);
     s->running--;
     s->running_anon -= anon;
+    for (int i = 0; i < ADDR_MAX; i++)
+        if (s->addr[i].running && !memcmp(s->addr[i].key, key, 17)) {
+            s->addr[i].running--;
+            break;
+        }
     int idle = s->running == 0;
     pthread_cond_broadcast(&s->cond);
     pthread_mutex_unlock(&s->mu);
@@ -563,7 +658,7 @@ static int anim_info(server *s, struct MHD_Connection *c, uint64_t hash, const c
     char out[2048];
     char *argv[] = {(char *)s->animate, "animate", (char *)what, "--info", NULL};
     int rc = run_capture(argv, out, sizeof out, -1);
-    slot_give(s, 0);
+    slot_give(s, c, 0);
     anim_entry e = {.hash = hash};
     if (rc == 0 && sscanf(out, "frames %ld fps %lf", &e.frames, &e.fps) == 2)
         e.ok = 1;
@@ -958,6 +1053,11 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
     int rc = hy_scene_run_load_text(&run, path, text, tl, (char *const *)a->sets, a->nsets, &pol, &err);
     free(text);
     int loaded = !rc;
+    render_watch watch = {s, c};
+    if (!rc) {
+        run.cancelled = render_unwanted;
+        run.cancel_ctx = &watch;
+    }
     if (!rc && (rc = hy_scene_run_compute(&run, NULL, &err))) {
         hy_scene_run_free(&run);
         loaded = 0;
@@ -986,7 +1086,11 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
     if (rc) {
         if (loaded)
             hy_scene_run_free(&run);
-        slot_give(s, anon);
+        slot_give(s, c, anon);
+        if (rc == HY_ECANCEL) { /* nobody to answer: close the connection */
+            cancelled_count(s);
+            return MHD_NO;
+        }
         return send_error_json(c, 422, err.msg);
     }
     char name[256];
@@ -1046,14 +1150,14 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
         hy_scene_run_free(&run);
         if (b.len > SERVE_OUTPUT_MAX) {
             free(b.s);
-            slot_give(s, anon);
+            slot_give(s, c, anon);
             return send_error_json(c, 422, "the figure with its points is over serve's output budget per answer; "
                                            "turn hover off or ask for fewer points");
         }
-        slot_give(s, anon);
+        slot_give(s, c, anon);
         return send_json(c, 200, &b);
     }
-    slot_give(s, anon);
+    slot_give(s, c, anon);
     char disp[400];
     snprintf(disp, sizeof disp, "%s; filename=\"%s.%s\"", a->name && !strcmp(a->name, "download") ? "attachment" : "inline",
              name, fmt);
@@ -1145,7 +1249,7 @@ static enum MHD_Result api_frame(server *s, struct MHD_Connection *c, const args
         if (!sp)
             while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
                 ;
-        slot_give(s, !a->page);
+        slot_give(s, c, !a->page);
     }
     posix_spawn_file_actions_destroy(&fa);
     if (slot)

@@ -19,7 +19,8 @@ enum {
     HY_ENOMEM = 2,  /* an allocation failed                             */
     HY_ENUM = 3,    /* a numerical method failed (step cap, divergence) */
     HY_EIO = 4,     /* a file could not be read or written              */
-    HY_EUNSUP = 5   /* the request is valid but not supported here      */
+    HY_EUNSUP = 5,  /* the request is valid but not supported here      */
+    HY_ECANCEL = 6  /* the caller stopped the work (its client has gone) */
 };
 
 typedef struct hy_error {

@@ -667,7 +667,7 @@ int hy_scene_boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
     double t_start = now();
     bw_setup b;
-    bw_record rec;
+    bw_record rec = {0};
     int rc = read_setup(r, &b, err);
     if (rc)
         return rc;
@@ -680,10 +680,13 @@ int hy_scene_boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
         r->series[i].name = hy_scene_name_at(r->scene, "series", i);
         r->series[i].data = HY_DATA_BOUCWEN;
     }
-    rc = make_record(r->scene, &b, &rec, err);
+    rc = hy_scene_run_check_cancel(r, err);
+    if (!rc)
+        rc = make_record(r->scene, &b, &rec, err);
     for (size_t i = 0; i < ns && !rc; i++) {
         double t0 = now();
-        rc = fill_series(r, &b, &rec, &r->series[i], err);
+        if (!(rc = hy_scene_run_check_cancel(r, err)))
+            rc = fill_series(r, &b, &rec, &r->series[i], err);
         if (!rc)
             place_marker(r, &rec, &r->series[i]);
         r->series[i].seconds = now() - t0;

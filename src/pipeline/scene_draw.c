@@ -530,8 +530,11 @@ int hy_scene_run_render(const hy_scene_run *r, int format, unsigned char **buf, 
     *buf = NULL;
     *len = 0;
     fig_store st;
-    int rc = hy_scene_run_figure(r, &st, err);
-    if (!rc)
+    int rc = hy_scene_run_check_cancel(r, err);
+    if (rc)
+        return rc;
+    rc = hy_scene_run_figure(r, &st, err);
+    if (!rc && !(rc = hy_scene_run_check_cancel(r, err)))
         rc = hy_figure_render_mem_mapped(&st.fig, format, buf, len, map, map ? 1 : 0, err);
     hy_scene_fig_free(&st);
     return rc;

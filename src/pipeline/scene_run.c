@@ -439,7 +439,9 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         plan_line(p, r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (now() - t0));
     }
     for (size_t i = 0; i < p->nsolves; i++) {
-        int rc = solve_gamma(r, p, &p->solves[i], err);
+        int rc = hy_scene_run_check_cancel(r, err);
+        if (!rc)
+            rc = solve_gamma(r, p, &p->solves[i], err);
         if (rc)
             return rc;
         char what[160];
@@ -849,6 +851,13 @@ int hy_scene_run_over_budget(const hy_scene *s, double work, double budget, cons
     return HY_EINVAL;
 }
 
+int hy_scene_run_check_cancel(const hy_scene_run *r, hy_error *err)
+{
+    if (r->cancelled && r->cancelled(r->cancel_ctx))
+        return hy_error_set(err, HY_ECANCEL, "%s: stopped: the work is no longer wanted", r->path);
+    return HY_OK;
+}
+
 int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
     char what[200];
@@ -886,7 +895,8 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
     if (!rc)
         rc = make_plan(r, &p, err);
     for (size_t i = 0; i < ns && !rc; i++)
-        rc = compute_series(r, &p, &r->series[i], err);
+        if (!(rc = hy_scene_run_check_cancel(r, err)))
+            rc = compute_series(r, &p, &r->series[i], err);
     r->seconds_compute = now() - t_start;
     if (!rc && log) {
         fprintf(log, "%s: plan\n%s", r->path, r->plan);

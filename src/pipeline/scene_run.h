@@ -75,6 +75,12 @@ typedef struct hy_scene_run {
                                * closed-form series are then not sampled at all
                                * (hystviz sweep's points outside the sample)    */
     int scene_borrowed;       /* scene belongs to the caller (not freed)          */
+    int (*cancelled)(void *); /* set before compute (may be NULL): polled between
+                               * the steps of compute and render (each gamma
+                               * solve, each series, the Newmark run, before
+                               * drawing); nonzero stops the work with
+                               * HY_ECANCEL (serve: the client has gone)          */
+    void *cancel_ctx;         /* the argument cancelled is called with            */
     double seconds_compute;
 } hy_scene_run;
 
@@ -113,6 +119,10 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
 /* Writes the budget refusal (at [compute] points/cycles/tspan/gamma if written,
  * else at the first series, else file:1:1) and returns HY_EINVAL. */
 int hy_scene_run_over_budget(const hy_scene *s, double work, double budget, const char *what, hy_error *err);
+
+/* HY_ECANCEL (with a message) if r->cancelled says the work is no longer
+ * wanted, else HY_OK. */
+int hy_scene_run_check_cancel(const hy_scene_run *r, hy_error *err);
 
 /* Plans and computes every series (refused at once with HY_EINVAL if the
  * estimate passes r->budget); log (may be NULL) receives the plan and

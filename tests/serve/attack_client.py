@@ -21,7 +21,10 @@ ends by itself within its stated bound.
   flood PORT K SECONDS PATH [HEADER]
                              K threads GET PATH back to back for SECONDS (one
                              extra request header, e.g. "Sec-Fetch-Site:
-                             cross-site"); print how many were answered
+                             cross-site"); print how many were answered;
+                             a '{}' in PATH becomes a number unique to the
+                             request (e.g. a page id per request)
+Every command connects from $ATTACK_SOURCE if it is set (e.g. 127.0.0.2).
 """
 import os
 import socket
@@ -31,8 +34,11 @@ import time
 
 
 def connect(port, timeout=5.0):
-    s = socket.create_connection(("127.0.0.1", port), timeout=timeout)
-    return s
+    # ATTACK_SOURCE=127.0.0.2: connect from another loopback address (a
+    # second client, as serve tells clients apart)
+    src = os.environ.get("ATTACK_SOURCE")
+    return socket.create_connection(("127.0.0.1", port), timeout=timeout,
+                                    source_address=(src, 0) if src else None)
 
 
 def request(port, path, timeout=10.0):
@@ -149,6 +155,14 @@ def cmd_closed(port, n, path):
         s.close()
 
 
+def cmd_abandon(port, seconds, path):
+    """Sends one request and closes the socket after `seconds`, unanswered."""
+    s = connect(port)
+    s.sendall(f"GET {path} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n".encode())
+    time.sleep(float(seconds))
+    s.close()
+
+
 def cmd_idle_closed(port, seconds):
     s = connect(port, timeout=seconds)
     t0 = time.monotonic()
@@ -184,7 +198,8 @@ def cmd_flood(port, k, seconds, path, header=None):
             try:
                 s = connect(port, 10)
                 extra = header + "\r\n" if header else ""
-                s.sendall(f"GET {path} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n{extra}Connection: close\r\n\r\n".encode())
+                p = path.replace("{}", f"{i}x{done[i]}")
+                s.sendall(f"GET {p} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n{extra}Connection: close\r\n\r\n".encode())
                 while s.recv(65536):
                     pass
                 s.close()
@@ -212,6 +227,8 @@ def main():
         cmd_race(a[1], int(a[2]), int(a[3]), a[4])
     elif a[0] == "closed":
         cmd_closed(int(a[1]), int(a[2]), a[3])
+    elif a[0] == "abandon":
+        cmd_abandon(int(a[1]), float(a[2]), a[3])
     elif a[0] == "idle_closed":
         cmd_idle_closed(int(a[1]), float(a[2]))
     elif a[0] == "streams":

@@ -8,7 +8,8 @@
 #   5  idle sockets and event streams: capped, 503 + Retry-After, freed when
 #      the peer goes, idle connections closed
 #   6  serve's own work budget; other sites' requests refused; requests whose
-#      client has gone are not computed
+#      client has gone are not computed, and a running one is stopped; a
+#      flood from one client address does not starve another
 #   7  hystviz-animate --info: cached, children bounded
 #   9  saving is off without --allow-save; rate limited with it
 #   11 Ctrl-C during a flood stops quickly; > 1,000 query arguments: 400
@@ -146,6 +147,35 @@ ms=$((($(date +%s%N) - t0) / 1000000))
 # 24 renders' worth of seconds the old server spent)
 [ $ms -lt 8000 ] && ok "after 24 abandoned heavy requests a render took $ms ms" ||
     fail "after 24 abandoned heavy requests a render took $ms ms"
+# a render already running when its client goes is stopped at its next step
+# (each gamma solve, each series, before drawing): Fig. 4 at 70,000 points a
+# period is within serve's budget and takes seconds; its client leaves after
+# 0.3 s and serve says it stopped it (the note is at most once a second)
+slow="/api/render?scene=fig04_example1_gamma_loops.scene&set=compute.points%3D70000&fmt=png&page=gone&seq=1"
+before=$(grep -c "stopped a render whose client had gone" "$T/serve.err")
+sleep 1.1 # past the once-a-second limit of that note (the 24 above may have made one)
+timeout 30 python3 "$client" abandon "$port" 0.3 "$slow"
+for _ in $(seq 100); do
+    [ "$(grep -c "stopped a render whose client had gone" "$T/serve.err")" -gt "$before" ] && break
+    sleep 0.1
+done
+[ "$(grep -c "stopped a render whose client had gone" "$T/serve.err")" -gt "$before" ] &&
+    ok "a running render whose client left was stopped" ||
+    fail "a running render whose client left was not stopped within 10 s"
+# per-client fairness: 70 clients' worth of heavy page renders (a page id
+# each) from 127.0.0.2 fill every slot and, before, the whole queue, so a
+# page on 127.0.0.1 got 503; now one address waits at most 32 deep and the
+# next free slot goes to the other address
+ATTACK_SOURCE=127.0.0.2 timeout 40 python3 "$client" flood "$port" 70 12 \
+    "/api/render?scene=fig04_example1_gamma_loops.scene&set=compute.points%3D70000&fmt=png&page=f{}&seq=1" \
+    >"$T/flood.out" 2>&1 &
+fl=$!; bg+=($fl)
+sleep 3
+t0=$(date +%s%N)
+expect 200 "/api/render?scene=$F.scene&page=fair&seq=1" --max-time 45
+ms=$((($(date +%s%N) - t0) / 1000000))
+wait $fl 2>/dev/null
+echo "   (a page on 127.0.0.1 during the flood from 127.0.0.2: $ms ms; flood $(cat "$T/flood.out"))"
 "$hv" serve scenes --max-work abc 2>/dev/null; [ $? -eq 2 ] && ok "--max-work abc: exit 2" || fail "--max-work abc"
 
 # ---- 7: animate --info: cached, children bounded ---------------------------------------------
