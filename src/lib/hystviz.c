@@ -1,0 +1,260 @@
+/* hystviz.c: libhystviz's pipeline entry points (hystviz.h): a scene's
+ * series, loops and figure in memory through the pipeline `hystviz render`
+ * and `hystviz data` use (src/pipeline), so the numbers and bytes are theirs. */
+#include "hystviz.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hy_config.h"
+#include "hy_plot.h"
+#include "hy_scene.h"
+#include "hy_scene_schema.h"
+#include "scene_run.h"
+
+struct hy_result {
+    hy_scene_run run;
+    char *name; /* run.path points here */
+};
+
+const char *hy_version(void)
+{
+    return HY_VERSION;
+}
+
+static int finish(hy_result *r, int rc, hy_result **out)
+{
+    if (!rc) {
+        *out = r;
+        return HY_OK;
+    }
+    free(r->name);
+    free(r);
+    return rc;
+}
+
+/* Loads (through load, on r->run) and computes. */
+static int compute(hy_result *r, hy_result **out, hy_error *err)
+{
+    int rc = hy_scene_run_compute(&r->run, NULL, err);
+    if (rc)
+        hy_scene_run_free(&r->run);
+    return finish(r, rc, out);
+}
+
+static hy_result *result_new(const char *name, hy_result **out, hy_error *err)
+{
+    *out = NULL;
+    hy_result *r = calloc(1, sizeof *r);
+    if (r && !(r->name = strdup(name ? name : "<scene>"))) {
+        free(r);
+        r = NULL;
+    }
+    if (!r)
+        hy_error_set(err, HY_ENOMEM, "out of memory");
+    return r;
+}
+
+static hy_scene_policy policy(double max_work)
+{
+    hy_scene_policy pol = hy_scene_policy_default();
+    pol.max_work = max_work;
+    return pol;
+}
+
+int hy_result_from_text(const char *name, const char *text, size_t len, const char *const *sets, size_t nsets,
+                        double max_work, hy_result **out, hy_error *err)
+{
+    hy_result *r = result_new(name, out, err);
+    if (!r)
+        return HY_ENOMEM;
+    if (!text)
+        return finish(r, hy_error_set(err, HY_EINVAL, "%s: no scene text", r->name), out);
+    hy_scene_policy pol = policy(max_work);
+    int rc = hy_scene_run_load_text(&r->run, r->name, text, len, (char *const *)sets, nsets, &pol, err);
+    return rc ? finish(r, rc, out) : compute(r, out, err);
+}
+
+int hy_result_from_file(const char *path, const char *const *sets, size_t nsets, double max_work, hy_result **out,
+                        hy_error *err)
+{
+    hy_result *r = result_new(path, out, err);
+    if (!r)
+        return HY_ENOMEM;
+    hy_scene_policy pol = policy(max_work);
+    int rc = hy_scene_run_load_policy(&r->run, r->name, (char *const *)sets, nsets, &pol, err);
+    return rc ? finish(r, rc, out) : compute(r, out, err);
+}
+
+void hy_result_free(hy_result *r)
+{
+    if (!r)
+        return;
+    hy_scene_run_free(&r->run);
+    free(r->name);
+    free(r);
+}
+
+size_t hy_result_nseries(const hy_result *r)
+{
+    return r ? r->run.nseries : 0;
+}
+
+static const hy_run_series *series_at(const hy_result *r, size_t i)
+{
+    return r && i < r->run.nseries ? &r->run.series[i] : NULL;
+}
+
+size_t hy_result_series(const hy_result *r, size_t i, const double **x, const double **y)
+{
+    const hy_run_series *se = series_at(r, i);
+    if (x)
+        *x = se ? se->x : NULL;
+    if (y)
+        *y = se ? se->y : NULL;
+    return se ? se->n : 0;
+}
+
+const char *hy_result_series_name(const hy_result *r, size_t i)
+{
+    const hy_run_series *se = series_at(r, i);
+    return se ? se->name : NULL;
+}
+
+const char *hy_result_series_data(const hy_result *r, size_t i)
+{
+    const hy_run_series *se = series_at(r, i);
+    if (!se)
+        return NULL;
+    int sec = hy_scene_schema_section("series");
+    const hy_scene_section_spec *spec = hy_scene_schema(NULL) + sec;
+    int k = hy_scene_schema_key(sec, "data");
+    return spec->keys[k].enums[se->data];
+}
+
+double hy_result_series_error(const hy_result *r, size_t i, const char **ref)
+{
+    const hy_run_series *se = series_at(r, i);
+    if (ref)
+        *ref = se ? se->err_ref : NULL;
+    return se ? se->err : NAN;
+}
+
+const hy_loops *hy_result_loops(const hy_result *r)
+{
+    return r && r->run.have_loops ? &r->run.loops : NULL;
+}
+
+int hy_result_render(const hy_result *r, const char *format, unsigned char **bytes, size_t *len, hy_error *err)
+{
+    *bytes = NULL;
+    *len = 0;
+    if (!r)
+        return hy_error_set(err, HY_EINVAL, "no result to draw");
+    int fmt[3];
+    size_t n = 0;
+    int rc = hy_scene_formats_parse(format ? format : "", fmt, &n, err);
+    if (!rc && n != 1)
+        rc = hy_error_set(err, HY_EINVAL, "give one format (svg, pdf or png), not '%s'", format ? format : "");
+    return rc ? rc : hy_scene_run_render(&r->run, fmt[0], bytes, len, NULL, err);
+}
+
+int hy_result_csv(const hy_result *r, char **text, size_t *len, hy_error *err)
+{
+    *text = NULL;
+    *len = 0;
+    if (!r)
+        return hy_error_set(err, HY_EINVAL, "no result to print");
+    return hy_scene_run_csv(&r->run, text, len, err);
+}
+
+int hy_boucwen_run(const double *u, size_t n, double fs, double *y, hy_error *err)
+{
+    hy_boucwen_params p;
+    hy_newmark_opts o;
+    hy_boucwen_params_default(&p);
+    hy_newmark_opts_default(&o);
+    if (!u || !y || n < 1)
+        return hy_error_set(err, HY_EINVAL, "the force needs at least one sample");
+    if (!(fs > 0) || !isfinite(fs))
+        return hy_error_set(err, HY_EINVAL, "fs must be a positive number of Hz, got %g", fs);
+    return hy_boucwen_synth(&p, &o, fs, 1, 1, u, n, y, err);
+}
+
+/* ---- the schema as JSON --------------------------------------------------- */
+
+static void json_str(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
+        if (*p == '"' || *p == '\\')
+            fprintf(f, "\\%c", *p);
+        else if (*p < 0x20)
+            fprintf(f, "\\u%04x", *p);
+        else
+            fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+static void json_bound(FILE *f, const char *name, int has, double v, int excl)
+{
+    fprintf(f, ",\"%s\":", name);
+    if (has)
+        fprintf(f, "%.17g,\"%s_exclusive\":%s", v, name, excl ? "true" : "false");
+    else
+        fputs("null", f);
+}
+
+char *hy_schema_json(void)
+{
+    char *buf = NULL;
+    size_t len = 0, nsec;
+    FILE *f = open_memstream(&buf, &len);
+    if (!f)
+        return NULL;
+    const hy_scene_section_spec *sec = hy_scene_schema(&nsec);
+    fputs("{\"version\":", f);
+    json_str(f, HY_VERSION);
+    fputs(",\"sections\":[", f);
+    for (size_t i = 0; i < nsec; i++) {
+        fputs(i ? ",{\"name\":" : "{\"name\":", f);
+        json_str(f, sec[i].name);
+        fprintf(f, ",\"takes_name\":%s,\"repeatable\":%s,\"doc\":", sec[i].takes_name ? "true" : "false",
+                sec[i].repeatable ? "true" : "false");
+        json_str(f, sec[i].doc);
+        fputs(",\"keys\":[", f);
+        for (size_t j = 0; j < sec[i].nkeys; j++) {
+            const hy_scene_key_spec *k = &sec[i].keys[j];
+            fputs(j ? ",{\"name\":" : "{\"name\":", f);
+            json_str(f, k->name);
+            fputs(",\"kind\":", f);
+            json_str(f, hy_scene_kind_name(k->kind));
+            json_bound(f, "min", k->flags & HY_SPEC_MIN, k->min, k->flags & HY_SPEC_MIN_EXCL);
+            json_bound(f, "max", k->flags & HY_SPEC_MAX, k->max, k->flags & HY_SPEC_MAX_EXCL);
+            fputs(",\"default\":", f);
+            if (k->def)
+                json_str(f, k->def);
+            else
+                fputs("null", f);
+            fputs(",\"enums\":[", f);
+            for (size_t e = 0; k->enums && k->enums[e]; e++) {
+                if (e)
+                    fputc(',', f);
+                json_str(f, k->enums[e]);
+            }
+            fputs("],\"doc\":", f);
+            json_str(f, k->doc);
+            fputc('}', f);
+        }
+        fputs("]}", f);
+    }
+    fputs("]}", f);
+    if (fclose(f)) {
+        free(buf);
+        return NULL;
+    }
+    return buf;
+}

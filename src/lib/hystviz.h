@@ -1,0 +1,107 @@
+/* hystviz.h: libhystviz, the hystviz pipeline as a C library.
+ *
+ * Include this one header; it brings the numerical core with it (hy_model.h,
+ * hy_input.h, hy_limit.h, hy_loops.h, hy_gamma.h, hy_boucwen.h, ...: each is
+ * its own manual).  Build against the installed library with
+ *
+ *     cc prog.c $(pkg-config --cflags --libs hystviz)
+ *
+ * The core computes on structs you own (a model, an input, the steady state
+ * y° and its loops).  The pipeline below takes a scene (the text of a .scene
+ * file, docs/SCENES.md) and overrides ("section.key=value", as `--set`),
+ * computes what the scene asks for and gives its series, its loops and its
+ * figure in memory, byte for byte what `hystviz data` and `hystviz render`
+ * write.  Errors are an int status (hy_status.h) and, with a non-NULL
+ * hy_error, one sentence naming file:line:col.
+ *
+ * Thread safety: no global state; a hy_result is used by one thread at a
+ * time; distinct results may be computed and drawn concurrently.
+ *
+ *     hy_result *r;
+ *     hy_error err;
+ *     const char *sets[] = {"model.sigma0=2"};
+ *     if (hy_result_from_file("fig15.scene", sets, 1, 0, &r, &err)) {
+ *         fprintf(stderr, "%s\n", err.msg);
+ *         return 2;
+ *     }
+ *     const double *x, *y;
+ *     size_t n = hy_result_series(r, 0, &x, &y);
+ *     hy_result_free(r);
+ */
+#ifndef HYSTVIZ_H
+#define HYSTVIZ_H
+
+#include <stddef.h>
+
+#include "hy_boucwen.h"
+#include "hy_gamma.h"
+#include "hy_input.h"
+#include "hy_limit.h"
+#include "hy_loops.h"
+#include "hy_model.h"
+#include "hy_status.h"
+
+/* The library's version, "MAJOR.MINOR.PATCH" (that of the hystviz command
+ * built with it). */
+const char *hy_version(void);
+
+/* A computed scene: its series, loops and figure. */
+typedef struct hy_result hy_result;
+
+/* Parses the scene text (len bytes; name is used in messages and is where
+ * includes and relative paths are looked up, as a file's path would be),
+ * applies the nsets overrides "section.key=value", checks everything that
+ * can be checked before computing and computes.  max_work is the work budget
+ * (docs/SCENES.md; <= 0: the default of `hystviz render`).  On success *out
+ * is the result (free it with hy_result_free); on error *out is NULL and err
+ * names file:line:col. */
+int hy_result_from_text(const char *name, const char *text, size_t len, const char *const *sets, size_t nsets,
+                        double max_work, hy_result **out, hy_error *err);
+
+/* As hy_result_from_text on the file at path. */
+int hy_result_from_file(const char *path, const char *const *sets, size_t nsets, double max_work, hy_result **out,
+                        hy_error *err);
+
+/* Frees r (NULL is allowed). */
+void hy_result_free(hy_result *r);
+
+/* The number of series (the scene's [series NAME] sections, in order). */
+size_t hy_result_nseries(const hy_result *r);
+
+/* Series i: its name, what it draws ("input", "ysteady", "ygamma", "minor",
+ * ...: the key data of docs/SCENES.md) and its n points; *x and *y (either
+ * may be NULL) point into r and live as long as r.  NaN separates pieces.
+ * Returns n (0 for i out of range). */
+size_t hy_result_series(const hy_result *r, size_t i, const double **x, const double **y);
+const char *hy_result_series_name(const hy_result *r, size_t i);
+const char *hy_result_series_data(const hy_result *r, size_t i);
+
+/* The largest error of series i against its exact reference, or NaN where
+ * none was measured; *ref (may be NULL) says against what, or why not. */
+double hy_result_series_error(const hy_result *r, size_t i, const char **ref);
+
+/* The steady state's loops (major loop, minor loops with their areas, energy
+ * per cycle; hy_loops.h) where the scene computed them, else NULL. */
+const hy_loops *hy_result_loops(const hy_result *r);
+
+/* The figure as "svg", "pdf" or "png" bytes (malloc'd; free with free()),
+ * byte for byte what `hystviz render` writes. */
+int hy_result_render(const hy_result *r, const char *format, unsigned char **bytes, size_t *len, hy_error *err);
+
+/* Every series as the CSV `hystviz data` prints ("series,x,y", %.17g), a
+ * malloc'd NUL-terminated text of *len bytes. */
+int hy_result_csv(const hy_result *r, char **text, size_t *len, hy_error *err);
+
+/* The scene vocabulary (sections, keys, kinds, ranges, defaults, one-line
+ * descriptions) as JSON, malloc'd; for bindings that build their classes
+ * from it (the Python package does).  NULL when out of memory. */
+char *hy_schema_json(void);
+
+/* The Bouc-Wen benchmark's output y (n samples, caller's array) for the force
+ * u (n samples at fs Hz, integrated at that rate from rest) with the
+ * benchmark's parameters and Newmark integrator (Table 1; hy_boucwen.h):
+ * what `hystviz boucwen data --input FILE --upsample 1 --fs FS --noise 0`
+ * prints (no measurement noise). */
+int hy_boucwen_run(const double *u, size_t n, double fs, double *y, hy_error *err);
+
+#endif

@@ -1,0 +1,294 @@
+"""hystviz: hysteresis models and their exact figures, from Python.
+
+The numbers come from libhystviz, the C library the `hystviz` command is
+built from: what this package returns is bit for bit what `hystviz data`
+prints for the same scene, and `render` gives the bytes `hystviz render`
+writes.
+
+    >>> import hystviz
+    >>> m = hystviz.Model("lugre", sigma0=6)
+    >>> u = hystviz.Input("bimodal", umin1=0, umin2=0.5, umax1=1, umax2=1.5)
+    >>> [round(l.area, 6) for l in hystviz.minor_loops(m, u)]
+    [0.199107]
+    >>> fig = hystviz.render("scenes/fig15_minor_loop_ex4.scene", model__sigma0=2)  # doctest: +SKIP
+
+Scene keys are written section.key; as a keyword argument, section__key
+(model__sigma0=2), or pass a dict: render(scene, **{"model.sigma0": 2}).
+Errors raise hystviz.SceneError with the C message (file:line:col first).
+Model and Input take the keys of the scene file's [model] and [input]
+sections (docs/SCENES.md; help(hystviz.Model) lists them with their ranges).
+"""
+import ctypes
+import json
+import math
+import os
+
+import numpy as np
+
+from . import _lib
+
+__all__ = ["SceneError", "Model", "Input", "Result", "Figure", "MinorLoop", "run", "render", "steady_loop",
+           "limit", "ygamma", "kcycles", "minor_loops", "schema", "boucwen", "__version__"]
+
+__version__ = _lib.version().decode()
+
+
+class SceneError(ValueError):
+    """A scene or a parameter the library refused; str() is its message."""
+
+    def __init__(self, code, msg):
+        super().__init__(msg)
+        self.code = code
+
+
+def _check(rc, err):
+    if rc:
+        raise SceneError(rc, err.msg.decode("utf-8", "replace"))
+
+
+def schema():
+    """The scene vocabulary (sections, keys, kinds, ranges, defaults, docs) as a dict."""
+    p = _lib.schema_json()
+    if not p:
+        raise MemoryError("hystviz: out of memory for the schema")
+    try:
+        return json.loads(ctypes.string_at(p).decode())
+    finally:
+        _lib.libc.free(p)
+
+
+_SCHEMA = schema()
+_SECTIONS = {s["name"]: s for s in _SCHEMA["sections"]}
+
+
+def _keydoc(k):
+    lo = hi = ""
+    if k["min"] is not None:
+        lo = ("> " if k["min_exclusive"] else ">= ") + repr(k["min"])
+    if k["max"] is not None:
+        hi = ("< " if k["max_exclusive"] else "<= ") + repr(k["max"])
+    rng = ", ".join(x for x in (lo, hi) if x)
+    dflt = f" (default {k['default']})" if k["default"] is not None else ""
+    return f"    {k['name']} [{k['kind']}{', ' + rng if rng else ''}]{dflt}: {k['doc']}"
+
+
+def _fmt(v):
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    if isinstance(v, (float, np.floating)):
+        if not math.isfinite(v):
+            raise SceneError(1, f"{v!r} is not a finite number")
+        return repr(float(v))
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return ", ".join(_fmt(x) for x in v)
+    return str(v)
+
+
+class _Section:
+    """A [section] of a scene: kind plus keys, checked against the schema."""
+    section = ""
+
+    def __init__(self, kind, **params):
+        keys = {k["name"] for k in _SECTIONS[self.section]["keys"]}
+        kinds = next(k["enums"] for k in _SECTIONS[self.section]["keys"] if k["name"] == "kind")
+        if kind not in kinds:
+            raise SceneError(1, f"{self.section} kind '{kind}': one of {', '.join(kinds)}")
+        for k in params:
+            if k not in keys or k == "kind":
+                raise SceneError(1, f"[{self.section}] has no key '{k}' (help(hystviz.{type(self).__name__}))")
+        self.kind = kind
+        self.params = dict(params)
+
+    def scene_text(self):
+        lines = [f"[{self.section}]", f"kind = {self.kind}"]
+        lines += [f"{k} = {_fmt(v)}" for k, v in self.params.items()]
+        return "\n".join(lines) + "\n"
+
+    def __repr__(self):
+        args = ", ".join([repr(self.kind)] + [f"{k}={v!r}" for k, v in self.params.items()])
+        return f"{type(self).__name__}({args})"
+
+
+class Model(_Section):
+    section = "model"
+
+
+class Input(_Section):
+    section = "input"
+
+
+for _cls in (Model, Input):
+    _sec = _SECTIONS[_cls.section]
+    _cls.__doc__ = (f"{_cls.__name__}(kind, **keys): the scene's [{_cls.section}] section.\n\n"
+                    f"{_sec['doc']}\n\nKeys (as in docs/SCENES.md):\n" +
+                    "\n".join(_keydoc(k) for k in _sec["keys"]))
+
+
+class MinorLoop:
+    """A loop of the steady state y°: where it starts and turns (u), its area
+    ∮ y du (energy per cycle of the loop) and the area of its own (less the
+    loops nested in it), depth 0 for the major loop."""
+
+    def __init__(self, c):
+        self.u_start, self.u_turn = c.u_start, c.u_turn
+        self.y_start, self.y_close = c.y_start, c.y_close
+        self.area, self.own_area, self.depth = c.area, c.own_area, c.depth
+
+    def __repr__(self):
+        return (f"MinorLoop(u_start={self.u_start!r}, u_turn={self.u_turn!r}, area={self.area!r}, "
+                f"depth={self.depth})")
+
+
+class Figure:
+    """A rendered figure: Jupyter shows it (SVG); save() writes any format."""
+
+    def __init__(self, result):
+        self._result = result
+        self.svg = result.render("svg")
+
+    def _repr_svg_(self):
+        return self.svg.decode("utf-8")
+
+    def save(self, path, format=None):
+        """Writes the figure to path in format (svg, pdf, png; default: from the extension)."""
+        fmt = format or os.path.splitext(path)[1].lstrip(".").lower()
+        data = self.svg if fmt == "svg" else self._result.render(fmt)
+        tmp = f"{path}.tmp{os.getpid()}"
+        with open(tmp, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+
+
+class Result:
+    """A computed scene: series (name -> (x, y) NumPy arrays), loops, figure."""
+
+    def __init__(self, handle):
+        self._h = handle
+        self.series = {}
+        self.data = {}
+        self.errors = {}
+        for i in range(_lib.nseries(handle)):
+            x, y = _lib._dp(), _lib._dp()
+            n = _lib.series(handle, i, ctypes.byref(x), ctypes.byref(y))
+            name = _lib.series_name(handle, i).decode()
+            xa = np.ctypeslib.as_array(x, (n,)).copy() if n else np.empty(0)
+            ya = np.ctypeslib.as_array(y, (n,)).copy() if n else np.empty(0)
+            self.series[name] = (xa, ya)
+            self.data[name] = _lib.series_data(handle, i).decode()
+            ref = ctypes.c_char_p()
+            self.errors[name] = (_lib.series_error(handle, i, ctypes.byref(ref)),
+                                 ref.value.decode() if ref.value else None)
+        lp = _lib.loops(handle)
+        if lp:
+            L = lp.contents
+            self.major = MinorLoop(L.major)
+            self.minor = [MinorLoop(L.minor[k]) for k in range(L.nminor)]
+            self.energy = L.area_period
+        else:
+            self.major, self.minor, self.energy = None, [], float("nan")
+
+    def render(self, format="svg"):
+        """The figure's bytes in format (svg, pdf, png), as `hystviz render` writes them."""
+        buf = ctypes.POINTER(ctypes.c_ubyte)()
+        n = _lib._sz()
+        err = _lib.Error()
+        _check(_lib.render(self._h, format.encode(), ctypes.byref(buf), ctypes.byref(n), ctypes.byref(err)), err)
+        try:
+            return ctypes.string_at(buf, n.value)
+        finally:
+            _lib.libc.free(ctypes.cast(buf, ctypes.c_void_p))
+
+    def csv(self):
+        """Every series as `hystviz data` prints it."""
+        p = ctypes.c_void_p()
+        n = _lib._sz()
+        err = _lib.Error()
+        _check(_lib.csv(self._h, ctypes.byref(p), ctypes.byref(n), ctypes.byref(err)), err)
+        try:
+            return ctypes.string_at(p, n.value).decode()
+        finally:
+            _lib.libc.free(p)
+
+    def figure(self):
+        return Figure(self)
+
+    def __del__(self):
+        if getattr(self, "_h", None):
+            _lib.result_free(self._h)
+            self._h = None
+
+
+def _sets(sets, overrides):
+    d = dict(sets or {})
+    d.update({k.replace("__", "."): v for k, v in overrides.items()})
+    return [f"{k}={_fmt(v)}".encode() for k, v in d.items()]
+
+
+def run(scene, sets=None, max_work=0.0, **overrides):
+    """Computes a scene: a path to a .scene file, or its text (anything with a
+    newline).  Overrides as section__key=value or sets={"section.key": value}.
+    Returns a Result."""
+    enc = _sets(sets, overrides)
+    arr = (ctypes.c_char_p * max(len(enc), 1))(*enc)
+    h = ctypes.c_void_p()
+    err = _lib.Error()
+    if "\n" in scene:
+        text = scene.encode()
+        rc = _lib.from_text(b"<python>/scene.scene", text, len(text), arr, len(enc), max_work, ctypes.byref(h),
+                            ctypes.byref(err))
+    else:
+        rc = _lib.from_file(scene.encode(), arr, len(enc), max_work, ctypes.byref(h), ctypes.byref(err))
+    _check(rc, err)
+    return Result(h.value)
+
+
+def render(scene, sets=None, **overrides):
+    """The scene's figure (Jupyter displays it; .save(path) writes svg, pdf or png)."""
+    return run(scene, sets, **overrides).figure()
+
+
+def _scene(model, inp, series, points, cycles=1, extra="", kind="timeseries"):
+    return (model.scene_text() + inp.scene_text() + f"[compute]\npoints = {int(points)}\ncycles = {int(cycles)}\n"
+            + extra + f"[figure]\nkind = {kind}\n" + ("[series u]\ndata = input\n" if kind == "timeseries" else "")
+            + series)
+
+
+def _tuy(res, name):
+    t, u = res.series["u"]
+    t2, y = res.series[name]
+    if t.shape != t2.shape or not np.array_equal(t, t2, equal_nan=True):
+        raise RuntimeError("hystviz: input and output sampled on different grids")
+    keep = ~np.isnan(t)
+    return t[keep], u[keep], y[keep]
+
+
+def steady_loop(model, input, points=2000):
+    """The steady state y° over one period: (t, u, y) NumPy arrays (points samples)."""
+    return _tuy(run(_scene(model, input, "[series y]\ndata = ysteady\n", points)), "y")
+
+
+def limit(model, input, points=2000, cycles=1):
+    """The limit y*_u as γ → ∞ from the model's x0: (t, u, y*)."""
+    return _tuy(run(_scene(model, input, "[series y]\ndata = ystar\n", points, cycles)), "y")
+
+
+def ygamma(model, input, gamma, points=2000, cycles=1, solver="exact"):
+    """The output y_γ at time scale gamma: (t, u, y)."""
+    return _tuy(run(_scene(model, input, f"[series y]\ndata = ygamma\ngamma = {_fmt(float(gamma))}\n", points,
+                           cycles, f"solver = {solver}\n")), "y")
+
+
+def kcycles(model, input, k, points=2000):
+    """y*_{u,k}, the limit on its k-th period, against the time within the
+    period (t in [0, T]): (t, u, y)."""
+    return _tuy(run(_scene(model, input, f"[series y]\ndata = yk\nk = {int(k)}\n", points)), "y")
+
+
+def minor_loops(model, input):
+    """The minor loops of the steady state y° (list of MinorLoop with areas)."""
+    return run(_scene(model, input, "[series y]\ndata = minor\n", 2, kind="loop")).minor
+
+
+from . import boucwen  # noqa: E402  (uses the names above)

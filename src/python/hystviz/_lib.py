@@ -1,0 +1,90 @@
+"""The C library libhystviz, loaded with ctypes (a foreign call releases the
+GIL for its whole duration, so long computations do not block other Python
+threads).
+
+Where the library is looked up, first found wins:
+  1. $HYSTVIZ_LIB (a path to libhystviz.so.0);
+  2. next to this package (a wheel or an in-tree build may put it there);
+  3. the system's library path (ctypes.util.find_library), as `meson install`
+     leaves it.
+"""
+import ctypes
+import ctypes.util
+import os
+
+_here = os.path.dirname(os.path.abspath(__file__))
+
+
+def _load():
+    tried = []
+    env = os.environ.get("HYSTVIZ_LIB")
+    cands = [env] if env else []
+    cands.append(os.path.join(_here, "libhystviz.so.0"))
+    found = ctypes.util.find_library("hystviz")
+    if found:
+        cands.append(found)
+    cands.append("libhystviz.so.0")
+    for c in cands:
+        try:
+            return ctypes.CDLL(c)
+        except OSError as e:
+            tried.append(f"{c}: {e}")
+    raise ImportError("hystviz: cannot load libhystviz (install hystviz with `meson install`, or set "
+                      "HYSTVIZ_LIB to libhystviz.so.0):\n  " + "\n  ".join(tried))
+
+
+lib = _load()
+
+
+class Error(ctypes.Structure):
+    _fields_ = [("code", ctypes.c_int), ("msg", ctypes.c_char * 512)]
+
+
+class Loop(ctypes.Structure):
+    """hy_loop of hy_loops.h."""
+    _fields_ = [("rho_start", ctypes.c_double), ("rho_turn", ctypes.c_double), ("rho_close", ctypes.c_double),
+                ("u_start", ctypes.c_double), ("u_turn", ctypes.c_double),
+                ("y_start", ctypes.c_double), ("y_close", ctypes.c_double),
+                ("area", ctypes.c_double), ("own_area", ctypes.c_double),
+                ("depth", ctypes.c_int), ("starts_at_max", ctypes.c_int)]
+
+
+class Loops(ctypes.Structure):
+    """hy_loops of hy_loops.h (its first fields; the struct is only read)."""
+    _fields_ = [("major", Loop), ("minor", ctypes.POINTER(Loop)), ("nminor", ctypes.c_size_t),
+                ("area_period", ctypes.c_double)]
+
+
+_dp = ctypes.POINTER(ctypes.c_double)
+_vp = ctypes.c_void_p
+_sz = ctypes.c_size_t
+_E = ctypes.POINTER(Error)
+
+
+def _sig(name, res, *args):
+    f = getattr(lib, name)
+    f.restype = res
+    f.argtypes = list(args)
+    return f
+
+
+version = _sig("hy_version", ctypes.c_char_p)
+from_text = _sig("hy_result_from_text", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, _sz,
+                 ctypes.POINTER(ctypes.c_char_p), _sz, ctypes.c_double, ctypes.POINTER(_vp), _E)
+from_file = _sig("hy_result_from_file", ctypes.c_int, ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p), _sz,
+                 ctypes.c_double, ctypes.POINTER(_vp), _E)
+result_free = _sig("hy_result_free", None, _vp)
+nseries = _sig("hy_result_nseries", _sz, _vp)
+series = _sig("hy_result_series", _sz, _vp, _sz, ctypes.POINTER(_dp), ctypes.POINTER(_dp))
+series_name = _sig("hy_result_series_name", ctypes.c_char_p, _vp, _sz)
+series_data = _sig("hy_result_series_data", ctypes.c_char_p, _vp, _sz)
+series_error = _sig("hy_result_series_error", ctypes.c_double, _vp, _sz, ctypes.POINTER(ctypes.c_char_p))
+loops = _sig("hy_result_loops", ctypes.POINTER(Loops), _vp)
+render = _sig("hy_result_render", ctypes.c_int, _vp, ctypes.c_char_p, ctypes.POINTER(ctypes.POINTER(ctypes.c_ubyte)),
+              ctypes.POINTER(_sz), _E)
+csv = _sig("hy_result_csv", ctypes.c_int, _vp, ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(_sz), _E)
+schema_json = _sig("hy_schema_json", ctypes.c_void_p)
+boucwen_run = _sig("hy_boucwen_run", ctypes.c_int, _dp, _sz, ctypes.c_double, _dp, _E)
+libc = ctypes.CDLL(None)
+libc.free.argtypes = [ctypes.c_void_p]
+libc.free.restype = None

@@ -1,0 +1,19 @@
+#!/bin/bash
+# tests/libhystviz/test_example.sh BUILD_ROOT SOURCE_ROOT HYSTVIZ: docs/examples/minor_loop_area.c
+# builds with `pkg-config --cflags --libs hystviz` (the uninstalled .pc meson
+# writes) and prints Fig. 15's minor-loop area, the very number (%.17g, bit
+# for bit) that `hystviz loops` prints for Example 4 (issue 24).
+set -u
+build=$1 src=$2 hv=$3
+command -v pkg-config >/dev/null || { echo "SKIP: pkg-config is not installed"; exit 77; }
+command -v cc >/dev/null || { echo "SKIP: no C compiler"; exit 77; }
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+export PKG_CONFIG_PATH="$build/meson-uninstalled"
+flags=$(pkg-config --cflags --libs hystviz) || { echo "FAIL: pkg-config --cflags --libs hystviz"; exit 1; }
+timeout 120 cc -std=c11 -Wall -Wextra -Werror "$src/docs/examples/minor_loop_area.c" $flags -o "$T/area" ||
+    { echo "FAIL: the example does not build with: $flags"; exit 1; }
+got=$(LD_LIBRARY_PATH="$build/src/lib" timeout 60 "$T/area") || { echo "FAIL: the example exited non-zero"; exit 1; }
+want=$(timeout 60 "$hv" loops --sigma0 6 --input bimodal:0,0.5,1,1.5 | awk -F, '$1 == "minor" {print $10; exit}')
+[ -n "$want" ] && [ "$got" = "$want" ] || { echo "FAIL: example printed '$got', hystviz loops '$want'"; exit 1; }
+echo "ok: the pkg-config example prints $got, as hystviz loops"

@@ -1,0 +1,123 @@
+"""test_python.py HYSTVIZ SCENES_DIR: the Python package (src/python/hystviz)
+against the hystviz command: the same scene gives the same numbers bit for
+bit (floats parsed from `hystviz data`'s %.17g round-trip exactly), the same
+SVG bytes, the same minor-loop area as `hystviz loops`, the same Bouc-Wen
+output as `hystviz boucwen data`; errors are exceptions with file:line:col.
+"""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import threading
+
+import numpy as np
+
+import hystviz
+
+hv, scenes = sys.argv[1], sys.argv[2]
+fails = 0
+
+
+def check(cond, what):
+    global fails
+    print(("ok: " if cond else "FAIL: ") + what, flush=True)
+    fails += 0 if cond else 1
+
+
+def cli(*args, **kw):
+    return subprocess.run([hv, *args], check=True, capture_output=True, timeout=120, **kw).stdout
+
+
+def data_csv(text):
+    """series name -> (x, y) from `hystviz data` output."""
+    out = {}
+    for line in text.decode().splitlines()[1:]:
+        name, x, y = line.rsplit(",", 2)
+        out.setdefault(name, ([], []))
+        out[name][0].append(float(x))
+        out[name][1].append(float(y))
+    return {k: (np.array(a), np.array(b)) for k, (a, b) in out.items()}
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    fig15 = os.path.join(scenes, "fig15_minor_loop_ex4.scene")
+    # a scene file: CSV, SVG and loops as the CLI's
+    r = hystviz.run(fig15, model__sigma0=2.5)
+    check(r.csv().encode() == cli("data", fig15, "--set", "model.sigma0=2.5"), "run(fig15).csv() == hystviz data")
+    svgdir = os.path.join(tmp, "svg")
+    cli("render", fig15, "--set", "model.sigma0=2.5", "--format", "svg", "-o", svgdir)
+    with open(os.path.join(svgdir, "fig15_minor_loop_ex4.svg"), "rb") as f:
+        check(r.render("svg") == f.read(), "render('svg') == hystviz render's SVG bytes")
+    fig = hystviz.render(fig15, **{"model.sigma0": 2.5})
+    check(fig._repr_svg_().startswith("<?xml"), "Figure._repr_svg_ for Jupyter")
+    png = os.path.join(tmp, "f.png")
+    fig.save(png)
+    with open(png, "rb") as f:
+        check(f.read(8) == b"\x89PNG\r\n\x1a\n", "Figure.save(.png) writes a PNG")
+
+    # steady_loop's arrays == hystviz data of the same scene, bit for bit
+    m = hystviz.Model("lugre", sigma0=6, sigma1=1, fc=1, fs=2, vs=1, beta=1)
+    u = hystviz.Input("bimodal", umin1=0, umin2=0.5, umax1=1, umax2=1.5)
+    t, uu, y = hystviz.steady_loop(m, u, points=200)
+    path = os.path.join(tmp, "steady.scene")
+    with open(path, "w") as f:
+        f.write(hystviz._scene(m, u, "[series y]\ndata = ysteady\n", 200))
+    d = data_csv(cli("data", path))
+    check(np.array_equal(t, d["y"][0]) and np.array_equal(y, d["y"][1]) and np.array_equal(uu, d["u"][1]),
+          f"steady_loop: {t.size} points equal hystviz data's bit for bit")
+    for name, fn in (("limit", lambda: hystviz.limit(m, u, points=100)),
+                     ("ygamma", lambda: hystviz.ygamma(m, u, 10, points=100)),
+                     ("kcycles", lambda: hystviz.kcycles(m, u, 2, points=100))):
+        tt, _, yy = fn()
+        check(tt.size == 101 and np.all(np.isfinite(yy)), f"{name}: 101 finite samples")
+
+    # minor loops: hystviz loops' area, %.17g, bit for bit
+    loops = hystviz.minor_loops(m, u)
+    want = [l.split(",") for l in cli("loops", "--sigma0", "6", "--input", "bimodal:0,0.5,1,1.5").decode().splitlines()
+            if l.startswith("minor,")]
+    check(len(loops) == len(want) == 1 and loops[0].area == float(want[0][9]),
+          f"minor_loops area {loops[0].area!r} == hystviz loops {want[0][9] if want else None}")
+
+    # Bouc-Wen: the CLI's output for a force file at the integration rate
+    n = 3000
+    force = 50 * np.sin(2 * np.pi * 5 * np.arange(n) / 750)
+    fpath = os.path.join(tmp, "u.csv")
+    with open(fpath, "w") as f:
+        f.write("".join(f"{i / 750!r},{v!r}\n" for i, v in enumerate(force)))
+    rows = [l.split(",") for l in cli("boucwen", "data", "--input", fpath, "--upsample", "1", "--fs", "750", "--noise", "0")
+            .decode().splitlines()[1:]]
+    yb = hystviz.boucwen.simulate(force, fs=750)
+    check(len(rows) == n and np.array_equal(yb, np.array([float(r[2]) for r in rows])),
+          f"boucwen.simulate: {n} samples == hystviz boucwen data bit for bit")
+
+    # errors: exceptions with the C message and its location
+    try:
+        hystviz.run("[model]\nkind = lugre\nsigma0 = -1\n")
+        check(False, "a refused scene raises")
+    except hystviz.SceneError as e:
+        check(":3:" in str(e) and "sigma0" in str(e), f"SceneError names line 3 and sigma0: {e}")
+    try:
+        hystviz.Model("lugre", sigmaO=1)
+        check(False, "an unknown key raises")
+    except hystviz.SceneError as e:
+        check("sigmaO" in str(e), f"unknown key named: {e}")
+    check("sigma0" in hystviz.Model.__doc__ and "> 0" in hystviz.Model.__doc__,
+          "help(Model) lists sigma0 with its range from the schema")
+
+    # the GIL is released during a computation: another thread runs meanwhile
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(1)
+            stop.wait(0.001)
+    th = threading.Thread(target=tick)
+    th.start()
+    hystviz.run(fig15, compute__points=400000)
+    stop.set()
+    th.join(10)
+    check(len(ticks) > 5, f"a Python thread ran {len(ticks)} times during a long computation")
+
+sys.exit(1 if fails else 0)
