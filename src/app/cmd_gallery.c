@@ -876,11 +876,6 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
         fputs("<h2 class=\"part\">", f);
         htmls(f, part_title[part]);
         fputs("</h2>\n", f);
-        if (part == 0)
-            fputs("<p>Fig. 1 of the paper is the hysteresis loop of a magnetic system (from its reference [10]) "
-                  "under the input of Fig. 2: a major loop with a minor loop inside.  hystviz has no magnetic model, "
-                  "so that figure is not redrawn; its message, a minor loop inside the major loop under a bimodal "
-                  "input of Fig. 2's shape, is Figs. 15-17 below (LuGre, Example 4).</p>\n", f);
         fputs("<main>\n", f);
         for (size_t i = 0; i < n; i++)
             if (jobs[i].state != J_SKIP && catalogue_part(jobs[i].file) == part)

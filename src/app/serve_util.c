@@ -1,5 +1,6 @@
 /* serve_util.c: see serve_util.h. */
 #include "serve_util.h"
+#include "scene_model.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -230,14 +231,12 @@ void sv_slider_range(const hy_scene_key_spec *k, double v, double *lo, double *h
 
 static int wanted(const char *sec, const char *kind, const char *key)
 {
-    static const char *const lugre[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "x0", NULL};
-    static const char *const dahl[] = {"rho", "fc", "x0", NULL};
-    static const char *const filt[] = {"rho", "fc", "tau", "x0", NULL};
     static const char *const bimodal[] = {"umin1", "umin2", "umax1", "umax2", NULL};
     const char *const *l = NULL;
-    if (!strcmp(sec, "model"))
-        l = !strcmp(kind, "dahl") ? dahl : !strcmp(kind, "dahl-filter") ? filt : !strcmp(kind, "lugre") ? lugre : NULL;
-    else if (!strcmp(sec, "input") && !strcmp(kind, "bimodal"))
+    if (!strcmp(sec, "model")) { /* the model's own keys, from the model table */
+        const hy_scene_model *mt = hy_scene_model_find(kind);
+        l = mt ? mt->params : NULL;
+    } else if (!strcmp(sec, "input") && !strcmp(kind, "bimodal"))
         l = bimodal;
     for (size_t i = 0; l && l[i]; i++)
         if (!strcmp(l[i], key))

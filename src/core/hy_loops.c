@@ -198,11 +198,13 @@ static void nest_loops(hy_loops *out, size_t *stack)
     }
 }
 
-int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
+/* The rainflow pairing of in's turning points; with st, the areas and the
+ * y° values of the loops too (else areas 0, y NaN). */
+static int find(const hy_input *in, const hy_steady *st, hy_loops *out, hy_error *err)
 {
     memset(out, 0, sizeof *out);
     size_t n = 0;
-    tp *seq = turning_points(st->in, &n);
+    tp *seq = turning_points(in, &n);
     size_t *stack = malloc(n * sizeof *stack);
     hy_loop *loops = malloc(n * sizeof *loops);
     if (!seq || !stack || !loops) {
@@ -224,7 +226,8 @@ int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
             L->rho_start = p->rho;
             L->rho_turn = q->rho;
             L->rho_close = close_point(seq, stack[sp - 2], stack[sp - 1], p->u);
-            L->area = loop_area(st, seq, stack[sp - 3], stack[sp - 2], stack[sp - 1], hy_steady_at_rho(st, p->rho));
+            L->area = st ? loop_area(st, seq, stack[sp - 3], stack[sp - 2], stack[sp - 1], hy_steady_at_rho(st, p->rho))
+                         : 0.0;
             L->u_start = p->u;
             L->u_turn = q->u;
             L->starts_at_max = p->is_max;
@@ -239,8 +242,8 @@ int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
             imaj = i;
     for (size_t i = 0; i < nl; i++) {
         hy_loop *L = &loops[i];
-        L->y_start = hy_steady_at_rho(st, L->rho_start);
-        L->y_close = hy_steady_at_rho(st, L->rho_close);
+        L->y_start = st ? hy_steady_at_rho(st, L->rho_start) : NAN;
+        L->y_close = st ? hy_steady_at_rho(st, L->rho_close) : NAN;
     }
     out->major = loops[imaj];
     out->nminor = nl - 1;
@@ -257,17 +260,37 @@ int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
     /* express minor loops within [0, ρ_T) where possible, then sort */
     for (size_t i = 0; i < out->nminor; i++) {
         hy_loop *L = &out->minor[i];
-        double shift = floor(L->rho_start / st->in->rho_T) * st->in->rho_T;
+        double shift = floor(L->rho_start / in->rho_T) * in->rho_T;
         L->rho_start -= shift;
         L->rho_turn -= shift;
         L->rho_close -= shift;
     }
     qsort(out->minor, out->nminor, sizeof *out->minor, cmp_loop);
     nest_loops(out, stack);
-    out->area_period = hy_steady_area(st, 0, st->in->rho_T);
+    out->area_period = st ? hy_steady_area(st, 0, in->rho_T) : NAN;
     free(seq);
     free(stack);
     free(loops);
+    return HY_OK;
+}
+
+int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
+{
+    return find(st->in, st, out, err);
+}
+
+int hy_loops_pair(const hy_input *in, hy_loops *out, hy_error *err)
+{
+    return find(in, NULL, out, err);
+}
+
+int hy_loops_nest(hy_loops *out, hy_error *err)
+{
+    size_t *stack = malloc((out->nminor ? out->nminor : 1) * sizeof *stack);
+    if (!stack)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for loop nesting");
+    nest_loops(out, stack);
+    free(stack);
     return HY_OK;
 }
 

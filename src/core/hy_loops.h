@@ -44,6 +44,14 @@ typedef struct hy_loops {
 int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err);
 void hy_loops_free(hy_loops *l);
 
+/* Any model: the same pairing of the input's turning points alone (ϱ and u
+ * of every loop, depth, starts_at_max); areas 0, y_start/y_close and
+ * area_period NaN, for the caller to fill from its model and then call
+ * hy_loops_nest for own_area.  HY_ENOMEM on allocation failure. */
+int hy_loops_pair(const hy_input *in, hy_loops *out, hy_error *err);
+/* Recomputes depth and own_area from the loops' ϱ intervals and areas. */
+int hy_loops_nest(hy_loops *out, hy_error *err);
+
 /* ∫ y° dψ over [rho0, rho1] (rho1 >= rho0, any ϱ, periodic), exact. */
 double hy_steady_area(const hy_steady *st, double rho0, double rho1);
 

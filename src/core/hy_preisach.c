@@ -20,15 +20,15 @@
 #define GAUSS_CUT 40.0     /* φ(40) underflows: a Gaussian density ends here */
 #define MAX_BREAKS 160
 
-static const char *const dist_names[] = {"gaussian", "lorentzian"};
-#define NDIST (sizeof dist_names / sizeof dist_names[0])
+const char *const hy_preisach_dist_names[] = {"gaussian", "lorentzian", NULL};
+#define NDIST (sizeof hy_preisach_dist_names / sizeof hy_preisach_dist_names[0] - 1)
 
-const char *hy_preisach_dist_name(int d) { return d >= 0 && (size_t)d < NDIST ? dist_names[d] : NULL; }
+const char *hy_preisach_dist_name(int d) { return d >= 0 && (size_t)d < NDIST ? hy_preisach_dist_names[d] : NULL; }
 
 int hy_preisach_dist_find(const char *name)
 {
     for (size_t i = 0; name && i < NDIST; i++)
-        if (strcmp(name, dist_names[i]) == 0)
+        if (strcmp(name, hy_preisach_dist_names[i]) == 0)
             return (int)i;
     return -1;
 }

@@ -55,6 +55,9 @@ typedef struct hy_preisach {
     double glx[HY_PREISACH_GL], glw[HY_PREISACH_GL]; /* nodes/weights on [-1,1] */
 } hy_preisach;
 
+/* The distributions' names in the order of their values, NULL-terminated
+ * (the scene key model.pr_density lists them from here). */
+extern const char *const hy_preisach_dist_names[];
 /* Name of distribution d ("gaussian", "lorentzian"), NULL when unknown. */
 const char *hy_preisach_dist_name(int d);
 /* Distribution by name; -1 when unknown. */

@@ -3,6 +3,7 @@
 #include "hy_rateind.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 /* Time at which run r of period k ends, and its value. */
 static double run_end_time(const hy_input *in, size_t r, double k)
@@ -52,5 +53,104 @@ int hy_rateind_bimodal(const hy_input *in, double e[4], hy_error *err)
                             in->desc, v[0], v[2], v[1], v[3]);
     for (int i = 0; i < 4; i++)
         e[i] = v[i];
+    return HY_OK;
+}
+
+/* ---- model types ------------------------------------------------------ */
+
+int hy_rateind_alloc(hy_rateind *m, const hy_rateind_type *type, const void *par, double u0, hy_error *err)
+{
+    m->type = type;
+    m->par = par;
+    m->st = calloc(1, type->state_size ? type->state_size : 1);
+    if (!m->st)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for a %s state", type->name);
+    int rc = type->init(par, m->st, u0, m->out, err);
+    if (rc) {
+        free(m->st);
+        m->st = NULL;
+    }
+    return rc;
+}
+
+int hy_rateind_apply(hy_rateind *m, double u, hy_error *err)
+{
+    return m->type->apply(m->par, m->st, u, m->out, err);
+}
+
+int hy_rateind_clone(hy_rateind *dst, const hy_rateind *src, hy_error *err)
+{
+    *dst = *src;
+    dst->st = calloc(1, src->type->state_size ? src->type->state_size : 1);
+    if (!dst->st)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for a %s state", src->type->name);
+    int rc = src->type->copy(src->par, dst->st, src->st, err);
+    if (rc) {
+        free(dst->st);
+        dst->st = NULL;
+    }
+    return rc;
+}
+
+void hy_rateind_free(hy_rateind *m)
+{
+    if (m->st && m->type->free)
+        m->type->free(m->st);
+    free(m->st);
+    m->st = NULL;
+}
+
+int hy_rateind_settle(hy_rateind *m, const hy_input *in, double tol, int max_periods, int *periods,
+                      hy_error *err)
+{
+    double prev = m->out[0];
+    int calm = 0;
+    for (int k = 1; k <= max_periods; k++) {
+        double big = fabs(prev);
+        for (size_t r = 0; r < in->nruns; r++) {
+            int rc = hy_rateind_apply(m, in->runs[r].u1, err);
+            if (rc)
+                return rc;
+            big = fmax(big, fabs(m->out[0]));
+        }
+        double d = fabs(m->out[0] - prev);
+        prev = m->out[0];
+        calm = d <= tol * big ? calm + 1 : 0;
+        if (calm == 2) {
+            *periods = k;
+            return HY_OK;
+        }
+    }
+    return hy_error_set(err, HY_ENUM, "%s: the output did not become periodic (to %g of its range) in %d periods of %s",
+                        m->type->name, tol, max_periods, in->desc);
+}
+
+int hy_rateind_sample(hy_rateind *m, const hy_input *in, int by_rho, const double *x, size_t n,
+                      double *const rows[HY_RI_NOUT], hy_error *err)
+{
+    double k = 0, prev = 0;
+    size_t r = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!(x[i] >= prev) || !isfinite(x[i]))
+            return hy_error_set(err, HY_EINVAL, "sample %zu (%g) is not finite and ascending from %g", i, x[i], prev);
+        int rc;
+        for (;;) { /* the extrema up to x[i] */
+            double end = by_rho ? k * in->rho_T + in->runs[r].rho1 : run_end_time(in, r, k);
+            if (!(end <= x[i]))
+                break;
+            if ((rc = hy_rateind_apply(m, in->runs[r].u1, err)))
+                return rc;
+            if (++r == in->nruns) {
+                r = 0;
+                k += 1;
+            }
+        }
+        if ((rc = hy_rateind_apply(m, by_rho ? hy_input_psi(in, x[i]) : hy_input_u(in, x[i]), err)))
+            return rc;
+        for (int q = 0; q < HY_RI_NOUT; q++)
+            if (rows[q])
+                rows[q][i] = m->out[q];
+        prev = x[i];
+    }
     return HY_OK;
 }

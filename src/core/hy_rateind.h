@@ -49,4 +49,74 @@ typedef struct hy_minor_loop {
     int cycles;                /* periods driven before the state was periodic    */
 } hy_minor_loop;
 
+/* ---- model types (the form of GSL's gsl_odeiv2_step_type) ----------------
+ *
+ * A rate-independent model is a static const hy_rateind_type: its state's
+ * size, what it can do (caps) and four functions on (parameters, state).
+ * Generic code holds an hy_rateind (type, borrowed parameters, owned state,
+ * the outputs after the last move) and never knows the model:
+ *
+ *     hy_rateind m;
+ *     hy_rateind_alloc(&m, &my_type, &par, u0, &err);
+ *     hy_rateind_settle(&m, &in, 1e-11, 1000, &periods, &err);
+ *     hy_rateind_sample(&m, &in, 0, t, n, rows, &err);  // rows[0][i] = y(t[i])
+ *     hy_rateind_free(&m);
+ */
+
+/* out[0] the output y, out[1] a second quantity the model can draw (NaN:
+ * none; Jiles-Atherton: M), out[2] ∫ y du along the path so far (NaN: not
+ * tracked). */
+enum { HY_RI_NOUT = 3 };
+
+enum {
+    HY_RI_RETURN_POINT = 1u << 0,  /* a minor loop closes at its reversal value */
+    HY_RI_PATH_AREA = 1u << 1      /* out[2] is tracked: any loop's area exactly */
+};
+
+typedef struct hy_rateind_type {
+    const char *name;
+    size_t state_size;
+    unsigned caps;   /* HY_RI_* */
+    /* the state at input u0 (from the parameters' initial condition) */
+    int (*init)(const void *par, void *st, double u0, double out[HY_RI_NOUT], hy_error *err);
+    /* moves the input monotonically to u; on error the state is unchanged or
+     * at the last good step (the type says which) */
+    int (*apply)(const void *par, void *st, double u, double out[HY_RI_NOUT], hy_error *err);
+    /* dst (uninitialised) becomes a copy of src */
+    int (*copy)(const void *par, void *dst, const void *src, hy_error *err);
+    void (*free)(void *st);   /* NULL: nothing to free */
+    /* ∮ u dy of the closed loop between reversal values lo < hi (closed-form
+     * minor loops), or NULL */
+    int (*loop_area)(const void *par, double lo, double hi, double *area, hy_error *err);
+} hy_rateind_type;
+
+typedef struct hy_rateind {
+    const hy_rateind_type *type;
+    const void *par;          /* borrowed: must outlive the model  */
+    void *st;                 /* type->state_size bytes, owned     */
+    double out[HY_RI_NOUT];   /* after the last move               */
+} hy_rateind;
+
+/* Allocates the state and puts the model at input u0.  On error m owns nothing. */
+int hy_rateind_alloc(hy_rateind *m, const hy_rateind_type *type, const void *par, double u0, hy_error *err);
+/* Moves the input monotonically to u (m->out updated). */
+int hy_rateind_apply(hy_rateind *m, double u, hy_error *err);
+/* dst becomes an independent copy of src (dst uninitialised). */
+int hy_rateind_clone(hy_rateind *dst, const hy_rateind *src, hy_error *err);
+void hy_rateind_free(hy_rateind *m);
+
+/* Drives the model (sitting at u(0), at a period's start) through whole
+ * periods of in until its output at the period's end changes by at most
+ * tol times the largest |y| of that period, twice in a row; *periods gets
+ * how many were driven.  HY_ENUM (naming max_periods) when it does not settle. */
+int hy_rateind_settle(hy_rateind *m, const hy_input *in, double tol, int max_periods, int *periods,
+                      hy_error *err);
+
+/* From the model at a period's start (u(0) = ψ_u(0)): at each ascending x[i]
+ * >= 0 feeds every extremum of the input up to x[i], then its value there,
+ * and stores out[q] in rows[q][i] (rows[q] NULL: not stored).  x are times t
+ * (by_rho 0: values u(t)) or variations ϱ (by_rho 1: values ψ_u(ϱ), Eq. 10). */
+int hy_rateind_sample(hy_rateind *m, const hy_input *in, int by_rho, const double *x, size_t n,
+                      double *const rows[HY_RI_NOUT], hy_error *err);
+
 #endif

@@ -2,6 +2,7 @@
  * sine, multisine or sweep force, Newmark at fs x upsample (Eqs. 1-5), MATLAB-style
  * decimation back to fs (Section 4), then the series y, u, |y| dB, transient dB, spectrum. */
 #include "scene_boucwen.h"
+#include "scene_model.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -14,14 +15,13 @@
 enum { IN_SINE, IN_MULTISINE, IN_SWEEP };
 enum { Q_OUTPUT, Q_INPUT, Q_OUTPUT_DB, Q_TRANSIENT_DB, Q_SPECTRUM, Q_ENVELOPE, Q_SINC_INPUT, Q_SINC_OUTPUT };
 enum { DEC_STAGED, DEC_SINGLE, DEC_NONE };
-enum { FIG_TIMESERIES = 0, FIG_LOOP = 1 };
 
 /* Integration samples allowed in one scene (u, y and decimation scratch: ~32 B each). */
 #define BW_MAX_SAMPLES 40000000.0
 
 static const char *const quantity_names[] = {"output", "input", "output-db", "transient-db",
                                              "spectrum", "envelope", "sinc-input-error",
-                                             "sinc-output-error"};
+                                             "sinc-output-error", NULL};
 
 /* Everything a boucwen scene asks for, read and checked once. */
 typedef struct bw_setup {
@@ -699,3 +699,23 @@ int hy_scene_boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
         log_run(r, log);
     return rc;
 }
+
+/* ---- the model table's entry ------------------------------------------- */
+
+static const char *const bw_keys[] = {"m", "c", "k", "alpha", "bw_beta", "bw_gamma", "delta", "nu", NULL};
+
+/* Newmark steps and series samples, plus the annotations' placement. */
+static int bw_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
+{
+    size_t na = hy_scene_count(r->scene, "annotation");
+    int rc = hy_scene_boucwen_work(r, work, err);
+    *work += (double)na * HY_PLACE_SPOTS;
+    if (what && size)
+        snprintf(what, size, "Newmark steps and series samples, %zu annotations x %d spots", na, HY_PLACE_SPOTS);
+    return rc;
+}
+
+const hy_scene_model hy_scene_model_boucwen = {
+    "boucwen", bw_keys, quantity_names, NULL, NULL, 0,
+    "displacement, velocity and the hysteretic z (Newmark)", hy_scene_boucwen_load, bw_estimate,
+    hy_scene_boucwen_compute, NULL, 0, NULL, NULL};

@@ -15,6 +15,7 @@
 #include "hy_ode.h"
 #include "hy_plot.h"
 #include "scene_boucwen.h"
+#include "scene_model.h"
 #include "scene_verify.h"
 
 static double now(void)
@@ -26,7 +27,6 @@ static double now(void)
 
 static const char *const data_names[] = {"input", "psi", "g", "ystar", "ysteady", "ygamma",
                                          "yk", "transient", "minor", "major", "boucwen"};
-enum { FIG_TIMESERIES, FIG_LOOP, FIG_INPUT, FIG_G, FIG_PSI };
 
 static double num(const hy_scene *s, const char *sec, const char *name, const char *key, double dflt)
 {
@@ -62,6 +62,11 @@ static int located(const hy_scene *s, const char *sec, const char *const *keys, 
     return hy_scene_error_at(s, sec, NULL, NULL, err, err->code, "%s", msg);
 }
 
+const char *hy_scene_data_name(int data)
+{
+    return data >= 0 && data < (int)(sizeof data_names / sizeof *data_names) ? data_names[data] : "?";
+}
+
 static int build_model(hy_scene_run *r, hy_error *err)
 {
     static const char *const keys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
@@ -87,7 +92,7 @@ static int build_model(hy_scene_run *r, hy_error *err)
     return HY_OK;
 }
 
-static int build_input(hy_scene_run *r, hy_error *err)
+int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
 {
     static const char *const keys[] = {"umin1", "umin2", "umax1", "umax2", "extrema", "times", "amp", "period",
                                        "offset", "points", "file", NULL};
@@ -188,6 +193,32 @@ int hy_scene_run_load_scene(hy_scene_run *r, hy_scene *scene, const char *path, 
     return build_run(r, err);
 }
 
+/* A series' quantity, where written, is one the model draws. */
+static int check_quantities(const hy_scene_run *r, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
+        const char *name = hy_scene_name_at(s, "series", i), *q = NULL;
+        hy_scene_loc loc;
+        int idx;
+        if (!hy_scene_get_loc(s, "series", name, "quantity", &loc) ||
+            hy_scene_get_enum(s, "series", name, "quantity", &idx, &q) < 0)
+            continue;
+        size_t j = 0;
+        while (r->mtype->quantities[j] && strcmp(r->mtype->quantities[j], q))
+            j++;
+        if (!r->mtype->quantities[j]) {
+            char list[160] = "";
+            for (j = 0; r->mtype->quantities[j]; j++)
+                snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", j ? ", " : "",
+                         r->mtype->quantities[j]);
+            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
+                                     "a %s model draws quantity %s, not %s", r->mtype->name, list, q);
+        }
+    }
+    return HY_OK;
+}
+
 /* The model and input of the parsed scene r->scene; r freed on error. */
 static int build_run(hy_scene_run *r, hy_error *err)
 {
@@ -195,11 +226,10 @@ static int build_run(hy_scene_run *r, hy_error *err)
     const char *t;
     hy_scene_get_enum(r->scene, "figure", NULL, "kind", &idx, &t);
     r->figure_kind = idx;
-    int rc = hy_scene_boucwen_load(r, err);
-    if (!rc && !hy_scene_is_boucwen(r->scene))
-        rc = build_model(r, err);
-    if (!rc && !hy_scene_is_boucwen(r->scene))
-        rc = build_input(r, err);
+    r->mtype = hy_scene_model_of(r->scene);
+    int rc = check_quantities(r, err);
+    if (!rc)
+        rc = r->mtype->load(r, err);
     if (!rc)
         rc = hy_scene_run_validate(r, err);
     if (rc)
@@ -238,6 +268,7 @@ void hy_scene_run_free(hy_scene_run *r)
         hy_steady_free(&r->steady);
     if (r->have_input)
         hy_input_free(&r->input);
+    free(r->ri_par);
     if (!r->scene_borrowed)
         hy_scene_free(r->scene);
     memset(r, 0, sizeof *r);
@@ -281,7 +312,7 @@ static void plan_line(const plan *p, hy_scene_run *r, const char *fmt, ...)
     va_end(ap);
 }
 
-static int series_data(const hy_scene *s, const char *name, int *data)
+int hy_scene_series_data(const hy_scene *s, const char *name, int *data)
 {
     int idx;
     const char *text;
@@ -348,33 +379,43 @@ static gamma_solve *find_solve(plan *p, double gamma)
     return NULL;
 }
 
-/* Decides the grid and the shared computations; solves each distinct γ once. */
-static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
+int hy_scene_run_grid(const hy_scene_run *r, double *t0, double *t1, size_t *npts, size_t *per, long *cycles,
+                      hy_error *err)
 {
     const hy_scene *s = r->scene;
     long pts = 2000;
     hy_scene_get_int(s, "compute", NULL, "points", &pts);
-    p->cycles = 1;
-    hy_scene_get_int(s, "compute", NULL, "cycles", &p->cycles);
+    *cycles = 1;
+    hy_scene_get_int(s, "compute", NULL, "cycles", cycles);
     double span[2];
     int is_auto = 1;
     double T = r->input.period;
     if (hy_scene_get_pair(s, "compute", NULL, "tspan", span, &is_auto) == HY_SCENE_SET && !is_auto) {
-        p->t0 = span[0];
-        p->t1 = span[1];
-        if (p->t0 < 0)
-            return hy_scene_error_at(s, "compute", NULL, "tspan", err, HY_EINVAL, "tspan must start at t >= 0 (got %g)", p->t0);
+        *t0 = span[0];
+        *t1 = span[1];
+        if (*t0 < 0)
+            return hy_scene_error_at(s, "compute", NULL, "tspan", err, HY_EINVAL, "tspan must start at t >= 0 (got %g)", *t0);
     } else {
-        p->t0 = 0;
-        p->t1 = (double)p->cycles * T;
+        *t0 = 0;
+        *t1 = (double)*cycles * T;
     }
-    double periods = (p->t1 - p->t0) / T;
+    double periods = (*t1 - *t0) / T;
     double np = (double)pts * fmax(1.0, periods);
     if (!(np <= 2e7)) /* NaN too: np is converted below */
         return hy_scene_error_at(s, "compute", NULL, "points", err, HY_EINVAL,
                                  "%g points per period over %g periods is more than 2e7 points", (double)pts, periods);
-    p->npts = (size_t)np + 1;
-    p->per_period = (size_t)pts;
+    *npts = (size_t)np + 1;
+    *per = (size_t)pts;
+    return HY_OK;
+}
+
+/* Decides the grid and the shared computations; solves each distinct γ once. */
+static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    int grc = hy_scene_run_grid(r, &p->t0, &p->t1, &p->npts, &p->per_period, &p->cycles, err);
+    if (grc)
+        return grc;
     size_t ns = hy_scene_count(s, "series");
     p->solves = calloc(ns ? ns : 1, sizeof *p->solves);
     if (!p->solves)
@@ -383,7 +424,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
     for (size_t i = 0; i < ns; i++) {
         const char *name = hy_scene_name_at(s, "series", i);
         int d = -1;
-        if (series_data(s, name, &d))
+        if (hy_scene_series_data(s, name, &d))
             return hy_scene_error_at(s, "series", name, NULL, err, HY_EINVAL, "series '%s' needs 'data = ...' (%s)", name,
                                      "input, psi, g, ystar, ysteady, ygamma, yk, transient, minor, major");
         if (d == HY_DATA_BOUCWEN)
@@ -497,7 +538,26 @@ static double series_x(const hy_scene_run *r, const hy_run_series *se, double t)
     return hy_input_u(&r->input, t);
 }
 
-static int alloc_series(hy_run_series *se, size_t n, hy_error *err)
+int hy_scene_run_series_new(hy_scene_run *r, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    size_t ns = hy_scene_count(s, "series");
+    r->series = calloc(ns ? ns : 1, sizeof *r->series);
+    if (!r->series)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t i = 0; i < ns; i++) {
+        hy_run_series *se = &r->series[i];
+        se->name = hy_scene_name_at(s, "series", i);
+        if (hy_scene_series_data(s, se->name, &se->data))
+            se->data = HY_DATA_INPUT;
+        hy_scene_get_num(s, "series", se->name, "gamma", &se->gamma);
+        hy_scene_get_int(s, "series", se->name, "k", &se->k);
+    }
+    r->nseries = ns;
+    return HY_OK;
+}
+
+int hy_run_series_alloc(hy_run_series *se, size_t n, hy_error *err)
 {
     se->x = malloc(n * sizeof *se->x);
     se->y = malloc(n * sizeof *se->y);
@@ -519,7 +579,7 @@ static void sample(const hy_scene_run *r, const plan *p, hy_run_series *se, size
 
 /* ϱ intervals of the minor loops (minor) or of the rest of the period (major);
  * -1 if a minor loop is too narrow for ϱ at the input's scale to step past it */
-static int loop_intervals(const hy_scene_run *r, int major, double *a, double *b, size_t max)
+int hy_scene_loop_intervals(const hy_scene_run *r, int major, double *a, double *b, size_t max)
 {
     const hy_loops *L = &r->loops;
     size_t n = 0;
@@ -593,7 +653,7 @@ static double distance_to_limit(const hy_scene_run *r, const plan *p, const gamm
 }
 
 /* The refusal of an input whose minor loop is too narrow to sample. */
-static int too_narrow(const hy_scene_run *r, hy_error *err)
+int hy_scene_too_narrow(const hy_scene_run *r, hy_error *err)
 {
     static const char *const inkeys[] = {"points", "file", "extrema", NULL};
     const char *key = NULL;
@@ -648,18 +708,18 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     if (closed && r->numbers_only && r->no_verify) {
         double a[64], b[64];
         if ((se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) &&
-            loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64) < 0)
-            return too_narrow(r, err); /* refused as when sampled */
+            hy_scene_loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64) < 0)
+            return hy_scene_too_narrow(r, err); /* refused as when sampled */
         not_sampled(se);
     } else if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR) {
         double a[64], b[64];
-        int k = loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64);
+        int k = hy_scene_loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64);
         if (k < 0)
-            return too_narrow(r, err);
+            return hy_scene_too_narrow(r, err);
         size_t total = 0;
         for (int i = 0; i < k; i++)
             total += per + 1;
-        if ((rc = alloc_series(se, total ? total : 1, err)))
+        if ((rc = hy_run_series_alloc(se, total ? total : 1, err)))
             return rc;
         size_t off = 0;
         for (int i = 0; i < k; i++) {
@@ -679,15 +739,15 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
             lim[0] = -4 * r->model.vs;
             lim[1] = 4 * r->model.vs;
         }
-        if ((rc = alloc_series(se, per + 1, err)))
+        if ((rc = hy_run_series_alloc(se, per + 1, err)))
             return rc;
         sample(r, p, se, 0, per + 1, lim[0], lim[1]);
     } else if (se->data == HY_DATA_PSI) {
-        if ((rc = alloc_series(se, per + 1, err)))
+        if ((rc = hy_run_series_alloc(se, per + 1, err)))
             return rc;
         sample(r, p, se, 0, per + 1, 0, r->input.rho_T);
     } else if (se->data == HY_DATA_YSTEADY || se->data == HY_DATA_YK) {
-        if ((rc = alloc_series(se, per + 1, err)))
+        if ((rc = hy_run_series_alloc(se, per + 1, err)))
             return rc;
         sample(r, p, se, 0, per + 1, 0, T);
         se->y[per] = se->data == HY_DATA_YSTEADY ? r->steady.y_run[r->input.nruns]
@@ -713,7 +773,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
             }
         } else
             i0 = 0;
-        if ((rc = alloc_series(se, i1 - i0, err)))
+        if ((rc = hy_run_series_alloc(se, i1 - i0, err)))
             return rc;
         for (size_t i = i0; i < i1; i++) {
             se->x[i - i0] = hy_input_u(&r->input, p->t[i]);
@@ -723,14 +783,14 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         se->dist = distance_to_limit(r, p, g, i0, i1);
     } else if (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) {
         gamma_solve *g = find_solve(p, se->gamma);
-        if ((rc = alloc_series(se, p->npts, err)))
+        if ((rc = hy_run_series_alloc(se, p->npts, err)))
             return rc;
         memcpy(se->x, p->t, p->npts * sizeof *se->x);
         memcpy(se->y, g->y, p->npts * sizeof *se->y);
         copy_err(se, g);
         se->dist = distance_to_limit(r, p, g, 0, p->npts);
     } else { /* input, ystar over the time span */
-        if ((rc = alloc_series(se, p->npts, err)))
+        if ((rc = hy_run_series_alloc(se, p->npts, err)))
             return rc;
         for (size_t i = 0; i < p->npts; i++) {
             se->x[i] = series_x(r, se, p->t[i]);
@@ -751,7 +811,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     return rc;
 }
 
-static int check_series_kind(const hy_scene_run *r, const hy_run_series *se, hy_error *err)
+int hy_scene_check_series_kind(const hy_scene_run *r, const hy_run_series *se, hy_error *err)
 {
     static const int ok_loop[] = {0, 1, 0, 1, 1, 1, 1, 1, 1, 1};
     const char *kinds[] = {"timeseries", "loop", "input", "g", "psi"};
@@ -789,18 +849,18 @@ static double series_points(const hy_scene_run *r, int d, double npts, double pe
 
 int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
-    const hy_scene *s = r->scene;
     *work = 0;
+    return r->mtype->estimate(r, work, what, size, err);
+}
+
+/* The friction models' estimate: the grid points of every distinct gamma
+ * solve plus the points of every series (docs/SCENES.md, "Work budget"). */
+int hy_scene_friction_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
+{
+    const hy_scene *s = r->scene;
     /* placing an annotation tries up to HY_PLACE_SPOTS spots (issue 20 item 8) */
     size_t na = hy_scene_count(s, "annotation");
     double place = (double)na * HY_PLACE_SPOTS;
-    if (hy_scene_is_boucwen(s)) {
-        int rc = hy_scene_boucwen_work(r, work, err);
-        *work += place;
-        if (what && size)
-            snprintf(what, size, "Newmark steps and series samples, %zu annotations x %d spots", na, HY_PLACE_SPOTS);
-        return rc;
-    }
     long pts = 2000, cycles = 1;
     hy_scene_get_int(s, "compute", NULL, "points", &pts);
     hy_scene_get_int(s, "compute", NULL, "cycles", &cycles);
@@ -816,7 +876,7 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
         const char *name = hy_scene_name_at(s, "series", i);
         int d = HY_DATA_INPUT;
         double g;
-        series_data(s, name, &d);
+        hy_scene_series_data(s, name, &d);
         pointsum += series_points(r, d, npts, (double)pts);
         if ((d == HY_DATA_YGAMMA || d == HY_DATA_TRANSIENT) && hy_scene_get_num(s, "series", name, "gamma", &g) >= 0) {
             size_t j = 0;
@@ -869,29 +929,19 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
         hy_scene_run_estimate(r, &r->work, what, sizeof what, err);
         return hy_scene_run_over_budget(r->scene, r->work, budget, what, err);
     }
-    if (hy_scene_is_boucwen(r->scene))
-        return hy_scene_boucwen_compute(r, log, err);
+    return r->mtype->compute(r, log, err);
+}
+
+int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
+{
     double t_start = now();
     plan p;
     memset(&p, 0, sizeof p);
     p.verbose = log != NULL;
-    const hy_scene *s = r->scene;
-    size_t ns = hy_scene_count(s, "series");
-    r->series = calloc(ns ? ns : 1, sizeof *r->series);
-    if (!r->series)
-        return hy_error_set(err, HY_ENOMEM, "out of memory");
-    for (size_t i = 0; i < ns; i++) {
-        hy_run_series *se = &r->series[i];
-        se->name = hy_scene_name_at(s, "series", i);
-        if (series_data(s, se->name, &se->data))
-            se->data = HY_DATA_INPUT;
-        hy_scene_get_num(s, "series", se->name, "gamma", &se->gamma);
-        hy_scene_get_int(s, "series", se->name, "k", &se->k);
-    }
-    r->nseries = ns;
-    int rc = HY_OK;
+    int rc = hy_scene_run_series_new(r, err);
+    size_t ns = r->nseries;
     for (size_t i = 0; i < ns && !rc; i++)
-        rc = check_series_kind(r, &r->series[i], err);
+        rc = hy_scene_check_series_kind(r, &r->series[i], err);
     if (!rc)
         rc = make_plan(r, &p, err);
     for (size_t i = 0; i < ns && !rc; i++)
@@ -919,5 +969,15 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
         free(p.solves[i].y);
     free(p.solves);
     free(p.t);
+    return rc;
+}
+
+int hy_scene_friction_load(hy_scene_run *r, hy_error *err)
+{
+    int rc = hy_scene_boucwen_load(r, err); /* refuses the Bouc-Wen-only parts */
+    if (!rc)
+        rc = build_model(r, err);
+    if (!rc)
+        rc = hy_scene_run_build_input(r, err);
     return rc;
 }

@@ -51,6 +51,9 @@ typedef struct hy_run_series {
 typedef struct hy_scene_run {
     hy_scene *scene;
     const char *path;
+    const struct hy_scene_model *mtype; /* the [model] kind's type (scene_model.h)  */
+    void *ri_par;             /* a rate-independent model's parameters (malloc'd) */
+    int ri_periods;           /* its periods driven until the output was periodic */
     hy_model model;
     hy_input input;
     int have_input;

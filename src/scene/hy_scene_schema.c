@@ -2,6 +2,7 @@
  * Sections 2-4; the Bouc-Wen benchmark of seed 001, Tables 1-2 and Sections 4-5). */
 #include "hy_scene_schema.h"
 
+#include "hy_preisach.h"
 #include "hy_quality.h"
 
 #include <stdio.h>
@@ -17,7 +18,8 @@
     { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc }
 #define NKEYS(a) (sizeof(a) / sizeof((a)[0]))
 
-static const char *const model_kinds[] = {"dahl", "lugre", "dahl-filter", "boucwen", NULL};
+#define MODEL_NAME(id, name) name,
+static const char *const model_kinds[] = {HY_MODEL_KINDS(MODEL_NAME) NULL};
 static const char *const input_kinds[] = {"bimodal", "multimodal", "triangle", "sine",
                                           "pwl", "file", "multisine", "sweep", NULL};
 static const char *const input_shapes[] = {"linear", "cosine", NULL};
@@ -34,7 +36,7 @@ static const char *const line_styles[] = {"solid", "dashed", "dotted", "dashdot"
                                           NULL};
 static const char *const bw_quantities[] = {"output", "input", "output-db", "transient-db",
                                             "spectrum", "envelope", "sinc-input-error",
-                                            "sinc-output-error", NULL};
+                                            "sinc-output-error", "magnetisation", NULL};
 static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {"none", "circle", "square", NULL};
 static const char *const formats[] = {"svg", "pdf", "png", NULL};
@@ -44,7 +46,8 @@ static const char *const qualities[] = {HY_QUALITY_PRESETS(QUALITY_NAME) NULL};
 
 static const hy_scene_key_spec model_keys[] = {
     K("kind", HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, "lugre",
-      "hysteresis model: Dahl, LuGre (Eq. 3), the Example-1 filter system, or the Bouc-Wen benchmark oscillator"),
+      "hysteresis model: Dahl, LuGre (Eq. 3), the Example-1 filter system, the Bouc-Wen benchmark oscillator, "
+      "Jiles-Atherton (ferromagnetic, input H in A/m, output B in T) or classical Preisach"),
     K("sigma0", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
     K("sigma1", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
     K("sigma2", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
@@ -66,6 +69,24 @@ static const hy_scene_key_spec model_keys[] = {
     K("bw_gamma", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen: gamma of Eq. (3)"),
     K("delta", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen: delta of Eq. (3)"),
     K("nu", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen: exponent nu of Eq. (3)"),
+    K("ja_ms", HY_KIND_NUMBER, NULL, POS, 0, 0, "1.6e6",
+      "jiles-atherton: saturation magnetisation Ms in A/m (default: Jiles & Atherton 1986)"),
+    K("ja_a", HY_KIND_NUMBER, NULL, POS, 0, 0, "1100",
+      "jiles-atherton: a in A/m, the width of the anhysteretic curve Ms L(H_e/a)"),
+    K("ja_k", HY_KIND_NUMBER, NULL, POS, 0, 0, "400", "jiles-atherton: pinning k in A/m (the loop's half-width)"),
+    K("ja_c", HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX | HY_SPEC_MAX_EXCL, 0, 1, 0, 0, "0.2",
+      "jiles-atherton: reversible fraction c"),
+    K("ja_alpha", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1.6e-3",
+      "jiles-atherton: mean-field coupling alpha (alpha Ms / (3a) < 1, and small enough for k)"),
+    K("ja_m0", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0",
+      "jiles-atherton: magnetisation M in A/m at t = 0 (|m0| < Ms; 0: demagnetised)"),
+    K("pr_density", HY_KIND_ENUM, hy_preisach_dist_names, NOLIM, 0, 0, "gaussian",
+      "preisach: distribution of both switching fields (factorised density)"),
+    K("pr_hc", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0.5",
+      "preisach: centre of the up-switching fields alpha (the down-switching beta around -pr_hc), in input units"),
+    K("pr_width", HY_KIND_NUMBER, NULL, POS, 0, 0, "0.2",
+      "preisach: width of both switching-field distributions, in input units"),
+    K("pr_ys", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "preisach: output at positive saturation"),
 };
 
 static const hy_scene_key_spec input_keys[] = {

@@ -15,6 +15,18 @@
 
 #include <stddef.h>
 
+/* The model kinds, one line per model: X(id, "name").  The schema's [model]
+ * kind list and the pipeline's model table (src/pipeline/scene_model.c, which
+ * expects a `hy_scene_model_<id>` from each model's own file) are both
+ * generated from it, so a model is added here, once. */
+#define HY_MODEL_KINDS(X)                   \
+    X(dahl, "dahl")                         \
+    X(lugre, "lugre")                       \
+    X(dahl_filter, "dahl-filter")           \
+    X(boucwen, "boucwen")                   \
+    X(jiles, "jiles-atherton")              \
+    X(preisach, "preisach")
+
 /* What a value must look like. */
 typedef enum hy_scene_kind {
     HY_KIND_NUMBER,       /* finite decimal number: 1, -2.5, 3e-4               */

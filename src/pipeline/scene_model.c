@@ -1,0 +1,56 @@
+/* scene_model.c: the model table (one line per kind in HY_MODEL_KINDS,
+ * hy_scene_schema.h) and what the model files share. */
+#include "scene_model.h"
+
+#include <string.h>
+
+#define MODEL_PTR(id, name) &hy_scene_model_##id,
+const hy_scene_model *const hy_scene_models[] = {HY_MODEL_KINDS(MODEL_PTR) NULL};
+
+const hy_scene_model *hy_scene_model_find(const char *kind)
+{
+    for (size_t i = 0; kind && hy_scene_models[i]; i++)
+        if (!strcmp(hy_scene_models[i]->name, kind))
+            return hy_scene_models[i];
+    return NULL;
+}
+
+const hy_scene_model *hy_scene_model_of(const hy_scene *s)
+{
+    int idx;
+    const char *kind = NULL;
+    hy_scene_get_enum(s, "model", NULL, "kind", &idx, &kind);
+    const hy_scene_model *mt = hy_scene_model_find(kind);
+    return mt ? mt : hy_scene_model_find("lugre");
+}
+
+int hy_scene_model_has_key(const hy_scene_model *mt, const char *key)
+{
+    if (!strcmp(key, "kind"))
+        return 1;
+    for (size_t i = 0; mt->params[i]; i++)
+        if (!strcmp(mt->params[i], key))
+            return 1;
+    return 0;
+}
+
+void hy_scene_model_read_numbers(const hy_scene *s, const char *const *keys, const size_t *offsets, void *par)
+{
+    for (size_t i = 0; keys[i]; i++) {
+        double v;
+        if (hy_scene_get_num(s, "model", NULL, keys[i], &v) >= 0)
+            memcpy((char *)par + offsets[i], &v, sizeof v);
+    }
+}
+
+int hy_scene_model_relocate(const hy_scene *s, const hy_scene_model *mt, int rc, hy_error *err)
+{
+    if (!rc)
+        return rc;
+    char msg[sizeof err->msg];
+    memcpy(msg, err->msg, sizeof msg);
+    for (size_t i = 0; mt->core_names && mt->core_names[i]; i++)
+        if (strstr(msg, mt->core_names[i]))
+            return hy_scene_error_at(s, "model", NULL, mt->params[i], err, rc, "%s: %s", mt->params[i], msg);
+    return hy_scene_error_at(s, "model", NULL, NULL, err, rc, "%s", msg);
+}

@@ -1,0 +1,120 @@
+/* scene_model.h: the model table of the scene pipeline, one static const
+ * type per [model] kind, in the form of GSL's gsl_odeiv2_step_type.
+ *
+ * Each model kind (HY_MODEL_KINDS in hy_scene_schema.h) has one file that
+ * exports `const hy_scene_model hy_scene_model_<id>`: its name, the [model]
+ * keys it reads (rows of the schema table, which hold their kind, range,
+ * default, unit and doc), what it can compute (caps), the quantities a series
+ * can draw from it, and the three stages the pipeline dispatches through it:
+ *
+ *     const hy_scene_model *mt = hy_scene_model_of(scene);
+ *     rc = mt->load(r, err);                 // scene -> model + input, checked
+ *     rc = mt->estimate(r, &work, what, n, err);
+ *     rc = mt->compute(r, log, err);         // series, loops
+ *
+ * A rate-independent model (Jiles-Atherton, Preisach) fills `ri` (its core
+ * type, hy_rateind.h) and `read` (parameters from [model] into a struct of
+ * ri_par_size bytes) and takes load/estimate/compute from scene_rateind.c;
+ * nothing else in the pipeline knows it.
+ */
+#ifndef HY_SCENE_MODEL_H
+#define HY_SCENE_MODEL_H
+
+#include <stdio.h>
+
+#include "hy_rateind.h"
+#include "hy_scene_schema.h"
+#include "scene_run.h"
+
+enum {
+    HY_CAP_STEADY = 1u << 0,          /* steady periodic state y° and its loops            */
+    HY_CAP_YSTAR = 1u << 1,           /* the limit y* as gamma -> infinity (Theorem 2)     */
+    HY_CAP_CLOSED_MINOR = 1u << 2,    /* minor loops in closed form (Theorem A; Everett)  */
+    HY_CAP_ENERGY = 1u << 3,          /* loop areas: energy per cycle                      */
+    HY_CAP_RETURN_POINT = 1u << 4,    /* minor loops close at their reversal point         */
+    HY_CAP_RATE_INDEPENDENT = 1u << 5,/* y_gamma = y* for every gamma                      */
+    HY_CAP_EXACT_STEP = 1u << 6,      /* an exact solver (no time-stepping error)          */
+    HY_CAP_GSL = 1u << 7              /* a right-hand side for GSL odeiv2 steppers          */
+};
+
+typedef struct hy_scene_model {
+    const char *name;                 /* the [model] kind                                      */
+    const char *const *params;        /* the [model] keys it reads (schema rows), NULL-ended   */
+    const char *const *quantities;    /* values of a series' quantity it draws, NULL-ended;
+                                       * the first is the default (rate-independent models:
+                                       * index q is out[q] of hy_rateind.h)                    */
+    const char *u_label, *y_label;    /* loop axes' default labels (NULL: the figure's)        */
+    unsigned caps;                    /* HY_CAP_*                                               */
+    const char *state;                /* the state in words (docs, hystviz check)              */
+    int (*load)(hy_scene_run *r, hy_error *err);
+    int (*estimate)(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err);
+    int (*compute)(hy_scene_run *r, FILE *log, hy_error *err);
+    /* rate-independent models only (else NULL / 0) */
+    const hy_rateind_type *ri;
+    size_t ri_par_size;
+    int (*read)(const hy_scene *s, void *par, hy_error *err);
+    /* how the core's messages name params[i] (NULL: no relocation) */
+    const char *const *core_names;
+} hy_scene_model;
+
+/* Each model file's entry: hy_scene_model_dahl, ..._jiles, ..._preisach. */
+#define HY_SCENE_MODEL_DECL(id, name) extern const hy_scene_model hy_scene_model_##id;
+HY_MODEL_KINDS(HY_SCENE_MODEL_DECL)
+
+/* The table: every model kind in HY_MODEL_KINDS order, NULL-terminated. */
+extern const hy_scene_model *const hy_scene_models[];
+
+/* The model named kind, or NULL. */
+const hy_scene_model *hy_scene_model_find(const char *kind);
+/* The model of the scene's [model] kind (its default when unset); never NULL
+ * for a parsed scene (the schema admits only the table's kinds). */
+const hy_scene_model *hy_scene_model_of(const hy_scene *s);
+/* Whether key is one of the model's [model] keys (kind included). */
+int hy_scene_model_has_key(const hy_scene_model *mt, const char *key);
+
+/* ---- shared by the model files (scene_run.c, scene_rateind.c) ---- */
+
+/* The figure kinds, in the order of the schema's figure kind list. */
+enum { FIG_TIMESERIES, FIG_LOOP, FIG_INPUT, FIG_G, FIG_PSI };
+
+/* The scene's [input] as r->input (every input hystviz has). */
+int hy_scene_run_build_input(hy_scene_run *r, hy_error *err);
+/* HY_DATA_* of series name's data; -1 when it has none. */
+int hy_scene_series_data(const hy_scene *s, const char *name, int *data);
+/* The series data names, indexed by HY_DATA_*. */
+const char *hy_scene_data_name(int data);
+
+/* r->series from the scene's [series] sections (name, data, gamma, k). */
+int hy_scene_run_series_new(hy_scene_run *r, hy_error *err);
+/* se->x, se->y of n points (se->n = n); HY_ENOMEM naming the series. */
+int hy_run_series_alloc(hy_run_series *se, size_t n, hy_error *err);
+/* The time grid of [compute] points, cycles, tspan: [t0, t1] in *npts points,
+ * *per a period; HY_EINVAL at the key (tspan before 0, over 2e7 points). */
+int hy_scene_run_grid(const hy_scene_run *r, double *t0, double *t1, size_t *npts, size_t *per, long *cycles,
+                      hy_error *err);
+/* The ϱ intervals of r->loops' minor loops (major 0) or of the rest of the
+ * period (major 1), at most max; -1 when a loop is narrower than ϱ resolves. */
+int hy_scene_loop_intervals(const hy_scene_run *r, int major, double *a, double *b, size_t max);
+/* The refusal of that -1, at the input's key. */
+int hy_scene_too_narrow(const hy_scene_run *r, hy_error *err);
+/* HY_EINVAL at the series' data when it cannot be drawn in the figure's kind. */
+int hy_scene_check_series_kind(const hy_scene_run *r, const hy_run_series *se, hy_error *err);
+
+/* The Dahl/LuGre stages (scene_run.c) and the rate-independent ones
+ * (scene_rateind.c), for the model files' table entries. */
+int hy_scene_friction_load(hy_scene_run *r, hy_error *err);
+int hy_scene_friction_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err);
+int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err);
+int hy_scene_rateind_load(hy_scene_run *r, hy_error *err);
+int hy_scene_rateind_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err);
+int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err);
+
+/* Reads the model's keys (all numbers) into par at the given offsets, with the
+ * schema's defaults: keys[i] fills the double at offsets[i]. */
+void hy_scene_model_read_numbers(const hy_scene *s, const char *const *keys, const size_t *offsets, void *par);
+/* Re-raises a core message (err->msg) with status rc at the [model] key it
+ * names (the first mt->core_names[i] found in it is mt->params[i]), else at
+ * [model]; rc 0 returns 0. */
+int hy_scene_model_relocate(const hy_scene *s, const hy_scene_model *mt, int rc, hy_error *err);
+
+#endif

@@ -1,0 +1,277 @@
+/* test_models.c: the model table and the rate-independent models in scenes.
+ *  - the table and the schema agree: every [model] kind has one entry, every
+ *    key an entry reads is a schema row of [model], every quantity it draws a
+ *    value of series.quantity;
+ *  - Fig. 1 (Jiles-Atherton): the minor loop the scene finds equals the one
+ *    hy_jiles_minor_loop computes by its own route (driving the bimodal input
+ *    period after period, hy_jiles.c), and the major loop's coercive field and
+ *    remanence equal hy_jiles_major_loop's for a symmetric drive;
+ *  - Preisach: the loops close bit for bit (return-point memory), their areas
+ *    are the closed-form loop areas, and the transient equals hy_preisach_drive;
+ *  - every input kind drives both models; refusals name the key (file:line:col). */
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/tutil.h"
+#include "../tmpdir.h"
+#include "hy_jiles.h"
+#include "hy_preisach.h"
+#include "scene_model.h"
+
+static const char *JA = "[model]\nkind = jiles-atherton\n"
+                        "[input]\nkind = bimodal\numin1 = -1500\numin2 = -1100\numax1 = 500\numax2 = 1500\n"
+                        "[figure]\nkind = loop\n"
+                        "[series major]\ndata = major\n[series minor]\ndata = minor\n";
+static const char *PR = "[model]\nkind = preisach\npr_hc = 0.3\npr_width = 0.25\n"
+                        "[input]\nkind = bimodal\numin1 = -1\numin2 = -0.4\numax1 = 0.5\numax2 = 1\n"
+                        "[figure]\nkind = loop\n"
+                        "[series major]\ndata = major\n[series minor]\ndata = minor\n";
+
+/* Loads and computes text (+ overrides); 0 on success, else the status. */
+static int run_text(const char *name, const char *text, char **sets, size_t nsets, hy_scene_run *r, hy_error *err)
+{
+    int rc = hy_scene_run_load_text(r, name, text, strlen(text), sets, nsets, NULL, err);
+    if (rc)
+        return rc;
+    rc = hy_scene_run_compute(r, NULL, err);
+    if (rc)
+        hy_scene_run_free(r);
+    return rc;
+}
+
+static const hy_run_series *find(const hy_scene_run *r, const char *name)
+{
+    for (size_t i = 0; i < r->nseries; i++)
+        if (!strcmp(r->series[i].name, name))
+            return &r->series[i];
+    return NULL;
+}
+
+static void table_matches_schema(void)
+{
+    size_t nsec;
+    const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
+    const hy_scene_section_spec *model = &spec[hy_scene_schema_section("model")];
+    const hy_scene_section_spec *series = &spec[hy_scene_schema_section("series")];
+    int kind = hy_scene_schema_key(hy_scene_schema_section("model"), "kind");
+    int quantity = hy_scene_schema_key(hy_scene_schema_section("series"), "quantity");
+    const char *const *kinds = model->keys[kind].enums;
+    size_t nk = 0, nt = 0;
+    for (; kinds[nk]; nk++)
+        CHECK(hy_scene_model_find(kinds[nk]) != NULL, "model kind %s has no table entry", kinds[nk]);
+    for (; hy_scene_models[nt]; nt++) {
+        const hy_scene_model *mt = hy_scene_models[nt];
+        CHECK(mt->load && mt->estimate && mt->compute, "%s: a stage is missing", mt->name);
+        CHECK(!mt->ri || (mt->read && mt->ri_par_size), "%s: a rate-independent entry needs read", mt->name);
+        for (size_t i = 0; mt->params[i]; i++)
+            CHECK(hy_scene_schema_key(hy_scene_schema_section("model"), mt->params[i]) >= 0,
+                  "%s reads '%s', which is no [model] key of the schema", mt->name, mt->params[i]);
+        for (size_t i = 0; mt->quantities[i]; i++) {
+            int found = 0;
+            for (size_t j = 0; series->keys[quantity].enums[j]; j++)
+                found |= !strcmp(series->keys[quantity].enums[j], mt->quantities[i]);
+            CHECK(found, "%s draws quantity '%s', which series.quantity does not list", mt->name, mt->quantities[i]);
+        }
+    }
+    CHECK(nk == nt, "%zu schema kinds, %zu table entries", nk, nt);
+}
+
+/* The scene's loops against hy_jiles_minor_loop (periods driven by its own
+ * loop in hy_jiles.c, areas from its own path integral): both settle to
+ * 1e-11..1e-12 of the range, so they agree to about 1e-10 relative. */
+static void jiles_fig1(void)
+{
+    hy_scene_run r;
+    hy_error err;
+    if (run_text("ja.scene", JA, NULL, 0, &r, &err)) {
+        CHECK(0, "ja scene: %s", err.msg);
+        return;
+    }
+    CHECK(r.have_loops && r.loops.nminor == 1, "one minor loop (got %zu)", r.loops.nminor);
+    hy_jiles j;
+    hy_jiles_init(&j, 1.6e6, 1100, 400, 0.2, 1.6e-3, &err);
+    hy_minor_loop ref;
+    int rc = hy_jiles_minor_loop(&j, &r.input, &ref, &err);
+    CHECK(rc == 0, "hy_jiles_minor_loop: %s", err.msg);
+    if (!rc && r.loops.nminor == 1) {
+        const hy_loop *m = &r.loops.minor[0];
+        CHECK(m->u_start == 500 && m->u_turn == -1100, "minor loop from 500 to -1100 A/m (%g, %g)", m->u_start,
+              m->u_turn);
+        CHECK_CLOSE(m->y_start, ref.y_start, 1e-9, "minor loop B at its start (T)");
+        CHECK_CLOSE(m->y_close, ref.y_close, 1e-9, "minor loop B at its close (T)");
+        CHECK_CLOSE(m->area, ref.area, 1e-8 * ref.area, "minor loop area (J/m^3)");
+        CHECK_CLOSE(r.loops.area_period, ref.area_period, 1e-8 * ref.area_period, "energy per cycle (J/m^3)");
+        CHECK(m->y_close != m->y_start, "Jiles-Atherton has no exact return-point memory");
+        printf("jiles fig1: minor area %.10g J/m^3 (ref %.10g), per cycle %.10g\n", m->area, ref.area,
+               r.loops.area_period);
+    }
+    const hy_run_series *mi = find(&r, "minor");
+    CHECK(mi && mi->n == 2001 && isnan(mi->x[2000]), "minor series: one loop of 2000 points and a gap");
+    if (mi) /* first point: the loop's start (H, B) */
+        CHECK(mi->x[0] == 500 && fabs(mi->y[0] - r.loops.minor[0].y_start) < 1e-15, "minor series starts at the loop's start");
+    hy_scene_run_free(&r);
+
+    /* a symmetric sine drive of +-10 kA/m: coercive field and remanence of the
+       drawn major loop (linear interpolation between samples 5 A/m apart)
+       against hy_jiles_major_loop's root finding (Hc = 314.03 A/m, Br = 0.62388 T) */
+    char *sets[] = {"input.kind=sine", "input.amp=10000", "compute.points=8000"};
+    if (run_text("ja_sine.scene", JA, sets, 3, &r, &err)) {
+        CHECK(0, "ja sine: %s", err.msg);
+        return;
+    }
+    hy_jiles_loop L;
+    CHECK(hy_jiles_major_loop(&j, 1e4, &L, &err) == 0, "major loop: %s", err.msg);
+    const hy_run_series *ma = find(&r, "major");
+    double hc = NAN, br = NAN;
+    for (size_t i = 0; ma && i + 1 < ma->n; i++) {
+        double x0 = ma->x[i], x1 = ma->x[i + 1], y0 = ma->y[i], y1 = ma->y[i + 1];
+        if (!(x1 < x0)) /* the descending branch only */
+            continue;
+        if (y0 > 0 && y1 <= 0)
+            hc = x0 + (x1 - x0) * y0 / (y0 - y1);
+        if (x0 > 0 && x1 <= 0)
+            br = y0 + (y1 - y0) * x0 / (x0 - x1);
+    }
+    CHECK_CLOSE(-hc, L.hc, 0.05, "coercive field (A/m) of the drawn loop");
+    CHECK_CLOSE(br, L.br, 1e-4, "remanence (T) of the drawn loop");
+    printf("jiles major loop: Hc %.4f A/m (core %.4f), Br %.6f T (core %.6f)\n", -hc, L.hc, br, L.br);
+    hy_scene_run_free(&r);
+}
+
+static void preisach_loops(void)
+{
+    hy_scene_run r;
+    hy_error err;
+    if (run_text("pr.scene", PR, NULL, 0, &r, &err)) {
+        CHECK(0, "preisach scene: %s", err.msg);
+        return;
+    }
+    hy_preisach p;
+    hy_preisach_symmetric(&p, HY_PREISACH_GAUSSIAN, 0.3, 0.25, 1, &err);
+    double amin, amaj;
+    hy_preisach_loop_area(&p, -0.4, 0.5, &amin, &err);
+    hy_preisach_loop_area(&p, -1, 1, &amaj, &err);
+    CHECK(r.loops.nminor == 1, "one minor loop");
+    if (r.loops.nminor == 1) {
+        const hy_loop *m = &r.loops.minor[0];
+        CHECK(m->y_close == m->y_start, "return-point memory: %.17g vs %.17g", m->y_close, m->y_start);
+        CHECK(m->area == amin, "minor area is the closed form: %.17g vs %.17g", m->area, amin);
+        CHECK(m->own_area == amin, "nothing nested in the minor loop");
+        CHECK(r.loops.major.own_area == amaj, "major loop's own area: %.17g vs %.17g", r.loops.major.own_area, amaj);
+        CHECK(r.loops.area_period == amaj + amin, "energy per cycle = both areas");
+    }
+    hy_scene_run_free(&r);
+
+    /* the transient over two periods: bit for bit hy_preisach_drive at the same times */
+    const char *tr = "[model]\nkind = preisach\n[input]\nkind = bimodal\numin1 = -1\numin2 = -0.4\numax1 = 0.5\n"
+                     "umax2 = 1\n[compute]\ncycles = 2\npoints = 50\n[series y]\ndata = transient\n";
+    if (run_text("pr2.scene", tr, NULL, 0, &r, &err)) {
+        CHECK(0, "preisach transient: %s", err.msg);
+        return;
+    }
+    hy_preisach_symmetric(&p, HY_PREISACH_GAUSSIAN, 0.5, 0.2, 1, &err);
+    const hy_run_series *y = find(&r, "y");
+    double *ref = y ? malloc(y->n * sizeof *ref) : NULL;
+    if (y && ref && !hy_preisach_drive(&p, &r.input, y->x, y->n, ref, &err)) {
+        size_t bad = 0;
+        for (size_t i = 0; i < y->n; i++)
+            bad += y->y[i] != ref[i];
+        CHECK(bad == 0, "preisach transient: %zu of %zu samples differ from hy_preisach_drive", bad, y->n);
+    } else
+        CHECK(0, "preisach transient reference");
+    free(ref);
+    hy_scene_run_free(&r);
+}
+
+/* Every input hystviz has drives both models; outputs finite, loops found. */
+static void every_input(void)
+{
+    char path[4200];
+    FILE *f = fopen(test_tmppath(path, sizeof path, "u.txt"), "w");
+    CHECK(f != NULL, "cannot write %s", path);
+    if (!f)
+        return;
+    fputs("0 0\n1 1\n2 -0.3\n3 0.4\n4 -1\n5 0\n", f);
+    fclose(f);
+    char scene[4200];
+    test_tmppath(scene, sizeof scene, "m.scene");
+    const char *inputs[] = {"kind = bimodal\numin1 = -1\numin2 = -0.2\numax1 = 0.4\numax2 = 1\n",
+                            "kind = multimodal\nextrema = -1, 0.6, -0.3, 1, -0.5, 0.2\n",
+                            "kind = sine\namp = 1.2\nperiod = 2\n", "kind = triangle\nmin = -1\nmax = 1\n",
+                            "kind = pwl\npoints = 0, 0, 1, 1, 2, -1, 2.5, 0.3, 3, -0.2, 4, 0\n",
+                            "kind = file\nfile = \"u.txt\"\n"};
+    const char *models[] = {"kind = jiles-atherton\nja_k = 0.4\nja_a = 1.1\nja_ms = 1.6e3\n",
+                            "kind = preisach\n"};
+    for (size_t m = 0; m < 2; m++)
+        for (size_t i = 0; i < sizeof inputs / sizeof *inputs; i++) {
+            char text[1024];
+            snprintf(text, sizeof text,
+                     "[model]\n%s[input]\n%s[compute]\npoints = 200\ncycles = 2\n[figure]\nkind = loop\n"
+                     "[series a]\ndata = major\n[series b]\ndata = ysteady\n[series c]\ndata = transient\n"
+                     "[series d]\ndata = yk\nk = 1\n[series e]\ndata = ystar\n",
+                     models[m], inputs[i]);
+            hy_scene_run r;
+            hy_error err;
+            if (run_text(scene, text, NULL, 0, &r, &err)) {
+                CHECK(0, "model %zu input %zu: %s", m, i, err.msg);
+                continue;
+            }
+            size_t nonfinite = 0, total = 0;
+            for (size_t s = 0; s < r.nseries; s++)
+                for (size_t k = 0; k < r.series[s].n; k++, total++)
+                    nonfinite += !isnan(r.series[s].x[k]) && (!isfinite(r.series[s].y[k]) || !isfinite(r.series[s].x[k]));
+            CHECK(nonfinite == 0 && total > 800, "model %zu input %zu: %zu of %zu points not finite", m, i, nonfinite,
+                  total);
+            CHECK(r.have_loops && isfinite(r.loops.area_period) && r.loops.area_period > 0,
+                  "model %zu input %zu: energy per cycle %g", m, i, r.loops.area_period);
+            hy_scene_run_free(&r);
+        }
+}
+
+static void refused(const char *text, int at_load, const char *want)
+{
+    hy_scene_run r;
+    hy_error err = {0};
+    int rc = hy_scene_run_load_text(&r, "bad.scene", text, strlen(text), NULL, 0, NULL, &err);
+    int loaded = rc == 0;
+    if (!rc) {
+        rc = hy_scene_run_compute(&r, NULL, &err);
+        hy_scene_run_free(&r);
+    }
+    CHECK(rc != 0 && (!at_load || !loaded) && strstr(err.msg, want), "expected%s '%s', got %d: %s",
+          at_load ? " at load" : "", want, rc, rc ? err.msg : "");
+}
+
+static void refusals(void)
+{
+    refused("[model]\nkind = jiles-atherton\nja_c = 1\n[series a]\ndata = input\n", 1,
+            "bad.scene:3:8: 'ja_c' in [model] must be in [0, 1)");
+    refused("[model]\nkind = jiles-atherton\nja_alpha = 0.01\n[series a]\ndata = input\n", 1,
+            "bad.scene:3:1: ja_alpha: Jiles-Atherton alpha = 0.01 is too large");
+    refused("[model]\nkind = jiles-atherton\nja_m0 = 2e6\n[series a]\ndata = input\n", 1,
+            "bad.scene:3:1: ja_m0: Jiles-Atherton initial magnetisation m0");
+    refused("[model]\nkind = jiles-atherton\nsigma0 = 6\n[series a]\ndata = input\n", 1,
+            "bad.scene:3:1: 'sigma0' is not a parameter of a jiles-atherton model");
+    refused("[model]\nkind = preisach\n[figure]\nkind = g\n[series a]\ndata = g\n", 1,
+            "data = g is the friction function g(v) of Dahl and LuGre; a preisach model has none");
+    refused("[model]\nkind = lugre\n[series a]\ndata = ysteady\nquantity = magnetisation\n", 1,
+            "bad.scene:5:1: a lugre model draws quantity output, not magnetisation");
+    refused("[model]\nkind = preisach\npr_hc = 1e6\npr_width = 1e-7\n[series a]\ndata = input\n", 1,
+            "bad.scene:4:1: pr_width: Preisach alpha (up-switching field) width sigma = 1e-07 is below 1e-12");
+    refused("[model]\nkind = preisach\n[input]\nkind = multisine\n[series a]\ndata = input\n", 1,
+            "input kind multisine is a force for [model] kind = boucwen, not for preisach");
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    table_matches_schema();
+    jiles_fig1();
+    preisach_loops();
+    every_input();
+    refusals();
+    return tu_finish("models");
+}
