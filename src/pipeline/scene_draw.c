@@ -164,6 +164,9 @@ static void figure_size(const hy_scene *s, hy_figure *f)
     long dpi = 300;
     hy_scene_get_length_pair_pt(s, "figure", NULL, "size", size);
     hy_scene_get_int(s, "figure", NULL, "dpi", &dpi);
+    int full = 0;
+    hy_scene_get_bool(s, "figure", NULL, "full_resolution", &full);
+    f->full_resolution = full;
     f->width = size[0];
     f->height = size[1];
     f->dpi = (double)dpi;

@@ -7,6 +7,7 @@
 #include "hy_markup.h"
 #include "hy_plot.h"
 #include "hy_plot_private.h"
+#include "hy_simplify.h"
 #include "hy_ticks.h"
 
 const hy_rgb hy_palette[HY_PALETTE_SIZE] = {
@@ -59,6 +60,20 @@ typedef struct text_place {
     double x, y, box[4], ax, ay;
 } text_place;
 
+/* A series as drawn: device points (NaN breaks the line), simplified. */
+typedef struct curve {
+    double *x, *y;
+    size_t n, cap;
+    int built, oom;
+} curve;
+
+/* The drawn curves of a panel's series for the frame and limits in key. */
+typedef struct curves {
+    double key[8];
+    int valid;
+    curve *c;                            /* per series; x NULL: drawn from the data */
+} curves;
+
 /* One panel being laid out: its frame in points and its axis mappings. */
 typedef struct panel {
     const hy_axes *ax;
@@ -79,6 +94,10 @@ typedef struct panel {
     double inset[4];                     /* the inset's cell (frame and tick labels), x y w h */
     struct panel *inset_panel;
     struct place_grid *grid;             /* while annotations are placed, else NULL */
+    double tol;                          /* curve tolerance in points; 0: every point drawn */
+    double dense;                        /* lines with more points per point of length are simplified */
+    double vtol;                         /* vector output: strokes simplified to this (points), else 0 */
+    curves *cache;                       /* the drawn curves (for the current frame) */
 } panel;
 
 static double tr(double v, int log_scale) { return log_scale ? log10(v) : v; }
@@ -318,17 +337,62 @@ static void draw_marker(const hy_canvas *cv, int marker, double x, double y, dou
     cv->ops->marker(cv->ctx, shape, x, y, size, &pen, filled ? &c : NULL);
 }
 
-/* Device coordinates of a dense solid series, thinned: consecutive points
- * falling in one 0.25 pt column are replaced by the first, lowest, highest and
- * last of them in their original order (M4 aggregation), which draws the same
- * pixels.  NaN breaks survive.  Returns the count, or 0 (caller draws all). */
-static size_t thin_series(const panel *p, const hy_series *s, double *dx, double *dy)
+/* ---- curves at the output's resolution (issue 23 item 2) -------------------
+ * What a series' line draws is computed once per frame and limits: its
+ * points mapped to the device; a dense solid line (more than 20 points per
+ * point of width) first thinned per 0.25 pt column (M4 aggregation: the
+ * first, lowest, highest and last point of each column in their order);
+ * then simplified to p->tol (hy_simplify.h: every point within tol of the
+ * polyline drawn, turning points and extremes kept exactly).  Drawing, label
+ * placement and the legend's free spot all look at these points.  With
+ * p->tol 0 (the figure's full_resolution) every point is drawn as given. */
+
+typedef struct feed {
+    hy_simplify simp;
+    int simplify;            /* 0: every point fed is emitted */
+    size_t *keep, nkeep, k;
+} feed;
+
+static void curve_emit(void *ctx, double x, double y)
 {
-    size_t m = 0, i = 0;
+    curve *c = ctx;
+    if (c->oom)
+        return;
+    if (c->n == c->cap) {
+        size_t cap = c->cap ? 2 * c->cap : 256;
+        double *nx = realloc(c->x, cap * sizeof *nx);
+        if (nx)
+            c->x = nx;
+        double *ny = nx ? realloc(c->y, cap * sizeof *ny) : NULL;
+        if (!ny) {
+            c->oom = 1;
+            return;
+        }
+        c->y = ny, c->cap = cap;
+    }
+    c->x[c->n] = x, c->y[c->n] = y, c->n++;
+}
+
+static void feed_point(feed *f, double x, double y, size_t i)
+{
+    if (!f->simplify) {
+        f->simp.emit(f->simp.ctx, x, y);
+        return;
+    }
+    while (f->k < f->nkeep && f->keep[f->k] < i)
+        f->k++;
+    hy_simplify_point(&f->simp, x, y, f->k < f->nkeep && f->keep[f->k] == i);
+}
+
+/* Feeds a dense solid series thinned: consecutive points falling in one
+ * 0.25 pt column are replaced by the first, lowest, highest and last of them
+ * in their original order (M4 aggregation).  NaN breaks survive. */
+static void thin_series(const panel *p, const hy_series *s, feed *f)
+{
+    size_t i = 0;
     while (i < s->n) {
         if (!usable(s->x[i], p->xlog) || !usable(s->y[i], p->ylog)) {
-            dx[m] = dy[m] = NAN;
-            m++, i++;
+            feed_point(f, NAN, NAN, i++);
             continue;
         }
         double x0 = map_x(p, s->x[i]);
@@ -347,71 +411,165 @@ static size_t thin_series(const panel *p, const hy_series *s, double *dx, double
             last = i;
         }
         size_t keep[4] = {first, lo < hi ? lo : hi, lo < hi ? hi : lo, last};
-        for (int k = 0; k < 4; k++) {
-            if (k && keep[k] == keep[k - 1])
-                continue;
-            dx[m] = map_x(p, s->x[keep[k]]);
-            dy[m] = map_y(p, s->y[keep[k]]);
-            m++;
-        }
+        for (int k = 0; k < 4; k++)
+            if (!k || keep[k] != keep[k - 1])
+                feed_point(f, map_x(p, s->x[keep[k]]), map_y(p, s->y[keep[k]]), keep[k]);
     }
-    return m;
 }
 
-static void draw_series(const panel *p, const hy_series *s)
+static void curve_build(const panel *p, const hy_series *s, curve *c)
+{
+    hy_turns t;
+    hy_turns_begin(&t, p->tol);
+    double len = 0.0, px = NAN, py = NAN;
+    size_t used = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        int ok = usable(s->x[i], p->xlog) && usable(s->y[i], p->ylog);
+        double x = ok ? map_x(p, s->x[i]) : NAN, y = ok ? map_y(p, s->y[i]) : NAN;
+        hy_turns_point(&t, x, y, i);
+        if (ok && !isnan(px))
+            len += sqrt((x - px) * (x - px) + (y - py) * (y - py));
+        px = x, py = y, used += ok;
+    }
+    feed f = {.simplify = (double)used > p->dense * len};
+    if (hy_turns_end(&t, &f.keep, &f.nkeep)) {
+        c->oom = 1;
+        return;
+    }
+    hy_simplify_begin(&f.simp, p->tol, curve_emit, c);
+    if (s->style == HY_LINE_SOLID && (double)s->n > 20.0 * p->w)
+        thin_series(p, s, &f);
+    else
+        for (size_t i = 0; i < s->n; i++) {
+            int ok = usable(s->x[i], p->xlog) && usable(s->y[i], p->ylog);
+            feed_point(&f, ok ? map_x(p, s->x[i]) : NAN, ok ? map_y(p, s->y[i]) : NAN, i);
+        }
+    if (f.simplify)
+        hy_simplify_end(&f.simp);
+    free(f.keep);
+}
+
+static void curves_free(curves *cc, size_t n)
+{
+    for (size_t i = 0; cc->c && i < n; i++)
+        free(cc->c[i].x), free(cc->c[i].y);
+    free(cc->c);
+    cc->c = NULL;
+    cc->valid = 0;
+}
+
+/* The drawn curve of series s, or NULL where its line is drawn from the data
+ * (no line, markers at every point, every point asked for, out of memory). */
+static const curve *panel_curve(const panel *p, size_t s)
+{
+    curves *cc = p->cache;
+    const hy_series *se = &p->ax->series[s];
+    if (!cc || !(p->tol > 0.0) || se->style == HY_LINE_NONE || !se->x || !se->y || se->marker != HY_MARKER_NONE)
+        return NULL;
+    double key[8] = {p->x0, p->y0, p->w, p->h, p->xlo, p->xhi, p->ylo, p->yhi};
+    if (!cc->valid || memcmp(key, cc->key, sizeof key)) {
+        curves_free(cc, p->ax->nseries);
+        cc->c = calloc(p->ax->nseries, sizeof *cc->c);
+        if (!cc->c)
+            return NULL;
+        memcpy(cc->key, key, sizeof key);
+        cc->valid = 1;
+    }
+    curve *c = &cc->c[s];
+    if (!c->built)
+        curve_build(p, se, c);
+    c->built = 1;
+    return c->oom ? NULL : c;
+}
+
+/* How many points series s has as drawn (device points, see series_pt). */
+static size_t series_npts(const panel *p, size_t s, const curve *c)
+{
+    const hy_series *se = &p->ax->series[s];
+    if (se->style == HY_LINE_NONE && se->marker == HY_MARKER_NONE)
+        return 0; /* draws nothing (a series drawn as one mark) */
+    return c ? c->n : se->x && se->y ? se->n : 0;
+}
+
+/* Point i of series s as drawn, in device points; 0 where the line breaks. */
+static int series_pt(const panel *p, const hy_series *se, const curve *c, size_t i, double *x, double *y)
+{
+    if (c) {
+        *x = c->x[i], *y = c->y[i];
+        return !isnan(*x);
+    }
+    if (!usable(se->x[i], p->xlog) || !usable(se->y[i], p->ylog))
+        return 0;
+    *x = map_x(p, se->x[i]), *y = map_y(p, se->y[i]);
+    return 1;
+}
+
+/* The stroke of one series being built: clipped segments to the canvas. */
+typedef struct stroke {
+    const hy_canvas *cv;
+    double xa, ya, xb, yb;
+    int have_prev, open;
+    double px, py, ex, ey;
+} stroke;
+
+static void stroke_point(void *ctx, double x, double y)
+{
+    stroke *k = ctx;
+    if (isnan(x)) {
+        k->have_prev = 0;
+        return;
+    }
+    if (k->have_prev) {
+        double x1 = k->px, y1 = k->py, x2 = x, y2 = y;
+        if (clip_segment(&x1, &y1, &x2, &y2, k->xa, k->ya, k->xb, k->yb)) {
+            if (!k->open || x1 != k->ex || y1 != k->ey)
+                k->cv->ops->move_to(k->cv->ctx, x1, y1);
+            k->cv->ops->line_to(k->cv->ctx, x2, y2);
+            k->open = 1;
+            k->ex = x2, k->ey = y2;
+        }
+    }
+    k->px = x, k->py = y, k->have_prev = 1;
+}
+
+/* A drawn curve simplified once more to p->vtol for a vector output: its
+ * turning points and extremes found first, then the stream to the stroke.
+ * 0, or -1 out of memory (nothing drawn yet). */
+static int stroke_vector(const panel *p, const curve *c, stroke *k)
+{
+    hy_turns t;
+    hy_turns_begin(&t, p->vtol);
+    for (size_t i = 0; i < c->n; i++)
+        hy_turns_point(&t, c->x[i], c->y[i], i);
+    feed f = {.simplify = 1};
+    if (hy_turns_end(&t, &f.keep, &f.nkeep))
+        return -1;
+    hy_simplify_begin(&f.simp, p->vtol, stroke_point, k);
+    for (size_t i = 0; i < c->n; i++)
+        feed_point(&f, c->x[i], c->y[i], i);
+    hy_simplify_end(&f.simp);
+    free(f.keep);
+    return 0;
+}
+
+static void draw_series(const panel *p, size_t si)
 {
     const hy_canvas *cv = p->dv;
+    const hy_series *s = &p->ax->series[si];
     double dash[4], lw = s->width > 0 ? s->width : 1.0;
     hy_pen pen = series_pen(s, dash);
-    double xa = p->x0 - 2 * lw, xb = p->x0 + p->w + 2 * lw;
-    double ya = p->y0 - 2 * lw, yb = p->y0 + p->h + 2 * lw;
-    /* dense solid lines (more than 20 points per point of width) are thinned */
-    double *dx = NULL, *dy = NULL;
-    size_t nd = 0;
-    if (s->style == HY_LINE_SOLID && s->x && s->y && (double)s->n > 20.0 * p->w) {
-        dx = malloc(s->n * sizeof *dx);
-        dy = malloc(s->n * sizeof *dy);
-        if (dx && dy)
-            nd = thin_series(p, s, dx, dy);
-    }
-    if (s->style != HY_LINE_NONE && s->x && s->y) {
-        int have_prev = 0, open = 0;
-        double px = 0, py = 0, ex = NAN, ey = NAN;
-        size_t count = nd ? nd : s->n;
-        cv->ops->begin_path(cv->ctx);
-        for (size_t i = 0; i < count; i++) {
+    if (s->style == HY_LINE_NONE || !s->x || !s->y)
+        return;
+    stroke k = {cv, p->x0 - 2 * lw, p->y0 - 2 * lw, p->x0 + p->w + 2 * lw, p->y0 + p->h + 2 * lw, 0, 0, 0, 0, NAN, NAN};
+    const curve *c = panel_curve(p, si);
+    cv->ops->begin_path(cv->ctx);
+    if (!c || !(p->vtol > 0.0) || stroke_vector(p, c, &k))
+        for (size_t i = 0, n = series_npts(p, si, c); i < n; i++) {
             double x, y;
-            if (nd) {
-                x = dx[i];
-                y = dy[i];
-                if (isnan(x)) {
-                    have_prev = 0;
-                    continue;
-                }
-            } else {
-                if (!usable(s->x[i], p->xlog) || !usable(s->y[i], p->ylog)) {
-                    have_prev = 0;
-                    continue;
-                }
-                x = map_x(p, s->x[i]);
-                y = map_y(p, s->y[i]);
-            }
-            if (have_prev) {
-                double x1 = px, y1 = py, x2 = x, y2 = y;
-                if (clip_segment(&x1, &y1, &x2, &y2, xa, ya, xb, yb)) {
-                    if (!open || x1 != ex || y1 != ey)
-                        cv->ops->move_to(cv->ctx, x1, y1);
-                    cv->ops->line_to(cv->ctx, x2, y2);
-                    open = 1;
-                    ex = x2, ey = y2;
-                }
-            }
-            px = x, py = y, have_prev = 1;
+            int ok = series_pt(p, s, c, i, &x, &y);
+            stroke_point(&k, ok ? x : NAN, ok ? y : NAN);
         }
-        cv->ops->stroke(cv->ctx, &pen);
-    }
-    free(dx);
-    free(dy);
+    cv->ops->stroke(cv->ctx, &pen);
 }
 
 /* The markers of a series (drawn after every line, so no line covers them). */
@@ -604,13 +762,13 @@ static int leader_crosses(const panel *p, double x1, double y1, double x2, doubl
         return hit;
     for (size_t s = 0; s < p->ax->nseries; s++) {
         const hy_series *se = &p->ax->series[s];
-        double px = NAN, py = NAN;
-        for (size_t i = 0; se->style != HY_LINE_NONE && se->x && se->y && i < se->n; i++) {
-            if (!usable(se->x[i], p->xlog) || !usable(se->y[i], p->ylog)) {
+        const curve *c = panel_curve(p, s);
+        double px = NAN, py = NAN, x, y;
+        for (size_t i = 0, n = series_npts(p, s, c); se->style != HY_LINE_NONE && i < n; i++) {
+            if (!series_pt(p, se, c, i, &x, &y)) {
                 px = NAN;
                 continue;
             }
-            double x = map_x(p, se->x[i]), y = map_y(p, se->y[i]);
             if (isfinite(px) && segs_cross(x1, y1, x2, y2, px, py, x, y))
                 return 1;
             px = x, py = y;
@@ -733,8 +891,7 @@ static place_grid *pg_build(const panel *p)
     double hw = 0, ms = 0;
     for (size_t s = 0; s < ax->nseries; s++) {
         const hy_series *se = &ax->series[s];
-        if (se->x && se->y)
-            g->npts += se->n;
+        g->npts += series_npts(p, s, panel_curve(p, s));
         hw = fmax(hw, 0.5 * (se->width > 0 ? se->width : 1.0) + 1.0);
         if (se->marker != HY_MARKER_NONE)
             ms = fmax(ms, 0.5 * (se->marker_size > 0 ? se->marker_size : 4.0));
@@ -760,10 +917,12 @@ static place_grid *pg_build(const panel *p)
     size_t k = 0;
     for (size_t s = 0; s < ax->nseries; s++) {
         const hy_series *se = &ax->series[s];
-        for (size_t i = 0; se->x && se->y && i < se->n; i++, k++) {
-            int ok = usable(se->x[i], p->xlog) && usable(se->y[i], p->ylog);
-            g->px[k] = ok ? map_x(p, se->x[i]) : NAN;
-            g->py[k] = ok ? map_y(p, se->y[i]) : NAN;
+        const curve *c = panel_curve(p, s);
+        for (size_t i = 0, n = series_npts(p, s, c); i < n; i++, k++) {
+            double x, y;
+            int ok = series_pt(p, se, c, i, &x, &y);
+            g->px[k] = ok ? x : NAN;
+            g->py[k] = ok ? y : NAN;
             g->ser[k] = (int)s;
         }
     }
@@ -1070,13 +1229,13 @@ static double overlap_bounded(const panel *p, double rx, double ry, double rw, d
         const hy_series *se = &ax->series[s];
         double hw = 0.5 * (se->width > 0 ? se->width : 1.0) + 1.0;
         double ms = se->marker != HY_MARKER_NONE ? 0.5 * (se->marker_size > 0 ? se->marker_size : 4.0) : 0;
-        double px = NAN, py = NAN;
-        for (size_t i = 0; se->x && se->y && i < se->n; i++) {
-            if (!usable(se->x[i], p->xlog) || !usable(se->y[i], p->ylog)) {
+        const curve *c = panel_curve(p, s);
+        double px = NAN, py = NAN, x, y;
+        for (size_t i = 0, n = series_npts(p, s, c); i < n; i++) {
+            if (!series_pt(p, se, c, i, &x, &y)) {
                 px = NAN;
                 continue;
             }
-            double x = map_x(p, se->x[i]), y = map_y(p, se->y[i]);
             if (se->style != HY_LINE_NONE && isfinite(px))
                 sum += seg_in_rect(px, py, x, y, rx - hw, ry - hw, rw + 2 * hw, rh + 2 * hw);
             if (ms > 0 && x >= rx - ms && x <= rx + rw + ms && y >= ry - ms && y <= ry + rh + ms)
@@ -1261,7 +1420,10 @@ static int place_inset(panel *p, hy_error *err)
         !isfinite(ax->zoom_y.hi))
         return HY_OK;
     panel *q = p->inset_panel;
+    curves *qc = q->cache;
+    double qtol = q->tol, qdense = q->dense, qvtol = q->vtol;
     memset(q, 0, sizeof *q);
+    q->cache = qc, q->tol = qtol, q->dense = qdense, q->vtol = qvtol;
     p->inset_ax = *ax;
     hy_axes *qa = &p->inset_ax;
     qa->xlabel = qa->ylabel = qa->title = NULL;
@@ -1333,7 +1495,7 @@ static void draw_inset(const panel *p)
     cv->ops->unclip(cv->ctx);
     cv->ops->clip(cv->ctx, q->x0, q->y0, q->w, q->h);
     for (size_t s = 0; s < q->ax->nseries; s++)
-        draw_series(q, &q->ax->series[s]);
+        draw_series(q, s);
     for (size_t s = 0; s < q->ax->nseries; s++)
         draw_series_markers(q, &q->ax->series[s]);
     cv->ops->unclip(cv->ctx);
@@ -1347,7 +1509,7 @@ static void draw_panel_data(const panel *p)
     draw_band_grid(p);
     dv->ops->clip(dv->ctx, p->x0, p->y0, p->w, p->h);
     for (size_t s = 0; s < p->ax->nseries; s++)
-        draw_series(p, &p->ax->series[s]);
+        draw_series(p, s);
     for (size_t s = 0; s < p->ax->nseries; s++)
         draw_series_markers(p, &p->ax->series[s]);
     dv->ops->unclip(dv->ctx);
@@ -1438,21 +1600,52 @@ static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
 }
 
 static int draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *cv, hy_panel_map *maps,
-                       size_t nmaps, hy_error *err);
+                       size_t nmaps, int vector, hy_error *err);
+
+/* Every panel and its inset panel get their curve cache and tolerances
+ * (hy_plot.h): HY_CURVE_TOL_PX pixels at the figure's dpi, in points, for
+ * lines denser than HY_CURVE_DENSE_PX points per pixel of their length, and
+ * for every stroke of a vector output. */
+static void panels_init(panel *ps, curves *cc, const hy_figure *f, int rows, int cols, int vector)
+{
+    double W, H, dpi;
+    hy__figure_size(f, &W, &H, &dpi);
+    for (int i = 0; i < 2 * rows * cols; i++) {
+        ps[i].cache = &cc[i];
+        ps[i].tol = f->full_resolution ? 0.0 : HY_CURVE_TOL_PX * 72.0 / dpi;
+        ps[i].dense = HY_CURVE_DENSE_PX * dpi / 72.0;
+        ps[i].vtol = vector ? ps[i].tol : 0.0;
+    }
+}
+
+/* Frees the panels and their curves (ps may be NULL). */
+static void panels_free(panel *ps, curves *cc, int n)
+{
+    for (int i = 0; ps && cc && i < 2 * n; i++)
+        curves_free(&cc[i], i < n ? ps[i].ax->nseries : ps[i - n].ax->nseries);
+    free(cc);
+    free(ps);
+}
 
 int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *cv,
                           hy_error *err)
 {
-    return draw_layers(f, data, cv, NULL, 0, err);
+    return draw_layers(f, data, cv, NULL, 0, 0, err);
 }
 
 int hy_figure_draw_mapped(const hy_figure *f, const hy_canvas *cv, hy_panel_map *maps, size_t nmaps, hy_error *err)
 {
-    return draw_layers(f, cv, cv, maps, nmaps, err);
+    return draw_layers(f, cv, cv, maps, nmaps, 0, err);
+}
+
+int hy__figure_draw_out(const hy_figure *f, const hy_canvas *cv, int vector, hy_panel_map *maps, size_t nmaps,
+                        hy_error *err)
+{
+    return draw_layers(f, cv, cv, maps, nmaps, vector, err);
 }
 
 static int draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canvas *cv, hy_panel_map *maps,
-                       size_t nmaps, hy_error *err)
+                       size_t nmaps, int vector, hy_error *err)
 {
     double W, H, dpi;
     hy__figure_size(f, &W, &H, &dpi);
@@ -1468,11 +1661,14 @@ static int draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canva
         ntexts += f->axes[i].ntexts;
     panel *ps = calloc((size_t)(2 * rows * cols), sizeof *ps);   /* then one inset panel each */
     text_place *tp = calloc(ntexts + 1, sizeof *tp);
-    if (!ps || !tp) {
+    curves *cc = calloc((size_t)(2 * rows * cols), sizeof *cc);
+    if (!ps || !tp || !cc) {
         free(ps);
         free(tp);
+        free(cc);
         return hy_error_set(err, HY_ENOMEM, "out of memory laying out %d panels", rows * cols);
     }
+    panels_init(ps, cc, f, rows, cols, vector);
     for (size_t i = 0, k = 0; i < (size_t)(rows * cols); k += f->axes[i].ntexts, i++) {
         panel *p = &ps[i];
         p->tplace = tp + k;
@@ -1498,14 +1694,14 @@ static int draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canva
             maps[i] = (hy_panel_map){p->x0, p->y0, p->w, p->h, p->xlo, p->xhi, p->ylo, p->yhi, p->xlog, p->ylog};
         }
     }
+    panels_free(ps, cc, rows * cols);
     free(tp);
-    free(ps);
     return st;
 }
 
 int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err)
 {
-    return draw_layers(f, cv, cv, NULL, 0, err);
+    return draw_layers(f, cv, cv, NULL, 0, 0, err);
 }
 
 int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err)
@@ -1521,9 +1717,12 @@ int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double r
         ntexts += f->axes[i].ntexts;
     panel *ps = calloc((size_t)(2 * rows * cols), sizeof *ps);
     text_place *tp = calloc(ntexts + 1, sizeof *tp);
+    curves *cc = calloc((size_t)(2 * rows * cols), sizeof *cc);
     int st = HY_OK;
-    if (!ps || !tp)
+    if (!ps || !tp || !cc)
         st = hy_error_set(err, HY_ENOMEM, "out of memory laying out %d panels", rows * cols);
+    else
+        panels_init(ps, cc, f, rows, cols, 0);
     for (size_t i = 0, k = 0; !st && i < (size_t)(rows * cols); k += f->axes[i].ntexts, i++) {
         panel *p = &ps[i];
         p->tplace = tp + k;
@@ -1537,7 +1736,7 @@ int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double r
         st = layout_grid(ps, rows, cols, err);
     if (!st)
         rect[0] = ps[index].x0, rect[1] = ps[index].y0, rect[2] = ps[index].w, rect[3] = ps[index].h;
+    panels_free(ps, cc, rows * cols);
     free(tp);
-    free(ps);
     return st;
 }

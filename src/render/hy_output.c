@@ -89,15 +89,15 @@ static int svg_flush_renumbered(sink *s)
     return 0;
 }
 
-static int draw_on(cairo_surface_t *surf, const hy_figure *f, double scale, hy_panel_map *maps, size_t nmaps,
-                   hy_error *err)
+static int draw_on(cairo_surface_t *surf, const hy_figure *f, double scale, int vector, hy_panel_map *maps,
+                   size_t nmaps, hy_error *err)
 {
     cairo_t *cr = cairo_create(surf);
     hy_cairo_canvas cc;
     hy_canvas cv = hy_canvas_cairo(&cc, cr, hy__figure_font(f));
     if (scale != 1.0)
         cairo_scale(cr, scale, scale);
-    int st = hy_figure_draw_mapped(f, &cv, maps, nmaps, err);
+    int st = hy__figure_draw_out(f, &cv, vector, maps, nmaps, err);
     cairo_status_t cs = cairo_status(cr);
     cairo_destroy(cr);
     if (!st && cs != CAIRO_STATUS_SUCCESS)
@@ -139,7 +139,7 @@ static int write_vector(const hy_figure *f, int format, sink *sk, hy_panel_map *
         pdf_date(date, sizeof date);
         cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATE_DATE, date);
     }
-    int st = draw_on(surf, f, 1.0, maps, nmaps, err);
+    int st = draw_on(surf, f, 1.0, 1, maps, nmaps, err);
     cairo_surface_finish(surf);
     cairo_status_t cs = cairo_surface_status(surf);
     cairo_surface_destroy(surf);
@@ -233,7 +233,7 @@ static int write_png(const hy_figure *f, sink *sk, hy_panel_map *maps, size_t nm
     cairo_set_source_rgb(bg, 1.0, 1.0, 1.0);
     cairo_paint(bg);
     cairo_destroy(bg);
-    int st = draw_on(img, f, dpi / 72.0, maps, nmaps, err);
+    int st = draw_on(img, f, dpi / 72.0, 0, maps, nmaps, err);
     cairo_surface_flush(img);
     if (!st)
         st = png_encode(img, dpi, sk, err);

@@ -117,7 +117,20 @@ typedef struct hy_figure {
     double font_size;         /* points; 0 -> 9 */
     const hy_axes *axes;      /* nrows * ncols panels, row-major */
     int nrows, ncols;         /* 0 -> 1 */
+    int full_resolution;      /* draw every point of every line (see HY_CURVE_TOL_PX) */
 } hy_figure;
+
+/* Lines at the output's resolution (issue 23 item 2).  A line with more
+ * than HY_CURVE_DENSE_PX points per pixel of its length (pixels at the
+ * figure's dpi) is simplified so that every point stays within
+ * HY_CURVE_TOL_PX pixels of the polyline drawn; turning points, extremes and
+ * markers are kept exactly.  Layout and PNG use these lines (a line no denser
+ * than that is drawn point for point, so PNGs of such figures are unchanged);
+ * SVG and PDF strokes are simplified to HY_CURVE_TOL_PX whatever their
+ * density.  full_resolution keeps every point (an SVG meant to be zoomed or
+ * reused). */
+#define HY_CURVE_DENSE_PX 8.0
+#define HY_CURVE_TOL_PX 0.1
 
 /* Unit helpers: lengths to points, and points to pixels at a resolution. */
 double hy_cm(double cm);

@@ -12,4 +12,9 @@ void hy__figure_size(const hy_figure *f, double *width, double *height, double *
 /* The font family, default applied. */
 const char *hy__figure_font(const hy_figure *f);
 
+/* hy_figure_draw_mapped for an output: vector (SVG, PDF) simplifies every
+ * stroke to HY_CURVE_TOL_PX (hy_plot.h); the layout is the raster one. */
+int hy__figure_draw_out(const hy_figure *f, const hy_canvas *cv, int vector, hy_panel_map *maps, size_t nmaps,
+                        hy_error *err);
+
 #endif

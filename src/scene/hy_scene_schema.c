@@ -171,6 +171,8 @@ static const hy_scene_key_spec figure_keys[] = {
     K("size", HY_KIND_LENGTH_PAIR, NULL, POS, 0, 0, "12cm, 9cm", "width, height of the figure"),
     K("dpi", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 36, 2400, 0, 0, "300",
       "raster resolution of PNG output and of px lengths"),
+    K("full_resolution", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false",
+      "draw every computed point of each line (an SVG to zoom or reuse); false: lines within 0.1 px at dpi (docs/ARCHITECTURE.md)"),
     K("legend", HY_KIND_ENUM, legends, NOLIM, 0, 0, "best", "where the legend goes"),
     K("font", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"serif\"", "font family of all text"),
     K("fontsize", HY_KIND_LENGTH, NULL, POS, 0, 0, "9pt", "size of axis labels and legend text"),
