@@ -5,6 +5,7 @@
 
 #include "hy_boucwen.h"
 #include "hy_config.h"
+#include "hy_file.h"
 #include "hy_out.h"
 #include "hy_signal.h"
 
@@ -312,8 +313,9 @@ static void print_usage(void)
  * copy, the source tree's (a build run before `meson install`). */
 static int validation_path(const opts *o, char *path, size_t size)
 {
-    char src[4200];
-    const char *cand[] = {o->data_dir, getenv("HY_BOUCWEN_DATA"), HY_DATA_DIR "/boucwen",
+    char src[4200], inst[4200];
+    const char *cand[] = {o->data_dir, getenv("HY_BOUCWEN_DATA"),
+                          hy_file_installed(HY_INSTALLED_DATA, "boucwen", inst, sizeof inst) ? NULL : inst,
                           source_data_dir(src, sizeof src)};
     for (size_t i = 0; i < sizeof cand / sizeof *cand; i++) {
         struct stat st;

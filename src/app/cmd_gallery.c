@@ -43,7 +43,9 @@ static const char gallery_help[] =
     "rendered or written (exit 2).\n"
     "\n"
     "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
-    "  --scenes DIR       where the scenes are (default: scenes)\n"
+    "  --scenes DIR       where the scenes are (default: scenes, or the papers' scenes\n"
+    "                     an install ships, PREFIX/share/hystviz/scenes, when there is\n"
+    "                     no scenes directory here)\n"
     "  -o, --output DIR   the gallery directory (default: gallery)\n"
     "  --force            render every scene, changed or not\n"
     "  --data             also write NAME.csv (hystviz data) per figure\n"
@@ -70,6 +72,7 @@ typedef struct opts {
     const char *dirs[64];
     long shard_k, shard_n; /* --shard K/N (shard_n 0: unsharded) */
     int merge;             /* --merge                            */
+    char installed[4200];  /* PREFIX/share/hystviz/scenes          */
 } opts;
 
 /* One manifest line: what the last good render of a scene produced. */
@@ -891,9 +894,11 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
 
 /* ---- the command ----------------------------------------------------- */
 
+static const char default_scenes[] = "scenes";
+
 static int parse_opts(int argc, char **argv, opts *o)
 {
-    *o = (opts){.scenes = "scenes", .out = "gallery", .jobs = hy_jobs_default()};
+    *o = (opts){.scenes = default_scenes, .out = "gallery", .jobs = hy_jobs_default()};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -944,6 +949,10 @@ static int parse_opts(int argc, char **argv, opts *o)
         }
     }
     o->progress = !o->quiet && isatty(STDERR_FILENO);
+    struct stat st;
+    if (o->scenes == default_scenes && stat(o->scenes, &st) &&
+        !hy_file_installed(HY_INSTALLED_DATA, "scenes", o->installed, sizeof o->installed))
+        o->scenes = o->installed; /* no ./scenes: the installed ones */
     if (o->merge && o->shard_n) {
         fprintf(stderr, "hystviz gallery: --merge joins the shards; it takes no --shard\n");
         return 2;

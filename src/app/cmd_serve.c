@@ -8,6 +8,7 @@
 #include "cmd_serve.h"
 
 #include "hy_config.h"
+#include "hy_file.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -1901,16 +1902,8 @@ int hy_cmd_serve(int argc, char **argv)
         free(s);
         return 2;
     }
-    /* hystviz-animate next to this program */
-    char self[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n > 0) {
-        self[n] = '\0';
-        char *slash = strrchr(self, '/');
-        if (slash)
-            *slash = '\0';
-        snprintf(s->animate, sizeof s->animate, "%.*s/hystviz-animate", (int)(sizeof s->animate - 20), self);
-    }
+    /* hystviz-animate: next to this program in the build tree, in libexec installed */
+    hy_file_installed(HY_INSTALLED_LIBEXEC, "hystviz-animate", s->animate, sizeof s->animate);
     /* start-up's long step (hystviz-animate loads GL): a signal ends it, and
        serve, at once (the signals are blocked since main: a signalfd sees them) */
     sigset_t stop;

@@ -1,5 +1,6 @@
 /* main.c: the hystviz command; wires subcommands, owns no numerics. */
 #include "hy_config.h"
+#include "hy_file.h"
 
 #include <gsl/gsl_errno.h>
 #include <errno.h>
@@ -82,24 +83,19 @@ static const command commands[] = {
     {"watch", hy_cmd_watch, 1},
 };
 
-/* Runs hystviz-animate (next to this executable) with this argv: "animate" ...;
+/* Runs hystviz-animate (next to this executable in the build tree, in
+ * libexec when installed: hy_file_installed) with this argv: "animate" ...;
  * returns only on failure. */
 static int run_animate(char **argv)
 {
-    char self[PATH_MAX], path[PATH_MAX + 32];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n <= 0) {
-        fprintf(stderr, "hystviz animate: cannot find this program's directory: %s\n", strerror(errno));
+    char path[4200];
+    if (hy_file_installed(HY_INSTALLED_LIBEXEC, "hystviz-animate", path, sizeof path)) {
+        fprintf(stderr, "hystviz animate: hystviz-animate not found next to hystviz nor in %s\n", HY_LIBEXECDIR);
         return 1;
     }
-    self[n] = '\0';
-    char *slash = strrchr(self, '/');
-    if (slash)
-        *slash = '\0';
-    snprintf(path, sizeof path, "%s/hystviz-animate", self);
     argv[0] = path;
     execv(path, argv);
-    fprintf(stderr, "hystviz animate: cannot run %s: %s (it is built next to hystviz)\n", path, strerror(errno));
+    fprintf(stderr, "hystviz animate: cannot run %s: %s\n", path, strerror(errno));
     return 1;
 }
 
@@ -118,6 +114,10 @@ int main(int argc, char **argv)
     }
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         fputs(usage, stdout);
+        return cli_stdout_status(NULL, 0);
+    }
+    if (argc == 3 && (!strcmp(argv[2], "--version") || !strcmp(argv[2], "-V"))) { /* hystviz CMD --version */
+        printf("hystviz %s\n", HY_VERSION);
         return cli_stdout_status(NULL, 0);
     }
     if (!strcmp(argv[1], "animate"))

@@ -2,6 +2,8 @@
  * fstat on the descriptor, real path from /proc/self/fd), and message excerpts. */
 #include "hy_file.h"
 
+#include "hy_config.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -164,4 +166,51 @@ const char *hy_file_excerpt(const char *p, size_t n, char *buf, size_t size)
     while (m < n && p[m] != '\n' && p[m] != '\r')
         m++;
     return hy_file_shown(p, m, 20, buf, size);
+}
+
+/* The running program's directory into dir (NUL-terminated); -1 if unknown. */
+static int exe_dir(char *dir, size_t size)
+{
+    ssize_t n = readlink("/proc/self/exe", dir, size - 1);
+    if (n <= 0 || (size_t)n >= size - 1)
+        return -1;
+    dir[n] = '\0';
+    char *slash = strrchr(dir, '/');
+    if (!slash)
+        return -1;
+    *slash = '\0';
+    return 0;
+}
+
+static int exists(const char *path, int dir)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && (dir ? S_ISDIR(st.st_mode) : S_ISREG(st.st_mode));
+}
+
+int hy_file_installed(int what, const char *sub, char *buf, size_t size)
+{
+    char self[4096];
+    const char *rel = what == HY_INSTALLED_LIBEXEC ? HY_LIBEXECDIR_REL : HY_DATADIR_REL "/hystviz";
+    const char *configured = what == HY_INSTALLED_LIBEXEC ? HY_LIBEXECDIR : HY_DATA_DIR;
+    int have = exe_dir(self, sizeof self) == 0;
+    if (size)
+        buf[0] = '\0';
+    /* the build tree: the helper program next to the running one */
+    if (have && what == HY_INSTALLED_LIBEXEC && (size_t)snprintf(buf, size, "%s/%s", self, sub) < size &&
+        exists(buf, 0))
+        return 0;
+    /* an install, wherever it now is: PREFIX/BINDIR/hystviz */
+    size_t nb = strlen(HY_BINDIR_REL), ns = have ? strlen(self) : 0;
+    if (have && ns > nb && self[ns - nb - 1] == '/' && !strcmp(self + ns - nb, HY_BINDIR_REL)) {
+        self[ns - nb - 1] = '\0';
+        if ((size_t)snprintf(buf, size, "%s/%s/%s", self, rel, sub) < size &&
+            exists(buf, what == HY_INSTALLED_DATA))
+            return 0;
+    }
+    if ((size_t)snprintf(buf, size, "%s/%s", configured, sub) < size && exists(buf, what == HY_INSTALLED_DATA))
+        return 0;
+    if (size)
+        buf[0] = '\0';
+    return -1;
 }

@@ -26,4 +26,15 @@ const char *hy_file_excerpt(const char *p, size_t n, char *buf, size_t size);
  * \xNN, "..." appended if cut: a name or text safe to quote in a message. */
 const char *hy_file_shown(const char *p, size_t n, size_t max, char *buf, size_t size);
 
+/* Where an installed hystviz keeps what it ships: *buf receives
+ * PREFIX/share/hystviz/sub (sub "scenes", "boucwen") when that directory
+ * exists, PREFIX taken first from the running program's location (an
+ * install moved or made with DESTDIR still finds its files: bin/hystviz ->
+ * share/hystviz), then the prefix it was configured with.  what ==
+ * HY_INSTALLED_LIBEXEC looks for the program sub in the running program's
+ * own directory (the build tree), then PREFIX/libexec.  Returns 0 if found,
+ * -1 if not (buf then empty). */
+enum { HY_INSTALLED_DATA = 0, HY_INSTALLED_LIBEXEC = 1 };
+int hy_file_installed(int what, const char *sub, char *buf, size_t size);
+
 #endif

@@ -65,9 +65,13 @@ int hy__policy_roots(hy_scene *s, const char *top_dir, const hy_scene_policy *po
         return hy_error_set(err, HY_EINVAL, "%s: the scene is %zu bytes, more than the %u allowed",
                             hy_scene_source(s), len, HY_SCENE_MAX_FILE_BYTES);
     size_t n = pol ? pol->ninclude_dirs : 0;
-    if (!n)
+    /* last of all: the scenes an install ships (an include such as
+       "style.scene" of a copied paper scene is found there) */
+    char inst[4200];
+    int have_inst = !hy_file_installed(HY_INSTALLED_DATA, "scenes", inst, sizeof inst);
+    if (!n && !have_inst)
         return HY_OK;
-    s->incdirs = calloc(n, sizeof *s->incdirs);
+    s->incdirs = calloc(n + 1, sizeof *s->incdirs);
     if (!s->incdirs)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     for (size_t i = 0; i < n; i++) {
@@ -80,6 +84,8 @@ int hy__policy_roots(hy_scene *s, const char *top_dir, const hy_scene_policy *po
             return hy_error_set(err, HY_EINVAL, "--include-dir %s: %s", d, strerror(errno));
         s->nincdirs = i + 1;
     }
+    if (have_inst && (s->incdirs[n] = realpath(inst, NULL)))
+        s->nincdirs = n + 1;
     return HY_OK;
 }
 

@@ -1,0 +1,81 @@
+#!/bin/bash
+# tests/cli/test_install.sh BUILD_ROOT SOURCE_ROOT: an install works away from
+# the source tree (issue 24).  `meson install --destdir` into a temporary
+# directory, then from / with HOME there and nothing of the source or build
+# tree on the way:
+#   - hystviz --version, and after a command (hystviz render --version);
+#   - hystviz gallery -o DIR renders every paper scene from the installed
+#     share/hystviz/scenes (no scenes/ in the working directory);
+#   - a paper scene copied alone (without style.scene) renders: its include
+#     is found among the installed scenes; the SVG equals the build tree's;
+#   - hystviz animate finds hystviz-animate in libexec (where GL is built);
+#   - the Bouc-Wen validation data are found in share/hystviz/boucwen;
+#   - pkg-config (relocated to the destdir) builds docs/examples' program
+#     against the installed headers and library; it prints Fig. 15's area;
+#   - the installed Python package imports and computes (where NumPy is).
+set -u
+build=$(realpath "$1") src=$(realpath "$2")
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+ok() { echo "ok: $*"; }
+
+timeout 300 meson install -C "$build" --no-rebuild --quiet --destdir "$T/dest" >"$T/install.log" 2>&1 ||
+    { cat "$T/install.log"; echo "FAIL: meson install"; exit 1; }
+prefix=$(cd "$build" && meson introspect --buildoptions | python3 -c 'import json,sys; print([o["value"] for o in json.load(sys.stdin) if o["name"]=="prefix"][0])')
+P="$T/dest$prefix"
+hv="$P/bin/hystviz"
+[ -x "$hv" ] || { echo "FAIL: no $hv"; exit 1; }
+[ ! -e "$P/bin/hystviz-animate" ] && ok "hystviz-animate is not in bin/" || fail "hystviz-animate installed in bin/"
+mkdir -p "$T/home"
+run() { (cd / && HOME="$T/home" timeout 300 "$@"); }
+
+v=$(run "$hv" --version) && [ "$v" = "$(run "$hv" render --version)" ] && ok "--version, also after a command: $v" ||
+    fail "hystviz render --version"
+
+nscenes=$(ls "$src/gallery"/*.svg | wc -l) # the committed gallery's figures
+run "$hv" gallery -q -o "$T/home/g" >"$T/gallery.log" 2>&1; st=$?
+nsvg=$(ls "$T/home/g"/*.svg 2>/dev/null | wc -l)
+[ $st -eq 0 ] && [ "$nsvg" -gt 0 ] && [ "$nsvg" -eq "$nscenes" ] &&
+    ok "gallery from /: $nsvg figures from the installed scenes" ||
+    { cat "$T/gallery.log"; fail "gallery from /: exit $st, $nsvg SVGs for $nscenes figure scenes"; }
+
+mkdir -p "$T/home/mine"
+cp "$src/scenes/fig15_minor_loop_ex4.scene" "$T/home/mine/"
+run "$hv" render "$T/home/mine/fig15_minor_loop_ex4.scene" -o "$T/home/out" --format svg >"$T/render.log" 2>&1 &&
+    "$build/src/app/hystviz" render "$src/scenes/fig15_minor_loop_ex4.scene" -o "$T/tree" --format svg >/dev/null 2>&1 &&
+    cmp -s "$T/home/out/fig15_minor_loop_ex4.svg" "$T/tree/fig15_minor_loop_ex4.svg" &&
+    ok "a copied paper scene finds style.scene among the installed scenes; SVG == the build tree's" ||
+    { cat "$T/render.log"; fail "copied paper scene"; }
+
+if [ -x "$build/src/app/hystviz-animate" ] && "$build/src/app/hystviz" animate --list >/dev/null 2>&1; then
+    run "$hv" animate --list >/dev/null 2>&1 && ok "animate finds libexec's hystviz-animate" || fail "installed animate --list"
+fi
+
+run "$hv" boucwen data --signal validation -o "$T/home/yval.csv" >/dev/null 2>&1 &&
+    [ "$(wc -l <"$T/home/yval.csv")" -gt 1000 ] && ok "Bouc-Wen validation data from share/hystviz/boucwen" ||
+    fail "boucwen data --signal validation"
+
+pcfile=$(find "$T/dest" -name hystviz.pc | head -1)
+if command -v pkg-config >/dev/null && command -v cc >/dev/null && [ -n "$pcfile" ]; then
+    # the .pc names the configured prefix: point it at the destdir's copy
+    mkdir -p "$T/pc"
+    sed "s|^prefix=.*|prefix=$P|" "$pcfile" >"$T/pc/hystviz.pc"
+    flags=$(PKG_CONFIG_PATH="$T/pc" pkg-config --cflags --libs hystviz) &&
+        timeout 120 cc -std=c11 "$src/docs/examples/minor_loop_area.c" $flags -o "$T/area" &&
+        got=$(LD_LIBRARY_PATH="$(dirname "$(find "$T/dest" -name 'libhystviz.so.0' | head -1)")" "$T/area") &&
+        [ "$got" = 0.19910737569481529 ] && ok "pkg-config example against the install prints $got" ||
+        fail "pkg-config example against the install: ${got:-no output} ($flags)"
+fi
+
+site=$(dirname "$(find "$T/dest" -path '*hystviz/__init__.py' | head -1)")
+for py in /usr/bin/python3 python3; do
+    "$py" -c "import numpy" 2>/dev/null || continue
+    lib=$(dirname "$(find "$T/dest" -name 'libhystviz.so.0' | head -1)")
+    out=$(cd / && PYTHONPATH="$(dirname "$site")" LD_LIBRARY_PATH="$lib" timeout 120 "$py" -c \
+        "import hystviz; print(repr(hystviz.minor_loops(hystviz.Model('lugre', sigma0=6), hystviz.Input('bimodal', umin1=0, umin2=0.5, umax1=1, umax2=1.5))[0].area))" 2>&1)
+    [ "$out" = 0.1991073756948153 ] && ok "the installed Python package prints $out" || fail "installed Python: $out"
+    break
+done
+exit $((fails > 0))
