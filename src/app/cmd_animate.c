@@ -9,10 +9,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "anim_worker.h"
 #include "cli_util.h"
 #include "hy_jobs.h"
 
 #if HY_HAVE_GL
+#include <errno.h>
+#include <unistd.h>
+
 #include "anim_assemble.h"
 #include "anim_scenes.h"
 #include "hy_gl.h"
@@ -24,7 +28,7 @@
 static const char animate_help[] =
     "usage: hystviz animate NAME|SCENE.scene [-o DIR] [--quality Q] [--size WxH] [--fps F] [--duration S]\n"
     "                            [--frames A:B | --shard K/N] [-j N] [--quiet] [--video mp4|webm|gif [--no-frames]]\n"
-    "                            [--gl osmesa|egl] [--include-dir DIR]... [--max-work N]\n"
+    "                            [--gl osmesa|egl] [--include-dir DIR]... [--max-work N] [--set KEY=VALUE]...\n"
     "       hystviz animate NAME|SCENE.scene --assemble mp4|webm|gif [-o DIR] [timing options]\n"
     "       hystviz animate --list | --gl-info [--gl osmesa|egl]\n"
     "\n"
@@ -65,6 +69,10 @@ static const char animate_help[] =
     "                           else the software rasteriser)\n"
     "  --include-dir DIR  (SCENE.scene) a directory the scene may include from; repeatable\n"
     "  --max-work N       (SCENE.scene) work budget of all frames together (default 1e8)\n"
+    "  --set KEY=VALUE    (SCENE.scene) override a key as `hystviz render --set` does, in every\n"
+    "                     frame; the keyframes' values beat it; repeatable\n"
+    "  --worker           answer frame requests on standard input with PNG frames on standard\n"
+    "                     output, one GL context kept (the protocol of hystviz serve: src/app/anim_worker.h)\n"
     "\n"
     "example:\n"
     "  hystviz animate gamma-sweep-ex2 -o frames --quality 480p15 -j 2\n";
@@ -80,6 +88,9 @@ typedef struct anim_args {
     double fps, duration;
     const char *assemble;     /* --assemble FMT */
     long shard_k, shard_n;    /* --shard K/N (shard_n 0: none) */
+    char *sets[SCENE_ANIM_MAX_SETS]; /* --set (scene animations) */
+    size_t nsets;
+    int worker;               /* --worker */
 } anim_args;
 
 static int parse_range(const char *v, long *a, long *b)
@@ -130,6 +141,8 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
         return a->p.quiet = 1, 0;
     if (!strcmp(s, "--no-frames"))
         return a->p.no_frames = 1, 0;
+    if (!strcmp(s, "--worker"))
+        return a->worker = 1, 0;
     if (s[0] != '-')
         return fprintf(stderr, "hystviz animate: one animation at a time ('%s' and '%s')\n", a->name, s), 2;
     if ((!strncmp(s, "--include-dir", 13) || !strncmp(s, "--max-work", 10)) && a->pol.ninclude_dirs < 64)
@@ -169,6 +182,10 @@ static int parse_one(anim_args *a, int argc, char **argv, int *i)
         hy_error err = {0};
         if (hy_shard_parse(v, &a->shard_k, &a->shard_n, &err))
             return fprintf(stderr, "hystviz animate: %s\n", err.msg), 2;
+    } else if (!strcmp(s, "--set")) {
+        if (a->nsets == SCENE_ANIM_MAX_SETS)
+            return fprintf(stderr, "hystviz animate: at most %d --set\n", SCENE_ANIM_MAX_SETS), 2;
+        a->sets[a->nsets++] = (char *)v;
     } else if (!strcmp(s, "--assemble")) {
         a->assemble = v;
     } else if (!strcmp(s, "-j") || !strcmp(s, "--jobs")) {
@@ -316,10 +333,17 @@ static int settle_scene(anim_args *a, const scene_anim *sa)
 }
 
 /* --info: what the options resolve to (hystviz serve reads the frame count). */
+static void format_info(const anim_args *a, char *buf, size_t size)
+{
+    snprintf(buf, size, "frames %ld fps %.17g size %dx%d duration %.17g\n", hy_anim_nframes(&a->p), a->p.fps,
+             a->p.width, a->p.height, a->p.duration);
+}
+
 static void print_info(const anim_args *a)
 {
-    printf("frames %ld fps %.17g size %dx%d duration %.17g\n", hy_anim_nframes(&a->p), a->p.fps, a->p.width, a->p.height,
-           a->p.duration);
+    char line[200];
+    format_info(a, line, sizeof line);
+    fputs(line, stdout);
 }
 
 static int ends_with(const char *s, const char *tail)
@@ -334,7 +358,7 @@ static int animate_scene(anim_args *a)
     hy_error err = {0};
     scene_anim sa;
     gsl_set_error_handler_off();
-    if (scene_anim_load_policy(&sa, a->name, &a->pol, &err)) {
+    if (scene_anim_load_src(&sa, a->name, NULL, 0, a->sets, a->nsets, &a->pol, &err)) {
         fprintf(stderr, "hystviz animate: %s\n", err.msg);
         return err.code == HY_ENOMEM ? 1 : 2; /* an unreadable or invalid scene */
     }
@@ -362,6 +386,254 @@ static int animate_scene(anim_args *a)
     return st == HY_EUNSUP ? 3 : cli_exit_status(st);
 }
 
+/* ---- --worker: frames on request, one GL context (anim_worker.h) ---- */
+
+typedef struct worker_state {
+    const anim_args *opts;    /* the worker's own options: --include-dir, --max-work */
+    FILE *out;                /* the records: the standard output the worker was given */
+    int out_failed;
+    hy_anim_renderer *r;      /* kept while the frame size stays */
+    const anim_scene *sc;     /* the built-in prepared last, its state and timing */
+    void *state;
+    double sc_duration, sc_fps;
+    scene_anim *sa;           /* the scene animation loaded and checked last ... */
+    char *sa_path;            /* ... its (virtual) path, */
+    uint64_t sa_hash;         /* ... its scene's hash (its files, includes, overrides) */
+    long sa_frames;
+    double sa_duration;
+} worker_state;
+
+static void worker_drop_scene(worker_state *ws)
+{
+    if (ws->sa) {
+        scene_anim_free(ws->sa);
+        free(ws->sa);
+    }
+    free(ws->sa_path);
+    ws->sa = NULL, ws->sa_path = NULL;
+}
+
+/* Frames [p->first, p->last) as "frame I" records; 0 or the exit status the
+ * command line would give (the message on stderr). */
+static int worker_frames(worker_state *ws, const hy_anim_params *p, hy_anim_draw_fn draw, void *state, long *count)
+{
+    hy_error err = {0};
+    int w = 0, h = 0, st = HY_OK;
+    if (ws->r)
+        hy_anim_renderer_size(ws->r, &w, &h);
+    if (ws->r && (w != p->width || h != p->height)) {
+        hy_anim_renderer_free(ws->r);
+        ws->r = NULL;
+    }
+    if (!ws->r)
+        st = hy_anim_renderer_new(&ws->r, p->width, p->height, &err);
+    for (long i = p->first; !st && i < p->last; i++) {
+        char *png = NULL;
+        size_t len = 0;
+        FILE *m = open_memstream(&png, &len);
+        st = m ? hy_anim_renderer_png(ws->r, p, draw, state, i, m, &err) : hy_error_set(&err, HY_ENOMEM, "out of memory");
+        if (m)
+            fclose(m);
+        if (!st && aw_record_write(ws->out, "frame", i, png, len))
+            ws->out_failed = 1;
+        free(png);
+        if (ws->out_failed)
+            return 1;
+        *count += !st;
+    }
+    if (!st)
+        return 0;
+    fprintf(stderr, "hystviz animate: %s\n", err.msg);
+    return st == HY_EUNSUP ? 3 : cli_exit_status(st);
+}
+
+static int worker_info(worker_state *ws, const anim_args *a)
+{
+    char line[200];
+    format_info(a, line, sizeof line);
+    if (aw_record_write(ws->out, "info", 0, line, strlen(line)))
+        ws->out_failed = 1;
+    return ws->out_failed;
+}
+
+/* A built-in animation: prepared once for its timing, kept for the next request. */
+static int worker_builtin(worker_state *ws, anim_args *a, const anim_scene *sc, long *count)
+{
+    int r = settle(a, sc);
+    if (r || a->info)
+        return r ? r : worker_info(ws, a);
+    if (ws->sc != sc || ws->sc_duration != a->p.duration || ws->sc_fps != a->p.fps) {
+        if (ws->state)
+            ws->sc->release(ws->state);
+        ws->sc = NULL, ws->state = NULL;
+        hy_error err = {0};
+        int st = sc->prepare(&ws->state, &a->p, &err);
+        if (st) {
+            fprintf(stderr, "hystviz animate: %s\n", err.msg);
+            return st == HY_EUNSUP ? 3 : cli_exit_status(st);
+        }
+        ws->sc = sc, ws->sc_duration = a->p.duration, ws->sc_fps = a->p.fps;
+    }
+    return worker_frames(ws, &a->p, sc->draw, ws->state, count);
+}
+
+/* A scene animation from the request's text: loaded (a parse: includes and
+ * overrides go into its hash), checked for every frame only when it is not
+ * the one of the last request, then drawn keeping one run (single). */
+static int worker_scene(worker_state *ws, anim_args *a, const aw_request *rq, long *count)
+{
+    hy_error err = {0};
+    char *path = strdup(rq->name);
+    scene_anim *sa = malloc(sizeof *sa);
+    if (!path || !sa || scene_anim_load_src(sa, path, rq->text, rq->len, a->sets, a->nsets, &a->pol, &err)) {
+        if (!path || !sa)
+            hy_error_set(&err, HY_ENOMEM, "out of memory");
+        fprintf(stderr, "hystviz animate: %s\n", err.msg);
+        free(path);
+        free(sa);
+        return err.code == HY_ENOMEM ? 1 : 2;
+    }
+    int r = settle_scene(a, sa);
+    if (!r && a->info)
+        r = worker_info(ws, a);
+    uint64_t h = hy_scene_hash(sa->scene);
+    long nf = hy_anim_nframes(&a->p);
+    if (r || a->info || (ws->sa && ws->sa_hash == h && !strcmp(ws->sa_path, path) && ws->sa_frames == nf &&
+                         ws->sa_duration == a->p.duration)) {
+        scene_anim_free(sa);
+        free(sa);
+        free(path);
+        if (r || a->info)
+            return r;
+    } else {
+        int st = scene_anim_check(sa, nf, a->p.duration, &err);
+        if (st) {
+            fprintf(stderr, "hystviz animate: %s\n", err.msg);
+            scene_anim_free(sa);
+            free(sa);
+            free(path);
+            return st == HY_EUNSUP ? 3 : cli_exit_status(st);
+        }
+        worker_drop_scene(ws);
+        sa->single = 1;
+        ws->sa = sa, ws->sa_path = path, ws->sa_hash = h, ws->sa_frames = nf, ws->sa_duration = a->p.duration;
+    }
+    return worker_frames(ws, &a->p, scene_anim_draw, ws->sa, count);
+}
+
+/* One request as the command line `hystviz animate NAME --frames A:B
+ * [--size WxH] [--set S]...` (or --info) would run it; 0 or its exit status. */
+static int worker_answer(worker_state *ws, const aw_request *rq, long *count)
+{
+    if (!rq->name[0] || rq->name[0] == '-') {
+        fprintf(stderr, "hystviz animate: worker: the name '%.40s' is not an animation\n", rq->name);
+        return 2;
+    }
+    char *argv[8 + 2 * AW_MAX_SETS], size[40], range[64];
+    int n = 0;
+    argv[n++] = "animate";
+    argv[n++] = rq->name;
+    if (rq->width || rq->height) {
+        snprintf(size, sizeof size, "%dx%d", rq->width, rq->height);
+        argv[n++] = "--size", argv[n++] = size;
+    }
+    if (!strcmp(rq->op, "info"))
+        argv[n++] = "--info";
+    else {
+        snprintf(range, sizeof range, "%ld:%ld", rq->first, rq->last);
+        argv[n++] = "--frames", argv[n++] = range;
+    }
+    for (size_t i = 0; i < rq->nsets; i++)
+        argv[n++] = "--set", argv[n++] = rq->sets[i];
+    anim_args a;
+    if (parse_args(n, argv, &a))
+        return 2;
+    a.pol = ws->opts->pol;
+    a.p.quiet = 1, a.p.jobs = 1;
+    int scene = ends_with(rq->name, ".scene");
+    if (scene != (rq->text != NULL)) {
+        fprintf(stderr, "hystviz animate: worker: %s\n", scene ? "a scene animation needs its text" : "a built-in animation takes no text");
+        return 2;
+    }
+    if (scene)
+        return worker_scene(ws, &a, rq, count);
+    const anim_scene *sc = anim_scene_find(rq->name);
+    if (!sc || a.nsets) {
+        fprintf(stderr, "hystviz animate: %s '%s'\n", sc ? "--set changes a scene animation; built in:" : "unknown animation",
+                rq->name);
+        return 2;
+    }
+    return worker_builtin(ws, &a, sc, count);
+}
+
+/* Answers one request: its records, then "end" or "error" with what the
+ * command line would have printed on stderr (captured meanwhile).  -1 when
+ * the records cannot be written (serve has gone). */
+static int worker_request(worker_state *ws, const aw_request *rq)
+{
+    char *msg = NULL;
+    size_t mlen = 0;
+    FILE *mem = open_memstream(&msg, &mlen), *saved = stderr;
+    if (mem)
+        stderr = mem;
+    long count = 0;
+    int status = worker_answer(ws, rq, &count);
+    if (mem) {
+        stderr = saved;
+        fclose(mem);
+    }
+    if (!ws->out_failed && status)
+        ws->out_failed = aw_record_write(ws->out, "error", status, msg ? msg : "", msg ? mlen : 0) != 0;
+    else if (!ws->out_failed)
+        ws->out_failed = aw_record_write(ws->out, "end", count, NULL, 0) != 0;
+    free(msg);
+    return ws->out_failed ? -1 : 0;
+}
+
+/* --worker: requests on stdin until its end (anim_worker.h); the records go
+ * to the standard output it was given, and anything else printed there to
+ * stderr, so nothing can fall between two records. */
+static int run_worker(const anim_args *opts)
+{
+    worker_state ws;
+    memset(&ws, 0, sizeof ws);
+    ws.opts = opts;
+    int fd = dup(1);
+    if (fd < 0 || !(ws.out = fdopen(fd, "w")) || dup2(2, 1) < 0) {
+        fprintf(stderr, "hystviz animate: --worker: cannot keep standard output: %s\n", strerror(errno));
+        if (fd >= 0 && !ws.out)
+            close(fd);
+        return 1;
+    }
+    gsl_set_error_handler_off();
+    int status = 0;
+    for (;;) {
+        aw_request rq;
+        hy_error err = {0};
+        int r = aw_request_read(stdin, &rq, &err);
+        if (r == AW_END)
+            break;
+        if (r) {
+            fprintf(stderr, "hystviz animate: %s\n", err.msg);
+            aw_record_write(ws.out, "error", 2, err.msg, strlen(err.msg));
+            status = 2;
+            break;
+        }
+        r = worker_request(&ws, &rq);
+        aw_request_free(&rq);
+        if (r) {
+            status = 1;
+            break;
+        }
+    }
+    worker_drop_scene(&ws);
+    if (ws.state)
+        ws.sc->release(ws.state);
+    hy_anim_renderer_free(ws.r);
+    fclose(ws.out);
+    return status;
+}
+
 static int animate(int argc, char **argv)
 {
     anim_args a;
@@ -370,6 +642,8 @@ static int animate(int argc, char **argv)
         return r == 1 ? 0 : 2;
     if ((r = pick_backend(a.gl, a.gl_info || a.list)))
         return r;
+    if (a.worker)
+        return run_worker(&a);
     if (a.gl_info)
         return gl_info();
     if (a.list)
@@ -377,6 +651,10 @@ static int animate(int argc, char **argv)
     if (a.name && ends_with(a.name, ".scene"))
         return animate_scene(&a);
     const anim_scene *sc = anim_scene_find(a.name);
+    if (sc && a.nsets) {
+        fprintf(stderr, "hystviz animate: --set changes a scene animation (SCENE.scene); %s is built in\n", a.name);
+        return 2;
+    }
     if (!sc) {
         fprintf(stderr, "hystviz animate: %s%s%s (hystviz animate --list shows them)\n",
                 a.name ? "unknown animation '" : "which animation?", a.name ? a.name : "", a.name ? "'" : "");
@@ -416,8 +694,20 @@ int hy_cmd_animate(int argc, char **argv)
         hy_jobs_help(stdout, animate_help);
         return 0;
     }
-    fprintf(stderr, "hystviz animate: this hystviz was built without OSMesa and EGL, so it cannot render "
-            "animations (install libosmesa6-dev or libegl-dev and reconfigure with -Dgl=auto)\n");
+    static const char why[] = "hystviz animate: this hystviz was built without OSMesa and EGL, so it cannot render "
+                              "animations (install libosmesa6-dev or libegl-dev and reconfigure with -Dgl=auto)\n";
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--worker")) { /* every request answered with the reason (anim_worker.h) */
+            aw_request rq;
+            hy_error err = {0};
+            while (aw_request_read(stdin, &rq, &err) == 0) {
+                aw_request_free(&rq);
+                if (aw_record_write(stdout, "error", 3, why, strlen(why)))
+                    break;
+            }
+            return 3;
+        }
+    fputs(why, stderr);
     return 3;
 }
 #endif

@@ -1,7 +1,7 @@
 /* cmd_serve.c: `hystviz serve [SCENE.scene|DIR]`: a live preview in the
  * browser on libmicrohttpd (one thread per connection), with a control per
  * numeric key, reload on save (inotify, Server-Sent Events), animation
- * frames from hystviz-animate (out of process: no OSMesa in hystviz) and
+ * frames from warm hystviz-animate workers (serve_frames.c: no OSMesa in hystviz) and
  * "save as new scene".  Every figure is rendered in memory by the same
  * pipeline as `hystviz render`, so the bytes are those render writes. */
 #define _GNU_SOURCE /* POLLRDHUP: a peer that closed its end */
@@ -20,7 +20,8 @@ static const char serve_help[] =
     "Serves a live preview of the scenes in DIR (default: scenes) at http://127.0.0.1:PORT/\n"
     "until Ctrl-C: the catalogue, each figure as SVG with a slider and a number box per\n"
     "numeric key, the `hystviz render --set` line that writes the same figure, downloads\n"
-    "(SVG, PDF, PNG, CSV), an animation scrubber, a reload of every open page when a\n"
+    "(SVG, PDF, PNG, CSV), animations played at their frame rate (frames from warm\n"
+    "hystviz-animate workers, the sliders applied), a reload of every open page when a\n"
     "scene file or one it includes is saved, and (with --allow-save) \"save as new scene\".\n"
     "With SCENE.scene, the page opens that scene (the others in its directory stay reachable).\n"
     "\n"
@@ -97,6 +98,7 @@ int hy_cmd_serve(int argc, char **argv)
 #include "hy_scene_policy.h"
 #include "scene_boucwen.h"
 #include "scene_run.h"
+#include "serve_frames.h"
 #include "serve_util.h"
 
 extern char **environ;
@@ -176,6 +178,7 @@ typedef struct server {
     size_t anim_next;
     int nsaved;
     double last_save;
+    sv_frames *frames;      /* warm hystviz-animate --worker processes (serve_frames.h) */
     char builtin[32][32];   /* hystviz animate --list: the built-in animations */
     char builtin_doc[32][200];
     int nbuiltin;
@@ -203,6 +206,16 @@ static void cond_wait_slice(pthread_cond_t *cond, pthread_mutex_t *mu)
 
 /* ---- responses ------------------------------------------------------ */
 
+/* The headers of every answer but the page's and 503's. */
+static void add_headers(struct MHD_Response *r, const char *type)
+{
+    MHD_add_response_header(r, "Content-Type", type);
+    MHD_add_response_header(r, "Cache-Control", "no-store");
+    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+    MHD_add_response_header(r, "Referrer-Policy", "no-referrer");
+    MHD_add_response_header(r, "X-Frame-Options", "DENY");
+}
+
 static enum MHD_Result send_buf(struct MHD_Connection *c, unsigned status, const char *type, void *data, size_t len,
                                 int must_free, const char *disposition)
 {
@@ -213,11 +226,7 @@ static enum MHD_Result send_buf(struct MHD_Connection *c, unsigned status, const
             free(data);
         return MHD_NO;
     }
-    MHD_add_response_header(r, "Content-Type", type);
-    MHD_add_response_header(r, "Cache-Control", "no-store");
-    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
-    MHD_add_response_header(r, "Referrer-Policy", "no-referrer");
-    MHD_add_response_header(r, "X-Frame-Options", "DENY");
+    add_headers(r, type);
     if (disposition)
         MHD_add_response_header(r, "Content-Disposition", disposition);
     enum MHD_Result ret = MHD_queue_response(c, status, r);
@@ -258,7 +267,7 @@ static enum MHD_Result send_error_json(struct MHD_Connection *c, unsigned status
 
 typedef struct args {
     int n, too_many;
-    const char *scene, *fmt, *page, *seq, *frame, *name, *hover;
+    const char *scene, *fmt, *page, *seq, *frame, *name, *hover, *from, *to;
     const char *sets[MAX_ARGS];
     size_t nsets;
     int bad_nul;
@@ -293,6 +302,10 @@ static enum MHD_Result arg_it(void *cls, enum MHD_ValueKind kind, const char *ke
         a->name = value;
     else if (!strcmp(key, "hover"))
         a->hover = value;
+    else if (!strcmp(key, "from"))
+        a->from = value;
+    else if (!strcmp(key, "to"))
+        a->to = value;
     else if (!strcmp(key, "set"))
         a->sets[a->nsets++] = value;
     return MHD_YES;
@@ -634,12 +647,13 @@ static int builtin_index(const server *s, const char *name)
     return -1;
 }
 
-/* hystviz animate WHAT --info: frames and fps; 0 or -1 with msg set.  The
- * answer is cached by hash (hy_scene_hash: the scene's text and its
- * includes), so reloading a page runs no child; a child runs in a render slot
- * (bounded with the renders) and is reaped before this returns. */
-static int anim_info(server *s, struct MHD_Connection *c, uint64_t hash, const char *what, long *frames, double *fps,
-                     char *msg, size_t size)
+/* The frames and fps of an animation (`hystviz animate WHAT --info`, asked
+ * of a frame worker with the scene's text, NULL for a built-in); 0 or -1
+ * with msg set.  The answer is cached by hash (hy_scene_hash: the scene's
+ * text and its includes), so reloading a page asks nothing; a request runs
+ * in a render slot. */
+static int anim_info(server *s, struct MHD_Connection *c, uint64_t hash, const char *what, const char *text,
+                     size_t len, long *frames, double *fps, char *msg, size_t size)
 {
     pthread_mutex_lock(&s->mu);
     for (size_t i = 0; i < ANIM_CACHE; i++)
@@ -656,20 +670,18 @@ static int anim_info(server *s, struct MHD_Connection *c, uint64_t hash, const c
         snprintf(msg, size, "the server is busy: reload the page");
         return -1;
     }
-    char out[2048];
-    char *argv[] = {(char *)s->animate, "animate", (char *)what, "--info", NULL};
-    int rc = run_capture(argv, out, sizeof out, -1);
+    aw_request rq = {.op = "info", .name = (char *)what, .text = (char *)text, .len = len};
+    char *out = NULL, why[2048];
+    int rc = s->frames ? sv_frames_run(s->frames, &rq, NULL, NULL, NULL, NULL, &out, why, sizeof why)
+                       : (snprintf(why, sizeof why, "no frame worker"), SV_FRAMES_FAILED);
     slot_give(s, c, 0);
     anim_entry e = {.hash = hash};
-    if (rc == 0 && sscanf(out, "frames %ld fps %lf", &e.frames, &e.fps) == 2)
+    if (rc == 0 && out && sscanf(out, "frames %ld fps %lf", &e.frames, &e.fps) == 2)
         e.ok = 1;
-    else {
-        size_t n = strlen(out);
-        while (n && out[n - 1] == '\n')
-            out[--n] = '\0';
-        const char *why = rc < 0 ? "cannot run hystviz-animate (it is built next to hystviz)" : out;
-        snprintf(e.msg, sizeof e.msg, "%.*s", (int)sizeof e.msg - 1, why);
-    }
+    else
+        snprintf(e.msg, sizeof e.msg, "%.*s", (int)sizeof e.msg - 1,
+                 rc < 0 ? "cannot run hystviz-animate (it is built next to hystviz)" : why);
+    free(out);
     if (rc >= 0) { /* a failure to start is not cached: it may be a passing shortage */
         pthread_mutex_lock(&s->mu);
         s->anim[s->anim_next++ % ANIM_CACHE] = e;
@@ -680,12 +692,13 @@ static int anim_info(server *s, struct MHD_Connection *c, uint64_t hash, const c
     return e.ok ? 0 : -1;
 }
 
-static void json_anim(sv_buf *b, server *s, struct MHD_Connection *c, uint64_t hash, const char *what)
+static void json_anim(sv_buf *b, server *s, struct MHD_Connection *c, uint64_t hash, const char *what,
+                      const char *text, size_t len)
 {
     long frames = 0;
     double fps = 0;
     char msg[2048];
-    if (anim_info(s, c, hash, what, &frames, &fps, msg, sizeof msg)) {
+    if (anim_info(s, c, hash, what, text, len, &frames, &fps, msg, sizeof msg)) {
         sv_puts(b, ",\"anim\":{\"frames\":0,\"error\":");
         sv_json(b, msg);
         sv_puts(b, "}");
@@ -857,7 +870,7 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
         sv_puts(&b, ",\"caption\":");
         sv_json(&b, s->builtin_doc[bi]);
         sv_puts(&b, ",\"text\":\"\",\"controls\":[]");
-        json_anim(&b, s, c, name_hash(s->builtin[bi]), s->builtin[bi]);
+        json_anim(&b, s, c, name_hash(s->builtin[bi]), s->builtin[bi], NULL, 0);
         sv_puts(&b, "}");
         return send_json(c, 200, &b);
     }
@@ -878,7 +891,6 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
     int bad = hy_scene_parse_buffer(path, text, tl, &sc, &err);
     sv_puts(&b, ",\"caption\":");
     scene_caption(&b, bad ? NULL : sc, text);
-    free(text);
     if (bad) {
         sv_puts(&b, ",\"controls\":[],\"anim\":null,\"error\":");
         sv_json(&b, err.msg);
@@ -893,11 +905,12 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
         sv_puts(&b, ",\"controls\":");
         sv_controls_json(&b, sc);
         if (is_animation(sc))
-            json_anim(&b, s, c, hy_scene_hash(sc), path);
+            json_anim(&b, s, c, hy_scene_hash(sc), path, text, tl);
         else
             sv_puts(&b, ",\"anim\":null");
         hy_scene_free(sc);
     }
+    free(text);
     sv_puts(&b, "}");
     return send_json(c, 200, &b);
 }
@@ -1184,110 +1197,258 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
     return ret;
 }
 
-/* ---- animation frames: hystviz-animate, out of process ------------ */
+/* ---- animation frames: warm hystviz-animate workers (serve_frames.c) ---- */
 
-static enum MHD_Result api_frame(server *s, struct MHD_Connection *c, const args *a)
+/* A frame request's animation: a built-in (@NAME) or a catalogue scene,
+ * whose text is read once here, checked, and sent to the worker with the
+ * path it is shown under (never opened by the worker).  The page's
+ * overrides pass the allow-list as a render's do.  0, else an HTTP status
+ * with the message in msg. */
+static unsigned frame_source(server *s, const args *a, aw_request *rq, char *path, size_t psize, char *msg,
+                             size_t msize)
 {
-    char path[PATH_MAX + 300], name[256] = "";
+    memset(rq, 0, sizeof *rq);
     int bi = builtin_index(s, a->scene);
     if (bi >= 0) {
-        snprintf(path, sizeof path, "%s", s->builtin[bi]);
-        snprintf(name, sizeof name, "%s", s->builtin[bi]);
-    } else { /* checked through one descriptor; hystviz-animate then opens the path itself */
-        size_t tl;
-        char *text = scene_read(s, a->scene, path, sizeof path, &tl);
-        if (!text)
-            return send_error_json(c, 404, "no such scene");
-        hy_scene *chk = NULL;
-        hy_error cerr = {0};
-        int bad = hy_scene_parse_buffer(path, text, tl, &chk, &cerr);
-        free(text);
-        if (bad)
-            return send_error_json(c, 422, cerr.msg);
-        hy_scene_run probe = {0};
-        probe.scene = chk;
-        probe.path = path;
-        hy_scene_run_name(&probe, name, sizeof name);
-        hy_scene_free(chk);
+        if (a->nsets)
+            return snprintf(msg, msize, "a built-in animation has no keys to set"), 400;
+        snprintf(path, psize, "%s", s->builtin[bi]);
+        rq->name = path;
+        return 0;
     }
+    hy_error err = {0};
+    for (size_t i = 0; i < a->nsets; i++)
+        if (sv_set_ok(a->sets[i], &err))
+            return snprintf(msg, msize, "%s", err.msg), 400;
+    size_t tl;
+    char *text = scene_read(s, a->scene, path, psize, &tl);
+    if (!text)
+        return snprintf(msg, msize, "no such scene"), 404;
+    hy_scene *chk = NULL;
+    if (hy_scene_parse_buffer(path, text, tl, &chk, &err)) {
+        free(text);
+        return snprintf(msg, msize, "%s", err.msg), 422;
+    }
+    hy_scene_free(chk);
+    rq->name = path, rq->text = text, rq->len = tl;
+    for (size_t i = 0; i < a->nsets; i++)
+        rq->sets[rq->nsets++] = (char *)a->sets[i];
+    return 0;
+}
+
+/* A frame index from 0 in text; -1 if it is not one. */
+static long frame_index(const char *text)
+{
     char *end;
     errno = 0;
-    long frame = a->frame ? strtol(a->frame, &end, 10) : -1;
-    if (!a->frame || *end || errno || frame < 0 || frame > 9999999)
+    long i = text ? strtol(text, &end, 10) : -1;
+    return !text || !*text || *end || errno || i < 0 || i > 9999999 ? -1 : i;
+}
+
+/* The HTTP status of a worker's answer: 501 without GL, 503 for no worker, 422. */
+static unsigned frame_status(int rc)
+{
+    return rc == 3 ? 501 : rc == SV_FRAMES_FAILED ? 503 : 422;
+}
+
+typedef struct one_frame {
+    char *png;
+    size_t len;
+} one_frame;
+
+static int keep_frame(void *ctx, long index, char *png, size_t len)
+{
+    (void)index;
+    one_frame *f = ctx;
+    free(f->png);
+    f->png = png, f->len = len;
+    return 0;
+}
+
+static int conn_gone(void *ctx) { return client_gone(ctx); }
+
+/* GET /api/frame?scene=S&frame=I[&set=K=V]...: the PNG of one frame, byte
+ * for byte what `hystviz animate S --frames I:I+1 --set K=V` writes. */
+static enum MHD_Result api_frame(server *s, struct MHD_Connection *c, const args *a)
+{
+    char path[PATH_MAX + 300], msg[4096];
+    aw_request rq;
+    unsigned bad = frame_source(s, a, &rq, path, sizeof path, msg, sizeof msg);
+    if (bad)
+        return send_error_json(c, bad, msg);
+    long frame = frame_index(a->frame);
+    if (!s->frames) {
+        free(rq.text);
+        return send_error_json(c, 501, "cannot run hystviz-animate (it is built next to hystviz)");
+    }
+    if (frame < 0) {
+        free(rq.text);
         return send_error_json(c, 400, "frame: a frame index from 0");
-    if (a->nsets)
-        return send_error_json(c, 400, "animation frames take no overrides (hystviz animate has no --set)");
+    }
     page_slot *slot = NULL;
     if (a->page) {
+        char *end;
         unsigned long seq = a->seq ? strtoul(a->seq, &end, 10) : 0;
-        if (strlen(a->page) >= sizeof slot->id || !*a->page)
+        if (strlen(a->page) >= sizeof slot->id || !*a->page) {
+            free(rq.text);
             return send_error_json(c, 400, "page: at most 39 characters");
+        }
         slot = page_enter(s, a->page, seq);
-        if (!slot)
+        if (!slot) {
+            free(rq.text);
             return send_error_json(c, 409, "superseded by a newer request of the same page");
+        }
     }
-    const char *tdir = getenv("TMPDIR");
-    char tmpl[PATH_MAX];
-    snprintf(tmpl, sizeof tmpl, "%s/hystviz-serve-XXXXXX", tdir && *tdir && strlen(tdir) < 3000 ? tdir : "/tmp");
-    enum MHD_Result ret;
-    if (!mkdtemp(tmpl)) {
-        if (slot)
-            page_leave(s, slot);
-        return send_error_json(c, 500, "cannot create a temporary directory");
-    }
-    char range[64], errfile[PATH_MAX + 16];
-    snprintf(range, sizeof range, "%ld:%ld", frame, frame + 1);
-    snprintf(errfile, sizeof errfile, "%s/stderr", tmpl);
-    char *argv[] = {s->animate, "animate", path, "--frames", range, "-o", tmpl, "--quiet", "-j", "1", NULL};
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, errfile, O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    pid_t pid;
-    int got = slot_take(s, c, !a->page), sp = -1, status = -1;
-    if (got == SLOT_OK) {
-        sp = posix_spawn(&pid, s->animate, &fa, NULL, argv, environ);
-        if (!sp)
-            while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-                ;
+    snprintf(rq.op, sizeof rq.op, "frames");
+    rq.first = frame, rq.last = frame + 1;
+    one_frame got = {0};
+    int taken = slot_take(s, c, !a->page), rc = SV_FRAMES_GONE;
+    if (taken == SLOT_OK) {
+        rc = sv_frames_run(s->frames, &rq, keep_frame, &got, conn_gone, c, NULL, msg, sizeof msg);
         slot_give(s, c, !a->page);
     }
-    posix_spawn_file_actions_destroy(&fa);
+    free(rq.text);
     if (slot)
         page_leave(s, slot);
-    if (got != SLOT_OK) {
-        unlink(errfile);
-        rmdir(tmpl);
-        return send_busy(c, got);
+    if (taken != SLOT_OK)
+        return send_busy(c, taken);
+    if (rc == 0 && got.png)
+        return send_buf(c, 200, "image/png", got.png, got.len, 1, NULL);
+    free(got.png);
+    if (rc == SV_FRAMES_GONE)
+        return MHD_NO;
+    return send_error_json(c, frame_status(rc), msg[0] ? msg : "hystviz animate failed");
+}
+
+/* ---- a stream of frames (playback) ---- */
+
+/* GET /api/frames?scene=S&from=A&to=B[&set=K=V]...&page=P&seq=N streams
+ * frames A .. B-1 as records "frame I LEN\n<PNG>" (anim_worker.h), then
+ * "end N 0\n", or "error STATUS LEN\n<message>" at the first failure.  Each
+ * frame is rendered when the connection can take it, in a render slot, by
+ * a warm worker; the stream ends when its client goes, the server stops or
+ * a newer stream of the same page (seq) starts. */
+typedef struct frame_stream {
+    server *s;
+    struct MHD_Connection *c;
+    aw_request rq;
+    char path[PATH_MAX + 300];
+    char page[48];
+    unsigned long seq;
+    long next, to, sent;
+    char *buf;                /* the record being sent */
+    size_t len, off;
+    int ended;
+} frame_stream;
+
+static void stream_free(void *cls)
+{
+    frame_stream *st = cls;
+    free(st->rq.text);
+    free(st->buf);
+    free(st);
+}
+
+/* The record "TAG NUM LEN\n" + data as st's buffer (data is the callee's). */
+static int stream_record(frame_stream *st, const char *tag, long num, char *data, size_t len)
+{
+    char head[64];
+    int h = snprintf(head, sizeof head, "%s %ld %zu\n", tag, num, len);
+    char *b = malloc((size_t)h + len);
+    if (b) {
+        memcpy(b, head, (size_t)h);
+        if (len)
+            memcpy(b + h, data, len);
     }
-    /* the frame: DIR/NAME/frame_NNNNN.png, NAME the scene's output name */
-    char png[PATH_MAX + 600], sub[PATH_MAX + 300], poster[PATH_MAX + 300];
-    snprintf(sub, sizeof sub, "%s/%s", tmpl, name);
-    snprintf(png, sizeof png, "%s/frame_%05ld.png", sub, frame);
-    snprintf(poster, sizeof poster, "%s/%s.png", tmpl, name);
-    size_t len = 0;
-    char *bytes = sp || !WIFEXITED(status) || WEXITSTATUS(status) ? NULL : sv_read_file(png, 64u << 20, &len);
-    size_t elen = 0;
-    char *etext = sv_read_file(errfile, 8192, &elen);
-    if (bytes)
-        ret = send_buf(c, 200, "image/png", bytes, len, 1, NULL);
-    else {
-        char msg[PATH_MAX + 600];
-        if (sp)
-            snprintf(msg, sizeof msg, "cannot run %s: %s", s->animate, strerror(sp));
-        else
-            snprintf(msg, sizeof msg, "%s", etext && *etext ? etext : "hystviz animate failed");
-        size_t ml = strlen(msg);
-        while (ml && msg[ml - 1] == '\n')
-            msg[--ml] = '\0';
-        ret = send_error_json(c, WIFEXITED(status) && WEXITSTATUS(status) == 3 ? 501 : 422, msg);
+    free(data);
+    free(st->buf);
+    st->buf = b, st->len = b ? (size_t)h + len : 0, st->off = 0;
+    return b ? 0 : -1;
+}
+
+static int stream_frame(void *ctx, long index, char *png, size_t len)
+{
+    frame_stream *st = ctx;
+    st->sent++;
+    return stream_record(st, "frame", index, png, len);
+}
+
+/* Renders the next frame into st's buffer; -1 ends the stream at once. */
+static int stream_next(frame_stream *st)
+{
+    server *s = st->s;
+    if (st->next >= st->to) {
+        st->ended = 1;
+        return stream_record(st, "end", st->sent, NULL, 0);
     }
-    free(etext);
-    unlink(png);
-    unlink(poster);
-    unlink(errfile);
-    rmdir(sub);
-    rmdir(tmpl);
+    page_slot *slot = page_enter(s, st->page, st->seq);
+    if (!slot)
+        return -1; /* a newer stream of the page: this one's frames are stale */
+    int taken = slot_take(s, st->c, 0), rc = SV_FRAMES_GONE;
+    char msg[4096] = "";
+    if (taken == SLOT_OK) {
+        st->rq.first = st->next, st->rq.last = st->next + 1;
+        rc = sv_frames_run(s->frames, &st->rq, stream_frame, st, conn_gone, st->c, NULL, msg, sizeof msg);
+        slot_give(s, st->c, 0);
+    }
+    page_leave(s, slot);
+    if (taken != SLOT_OK || rc == SV_FRAMES_GONE)
+        return -1;
+    if (rc) {
+        st->ended = 1;
+        char *m = strdup(msg[0] ? msg : "hystviz animate failed");
+        return stream_record(st, "error", (long)frame_status(rc), m, m ? strlen(m) : 0);
+    }
+    st->next++;
+    return 0;
+}
+
+static ssize_t stream_read(void *cls, uint64_t pos, char *out, size_t max)
+{
+    (void)pos;
+    frame_stream *st = cls;
+    if (st->off == st->len) {
+        if (st->ended)
+            return MHD_CONTENT_READER_END_OF_STREAM;
+        if (st->s->stopping || client_gone(st->c) || stream_next(st))
+            return MHD_CONTENT_READER_END_WITH_ERROR;
+    }
+    size_t n = st->len - st->off < max ? st->len - st->off : max;
+    memcpy(out, st->buf + st->off, n);
+    st->off += n;
+    return (ssize_t)n;
+}
+
+static enum MHD_Result api_frames(server *s, struct MHD_Connection *c, const args *a)
+{
+    frame_stream *st = calloc(1, sizeof *st);
+    if (!st)
+        return send_text(c, 500, "out of memory");
+    char msg[4096];
+    unsigned bad = frame_source(s, a, &st->rq, st->path, sizeof st->path, msg, sizeof msg);
+    if (!bad && ((st->next = frame_index(a->from)) < 0 || (st->to = frame_index(a->to)) <= st->next))
+        bad = 400, snprintf(msg, sizeof msg, "from, to: frames from .. to-1, 0 <= from < to");
+    if (!bad && !s->frames)
+        bad = 501, snprintf(msg, sizeof msg, "cannot run hystviz-animate (it is built next to hystviz)");
+    if (!bad && (!a->page || !*a->page || strlen(a->page) >= sizeof s->pages[0].id))
+        bad = 400, snprintf(msg, sizeof msg, "page: a stream needs the page's id (at most 39 characters)");
+    if (bad) {
+        stream_free(st);
+        return send_error_json(c, bad, msg);
+    }
+    char *end;
+    st->s = s, st->c = c;
+    st->seq = a->seq ? strtoul(a->seq, &end, 10) : 0;
+    snprintf(st->page, sizeof st->page, "%s", a->page);
+    snprintf(st->rq.op, sizeof st->rq.op, "frames");
+    struct MHD_Response *r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, 1 << 16, stream_read, st, stream_free);
+    if (!r) {
+        stream_free(st);
+        return MHD_NO;
+    }
+    add_headers(r, "application/octet-stream");
+    enum MHD_Result ret = MHD_queue_response(c, 200, r);
+    MHD_destroy_response(r);
     return ret;
 }
 
@@ -1690,6 +1851,8 @@ static enum MHD_Result handle_request(void *cls, struct MHD_Connection *c, const
         return api_render(s, c, &a);
     if (!strcmp(url, "/api/frame"))
         return api_frame(s, c, &a);
+    if (!strcmp(url, "/api/frames"))
+        return api_frames(s, c, &a);
     if (!strncmp(url, "/scenes/", 8))
         return api_text(s, c, url + 8);
     return send_text(c, 404, "not found");
@@ -1941,11 +2104,25 @@ int hy_cmd_serve(int argc, char **argv)
     pthread_mutex_init(&s->mu, NULL);
     pthread_cond_init(&s->cond, NULL);
     s->nslots = (int)(ncpu > 0 && ncpu < 64 ? ncpu : ncpu > 0 ? 64 : 1) + 1;
+    /* frame workers: one per CPU (at most 4), each a GL context kept warm;
+       an animation's frames together within animate's budget, or serve's
+       --max-work where that is larger */
+    char work[64];
+    snprintf(work, sizeof work, "%.17g", max_work > HY_SCENE_WORK_DEFAULT ? max_work : HY_SCENE_WORK_DEFAULT);
+    char *extra[] = {"--quiet", "--max-work", work};
+    if (s->animate[0] && !(s->frames = sv_frames_new(s->animate, s->nslots - 1 < 4 ? s->nslots - 1 : 4, extra, 3))) {
+        fprintf(stderr, "hystviz serve: out of memory\n");
+        close(s->dirfd);
+        free(s->page);
+        free(s);
+        return 1;
+    }
     /* few arenas: the memory of a heavy request is given back (malloc_trim)
        rather than kept by each connection thread's arena */
     mallopt(M_ARENA_MAX, 2);
     if (pipe(s->stop_pipe)) {
         fprintf(stderr, "hystviz serve: pipe: %s\n", strerror(errno));
+        sv_frames_free(s->frames);
         close(s->dirfd);
         free(s->page);
         free(s);
@@ -2020,6 +2197,7 @@ int hy_cmd_serve(int argc, char **argv)
         pthread_join(wt, NULL);
     if (d)
         MHD_stop_daemon(d);
+    sv_frames_free(s->frames); /* after the daemon: no request uses a worker now */
     for (int i = 0; i < 2; i++)
         close(s->stop_pipe[i]);
     close(s->dirfd);

@@ -103,12 +103,83 @@ int scene_anim_load(scene_anim *a, const char *path, hy_error *err)
 
 int scene_anim_load_policy(scene_anim *a, const char *path, const hy_scene_policy *pol, hy_error *err)
 {
+    return scene_anim_load_src(a, path, NULL, 0, NULL, 0, pol, err);
+}
+
+/* The scene parsed from a's text (or its file) with the user's overrides. */
+static int parse_scene(const scene_anim *a, hy_scene **s, hy_error *err)
+{
+    int rc = a->text ? hy_scene_parse_buffer_policy(a->path, a->text, a->len, &a->pol, s, err)
+                     : hy_scene_parse_file_policy(a->path, &a->pol, s, err);
+    for (size_t i = 0; !rc && i < a->nuser; i++)
+        if ((rc = hy_scene_set(*s, a->user[i], err))) {
+            hy_scene_free(*s);
+            *s = NULL;
+        }
+    return rc;
+}
+
+/* The user's overrides, then the keyframes' (which beat them), into all. */
+static size_t all_sets(const scene_anim *a, char *const *kf, char **all)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < a->nuser; i++)
+        all[n++] = a->user[i];
+    for (size_t i = 0; i < a->nkf; i++)
+        all[n++] = kf[i];
+    return n;
+}
+
+/* A run of the scene with the frame's keyframe overrides kf. */
+static int load_run(const scene_anim *a, hy_scene_run *r, char *const *kf, hy_error *err)
+{
+    char *sets[SCENE_ANIM_MAX_SETS + 64];
+    size_t n = all_sets(a, kf, sets);
+    return a->text ? hy_scene_run_load_text(r, a->path, a->text, a->len, sets, n, &a->pol, err)
+                   : hy_scene_run_load_policy(r, a->path, sets, n, &a->pol, err);
+}
+
+/* Frees what scene_anim_load_src copied (text, overrides). */
+static void free_src(scene_anim *a)
+{
+    for (size_t i = 0; i < a->nuser; i++)
+        free(a->user[i]);
+    free(a->user);
+    free(a->text);
+}
+
+/* Copies the text and the overrides into a. */
+static int copy_src(scene_anim *a, const char *text, size_t len, char *const *sets, size_t nsets, hy_error *err)
+{
+    if (nsets > SCENE_ANIM_MAX_SETS)
+        return hy_error_set(err, HY_EINVAL, "at most %d overrides of an animation", SCENE_ANIM_MAX_SETS);
+    if (text && (a->text = malloc(len + 1))) {
+        memcpy(a->text, text, len);
+        a->text[len] = '\0';
+        a->len = len;
+    }
+    if (nsets && (a->user = calloc(nsets, sizeof *a->user)))
+        for (; a->nuser < nsets && (a->user[a->nuser] = strdup(sets[a->nuser])); a->nuser++)
+            ;
+    if ((text && !a->text) || a->nuser < nsets)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    return HY_OK;
+}
+
+int scene_anim_load_src(scene_anim *a, const char *path, const char *text, size_t len, char *const *sets,
+                        size_t nsets, const hy_scene_policy *pol, hy_error *err)
+{
     memset(a, 0, sizeof *a);
     a->path = path;
     a->pol = pol ? *pol : hy_scene_policy_default();
-    int rc = hy_scene_parse_file_policy(path, &a->pol, &a->scene, err);
-    if (rc)
+    int rc = copy_src(a, text, len, sets, nsets, err);
+    if (!rc)
+        rc = parse_scene(a, &a->scene, err);
+    if (rc) {
+        free_src(a);
+        memset(a, 0, sizeof *a);
         return rc;
+    }
     read_timing(a);
     int ease0 = 1;
     const char *et;
@@ -140,6 +211,7 @@ int scene_anim_load_policy(scene_anim *a, const char *path, const hy_scene_polic
     }
     hy_scene_free(a->scene);
     free(a->kf);
+    free_src(a);
     memset(a, 0, sizeof *a);
     return rc;
 }
@@ -193,7 +265,7 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
 {
     hy_scene *s;
     double work = 0, budget = hy_scene_policy_budget(&a->pol);
-    int rc = hy_scene_parse_file_policy(a->path, &a->pol, &s, err);
+    int rc = parse_scene(a, &s, err);
     if (rc)
         return rc;
     char buf[4096], *sets[64];
@@ -217,7 +289,7 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
         hy_scene_run r;
         hy_error e3 = {0};
         double w = 0;
-        if (!rc && (a->nkf || f == 0) && hy_scene_run_load_policy(&r, a->path, sets, a->nkf, &a->pol, &e3))
+        if (!rc && (a->nkf || f == 0) && load_run(a, &r, sets, &e3))
             rc = a->nkf ? hy_scene_error_at(a->scene, "keyframe", a->kf[0].label, NULL, err, e3.code,
                                             "at frame %ld (t = %g s) the keyframe values give an invalid scene: %s", f, t,
                                             e3.msg)
@@ -267,10 +339,13 @@ void scene_anim_free(scene_anim *a)
         return;
     for (size_t i = 0; i < a->nentries; i++)
         entry_free(a->entries[i]);
+    if (a->last)
+        entry_free(a->last);
     free(a->entries);
     free(a->frame_hash);
     free(a->kf);
     hy_scene_free(a->scene);
+    free_src(a);
     pthread_mutex_destroy(&a->mu);
     pthread_cond_destroy(&a->cv);
     memset(a, 0, sizeof *a);
@@ -367,6 +442,37 @@ static int draw_run(const hy_scene_run *r, const hy_anim_frame *f, hy_error *err
     return rc;
 }
 
+/* One thread draws frames in any order (hystviz-animate --worker): the run
+ * of the last frame is kept, reused by a frame of the same overrides and
+ * replaced by the next one's, so memory holds one run whatever is asked. */
+static int draw_single(scene_anim *a, const hy_anim_frame *f, const char *key, uint64_t h, char **sets,
+                       hy_error *err)
+{
+    scene_entry *e = a->last;
+    if (e && e->hash == h && !strcmp(e->key, key))
+        a->hits++;
+    else {
+        if (e)
+            entry_free(e);
+        a->last = e = calloc(1, sizeof *e);
+        if (!e || !(e->key = strdup(key))) {
+            free(e);
+            a->last = NULL;
+            return hy_error_set(err, HY_ENOMEM, "out of memory");
+        }
+        e->hash = h;
+        pthread_mutex_init(&e->use, NULL);
+        int rc = load_run(a, &e->run, sets, &e->err);
+        if (!rc && (rc = hy_scene_run_compute(&e->run, NULL, &e->err)))
+            hy_scene_run_free(&e->run);
+        e->state = rc ? 2 : 1;
+        a->computes += !rc;
+    }
+    if (e->state == 2)
+        return hy_error_set(err, e->err.code ? e->err.code : HY_EINVAL, "%s", e->err.msg);
+    return draw_run(&e->run, f, err);
+}
+
 int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err)
 {
     scene_anim *a = state;
@@ -374,6 +480,8 @@ int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err)
     if (frame_key(a, f->index, f->nframes, f->duration, key, sizeof key, sets, buf, sizeof buf))
         return hy_error_set(err, HY_EINVAL, "%s: too many keyframe overrides", a->path);
     uint64_t h = fnv1a(key);
+    if (a->single)
+        return draw_single(a, f, key, h, sets, err);
     int fresh = 0;
     pthread_mutex_lock(&a->mu);
     scene_entry *e = frame_hashes(a, f->nframes, f->duration) ? NULL : entry_get(a, key, h, &fresh);
@@ -386,7 +494,7 @@ int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err)
     if (!e)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     if (fresh) {
-        int rc = hy_scene_run_load_policy(&e->run, a->path, sets, a->nkf, &a->pol, &e->err);
+        int rc = load_run(a, &e->run, sets, &e->err);
         if (!rc && (rc = hy_scene_run_compute(&e->run, NULL, &e->err)))
             hy_scene_run_free(&e->run);
         pthread_mutex_lock(&a->mu);

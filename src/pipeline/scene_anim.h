@@ -40,6 +40,8 @@ typedef struct scene_kf {
 
 typedef struct scene_entry scene_entry;
 
+#define SCENE_ANIM_MAX_SETS 64    /* the user's overrides of one animation */
+
 typedef struct scene_anim {
     const char *path;
     hy_scene *scene;          /* the scene as parsed (for timing and errors)  */
@@ -57,6 +59,12 @@ typedef struct scene_anim {
     long nhash;
     long computes, hits;      /* runs computed / frames that reused a run     */
     hy_scene_policy pol;      /* include dirs and work budget of every load   */
+    char *text;               /* the scene's text (NULL: read from path)      */
+    size_t len;
+    char **user;              /* the user's overrides (--set), before the keyframes' */
+    size_t nuser;
+    int single;               /* one drawing thread, frames in any order: keep one run */
+    scene_entry *last;        /* ... the last frame's */
 } scene_anim;
 
 /* Parses the scene at path, reads [animation] and every [keyframe NAME] and
@@ -68,6 +76,15 @@ int scene_anim_load(scene_anim *a, const char *path, hy_error *err);
 /* As scene_anim_load under pol (--include-dir, --max-work; NULL: defaults);
  * pol's include dirs must outlive a. */
 int scene_anim_load_policy(scene_anim *a, const char *path, const hy_scene_policy *pol, hy_error *err);
+
+/* As scene_anim_load_policy, from the scene's text when text is not NULL
+ * (read by the caller through one descriptor: hystviz serve; path then
+ * only names it in messages and is where its includes are looked up), with
+ * the user's overrides sets ("section.key=value", at most
+ * SCENE_ANIM_MAX_SETS, applied before each frame's keyframe values, which
+ * beat them).  text and sets are copied. */
+int scene_anim_load_src(scene_anim *a, const char *path, const char *text, size_t len, char *const *sets,
+                        size_t nsets, const hy_scene_policy *pol, hy_error *err);
 
 /* The keyframe's value at time t seconds: exact key values at the key times,
  * held before the first and after the last. */
@@ -94,7 +111,9 @@ void scene_anim_free(scene_anim *a);
 #if HY_HAVE_GL
 #include "hy_anim.h"
 /* hy_anim_draw_fn: computes (or waits for, or reuses) the run of frame f's
- * overrides and draws its figure on f->data and f->overlay. */
+ * overrides and draws its figure on f->data and f->overlay.  With
+ * a->single set (one drawing thread, frames in any order) only the last
+ * frame's run is kept. */
 int scene_anim_draw(void *state, const hy_anim_frame *f, hy_error *err);
 #endif
 

@@ -192,39 +192,40 @@ typedef struct worker {
     hy_gl *gl;
     cairo_surface_t *frame;   /* the GL context's own buffer as a cairo RGB24 image */
     double draw_s, read_s, png_s;
+    double t_drawn;           /* when compose's draw function returned */
 } worker;
 
-/* One frame: the draw function records the overlay (text, axes) while it
- * gives the GL canvas the data; GL finishes into its own buffer, which is a
- * cairo RGB24 image; the recorded overlay is painted over it there, and the
- * frame goes to libpng (and ffmpeg) as it is: no readback copy, no separate
- * compositing or RGB conversion pass. */
-static int render_one(run *r, worker *w, long i, hy_error *err)
+/* Draws frame i of nframes of p's animation in w's GL context: the draw
+ * function records the overlay (text, axes) while it gives the GL canvas the
+ * data; GL finishes into its own buffer, which is a cairo RGB24 image; the
+ * recorded overlay is painted over it there.  *fb is that buffer (stride
+ * 4 * width), valid until the next frame of w: it goes to libpng (and
+ * ffmpeg) as it is, with no readback copy, compositing or RGB pass. */
+static int compose(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, long nframes, worker *w, long i,
+                   const unsigned char **fb, hy_error *err)
 {
-    const hy_anim_params *p = r->p;
     int W = p->width, H = p->height, stride = 4 * W;
-    double t0 = now();
     cairo_rectangle_t ext = {0, 0, W, H};
     cairo_surface_t *rec = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &ext);
     cairo_t *cr = cairo_create(rec);
     double k = p->scale > 0 ? p->scale : H / HY_ANIM_POINTS_HIGH;
     cairo_scale(cr, k, k);
     hy_cairo_canvas cc;
-    hy_anim_frame f = {i, r->nframes, (double)i / p->fps, p->duration,
-                       r->nframes > 1 ? (double)i / (double)(r->nframes - 1) : 0.0, W, H, k, w->gl,
+    hy_anim_frame f = {i, nframes, (double)i / p->fps, p->duration,
+                       nframes > 1 ? (double)i / (double)(nframes - 1) : 0.0, W, H, k, w->gl,
                        hy_gl_canvas(w->gl, k), hy_canvas_cairo(&cc, cr, NULL)};
     hy_gl_begin(w->gl, (hy_rgb){1, 1, 1});
-    int st = r->draw(r->state, &f, err);
+    int st = draw(state, &f, err);
     cairo_destroy(cr);
     if (!st && cairo_surface_status(rec))
         st = hy_error_set(err, HY_ENOMEM, "cairo could not record the frame's overlay: %s",
                           cairo_status_to_string(cairo_surface_status(rec)));
     double t1 = now();
-    const unsigned char *fb = st ? NULL : hy_gl_finish(w->gl, err);
-    if (!st && !fb)
+    *fb = st ? NULL : hy_gl_finish(w->gl, err);
+    if (!st && !*fb)
         st = err && err->code ? err->code : HY_ENUM;
     if (!st && !w->frame) {
-        w->frame = cairo_image_surface_create_for_data((unsigned char *)fb, CAIRO_FORMAT_RGB24, W, H, stride);
+        w->frame = cairo_image_surface_create_for_data((unsigned char *)*fb, CAIRO_FORMAT_RGB24, W, H, stride);
         if (cairo_surface_status(w->frame))
             st = hy_error_set(err, HY_ENOMEM, "out of memory for %d x %d frames", W, H);
     }
@@ -237,7 +238,20 @@ static int render_one(run *r, worker *w, long i, hy_error *err)
         cairo_surface_flush(w->frame);
     }
     cairo_surface_destroy(rec);
-    double t2 = now();
+    w->t_drawn = t1;
+    return st;
+}
+
+/* One frame of the run: composed, then written as a PNG frame (and the
+ * poster, and piped to ffmpeg). */
+static int render_one(run *r, worker *w, long i, hy_error *err)
+{
+    const hy_anim_params *p = r->p;
+    int W = p->width, H = p->height, stride = 4 * W;
+    double t0 = now();
+    const unsigned char *fb = NULL;
+    int st = compose(p, r->draw, r->state, r->nframes, w, i, &fb, err);
+    double t1 = w->t_drawn, t2 = now();
     char path[4200];
     if (!st && !p->no_frames) {
         snprintf(path, sizeof path, "%s/frame_%05ld.png", r->dir, i);
@@ -250,6 +264,8 @@ static int render_one(run *r, worker *w, long i, hy_error *err)
     if (!st && r->video && pipe_frame(r, i, fb, (size_t)stride * (size_t)H))
         st = hy_error_set(err, HY_EIO, "ffmpeg stopped reading frames (see its messages above)");
     double t3 = now();
+    if (st)
+        t1 = t2;
     w->draw_s += t1 - t0, w->read_s += t2 - t1, w->png_s += t3 - t2;
     return st;
 }
@@ -485,4 +501,60 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
         return r.err.code ? r.err.code : HY_EIO;
     }
     return HY_OK;
+}
+
+/* ---- a warm renderer (hystviz-animate --worker) ---- */
+
+struct hy_anim_renderer {
+    worker w;
+    int width, height;
+};
+
+int hy_anim_renderer_new(hy_anim_renderer **out, int width, int height, hy_error *err)
+{
+    *out = NULL;
+    hy_anim_renderer *r = calloc(1, sizeof *r);
+    if (!r)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    pthread_mutex_lock(&create_mu);
+    int st = hy_gl_create(&r->w.gl, width, height, err);
+    pthread_mutex_unlock(&create_mu);
+    if (st) {
+        free(r);
+        return st;
+    }
+    r->width = width, r->height = height;
+    *out = r;
+    return HY_OK;
+}
+
+int hy_anim_renderer_size(const hy_anim_renderer *r, int *width, int *height)
+{
+    *width = r->width, *height = r->height;
+    return HY_OK;
+}
+
+int hy_anim_renderer_png(hy_anim_renderer *r, const hy_anim_params *p, hy_anim_draw_fn draw, void *state, long index,
+                         FILE *png, hy_error *err)
+{
+    if (p->width != r->width || p->height != r->height)
+        return hy_error_set(err, HY_EINVAL, "frame size %d x %d is not the renderer's %d x %d", p->width, p->height,
+                            r->width, r->height);
+    long nframes = hy_anim_nframes(p);
+    if (index < 0 || index >= nframes)
+        return hy_error_set(err, HY_EINVAL, "frame %ld is outside the animation's %ld frames (0:%ld)", index, nframes,
+                            nframes);
+    const unsigned char *fb = NULL;
+    int st = compose(p, draw, state, nframes, &r->w, index, &fb, err);
+    return st ? st : hy_png_encode_xrgb(png, p->width, p->height, fb, 4 * p->width, &p->png, err);
+}
+
+void hy_anim_renderer_free(hy_anim_renderer *r)
+{
+    if (!r)
+        return;
+    if (r->w.frame)
+        cairo_surface_destroy(r->w.frame);
+    hy_gl_free(r->w.gl);
+    free(r);
 }

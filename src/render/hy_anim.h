@@ -21,6 +21,7 @@
 #define HY_ANIM_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "hy_canvas.h"
 #include "hy_frame.h"
@@ -121,6 +122,34 @@ long hy_anim_nframes(const hy_anim_params *p);
  * HY_EIO, not a killed process) and restored afterwards. */
 int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_anim_stats *stats,
                 hy_error *err);
+
+/* ---- a warm renderer: one GL context kept from frame to frame ---- */
+
+/* hystviz-animate --worker renders frames on request with one context
+ * instead of one process per frame.  A frame's PNG is byte for byte the
+ * file hy_anim_run writes for it (the same drawing and encoder).
+ *
+ *     hy_anim_renderer *r;
+ *     if (hy_anim_renderer_new(&r, 1280, 720, &err)) ...
+ *     hy_anim_renderer_png(r, &p, draw, state, 10, memstream, &err);
+ *     hy_anim_renderer_free(r);
+ */
+typedef struct hy_anim_renderer hy_anim_renderer;
+
+/* A GL context of width x height pixels; HY_EUNSUP without GL. */
+int hy_anim_renderer_new(hy_anim_renderer **out, int width, int height, hy_error *err);
+
+/* The renderer's frame size. */
+int hy_anim_renderer_size(const hy_anim_renderer *r, int *width, int *height);
+
+/* Draws frame index of p's animation (p's size must be the renderer's) and
+ * writes its PNG (p->png's settings) on png.  Returns HY_OK, HY_EINVAL for a
+ * frame outside the animation or another size, draw's error, HY_EIO. */
+int hy_anim_renderer_png(hy_anim_renderer *r, const hy_anim_params *p, hy_anim_draw_fn draw, void *state, long index,
+                         FILE *png, hy_error *err);
+
+/* Frees the context; NULL is allowed. */
+void hy_anim_renderer_free(hy_anim_renderer *r);
 
 /* Whether a program is on PATH (used for ffmpeg). */
 int hy_anim_on_path(const char *prog);

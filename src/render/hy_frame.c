@@ -241,23 +241,28 @@ static int encode_deflate(FILE *fp, int w, int h, const unsigned char *px, int x
 }
 #endif
 
+/* The PNG of the pixels on fp with o's engine (NULL: the frame defaults); -1 on failure. */
+static int encode_any(FILE *fp, int w, int h, const unsigned char *rgb, int xrgb_stride, const hy_png_opts *o)
+{
+    hy_png_opts def = hy_png_frame_defaults();
+    if (!o)
+        o = &def;
+#if HY_HAVE_LIBDEFLATE
+    if (o->engine == HY_PNG_LIBDEFLATE)
+        return encode_deflate(fp, w, h, rgb, xrgb_stride, o->level);
+#endif
+    return encode(fp, w, h, rgb, xrgb_stride, o);
+}
+
 static int write_png(const char *path, int w, int h, const unsigned char *rgb, int xrgb_stride,
                      const hy_png_opts *o, hy_error *err)
 {
-    hy_png_opts def = hy_png_frame_defaults();
     hy_out out;
     int st = hy_out_open(&out, path, 0, err);
     if (st)
         return st;
     errno = 0;
-    if (!o)
-        o = &def;
-#if HY_HAVE_LIBDEFLATE
-    int bad = o->engine == HY_PNG_LIBDEFLATE ? encode_deflate(hy_out_file(&out), w, h, rgb, xrgb_stride, o->level)
-                                             : encode(hy_out_file(&out), w, h, rgb, xrgb_stride, o);
-#else
-    int bad = encode(hy_out_file(&out), w, h, rgb, xrgb_stride, o);
-#endif
+    int bad = encode_any(hy_out_file(&out), w, h, rgb, xrgb_stride, o);
     if (bad) {
         int e = errno;
         hy_out_abort(&out);
@@ -278,4 +283,15 @@ int hy_png_write_xrgb(const char *path, int w, int h, const unsigned char *xrgb,
     if (stride < 4 * w)
         return hy_error_set(err, HY_EINVAL, "cannot write '%s': stride %d is less than 4 x %d", path, stride, w);
     return write_png(path, w, h, xrgb, stride, o, err);
+}
+
+int hy_png_encode_xrgb(FILE *fp, int w, int h, const unsigned char *xrgb, int stride, const hy_png_opts *o,
+                       hy_error *err)
+{
+    if (stride < 4 * w)
+        return hy_error_set(err, HY_EINVAL, "cannot encode a PNG: stride %d is less than 4 x %d", stride, w);
+    errno = 0;
+    if (encode_any(fp, w, h, xrgb, stride, o) || fflush(fp))
+        return hy_error_set(err, HY_EIO, "cannot encode a PNG: %s", errno ? strerror(errno) : "encoding failed");
+    return HY_OK;
 }

@@ -19,6 +19,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "hy_status.h"
@@ -62,5 +63,11 @@ int hy_png_write_rgb(const char *path, int w, int h, const unsigned char *rgb, c
  * byte and orders the channels while it encodes, so no conversion pass. */
 int hy_png_write_xrgb(const char *path, int w, int h, const unsigned char *xrgb, int stride, const hy_png_opts *o,
                       hy_error *err);
+
+/* The same PNG bytes hy_png_write_xrgb writes, onto fp (an open_memstream:
+ * a frame kept in memory, hystviz-animate --worker).  HY_EIO when the
+ * encoder or the stream fails. */
+int hy_png_encode_xrgb(FILE *fp, int w, int h, const unsigned char *xrgb, int stride, const hy_png_opts *o,
+                       hy_error *err);
 
 #endif

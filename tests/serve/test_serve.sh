@@ -267,7 +267,7 @@ n200=$(cat "$T"/cl_* | grep -c -x 200)
 expect 200 "/api/render?scene=$F.scene&fmt=json&page=p1&seq=99"
 kill -0 $srv 2>/dev/null && ok "server alive after the storm" || fail "server died"
 
-# ---- animation frames: hystviz-animate out of process ----------------------------------------
+# ---- animation frames: warm hystviz-animate workers ----------------------------------------
 if "$hv" animate --list >/dev/null 2>&1; then
     info=$("$hv" animate scenes/anim_minor_loop_ex4.scene --info | sed 's/^frames \([0-9]*\) fps \([0-9.]*\).*/"frames":\1,"fps":\2/')
     curl -s "$base/api/scene?scene=anim_minor_loop_ex4.scene" | grep -q "\"anim\":{$info}" &&
@@ -290,6 +290,60 @@ if "$hv" animate --list >/dev/null 2>&1; then
     expect 400 "/api/frame?scene=@minor-loop-ex4&frame=-1"
     expect 400 "/api/frame?scene=@minor-loop-ex4&frame=1x"
     expect 422 "/api/frame?scene=@minor-loop-ex4&frame=100000"
+    expect 400 "/api/frame?scene=@minor-loop-ex4&frame=1&set=model.sigma0%3D2"
+    expect 400 "/api/frame?scene=anim_gamma_sweep_ex3.scene&frame=1&set=output.dir%3D/tmp"
+    expect 422 "/api/frame?scene=anim_gamma_sweep_ex3.scene&frame=1&set=model.sigma0%3D-1"
+    # the page's overrides reach the frames: == animate --set
+    rm -rf "$T/fr"
+    curl -s -o "$T/frame.png" "$base/api/frame?scene=anim_gamma_sweep_ex3.scene&frame=5&set=model.sigma0%3D3"
+    "$hv" animate scenes/anim_gamma_sweep_ex3.scene --set model.sigma0=3 --frames 5:6 -o "$T/fr" --quiet
+    cmp -s "$T/frame.png" "$T/fr/anim_gamma_sweep_ex3/frame_00005.png" &&
+        ok "frame 5 with set=model.sigma0=3 == animate --set model.sigma0=3 --frames 5:6" || fail "frame 5 with an override"
+    # a stream of frames for playback: records "frame I LEN", then "end N"
+    curl -s -o "$T/stream" "$base/api/frames?scene=anim_minor_loop_ex4.scene&from=8&to=11&page=tp&seq=1"
+    rm -rf "$T/fr"
+    "$hv" animate scenes/anim_minor_loop_ex4.scene --frames 8:11 -o "$T/fr" --quiet
+    python3 - "$T/stream" "$T/fr/anim_minor_loop_ex4" <<'EOF' && ok "/api/frames 8..10 == animate --frames 8:11, then end 3" ||
+import sys
+b, i, want = open(sys.argv[1], "rb").read(), 0, 8
+while True:
+    nl = b.index(b"\n", i)
+    tag, num, n = b[i:nl].decode().split()
+    data, i = b[nl + 1:nl + 1 + int(n)], nl + 1 + int(n)
+    if tag == "end":
+        assert (int(num), want, i) == (3, 11, len(b)), (num, want, i, len(b))
+        break
+    assert (tag, int(num)) == ("frame", want), (tag, num)
+    assert data == open(f"{sys.argv[2]}/frame_{want:05d}.png", "rb").read(), f"frame {want} differs"
+    want += 1
+EOF
+        fail "/api/frames differs from animate --frames 8:11"
+    curl -s "$base/api/frames?scene=anim_minor_loop_ex4.scene&from=0&to=2&page=tp&seq=2&set=model.sigma0%3D-1" |
+        head -c 40 | grep -q "^error 422 " && ok "/api/frames: a refused override is an error record" ||
+        fail "/api/frames with a refused override"
+    expect 400 "/api/frames?scene=anim_minor_loop_ex4.scene&from=3&to=3&page=tp"
+    expect 400 "/api/frames?scene=anim_minor_loop_ex4.scene&from=0&to=3"
+    # the warm workers: bounded, a killed one restarted and reaped, none after SIGINT
+    for i in $(seq 12); do curl -s -o /dev/null "$base/api/frame?scene=@gamma-sweep-ex2&frame=$i" & clients="$clients $!"; done
+    most=0
+    for _ in $(seq 60); do
+        n=$(pgrep -P $srv | wc -l)
+        [ "$n" -gt "$most" ] && most=$n
+        sleep 0.05
+    done
+    for p in $clients; do wait_pid $p 60 "a frame request"; done
+    clients=
+    [ "$most" -ge 1 ] && [ "$most" -le 4 ] && ok "12 concurrent frames: at most $most workers (4 at most)" ||
+        fail "12 concurrent frames: $most children"
+    workers=$(pgrep -P $srv)
+    w1=$(echo "$workers" | head -n 1)
+    [ -n "$w1" ] && kill -9 "$w1"
+    expect 200 "/api/frame?scene=@minor-loop-ex4&frame=2"
+    expect 200 "/api/frame?scene=@minor-loop-ex4&frame=3"
+    zombies=$(ps -o stat= --ppid $srv | grep -c Z)
+    [ -n "$w1" ] && [ "$zombies" -eq 0 ] && ok "a killed worker: frames still come, it was reaped" ||
+        fail "$zombies zombie workers (killed: '$w1')"
+    workers=$(pgrep -P $srv)
 else
     echo "SKIP (frames): hystviz-animate was built without OSMesa"
 fi
@@ -305,6 +359,9 @@ kill $sse 2>/dev/null
 wait_pid $sse 10 "the SSE client"
 sse=
 [ $rc -eq 0 ] && ok "SIGINT: exit 0 after $(((t1 - t0) / 1000000)) ms" || fail "SIGINT: exit status $rc"
+left=
+for w in ${workers:-}; do alive "$w" && left="$left $w"; done
+[ -z "$left" ] && ok "no frame worker outlives serve" || fail "frame workers left after serve stopped:$left"
 ls -a scenes | grep -q "tmp" && fail "temporary files left after shutdown"
 
 # ---- --public: a warning; IP literals are accepted as Host, names are not --------------------
