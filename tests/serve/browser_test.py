@@ -10,8 +10,14 @@ u_min,2 and checks the CLI's message appears next to the control while the
 figure stays; hovers a curve; saves an edit of style.scene by renaming (as
 Vim does) and checks the page followed without a click; scrubs the
 animation to frame 10 and checks the PNG equals `hystviz animate --frames
-10:11`.  Exit 77 (SKIP) with a message where chromium is absent; the frame
+10:11`; plays a built-in animation for 3 s (>= 10 frames/s shown) and
+checks the paused frame i equals `hystviz animate --frames i:i+1`, and that
+a slider moved while a scene animation plays changes the frames that follow
+(== `animate --set`).  Exit 77 (SKIP) with a message where chromium is absent; the frame
 check is skipped where hystviz-animate was built without OSMesa.
+
+--bench-play S: instead, plays every built-in animation and animation scene
+for S seconds at 1280x720 and prints the frames shown per second.
 
 --bench N: instead, N slider moves per figure (Fig. 15, Fig. 11, bw_fig1a),
 printing the median and 95th percentile of the server's render time and of
@@ -387,7 +393,7 @@ def test_page(dt, hv, base, scenes, tmp, screenshot):
     print(f"   the page followed the save in {dt_ms:.0f} ms")
 
 
-def test_anim(dt, hv, base, scenes, tmp):
+def test_anim(dt, hv, base, scenes, tmp, screenshot=None):
     A = "anim_minor_loop_ex4"
     scene = os.path.join(scenes, A + ".scene")
     out = os.path.join(tmp, "anim")
@@ -409,6 +415,89 @@ def test_anim(dt, hv, base, scenes, tmp):
           "scrubbed to frame 10")
     got = base64.b64decode(dt.js("hv.frameB64") or "")
     check(got == want, f"frame 10 in the page == hystviz animate --frames 10:11 ({len(got)} bytes)")
+    test_play(dt, hv, base, scenes, tmp, screenshot)
+
+
+def animate_frame(hv, tmp, what, i, sets=()):
+    """The PNG `hystviz animate WHAT --frames i:i+1 --set ...` writes."""
+    out = tempfile.mkdtemp(dir=tmp)
+    args = [hv, "animate", what, "--frames", f"{i}:{i + 1}", "-o", out, "--quiet"]
+    for s in sets:
+        args += ["--set", s]
+    subprocess.run(args, check=True, capture_output=True, timeout=120)
+    sub = next(d for d in os.listdir(out) if os.path.isdir(os.path.join(out, d)))
+    with open(os.path.join(out, sub, f"frame_{i:05d}.png"), "rb") as f:
+        return f.read()
+
+
+def play_for(dt, seconds):
+    """Plays the open animation: waits for its first played frame, then counts the
+    frames shown in `seconds` of play; returns frames per second."""
+    dt.js("document.getElementById('play').click()")
+    dt.wait("hv.anim.shown > 0", 60, "the first played frame")
+    n0, t0 = dt.js("hv.anim.shown"), time.time()
+    time.sleep(seconds)
+    n1, t1 = dt.js("hv.anim.shown"), time.time()
+    return (n1 - n0) / (t1 - t0)
+
+
+def pause(dt):
+    dt.js("hv.frameB64 = null; document.getElementById('play').click()")
+    dt.wait("!hv.playing && hv.frameB64 !== null", 20, "the paused frame")
+    return dt.js("hv.frame"), base64.b64decode(dt.js("hv.frameB64") or "")
+
+
+def test_play(dt, hv, base, scenes, tmp, screenshot):
+    """Playback: a built-in animation at its frame rate (>= 10 frames/s asserted, 30
+    is the benchmark's), the paused frame == animate --frames i:i+1; a slider moved
+    while a scene animation plays changes the frames that follow."""
+    B = "minor-loop-ex4"
+    dt.call("Page.navigate", url=base + "#@" + B)
+    check(dt.wait(f"hv.info && hv.info.file === '@{B}' && hv.frame === 0 && !hv.frameInflight", 60, "frame 0"),
+          f"@{B}: frame 0 shown")
+    fps = play_for(dt, 3)
+    if screenshot:
+        shot = dt.call("Page.captureScreenshot", format="png")
+        with open(screenshot.replace(".png", "") + "-play.png", "wb") as f:
+            f.write(base64.b64decode(shot["data"]))
+    stalls = dt.js("hv.anim.stalls")
+    check(fps >= 10, f"@{B} plays at {fps:.1f} frames/s over 3 s (>= 10; {stalls} display frames waited for a frame)")
+    i, got = pause(dt)
+    check(got == animate_frame(hv, tmp, B, i), f"paused on frame {i}: the PNG == hystviz animate --frames {i}:{i + 1}")
+    check(dt.js("document.getElementById('scrub').value") == str(i), "the scrubber follows the played frame")
+
+    A = "anim_gamma_sweep_ex3"
+    scene = os.path.join(scenes, A + ".scene")
+    dt.call("Page.navigate", url=base + "#" + A + ".scene")
+    check(dt.wait(f"hv.info && hv.info.file === '{A}.scene' && hv.frame === 0 && !hv.frameInflight", 60, "frame 0"),
+          f"{A}: frame 0 shown")
+    play_for(dt, 0.5)
+    # a new sigma0 while it plays: the frames not yet shown use it
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="model.sigma0"]');
+        b.value = '2'; b.dispatchEvent(new Event('change')); })()""")
+    n0 = dt.js("hv.anim.shown")
+    check(dt.wait(f"hv.anim.shown > {n0} + 10", 30, "frames with the new sigma0"), "frames go on after the slider moved")
+    i, got = pause(dt)
+    want = animate_frame(hv, tmp, scene, i, ["model.sigma0=2"])
+    check(got == want, f"moved while playing: paused frame {i} == hystviz animate --set model.sigma0=2 --frames {i}:{i + 1}")
+    check(got != animate_frame(hv, tmp, scene, i), "... and differs from the frame without the override")
+
+
+def bench_play(dt, base, seconds, scenes):
+    """Playback in the page at 1280x720: frames shown per second over `seconds`
+    (after the first), per built-in animation and animation scene."""
+    names = ["@" + n for n in dt.js("hv.scenes.filter(s => s.builtin).map(s => s.file.slice(1))")]
+    names += sorted(f for f in os.listdir(scenes) if f.startswith("anim_") and f.endswith(".scene"))
+    for f in names:
+        dt.call("Page.navigate", url=base + "#" + f)
+        if not dt.wait(f"hv.info && hv.info.file === '{f}' && hv.frame === 0 && !hv.frameInflight", 60, "frame 0"):
+            continue
+        info = dt.js("[hv.anim.n, hv.anim.fps]")
+        fps = play_for(dt, seconds)
+        stalls = dt.js("hv.anim.stalls")
+        dt.js("document.getElementById('play').click()")
+        print(f"bench-serve-play {f}: {fps:.1f} frames/s shown over {seconds} s at 1280x720 (clip: {info[0]} frames "
+              f"at {info[1]} fps; {stalls} display frames waited for a frame)", flush=True)
 
 
 def bench(dt, base, n, scenes):
@@ -468,6 +557,7 @@ def main():
     hv, src = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2])
     screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
     nbench = int(sys.argv[sys.argv.index("--bench") + 1]) if "--bench" in sys.argv else 0
+    play_s = float(sys.argv[sys.argv.index("--bench-play") + 1]) if "--bench-play" in sys.argv else 0
     if not (shutil.which("chromium") or shutil.which("chromium-browser")):
         if need_chromium():
             print("FAIL: chromium is not installed (CI=true: sh tools/setup.sh test installs it)")
@@ -497,11 +587,14 @@ def main():
         dt.call("Page.enable")
         dt.call("Runtime.enable")
         dt.call("Emulation.setDeviceMetricsOverride", width=1400, height=1000, deviceScaleFactor=1, mobile=False)
-        if nbench:
+        if play_s:
+            nbench = 1
+            bench_play(dt, base, play_s, scenes)
+        elif nbench:
             bench(dt, base, nbench, scenes)
         else:
             test_page(dt, hv, base, scenes, tmp, screenshot)
-            test_anim(dt, hv, base, scenes, tmp)
+            test_anim(dt, hv, base, scenes, tmp, screenshot)
     finally:
         if chrome:
             stop_group(chrome)

@@ -141,6 +141,7 @@ function query() {
 
 function requestRender() {
   if (!hv.info) return;
+  animSetsChanged();
   if (hv.inflight) { hv.pending = true; return; }
   doRender();
 }
@@ -248,25 +249,88 @@ $('figure').addEventListener('mousemove', ev => {
 $('figure').addEventListener('mouseleave', () => { $('tip').hidden = true; });
 
 // ---- animations ------------------------------------------------------------------
+// Frames are PNGs from the server's warm frame workers: byte for byte `hystviz animate
+// SCENE --frames i:i+1 --set …` (the sliders' overrides).  Playing streams windows of
+// frames ahead (/api/frames), decodes a few ahead (createImageBitmap) and shows frame
+// floor(t * fps) at the clip's rate on a canvas, so the scene's easing is seen as
+// written; a frame not there yet holds the clock (the clip slows, it never skips).
+// A slider moved while playing drops what was fetched for the old values: the next
+// frames shown use the new ones.  Paused, frame i comes alone (/api/frame).
+
+const anim = hv.anim = {
+  n: 0, fps: 30, key: '', png: new Map(), bmp: new Map(), decoding: new Set(),
+  stream: null, streamEnd: -1, pos: 0, last: 0, shown: 0, stalls: 0, raf: 0, error: null,
+};
+const WINDOW_S = 2;     // seconds of frames asked for ahead by one stream
+const DECODE_AHEAD = 8; // frames decoded ahead of the one shown
+
+function animKey() {
+  return hv.info ? hv.info.file + '\n' + Object.entries(hv.sets).map(([k, v]) => k + '=' + v).join('\n') : '';
+}
+
+function animSets() {
+  let q = '';
+  if (hv.info && !hv.info.builtin) for (const [k, v] of Object.entries(hv.sets)) q += '&set=' + enc(k + '=' + v);
+  return q;
+}
+
+function animClear() {
+  if (anim.stream) anim.stream.abort();
+  anim.stream = null;
+  anim.streamEnd = -1;
+  for (const b of anim.bmp.values()) b.close();
+  anim.png.clear();
+  anim.bmp.clear();
+  anim.decoding.clear();
+  anim.key = animKey();
+}
+
+// the sliders changed (called by requestRender): frames not yet shown use the new values
+function animSetsChanged() {
+  if (!hv.info || !hv.info.anim || anim.key === animKey()) return;
+  animClear();
+  if (hv.playing) animFetch();
+  else requestFrame(+$('scrub').value);
+}
 
 function setupAnim(info, keep) {
   const sec = $('anim');
-  if (!info.anim) { sec.hidden = true; hv.playing = false; return; }
+  animStop();
+  animClear();
+  if (!info.anim) { sec.hidden = true; return; }
   sec.hidden = false;
   if (info.anim.error) {
     $('frameinfo').textContent = info.anim.error;
     $('framenote').textContent = '';
     return;
   }
-  const n = info.anim.frames;
-  $('scrub').max = n - 1;
+  anim.n = info.anim.frames;
+  anim.fps = info.anim.fps || 30;
+  $('scrub').max = anim.n - 1;
   if (!keep) { $('scrub').value = 0; hv.frame = -1; }
-  $('framenote').textContent = 'Frame i is the PNG that `hystviz animate ' + info.path + ' --frames i:i+1` writes '
-    + '(OpenGL, rendered by hystviz-animate in its own process' + (info.builtin ? ').' : '; the sliders above change the still figure only).');
+  $('framenote').textContent = 'Frame i is the PNG that `hystviz animate ' + info.path
+    + (info.builtin ? '' : ' --set …') + ' --frames i:i+1` writes (OpenGL, from a warm hystviz-animate worker); '
+    + 'play shows ' + anim.fps + ' frames a second' + (info.builtin ? '.' : ', with the values of the sliders above.');
   requestFrame(+$('scrub').value);
 }
 
+function showBitmap(b) {
+  const c = $('frame');
+  if (c.width !== b.width || c.height !== b.height) { c.width = b.width; c.height = b.height; }
+  c.getContext('2d').drawImage(b, 0, 0);
+}
+
+function b64(buf) {
+  let s = '';
+  const u8 = new Uint8Array(buf);
+  for (let k = 0; k < u8.length; k += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(k, k + 0x8000));
+  return btoa(s);
+}
+
+// ---- paused: one frame at a time
+
 function requestFrame(i) {
+  if (hv.playing) return;
   if (hv.frameInflight) { hv.framePending = i; return; }
   loadFrame(i);
 }
@@ -274,46 +338,156 @@ function requestFrame(i) {
 async function loadFrame(i) {
   hv.frameInflight = true;
   hv.framePending = -1;
-  const my = ++hv.frameSeq;
-  $('frameinfo').textContent = 'frame ' + i + ' / ' + hv.info.anim.frames + ' (rendering…)';
+  const my = ++hv.frameSeq, key = animKey();
+  $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' (rendering…)';
   try {
-    const r = await fetch('/api/frame?scene=' + enc(hv.info.file) + '&frame=' + i + '&page=' + hv.page + 'f&seq=' + my);
-    if (r.status === 200) {
-      const buf = await r.arrayBuffer();
-      const old = $('frame').src;
-      $('frame').src = URL.createObjectURL(new Blob([buf], { type: 'image/png' }));
-      if (old.startsWith('blob:')) URL.revokeObjectURL(old);
-      let s = '';
-      const u8 = new Uint8Array(buf);
-      for (let k = 0; k < u8.length; k += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(k, k + 0x8000));
-      hv.frameB64 = btoa(s);
+    let buf = anim.png.get(i);
+    if (!buf) {
+      const r = await fetch('/api/frame?scene=' + enc(hv.info.file) + animSets() + '&frame=' + i + '&page=' + hv.page + 'f&seq=' + my);
+      if (r.status === 200) buf = await r.arrayBuffer();
+      else if (r.status !== 409) {
+        const j = await r.json();
+        $('frameinfo').textContent = 'frame ' + i + ': ' + j.error;
+      }
+    }
+    if (buf && key === animKey() && !hv.playing) {
+      showBitmap(await createImageBitmap(new Blob([buf], { type: 'image/png' })));
+      hv.frameB64 = b64(buf);
       hv.frame = i;
-      $('frameinfo').textContent = 'frame ' + i + ' / ' + hv.info.anim.frames;
+      $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n;
       document.dispatchEvent(new CustomEvent('hv-frame'));
-    } else if (r.status !== 409) {
-      const j = await r.json();
-      $('frameinfo').textContent = 'frame ' + i + ': ' + j.error;
-      hv.playing = false;
-      $('play').textContent = 'play';
     }
   } catch (e) {
     $('frameinfo').textContent = 'frame ' + i + ': the server did not answer';
   }
   hv.frameInflight = false;
-  if (hv.framePending >= 0) loadFrame(hv.framePending);
-  else if (hv.playing) {
-    const n = hv.info.anim.frames, next = (hv.frame + 1) % n;
-    $('scrub').value = next;
-    loadFrame(next);
+  if (hv.framePending >= 0 && !hv.playing) loadFrame(hv.framePending);
+}
+
+// ---- playing: streamed windows, decoded ahead, shown at the clip's rate
+
+// Fetches the next window of frames not yet here, from the one being shown.
+function animFetch() {
+  if (anim.stream || !hv.playing) return;
+  let from = Math.floor(anim.pos) % anim.n, k = 0;
+  while (k < anim.n && anim.png.has(from)) { from = (from + 1) % anim.n; k++; }
+  if (k >= Math.ceil(WINDOW_S * anim.fps) || k === anim.n) return; // enough ahead
+  const to = Math.min(anim.n, from + Math.ceil(WINDOW_S * anim.fps));
+  const ctl = new AbortController(), key = anim.key;
+  anim.stream = ctl;
+  anim.streamEnd = to;
+  const url = '/api/frames?scene=' + enc(hv.info.file) + animSets() + '&from=' + from + '&to=' + to
+    + '&page=' + hv.page + 's&seq=' + (++hv.frameSeq);
+  readStream(url, ctl, key).finally(() => {
+    if (anim.stream === ctl) { anim.stream = null; animFetch(); }
+  });
+}
+
+// Reads records "TAG NUM LEN\n<bytes>" (anim_worker.h) as they arrive.
+async function readStream(url, ctl, key) {
+  let r;
+  try { r = await fetch(url, { signal: ctl.signal }); } catch (e) { return; }
+  if (r.status !== 200) {
+    const j = await r.json().catch(() => ({}));
+    if (r.status !== 409) animFail(j.error || ('HTTP ' + r.status));
+    return;
+  }
+  const rd = r.body.getReader();
+  let buf = new Uint8Array(0);
+  try {
+    for (;;) {
+      const { done, value } = await rd.read();
+      if (done) return;
+      const b = new Uint8Array(buf.length + value.length);
+      b.set(buf); b.set(value, buf.length);
+      buf = b;
+      for (;;) {
+        const nl = buf.indexOf(10);
+        if (nl < 0) break;
+        const [tag, num, len] = new TextDecoder().decode(buf.subarray(0, nl)).split(' ');
+        if (buf.length < nl + 1 + +len) break;
+        const data = buf.slice(nl + 1, nl + 1 + +len);
+        buf = buf.slice(nl + 1 + +len);
+        if (key !== anim.key) return;
+        if (tag === 'frame') { anim.png.set(+num, data.buffer); decodeAhead(); }
+        else if (tag === 'error') { animFail(new TextDecoder().decode(data)); return; }
+      }
+    }
+  } catch (e) { /* aborted: the sliders moved or play stopped */ }
+}
+
+function animFail(msg) {
+  anim.error = msg;
+  $('frameinfo').textContent = 'frame ' + Math.floor(anim.pos) % anim.n + ': ' + msg;
+  animStop();
+}
+
+// Decodes the frames about to be shown; closes those behind.
+function decodeAhead() {
+  const cur = Math.floor(anim.pos) % anim.n;
+  for (const [i, b] of anim.bmp) {
+    const ahead = (i - cur + anim.n) % anim.n;
+    if (ahead > DECODE_AHEAD) { b.close(); anim.bmp.delete(i); }
+  }
+  for (let d = 0; d <= DECODE_AHEAD; d++) {
+    const i = (cur + d) % anim.n, buf = anim.png.get(i), key = anim.key;
+    if (!buf || anim.bmp.has(i) || anim.decoding.has(i)) continue;
+    anim.decoding.add(i);
+    createImageBitmap(new Blob([buf], { type: 'image/png' })).then(b => {
+      anim.decoding.delete(i);
+      if (key === anim.key) anim.bmp.set(i, b); else b.close();
+    }, () => anim.decoding.delete(i));
   }
 }
 
-$('scrub').addEventListener('input', () => requestFrame(+$('scrub').value));
-$('play').addEventListener('click', () => {
-  hv.playing = !hv.playing;
-  $('play').textContent = hv.playing ? 'pause' : 'play';
-  if (hv.playing && !hv.frameInflight) requestFrame((+$('scrub').value + 1) % hv.info.anim.frames);
-});
+function tick(now) {
+  if (!hv.playing) return;
+  const dt = Math.min(0.25, (now - anim.last) / 1000);
+  anim.last = now;
+  const next = Math.floor(anim.pos + dt * anim.fps), i = next % anim.n;
+  const b = anim.bmp.get(i);
+  if (b) {
+    if (i !== hv.frame) { showBitmap(b); hv.frame = i; anim.shown++; $('scrub').value = i; }
+    anim.pos = anim.pos + dt * anim.fps;
+    if (anim.pos >= anim.n) anim.pos -= anim.n;
+    $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · playing at ' + anim.fps + ' frames/s';
+  } else
+    anim.stalls++; // not here yet: the clock waits for it
+  decodeAhead();
+  animFetch();
+  anim.raf = requestAnimationFrame(tick);
+}
+
+function animPlay() {
+  if (!hv.info || !hv.info.anim || !anim.n) return;
+  hv.playing = true;
+  $('play').textContent = 'pause';
+  anim.error = null;
+  anim.pos = (+$('scrub').value + 1) % anim.n;
+  anim.last = performance.now();
+  anim.shown = 0;
+  anim.stalls = 0;
+  anim.t0 = anim.last;
+  animFetch();
+  anim.raf = requestAnimationFrame(tick);
+}
+
+function animStop() {
+  if (anim.stream) anim.stream.abort();
+  anim.stream = null;
+  cancelAnimationFrame(anim.raf);
+  const was = hv.playing;
+  hv.playing = false;
+  $('play').textContent = 'play';
+  if (was && hv.frame >= 0 && anim.png.has(hv.frame)) { // paused on frame i: its bytes, as the scrubber's
+    hv.frameB64 = b64(anim.png.get(hv.frame));
+    $('frameinfo').textContent = 'frame ' + hv.frame + ' / ' + anim.n;
+    document.dispatchEvent(new CustomEvent('hv-frame'));
+  }
+}
+
+$('scrub').addEventListener('input', () => { if (hv.playing) animStop(); requestFrame(+$('scrub').value); });
+$('play').addEventListener('click', () => { if (hv.playing) animStop(); else animPlay(); });
 
 // ---- sharing --------------------------------------------------------------------------
 
