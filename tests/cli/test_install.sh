@@ -57,6 +57,11 @@ run "$hv" boucwen data --signal validation -o "$T/home/yval.csv" >/dev/null 2>&1
     [ "$(wc -l <"$T/home/yval.csv")" -gt 1000 ] && ok "Bouc-Wen validation data from share/hystviz/boucwen" ||
     fail "boucwen data --signal validation"
 
+if command -v man >/dev/null; then
+    (cd / && MANPATH="$P/share/man" timeout 60 man -P cat hystviz-sweep 2>/dev/null) | grep -q "hystviz-sweep" &&
+        ok "man hystviz-sweep opens the installed page" || fail "man hystviz-sweep"
+fi
+[ -f "$P/share/bash-completion/completions/hystviz" ] && ok "bash completion installed" || fail "no bash completion"
 pcfile=$(find "$T/dest" -name hystviz.pc | head -1)
 if command -v pkg-config >/dev/null && command -v cc >/dev/null && [ -n "$pcfile" ]; then
     # the .pc names the configured prefix: point it at the destdir's copy
