@@ -25,8 +25,9 @@ pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # what the tests need besides: curl and bash (serve over HTTP), python3 and
 # chromium (the page in a real browser, headless); slurm-wlm, munge and
 # iproute2 (a single-node Slurm on loopback: tests/cli/test_slurm.sh);
-# python3-numpy (the Python package's tests: tests/python)
-case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy chromium pngcheck slurm-wlm munge iproute2" ;; bench) pkgs="$pkgs curl bash python3 chromium python3-matplotlib python3-numpy" ;; esac
+# python3-numpy, python3-nbclient and python3-ipykernel (the Python package and
+# its notebook: tests/python)
+case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy python3-nbclient python3-ipykernel chromium pngcheck slurm-wlm munge iproute2" ;; bench) pkgs="$pkgs curl bash python3 chromium python3-matplotlib python3-numpy" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"

@@ -1,18 +1,24 @@
 #!/bin/sh
-# tests/python/run.sh SOURCE_ROOT LIB HYSTVIZ: runs test_python.py with a
+# tests/python/run.sh SOURCE_ROOT LIB HYSTVIZ [notebook]: runs test_python.py
+# (or, with "notebook", docs/examples/minor_loops.ipynb through nbclient) with a
 # Python 3 that has NumPy (Debian's python3-numpy is for /usr/bin/python3,
 # which may not be the first python3 on PATH).  Without one: SKIP, or FAIL
 # when CI=true (the README's set-up installs it).
 set -u
 src=$1 lib=$2 hv=$3
 for py in /usr/bin/python3 python3; do
+    if [ "${4:-}" = notebook ]; then
+        "$py" -c "import numpy, nbclient, ipykernel" 2>/dev/null || continue
+        PYTHONPATH="$src/src/python" HYSTVIZ_LIB="$lib" exec timeout 300 "$py" "$src/tests/python/run_notebook.py" \
+            "$src/docs/examples/minor_loops.ipynb" "$src/scenes"
+    fi
     if "$py" -c "import numpy" 2>/dev/null; then
         PYTHONPATH="$src/src/python" HYSTVIZ_LIB="$lib" exec timeout 300 "$py" "$src/tests/python/test_python.py" "$hv" "$src/scenes"
     fi
 done
 if [ "${CI:-}" = true ]; then
-    echo "FAIL: no python3 with NumPy (apt-get install python3-numpy)"
+    echo "FAIL: no python3 with NumPy (and nbclient, ipykernel for the notebook: apt-get install python3-numpy python3-nbclient python3-ipykernel)"
     exit 1
 fi
-echo "SKIP: no python3 with NumPy (apt-get install python3-numpy)"
+echo "SKIP: no python3 with NumPy (and nbclient, ipykernel for the notebook)"
 exit 77
