@@ -100,11 +100,11 @@ class _Section:
                 raise SceneError(1, f"[{self.section}] has no key '{k}' (help(hystviz.{type(self).__name__}))")
         self.kind = kind
         self.params = dict(params)
+        lines = [f"[{self.section}]", f"kind = {kind}"] + [f"{k} = {_fmt(v)}" for k, v in params.items()]
+        self._text = "\n".join(lines) + "\n"  # the section as scene text, made once
 
     def scene_text(self):
-        lines = [f"[{self.section}]", f"kind = {self.kind}"]
-        lines += [f"{k} = {_fmt(v)}" for k, v in self.params.items()]
-        return "\n".join(lines) + "\n"
+        return self._text
 
     def __repr__(self):
         args = ", ".join([repr(self.kind)] + [f"{k}={v!r}" for k, v in self.params.items()])
@@ -173,8 +173,8 @@ class Result:
             x, y = _lib._dp(), _lib._dp()
             n = _lib.series(handle, i, ctypes.byref(x), ctypes.byref(y))
             name = _lib.series_name(handle, i).decode()
-            xa = np.ctypeslib.as_array(x, (n,)).copy() if n else np.empty(0)
-            ya = np.ctypeslib.as_array(y, (n,)).copy() if n else np.empty(0)
+            xa = _array(x, n) if n else np.empty(0)
+            ya = _array(y, n) if n else np.empty(0)
             self.series[name] = (xa, ya)
             self.data[name] = _lib.series_data(handle, i).decode()
             ref = ctypes.c_char_p()
@@ -255,35 +255,56 @@ def _scene(model, inp, series, points, cycles=1, extra="", kind="timeseries"):
             + series)
 
 
-def _tuy(res, name):
-    t, u = res.series["u"]
-    t2, y = res.series[name]
-    if t.shape != t2.shape or not np.array_equal(t, t2, equal_nan=True):
-        raise RuntimeError("hystviz: input and output sampled on different grids")
-    keep = ~np.isnan(t)
-    return t[keep], u[keep], y[keep]
+def _array(p, n):
+    """A copy of n doubles at the C pointer p (one memmove into a new array;
+    np.ctypeslib.as_array costs tens of µs a call)."""
+    a = np.empty(n)
+    ctypes.memmove(a.ctypes.data, p, 8 * n)
+    return a
+
+
+def _tuy(text):
+    """(t, u, y) of a _scene: series 0 is the input, series 1 the output, on
+    the same grid; straight through the C calls, no Result (the short path
+    of the call-overhead benchmark)."""
+    b = text.encode()
+    h = ctypes.c_void_p()
+    err = _lib.Error()
+    _check(_lib.from_text(b"<python>/scene.scene", b, len(b), None, 0, 0.0, ctypes.byref(h), ctypes.byref(err)), err)
+    try:
+        t, u, t2, y = _lib._dp(), _lib._dp(), _lib._dp(), _lib._dp()
+        n = _lib.series(h, 0, ctypes.byref(t), ctypes.byref(u))
+        if _lib.series(h, 1, ctypes.byref(t2), ctypes.byref(y)) != n or not n:
+            raise RuntimeError("hystviz: input and output sampled on different grids")
+        tt, uu, yy = _array(t, n), _array(u, n), _array(y, n)
+    finally:
+        _lib.result_free(h)
+    if not np.isnan(tt).any():
+        return tt, uu, yy
+    keep = ~np.isnan(tt)
+    return tt[keep], uu[keep], yy[keep]
 
 
 def steady_loop(model, input, points=2000):
     """The steady state y° over one period: (t, u, y) NumPy arrays (points samples)."""
-    return _tuy(run(_scene(model, input, "[series y]\ndata = ysteady\n", points)), "y")
+    return _tuy(_scene(model, input, "[series y]\ndata = ysteady\n", points))
 
 
 def limit(model, input, points=2000, cycles=1):
     """The limit y*_u as γ → ∞ from the model's x0: (t, u, y*)."""
-    return _tuy(run(_scene(model, input, "[series y]\ndata = ystar\n", points, cycles)), "y")
+    return _tuy(_scene(model, input, "[series y]\ndata = ystar\n", points, cycles))
 
 
 def ygamma(model, input, gamma, points=2000, cycles=1, solver="exact"):
     """The output y_γ at time scale gamma: (t, u, y)."""
-    return _tuy(run(_scene(model, input, f"[series y]\ndata = ygamma\ngamma = {_fmt(float(gamma))}\n", points,
-                           cycles, f"solver = {solver}\n")), "y")
+    return _tuy(_scene(model, input, f"[series y]\ndata = ygamma\ngamma = {_fmt(float(gamma))}\n", points,
+                       cycles, f"solver = {solver}\n"))
 
 
 def kcycles(model, input, k, points=2000):
     """y*_{u,k}, the limit on its k-th period, against the time within the
     period (t in [0, T]): (t, u, y)."""
-    return _tuy(run(_scene(model, input, f"[series y]\ndata = yk\nk = {int(k)}\n", points)), "y")
+    return _tuy(_scene(model, input, f"[series y]\ndata = yk\nk = {int(k)}\n", points))
 
 
 def minor_loops(model, input):

@@ -1,0 +1,108 @@
+"""bench_python.py SOURCE_ROOT LIB BENCH_LIB: the Python package's figures
+(issue 24), printed in the README's units:
+  1. call overhead: hystviz.steady_loop (200 points) against the same scene
+     through the C library (bench_lib), median of 7 rounds each;
+  2. the steady loop of Example 4 as a researcher would compute it with
+     SciPy: solve_ivp (RK45, rtol 1e-10, atol 1e-12) of the limit system
+     dz/dt = u' - sigma0 |u'| z / g(0), y = sigma0 z, period after period
+     until two periods agree to 1e-12, against hystviz's exact y°: time and
+     the largest error of each against the exact closed form (hystviz's
+     error is measured by the library against its long-double reference)."""
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+src, lib, bench_lib = sys.argv[1:4]
+sys.path.insert(0, os.path.join(src, "src", "python"))
+os.environ["HYSTVIZ_LIB"] = lib
+import hystviz  # noqa: E402
+
+m = hystviz.Model("lugre", sigma0=6, sigma1=1, fc=1, fs=2, vs=1, beta=1)
+u = hystviz.Input("bimodal", umin1=0, umin2=0.5, umax1=1, umax2=1.5)
+N = 300
+
+
+def median_us(fn, n):
+    rounds = []
+    for _ in range(7):
+        t0 = time.perf_counter()
+        for _ in range(n):
+            fn()
+        rounds.append((time.perf_counter() - t0) / n * 1e6)
+    return sorted(rounds)[3]
+
+
+# C and Python alternate, round by round, so that load on the machine falls on both
+with tempfile.TemporaryDirectory() as tmp:
+    path = os.path.join(tmp, "steady.scene")
+    with open(path, "w") as f:
+        f.write(hystviz._scene(m, u, "[series y]\ndata = ysteady\n", 200))
+    c_rounds, py_rounds = [], []
+    for _ in range(7):
+        c_rounds.append(float(subprocess.run([bench_lib, path, str(N)], capture_output=True, text=True, check=True,
+                                             timeout=300).stdout))
+        t0 = time.perf_counter()
+        for _ in range(N):
+            hystviz.steady_loop(m, u, points=200)
+        py_rounds.append((time.perf_counter() - t0) / N * 1e6)
+c_us, py_us = sorted(c_rounds)[3], sorted(py_rounds)[3]
+load = os.getloadavg()[0]
+print(f"python call overhead | steady_loop 200 points: {py_us:.1f} us from Python, {c_us:.1f} us in C "
+      f"(medians of 7 alternating rounds of {N}, load {load:.1f}): {py_us - c_us:.1f} us extra per call (goal <= 5)")
+
+try:
+    from scipy.integrate import solve_ivp
+except ImportError:
+    print("python vs scipy | SKIP: no scipy (apt-get install python3-scipy)")
+    sys.exit(0)
+
+# the bimodal input of Definition 1, slopes ±1: 0 -> 1 -> 0.5 -> 1.5 -> 0
+knots_t = np.array([0, 1.0, 1.5, 2.5, 4.0])  # hystviz's Definition 1, normalised (slopes ±1)
+knots_u = np.array([0, 1.0, 0.5, 1.5, 0.0])
+T = knots_t[-1]
+sigma0, g0 = 6.0, 2.0
+
+
+def rhs(t, z):
+    k = min(np.searchsorted(knots_t, t % T, side="right") - 1, 3)
+    du = (knots_u[k + 1] - knots_u[k]) / (knots_t[k + 1] - knots_t[k])
+    return [du - sigma0 * abs(du) * z[0] / g0]
+
+
+def scipy_steady(npts=200):
+    z0, periods = 0.0, 0
+    ts = np.linspace(0, T, npts + 1)
+    piece = np.minimum(np.searchsorted(knots_t, ts, side="right") - 1, 3)  # each sample's piece
+    while True:
+        ys = np.empty(ts.size)
+        z = z0
+        for k, (a, b) in enumerate(zip(knots_t[:-1], knots_t[1:])):  # piece by piece: the kinks are breakpoints
+            idx = np.nonzero(piece == k)[0]
+            te = np.clip(ts[idx], a, b)
+            sol = solve_ivp(rhs, (a, b), [z], method="RK45", rtol=1e-10, atol=1e-12,
+                            t_eval=te if te[-1] == b else np.append(te, b))
+            ys[idx] = sol.y[0][:idx.size]
+            z = sol.y[0][-1]
+        periods += 1
+        if abs(z - z0) < 1e-12 or periods > 200:
+            return ts, sigma0 * ys, periods
+        z0 = z
+
+
+t_h, u_h, y_h = hystviz.steady_loop(m, u, points=200)
+assert np.allclose(u_h, np.interp(t_h, knots_t, knots_u), atol=1e-15), "the input is not hystviz's"
+h_us = median_us(lambda: hystviz.steady_loop(m, u, points=200), 50)
+t0 = time.perf_counter()
+ts, ys, periods = scipy_steady()
+sp_s = time.perf_counter() - t0
+res = hystviz.run(hystviz._scene(m, u, "[series y]\ndata = ysteady\n", 200))
+h_err, h_ref = res.errors["y"]
+sp_err = np.max(np.abs(ys - y_h))
+print(f"python vs scipy | Example 4 steady loop, 200 points: hystviz {h_us / 1e3:.3f} ms "
+      f"(error {h_err:.1e} against {h_ref}); solve_ivp RK45 rtol 1e-10 {sp_s * 1e3:.1f} ms "
+      f"({periods} periods to settle, error {sp_err:.1e} against hystviz's exact y°); "
+      f"hystviz {sp_s * 1e6 / h_us:.0f}x faster")
