@@ -31,7 +31,7 @@ hv="$P/bin/hystviz"
 mkdir -p "$T/home"
 run() { (cd / && HOME="$T/home" timeout 300 "$@"); }
 
-v=$(run "$hv" --version) && [ "$v" = "$(run "$hv" render --version)" ] && ok "--version, also after a command: $v" ||
+v=$(run "$hv" --version) && v_num=${v#hystviz } && [ "$v" = "$(run "$hv" render --version)" ] && ok "--version, also after a command: $v" ||
     fail "hystviz render --version"
 
 nscenes=$(ls "$src/gallery"/*.svg | wc -l) # the committed gallery's figures
@@ -81,6 +81,16 @@ for py in /usr/bin/python3 python3; do
     out=$(cd / && PYTHONPATH="$(dirname "$site")" LD_LIBRARY_PATH="$lib" timeout 120 "$py" -c \
         "import hystviz; print(repr(hystviz.minor_loops(hystviz.Model('lugre', sigma0=6), hystviz.Input('bimodal', umin1=0, umin2=0.5, umax1=1, umax2=1.5))[0].area))" 2>&1)
     [ "$out" = 0.1991073756948153 ] && ok "the installed Python package prints $out" || fail "installed Python: $out"
+    # pip install of src/python (a copy: pip builds in place), offline
+    if "$py" -c "import pip, setuptools, wheel" 2>/dev/null; then
+        cp -r "$src/src/python" "$T/pysrc"
+        (cd "$T" && timeout 120 "$py" -m pip install -q --no-build-isolation --no-index --no-deps --target "$T/pip" \
+            "$T/pysrc" >"$T/pip.log" 2>&1)
+        out=$(cd / && PYTHONPATH="$T/pip" LD_LIBRARY_PATH="$lib" timeout 120 "$py" -c \
+            "import hystviz; print(hystviz.__file__.startswith('$T/pip'), hystviz.__version__)" 2>&1)
+        [ "$out" = "True $v_num" ] && ok "pip install src/python: imports from pip's target" ||
+            { cat "$T/pip.log"; fail "pip install src/python: $out"; }
+    fi
     break
 done
 exit $((fails > 0))
