@@ -82,7 +82,7 @@ for py in /usr/bin/python3 python3; do
         "import hystviz; print(repr(hystviz.minor_loops(hystviz.Model('lugre', sigma0=6), hystviz.Input('bimodal', umin1=0, umin2=0.5, umax1=1, umax2=1.5))[0].area))" 2>&1)
     [ "$out" = 0.1991073756948153 ] && ok "the installed Python package prints $out" || fail "installed Python: $out"
     # pip install of src/python (a copy: pip builds in place), offline
-    if "$py" -c "import pip, setuptools, wheel" 2>/dev/null; then
+    if "$py" -c "import setuptools, wheel, pip" 2>/dev/null; then
         cp -r "$src/src/python" "$T/pysrc"
         (cd "$T" && timeout 120 "$py" -m pip install -q --no-build-isolation --no-index --no-deps --target "$T/pip" \
             "$T/pysrc" >"$T/pip.log" 2>&1)
