@@ -79,23 +79,24 @@ static const command commands[] = {
     {"boucwen", hy_cmd_boucwen, 0},
     {"report", hy_cmd_report, 0},
     {"check", hy_cmd_check, 0},
-    {"serve", hy_cmd_serve, 1},
     {"watch", hy_cmd_watch, 1},
 };
 
-/* Runs hystviz-animate (next to this executable in the build tree, in
- * libexec when installed: hy_file_installed) with this argv: "animate" ...;
- * returns only on failure. */
-static int run_animate(char **argv)
+/* Runs the program prog (hystviz-animate, hystviz-serve: next to this
+ * executable in the build tree, in libexec when installed:
+ * hy_file_installed) with this argv: "animate" or "serve" ...; returns only
+ * on failure.  Animations (OpenGL) and serve (libmicrohttpd, gnutls) live in
+ * their own programs so that no other command loads those libraries. */
+static int run_sibling(const char *prog, char **argv)
 {
     char path[4200];
-    if (hy_file_installed(HY_INSTALLED_LIBEXEC, "hystviz-animate", path, sizeof path)) {
-        fprintf(stderr, "hystviz animate: hystviz-animate not found next to hystviz nor in %s\n", HY_LIBEXECDIR);
+    if (hy_file_installed(HY_INSTALLED_LIBEXEC, prog, path, sizeof path)) {
+        fprintf(stderr, "hystviz %s: %s not found next to hystviz nor in %s\n", argv[1], prog, HY_LIBEXECDIR);
         return 1;
     }
     argv[0] = path;
     execv(path, argv);
-    fprintf(stderr, "hystviz animate: cannot run %s: %s\n", path, strerror(errno));
+    fprintf(stderr, "hystviz %s: cannot run %s: %s\n", argv[1], path, strerror(errno));
     return 1;
 }
 
@@ -121,7 +122,9 @@ int main(int argc, char **argv)
         return cli_stdout_status(NULL, 0);
     }
     if (!strcmp(argv[1], "animate"))
-        return run_animate(argv); /* the signals stay blocked (and pending) across exec */
+        return run_sibling("hystviz-animate", argv); /* the signals stay blocked (and pending) across exec */
+    if (!strcmp(argv[1], "serve"))
+        return run_sibling("hystviz-serve", argv);
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (!strcmp(argv[1], commands[i].name)) { /* every command's output checked here */
             if (!commands[i].own_signals && cli_signals_end())

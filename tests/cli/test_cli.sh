@@ -51,10 +51,15 @@ expect_err "gamma must be a finite number > 0" loop --gamma 0 --input bimodal:0,
 expect_err "cannot write" loop --input bimodal:0,0.5,1,1.5 -o /nonexistent/dir/x.csv
 [ ! -e /nonexistent/dir/x.csv ] && ok || bad "partial file"
 
-# hystviz itself never loads OpenGL (animations run in hystviz-animate)
+# hystviz itself never loads OpenGL (animations run in hystviz-animate) nor
+# the HTTP and TLS libraries (serve runs in hystviz-serve)
 if command -v ldd > /dev/null; then
     ldd "$hv" | grep -qiE 'osmesa|llvm' && bad "hystviz links OpenGL/LLVM" || ok
+    ldd "$hv" | grep -qiE 'microhttpd|gnutls' && bad "hystviz links libmicrohttpd/gnutls" || ok
 fi
+"$hv" serve --help > "$tmp/serve" 2>&1; rc=$?
+{ [ $rc -eq 0 ] && grep -q 'usage: hystviz serve' "$tmp/serve"; } ||
+    { [ $rc -eq 3 ] && grep -q 'libmicrohttpd' "$tmp/serve"; } || bad "hystviz serve --help (exit $rc): $(cat "$tmp/serve")"
 "$hv" animate --help > "$tmp/anim" 2>&1 && grep -q 'animate' "$tmp/anim" && ok || bad "hystviz animate --help: $(cat "$tmp/anim")"
 
 echo "cli: $pass passed, $fail failed"

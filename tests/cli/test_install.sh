@@ -28,6 +28,7 @@ P="$T/dest$prefix"
 hv="$P/bin/hystviz"
 [ -x "$hv" ] || { echo "FAIL: no $hv"; exit 1; }
 [ ! -e "$P/bin/hystviz-animate" ] && ok "hystviz-animate is not in bin/" || fail "hystviz-animate installed in bin/"
+[ ! -e "$P/bin/hystviz-serve" ] && ok "hystviz-serve is not in bin/" || fail "hystviz-serve installed in bin/"
 mkdir -p "$T/home"
 run() { (cd / && HOME="$T/home" timeout 300 "$@"); }
 
@@ -52,6 +53,11 @@ run "$hv" render "$T/home/mine/fig15_minor_loop_ex4.scene" -o "$T/home/out" --fo
 if [ -x "$build/src/app/hystviz-animate" ] && "$build/src/app/hystviz" animate --list >/dev/null 2>&1; then
     run "$hv" animate --list >/dev/null 2>&1 && ok "animate finds libexec's hystviz-animate" || fail "installed animate --list"
 fi
+
+run "$hv" serve --help >"$T/serve.log" 2>&1; rc=$?
+{ [ $rc -eq 0 ] && grep -q 'usage: hystviz serve' "$T/serve.log"; } ||
+    { [ $rc -eq 3 ] && grep -q 'libmicrohttpd' "$T/serve.log"; } && ok "serve finds libexec's hystviz-serve" ||
+    { cat "$T/serve.log"; fail "installed serve --help (exit $rc)"; }
 
 run "$hv" boucwen data --signal validation -o "$T/home/yval.csv" >/dev/null 2>&1 &&
     [ "$(wc -l <"$T/home/yval.csv")" -gt 1000 ] && ok "Bouc-Wen validation data from share/hystviz/boucwen" ||
