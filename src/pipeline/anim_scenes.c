@@ -73,27 +73,34 @@ static hy_figure one_panel(const hy_anim_frame *f, const hy_axes *ax)
                        .font_size = fig_font(), .axes = ax, .nrows = 1, .ncols = 1};
 }
 
-/* A viridis colour bar for t0..t1 of the map, in the top-left corner of the
- * figure's frame, with a caption above and end labels beside it, so a frame
- * says what its colours mean. */
+/* A viridis colour bar for t0..t1 of the map, with a caption above and end
+ * labels below it, so a frame says what its colours mean; placed as the
+ * legend is ("best"): where it covers the least of the frame's data, and
+ * never the legend. */
 static void colour_bar(const hy_anim_frame *f, const hy_figure *fig, double t0, double t1, const char *caption,
                        const char *left, const char *right)
 {
     const hy_canvas *o = &f->overlay;
-    double fr[4], fs = fig->font_size;
-    if (hy_figure_frame(fig, o, 0, fr, NULL))
-        return;
-    double w = 7.0 * fs, h = 0.55 * fs, x = fr[0] + 0.8 * fs, y = fr[1] + 2.0 * fs;
-    hy_markup_box b;
+    double fs = fig->font_size;
+    hy_markup_box cb, lb, rb;
     hy_rgb ink = {0, 0, 0};
-    o->ops->fill_rect(o->ctx, x - 0.4 * fs, y - 1.6 * fs, w + 0.8 * fs + 2.0 * fs * 0, 2.9 * fs, (hy_rgb){1, 1, 1}, 0.85);
+    hy_markup_text(o, caption, 0.85 * fs, 0, 0, 0, 0, ink, &cb);
+    hy_markup_text(o, left, 0.8 * fs, 0, 0, 0, 0, ink, &lb);
+    hy_markup_text(o, right, 0.8 * fs, 0, 0, 0, 0, ink, &rb);
+    double w = 7.0 * fs, h = 0.55 * fs;
+    w = cb.width > w ? cb.width : w;
+    w = lb.width + rb.width + fs > w ? lb.width + rb.width + fs : w;
+    double box[4] = {0, 0, w + 0.8 * fs, 2.9 * fs};
+    if (hy_figure_free_box(fig, o, 0, box, NULL))
+        return;
+    double x = box[0] + 0.4 * fs, y = box[1] + 1.6 * fs;
+    o->ops->fill_rect(o->ctx, box[0], box[1], box[2], box[3], (hy_rgb){1, 1, 1}, 0.85);
     for (int i = 0; i < 48; i++)
         o->ops->fill_rect(o->ctx, x + w * i / 48.0, y, w / 48.0 + 0.05, h,
                           hy_cmap(HY_CMAP_VIRIDIS, t0 + (t1 - t0) * (i + 0.5) / 48.0), 1.0);
     hy_markup_text(o, caption, 0.85 * fs, 1, 0, x, y - 0.4 * fs, ink, NULL);
     hy_markup_text(o, left, 0.8 * fs, 1, 0, x, y + h + 0.95 * fs, ink, NULL);
-    hy_markup_text(o, right, 0.8 * fs, 0, 0, 0, 0, ink, &b);
-    hy_markup_text(o, right, 0.8 * fs, 1, 0, x + w - b.width, y + h + 0.95 * fs, ink, NULL);
+    hy_markup_text(o, right, 0.8 * fs, 1, 0, x + w - rb.width, y + h + 0.95 * fs, ink, NULL);
 }
 
 static void extent(const double *v, size_t n, double *lo, double *hi)
@@ -300,7 +307,7 @@ static int sweep_draw(void *state, const hy_anim_frame *f, hy_error *err)
                  s->which, gtxt, dtxt);
     }
     hy_axes ax = {.series = sr, .nseries = ns, .xlabel = s->which == 1 ? "u_\\gamma" : "u",
-                  .ylabel = "y", .title = title, .y = {s->ylo, s->yhi, 0, 0}, .legend = HY_LEGEND_BOTTOM_RIGHT};
+                  .ylabel = "y", .title = title, .y = {s->ylo, s->yhi, 0, 0}, .legend = HY_LEGEND_BEST};
     hy_figure fig = one_panel(f, &ax);
     int st = hy_figure_draw_layers(&fig, &f->data, &f->overlay, err);
     if (!st && s->which == 1)
@@ -382,18 +389,22 @@ static int kcycle_draw(void *state, const hy_anim_frame *f, hy_error *err)
                       0.15 + 0.8 * (double)head / KMAX_PTS, 0.0};
     if (hy_gl_set_effect(f->gl, &e, err))
         return HY_EINVAL;
-    hy_series sr[2] = {
+    /* the legend's swatch: the trail's colour at its head, from the map the
+       trail and the colour bar use (a sample of no points: legend only) */
+    hy_series sr[3] = {
         {.x = k->base.uss, .y = k->base.yss, .n = NPTS, .colour = {.palette = 0}, .width = 1.2,
          .label = "y^\\circ_u"},
         {.x = k->u + start, .y = k->y + start, .n = n - start, .colour = {.palette = HY_RGB_EXPLICIT, .rgb = key_rgb},
+         .width = 2.6},
+        {.x = k->u, .y = k->y, .n = 0, .colour = {.palette = HY_RGB_EXPLICIT, .rgb = hy_cmap(HY_CMAP_VIRIDIS, e.t1)},
          .width = 2.6, .label = "y^*_{u,k} (trail, colour: k)"},
     };
     hy_mark mk = {k->u[head], k->y[head], HY_MARKER_CIRCLE, 7, 1, {.palette = 6}};
     char title[160];
     snprintf(title, sizeof title, "Example %d:  k = %d   \\|y^*_{u,k} - y^\\circ_u\\|_\\infty = %.3g",
              k->which, c, k->dist[c]);
-    hy_axes ax = {.series = sr, .nseries = 2, .marks = &mk, .nmarks = 1, .xlabel = "u", .ylabel = "y",
-                  .title = title, .y = {k->ylo, k->yhi, 0, 0}, .legend = HY_LEGEND_BOTTOM_RIGHT};
+    hy_axes ax = {.series = sr, .nseries = 3, .marks = &mk, .nmarks = 1, .xlabel = "u", .ylabel = "y",
+                  .title = title, .y = {k->ylo, k->yhi, 0, 0}, .legend = HY_LEGEND_BEST};
     hy_figure fig = one_panel(f, &ax);
     int st = hy_figure_draw_layers(&fig, &f->data, &f->overlay, err);
     if (!st) {   /* the trail's colour is the cycle index: 0.15 + 0.8 k / kmax of viridis */
@@ -504,7 +515,7 @@ static int ex4_draw(void *state, const hy_anim_frame *f, hy_error *err)
              "   (major %s)", c->sigma0, c->umin2, area, major);
     hy_axes ax = {.series = sr, .nseries = 2, .marks = mk, .nmarks = has ? 2 : 0, .xlabel = "u",
                   .ylabel = "y^\\circ_u", .title = title, .x = {-0.05, 1.55, 0, 0}, .y = {-2.2, 2.2, 0, 0},
-                  .legend = HY_LEGEND_BOTTOM_RIGHT};
+                  .legend = HY_LEGEND_BEST};
     if (has) {   /* an inset that follows the minor loop (a thick line at full scale when σ0 is small) */
         double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
         extent(c->mu, NPTS, &xlo, &xhi);

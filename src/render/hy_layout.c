@@ -1704,7 +1704,33 @@ int hy_figure_draw(const hy_figure *f, const hy_canvas *cv, hy_error *err)
     return draw_layers(f, cv, cv, NULL, 0, 0, err);
 }
 
-int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err)
+/* The spot for a bw x bh box in p's frame (candidates as the legend's) that
+ * covers the least data and never the legend box lg (w = 0: none). */
+static void free_box(const panel *p, const double lg[4], double bw, double bh, double *x, double *y)
+{
+    const double inset = 5.0;
+    double left = p->x0 + inset, right = p->x0 + p->w - inset - bw;
+    double top = p->y0 + inset, bottom = p->y0 + p->h - inset - bh, best = INFINITY;
+    static const double order[][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, 0}, {0.5, 1}, {1, 0.5}, {0, 0.5}};
+    *x = left, *y = top;
+    for (int c = 0; c < 8 + 25 && right >= left && bottom >= top; c++) {
+        double fx = c < 8 ? order[c][0] : 0.125 + 0.1875 * ((c - 8) % 5);
+        double fy = c < 8 ? order[c][1] : 0.125 + 0.1875 * ((c - 8) / 5);
+        double cx = left + fx * (right - left), cy = top + fy * (bottom - top);
+        int hits_legend = lg[2] > 0 && cx < lg[0] + lg[2] && cx + bw > lg[0] && cy < lg[1] + lg[3] && cy + bh > lg[1];
+        double o = overlap(p, cx - 2, cy - 2, bw + 4, bh + 4) + (hits_legend ? 1e9 : 0.0);
+        if (o < best)
+            best = o, *x = cx, *y = cy;
+        if (o == 0.0)
+            return;
+    }
+}
+
+/* The layout of f on cv: panel index's frame into rect; with legend its
+ * legend box (x, y, w, h; w = 0 without one) into legend; with box (w, h
+ * given in box[2], box[3]) the free spot for such a box into box. */
+static int figure_layout(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], double legend[4],
+                         double box[4], hy_error *err)
 {
     double W, H, dpi;
     hy__figure_size(f, &W, &H, &dpi);
@@ -1736,7 +1762,29 @@ int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double r
         st = layout_grid(ps, rows, cols, err);
     if (!st)
         rect[0] = ps[index].x0, rect[1] = ps[index].y0, rect[2] = ps[index].w, rect[3] = ps[index].h;
+    if (!st && legend) {
+        double rowh;
+        legend[0] = legend[1] = 0.0;
+        legend_size(&ps[index], &legend[2], &legend[3], &rowh);
+        if (legend[2] > 0.0)
+            legend_place(&ps[index], legend[2], legend[3], &legend[0], &legend[1]);
+        else
+            legend[2] = legend[3] = 0.0;
+    }
+    if (!st && box)
+        free_box(&ps[index], legend, box[2], box[3], &box[0], &box[1]);
     panels_free(ps, cc, rows * cols);
     free(tp);
     return st;
+}
+
+int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err)
+{
+    return figure_layout(f, cv, index, rect, NULL, NULL, err);
+}
+
+int hy_figure_free_box(const hy_figure *f, const hy_canvas *cv, int index, double box[4], hy_error *err)
+{
+    double rect[4], legend[4];
+    return figure_layout(f, cv, index, rect, legend, box, err);
 }

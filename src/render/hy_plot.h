@@ -153,6 +153,11 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
  * the data (a colour bar).  HY_EINVAL for a bad index or figure. */
 int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err);
 
+/* Where a box of box[2] x box[3] points (a colour bar and its labels) goes in
+ * panel index's frame: the spot, among the legend's candidates, that covers
+ * the least data and not the legend; its top-left corner into box[0], box[1]. */
+int hy_figure_free_box(const hy_figure *f, const hy_canvas *cv, int index, double box[4], hy_error *err);
+
 /* Largest PNG hystviz renders: cairo's image limit a side, and 2^28 pixels
  * (1 GiB of ARGB32) in all. */
 #define HY_PNG_MAX_SIDE 32767
