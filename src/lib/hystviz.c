@@ -12,6 +12,7 @@
 #include "hy_plot.h"
 #include "hy_scene.h"
 #include "hy_scene_schema.h"
+#include "scene_model.h"
 #include "scene_run.h"
 
 struct hy_result {
@@ -199,6 +200,17 @@ static void json_str(FILE *f, const char *s)
     fputc('"', f);
 }
 
+static void json_list(FILE *f, const char *const *v)
+{
+    fputc('[', f);
+    for (size_t i = 0; v && v[i]; i++) {
+        if (i)
+            fputc(',', f);
+        json_str(f, v[i]);
+    }
+    fputc(']', f);
+}
+
 static void json_bound(FILE *f, const char *name, int has, double v, int excl)
 {
     fprintf(f, ",\"%s\":", name);
@@ -249,6 +261,28 @@ char *hy_schema_json(void)
             json_str(f, k->doc);
             fputc('}', f);
         }
+        fputs("]}", f);
+    }
+    /* the model table: each kind's keys, quantities and capabilities */
+    fputs("],\"models\":[", f);
+    for (size_t i = 0; hy_scene_models[i]; i++) {
+        const hy_scene_model *mt = hy_scene_models[i];
+        fputs(i ? ",{\"name\":" : "{\"name\":", f);
+        json_str(f, mt->name);
+        fputs(",\"params\":", f);
+        json_list(f, mt->params);
+        fputs(",\"quantities\":", f);
+        json_list(f, mt->quantities);
+        fputs(",\"state\":", f);
+        json_str(f, mt->state);
+        fputs(",\"caps\":[", f);
+        int first = 1;
+        for (unsigned b = 1; b; b <<= 1)
+            if ((mt->caps & b) && hy_scene_cap_name(b)) {
+                fputs(first ? "" : ",", f);
+                first = 0;
+                json_str(f, hy_scene_cap_name(b));
+            }
         fputs("]}", f);
     }
     fputs("]}", f);

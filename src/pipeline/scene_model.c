@@ -7,6 +7,21 @@
 #define MODEL_PTR(id, name) &hy_scene_model_##id,
 const hy_scene_model *const hy_scene_models[] = {HY_MODEL_KINDS(MODEL_PTR) NULL};
 
+const char *hy_scene_cap_name(unsigned cap)
+{
+    switch (cap) {
+    case HY_CAP_STEADY: return "steady";
+    case HY_CAP_YSTAR: return "ystar";
+    case HY_CAP_CLOSED_MINOR: return "closed-form-minor-loops";
+    case HY_CAP_ENERGY: return "energy";
+    case HY_CAP_RETURN_POINT: return "return-point-memory";
+    case HY_CAP_RATE_INDEPENDENT: return "rate-independent";
+    case HY_CAP_EXACT_STEP: return "exact";
+    case HY_CAP_GSL: return "gsl";
+    default: return NULL;
+    }
+}
+
 const hy_scene_model *hy_scene_model_find(const char *kind)
 {
     for (size_t i = 0; kind && hy_scene_models[i]; i++)

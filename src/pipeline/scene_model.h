@@ -64,6 +64,10 @@ HY_MODEL_KINDS(HY_SCENE_MODEL_DECL)
 /* The table: every model kind in HY_MODEL_KINDS order, NULL-terminated. */
 extern const hy_scene_model *const hy_scene_models[];
 
+/* The name of capability bit cap (one HY_CAP_*: "steady", "ystar", ...), or
+ * NULL for a bit that is none (docs, bindings: hy_schema_json). */
+const char *hy_scene_cap_name(unsigned cap);
+
 /* The model named kind, or NULL. */
 const hy_scene_model *hy_scene_model_find(const char *kind);
 /* The model of the scene's [model] kind (its default when unset); never NULL

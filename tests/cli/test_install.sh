@@ -27,7 +27,9 @@ prefix=$(cd "$build" && meson introspect --buildoptions | python3 -c 'import jso
 P="$T/dest$prefix"
 hv="$P/bin/hystviz"
 [ -x "$hv" ] || { echo "FAIL: no $hv"; exit 1; }
-[ ! -e "$P/bin/hystviz-animate" ] && ok "hystviz-animate is not in bin/" || fail "hystviz-animate installed in bin/"
+for helper in hystviz-animate hystviz-serve; do # helpers, not commands: in libexec
+    [ ! -e "$P/bin/$helper" ] && ok "$helper is not in bin/" || fail "$helper installed in bin/"
+done
 [ ! -e "$P/bin/hystviz-serve" ] && ok "hystviz-serve is not in bin/" || fail "hystviz-serve installed in bin/"
 mkdir -p "$T/home"
 run() { (cd / && HOME="$T/home" timeout 300 "$@"); }

@@ -104,6 +104,19 @@ with tempfile.TemporaryDirectory() as tmp:
         check("sigmaO" in str(e), f"unknown key named: {e}")
     check("sigma0" in hystviz.Model.__doc__ and "> 0" in hystviz.Model.__doc__,
           "help(Model) lists sigma0 with its range from the schema")
+    # the model table: a class per kind with exactly its parameters
+    check(set(hystviz.models) >= {"dahl", "lugre", "boucwen", "jiles-atherton", "preisach"},
+          f"a class per model kind: {sorted(hystviz.models)}")
+    check("ja_ms" in hystviz.models["jiles-atherton"].__doc__ and "sigma0" not in hystviz.models["jiles-atherton"].__doc__,
+          "help(models['jiles-atherton']) lists its parameters only")
+    try:
+        hystviz.models["preisach"](sigma0=1)
+        check(False, "a parameter of another model raises")
+    except hystviz.SceneError as e:
+        check("preisach" in str(e) and "sigma0" in str(e), f"another model's parameter refused: {e}")
+    ja = hystviz.models["jiles-atherton"](ja_ms=1.6e6, ja_a=1100, ja_k=400, ja_c=0.2, ja_alpha=1.6e-3)
+    jl = hystviz.minor_loops(ja, hystviz.Input("bimodal", umin1=-1500, umin2=-1100, umax1=500, umax2=1500))
+    check(len(jl) == 1 and jl[0].area > 0, f"Jiles-Atherton minor loop from Python: {jl}")
 
     # the GIL is released during a computation: another thread runs meanwhile
     ticks = []

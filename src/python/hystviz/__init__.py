@@ -27,7 +27,7 @@ import numpy as np
 
 from . import _lib
 
-__all__ = ["SceneError", "Model", "Input", "Result", "Figure", "MinorLoop", "run", "render", "steady_loop",
+__all__ = ["SceneError", "Model", "Input", "models", "Result", "Figure", "MinorLoop", "run", "render", "steady_loop",
            "limit", "ygamma", "kcycles", "minor_loops", "schema", "boucwen", "__version__"]
 
 __version__ = _lib.version().decode()
@@ -114,10 +114,40 @@ class _Section:
 class Model(_Section):
     section = "model"
 
+    def __init__(self, kind, **params):
+        spec = _MODELS.get(kind)
+        if spec is not None:
+            allowed = set(spec["params"])
+            for k in params:
+                if k in _MODEL_KEYS and k not in allowed:
+                    raise SceneError(1, f"model kind '{kind}' has no parameter '{k}'; its parameters: "
+                                        f"{', '.join(spec['params'])}")
+        super().__init__(kind, **params)
+
 
 class Input(_Section):
     section = "input"
 
+
+_MODELS = {m["name"]: m for m in _SCHEMA["models"]}
+_MODEL_KEYS = {k["name"]: k for k in _SECTIONS["model"]["keys"]}
+
+
+def _model_class(spec):
+    kind = spec["name"]
+
+    def init(self, **params):
+        Model.__init__(self, kind, **params)
+    doc = (f"The '{kind}' model: Model('{kind}', **parameters).\n\nState: {spec['state']}.\n"
+           f"Capabilities: {', '.join(spec['caps']) or 'none'}.\nQuantities drawn: "
+           f"{', '.join(spec['quantities']) or '-'}.\n\nParameters (docs/SCENES.md):\n" +
+           "\n".join(_keydoc(_MODEL_KEYS[p]) for p in spec["params"] if p in _MODEL_KEYS))
+    name = "".join(w.capitalize() for w in kind.replace("_", "-").split("-"))
+    return type(name, (Model,), {"__init__": init, "__doc__": doc})
+
+
+# one class per kind of the model table: models["lugre"](sigma0=6), help(models["preisach"])
+models = {kind: _model_class(spec) for kind, spec in _MODELS.items()}
 
 for _cls in (Model, Input):
     _sec = _SECTIONS[_cls.section]
