@@ -457,6 +457,7 @@ def test_play(dt, hv, base, scenes, tmp, screenshot):
           f"@{B}: frame 0 shown")
     fps = play_for(dt, 3)
     if screenshot:
+        dt.js("document.getElementById('anim').scrollIntoView()")
         shot = dt.call("Page.captureScreenshot", format="png")
         with open(screenshot.replace(".png", "") + "-play.png", "wb") as f:
             f.write(base64.b64decode(shot["data"]))

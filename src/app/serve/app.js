@@ -450,7 +450,9 @@ function tick(now) {
     if (i !== hv.frame) { showBitmap(b); hv.frame = i; anim.shown++; $('scrub').value = i; }
     anim.pos = anim.pos + dt * anim.fps;
     if (anim.pos >= anim.n) anim.pos -= anim.n;
-    $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · playing at ' + anim.fps + ' frames/s';
+    const rate = anim.shown / Math.max(1e-3, (now - anim.t0) / 1000);
+    $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · ' + rate.toFixed(0) + ' of the clip\'s '
+      + anim.fps + ' frames/s shown';
   } else
     anim.stalls++; // not here yet: the clock waits for it
   decodeAhead();
