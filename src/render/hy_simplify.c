@@ -169,7 +169,8 @@ int hy_turns_end(hy_turns *t, size_t **idx, size_t *n)
         *idx = NULL, *n = 0;
         return -1;
     }
-    qsort(t->idx, t->n, sizeof *t->idx, cmp_index);
+    if (t->n) /* an empty series has no index array (qsort's argument must not be NULL) */
+        qsort(t->idx, t->n, sizeof *t->idx, cmp_index);
     size_t m = 0;
     for (size_t i = 0; i < t->n; i++)
         if (!m || t->idx[i] != t->idx[m - 1])

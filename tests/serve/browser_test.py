@@ -462,7 +462,11 @@ def test_play(dt, hv, base, scenes, tmp, screenshot):
         with open(screenshot.replace(".png", "") + "-play.png", "wb") as f:
             f.write(base64.b64decode(shot["data"]))
     stalls = dt.js("hv.anim.stalls")
-    check(fps >= 10, f"@{B} plays at {fps:.1f} frames/s over 3 s (>= 10; {stalls} display frames waited for a frame)")
+    what = f"@{B} plays at {fps:.1f} frames/s over 3 s (>= 10; {stalls} display frames waited for a frame)"
+    if os.environ.get("HYSTVIZ_SLOW_BUILD"):  # sanitizers, -O0: the rate is the build's, not asserted
+        print(f"   (not asserted in a sanitizer or unoptimised build) {what}")
+    else:
+        check(fps >= 10, what)
     i, got = pause(dt)
     check(got == animate_frame(hv, tmp, B, i), f"paused on frame {i}: the PNG == hystviz animate --frames {i}:{i + 1}")
     check(dt.js("document.getElementById('scrub').value") == str(i), "the scrubber follows the played frame")
