@@ -923,7 +923,7 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
         sv_puts(&b, ",\"name\":");
         sv_json(&b, name);
         sv_puts(&b, ",\"controls\":");
-        sv_controls_json(&b, sc);
+        sv_controls_json(&b, sc, hy_scene_reads(sc));
         if (is_animation(sc))
             json_anim(&b, s, c, hy_scene_hash(sc), path, text, tl);
         else
@@ -1135,6 +1135,11 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
                                                       ? a->seq
                                                       : "0");
         sv_num(&b, seconds);
+        /* the work estimate and budget: the page bounds the sliders whose work grows with them */
+        sv_puts(&b, ",\"work\":");
+        sv_num(&b, run.work);
+        sv_puts(&b, ",\"budget\":");
+        sv_num(&b, run.budget);
         sv_puts(&b, ",\"cmd\":");
         sv_buf cmd = {0};
         command_line(&cmd, path, a, "svg");

@@ -229,6 +229,8 @@ void sv_slider_range(const hy_scene_key_spec *k, double v, double *lo, double *h
         *hi = *lo + 1;
 }
 
+/* The parameters a model kind or input kind has (shown with their defaults
+ * when the scene leaves them unset). */
 static int wanted(const char *sec, const char *kind, const char *key)
 {
     static const char *const bimodal[] = {"umin1", "umin2", "umax1", "umax2", NULL};
@@ -244,15 +246,73 @@ static int wanted(const char *sec, const char *kind, const char *key)
     return 0;
 }
 
+/* Whether the computation reads the key (reads: hy_scene_reads' bits): the
+ * model only when a series needs its dynamics, or its g(v) (Fc, Fs, vs,
+ * beta; rho and Fc of Dahl) for data = g; the input unless only g is drawn. */
+static int is_read(const char *sec, const char *key, unsigned reads)
+{
+    static const char *const g_keys[] = {"fc", "fs", "vs", "beta", "rho", NULL};
+    if (!strcmp(sec, "input"))
+        return (reads & HY_READS_INPUT) != 0;
+    if (strcmp(sec, "model") || (reads & HY_READS_MODEL))
+        return 1;
+    for (size_t i = 0; (reads & HY_READS_G) && g_keys[i]; i++)
+        if (!strcmp(g_keys[i], key))
+            return 1;
+    return 0;
+}
+
+/* The values one key may take given the others (the checks of hy_input.c's
+ * bimodal input, Definition 1: u_min,1 <= u_min,2 < u_max,1 <= u_max,2;
+ * triangle min < max; scene_boucwen.c's sine: period x fs whole): a slider
+ * keeps strictly between "above" and "below" and, with "per", on whole
+ * multiples of 1 / per (per: the other factor).  lo < hi: the slider's range
+ * cut to [lo, hi] (where the computation is known to work: Newton's iteration
+ * of the Bouc-Wen benchmark fails beyond about nu = 2 at its forces).  work:
+ * the work estimate grows at most in proportion to the key, so the page keeps
+ * the slider below value x budget / work (the render reports both).  kind:
+ * the input kind ("" any); model: the model kind ("" any). */
+static const struct {
+    const char *sec, *kind, *model, *key, *above, *below, *per;
+    double lo, hi;
+    int work;
+} domains[] = {
+    {"input", "bimodal", "", "umin1", NULL, "input.umin2", NULL, 0, 0, 0},
+    {"input", "bimodal", "", "umin2", "input.umin1", "input.umax1", NULL, 0, 0, 0},
+    {"input", "bimodal", "", "umax1", "input.umin2", "input.umax2", NULL, 0, 0, 0},
+    {"input", "bimodal", "", "umax2", "input.umax1", NULL, NULL, 0, 0, 0},
+    {"input", "triangle", "", "min", NULL, "input.max", NULL, 0, 0, 0},
+    {"input", "triangle", "", "max", "input.min", NULL, NULL, 0, 0, 0},
+    {"input", "sine", "boucwen", "period", NULL, NULL, "input.fs", 0, 0, 1},
+    {"input", "sine", "boucwen", "fs", NULL, NULL, "input.period", 0, 0, 1},
+    {"input", "", "boucwen", "fs", NULL, NULL, NULL, 0, 0, 1},
+    {"input", "", "", "samples", NULL, NULL, NULL, 0, 0, 1},
+    {"model", "", "boucwen", "nu", NULL, NULL, NULL, 0.5, 2, 0},
+    {"compute", "", "", "cycles", NULL, NULL, NULL, 0, 0, 1},
+    {"compute", "", "", "settle", NULL, NULL, NULL, 0, 0, 1},
+    {"compute", "", "", "upsample", NULL, NULL, NULL, 0, 0, 1},
+    {"compute", "", "", "points", NULL, NULL, NULL, 0, 0, 1},
+};
+
 static void control(sv_buf *b, int *first, const hy_scene *s, const hy_scene_key_spec *k, const char *sec,
-                    const char *label, int set)
+                    const char *label, int set, const char *model, const char *input, int main)
 {
     double v;
     if (hy_scene_get_num(s, sec, label, k->name, &v) < 0)
         return;
     double lo, hi;
-    int lg;
+    int lg, d = -1;
     sv_slider_range(k, v, &lo, &hi, &lg);
+    for (size_t i = 0; i < sizeof domains / sizeof domains[0] && d < 0; i++)
+        if (!strcmp(domains[i].sec, sec) && !strcmp(domains[i].key, k->name) &&
+            (!domains[i].kind[0] || !strcmp(domains[i].kind, input)) &&
+            (!domains[i].model[0] || !strcmp(domains[i].model, model)))
+            d = (int)i;
+    if (d >= 0 && domains[d].lo < domains[d].hi && domains[d].lo <= v && v <= domains[d].hi) {
+        lo = lo > domains[d].lo ? lo : domains[d].lo;
+        hi = hi < domains[d].hi ? hi : domains[d].hi;
+        lg = lo > 0 && hi / lo >= 50;
+    }
     char range[64];
     hy_scene_range_text(k, range, sizeof range);
     sv_puts(b, *first ? "{\"key\":" : ",{\"key\":");
@@ -273,14 +333,38 @@ static void control(sv_buf *b, int *first, const hy_scene *s, const hy_scene_key
     sv_json(b, range);
     sv_puts(b, ",\"doc\":");
     sv_json(b, k->doc ? k->doc : "");
+    sv_puts(b, ",\"sym\":");
+    sv_json(b, k->symbol ? k->symbol : "");
+    sv_puts(b, ",\"unit\":");
+    sv_json(b, k->unit ? k->unit : "");
+    sv_printf(b, ",\"main\":%d", main);
+    if (d >= 0) {
+        const char *const part[3][2] = {{"above", domains[d].above}, {"below", domains[d].below}, {"per", domains[d].per}};
+        for (int j = 0; j < 3; j++)
+            if (part[j][1]) {
+                sv_printf(b, ",\"%s\":", part[j][0]);
+                sv_json(b, part[j][1]);
+            }
+        if (domains[d].work)
+            sv_puts(b, ",\"work\":true");
+    }
     sv_puts(b, "}");
 }
 
-void sv_controls_json(sv_buf *b, const hy_scene *s)
+void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads)
 {
     static const char *const secs[] = {"model", "input", "compute", "series"};
     size_t nsec;
     const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
+    char mains[9][HY_SCENE_KEY_MAX];
+    size_t nmain = 0;
+    hy_error err = {0};
+    if (hy_scene_main_keys(s, mains, 9, &nmain, &err))
+        nmain = 0; /* the render says what is wrong */
+    const char *model = "", *input = "";
+    int idx;
+    hy_scene_get_enum(s, "model", NULL, "kind", &idx, &model);
+    hy_scene_get_enum(s, "input", NULL, "kind", &idx, &input);
     int first = 1;
     sv_puts(b, "[");
     for (size_t i = 0; i < sizeof secs / sizeof secs[0]; i++) {
@@ -288,21 +372,24 @@ void sv_controls_json(sv_buf *b, const hy_scene *s)
         if (si < 0)
             continue;
         const hy_scene_section_spec *ss = &spec[si];
-        const char *kind = "";
-        int idx;
-        if (!strcmp(secs[i], "model") || !strcmp(secs[i], "input"))
-            hy_scene_get_enum(s, secs[i], NULL, "kind", &idx, &kind);
+        const char *kind = !strcmp(secs[i], "model") ? model : !strcmp(secs[i], "input") ? input : "";
         size_t nlab = ss->takes_name ? hy_scene_count(s, secs[i]) : 1;
         for (size_t l = 0; l < nlab; l++) {
             const char *label = ss->takes_name ? hy_scene_name_at(s, secs[i], l) : NULL;
             for (size_t j = 0; j < ss->nkeys; j++) {
                 const hy_scene_key_spec *k = &ss->keys[j];
-                if (k->kind != HY_KIND_NUMBER && k->kind != HY_KIND_INTEGER)
+                if ((k->kind != HY_KIND_NUMBER && k->kind != HY_KIND_INTEGER) || !is_read(secs[i], k->name, reads))
                     continue;
                 double v;
                 int got = hy_scene_get_num(s, secs[i], label, k->name, &v);
-                if (got == HY_SCENE_SET || (got == HY_SCENE_DEFAULT && wanted(secs[i], kind, k->name)))
-                    control(b, &first, s, k, secs[i], label, got == HY_SCENE_SET);
+                char full[HY_SCENE_KEY_MAX + 64];
+                snprintf(full, sizeof full, "%s.%s%s%s", secs[i], label ? label : "", label ? "." : "", k->name);
+                int main = 0;
+                for (size_t m = 0; m < nmain && !main; m++)
+                    if (!strcmp(mains[m], full))
+                        main = (int)m + 1;
+                if (got == HY_SCENE_SET || (got == HY_SCENE_DEFAULT && (main || wanted(secs[i], kind, k->name))))
+                    control(b, &first, s, k, secs[i], label, got == HY_SCENE_SET, model, input, main);
             }
         }
     }

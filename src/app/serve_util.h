@@ -46,10 +46,16 @@ const char *sv_settable_sections(void);
 /* Appends the JSON array of the scene's numeric controls: for every NUMBER
  * or INTEGER key the scene sets in [model], [input], [compute] and its
  * [series NAME] sections, and the model kind's parameters and a bimodal
- * input's extrema (with their defaults):
- *   {"key":"model.sigma0","value":"6","set":true,"int":false,
- *    "lo":0.06,"hi":600,"log":true,"range":"> 0","doc":"..."} */
-void sv_controls_json(sv_buf *b, const hy_scene *s);
+ * input's extrema (with their defaults), leaving out the [model] and
+ * [input] keys the computation does not read (reads: the HY_READS_* bits of hy_scene_reads, which the caller passes):
+ *   {"key":"input.umin2","value":"0.5","set":true,"int":false,
+ *    "lo":0,"hi":1,"log":false,"range":"","doc":"...","sym":"u_{min,2}",
+ *    "unit":"","main":2,"above":"input.umin1","below":"input.umax1"}
+ * sym and unit come from the schema; main is the key's place (1-9) in the
+ * scene's [controls] main, 0 if not listed; above/below name the keys whose
+ * current values bound this one strictly, per the key whose inverse is the
+ * step (period x fs whole). */
+void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads);
 
 /* Slider range for a key spec and its current value: [lo, hi], logarithmic
  * when the range spans decades; kept inside the documented bounds. */

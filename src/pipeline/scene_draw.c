@@ -265,7 +265,9 @@ int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
     int hzx, zrc = read_zoom(s, zx, zy, &hzx, err);
     if (zrc)
         return zrc;
-    return HY_OK;
+    char keys[9][HY_SCENE_KEY_MAX];
+    size_t nkeys;
+    return hy_scene_main_keys(s, keys, 9, &nkeys, err);
 }
 
 int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
@@ -379,6 +381,9 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
     figure_size(s, f);
     f->font = font;
     f->font_size = fs;
+    int theme = HY_THEME_PAPER;
+    hy_scene_get_enum(s, "figure", NULL, "theme", &theme, &t);
+    f->theme = theme;
     f->axes = ax;
     f->nrows = f->ncols = 1;
     return HY_OK;

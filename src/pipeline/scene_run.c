@@ -324,6 +324,29 @@ int hy_scene_series_data(const hy_scene *s, const char *name, int *data)
     return 0;
 }
 
+unsigned hy_scene_reads(const hy_scene *s)
+{
+    unsigned reads = 0;
+    for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
+        int d = -1;
+        if (series_data(s, hy_scene_name_at(s, "series", i), &d))
+            return HY_READS_MODEL | HY_READS_G | HY_READS_INPUT; /* refused later: nothing to hide */
+        if (d == HY_DATA_G)
+            reads |= HY_READS_G;
+        else
+            reads |= HY_READS_INPUT | (d == HY_DATA_INPUT || d == HY_DATA_PSI ? 0u : HY_READS_MODEL | HY_READS_G);
+    }
+    for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
+        const char *text = "";
+        hy_scene_get_str(s, "annotation", hy_scene_name_at(s, "annotation", i), "text", &text);
+        if (strstr(text, "{model."))
+            reads |= HY_READS_MODEL | HY_READS_G;
+        if (strstr(text, "{input."))
+            reads |= HY_READS_INPUT;
+    }
+    return reads;
+}
+
 static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
 {
     const hy_scene *s = r->scene;

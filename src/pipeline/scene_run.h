@@ -119,6 +119,14 @@ int hy_scene_run_load_text(hy_scene_run *r, const char *path, const char *text, 
  * "Work budget").  what (may be NULL) receives the breakdown. */
 int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err);
 
+/* What computing and drawing the scene reads of [model] and [input], as the
+ * plan decides from its series: HY_READS_MODEL, the model's dynamics (any
+ * series but input, psi and g); HY_READS_G, its g(v) only (Fc, Fs, vs, beta;
+ * data = g); HY_READS_INPUT, the input (any series but g).  An annotation's
+ * {model.KEY} or {input.KEY} placeholder reads that section too.  hystviz
+ * serve shows controls only for what is read.  (The bits: hy_scene.h.) */
+unsigned hy_scene_reads(const hy_scene *s);
+
 /* Writes the budget refusal (at [compute] points/cycles/tspan/gamma if written,
  * else at the first series, else file:1:1) and returns HY_EINVAL. */
 int hy_scene_run_over_budget(const hy_scene *s, double work, double budget, const char *what, hy_error *err);

@@ -47,11 +47,36 @@ const char *hy__figure_font(const hy_figure *f)
     return f->font && f->font[0] ? f->font : HY__DEFAULT_FONT;
 }
 
-static hy_rgb colour_of(hy_colour c)
+/* A theme (hy_figure.theme): background, text and frame, the shaded band,
+ * grid lines, legend frame, inset outline and annotation leaders; line widths
+ * and text sizes as multiples of the figure's.  On a dark background a dark
+ * curve colour (black, the palette's first) is drawn in the text colour. */
+typedef struct theme {
+    hy_rgb bg, fg, band, grid, legend, inset, leader;
+    double line, text;
+    int dark;
+} theme;
+
+static const theme themes[] = {
+    [HY_THEME_PAPER] = {{1, 1, 1}, {0, 0, 0}, {0.88, 0.88, 0.88}, {0.82, 0.82, 0.82}, {0.55, 0.55, 0.55},
+                        {0.45, 0.45, 0.45}, {0.35, 0.35, 0.35}, 1.0, 1.0, 0},
+    [HY_THEME_SLIDES] = {{0.11, 0.12, 0.14}, {0.93, 0.93, 0.91}, {0.24, 0.26, 0.30}, {0.30, 0.32, 0.36},
+                         {0.60, 0.60, 0.60}, {0.70, 0.70, 0.70}, {0.75, 0.75, 0.75}, 2.0, 1.4, 1},
+};
+
+static const theme *theme_of(const hy_figure *f)
 {
-    if (c.palette == HY_RGB_EXPLICIT)
-        return c.rgb;
-    return hy_palette[(c.palette < 0 ? -c.palette : c.palette) % HY_PALETTE_SIZE];
+    return f->theme > 0 && (size_t)f->theme < sizeof themes / sizeof themes[0] ? &themes[f->theme]
+                                                                                : &themes[HY_THEME_PAPER];
+}
+
+static hy_rgb colour_of(const theme *th, hy_colour c)
+{
+    hy_rgb v = c.palette == HY_RGB_EXPLICIT ? c.rgb
+                                            : hy_palette[(c.palette < 0 ? -c.palette : c.palette) % HY_PALETTE_SIZE];
+    if (th->dark && 0.2126 * v.r + 0.7152 * v.g + 0.0722 * v.b < 0.25)
+        return th->fg;
+    return v;
 }
 
 /* Where an annotation went: its baseline start, box and the point it labels. */
@@ -79,6 +104,7 @@ typedef struct panel {
     const hy_axes *ax;
     const hy_canvas *cv;                 /* axes, text, legend; also measures */
     const hy_canvas *dv;                 /* data: band, grid, series, marks */
+    const theme *th;
     double fs;
     double x0, y0, w, h;
     double xlo, xhi, ylo, yhi;
@@ -307,10 +333,10 @@ static int clip_segment(double *x1, double *y1, double *x2, double *y2,
 }
 
 /* The pen of a series: width, colour and a dash pattern that survives greyscale. */
-static hy_pen series_pen(const hy_series *s, double dash[4])
+static hy_pen series_pen(const theme *th, const hy_series *s, double dash[4])
 {
-    double w = s->width > 0 ? s->width : 1.0, k = w > 0.8 ? w : 0.8;
-    hy_pen pen = {colour_of(s->colour), 1.0, w, dash, 0, 0, 0};
+    double w = (s->width > 0 ? s->width : 1.0) * th->line, k = w > 0.8 ? w : 0.8;
+    hy_pen pen = {colour_of(th, s->colour), 1.0, w, dash, 0, 0, 0};
     switch (s->style) {
     case HY_LINE_DASHED:
         dash[0] = 5.0 * k, dash[1] = 2.5 * k, pen.ndash = 2;
@@ -329,10 +355,11 @@ static hy_pen series_pen(const hy_series *s, double dash[4])
     return pen;
 }
 
-static void draw_marker(const hy_canvas *cv, int marker, double x, double y, double size,
+static void draw_marker(const hy_canvas *cv, const theme *th, int marker, double x, double y, double size,
                         hy_rgb c, int filled)
 {
-    hy_pen pen = {c, 1.0, 0.7, NULL, 0, 0, 0};
+    hy_pen pen = {c, 1.0, 0.7 * th->line, NULL, 0, 0, 0};
+    size *= th->text;
     int shape = marker == HY_MARKER_SQUARE ? HY_SHAPE_SQUARE : HY_SHAPE_CIRCLE;
     cv->ops->marker(cv->ctx, shape, x, y, size, &pen, filled ? &c : NULL);
 }
@@ -557,7 +584,7 @@ static void draw_series(const panel *p, size_t si)
     const hy_canvas *cv = p->dv;
     const hy_series *s = &p->ax->series[si];
     double dash[4], lw = s->width > 0 ? s->width : 1.0;
-    hy_pen pen = series_pen(s, dash);
+    hy_pen pen = series_pen(p->th, s, dash);
     if (s->style == HY_LINE_NONE || !s->x || !s->y)
         return;
     stroke k = {cv, p->x0 - 2 * lw, p->y0 - 2 * lw, p->x0 + p->w + 2 * lw, p->y0 + p->h + 2 * lw, 0, 0, 0, 0, NAN, NAN};
@@ -586,7 +613,7 @@ static void draw_series_markers(const panel *p, const hy_series *s)
                 continue;
             double x = map_x(p, s->x[i]), y = map_y(p, s->y[i]);
             if (x >= xa && x <= xb && y >= ya && y <= yb)
-                draw_marker(cv, s->marker, x, y, ms, colour_of(s->colour), s->marker_filled);
+                draw_marker(cv, p->th, s->marker, x, y, ms, colour_of(p->th, s->colour), s->marker_filled);
         }
     }
 }
@@ -605,11 +632,11 @@ static void draw_band_grid(const panel *p)
         a = a < p->x0 ? p->x0 : a;
         b = b > p->x0 + p->w ? p->x0 + p->w : b;
         if (b > a)
-            cv->ops->fill_rect(cv->ctx, a, p->y0, b - a, p->h, (hy_rgb){0.88, 0.88, 0.88}, 1.0);
+            cv->ops->fill_rect(cv->ctx, a, p->y0, b - a, p->h, p->th->band, 1.0);
     }
     if (!ax->grid)
         return;
-    hy_pen pen = {{0.82, 0.82, 0.82}, 1.0, 0.4, NULL, 0, 0, 0};
+    hy_pen pen = {p->th->grid, 1.0, 0.4 * p->th->line, NULL, 0, 0, 0};
     for (int i = 0; i < p->xt.n; i++) {
         double x = map_x(p, p->xt.v[i]);
         line(cv, x, p->y0, x, p->y0 + p->h, &pen);
@@ -647,8 +674,8 @@ static void draw_minor_log(const panel *p, int axis, const hy_pen *pen)
 static void draw_frame_ticks(const panel *p)
 {
     const hy_canvas *cv = p->cv;
-    hy_rgb black = hy_palette[0];
-    hy_pen pen = {black, 1.0, FRAME_W, NULL, 0, 0, 1};
+    hy_rgb black = p->th->fg;
+    hy_pen pen = {black, 1.0, FRAME_W * p->th->line, NULL, 0, 0, 1};
     double x1 = p->x0 + p->w, y1 = p->y0 + p->h;
     cv->ops->begin_path(cv->ctx);
     cv->ops->move_to(cv->ctx, p->x0, p->y0);
@@ -687,7 +714,7 @@ static void draw_labels(const panel *p)
 {
     const hy_axes *ax = p->ax;
     const hy_canvas *cv = p->cv;
-    hy_rgb black = hy_palette[0];
+    hy_rgb black = p->th->fg;
     hy_markup_box b;
     if (ax->xlabel && *ax->xlabel) {
         hy_markup_text(cv, ax->xlabel, p->fs, 0, 0, 0, 0, black, &b);
@@ -716,8 +743,8 @@ static void draw_marks(const panel *p)
             continue;
         double x = map_x(p, m->x), y = map_y(p, m->y);
         if (x >= p->x0 - 1 && x <= p->x0 + p->w + 1 && y >= p->y0 - 1 && y <= p->y0 + p->h + 1)
-            draw_marker(p->dv, m->marker ? m->marker : HY_MARKER_CIRCLE, x, y,
-                        m->size > 0 ? m->size : 5.0, colour_of(m->colour), m->filled);
+            draw_marker(p->dv, p->th, m->marker ? m->marker : HY_MARKER_CIRCLE, x, y,
+                        m->size > 0 ? m->size : 5.0, colour_of(p->th, m->colour), m->filled);
     }
 }
 
@@ -1194,12 +1221,12 @@ static void draw_texts(const panel *p)
             continue;
         if (tp->leader) {
             double nx, ny;
-            hy_pen pen = {{0.35, 0.35, 0.35}, 1.0, 0.5, NULL, 0, 1, 0};
+            hy_pen pen = {p->th->leader, 1.0, 0.5 * p->th->line, NULL, 0, 1, 0};
             nearest_on_box(tp->box, tp->ax, tp->ay, &nx, &ny);
             line(p->cv, nx, ny, tp->ax, tp->ay, &pen);
             p->cv->ops->marker(p->cv->ctx, HY_SHAPE_CIRCLE, tp->ax, tp->ay, 1.6, &pen, &pen.colour);
         }
-        hy_markup_text(p->cv, t->text, p->fs, 1, 0, tp->x, tp->y, colour_of(t->colour), NULL);
+        hy_markup_text(p->cv, t->text, p->fs, 1, 0, tp->x, tp->y, colour_of(p->th, t->colour), NULL);
     }
 }
 
@@ -1362,8 +1389,8 @@ static void draw_legend(const panel *p)
     if (bw <= 0.0)
         return;
     legend_place(p, bw, bh, &x, &y);
-    cv->ops->fill_rect(cv->ctx, x, y, bw, bh, (hy_rgb){1, 1, 1}, 1.0);
-    hy_pen frame = {{0.55, 0.55, 0.55}, 1.0, 0.5, NULL, 0, 0, 1};
+    cv->ops->fill_rect(cv->ctx, x, y, bw, bh, p->th->bg, 1.0);
+    hy_pen frame = {p->th->legend, 1.0, 0.5 * p->th->line, NULL, 0, 0, 1};
     cv->ops->begin_path(cv->ctx);
     cv->ops->move_to(cv->ctx, x, y);
     cv->ops->line_to(cv->ctx, x + bw, y);
@@ -1377,15 +1404,15 @@ static void draw_legend(const panel *p)
         if (!se->label)
             continue;
         double dash[4];
-        hy_pen pen = series_pen(se, dash);
+        hy_pen pen = series_pen(p->th, se, dash);
         double x0 = x + LEGEND_PAD;
         if (se->style != HY_LINE_NONE)
             line(cv, x0, row_y, x0 + LEGEND_SAMPLE, row_y, &pen);
         if (se->marker != HY_MARKER_NONE)
-            draw_marker(cv, se->marker, x0 + 0.5 * LEGEND_SAMPLE, row_y,
+            draw_marker(cv, p->th, se->marker, x0 + 0.5 * LEGEND_SAMPLE, row_y,
                         se->marker_size > 0 ? se->marker_size : 4.0, pen.colour, se->marker_filled);
         hy_markup_text(cv, se->label, p->fs, 1, 0, x0 + LEGEND_SAMPLE + 5.0, row_y + 0.36 * p->fs,
-                       hy_palette[0], NULL);
+                       p->th->fg, NULL);
         row_y += rowh;
     }
 }
@@ -1430,7 +1457,7 @@ static int place_inset(panel *p, hy_error *err)
     qa->texts = NULL, qa->ntexts = 0;
     qa->legend = HY_LEGEND_NONE;
     qa->zoom_x.lo = qa->zoom_x.hi = 0;
-    q->ax = qa, q->cv = q->dv = p->cv, q->fs = 0.8 * p->fs;
+    q->ax = qa, q->cv = q->dv = p->cv, q->th = p->th, q->fs = 0.8 * p->fs;
     q->xlog = p->xlog, q->ylog = p->ylog;
     q->xlo = ax->zoom_x.lo, q->xhi = ax->zoom_x.hi, q->ylo = ax->zoom_y.lo, q->yhi = ax->zoom_y.hi;
     q->cw = 0.42 * p->w, q->ch = 0.45 * p->h;
@@ -1486,12 +1513,12 @@ static void draw_inset(const panel *p)
         return;
     const panel *q = p->inset_panel;
     const hy_canvas *cv = p->cv;
-    hy_pen grey = {{0.45, 0.45, 0.45}, 1.0, 0.5, NULL, 0, 0, 1};
+    hy_pen grey = {p->th->inset, 1.0, 0.5 * p->th->line, NULL, 0, 0, 1};
     double zr[4];
     zoom_rect(p, zr);
     cv->ops->clip(cv->ctx, p->x0, p->y0, p->w, p->h);
     rect_path(cv, zr, &grey);
-    cv->ops->fill_rect(cv->ctx, p->inset[0], p->inset[1], p->inset[2], p->inset[3], (hy_rgb){1, 1, 1}, 1.0);
+    cv->ops->fill_rect(cv->ctx, p->inset[0], p->inset[1], p->inset[2], p->inset[3], p->th->bg, 1.0);
     cv->ops->unclip(cv->ctx);
     cv->ops->clip(cv->ctx, q->x0, q->y0, q->w, q->h);
     for (size_t s = 0; s < q->ax->nseries; s++)
@@ -1673,7 +1700,7 @@ static int draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canva
         panel *p = &ps[i];
         p->tplace = tp + k;
         p->inset_panel = &ps[(size_t)(rows * cols) + i];
-        p->ax = &f->axes[i], p->cv = cv, p->dv = data ? data : cv, p->fs = fs;
+        p->ax = &f->axes[i], p->cv = cv, p->dv = data ? data : cv, p->th = theme_of(f), p->fs = fs * p->th->text;
         p->xlog = p->ax->x.log, p->ylog = p->ax->y.log;
         p->cx = (i % cols) * W / cols, p->cy = (i / cols) * H / rows;
         p->cw = W / cols, p->ch = H / rows;
@@ -1681,7 +1708,7 @@ static int draw_layers(const hy_figure *f, const hy_canvas *data, const hy_canva
     int st = layout_grid(ps, rows, cols, err);
     if (!st) {
         const hy_canvas *dv = data ? data : cv;
-        dv->ops->fill_rect(dv->ctx, 0, 0, W, H, (hy_rgb){1, 1, 1}, 1.0);
+        dv->ops->fill_rect(dv->ctx, 0, 0, W, H, theme_of(f)->bg, 1.0);
         for (int i = 0; i < rows * cols; i++) {
             draw_panel_data(&ps[i]);
             if (dv == cv)
@@ -1753,7 +1780,7 @@ static int figure_layout(const hy_figure *f, const hy_canvas *cv, int index, dou
         panel *p = &ps[i];
         p->tplace = tp + k;
         p->inset_panel = &ps[(size_t)(rows * cols) + i];
-        p->ax = &f->axes[i], p->cv = p->dv = cv, p->fs = fs;
+        p->ax = &f->axes[i], p->cv = p->dv = cv, p->th = theme_of(f), p->fs = fs * p->th->text;
         p->xlog = p->ax->x.log, p->ylog = p->ax->y.log;
         p->cx = (double)(i % (size_t)cols) * W / cols, p->cy = (double)(i / (size_t)cols) * H / rows;
         p->cw = W / cols, p->ch = H / rows;

@@ -672,3 +672,56 @@ int hy_scene_set(hy_scene *s, const char *assignment, hy_error *err)
     free(key);
     return rc;
 }
+
+/* The sections whose keys serve shows as controls (cmd_serve.c's serve_util). */
+static int main_section(const char *sec)
+{
+    static const char *const secs[] = {"model", "input", "compute", "series"};
+    for (size_t i = 0; i < sizeof secs / sizeof secs[0]; i++)
+        if (!strcmp(sec, secs[i]))
+            return 1;
+    return 0;
+}
+
+int hy_scene_main_keys(const hy_scene *s, char (*keys)[HY_SCENE_KEY_MAX], size_t max, size_t *n, hy_error *err)
+{
+    const char *list = NULL;
+    *n = 0;
+    if (hy_scene_get_str(s, "controls", NULL, "main", &list) != HY_SCENE_SET || !list)
+        return HY_OK;
+    size_t nsec;
+    const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
+    for (const char *p = list + strspn(list, " ,"); *p; p += strspn(p, " ,")) {
+        size_t len = strcspn(p, " ,");
+        if (len >= HY_SCENE_KEY_MAX)
+            return hy_scene_error_at(s, "controls", NULL, "main", err, HY_EINVAL, "main: '%.40s...' is too long for a key", p);
+        if (*n == max)
+            return hy_scene_error_at(s, "controls", NULL, "main", err, HY_EINVAL, "main: at most %zu keys", max);
+        char set[HY_SCENE_KEY_MAX + 2], *sec, *name, *key;
+        const char *value;
+        snprintf(set, sizeof set, "%.*s=", (int)len, p);
+        int rc = hy_scene_set_split(set, &sec, &name, &key, &value, err);
+        int si = rc ? -1 : hy_scene_schema_section(sec), ki = si < 0 ? -1 : hy_scene_schema_key(si, key);
+        double v;
+        if (!rc && (ki < 0 || (spec[si].keys[ki].kind != HY_KIND_NUMBER && spec[si].keys[ki].kind != HY_KIND_INTEGER) ||
+                    !spec[si].takes_name != !name || !main_section(sec)))
+            rc = hy_scene_error_at(s, "controls", NULL, "main", err, HY_EINVAL,
+                                   "main: '%.*s' is not a numeric key of [model], [input], [compute] or a [series NAME], "
+                                   "written as for --set (model.sigma0, series.NAME.gamma)", (int)len, p);
+        else if (!rc && hy_scene_get_num(s, sec, name, key, &v) < 0)
+            rc = hy_scene_error_at(s, "controls", NULL, "main", err, HY_EINVAL,
+                                   "main: the scene has no value for '%.*s'%s", (int)len, p,
+                                   name ? " (is the section's name right?)" : "");
+        else if (rc)
+            rc = hy_scene_error_at(s, "controls", NULL, "main", err, HY_EINVAL,
+                                   "main: '%.*s' is not written as SECTION.key or SECTION.NAME.key", (int)len, p);
+        free(sec);
+        free(name);
+        free(key);
+        if (rc)
+            return rc;
+        snprintf(keys[(*n)++], HY_SCENE_KEY_MAX, "%.*s", (int)len, p);
+        p += len;
+    }
+    return HY_OK;
+}

@@ -179,6 +179,20 @@ int hy_scene_error_at(const hy_scene *s, const char *section, const char *name,
  * resolved).  Returns HY_OK or HY_EIO if writing failed. */
 int hy_scene_write(const hy_scene *s, FILE *f, int defaults);
 
+/* What a scene's computation reads of [model] and [input] (the pipeline's
+ * hy_scene_reads, scene_run.h, decides from the series). */
+enum { HY_READS_MODEL = 1u << 0, HY_READS_G = 1u << 1, HY_READS_INPUT = 1u << 2 };
+
+/* The longest key of [controls] main ("series.NAME.gamma"), with its NUL. */
+#define HY_SCENE_KEY_MAX 96
+
+/* The scene's main parameters: the keys [controls] main lists, as written
+ * for --set without a value ("model.sigma0"), at most max of them, into
+ * keys[0 .. *n-1]; *n = 0 when the scene lists none.  Each must name a
+ * number or integer key of a section the scene has that has a value (set or
+ * default); else HY_EINVAL with the message at the main line. */
+int hy_scene_main_keys(const hy_scene *s, char (*keys)[HY_SCENE_KEY_MAX], size_t max, size_t *n, hy_error *err);
+
 /* The path or display name the scene was parsed from (owned by the scene). */
 const char *hy_scene_source(const hy_scene *s);
 

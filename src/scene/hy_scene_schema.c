@@ -15,7 +15,11 @@
 #define NONNEG HY_SPEC_MIN, 0.0, 0.0
 #define K(...) K_(__VA_ARGS__)
 #define K_(name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc }
+    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL }
+/* KQ: a quantity's key, its symbol and unit first (see hy_scene_key_spec). */
+#define KQ(sym, unit, ...) KQ_(sym, unit, __VA_ARGS__)
+#define KQ_(sym, unit, name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
+    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit }
 #define NKEYS(a) (sizeof(a) / sizeof((a)[0]))
 
 #define MODEL_NAME(id, name) name,
@@ -40,6 +44,7 @@ static const char *const bw_quantities[] = {"output", "input", "output-db", "tra
 static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {"none", "circle", "square", NULL};
 static const char *const formats[] = {"svg", "pdf", "png", NULL};
+static const char *const themes[] = {"paper", "slides", NULL};
 static const char *const easings[] = {"linear", "smooth", NULL};
 #define QUALITY_NAME(name, w, h, fps) name,
 static const char *const qualities[] = {HY_QUALITY_PRESETS(QUALITY_NAME) NULL};
@@ -48,27 +53,27 @@ static const hy_scene_key_spec model_keys[] = {
     K("kind", HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, "lugre",
       "hysteresis model: Dahl, LuGre (Eq. 3), the Example-1 filter system, the Bouc-Wen benchmark oscillator, "
       "Jiles-Atherton (ferromagnetic, input H in A/m, output B in T) or classical Preisach"),
-    K("sigma0", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
-    K("sigma1", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
-    K("sigma2", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
+    KQ("σ_0", NULL, "sigma0", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
+    KQ("σ_1", NULL, "sigma1", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
+    KQ("σ_2", NULL, "sigma2", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
       "viscous friction sigma2; f(v) = sigma2 v (the paper takes f = 0)"),
-    K("fc", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Coulomb friction force Fc"),
-    K("fs", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "stiction force Fs"),
-    K("vs", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck velocity vs"),
-    K("beta", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck exponent beta of g(v)"),
-    K("rho", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "constant g of the Dahl model"),
-    K("x0", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "initial state x(0)"),
-    K("tau", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "time constant of the dahl-filter system"),
-    K("m", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "boucwen: mass m_L in kg (Table 1)"),
-    K("c", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "10", "boucwen: viscous damping c_L in N s/m"),
-    K("k", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4", "boucwen: linear stiffness k_L in N/m"),
-    K("alpha", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4",
+    KQ("F_c", NULL, "fc", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Coulomb friction force Fc"),
+    KQ("F_s", NULL, "fs", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "stiction force Fs"),
+    KQ("v_s", NULL, "vs", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck velocity vs"),
+    KQ("β", NULL, "beta", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck exponent beta of g(v)"),
+    KQ("ρ", NULL, "rho", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "constant g of the Dahl model"),
+    KQ("x_0", NULL, "x0", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "initial state x(0)"),
+    KQ("τ", NULL, "tau", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "time constant of the dahl-filter system"),
+    KQ("m_L", "kg", "m", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "boucwen: mass m_L in kg (Table 1)"),
+    KQ("c_L", "N s/m", "c", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "10", "boucwen: viscous damping c_L in N s/m"),
+    KQ("k_L", "N/m", "k", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4", "boucwen: linear stiffness k_L in N/m"),
+    KQ("α", "N/m", "alpha", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4",
       "boucwen: alpha of Eq. (3) in N/m (k + alpha > 0: the linearised stiffness of Table 2)"),
-    K("bw_beta", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1e3",
+    KQ("β", "1/m^ν", "bw_beta", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1e3",
       "boucwen: beta of Eq. (3) in 1/m^nu; 0 gives the linear oscillator of Fig. 1(b)"),
-    K("bw_gamma", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen: gamma of Eq. (3)"),
-    K("delta", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen: delta of Eq. (3)"),
-    K("nu", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen: exponent nu of Eq. (3)"),
+    KQ("γ", NULL, "bw_gamma", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen: gamma of Eq. (3)"),
+    KQ("δ", NULL, "delta", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen: delta of Eq. (3)"),
+    KQ("ν", NULL, "nu", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen: exponent nu of Eq. (3)"),
     K("ja_ms", HY_KIND_NUMBER, NULL, POS, 0, 0, "1.6e6",
       "jiles-atherton: saturation magnetisation Ms in A/m (default: Jiles & Atherton 1986)"),
     K("ja_a", HY_KIND_NUMBER, NULL, POS, 0, 0, "1100",
@@ -92,10 +97,10 @@ static const hy_scene_key_spec model_keys[] = {
 static const hy_scene_key_spec input_keys[] = {
     K("kind", HY_KIND_ENUM, input_kinds, NOLIM, 0, 0, "bimodal",
       "input family: bimodal (Eq. 10), multimodal, triangle, sine, pwl, samples from a file; boucwen models take sine, multisine or sweep"),
-    K("umin1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "bimodal input: first minimum u_min,1"),
-    K("umin2", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.2", "bimodal input: second minimum u_min,2"),
-    K("umax1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "bimodal input: first maximum u_max,1"),
-    K("umax2", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1.5", "bimodal input: second maximum u_max,2"),
+    KQ("u_{min,1}", NULL, "umin1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "bimodal input: first minimum u_min,1"),
+    KQ("u_{min,2}", NULL, "umin2", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.2", "bimodal input: second minimum u_min,2"),
+    KQ("u_{max,1}", NULL, "umax1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "bimodal input: first maximum u_max,1"),
+    KQ("u_{max,2}", NULL, "umax2", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1.5", "bimodal input: second maximum u_max,2"),
     K("t", HY_KIND_NUMBER_LIST, NULL, NONNEG, 4, 4, NULL,
       "bimodal input: times t1, t2, t3, t4 of the extrema (default: normalised, t = rho)"),
     K("shape", HY_KIND_ENUM, input_shapes, NOLIM, 0, 0, "linear",
@@ -104,29 +109,29 @@ static const hy_scene_key_spec input_keys[] = {
       "multimodal input: the successive extrema of one period"),
     K("times", HY_KIND_NUMBER_LIST, NULL, NONNEG, 2, 0, NULL,
       "multimodal input: the times of the extrema (default: normalised)"),
-    K("amp", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1",
+    KQ("A", NULL, "amp", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1",
       "triangle or sine input: amplitude (a force in N for a boucwen model); sweep input: force in N, default 40 "
       "(the paper's sweep, as `hystviz boucwen data --signal sweep`)"),
-    K("offset", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "triangle or sine input: mean value"),
-    K("period", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "triangle or sine input: period T"),
-    K("min", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    KQ("u_0", NULL, "offset", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "triangle or sine input: mean value"),
+    KQ("T", "s", "period", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "triangle or sine input: period T"),
+    KQ("u_{min}", NULL, "min", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "triangle input: minimum (instead of amp and offset)"),
-    K("max", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    KQ("u_{max}", NULL, "max", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "triangle input: maximum (instead of amp and offset)"),
     K("points", HY_KIND_NUMBER_LIST, NULL, HY_SPEC_EVEN, 0, 0, 4, 0, NULL,
       "pwl input: one period as t0, u0, t1, u1, ..."),
     K("file", HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
       "file input: two-column text file t u, relative to the scene file"),
-    K("fs", HY_KIND_NUMBER, NULL, POS, 0, 0, "750",
+    KQ("f_s", "Hz", "fs", HY_KIND_NUMBER, NULL, POS, 0, 0, "750",
       "boucwen inputs: working sampling rate in Hz (the figures' samples; a sine needs period x fs whole)"),
-    K("samples", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 64, 10000000, 0, 0, "8192",
+    KQ("N", NULL, "samples", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 64, 10000000, 0, 0, "8192",
       "multisine input: samples per period at fs (frequency resolution fs / samples)"),
     K("band", HY_KIND_PAIR, NULL, NOLIM, 0, 0, "5, 150",
       "multisine input: excited band in Hz; sweep input: start and end frequency in Hz, default 20, 50 (the paper's)"),
-    K("rms", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "50",
+    KQ("u_{RMS}", "N", "rms", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "50",
       "multisine input: standard deviation (RMS) in N"),
     K("seed", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
-    K("rate", HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute (the paper's 10)"),
+    KQ("r", "Hz/min", "rate", HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute (the paper's 10)"),
 };
 
 static const hy_scene_key_spec compute_keys[] = {
@@ -134,24 +139,24 @@ static const hy_scene_key_spec compute_keys[] = {
       "time scales gamma for y_gamma (Figs. 4, 7, 11)"),
     K("k", HY_KIND_INTEGER_LIST, NULL, NONNEG, 1, 0, "0, 1, 2, 3",
       "periods k for `y*_{u,k}` (Figs. 8, 12, 13)"),
-    K("cycles", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 100000, 0, 0, "1",
+    KQ("periods", NULL, "cycles", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 100000, 0, 0, "1",
       "number of input periods simulated"),
     K("solver", HY_KIND_ENUM, solvers, NOLIM, 0, 0, "exact",
       "integrator: exact (piecewise exponential) or a GSL odeiv2 stepper"),
-    K("rtol", HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MIN_EXCL | HY_SPEC_MAX, 0, 1, 0, 0,
+    KQ("rtol", NULL, "rtol", HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MIN_EXCL | HY_SPEC_MAX, 0, 1, 0, 0,
       "1e-8", "relative tolerance of adaptive solvers"),
-    K("atol", HY_KIND_NUMBER, NULL, POS, 0, 0, "1e-10", "absolute tolerance of adaptive solvers"),
+    KQ("atol", NULL, "atol", HY_KIND_NUMBER, NULL, POS, 0, 0, "1e-10", "absolute tolerance of adaptive solvers"),
     K("tspan", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "time interval computed and drawn (default: the periods simulated)"),
-    K("points", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 10000000, 0, 0, "2000",
+    KQ("points", "per period", "points", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 10000000, 0, 0, "2000",
       "output samples per input period (a curve over the time span has points x periods)"),
-    K("settle", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 0, 100000, 0, 0, "0",
+    KQ("settle", "periods", "settle", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 0, 100000, 0, 0, "0",
       "boucwen: input periods integrated from rest and discarded before the 'cycles' drawn"),
-    K("upsample", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 1000, 0, 0, "20",
+    KQ("upsample", NULL, "upsample", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 1000, 0, 0, "20",
       "boucwen: Newmark integration rate as a multiple of the input's fs (15000 Hz = 20 x 750 Hz)"),
     K("decimate", HY_KIND_ENUM, decimations, NOLIM, 0, 0, "staged",
       "boucwen: back to fs like MATLAB decimate(y, r, 'fir') in prime-factor stages or one stage, or none (keep fs x upsample)"),
-    K("noise", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
+    KQ("noise", "mm", "noise", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
       "boucwen: RMS in mm of Gaussian noise added to y, white up to half the output rate (the benchmark's data: 8e-3)"),
 };
 
@@ -182,31 +187,33 @@ static const hy_scene_key_spec figure_keys[] = {
     K("zoom_x", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "x range of a zoomed inset (with zoom_y): the same curves enlarged, placed where they cover least"),
     K("zoom_y", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL, "y range of the zoomed inset"),
+    K("theme", HY_KIND_ENUM, themes, NOLIM, 0, 0, "paper",
+      "paper (black on white) or slides (light on dark, lines twice as thick, text 1.4 times as large: a projector)"),
 };
 
 static const hy_scene_key_spec series_keys[] = {
     K("data", HY_KIND_ENUM, series_data, NOLIM, 0, 0, NULL, "which computed signal is drawn"),
-    K("gamma", HY_KIND_NUMBER, NULL, POS, 0, 0, NULL, "time scale of a ygamma curve"),
-    K("k", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, NULL, "period index of a yk curve"),
+    KQ("γ", NULL, "gamma", HY_KIND_NUMBER, NULL, POS, 0, 0, NULL, "time scale of a ygamma curve"),
+    KQ("k", NULL, "k", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, NULL, "period index of a yk curve"),
     K("style", HY_KIND_ENUM, line_styles, NOLIM, 0, 0, "solid", "line dash pattern"),
     K("color", HY_KIND_COLOR, NULL, NOLIM, 0, 0, NULL,
       "line colour (default: next Okabe-Ito colour)"),
     K("width", HY_KIND_LENGTH, NULL, POS, 0, 0, "1pt", "line width"),
     K("marker", HY_KIND_ENUM, markers, NOLIM, 0, 0, "none", "marker drawn at the point 'at'"),
     K("label", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "legend entry (default: none)"),
-    K("at", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    KQ("t", NULL, "at", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "parameter value (e.g. t1) where the marker is placed"),
     K("quantity", HY_KIND_ENUM, bw_quantities, NOLIM, 0, 0, "output",
       "data = boucwen: y in mm, u in N, |y| in dB re 1 mm, transient y - y(last period) in dB, the last period's spectrum, "
       "the largest |y| in mm each second, or (sweep) the windowed-sinc route's largest error each second in u (N) or y (mm)"),
-    K("floor", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    KQ("floor", "dB", "floor", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "data = boucwen, dB quantities: values below it and exact zeros are drawn at this level (default: zeros leave gaps)"),
 };
 
 static const hy_scene_key_spec annotation_keys[] = {
     K("text", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "text drawn at (x, y)"),
-    K("x", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "x position in data coordinates"),
-    K("y", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y position in data coordinates"),
+    KQ("x", NULL, "x", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "x position in data coordinates"),
+    KQ("y", NULL, "y", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y position in data coordinates"),
     K("point_x", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "x of the point the text is about: a leader line joins them (with point_y; default: none)"),
     K("point_y", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y of that point"),
@@ -221,8 +228,8 @@ static const hy_scene_key_spec output_keys[] = {
 };
 
 static const hy_scene_key_spec animation_keys[] = {
-    K("duration", HY_KIND_NUMBER, NULL, POS, 0, 0, "5", "length of the animation in seconds"),
-    K("fps", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 240, 0, 0, "30",
+    KQ("duration", "s", "duration", HY_KIND_NUMBER, NULL, POS, 0, 0, "5", "length of the animation in seconds"),
+    KQ("fps", "1/s", "fps", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 240, 0, 0, "30",
       "frames per second"),
     K("easing", HY_KIND_ENUM, easings, NOLIM, 0, 0, "smooth", "how the animated parameter moves"),
     K("quality", HY_KIND_ENUM, qualities, NOLIM, 0, 0, "720p30", "frame size and rate preset (the presets of hystviz animate --quality)"),
@@ -241,6 +248,12 @@ static const hy_scene_key_spec keyframe_keys[] = {
       "interpolate log(value) (values > 0), e.g. for a time scale gamma"),
 };
 
+static const hy_scene_key_spec controls_keys[] = {
+    K("main", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
+      "the numeric keys that matter most, written as for --set and separated by commas: \"model.sigma0, input.umin2\" "
+      "(hystviz serve's presentation view shows these)"),
+};
+
 #define S(name, named, rep, keys, doc) { name, named, rep, keys, NKEYS(keys), doc }
 
 static const hy_scene_section_spec sections[] = {
@@ -251,6 +264,7 @@ static const hy_scene_section_spec sections[] = {
     S("series", 1, 1, series_keys, "one curve per section, drawn in file order"),
     S("annotation", 1, 1, annotation_keys, "one text label per section"),
     S("output", 0, 0, output_keys, "where the figure is written"),
+    S("controls", 0, 0, controls_keys, "how hystviz serve presents the scene's parameters"),
     S("animation", 0, 0, animation_keys, "frame timing of an animation"),
     S("keyframe", 1, 1, keyframe_keys, "one animated numeric key per section (hystviz animate SCENE.scene)"),
 };

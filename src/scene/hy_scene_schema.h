@@ -62,7 +62,10 @@ enum {
 /* One key: its name, kind, allowed identifiers (NULL-terminated, for ENUM and
  * ENUM_LIST), bounds (for numbers, integers, list elements and lengths, whose
  * bound applies to the number before the unit), list length limits (0 = no
- * limit), default written as scene text (NULL = none) and a one-line doc. */
+ * limit), default written as scene text (NULL = none), a one-line doc, and
+ * for a quantity its symbol as the papers print it (markup: "u_{min,2}",
+ * "σ_0"; NULL = none) and its unit ("Hz", "N s/m"; NULL = none or
+ * dimensionless), which serve's controls show. */
 typedef struct hy_scene_key_spec {
     const char *name;
     hy_scene_kind kind;
@@ -72,6 +75,8 @@ typedef struct hy_scene_key_spec {
     unsigned min_len, max_len;
     const char *def;
     const char *doc;
+    const char *symbol;
+    const char *unit;
 } hy_scene_key_spec;
 
 /* One section: [name] or, when takes_name, [name LABEL]; repeatable sections

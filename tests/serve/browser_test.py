@@ -5,8 +5,8 @@ The page of `hystviz serve` in a real browser: Debian's chromium, headless,
 driven over the DevTools protocol (a WebSocket client in the standard
 library; no network, no packages).  It drags Fig. 15's sigma0 slider with
 mouse events and checks that the SVG the page shows is byte for byte what
-`hystviz render --set model.sigma0=V --format svg` writes; types an invalid
-u_min,2 and checks the CLI's message appears next to the control while the
+`hystviz render --set model.sigma0=V --format svg` writes; types a refused
+sigma1 and checks the CLI's message appears next to the control while the
 figure stays; hovers a curve; saves an edit of style.scene by renaming (as
 Vim does) and checks the page followed without a click; scrubs the
 animation to frame 10 and checks the PNG equals `hystviz animate --frames
@@ -358,19 +358,21 @@ def test_page(dt, hv, base, scenes, tmp, screenshot):
     tip = dt.js("document.getElementById('tip').hidden ? '' : document.getElementById('tip').textContent")
     check(tip.startswith("minor: u = ") and f"{pos[2]:.5g}"[:4] in tip, f"hover shows the series and point: '{tip}'")
 
-    # an invalid combination: the CLI's message next to the control, the figure stays
+    # a value the CLI refuses: its message (without the "--set KEY=VALUE: " the
+    # control already tells) next to the control, the figure stays
     good = dt.js("hv.svg")
-    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="input.umin2"]');
-        b.value = '1.2'; b.dispatchEvent(new Event('change')); })()""")
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="model.sigma1"]');
+        b.value = '-1'; b.dispatchEvent(new Event('change')); })()""")
     dt.wait("hv.error !== null && !hv.inflight", 20, "the error")
-    cli = subprocess.run([hv, "render", scene, "--set", f"model.sigma0={val}", "--set", "input.umin2=1.2", "-o",
+    cli = subprocess.run([hv, "render", scene, "--set", f"model.sigma0={val}", "--set", "model.sigma1=-1", "-o",
                           os.path.join(tmp, "rx")], capture_output=True, text=True, timeout=120).stderr.strip()
-    msg = dt.js("document.querySelector('.err[data-key=\"input.umin2\"]').textContent")
-    check(cli.startswith("hystviz: ") and msg == cli[len("hystviz: "):], f"the CLI's message next to the control: '{msg}'")
+    msg = dt.js("document.querySelector('.err[data-key=\"model.sigma1\"]').textContent")
+    prefix = "hystviz: --set model.sigma1=-1: "
+    check(cli.startswith(prefix) and msg == cli[len(prefix):], f"the CLI's message next to the control: '{msg}'")
     check(dt.js("hv.svg") == good and dt.js("document.getElementById('figure').innerHTML.length > 1000"),
           "the last good figure stays")
-    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="input.umin2"]');
-        b.value = '0.5'; b.dispatchEvent(new Event('change')); })()""")
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="model.sigma1"]');
+        b.value = '1'; b.dispatchEvent(new Event('change')); })()""")
     settle(dt)
     check(dt.js("hv.error") is None and dt.js("hv.svg") == good, "a valid value again: the figure is back")
 
@@ -555,21 +557,22 @@ def bench(dt, base, n, scenes):
               f"median {pct(lat, 50):.0f} ms, max {max(lat):.0f} ms (80 ms of it is the debounce)", flush=True)
 
 
-def main():
-    # meson's timeout (SIGTERM) and Ctrl-C run the finally below: chromium,
-    # in a session of its own, and serve are stopped, the directory removed
+def run_session(hv, src, prefix, body, check_exit=True):
+    """The frame of a browser test: the scenes of src copied into a fresh
+    directory, serve on it, chromium headless over DevTools at 1400x1000;
+    body(dt, base, scenes, tmp) runs the tests (in that directory); then
+    chromium and serve are stopped and the directory removed, also when
+    meson's timeout (SIGTERM) or Ctrl-C ends it.  Returns 77 (SKIP) where
+    chromium or libmicrohttpd is missing (a missing chromium fails under CI), else
+    1 if a check failed, else 0."""
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))
-    hv, src = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2])
-    screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
-    nbench = int(sys.argv[sys.argv.index("--bench") + 1]) if "--bench" in sys.argv else 0
-    play_s = float(sys.argv[sys.argv.index("--bench-play") + 1]) if "--bench-play" in sys.argv else 0
     if not (shutil.which("chromium") or shutil.which("chromium-browser")):
         if need_chromium():
             print("FAIL: chromium is not installed (CI=true: sh tools/setup.sh test installs it)")
             return 1
         print("SKIP: chromium is not installed (Debian: apt-get install chromium; sh tools/setup.sh test does)")
         return 77
-    tmp = tempfile.mkdtemp(prefix="hystviz-browser-")
+    tmp = tempfile.mkdtemp(prefix=prefix)
     scenes = os.path.join(tmp, "scenes")
     os.mkdir(scenes)
     for f in os.listdir(src):
@@ -592,14 +595,7 @@ def main():
         dt.call("Page.enable")
         dt.call("Runtime.enable")
         dt.call("Emulation.setDeviceMetricsOverride", width=1400, height=1000, deviceScaleFactor=1, mobile=False)
-        if play_s:
-            nbench = 1
-            bench_play(dt, base, play_s, scenes)
-        elif nbench:
-            bench(dt, base, nbench, scenes)
-        else:
-            test_page(dt, hv, base, scenes, tmp, screenshot)
-            test_anim(dt, hv, base, scenes, tmp, screenshot)
+        body(dt, base, scenes, tmp)
     finally:
         if chrome:
             stop_group(chrome)
@@ -607,7 +603,7 @@ def main():
             srv.send_signal(signal.SIGINT)
             try:
                 rc = srv.wait(timeout=10)
-                if not nbench:
+                if check_exit:
                     check(rc == 0, f"serve exited {rc} on SIGINT")
             except subprocess.TimeoutExpired:
                 srv.kill()
@@ -616,8 +612,27 @@ def main():
     if FAILS:
         print(f"{len(FAILS)} failure(s)")
         return 1
-    print("all browser tests passed")
     return 0
+
+
+def main():
+    hv, src = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2])
+    screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
+    nbench = int(sys.argv[sys.argv.index("--bench") + 1]) if "--bench" in sys.argv else 0
+    play_s = float(sys.argv[sys.argv.index("--bench-play") + 1]) if "--bench-play" in sys.argv else 0
+
+    def body(dt, base, scenes, tmp):
+        if play_s:
+            bench_play(dt, base, play_s, scenes)
+        elif nbench:
+            bench(dt, base, nbench, scenes)
+        else:
+            test_page(dt, hv, base, scenes, tmp, screenshot)
+            test_anim(dt, hv, base, scenes, tmp, screenshot)
+    rc = run_session(hv, src, "hystviz-browser-", body, check_exit=not (nbench or play_s))
+    if rc == 0:
+        print("all browser tests passed")
+    return rc
 
 
 if __name__ == "__main__":

@@ -5,7 +5,7 @@
 const hv = window.hv = {
   token: document.querySelector('meta[name="hystviz-token"]').content,
   page: Array.from(crypto.getRandomValues(new Uint8Array(8)), b => b.toString(16).padStart(2, '0')).join(''),
-  scenes: [], info: null, sets: {}, lastKey: null,
+  scenes: [], info: null, sets: {}, lastKey: null, present: false, dragging: false,
   seq: 0, inflight: false, pending: false,
   svg: null, cmd: '', renders: 0, changes: 0, error: null, serverMs: NaN, pageMs: NaN,
   hover: null, hoverTimer: 0,
@@ -52,83 +52,276 @@ function markCurrent() {
     a.classList.toggle('on', hv.info && a.dataset.file === hv.info.file);
 }
 
-function currentFile() {
-  const h = decodeURIComponent(location.hash.slice(1));
-  return h || null;
+// ---- the URL: #SCENE?KEY=VALUE&...&view=present&preset=NAME&frame=N --------
+
+function parseHash() {
+  const h = location.hash.slice(1), i = h.indexOf('?');
+  const st = { file: decodeURIComponent(i < 0 ? h : h.slice(0, i)) || null, sets: {}, present: false, preset: null,
+    frame: null };
+  for (const [k, v] of new URLSearchParams(i < 0 ? '' : h.slice(i + 1))) {
+    if (k === 'view' || k === 'present') st.present = k === 'present' || v === 'present';
+    else if (k === 'preset') st.preset = v;
+    else if (k === 'frame') st.frame = parseInt(v, 10);
+    else if (/^[a-z]+\.[A-Za-z0-9_.-]+$/.test(k)) st.sets[k] = v;
+  }
+  return st;
+}
+
+function stateHash() {
+  const p = new URLSearchParams();
+  for (const [k, v] of Object.entries(hv.sets)) p.append(k, v);
+  if (hv.preset) p.set('preset', hv.preset);
+  if (hv.present) p.set('view', 'present');
+  if (hv.info && hv.info.anim && hv.frame > 0) p.set('frame', hv.frame);
+  const q = p.toString();
+  return '#' + enc(hv.info ? hv.info.file : '') + (q ? '?' + q : '');
+}
+
+// a new history entry per change (a drag is one change), so back/forward walk through them
+function pushUrl(replace) {
+  if (!hv.info) return;
+  const h = stateHash();
+  if (h === location.hash) return;
+  if (replace) history.replaceState(null, '', h); else history.pushState(null, '', h);
+}
+
+function applyUrl() {
+  const st = parseHash();
+  if (!st.file) return;
+  if (!hv.info || st.file !== hv.info.file) { openScene(st.file, false, st); return; }
+  if (stateHash() === location.hash) return;
+  hv.sets = st.sets;
+  hv.preset = st.preset;
+  setPresent(st.present, true);
+  buildControls(hv.info);
+  requestRender();
 }
 
 // ---- a scene and its controls --------------------------------------------
 
-function fmt(v, integer) {
-  if (integer) return String(Math.round(v));
-  return String(parseFloat(v.toPrecision(4)));
-}
-function toPos(c, v) {
-  const t = c.log ? Math.log(v / c.lo) / Math.log(c.hi / c.lo) : (v - c.lo) / (c.hi - c.lo);
-  return Math.max(0, Math.min(1000, Math.round(1000 * t)));
-}
-function fromPos(c, p) {
-  const t = p / 1000;
-  return c.log ? c.lo * Math.pow(c.hi / c.lo, t) : c.lo + (c.hi - c.lo) * t;
-}
-
-async function openScene(file, keep) {
+// st: the state a URL asks for (values, view, preset, frame), or none
+async function openScene(file, keep, st) {
   const r = await fetch('/api/scene?scene=' + enc(file));
   if (r.status !== 200) { showError('no scene ' + file); return; }
   const info = await r.json();
   const same = hv.info && hv.info.file === file;
   hv.info = info;
-  if (!keep || !same) { hv.sets = {}; hv.lastKey = null; hv.svg = null; $('figure').replaceChildren(); hv.hover = null; }
+  if (!keep || !same) {
+    const theme = hv.sets['figure.theme'];
+    hv.sets = st ? st.sets : theme ? { 'figure.theme': theme } : {};
+    hv.preset = st ? st.preset : null;
+    hv.lastKey = null; hv.svg = null; $('figure').replaceChildren(); hv.hover = null;
+    $('newname').value = '';
+    // the new figure where it can be seen (a switch keeps no scroll position)
+    if (!same && !hv.present) $('title').scrollIntoView({ block: 'start' });
+  }
+  if (st && st.frame > 0 && info.anim) $('scrub').value = st.frame;
   const entry = hv.scenes.find(s => s.file === file);
   $('title').textContent = (entry && entry.label ? entry.label + ' · ' : '') + (info.name || file);
   $('caption').textContent = info.caption;
   $('text').textContent = info.text;
-  $('newname').value = '';
-  $('saved').textContent = '';
   markCurrent();
   buildControls(info);
+  if (st) setPresent(st.present, true);
   // a built-in animation has frames only: no still figure, no controls
   $('stage').hidden = $('share').hidden = !!info.builtin;
   $('message').hidden = true;
-  setupAnim(info, same && keep);
+  setupAnim(info, (same && keep) || !!(st && st.frame > 0));
+  pushUrl(true);
   if (info.error) { showError(info.error); return; }
   if (!info.builtin) requestRender();
 }
 
+// The label of a control: the schema's symbol typeset (markup "u_{min,2}",
+// "σ_0", "1/m^ν": sub- and superscripts), the series it belongs to, the unit.
+function typeset(sym) {
+  const span = el('span', { class: 'sym' }), re = /([_^])(?:\{([^}]*)\}|(.))/gu;
+  let last = 0, m;
+  while ((m = re.exec(sym))) {
+    if (m.index > last) span.append(sym.slice(last, m.index));
+    span.append(el(m[1] === '_' ? 'sub' : 'sup', {}, m[2] !== undefined ? m[2] : m[3]));
+    last = re.lastIndex;
+  }
+  span.append(sym.slice(last));
+  return span;
+}
+// the same as plain text, for messages: "u_min,2", "σ0"
+function plain(sym) {
+  return sym.replace(/_\{([^}]*)\}/g, '\u0001$1').replace(/[_^{}]/g, '').replace(/\u0001/g, '_');
+}
+function ctlName(c) {
+  const parts = c.key.split('.'), series = parts.length > 2 ? ' (' + parts[1] + ')' : '';
+  return (c.sym ? plain(c.sym) : parts[parts.length - 1]) + series;
+}
+function labelNode(c) {
+  const parts = c.key.split('.');
+  const name = c.sym ? typeset(c.sym) : el('span', { class: 'sym' }, parts[parts.length - 1]);
+  const kids = [name];
+  if (parts.length > 2) kids.push(el('span', { class: 'of' }, ' ' + parts[1]));
+  if (c.unit) kids.push(el('span', { class: 'unit' }, ' [', typeset(c.unit), ']'));
+  return el('span', { class: 'k' }, ...kids);
+}
+
+// ---- slider domains: valid given the other current values -------------------
+
+function ctlOf(key) { return hv.info && hv.info.controls.find(c => c.key === key); }
+function curOf(c) { return hv.sets[c.key] !== undefined ? hv.sets[c.key] : c.value; }
+function numOf(key) { const c = ctlOf(key); return c ? parseFloat(curOf(c)) : NaN; }
+
+// [lo, hi] of the slider now: its own range cut to the keys it must stay
+// strictly between (c.above < value < c.below), one step in from them, and for
+// a key the work grows with, below the value that would pass serve's work
+// budget (the last render's estimate); fixed while one drag lasts
+function domain(c) {
+  if (hv.dragging && hv.frozen && hv.frozen.key === c.key) return hv.frozen.d;
+  let lo = c.lo, hi = c.hi;
+  const a = c.above ? numOf(c.above) : NaN, b = c.below ? numOf(c.below) : NaN;
+  if (isFinite(a) && a >= lo) lo = a;
+  if (isFinite(b) && b <= hi) hi = b;
+  const lg = c.log && lo > 0, d = (hi - lo) / 1000, f = lg ? Math.pow(hi / lo, 1 / 1000) : 1;
+  if (isFinite(a) && lo === a) lo = lg ? lo * f : lo + d;
+  if (isFinite(b) && hi === b) hi = lg ? hi / f : hi - d;
+  if (c.work && hv.work > 0 && hv.budget > 0) {
+    const v = parseFloat(curOf(c)), w = 0.98 * v * hv.budget / hv.work;
+    if (w < hi) hi = Math.max(w, v);
+  }
+  return { lo, hi, a, b };
+}
+function toPos(c, v) {
+  const { lo, hi } = domain(c);
+  const t = c.log ? Math.log(v / lo) / Math.log(hi / lo) : (v - lo) / (hi - lo);
+  return Math.max(0, Math.min(1000, Math.round(1000 * t)));
+}
+// the value text at slider position p: short, inside the domain, on the grid
+// of c.per (a period in whole samples: k / fs)
+function valueAt(c, p) {
+  const { lo, hi, a, b } = domain(c), t = p / 1000;
+  let v = c.log ? lo * Math.pow(hi / lo, t) : lo + (hi - lo) * t;
+  if (c.int) return String(Math.max(Math.ceil(lo), Math.min(Math.floor(hi), Math.round(v))));
+  if (c.per) {
+    const fs = numOf(c.per);
+    if (isFinite(fs) && fs > 0) {
+      let k = Math.round(v * fs);
+      if (k / fs > hi) k = Math.floor(hi * fs);
+      if (k / fs < lo) k = Math.ceil(lo * fs);
+      return String(Math.max(4, k) / fs);
+    }
+  }
+  const inside = x => !(x <= a) && !(x >= b) && x >= Math.min(lo, c.lo) && x <= Math.max(hi, c.hi);
+  for (let d = 4; d <= 17; d++) {
+    const x = parseFloat(v.toPrecision(d));
+    if (inside(x)) return String(x);
+  }
+  return String(v);
+}
+
+// a typed value: a number (a decimal comma read as a point), inside the
+// domain; else one plain-language line and the slider stays
+function checkTyped(c, text) {
+  let t = text.trim();
+  if (/^[+-]?\d+,\d+$/.test(t)) t = t.replace(',', '.');
+  if (!/^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(t))
+    return { err: ctlName(c) + ' takes one number, such as ' + c.value + (/,/.test(t) ? ' (a decimal point, not a comma)' : '') };
+  const x = parseFloat(t);
+  if (c.int && !Number.isInteger(x)) return { err: ctlName(c) + ' takes a whole number' };
+  const { a, b } = domain(c), ca = c.above && ctlOf(c.above), cb = c.below && ctlOf(c.below);
+  if (x <= a || x >= b) {
+    const lim = [];
+    if (ca) lim.push('greater than ' + ctlName(ca) + ' = ' + curOf(ca));
+    if (cb) lim.push('less than ' + ctlName(cb) + ' = ' + curOf(cb));
+    return { err: ctlName(c) + ' must be ' + lim.join(' and ') };
+  }
+  if (c.per) {
+    const fs = numOf(c.per), n = x * fs;
+    if (isFinite(n) && (Math.abs(n - Math.round(n)) > 1e-9 * n || Math.round(n) < 4))
+      return { err: ctlName(c) + ' must hold a whole number (at least 4) of samples at ' + ctlName(ctlOf(c.per) || c) + ' = ' + fs
+        + ': ' + (Math.max(4, Math.round(n)) / fs) + ' is the nearest' };
+  }
+  return { value: t };
+}
+
+// the sliders follow the others' values (their domains moved)
+function syncSliders() {
+  for (const r of $('controls').querySelectorAll('input[type=range][data-key]')) {
+    const c = ctlOf(r.dataset.key);
+    if (c) r.value = toPos(c, parseFloat(curOf(c)));
+  }
+}
+
+// the controls the presentation view shows: the scene's [controls] main, else the first three
+function mainControls(info) {
+  const m = info.controls.filter(c => c.main > 0).sort((x, y) => x.main - y.main);
+  return m.length ? m : info.controls.slice(0, 3);
+}
+
 function buildControls(info) {
   const box = $('controls');
-  const kids = [el('div', { class: 'row' },
-    el('button', { type: 'button', onclick: () => { hv.sets = {}; buildControls(hv.info); requestRender(); } }, 'reset to file'))];
+  const kids = [el('div', { class: 'row tools' },
+    el('button', { type: 'button', onclick: resetValues, title: 'r' }, 'reset to file'),
+    el('button', { type: 'button', onclick: () => setPresent(!hv.present), title: 'p', class: 'presentbtn' },
+      'presentation (p)'),
+    el('label', { title: 'figure.theme = slides: dark background, thicker lines, larger text (t)' },
+      el('input', { type: 'checkbox', id: 'slides', onchange: ev => setTheme(ev.target.checked) }), ' slides theme'))];
+  const mains = mainControls(info);
   for (const c of info.controls) {
-    const cur = hv.sets[c.key] !== undefined ? hv.sets[c.key] : c.value;
-    const range = el('input', { type: 'range', min: 0, max: 1000, step: 1, 'data-key': c.key, 'aria-label': c.key });
-    const box = el('input', { type: 'text', value: cur, 'data-key': c.key, 'aria-label': c.key + ' value' });
+    const cur = curOf(c);
+    const title = c.key + ': ' + c.doc + (c.range ? ' (' + c.range + ')' : '');
+    const range = el('input', { type: 'range', min: 0, max: 1000, step: 1, 'data-key': c.key, 'aria-label': ctlName(c), title });
+    const box = el('input', { type: 'text', value: cur, 'data-key': c.key, 'aria-label': ctlName(c) + ' value',
+      inputmode: 'decimal' });
     const err = el('div', { class: 'err', 'data-key': c.key });
-    const div = el('div', { class: 'ctl' + (hv.sets[c.key] !== undefined ? ' changed' : ''), 'data-key': c.key },
-      el('label', { title: c.doc + (c.range ? ' (' + c.range + ')' : '') },
-        el('span', { class: 'k' }, c.key), el('span', { class: 'file' }, 'file: ' + c.value + (c.set ? '' : ' (default)'))),
+    const div = el('div', { class: 'ctl' + (hv.sets[c.key] !== undefined ? ' changed' : '') + (mains.includes(c) ? ' main' : ''),
+      'data-key': c.key },
+      el('label', { title }, labelNode(c), el('span', { class: 'file' }, 'file: ' + c.value + (c.set ? '' : ' (default)'))),
       range, el('div', { class: 'row' }, box, el('span', { class: 'note' }, c.range + (c.log ? ' · log slider' : ''))), err);
     range.value = toPos(c, parseFloat(cur));
     const apply = (v) => {
       if (v === c.value) delete hv.sets[c.key]; else hv.sets[c.key] = v;
       div.classList.toggle('changed', hv.sets[c.key] !== undefined);
       hv.lastKey = c.key;
+      hv.preset = null;
       requestRender();
     };
     range.addEventListener('input', () => {
-      const v = fmt(fromPos(c, +range.value), c.int);
+      if (!hv.dragging) hv.frozen = { key: c.key, d: domain(c) };
+      const v = valueAt(c, +range.value);
       box.value = v;
       apply(v);
+      pushUrl(hv.dragging);
+      hv.dragging = true;
     });
+    range.addEventListener('change', () => { hv.dragging = false; syncSliders(); });
     box.addEventListener('change', () => {
-      const v = box.value.trim();
-      const x = parseFloat(v);
-      if (isFinite(x)) range.value = toPos(c, x);
-      apply(v);
+      const t = checkTyped(c, box.value);
+      if (t.err) { showNote(c.key, t.err); return; }
+      box.value = t.value;
+      range.value = toPos(c, parseFloat(t.value));
+      apply(t.value);
+      pushUrl(false);
+      syncSliders();
     });
     kids.push(div);
   }
   box.replaceChildren(...kids);
+  $('slides').checked = hv.sets['figure.theme'] === 'slides';
+  document.body.classList.toggle('slides', hv.sets['figure.theme'] === 'slides');
+}
+
+function resetValues() {
+  const theme = hv.sets['figure.theme'];
+  hv.sets = theme ? { 'figure.theme': theme } : {};
+  hv.preset = null;
+  buildControls(hv.info);
+  pushUrl(false);
+  requestRender();
+}
+
+function setTheme(on) {
+  if (on) hv.sets['figure.theme'] = 'slides'; else delete hv.sets['figure.theme'];
+  $('slides').checked = on;
+  document.body.classList.toggle('slides', on);
+  pushUrl(false);
+  requestRender();
 }
 
 // ---- rendering -------------------------------------------------------------
@@ -172,6 +365,8 @@ function show(j, q, t0) {
   hv.error = null;
   hv.map = j.map;
   hv.serverMs = 1000 * j.seconds;
+  hv.work = j.work;
+  hv.budget = j.budget;
   hv.pageMs = performance.now() - t0;
   hv.renders++;
   $('cmd').textContent = j.cmd;
@@ -190,7 +385,15 @@ function show(j, q, t0) {
   document.dispatchEvent(new CustomEvent('hv-rendered'));
 }
 
+// a message next to one control, the figure and values unchanged
+function showNote(key, msg) {
+  for (const e of document.querySelectorAll('.ctl .err')) e.textContent = e.dataset.key === key ? msg : '';
+}
+
 function showError(msg) {
+  // the CLI's message without its "--set KEY=VALUE: " (the control says which)
+  const m = /^--set ([^=:\s]+)=[^:]*: /.exec(msg);
+  if (m && hv.info && hv.info.controls.some(c => c.key === m[1])) { msg = msg.slice(m[0].length); hv.lastKey = m[1]; }
   hv.error = msg;
   $('message').textContent = msg;
   $('message').hidden = false;
@@ -505,9 +708,11 @@ $('save').addEventListener('click', async () => {
     method: 'POST', headers: { 'X-Hystviz-Token': hv.token },
   });
   const j = await r.json().catch(() => ({}));
+  // stays until dismissed (the reload the new file triggers keeps it)
   $('saved').replaceChildren(r.status === 201
     ? el('span', {}, 'saved as ', el('a', { href: '#' + j.file }, j.path))
-    : el('span', { class: 'err' }, j.error || ('HTTP ' + r.status)));
+    : el('span', { class: 'err' }, j.error || ('HTTP ' + r.status)),
+    el('button', { type: 'button', class: 'dismiss', title: 'dismiss', onclick: () => $('saved').replaceChildren() }, '×'));
 });
 
 // ---- reload on save -----------------------------------------------------------------------
@@ -523,11 +728,60 @@ function listen() {
   es.onerror = () => { $('status').textContent = 'connection lost, retrying…'; };
 }
 
-window.addEventListener('hashchange', () => { const f = currentFile(); if (f) openScene(f, false); });
+// ---- presentation view: the figure and the main controls, nothing else ------------
+
+function setPresent(on, fromUrl) {
+  hv.present = !!on;
+  document.body.classList.toggle('present', hv.present);
+  if (!fromUrl) pushUrl(false);
+  if (hv.present) {
+    // arrows step the first main slider at once
+    const first = $('controls').querySelector('.ctl.main input[type=range]');
+    if (first && !(document.activeElement && document.activeElement.dataset && document.activeElement.dataset.key))
+      first.focus({ preventScroll: true });
+    window.scrollTo(0, 0);
+  }
+}
+
+// ←/→ on a control's slider: one fiftieth of its travel (one unit for a whole number)
+function stepSlider(range, dir) {
+  const c = ctlOf(range.dataset.key);
+  if (!c) return;
+  if (c.int) {
+    const { lo, hi } = domain(c), v = Math.max(Math.ceil(lo), Math.min(Math.floor(hi), Math.round(parseFloat(curOf(c))) + dir));
+    range.value = toPos(c, v);
+  } else range.value = Math.max(0, Math.min(1000, +range.value + 20 * dir));
+  hv.dragging = false;
+  range.dispatchEvent(new Event('input'));
+  range.dispatchEvent(new Event('change'));
+}
+
+document.addEventListener('keydown', ev => {
+  if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
+  const t = ev.target;
+  if (t && (t.tagName === 'TEXTAREA' || (t.tagName === 'INPUT' && t.type === 'text'))) return;
+  if (ev.key === 'ArrowLeft' || ev.key === 'ArrowRight') {
+    if (t && t.type === 'range' && t.dataset.key) { ev.preventDefault(); stepSlider(t, ev.key === 'ArrowRight' ? 1 : -1); }
+    return;
+  }
+  if (!hv.info) return;
+  if (ev.key === 'p') setPresent(!hv.present);
+  else if (ev.key === 'f') {
+    if (document.fullscreenElement) document.exitFullscreen(); else document.documentElement.requestFullscreen().catch(() => {});
+  } else if (ev.key === 'r') resetValues();
+  else if (ev.key === 't') setTheme(hv.sets['figure.theme'] !== 'slides');
+  else if (ev.key === ' ' && !$('anim').hidden && !(t && t.tagName === 'BUTTON')) { ev.preventDefault(); $('play').click(); }
+  else if (/^[1-9]$/.test(ev.key) && window.applyPreset) applyPreset(+ev.key - 1);
+});
+
+// back/forward, a link pasted or a catalogue entry clicked
+window.addEventListener('popstate', applyUrl);
+window.addEventListener('hashchange', applyUrl);
 
 (async () => {
   const j = await loadCatalogue();
   listen();
-  const f = currentFile() || j.first || (j.scenes[0] && j.scenes[0].file);
-  if (f) openScene(f, false);
+  const st = parseHash();
+  const f = st.file || j.first || (j.scenes[0] && j.scenes[0].file);
+  if (f) openScene(f, false, st);
 })();

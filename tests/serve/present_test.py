@@ -1,0 +1,230 @@
+#!/usr/bin/python3
+"""tests/serve/present_test.py HYSTVIZ SCENES_DIR [--screenshots DIR]
+
+The presentation view, links and controls of `hystviz serve` in chromium
+(headless, over the DevTools protocol, with browser_test.py's helpers):
+
+- at 1024x768 in the presentation view (URL flag view=present, and the p
+  key), the figure's and the main sliders' boxes lie inside the viewport and
+  the figure takes at least 60 % of it; at 1920x1080 too;
+- the arrow keys step the focused slider and the figure follows;
+- a URL with values reproduces the SVG of `hystviz render --set` byte for
+  byte; back walks to the previous values;
+- Fig. 2 (an input-only figure) shows no model control; labels are the
+  schema's symbols;
+- every slider of Fig. 15 and of bw_fig1a through 50 evenly spaced
+  positions (the page's own value at each position, the others at their
+  values) is refused at 0 of them;
+- a decimal comma is read as a point; a value out of its domain gets one
+  plain-language line and moves nothing; a refused value's message has no
+  "--set" prefix.
+
+--screenshots DIR: PNGs of the presentation view at 1024x768 (both themes).
+Exit 77 (SKIP) where chromium is absent (FAIL under CI=true).
+"""
+import base64
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import browser_test as bt  # noqa: E402
+from browser_test import check  # noqa: E402
+
+F15 = "fig15_minor_loop_ex4"
+
+
+def viewport(dt, w, h):
+    dt.call("Emulation.setDeviceMetricsOverride", width=w, height=h, deviceScaleFactor=1, mobile=False)
+
+
+def open_url(dt, base, frag, what):
+    dt.call("Page.navigate", url="about:blank")
+    dt.call("Page.navigate", url=base + "#" + frag)
+    scene = frag.split("?")[0]
+    return dt.wait(f"window.hv && hv.info && hv.info.file === '{scene}' && hv.renders >= 1 && hv.svg "
+                   "&& !hv.inflight && !hv.pending", 60, what)
+
+
+def boxes(dt):
+    """The viewport, the figure's box and the visible main sliders' boxes."""
+    return dt.js("""(() => {
+        const r = e => { const b = e.getBoundingClientRect(); return [b.left, b.top, b.right, b.bottom]; };
+        const svg = document.querySelector('#figure svg');
+        const main = Array.from(document.querySelectorAll('.ctl.main input[type=range]')).map(e => [e.dataset.key, r(e)]);
+        return {w: innerWidth, h: innerHeight, sw: document.documentElement.scrollWidth,
+                sh: document.documentElement.scrollHeight, fig: svg ? r(svg) : null, main: main}; })()""")
+
+
+def inside(b, w, h):
+    return b[0] >= 0 and b[1] >= 0 and b[2] <= w + 0.5 and b[3] <= h + 0.5 and b[2] > b[0] and b[3] > b[1]
+
+
+def test_present(dt, base, shots):
+    for w, h in ((1024, 768), (1920, 1080)):
+        viewport(dt, w, h)
+        check(open_url(dt, base, F15 + ".scene?view=present", "Fig. 15 in the presentation view"),
+              f"{w}x{h}: the presentation view opens from the URL flag")
+        b = boxes(dt)
+        fig = b["fig"]
+        keys = [k for k, _ in b["main"]]
+        check(keys == ["model.sigma0", "input.umin2"], f"{w}x{h}: the main controls are the scene's: {keys}")
+        check(fig is not None and inside(fig, b["w"], b["h"]), f"{w}x{h}: the figure lies inside the viewport: {fig}")
+        check(all(inside(r, b["w"], b["h"]) for _, r in b["main"]),
+              f"{w}x{h}: every main slider lies inside the viewport: {b['main']}")
+        area = (fig[2] - fig[0]) * (fig[3] - fig[1]) / (b["w"] * b["h"]) if fig else 0
+        check(area >= 0.6, f"{w}x{h}: the figure takes {100 * area:.0f} % of the viewport (>= 60 %)")
+        check(b["sh"] <= b["h"] and b["sw"] <= b["w"], f"{w}x{h}: nothing to scroll ({b['sw']}x{b['sh']})")
+        if shots and w == 1024:
+            for theme in ("paper", "slides"):
+                if theme == "slides":
+                    dt.js("setTheme(true)")
+                    bt.settle(dt)
+                    dt.wait("hv.svg.includes('rgb(10.9') || hv.svg.includes('#1c1f24') || hv.svg.length > 0", 5)
+                shot = dt.call("Page.captureScreenshot", format="png")
+                path = os.path.join(shots, f"present-{w}x{h}-{theme}.png")
+                with open(path, "wb") as f:
+                    f.write(base64.b64decode(shot["data"]))
+                print(f"   screenshot: {path}")
+    # the p key toggles the view, from the ordinary page
+    viewport(dt, 1024, 768)
+    check(open_url(dt, base, F15 + ".scene", "Fig. 15"), "Fig. 15 opens in the ordinary view")
+    check(not dt.js("document.body.classList.contains('present')"), "the ordinary view shows the catalogue")
+    dt.js("document.activeElement && document.activeElement.blur && document.activeElement.blur()")
+    dt.key("KeyP", "p")
+    check(dt.wait("document.body.classList.contains('present') && location.hash.includes('view=present')", 5, "p"),
+          "the p key opens the presentation view and the URL says so")
+    check(dt.js("getComputedStyle(document.getElementById('catalogue')).display") == "none",
+          "the presentation view hides the catalogue")
+
+
+def key_arrow(dt, right=True):
+    code = "ArrowRight" if right else "ArrowLeft"
+    for kind in ("rawKeyDown", "keyUp"):
+        dt.call("Input.dispatchKeyEvent", type=kind, key=code, code=code,
+                windowsVirtualKeyCode=39 if right else 37)
+
+
+def test_keys_and_links(dt, hv, base, scenes, tmp):
+    viewport(dt, 1024, 768)
+    check(open_url(dt, base, F15 + ".scene?view=present", "Fig. 15"), "Fig. 15 opens")
+    focused = dt.js("document.activeElement && document.activeElement.dataset.key")
+    check(focused == "model.sigma0", f"the presentation view focuses the first main slider ({focused})")
+    n0 = dt.js("hv.renders")
+    key_arrow(dt, True)
+    key_arrow(dt, True)
+    bt.settle(dt)
+    v1 = dt.js("hv.sets['model.sigma0']")
+    check(v1 is not None and float(v1) > 6 and dt.js("hv.renders") > n0, f"two → steps move sigma0 from 6 to {v1}")
+    key_arrow(dt, False)
+    bt.settle(dt)
+    v2 = dt.js("hv.sets['model.sigma0']")
+    check(v2 is not None and 6 < float(v2) < float(v1), f"← steps back: sigma0 = {v2}")
+    # the link holds the values: a fresh page from it shows render --set's bytes
+    url = dt.js("location.href")
+    check(f"model.sigma0={v2}" in url, f"the URL holds the value: {url}")
+    frag = url.split("#", 1)[1]
+    check(open_url(dt, base, frag, "the link"), "the link opens")
+    want = bt.render_svg(hv, os.path.join(scenes, F15 + ".scene"), [f"model.sigma0={v2}"], os.path.join(tmp, "l1"))
+    check(dt.js("hv.svg") == want, f"the link's figure == hystviz render --set model.sigma0={v2} (byte for byte)")
+    # a link with several values and the slides theme, typed by hand
+    sets = ["model.sigma0=60", "input.umin2=0.3", "figure.theme=slides"]
+    frag = F15 + ".scene?" + "&".join(sets)
+    check(open_url(dt, base, frag, "a hand-written link"), "a hand-written link opens")
+    want = bt.render_svg(hv, os.path.join(scenes, F15 + ".scene"), sets, os.path.join(tmp, "l2"))
+    check(dt.js("hv.svg") == want, "a link with three values and the slides theme == hystviz render --set ... (bytes)")
+    check(dt.js("document.body.classList.contains('slides')"), "the page is dark with the slides theme")
+    # back/forward walk through changes
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="model.sigma0"]');
+        b.value = '100'; b.dispatchEvent(new Event('change')); })()""")
+    bt.settle(dt)
+    check("model.sigma0=100" in dt.js("location.hash"), "a typed value is in the URL")
+    dt.js("history.back()")
+    check(dt.wait("hv.sets['model.sigma0'] === '60' && !hv.inflight && !hv.pending", 20, "back"),
+          "back restores the previous value")
+    bt.settle(dt)
+    check(dt.js("hv.svg") == want, "after back the figure is the previous one again")
+    dt.js("history.forward()")
+    check(dt.wait("hv.sets['model.sigma0'] === '100'", 20, "forward"), "forward restores the typed value")
+    bt.settle(dt)
+
+
+def test_controls(dt, base):
+    viewport(dt, 1400, 1000)
+    check(open_url(dt, base, "fig02_bimodal_input_smooth.scene", "Fig. 2"), "Fig. 2 opens")
+    keys = dt.js("hv.info.controls.map(c => c.key)")
+    check(keys and not any(k.startswith("model.") for k in keys), f"Fig. 2 (input only) shows no model control: {keys}")
+    check(open_url(dt, base, F15 + ".scene", "Fig. 15"), "Fig. 15 opens")
+    lab = dt.js("document.querySelector('.ctl[data-key=\"input.umin2\"] label').textContent")
+    sub = dt.js("document.querySelector('.ctl[data-key=\"input.umin2\"] label sub').textContent")
+    check(lab.startswith("umin,2") and sub == "min,2", f"u_min,2 is typeset with its subscript: '{lab}'")
+    tip = dt.js("document.querySelector('.ctl[data-key=\"model.sigma0\"] label').title")
+    check(tip.startswith("model.sigma0: bristle stiffness"), f"hover tells the key and its description: '{tip}'")
+    # a decimal comma is a point
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="model.sigma0"]');
+        b.value = '2,5'; b.dispatchEvent(new Event('change')); })()""")
+    bt.settle(dt)
+    check(dt.js("hv.sets['model.sigma0']") == "2.5" and dt.js("hv.error") is None, "2,5 is read as 2.5")
+    # out of the domain: one plain line, nothing moves
+    svg, pos = dt.js("hv.svg"), dt.js("document.querySelector('input[type=range][data-key=\"input.umin2\"]').value")
+    n = dt.js("hv.renders + hv.seq")
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="input.umin2"]');
+        b.value = '1.2'; b.dispatchEvent(new Event('change')); })()""")
+    msg = dt.js("document.querySelector('.err[data-key=\"input.umin2\"]').textContent")
+    check(msg == "u_min,2 must be greater than u_min,1 = 0 and less than u_max,1 = 1",
+          f"an out-of-domain value gets one plain line: '{msg}'")
+    check(dt.js("hv.renders + hv.seq") == n and dt.js("hv.svg") == svg and
+          dt.js("document.querySelector('input[type=range][data-key=\"input.umin2\"]').value") == pos,
+          "... and neither the figure nor the slider moved")
+    # a value the server refuses (u_max,2 below u_max,1 is caught by the domain; sigma1 < 0 by the schema)
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="model.sigma1"]');
+        b.value = '-1'; b.dispatchEvent(new Event('change')); })()""")
+    dt.wait("hv.error !== null && !hv.inflight", 20, "the error")
+    msg = dt.js("document.querySelector('.err[data-key=\"model.sigma1\"]').textContent")
+    check(msg and "--set" not in msg, f"the server's message without the --set prefix: '{msg}'")
+
+
+def sweep(dt, base, scene, npos=50):
+    """Every slider through npos evenly spaced positions (the others at their
+    file values): the value the page would send at each, rendered by serve
+    (ten positions per call, side by side: each DevTools answer comes within a minute)."""
+    check(open_url(dt, base, scene + ".scene", scene), f"{scene} opens")
+    keys = dt.js("hv.info.controls.map(c => c.key)")
+    refused, total = {}, 0
+    for key in keys:
+        for i0 in range(0, npos, 10):
+            bad = dt.js(f"""(async () => {{
+                const c = ctlOf('{key}'), bad = [], all = [];
+                for (let i = {i0}; i < Math.min({i0 + 10}, {npos}); i++) {{
+                    const v = valueAt(c, Math.round(1000 * i / ({npos} - 1)));
+                    // one page id each: they render side by side in serve's slots
+                    all.push(fetch('/api/render?' + query() + '&set=' + encodeURIComponent(c.key + '=' + v)
+                        + '&fmt=json&seq=1&page=sweep' + i).then(async r => {{
+                            if (r.status !== 200) bad.push(v + ': ' + ((await r.json()).error || r.status)); }}));
+                }}
+                await Promise.all(all);
+                return bad; }})()""", timeout=120)
+            if bad:
+                refused.setdefault(key, []).extend(bad)
+                total += len(bad)
+    check(total == 0, f"{scene}: {len(keys)} sliders x {npos} positions, {total} refused"
+          + (f": {dict((k, (len(v), v[:2])) for k, v in refused.items())}" if refused else ""))
+
+
+def main():
+    hv, src = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2])
+    shots = os.path.realpath(sys.argv[sys.argv.index("--screenshots") + 1]) if "--screenshots" in sys.argv else None
+
+    def body(dt, base, scenes, tmp):
+        test_present(dt, base, shots)
+        test_keys_and_links(dt, hv, base, scenes, tmp)
+        test_controls(dt, base)
+        sweep(dt, base, F15)
+        sweep(dt, base, "bw_fig1a_quasistatic_loop")
+    rc = bt.run_session(hv, src, "hystviz-present-", body)
+    if rc == 0:
+        print("all presentation tests passed")
+    return rc
+
+
+if __name__ == "__main__":
+    sys.exit(main())
