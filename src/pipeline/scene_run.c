@@ -329,7 +329,7 @@ unsigned hy_scene_reads(const hy_scene *s)
     unsigned reads = 0;
     for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
         int d = -1;
-        if (series_data(s, hy_scene_name_at(s, "series", i), &d))
+        if (hy_scene_series_data(s, hy_scene_name_at(s, "series", i), &d))
             return HY_READS_MODEL | HY_READS_G | HY_READS_INPUT; /* refused later: nothing to hide */
         if (d == HY_DATA_G)
             reads |= HY_READS_G;
