@@ -493,6 +493,8 @@ def test_play(dt, hv, base, scenes, tmp, screenshot):
 def bench_play(dt, base, seconds, scenes):
     """Playback in the page at 1280x720: frames shown per second over `seconds`
     (after the first), per built-in animation and animation scene."""
+    dt.call("Page.navigate", url=base)
+    dt.wait("window.hv && hv.scenes.length > 0", 30, "the catalogue")
     names = ["@" + n for n in dt.js("hv.scenes.filter(s => s.builtin).map(s => s.file.slice(1))")]
     names += sorted(f for f in os.listdir(scenes) if f.startswith("anim_") and f.endswith(".scene"))
     for f in names:

@@ -364,6 +364,19 @@ for w in ${workers:-}; do alive "$w" && left="$left $w"; done
 [ -z "$left" ] && ok "no frame worker outlives serve" || fail "frame workers left after serve stopped:$left"
 ls -a scenes | grep -q "tmp" && fail "temporary files left after shutdown"
 
+# ---- serve killed (-9): its frame workers see the end of their input and exit ------------------
+if "$hv" animate --list >/dev/null 2>&1; then
+    start
+    expect 200 "/api/frame?scene=@minor-loop-ex4&frame=1"
+    w=$(pgrep -P $srv | head -n 1) # (hystviz serve execs hystviz-serve: the same process)
+    kill -9 $srv
+    wait_pid $srv 10 "serve after kill -9"
+    srv=
+    gone() { ! alive "$w"; }
+    [ -n "$w" ] && wait_until 10 "the worker's exit after serve was killed" gone &&
+        ok "serve killed with -9: its frame worker exited by itself" || fail "worker '$w' outlived a killed serve"
+fi
+
 # ---- --public: a warning; IP literals are accepted as Host, names are not --------------------
 "$hv" serve scenes --host 127.0.0.2 --public --port 0 >"$T/serve.out" 2>"$T/serve.err" &
 srv=$!
