@@ -61,6 +61,27 @@ run "$hv" serve --help >"$T/serve.log" 2>&1; rc=$?
     { [ $rc -eq 3 ] && grep -q 'libmicrohttpd' "$T/serve.log"; } && ok "serve finds libexec's hystviz-serve" ||
     { cat "$T/serve.log"; fail "installed serve --help (exit $rc)"; }
 
+# serve runs libexec's hystviz-serve on the installed scenes: a URL, then /api/scenes
+if [ -x "$build/src/app/hystviz-serve" ] && command -v curl >/dev/null; then
+    mkdir -p "$T/home/sv"
+    cp "$P/share/hystviz/scenes/fig15_minor_loop_ex4.scene" "$P/share/hystviz/scenes/style.scene" "$T/home/sv/"
+    (cd / && HOME="$T/home" exec "$hv" serve "$T/home/sv" --port 0 >"$T/serve.out" 2>"$T/serve.err") &
+    sp=$!
+    url=
+    for _ in $(seq 100); do
+        url=$(grep -o 'http://[^ ]*' "$T/serve.out" | head -1)
+        [ -n "$url" ] && break
+        kill -0 $sp 2>/dev/null || break
+        sleep 0.1
+    done
+    [ -n "$url" ] && curl -s --max-time 30 "${url%/}/api/scenes" | grep -q fig15_minor_loop_ex4 &&
+        ok "serve from the install answers with its scenes" || { cat "$T/serve.err"; fail "installed serve: ${url:-no URL}"; }
+    kill -INT $sp 2>/dev/null
+    for _ in $(seq 50); do kill -0 $sp 2>/dev/null || break; sleep 0.1; done
+    kill -9 $sp 2>/dev/null
+    wait $sp 2>/dev/null
+fi
+
 run "$hv" boucwen data --signal validation -o "$T/home/yval.csv" >/dev/null 2>&1 &&
     [ "$(wc -l <"$T/home/yval.csv")" -gt 1000 ] && ok "Bouc-Wen validation data from share/hystviz/boucwen" ||
     fail "boucwen data --signal validation"
