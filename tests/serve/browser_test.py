@@ -35,6 +35,7 @@ import struct
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import urllib.request
 
@@ -432,6 +433,29 @@ def animate_frame(hv, tmp, what, i, sets=()):
         return f.read()
 
 
+SERVE_PID = None  # the serve under test (main sets it)
+
+
+def animate_children(pid):
+    """The pids of hystviz-animate processes whose parent is pid."""
+    out = set()
+    if not pid:
+        return out
+    for d in os.listdir("/proc"):
+        if not d.isdigit():
+            continue
+        try:
+            with open(f"/proc/{d}/stat") as f:
+                st = f.read()
+            with open(f"/proc/{d}/cmdline", "rb") as f:
+                cmd = f.read()
+        except OSError:
+            continue
+        if int(st.rsplit(")", 1)[1].split()[1]) == pid and b"hystviz-animate" in cmd:
+            out.add(int(d))
+    return out
+
+
 def play_for(dt, seconds):
     """Plays the open animation: waits for its first played frame, then counts the
     frames shown in `seconds` of play; returns frames per second."""
@@ -457,7 +481,23 @@ def test_play(dt, hv, base, scenes, tmp, screenshot):
     dt.call("Page.navigate", url=base + "#@" + B)
     check(dt.wait(f"hv.info && hv.info.file === '@{B}' && hv.frame === 0 && !hv.frameInflight", 60, "frame 0"),
           f"@{B}: frame 0 shown")
+    # the frames come from warm workers, not a process per frame: the
+    # hystviz-animate children serve starts while 3 s play (polled in /proc)
+    seen, stop = set(), threading.Event()
+
+    def watch():
+        while not stop.is_set():
+            seen.update(animate_children(SERVE_PID))
+            stop.wait(0.02)
+    w = threading.Thread(target=watch, daemon=True)
+    w.start()
+    shown0 = dt.js("hv.anim.shown") or 0
     fps = play_for(dt, 3)
+    shown = (dt.js("hv.anim.shown") or 0) - shown0
+    stop.set()
+    w.join(5)
+    check(shown > len(seen) + 2, f"@{B}: {shown} frames shown from {len(seen)} hystviz-animate process(es) "
+                                 "(warm workers, not one process per frame)")
     if screenshot:
         dt.js("document.getElementById('anim').scrollIntoView()")
         shot = dt.call("Page.captureScreenshot", format="png")
@@ -465,8 +505,11 @@ def test_play(dt, hv, base, scenes, tmp, screenshot):
             f.write(base64.b64decode(shot["data"]))
     stalls = dt.js("hv.anim.stalls")
     what = f"@{B} plays at {fps:.1f} frames/s over 3 s (>= 10; {stalls} display frames waited for a frame)"
+    load = os.getloadavg()[0]
     if os.environ.get("HYSTVIZ_SLOW_BUILD"):  # sanitizers, -O0: the rate is the build's, not asserted
         print(f"   (not asserted in a sanitizer or unoptimised build) {what}")
+    elif load >= (os.cpu_count() or 1):  # a busy machine: the rate is the machine's (the benchmark's figure)
+        print(f"   (not asserted at load {load:.1f} on {os.cpu_count()} cores) {what}")
     else:
         check(fps >= 10, what)
     i, got = pause(dt)
@@ -585,6 +628,8 @@ def run_session(hv, src, prefix, body, check_exit=True):
     srv = chrome = None
     try:
         srv, base = start_server(hv, scenes)
+        global SERVE_PID
+        SERVE_PID = srv.pid if srv else None
         if base is None:
             srv = None
             print("SKIP: hystviz was built without libmicrohttpd (serve exits 3)")
