@@ -7,6 +7,7 @@
 #define _GNU_SOURCE /* POLLRDHUP: a peer that closed its end */
 #include "cmd_serve.h"
 
+#include "cli_util.h"
 #include "hy_config.h"
 #include "hy_file.h"
 
@@ -15,7 +16,7 @@
 
 static const char serve_help[] =
     "usage: hystviz serve [SCENE.scene | DIR] [--port N] [--host ADDR [--public]] [--open]\n"
-    "                     [--max-work W] [--allow-save]\n"
+    "                     [--max-work W] [--include-dir DIR]... [--allow-save]\n"
     "\n"
     "Serves a live preview of the scenes in DIR (default: scenes) at http://127.0.0.1:PORT/\n"
     "until Ctrl-C: the catalogue, each figure as SVG with a slider and a number box per\n"
@@ -35,6 +36,8 @@ static const char serve_help[] =
     "  --max-work W   work budget of one render (default 2e6, 50 times the largest\n"
     "                 gallery figure; `hystviz render` allows 1e8):\n"
     "                 a page's request for more is refused before computing (422)\n"
+    "  --include-dir DIR  a directory scenes may include from and read input files\n"
+    "                 from, besides their own (as for hystviz render)\n"
     "  --allow-save   enable \"save as new scene\": the page carries a token that lets it\n"
     "                 write NEW.scene files into DIR (never replacing one), at most 100\n"
     "                 per run and one a second; anyone who can load the page can save\n"
@@ -119,6 +122,7 @@ extern const size_t hy_page_html_len, hy_page_js_len, hy_page_css_len;
 #define CONN_PER_IP 900
 #define QUEUE_MAX 64        /* renders waiting for a slot; more: 503 + Retry-After */
 #define ADDR_MAX 64         /* client addresses with renders running or waiting */
+#define SERVE_INCLUDE_DIRS 16        /* --include-dir, at most */
 #define SERVE_WORK_DEFAULT 2e6       /* serve's work budget per render (--max-work raises it) */
 #define SERVE_OUTPUT_MAX (32u << 20) /* bytes of one answer (SVG, PDF, PNG, CSV, JSON) */
 #define CHILD_TIMEOUT_S 60  /* hystviz-animate --info / --list: killed after this */
@@ -157,6 +161,8 @@ typedef struct server {
     char host[64];          /* bound address as text */
     int port, ipv6, public_, allow_save;
     double max_work;        /* work budget of one render (SERVE_WORK_DEFAULT, --max-work) */
+    hy_scene_policy pol;    /* --include-dir (and max_work): every scene is parsed and loaded under it */
+    const char *incdirs[SERVE_INCLUDE_DIRS];
     char *page;             /* index.html with the token */
     size_t page_len;
     pthread_mutex_t mu;
@@ -824,13 +830,16 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
             free(v[i]);
             continue;
         }
-        int bad = hy_scene_parse_buffer(path, text, tl, &sc, &err);
+        int bad = hy_scene_parse_buffer_policy(path, text, tl, &s->pol, &sc, &err);
         if (!bad && hy_scene_count(sc, "series") == 0) { /* style.scene and other includes */
             hy_scene_free(sc);
             free(text);
             free(v[i]);
             continue;
         }
+        hy_scene_run chk; /* what render refuses before computing: the catalogue says why */
+        if (!bad && (bad = hy_scene_run_load_scene(&chk, sc, path, hy_scene_policy_budget(&s->pol), &err)) == 0)
+            hy_scene_run_free(&chk);
         hy_scene_run probe = {0};
         probe.scene = sc;
         probe.path = path;
@@ -851,6 +860,9 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
         sv_printf(&b, ",\"label\":\"%s\",\"part\":%d", label, hy_scene_catalogue_part(v[i]));
         sv_printf(&b, ",\"anim\":%s", sc && is_animation(sc) ? "true" : "false");
         if (bad) {
+            if (strstr(err.msg, "cannot read included file") && !s->pol.ninclude_dirs)
+                hy_error_set(&err, err.code, "%.400s (a file of another directory: start serve with --include-dir DIR)",
+                             err.msg);
             sv_puts(&b, ",\"error\":");
             sv_json(&b, err.msg);
         }
@@ -908,7 +920,7 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
     sv_json(&b, path);
     sv_puts(&b, ",\"text\":");
     sv_json(&b, text);
-    int bad = hy_scene_parse_buffer(path, text, tl, &sc, &err);
+    int bad = hy_scene_parse_buffer_policy(path, text, tl, &s->pol, &sc, &err);
     sv_puts(&b, ",\"caption\":");
     scene_caption(&b, bad ? NULL : sc, text);
     if (bad) {
@@ -1082,9 +1094,7 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
     }
     double t0 = now_s();
     hy_scene_run run;
-    hy_scene_policy pol = hy_scene_policy_default();
-    pol.max_work = s->max_work;
-    int rc = hy_scene_run_load_text(&run, path, text, tl, (char *const *)a->sets, a->nsets, &pol, &err);
+    int rc = hy_scene_run_load_text(&run, path, text, tl, (char *const *)a->sets, a->nsets, &s->pol, &err);
     free(text);
     int loaded = !rc;
     render_watch watch = {s, c};
@@ -1250,7 +1260,7 @@ static unsigned frame_source(server *s, const args *a, aw_request *rq, char *pat
     if (!text)
         return snprintf(msg, msize, "no such scene"), 404;
     hy_scene *chk = NULL;
-    if (hy_scene_parse_buffer(path, text, tl, &chk, &err)) {
+    if (hy_scene_parse_buffer_policy(path, text, tl, &s->pol, &chk, &err)) {
         free(text);
         return snprintf(msg, msize, "%s", err.msg), 422;
     }
@@ -1556,7 +1566,8 @@ static enum MHD_Result api_save(server *s, struct MHD_Connection *c, const args 
     char dest[PATH_MAX + 300];
     snprintf(dest, sizeof dest, "%s/%s.scene", s->dir_arg, nm);
     hy_scene *orig = NULL, *want = NULL;
-    if (hy_scene_parse_buffer(path, text, tl, &orig, &err) || hy_scene_parse_buffer(path, text, tl, &want, &err)) {
+    if (hy_scene_parse_buffer_policy(path, text, tl, &s->pol, &orig, &err) ||
+        hy_scene_parse_buffer_policy(path, text, tl, &s->pol, &want, &err)) {
         hy_scene_free(orig);
         free(text);
         return send_error_json(c, 422, err.msg);
@@ -1581,7 +1592,7 @@ static enum MHD_Result api_save(server *s, struct MHD_Connection *c, const args 
     for (size_t i = 0; !rc && i <= a->nsets; i++)
         rc = hy_scene_set(want, sets[i], &err);
     if (!rc)
-        rc = hy_scene_parse_buffer(dest, newtext, strlen(newtext), &got, &err);
+        rc = hy_scene_parse_buffer_policy(dest, newtext, strlen(newtext), &s->pol, &got, &err);
     if (!rc) { /* same effective values: the scenes written back without origins agree */
         char *w1 = NULL, *w2 = NULL;
         size_t l1 = 0, l2 = 0;
@@ -1985,11 +1996,23 @@ int hy_cmd_serve(int argc, char **argv)
     const char *target = NULL, *host = "127.0.0.1";
     int port = 8017, public_ = 0, open_browser = 0, host_given = 0, allow_save = 0;
     double max_work = SERVE_WORK_DEFAULT;
+    hy_scene_policy pol = hy_scene_policy_default();
+    const char *incdirs[SERVE_INCLUDE_DIRS];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             fputs(serve_help, stdout);
             return 0;
+        } else if (!strncmp(a, "--include-dir", 13)) { /* as render's (cli_policy_option) */
+            if (pol.ninclude_dirs == SERVE_INCLUDE_DIRS) {
+                fprintf(stderr, "hystviz serve: at most %d --include-dir\n", SERVE_INCLUDE_DIRS);
+                return 2;
+            }
+            if (cli_policy_option(&pol, incdirs, "serve", argc, argv, &i) <= 0) {
+                if (a[13] && a[13] != '=')
+                    fprintf(stderr, "hystviz serve: unknown argument '%s' (see hystviz serve --help)\n", a);
+                return 2;
+            }
         } else if (!strcmp(a, "--port")) {
             if (parse_port(v, &port)) {
                 fprintf(stderr, "hystviz serve: --port '%s': give a port from 0 to 65535\n", v ? v : "");
@@ -2054,6 +2077,11 @@ int hy_cmd_serve(int argc, char **argv)
     s->public_ = public_;
     s->allow_save = allow_save;
     s->max_work = max_work;
+    for (size_t k = 0; k < pol.ninclude_dirs; k++)
+        s->incdirs[k] = incdirs[k];
+    s->pol = pol;
+    s->pol.include_dirs = s->incdirs;
+    s->pol.max_work = max_work;
     /* the directory, and the scene to open first */
     const char *dir = target ? target : "scenes";
     char dirbuf[PATH_MAX];
@@ -2134,8 +2162,13 @@ int hy_cmd_serve(int argc, char **argv)
        --max-work where that is larger */
     char work[64];
     snprintf(work, sizeof work, "%.17g", max_work > HY_SCENE_WORK_DEFAULT ? max_work : HY_SCENE_WORK_DEFAULT);
-    char *extra[] = {"--quiet", "--max-work", work};
-    if (s->animate[0] && !(s->frames = sv_frames_new(s->animate, s->nslots - 1 < 4 ? s->nslots - 1 : 4, extra, 3))) {
+    char *extra[3 + 2 * SERVE_INCLUDE_DIRS] = {"--quiet", "--max-work", work};
+    int nextra = 3;
+    for (size_t k = 0; k < s->pol.ninclude_dirs; k++) { /* the workers load the scenes as serve does */
+        extra[nextra++] = "--include-dir";
+        extra[nextra++] = (char *)s->incdirs[k];
+    }
+    if (s->animate[0] && !(s->frames = sv_frames_new(s->animate, s->nslots - 1 < 4 ? s->nslots - 1 : 4, extra, nextra))) {
         fprintf(stderr, "hystviz serve: out of memory\n");
         close(s->dirfd);
         free(s->page);

@@ -377,6 +377,35 @@ if "$hv" animate --list >/dev/null 2>&1; then
         ok "serve killed with -9: its frame worker exited by itself" || fail "worker '$w' outlived a killed serve"
 fi
 
+# ---- --include-dir: a user's scene that includes the gallery's style.scene ---------------------
+mkdir -p "$T/mine"
+sed 's/^name = .*/name = mine/' "$src/fig15_minor_loop_ex4.scene" > "$T/mine/mine.scene"
+sed 's/^umin2 = 0.5$/umin2 = 1.2/' "$T/mine/mine.scene" > "$T/mine/bad.scene" # parses, refused at load
+for inc in "" "$src"; do
+    "$hv" serve "$T/mine" --port 0 ${inc:+--include-dir "$inc"} >"$T/serve.out" 2>"$T/serve.err" &
+    srv=$!
+    got_mine() { port=$(sed -n 's|.*http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$T/serve.out"); [ -n "$port" ]; }
+    wait_until 30 "URL printed by serve $T/mine" got_mine || fail "serve $T/mine: $(cat "$T/serve.err")"
+    curl -s "http://127.0.0.1:$port/api/scenes" > "$T/cat.json"
+    code=$(curl -s -o "$T/mine.svg" -w "%{http_code}" "http://127.0.0.1:$port/api/render?scene=mine.scene")
+    if [ -z "$inc" ]; then
+        grep -q '"file":"mine.scene"[^}]*"error":"[^"]*style.scene[^"]*--include-dir' "$T/cat.json" &&
+            ok "without --include-dir the catalogue says why mine.scene is refused (and names --include-dir)" ||
+            fail "catalogue without --include-dir: $(cat "$T/cat.json")"
+    else
+        "$hv" render "$T/mine/mine.scene" --include-dir "$src" --format svg -o "$T/mine_out" 2>"$T/err"
+        [ "$code" = 200 ] && cmp -s "$T/mine.svg" "$T/mine_out/mine.svg" &&
+            ok "serve --include-dir renders the user's scene as render --include-dir does" ||
+            fail "serve --include-dir: HTTP $code, $(cat "$T/err")"
+        grep -q '"file":"bad.scene"[^}]*"error":"[^"]*Definition 1 needs u_min,2 ' "$T/cat.json" &&
+            ok "the catalogue says why a scene that parses is refused (u_min,2 = 1.2 > u_max,1)" ||
+            fail "catalogue: no reason for bad.scene: $(cat "$T/cat.json")"
+    fi
+    kill -INT $srv
+    wait_pid $srv 60 "serve $T/mine after SIGINT" || fail "serve $T/mine: exit status $? after SIGINT"
+    srv=
+done
+
 # ---- --public: a warning; IP literals are accepted as Host, names are not --------------------
 "$hv" serve scenes --host 127.0.0.2 --public --port 0 >"$T/serve.out" 2>"$T/serve.err" &
 srv=$!
