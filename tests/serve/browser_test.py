@@ -37,6 +37,7 @@ import sys
 import tempfile
 import threading
 import time
+import urllib.parse
 import urllib.request
 
 FAILS = []
@@ -545,11 +546,25 @@ def bench_play(dt, base, seconds, scenes):
         if not dt.wait(f"hv.info && hv.info.file === '{f}' && hv.frame === 0 && !hv.frameInflight", 60, "frame 0"):
             continue
         info = dt.js("[hv.anim.n, hv.anim.fps]")
+        # the server alone: every frame of the clip through one /api/frames stream
+        t0 = time.time()
+        with urllib.request.urlopen(f"{base}api/frames?scene={urllib.parse.quote(f)}&from=0&to={info[0]}"
+                                    f"&page=bench&seq={int(t0 * 1000)}", timeout=300) as r:
+            body = r.read()
+        srv_fps, i = 0, 0
+        while i < len(body):  # records "TAG NUM LEN\n<bytes>"
+            nl = body.index(b"\n", i)
+            tag, _, n = body[i:nl].split()
+            srv_fps += tag == b"frame"
+            i = nl + 1 + int(n)
+        srv_fps /= time.time() - t0
         fps = play_for(dt, seconds)
         stalls = dt.js("hv.anim.stalls")
         dt.js("document.getElementById('play').click()")
         print(f"bench-serve-play {f}: {fps:.1f} frames/s shown over {seconds} s at 1280x720 (clip: {info[0]} frames "
-              f"at {info[1]} fps; {stalls} display frames waited for a frame)", flush=True)
+              f"at {info[1]} fps; {stalls} display frames waited for a frame); the server streams {srv_fps:.1f} "
+              f"frames/s (the whole clip, one client, no browser); load {os.getloadavg()[0]:.1f} on "
+              f"{os.cpu_count()} CPUs", flush=True)
 
 
 def bench(dt, base, n, scenes):
