@@ -650,12 +650,16 @@ function tick(now) {
   const next = Math.floor(anim.pos + dt * anim.fps), i = next % anim.n;
   const b = anim.bmp.get(i);
   if (b) {
-    if (i !== hv.frame) { showBitmap(b); hv.frame = i; anim.shown++; $('scrub').value = i; }
+    if (i !== hv.frame) { showBitmap(b); hv.frame = i; anim.shown++; }
     anim.pos = anim.pos + dt * anim.fps;
     if (anim.pos >= anim.n) anim.pos -= anim.n;
-    const rate = anim.shown / Math.max(1e-3, (now - anim.t0) / 1000);
-    $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · ' + rate.toFixed(0) + ' of the clip\'s '
-      + anim.fps + ' frames/s shown';
+    if (now - (anim.textAt || 0) > 250) { // the scrubber and the line below it 4 times a second: no layout per frame
+      anim.textAt = now;
+      $('scrub').value = i;
+      const rate = anim.shown / Math.max(1e-3, (now - anim.t0) / 1000);
+      $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · ' + rate.toFixed(0) + ' of the clip\'s '
+        + anim.fps + ' frames/s shown';
+    }
   } else
     anim.stalls++; // not here yet: the clock waits for it
   decodeAhead();
@@ -684,6 +688,7 @@ function animStop() {
   const was = hv.playing;
   hv.playing = false;
   $('play').textContent = 'play';
+  if (was && hv.frame >= 0) $('scrub').value = hv.frame;
   if (was && hv.frame >= 0 && anim.png.has(hv.frame)) { // paused on frame i: its bytes, as the scrubber's
     hv.frameB64 = b64(anim.png.get(hv.frame));
     $('frameinfo').textContent = 'frame ' + hv.frame + ' / ' + anim.n;
