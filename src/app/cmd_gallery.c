@@ -32,7 +32,7 @@ static const char gallery_help[] =
     "                       [--include-dir DIR]... [--max-work N]\n"
     "                       [--shard K/N | --merge]\n"
     "\n"
-    "Renders every figure scene DIR/*.scene (files without a [series] section,\n"
+    "Renders every figure scene DIR/*.scene (files without a [series] or [panel] section,\n"
     "such as style.scene, are includes, not figures) into the gallery directory,\n"
     "in the formats each scene asks for (its [output] dir is ignored), and writes\n"
     "an index.html there.  A scene whose text, included files and hystviz version\n"
@@ -429,7 +429,7 @@ static void job_plan(const opts *o, job *jobs, size_t i, entry *man, size_t nman
         job_fail(j, err.msg);
         return;
     }
-    if (hy_scene_count(probe.scene, "series") == 0)
+    if (!hy_scene_is_figure(probe.scene))
         j->state = J_SKIP;
     hy_scene_run_name(&probe, j->name, sizeof j->name);
     char key[17];

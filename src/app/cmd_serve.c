@@ -831,7 +831,7 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
             continue;
         }
         int bad = hy_scene_parse_buffer_policy(path, text, tl, &s->pol, &sc, &err);
-        if (!bad && hy_scene_count(sc, "series") == 0) { /* style.scene and other includes */
+        if (!bad && !hy_scene_is_figure(sc)) { /* style.scene and other includes */
             hy_scene_free(sc);
             free(text);
             free(v[i]);

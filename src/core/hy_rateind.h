@@ -70,7 +70,10 @@ enum { HY_RI_NOUT = 3 };
 
 enum {
     HY_RI_RETURN_POINT = 1u << 0,  /* a minor loop closes at its reversal value */
-    HY_RI_PATH_AREA = 1u << 1      /* out[2] is tracked: any loop's area exactly */
+    HY_RI_PATH_AREA = 1u << 1,     /* out[2] is tracked: any loop's area exactly */
+    HY_RI_AREA_YDU = 1u << 2       /* loops dissipate ∮ y du (force against displacement,
+                                    * clockwise) rather than ∮ u dy (H against B,
+                                    * counter-clockwise): the sign of the area */
 };
 
 typedef struct hy_rateind_type {

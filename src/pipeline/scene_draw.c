@@ -107,7 +107,7 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
             const hy_loop *m = &L->minor[idx - 1];
             turn = !strcmp(field, "turn");
             v = !strcmp(field, "area") || turn ? m->area : !strcmp(field, "own") ? m->own_area : !strcmp(field, "ystart") ? m->y_start
-                : !strcmp(field, "yclose") ? m->y_close : NAN;
+                : !strcmp(field, "yclose") ? m->y_close : !strcmp(field, "gap") ? m->y_close - m->y_start : NAN;
         } else if ((dot = strrchr(key, '.')) != NULL) { /* SERIES.gamma, SERIES.dist */
             for (size_t i = 0; i < r->nseries; i++) {
                 const hy_run_series *se = &r->series[i];
@@ -126,7 +126,7 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
         }
         if (isnan(v))
             return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
-                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key of a numeric key)",
+                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key of a numeric key)",
                                      key, L->nminor);
         char num[64];
         if (turn)
@@ -174,6 +174,10 @@ static void figure_size(const hy_scene *s, hy_figure *f)
 
 void hy_scene_fig_free(hy_scene_fig *st)
 {
+    for (size_t i = 0; st->panels && i < st->npanels; i++)
+        hy_scene_fig_free(&st->panels[i]);
+    free(st->panels);
+    free(st->axes);
     free(st->series);
     free(st->marks);
     free(st->texts);
@@ -185,7 +189,7 @@ void hy_scene_fig_free(hy_scene_fig *st)
 static int placeholder_known(const hy_scene *s, const char *key)
 {
     static const char *const whole[] = {"major.area", "major.own", "energy", "nminor"};
-    static const char *const minor[] = {"area", "turn", "own", "ystart", "yclose"};
+    static const char *const minor[] = {"area", "turn", "own", "ystart", "yclose", "gap"};
     for (size_t i = 0; i < sizeof whole / sizeof whole[0]; i++)
         if (!strcmp(key, whole[i]))
             return 1;
@@ -231,7 +235,7 @@ int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
 {
     const hy_scene *s = r->scene;
     size_t na = hy_scene_count(s, "annotation");
-    if (!hy_scene_count(s, "series") && !na)
+    if (!hy_scene_count(s, "series") && !na && !r->npanels)
         return hy_error_set(err, HY_EINVAL, "%s:1:1: the scene draws nothing: it has no [series NAME] (or [annotation NAME]) section; "
                                  "a file of shared settings is included by scenes, not rendered", hy_scene_source(s));
     for (size_t i = 0; i < na; i++) {
@@ -249,7 +253,7 @@ int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
             if (ph && (n >= sizeof key || !placeholder_known(s, key)))
                 return hy_scene_error_at(s, "annotation", name, "text", err, HY_EINVAL,
                                          "unknown placeholder {%s%s} (major.area, major.own, energy, nminor, "
-                                         "minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose; "
+                                         "minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; "
                                          "SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key "
                                          "of a numeric key)", key, n >= sizeof key ? "..." : "");
         }
@@ -268,6 +272,32 @@ int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
     char keys[9][HY_SCENE_KEY_MAX];
     size_t nkeys;
     return hy_scene_main_keys(s, keys, 9, &nkeys, err);
+}
+
+/* A [panel] figure: each panel scene's axes in a grid of [figure] columns
+ * per row, in the size and fonts of this scene. */
+static int panel_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
+{
+    long cols = (long)r->npanels;
+    hy_scene_get_int(r->scene, "figure", NULL, "columns", &cols);
+    if (cols < 1 || r->npanels % (size_t)cols)
+        return hy_scene_error_at(r->scene, "figure", NULL, "columns", err, HY_EINVAL,
+                                 "columns = %ld does not divide the %zu panels into full rows", cols, r->npanels);
+    st->panels = calloc(r->npanels, sizeof *st->panels);
+    st->axes = calloc(r->npanels, sizeof *st->axes);
+    if (!st->panels || !st->axes)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    st->npanels = r->npanels;
+    for (size_t i = 0; i < r->npanels; i++) {
+        int rc = hy_scene_run_figure(&r->panels[i], &st->panels[i], err);
+        if (rc)
+            return rc;
+        st->axes[i] = st->panels[i].ax;
+    }
+    st->fig.axes = st->axes;
+    st->fig.ncols = (int)cols;
+    st->fig.nrows = (int)(r->npanels / (size_t)cols);
+    return HY_OK;
 }
 
 int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
@@ -386,6 +416,8 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
     f->theme = theme;
     f->axes = ax;
     f->nrows = f->ncols = 1;
+    if (r->npanels)
+        return panel_figure(r, st, err);
     return HY_OK;
 }
 
@@ -516,17 +548,26 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     return rc;
 }
 
-int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err)
+/* The rows of r's series, names prefixed with "panel/" when panel is set. */
+static void data_rows(const hy_scene_run *r, const char *panel, FILE *out)
 {
-    fprintf(out, "series,x,y\n");
     for (size_t i = 0; i < r->nseries; i++) {
         const hy_run_series *se = &r->series[i];
         for (size_t j = 0; j < se->n; j++)
             if (!isnan(se->x[j]))
-                fprintf(out, "%s,%.17g,%.17g\n", se->name, se->x[j], se->y[j]);
+                fprintf(out, "%s%s%s,%.17g,%.17g\n", panel ? panel : "", panel ? "/" : "", se->name, se->x[j], se->y[j]);
         if (se->has_mark)
-            fprintf(out, "%s@marker,%.17g,%.17g\n", se->name, se->mark_x, se->mark_y);
+            fprintf(out, "%s%s%s@marker,%.17g,%.17g\n", panel ? panel : "", panel ? "/" : "", se->name, se->mark_x,
+                    se->mark_y);
     }
+}
+
+int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err)
+{
+    fprintf(out, "series,x,y\n");
+    data_rows(r, NULL, out);
+    for (size_t p = 0; p < r->npanels; p++) /* a [panel] figure: PANEL/SERIES */
+        data_rows(&r->panels[p], hy_scene_name_at(r->scene, "panel", p), out);
     if (ferror(out))
         return hy_error_set(err, HY_EIO, "error writing the data: %s", strerror(errno));
     return HY_OK;

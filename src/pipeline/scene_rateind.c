@@ -8,8 +8,9 @@
  * time span, yk over period k, ysteady over one period of the periodic state
  * (periods driven until the output repeats, hy_rateind_settle), and the major
  * and minor loops of the rainflow pairing (hy_loops_pair, the finder of the
- * friction models) along ϱ from that state.  Loop areas are ∮ u dy: from the
- * path integral ∫ y du the model tracks (HY_RI_PATH_AREA), else from its
+ * friction models) along ϱ from that state.  Loop areas are ∮ u dy (or ∮ y du
+ * for HY_RI_AREA_YDU models, so that dissipation is > 0): from the path
+ * integral ∫ y du the model tracks (HY_RI_PATH_AREA), else from its
  * closed-form loop area where minor loops close (HY_RI_RETURN_POINT). */
 #include "scene_model.h"
 
@@ -172,6 +173,12 @@ static int need_steady_state(hy_scene_run *r, ri_plan *p, hy_error *err)
     return at_model(r, hy_rateind_settle(&p->steady, &r->input, SETTLE_TOL, SETTLE_MAX, &r->ri_periods, err), err);
 }
 
+/* ∮ u dy = -∮ y du (magnetic), or ∮ y du (HY_RI_AREA_YDU): dissipation > 0. */
+static double area_sign(const hy_scene_run *r)
+{
+    return (r->mtype->ri->caps & HY_RI_AREA_YDU) ? 1.0 : -1.0;
+}
+
 /* Feeds m the turning points of the input (run ends, exact values) from run
  * *r of period *k on, while their ϱ is below limit by more than 1e-9 ρ_T. */
 static int feed_ends(hy_rateind *m, const hy_input *in, size_t *r, double *k, double limit, hy_error *err)
@@ -211,8 +218,8 @@ static int measure_loop(hy_scene_run *r, ri_plan *p, hy_loop *L, hy_error *err)
     if (!rc && !(rc = feed_ends(&c, &r->input, &run, &k, L->rho_close, err)) &&
         !(rc = hy_rateind_apply(&c, L->u_start, err)))
         L->y_close = c.out[0];
-    if (!rc && (r->mtype->ri->caps & HY_RI_PATH_AREA))
-        L->area = -(c.out[2] - iy0); /* -∫ y du: the chord u = u_start closes a loop that does not */
+    if (!rc && (r->mtype->ri->caps & HY_RI_PATH_AREA)) /* the chord u = u_start closes a loop that does not */
+        L->area = area_sign(r) * (c.out[2] - iy0);
     else if (!rc)
         rc = r->mtype->ri->loop_area(r->ri_par, fmin(L->u_start, L->u_turn), fmax(L->u_start, L->u_turn), &L->area,
                                      err); /* own area, nested loops added by add_nested */
@@ -267,7 +274,7 @@ static int find_loops(hy_scene_run *r, ri_plan *p, hy_error *err)
         hy_rateind_free(&c);
         if (rc)
             return at_model(r, rc, err);
-        r->loops.area_period = -(iy1 - p->steady.out[2]);
+        r->loops.area_period = area_sign(r) * (iy1 - p->steady.out[2]);
     } else {
         add_nested(&r->loops, r->input.rho_T);
         r->loops.area_period = r->loops.major.area;

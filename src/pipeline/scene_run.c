@@ -219,6 +219,38 @@ static int check_quantities(const hy_scene_run *r, hy_error *err)
     return HY_OK;
 }
 
+/* The [panel NAME] scenes, each loaded as its own run (one level: a panel
+ * scene has no panels), read through the scene's path policy. */
+static int load_panels(hy_scene_run *r, hy_error *err)
+{
+    const hy_scene *s = r->scene;
+    size_t n = hy_scene_count(s, "panel");
+    if (!n)
+        return HY_OK;
+    if (!(r->panels = calloc(n, sizeof *r->panels)))
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t i = 0; i < n; i++) {
+        const char *name = hy_scene_name_at(s, "panel", i), *path;
+        if (hy_scene_get_str(s, "panel", name, "scene", &path) < 0)
+            return hy_scene_error_at(s, "panel", name, NULL, err, HY_EINVAL, "[panel %s] needs 'scene = \"FILE\"'", name);
+        char *text;
+        size_t len;
+        int user, rc = hy_scene_read_path(s, "panel", name, "scene", &text, &len, &user, err);
+        if (rc)
+            return rc;
+        rc = hy_scene_run_load_text(&r->panels[i], path, text, len, NULL, 0, NULL, err);
+        free(text);
+        if (rc)
+            return rc;
+        r->npanels = i + 1;
+        r->panels[i].budget = r->budget;
+        if (r->panels[i].npanels)
+            return hy_scene_error_at(s, "panel", name, "scene", err, HY_EINVAL,
+                                     "%s has panels of its own: a panel is one figure", path);
+    }
+    return HY_OK;
+}
+
 /* The model and input of the parsed scene r->scene; r freed on error. */
 static int build_run(hy_scene_run *r, hy_error *err)
 {
@@ -230,6 +262,8 @@ static int build_run(hy_scene_run *r, hy_error *err)
     int rc = check_quantities(r, err);
     if (!rc)
         rc = r->mtype->load(r, err);
+    if (!rc)
+        rc = load_panels(r, err);
     if (!rc)
         rc = hy_scene_run_validate(r, err);
     if (rc)
@@ -257,6 +291,9 @@ int hy_scene_run_load_text(hy_scene_run *r, const char *path, const char *text, 
 
 void hy_scene_run_free(hy_scene_run *r)
 {
+    for (size_t i = 0; i < r->npanels; i++)
+        hy_scene_run_free(&r->panels[i]);
+    free(r->panels);
     for (size_t i = 0; i < r->nseries; i++) {
         free(r->series[i].x);
         free(r->series[i].y);
@@ -873,7 +910,15 @@ static double series_points(const hy_scene_run *r, int d, double npts, double pe
 int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
     *work = 0;
-    return r->mtype->estimate(r, work, what, size, err);
+    int rc = r->mtype->estimate(r, work, what, size, err);
+    for (size_t i = 0; !rc && i < r->npanels; i++) { /* a [panel] figure: its panels' work too */
+        double w;
+        rc = hy_scene_run_estimate(&r->panels[i], &w, NULL, 0, err);
+        *work += w;
+        if (what && size && i == 0)
+            snprintf(what, size, "%zu panels", r->npanels);
+    }
+    return rc;
 }
 
 /* The friction models' estimate: the grid points of every distinct gamma
@@ -952,7 +997,21 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
         hy_scene_run_estimate(r, &r->work, what, sizeof what, err);
         return hy_scene_run_over_budget(r->scene, r->work, budget, what, err);
     }
-    return r->mtype->compute(r, log, err);
+    int rc = HY_OK;
+    for (size_t i = 0; !rc && i < r->npanels; i++)
+        rc = hy_scene_run_compute(&r->panels[i], log, err);
+    if (!rc)
+        rc = r->mtype->compute(r, log, err);
+    for (size_t i = 0; !rc && i < r->nseries; i++) { /* series.yscale, where written */
+        hy_run_series *se = &r->series[i];
+        double f;
+        if (hy_scene_get_num(r->scene, "series", se->name, "yscale", &f) != HY_SCENE_SET)
+            continue;
+        for (size_t j = 0; j < se->n; j++)
+            se->y[j] *= f;
+        se->mark_y *= f;
+    }
+    return rc;
 }
 
 int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
@@ -1003,4 +1062,9 @@ int hy_scene_friction_load(hy_scene_run *r, hy_error *err)
     if (!rc)
         rc = hy_scene_run_build_input(r, err);
     return rc;
+}
+
+int hy_scene_is_figure(const hy_scene *s)
+{
+    return hy_scene_count(s, "series") > 0 || hy_scene_count(s, "panel") > 0;
 }

@@ -52,6 +52,8 @@ typedef struct hy_scene_run {
     hy_scene *scene;
     const char *path;
     const struct hy_scene_model *mtype; /* the [model] kind's type (scene_model.h)  */
+    struct hy_scene_run *panels; /* the [panel] scenes' runs, drawn side by side  */
+    size_t npanels;
     void *ri_par;             /* a rate-independent model's parameters (malloc'd) */
     int ri_periods;           /* its periods driven until the output was periodic */
     hy_model model;
@@ -170,6 +172,10 @@ int hy_scene_run_csv(const hy_scene_run *r, char **buf, size_t *len, hy_error *e
 /* Prints every series as CSV: header "series,x,y", values %.17g. */
 int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err);
 
+/* Whether a parsed scene is a figure: it has a [series] or a [panel]
+ * section (else it is a file of shared settings that scenes include). */
+int hy_scene_is_figure(const hy_scene *s);
+
 /* Where a scene file goes in the catalogue (gallery page, hystviz serve), from
  * its name: 0 the minor-loops paper's figures (figNN_), 1 the Bouc-Wen
  * benchmark's (bw_figNx_), 2 figures beyond the papers, 3 animations (anim_);
@@ -188,6 +194,9 @@ void hy_scene_run_free(hy_scene_run *r);
 /* The figure of a computed run and the arrays it points into; fig points
  * into this struct and into r's series, so both must outlive it. */
 typedef struct hy_scene_fig {
+    struct hy_scene_fig *panels; /* a [panel] figure: each panel's figure ... */
+    hy_axes *axes;               /* ... and their axes, row-major             */
+    size_t npanels;
     hy_series *series;
     hy_mark *marks;
     hy_text *texts;

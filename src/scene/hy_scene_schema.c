@@ -52,7 +52,8 @@ static const char *const qualities[] = {HY_QUALITY_PRESETS(QUALITY_NAME) NULL};
 static const hy_scene_key_spec model_keys[] = {
     K("kind", HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, "lugre",
       "hysteresis model: Dahl, LuGre (Eq. 3), the Example-1 filter system, the Bouc-Wen benchmark oscillator, "
-      "Jiles-Atherton (ferromagnetic, input H in A/m, output B in T) or classical Preisach"),
+      "Jiles-Atherton (ferromagnetic, input H in A/m, output B in T), classical Preisach, or the Bouc-Wen "
+      "hysteresis operator (Eq. 3 of the benchmark driven by u)"),
     KQ("σ_0", NULL, "sigma0", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
     KQ("σ_1", NULL, "sigma1", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
     KQ("σ_2", NULL, "sigma2", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
@@ -68,22 +69,22 @@ static const hy_scene_key_spec model_keys[] = {
     KQ("c_L", "N s/m", "c", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "10", "boucwen: viscous damping c_L in N s/m"),
     KQ("k_L", "N/m", "k", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4", "boucwen: linear stiffness k_L in N/m"),
     KQ("α", "N/m", "alpha", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4",
-      "boucwen: alpha of Eq. (3) in N/m (k + alpha > 0: the linearised stiffness of Table 2)"),
+      "boucwen, boucwen-operator: alpha of Eq. (3) in N/m (k + alpha > 0: the linearised stiffness of Table 2)"),
     KQ("β", "1/m^ν", "bw_beta", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1e3",
-      "boucwen: beta of Eq. (3) in 1/m^nu; 0 gives the linear oscillator of Fig. 1(b)"),
-    KQ("γ", NULL, "bw_gamma", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen: gamma of Eq. (3)"),
-    KQ("δ", NULL, "delta", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen: delta of Eq. (3)"),
-    KQ("ν", NULL, "nu", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen: exponent nu of Eq. (3)"),
-    K("ja_ms", HY_KIND_NUMBER, NULL, POS, 0, 0, "1.6e6",
+      "boucwen, boucwen-operator: beta of Eq. (3) in 1/m^nu; 0 gives the linear oscillator of Fig. 1(b)"),
+    KQ("γ", NULL, "bw_gamma", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen, boucwen-operator: gamma of Eq. (3)"),
+    KQ("δ", NULL, "delta", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen, boucwen-operator: delta of Eq. (3)"),
+    KQ("ν", NULL, "nu", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen, boucwen-operator (1 only): exponent nu of Eq. (3)"),
+    KQ("M_s", "A/m", "ja_ms", HY_KIND_NUMBER, NULL, POS, 0, 0, "1.6e6",
       "jiles-atherton: saturation magnetisation Ms in A/m (default: Jiles & Atherton 1986)"),
-    K("ja_a", HY_KIND_NUMBER, NULL, POS, 0, 0, "1100",
+    KQ("a", "A/m", "ja_a", HY_KIND_NUMBER, NULL, POS, 0, 0, "1100",
       "jiles-atherton: a in A/m, the width of the anhysteretic curve Ms L(H_e/a)"),
-    K("ja_k", HY_KIND_NUMBER, NULL, POS, 0, 0, "400", "jiles-atherton: pinning k in A/m (the loop's half-width)"),
-    K("ja_c", HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX | HY_SPEC_MAX_EXCL, 0, 1, 0, 0, "0.2",
+    KQ("k", "A/m", "ja_k", HY_KIND_NUMBER, NULL, POS, 0, 0, "400", "jiles-atherton: pinning k in A/m (the loop's half-width)"),
+    KQ("c", NULL, "ja_c", HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX | HY_SPEC_MAX_EXCL, 0, 1, 0, 0, "0.2",
       "jiles-atherton: reversible fraction c"),
-    K("ja_alpha", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1.6e-3",
+    KQ("α", NULL, "ja_alpha", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1.6e-3",
       "jiles-atherton: mean-field coupling alpha (alpha Ms / (3a) < 1, and small enough for k)"),
-    K("ja_m0", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0",
+    KQ("M_0", "A/m", "ja_m0", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0",
       "jiles-atherton: magnetisation M in A/m at t = 0 (|m0| < Ms; 0: demagnetised)"),
     K("pr_density", HY_KIND_ENUM, hy_preisach_dist_names, NOLIM, 0, 0, "gaussian",
       "preisach: distribution of both switching fields (factorised density)"),
@@ -189,6 +190,13 @@ static const hy_scene_key_spec figure_keys[] = {
     K("zoom_y", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL, "y range of the zoomed inset"),
     K("theme", HY_KIND_ENUM, themes, NOLIM, 0, 0, "paper",
       "paper (black on white) or slides (light on dark, lines twice as thick, text 1.4 times as large: a projector)"),
+    K("columns", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 64, 0, 0, NULL,
+      "[panel] figures: panels per row (default: all in one row); it must divide the number of panels"),
+};
+
+static const hy_scene_key_spec panel_keys[] = {
+    K("scene", HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
+      "a scene file drawn in this panel (its model, input, series, axes and annotations; relative to this file)"),
 };
 
 static const hy_scene_key_spec series_keys[] = {
@@ -206,6 +214,8 @@ static const hy_scene_key_spec series_keys[] = {
     K("quantity", HY_KIND_ENUM, bw_quantities, NOLIM, 0, 0, "output",
       "data = boucwen: y in mm, u in N, |y| in dB re 1 mm, transient y - y(last period) in dB, the last period's spectrum, "
       "the largest |y| in mm each second, or (sweep) the windowed-sinc route's largest error each second in u (N) or y (mm)"),
+    K("yscale", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1",
+      "factor applied to the series' y values (and its marker), e.g. 1/Ms to draw M/Ms or B/B_s normalised to saturation"),
     KQ("floor", "dB", "floor", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "data = boucwen, dB quantities: values below it and exact zeros are drawn at this level (default: zeros leave gaps)"),
 };
@@ -263,6 +273,7 @@ static const hy_scene_section_spec sections[] = {
     S("figure", 0, 0, figure_keys, "the axes: kind, labels, ranges, size, fonts"),
     S("series", 1, 1, series_keys, "one curve per section, drawn in file order"),
     S("annotation", 1, 1, annotation_keys, "one text label per section"),
+    S("panel", 1, 1, panel_keys, "one panel per section, in file order: a figure of several scenes side by side"),
     S("output", 0, 0, output_keys, "where the figure is written"),
     S("controls", 0, 0, controls_keys, "how hystviz serve presents the scene's parameters"),
     S("animation", 0, 0, animation_keys, "frame timing of an animation"),

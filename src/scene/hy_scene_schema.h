@@ -25,7 +25,8 @@
     X(dahl_filter, "dahl-filter")           \
     X(boucwen, "boucwen")                   \
     X(jiles, "jiles-atherton")              \
-    X(preisach, "preisach")
+    X(preisach, "preisach")                 \
+    X(bwop, "boucwen-operator")
 
 /* What a value must look like. */
 typedef enum hy_scene_kind {

@@ -94,9 +94,9 @@ static void bools_enums_strings(void)
 
     PARSE_FAILS("[figure]\nxlog = yes\n", "t.scene:2:8: 'xlog' in [figure] expects true or false, got 'yes'");
     PARSE_FAILS("[model]\nkind = lugr\n",
-                "t.scene:2:8: 'kind' in [model] must be one of dahl, lugre, dahl-filter, boucwen, jiles-atherton, preisach, got 'lugr'; did you mean 'lugre'?");
+                "t.scene:2:8: 'kind' in [model] must be one of dahl, lugre, dahl-filter, boucwen, jiles-atherton, preisach, boucwen-operator, got 'lugr'; did you mean 'lugre'?");
     PARSE_FAILS("[model]\nkind = coulomb\n",
-                "t.scene:2:8: 'kind' in [model] must be one of dahl, lugre, dahl-filter, boucwen, jiles-atherton, preisach, got 'coulomb'");
+                "t.scene:2:8: 'kind' in [model] must be one of dahl, lugre, dahl-filter, boucwen, jiles-atherton, preisach, boucwen-operator, got 'coulomb'");
     PARSE_FAILS("[figure]\ntitle = \"abc\n", "t.scene:2:9: unterminated string (missing closing '\"')");
     /* issue 20 item 11: text that is not UTF-8, or holds control characters, is
        refused where it is written (it failed when the figure was drawn) */
