@@ -936,6 +936,8 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
         sv_json(&b, name);
         sv_puts(&b, ",\"controls\":");
         sv_controls_json(&b, sc, hy_scene_reads(sc));
+        sv_puts(&b, ",\"presets\":");
+        sv_presets_json(&b, sc);
         if (is_animation(sc))
             json_anim(&b, s, c, hy_scene_hash(sc), path, text, tl);
         else

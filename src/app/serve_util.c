@@ -396,6 +396,34 @@ void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads)
     sv_puts(b, "]");
 }
 
+void sv_presets_json(sv_buf *b, const hy_scene *s)
+{
+    sv_puts(b, "[");
+    char (*sets)[HY_SCENE_SET_MAX] = malloc(HY_SCENE_PRESET_MAX * sizeof *sets);
+    for (size_t i = 0, first = 1; sets && i < hy_scene_count(s, "preset"); i++) {
+        const char *name = hy_scene_name_at(s, "preset", i), *label = name;
+        size_t n;
+        hy_error err = {0};
+        if (hy_scene_preset_sets(s, name, sets, HY_SCENE_PRESET_MAX, &n, &err))
+            continue; /* the render says what is wrong (hy_scene_run_validate) */
+        hy_scene_get_str(s, "preset", name, "label", &label);
+        sv_puts(b, first ? "{\"name\":" : ",{\"name\":");
+        first = 0;
+        sv_json(b, name);
+        sv_puts(b, ",\"label\":");
+        sv_json(b, label);
+        sv_puts(b, ",\"sets\":[");
+        for (size_t j = 0; j < n; j++) {
+            if (j)
+                sv_puts(b, ",");
+            sv_json(b, sets[j]);
+        }
+        sv_puts(b, "]}");
+    }
+    free(sets);
+    sv_puts(b, "]");
+}
+
 /* ---- save as new scene ---------------------------------------------- */
 
 char *sv_read_file(const char *path, size_t max, size_t *len)

@@ -57,6 +57,11 @@ const char *sv_settable_sections(void);
  * step (period x fs whole). */
 void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads);
 
+/* Appends the JSON array of the scene's [preset NAME] sections, in file
+ * order: {"name":"fig16","label":"Fig. 16: sigma0 = 1","sets":["model.sigma0=1",...]};
+ * a preset whose set is malformed is left out (the render refuses the scene). */
+void sv_presets_json(sv_buf *b, const hy_scene *s);
+
 /* Slider range for a key spec and its current value: [lo, hi], logarithmic
  * when the range spans decades; kept inside the documented bounds. */
 void sv_slider_range(const hy_scene_key_spec *k, double v, double *lo, double *hi, int *log);

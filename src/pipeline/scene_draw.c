@@ -271,7 +271,14 @@ int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
         return zrc;
     char keys[9][HY_SCENE_KEY_MAX];
     size_t nkeys;
-    return hy_scene_main_keys(s, keys, 9, &nkeys, err);
+    int rc = hy_scene_main_keys(s, keys, 9, &nkeys, err);
+    for (size_t i = 0; !rc && i < hy_scene_count(s, "preset"); i++) {
+        char (*sets)[HY_SCENE_SET_MAX] = malloc(HY_SCENE_PRESET_MAX * sizeof *sets);
+        rc = sets ? hy_scene_preset_sets(s, hy_scene_name_at(s, "preset", i), sets, HY_SCENE_PRESET_MAX, &nkeys, err)
+                  : hy_error_set(err, HY_ENOMEM, "out of memory");
+        free(sets);
+    }
+    return rc;
 }
 
 /* A [panel] figure: each panel scene's axes in a grid of [figure] columns

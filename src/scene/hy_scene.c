@@ -725,3 +725,42 @@ int hy_scene_main_keys(const hy_scene *s, char (*keys)[HY_SCENE_KEY_MAX], size_t
     }
     return HY_OK;
 }
+
+int hy_scene_preset_sets(const hy_scene *s, const char *name, char (*sets)[HY_SCENE_SET_MAX], size_t max, size_t *n,
+                         hy_error *err)
+{
+    const char *list = "";
+    *n = 0;
+    hy_scene_get_str(s, "preset", name, "set", &list);
+    for (const char *p = list; *p;) {
+        p += strspn(p, " \t;");
+        size_t len = strcspn(p, ";");
+        while (len && (p[len - 1] == ' ' || p[len - 1] == '\t'))
+            len--;
+        if (!len)
+            break;
+        if (len >= HY_SCENE_SET_MAX)
+            return hy_scene_error_at(s, "preset", name, "set", err, HY_EINVAL, "set: '%.40s...' is longer than %d bytes",
+                                     p, HY_SCENE_SET_MAX - 1);
+        if (*n == max)
+            return hy_scene_error_at(s, "preset", name, "set", err, HY_EINVAL, "set: at most %zu values", max);
+        char *sec, *nm, *key;
+        const char *value;
+        snprintf(sets[*n], HY_SCENE_SET_MAX, "%.*s", (int)len, p);
+        int rc = hy_scene_set_split(sets[*n], &sec, &nm, &key, &value, err);
+        int si = rc ? -1 : hy_scene_schema_section(sec);
+        if (rc || si < 0 || hy_scene_schema_key(si, key) < 0 || !*value)
+            rc = hy_scene_error_at(s, "preset", name, "set", err, HY_EINVAL,
+                                   "set: '%s' is not SECTION.key=VALUE or SECTION.NAME.key=VALUE of a key the scene "
+                                   "format knows (values are separated by ';')", sets[*n]);
+        free(sec);
+        free(nm);
+        free(key);
+        if (rc)
+            return rc;
+        (*n)++;
+        p += len;
+        p += strcspn(p, ";");
+    }
+    return HY_OK;
+}

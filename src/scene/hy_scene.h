@@ -193,6 +193,17 @@ enum { HY_READS_MODEL = 1u << 0, HY_READS_G = 1u << 1, HY_READS_INPUT = 1u << 2 
  * default); else HY_EINVAL with the message at the main line. */
 int hy_scene_main_keys(const hy_scene *s, char (*keys)[HY_SCENE_KEY_MAX], size_t max, size_t *n, hy_error *err);
 
+/* The longest override of a [preset NAME] set (as hystviz serve allows one). */
+#define HY_SCENE_SET_MAX 300
+#define HY_SCENE_PRESET_MAX 32   /* values of one preset, at most */
+
+/* The overrides of the scene's [preset name]: its set split at ';' and
+ * trimmed ("model.sigma0=1"), at most max, into sets[0 .. *n-1].  Each must
+ * be written SECTION.key=VALUE or SECTION.NAME.key=VALUE with a section and
+ * key of the schema; else HY_EINVAL with the message at the set line. */
+int hy_scene_preset_sets(const hy_scene *s, const char *name, char (*sets)[HY_SCENE_SET_MAX], size_t max, size_t *n,
+                         hy_error *err);
+
 /* The path or display name the scene was parsed from (owned by the scene). */
 const char *hy_scene_source(const hy_scene *s);
 

@@ -264,6 +264,13 @@ static const hy_scene_key_spec controls_keys[] = {
       "(hystviz serve's presentation view shows these)"),
 };
 
+static const hy_scene_key_spec preset_keys[] = {
+    K("label", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "the preset's name on its button (default: the section's NAME)"),
+    K("set", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"",
+      "the values of the preset, written as for --set and separated by ';': "
+      "\"model.sigma0=1; input.umin2=0.2; figure.zoom_x=0.94, 1.02\""),
+};
+
 #define S(name, named, rep, keys, doc) { name, named, rep, keys, NKEYS(keys), doc }
 
 static const hy_scene_section_spec sections[] = {
@@ -276,6 +283,7 @@ static const hy_scene_section_spec sections[] = {
     S("panel", 1, 1, panel_keys, "one panel per section, in file order: a figure of several scenes side by side"),
     S("output", 0, 0, output_keys, "where the figure is written"),
     S("controls", 0, 0, controls_keys, "how hystviz serve presents the scene's parameters"),
+    S("preset", 1, 1, preset_keys, "a named set of values hystviz serve switches to in one click (keys 1-9)"),
     S("animation", 0, 0, animation_keys, "frame timing of an animation"),
     S("keyframe", 1, 1, keyframe_keys, "one animated numeric key per section (hystviz animate SCENE.scene)"),
 };

@@ -10,6 +10,8 @@ The presentation view, links and controls of `hystviz serve` in chromium
 - the arrow keys step the focused slider and the figure follows;
 - a URL with values reproduces the SVG of `hystviz render --set` byte for
   byte; back walks to the previous values;
+- keys 1, 2, 3 switch to the presets of Fig. 15's scene, whose figures are
+  those of the scene files of Figs. 15, 16 and 17, byte for byte;
 - Fig. 2 (an input-only figure) shows no model control; labels are the
   schema's symbols;
 - every slider of Fig. 15 and of bw_fig1a through 50 evenly spaced
@@ -148,6 +150,25 @@ def test_keys_and_links(dt, hv, base, scenes, tmp):
     bt.settle(dt)
 
 
+def test_presets(dt, hv, base, scenes, tmp):
+    """Figs. 15, 16 and 17 as the presets of one scene: keys 1, 2, 3 show what
+    the gallery's three scene files render, byte for byte."""
+    viewport(dt, 1024, 768)
+    check(open_url(dt, base, F15 + ".scene?view=present", "Fig. 15"), "Fig. 15 opens")
+    names = dt.js("hv.info.presets.map(p => p.name)")
+    check(names == ["fig15", "fig16", "fig17"], f"the scene's presets: {names}")
+    for digit, name, fig in (("2", "fig16", "fig16_minor_loop_ex4_sigma1"), ("3", "fig17", "fig17_minor_loop_ex4_sigma1_umin02"),
+                             ("1", "fig15", F15)):
+        dt.js("document.activeElement && document.activeElement.blur && document.activeElement.blur()")
+        for kind in ("keyDown", "keyUp"):
+            dt.call("Input.dispatchKeyEvent", type=kind, key=digit, code="Digit" + digit, text=digit if kind == "keyDown" else "")
+        dt.wait(f"hv.preset === '{name}'", 10, f"preset {name}")
+        bt.settle(dt)
+        want = bt.render_svg(hv, os.path.join(scenes, fig + ".scene"), [], os.path.join(tmp, "p" + digit))
+        check(dt.js("hv.svg") == want and f"preset={name}" in dt.js("location.hash"),
+              f"key {digit}: preset {name} == hystviz render {fig}.scene (bytes), and the URL says so")
+
+
 def test_controls(dt, base):
     viewport(dt, 1400, 1000)
     check(open_url(dt, base, "fig02_bimodal_input_smooth.scene", "Fig. 2"), "Fig. 2 opens")
@@ -217,6 +238,7 @@ def main():
     def body(dt, base, scenes, tmp):
         test_present(dt, base, shots)
         test_keys_and_links(dt, hv, base, scenes, tmp)
+        test_presets(dt, hv, base, scenes, tmp)
         test_controls(dt, base)
         sweep(dt, base, F15)
         sweep(dt, base, "bw_fig1a_quasistatic_loop")

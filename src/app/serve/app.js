@@ -261,7 +261,10 @@ function buildControls(info) {
     el('button', { type: 'button', onclick: () => setPresent(!hv.present), title: 'p', class: 'presentbtn' },
       'presentation (p)'),
     el('label', { title: 'figure.theme = slides: dark background, thicker lines, larger text (t)' },
-      el('input', { type: 'checkbox', id: 'slides', onchange: ev => setTheme(ev.target.checked) }), ' slides theme'))];
+      el('input', { type: 'checkbox', id: 'slides', onchange: ev => setTheme(ev.target.checked) }), ' slides theme'),
+    ...(info.presets || []).map((p, i) => el('button', { type: 'button', class: 'preset' + (hv.preset === p.name ? ' on' : ''),
+      'data-preset': p.name, title: (i < 9 ? 'key ' + (i + 1) + ': ' : '') + p.sets.join('; '),
+      onclick: () => applyPreset(i) }, p.label)))];
   const mains = mainControls(info);
   for (const c of info.controls) {
     const cur = curOf(c);
@@ -305,6 +308,21 @@ function buildControls(info) {
   box.replaceChildren(...kids);
   $('slides').checked = hv.sets['figure.theme'] === 'slides';
   document.body.classList.toggle('slides', hv.sets['figure.theme'] === 'slides');
+}
+
+// a preset of the scene ([preset NAME]): its values replace the page's (the theme stays)
+function applyPreset(i) {
+  const p = hv.info && hv.info.presets && hv.info.presets[i];
+  if (!p) return;
+  const theme = hv.sets['figure.theme'];
+  hv.sets = {};
+  for (const a of p.sets) { const e = a.indexOf('='); hv.sets[a.slice(0, e).trim()] = a.slice(e + 1).trim(); }
+  if (theme) hv.sets['figure.theme'] = theme;
+  buildControls(hv.info);
+  hv.preset = p.name;
+  for (const b of document.querySelectorAll('button.preset')) b.classList.toggle('on', b.dataset.preset === p.name);
+  pushUrl(false);
+  requestRender();
 }
 
 function resetValues() {
@@ -776,7 +794,7 @@ document.addEventListener('keydown', ev => {
   } else if (ev.key === 'r') resetValues();
   else if (ev.key === 't') setTheme(hv.sets['figure.theme'] !== 'slides');
   else if (ev.key === ' ' && !$('anim').hidden && !(t && t.tagName === 'BUTTON')) { ev.preventDefault(); $('play').click(); }
-  else if (/^[1-9]$/.test(ev.key) && window.applyPreset) applyPreset(+ev.key - 1);
+  else if (/^[1-9]$/.test(ev.key)) applyPreset(+ev.key - 1);
 });
 
 // back/forward, a link pasted or a catalogue entry clicked
