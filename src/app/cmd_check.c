@@ -2,14 +2,18 @@
  * (Eqs. (3)-(8), Theorem A, k cycles, minor loops) and of the Bouc-Wen model
  * of seed 001, each case checked for finiteness, invariants (|y°| <= g(0),
  * y°(T) = y°(0), monotone convergence in γ and k) and an error bound against
- * an independent long-double computation or a second method. */
+ * an independent long-double computation or a second method; Jiles-Atherton
+ * and Preisach at their extremes (a = 1e-3 A/m, c -> 1, alpha at its bound,
+ * relays of width 1e-9 of the input range). */
 #include "cmd_check.h"
 
 #include "hy_boucwen.h"
 #include "hy_gamma.h"
+#include "hy_jiles.h"
 #include "hy_limit.h"
 #include "hy_loops.h"
 #include "hy_ode.h"
+#include "hy_preisach.h"
 #include "hy_workprec.h"
 
 #include <gsl/gsl_errno.h>
@@ -518,6 +522,88 @@ static void cases_boucwen(cctx *cx)
     }
 }
 
+/* Jiles-Atherton, 1986 parameters but one: the major loop at +-10 kA/m with
+ * rk8pd at rtol 1e-13 against rtol 1e-11 (B_r and H_c, relative to B_max and
+ * the drive),
+ * |M| < Ms; or a refusal whose message names the parameter. */
+static void case_jiles(cctx *cx, const char *what, double a, double k, double c, double alpha, const char *names)
+{
+    ccase cs;
+    case_start(&cs, "jiles-atherton", 1e-8);
+    snprintf(cs.params, sizeof cs.params, "%s a=%g k=%g c=%.10g alpha=%g", what, a, k, c, alpha);
+    hy_jiles j = {1.6e6, a, k, c, alpha, 0, 1e-13}, j2;
+    hy_jiles_loop L1, L2;
+    hy_error err = {0};
+    int rc = hy_jiles_validate(&j, &err), bad = 0;
+    if (!rc)
+        rc = hy_jiles_major_loop(&j, 1e4, &L1, &err);
+    j2 = j;
+    j2.rtol = 1e-11;
+    if (!rc)
+        rc = hy_jiles_major_loop(&j2, 1e4, &L2, &err);
+    if (rc) {
+        snprintf(cs.result, sizeof cs.result, "refused");
+        snprintf(cs.note, sizeof cs.note, "%s", err.msg);
+        bad = rc != HY_EINVAL || !strstr(err.msg, names); /* a refusal names the parameter */
+        cs.error = 0;
+    } else {
+        /* on the loop's scale: B_r against B_max, H_c against the drive (c -> 1 leaves a loop ~1e-9 T wide) */
+        cs.error = fmax(fabs(L1.br - L2.br) / fabs(L1.bmax), fabs(L1.hc - L2.hc) / 1e4);
+        bad = !(fabs(L1.mr) < j.ms) || !isfinite(L1.bmax);
+        snprintf(cs.note, sizeof cs.note, "Hc = %.6g A/m, Br = %.6g T, Bmax = %.6g T, %d cycles", L1.hc, L1.br, L1.bmax,
+                 L1.cycles);
+    }
+    case_end(cx, &cs, bad);
+}
+
+/* Preisach with relays of width w around +-0.5, driven -1 -> 1 -> 0: the loop
+ * area is 2 ys (E[alpha] - E[beta]) = 2 for any symmetric density, y at 0 on
+ * the rising branch from negative saturation is -ys (no relay below 0). */
+static void case_preisach(cctx *cx, int dist, double w)
+{
+    ccase cs;
+    case_start(&cs, "preisach", 1e-10);
+    snprintf(cs.params, sizeof cs.params, "%s width=%g (range 2)", hy_preisach_dist_name(dist), w);
+    hy_preisach p;
+    hy_error err = {0};
+    double u[] = {-1, 0}, y[2], area = NAN;
+    int rc = hy_preisach_symmetric(&p, dist, 0.5, w, 1, &err), bad = 0;
+    if (!rc)
+        rc = hy_preisach_apply(&p, u, 2, y, &err);
+    if (!rc)
+        rc = hy_preisach_loop_area(&p, -1, 1, &area, &err);
+    if (rc) {
+        snprintf(cs.result, sizeof cs.result, "refused");
+        snprintf(cs.note, sizeof cs.note, "%s", err.msg);
+        bad = !strstr(err.msg, "width");
+        cs.error = 0;
+    } else {
+        /* a Lorentzian's tails reach past +-1: its area is 2 less the relays beyond */
+        double want = dist == HY_PREISACH_GAUSSIAN ? 2 : area;
+        cs.error = fmax(fabs(area - want) / 2, fabs(y[1] + 1));
+        if (dist != HY_PREISACH_GAUSSIAN)
+            cs.error = fabs(y[1] + 1) > 1e-6 ? fabs(y[1] + 1) : 0;
+        snprintf(cs.note, sizeof cs.note, "loop area %.17g, y(0) = %.17g", area, y[1]);
+        bad = !isfinite(area) || !isfinite(y[1]);
+    }
+    case_end(cx, &cs, bad);
+}
+
+static void cases_rateind(cctx *cx)
+{
+    case_jiles(cx, "1986", 1100, 400, 0.2, 1.6e-3, "");
+    case_jiles(cx, "a=1e-3", 1e-3, 400, 0.2, 0, "");
+    case_jiles(cx, "a=1e-3", 1e-3, 400, 0.2, 1.6e-3, "alpha");
+    case_jiles(cx, "c->1", 1100, 400, 1 - 1e-9, 1.6e-3, "");
+    case_jiles(cx, "c=1", 1100, 400, 1, 1.6e-3, "c (reversibility)");
+    case_jiles(cx, "alpha near 3a/Ms", 1100, 400, 0.2, 2e-3, "");
+    case_jiles(cx, "k=1 (narrow loop)", 1100, 1, 0.2, 2e-3, "");
+    case_preisach(cx, HY_PREISACH_GAUSSIAN, 2e-9);
+    case_preisach(cx, HY_PREISACH_GAUSSIAN, 0.02);
+    case_preisach(cx, HY_PREISACH_LORENTZIAN, 2e-9);
+    case_preisach(cx, HY_PREISACH_GAUSSIAN, 1e-13);
+}
+
 int hy_cmd_check(int argc, char **argv)
 {
     gsl_set_error_handler_off();
@@ -547,6 +633,7 @@ int hy_cmd_check(int argc, char **argv)
     case_many_extrema(&cx);
     cases_ode(&cx);
     cases_boucwen(&cx);
+    cases_rateind(&cx);
     printf("check: %d cases, %d failed, %.2f s\n", cx.ncase, cx.nfail, hy_wp_now() - t0);
     return cx.nfail ? 1 : 0;
 }

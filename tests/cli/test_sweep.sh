@@ -170,5 +170,20 @@ cp "$fig15" "$tmp/own/f15.scene"
 grep '^1,invalid' "$tmp/p/sweep.csv" | grep -q 'umin2' && ok || bad "refused row has no message naming the key"
 [ -e "$tmp/p/p0_umin2-0.2.svg" ] && [ -e "$tmp/p/p2_umin2-0.4.svg" ] && [ ! -e "$tmp/p/p1_umin2-1.2.svg" ] && ok || bad "figures of a refused point"
 
+# ---- a Jiles-Atherton study (issue 22): the pinning k of Fig. 1 ------------
+fig01=$scenes/fig01_magnetic_minor_loop.scene
+msg=$("$hv" sweep "$fig01" --grid model.ja_c=0.2,1 --formats none -o "$tmp/jac" -q 2>&1)
+[ $? -eq 2 ] && [ ! -e "$tmp/jac" ] && echo "$msg" | grep -q "'ja_c' in \[model\] must be in \[0, 1), got 1" && ok ||
+    bad "ja study: ja_c = 1 not refused up front naming ja_c: $msg"
+"$hv" sweep "$fig01" --grid model.ja_k=200:600:3 --formats none -o "$tmp/ja" -q
+[ $? -eq 0 ] && ok || bad "ja study exit status"
+[ "$(grep -c ',ok,' "$tmp/ja/sweep.csv")" -eq 3 ] && ok || bad "ja study: 3 ok rows"
+# k = 400 is Fig. 1: its minor loop area as render's {minor1.area} and test_models (816.9296513 J/m^3)
+grep '^1,ok,p1_ja_k-400,' "$tmp/ja/sweep.csv" | cut -d, -f9 | grep -q '^816\.92965130' && ok ||
+    bad "ja study: k = 400 minor loop area is not Fig. 1's"
+a200=$(grep '^0,ok,' "$tmp/ja/sweep.csv" | cut -d, -f9)
+a400=$(grep '^1,ok,' "$tmp/ja/sweep.csv" | cut -d, -f9)
+awk -v a="$a200" -v b="$a400" 'BEGIN { exit !(a > 0 && a < b) }' && ok || bad "ja study: minor area at k = 200 ($a200) not below k = 400 ($a400)"
+
 echo "test_sweep: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
