@@ -214,10 +214,67 @@ static int placeholder_known(const hy_scene *s, const char *key)
     return dot - key < 16 && hy_scene_get_num(s, sect, NULL, dot + 1, &x) >= 0;
 }
 
+/* Whether the scene asks its inset to follow the minor loop (zoom_follow). */
+static int zoom_follows_minor(const hy_scene *s)
+{
+    int idx = 0;
+    const char *t;
+    hy_scene_get_enum(s, "figure", NULL, "zoom_follow", &idx, &t);
+    return idx == 1;
+}
+
+/* The window of an inset that follows the minor loop: the bounding box of
+ * every drawn minor-loop point, widened by 12 % of its span on each side
+ * (on a log axis, of the decades it spans); 0 when no minor loop is drawn. */
+static int minor_window(const hy_scene_run *r, const hy_axes *ax, double zx[2], double zy[2])
+{
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    int lg[2] = {ax->x.log, ax->y.log};
+    for (size_t i = 0; i < r->nseries; i++) {
+        const hy_run_series *rs = &r->series[i];
+        for (size_t j = 0; rs->data == HY_DATA_MINOR && j < rs->n; j++) {
+            double v[2] = {rs->x[j], rs->y[j]};
+            int ok = 1;
+            for (int k = 0; k < 2; k++)
+                ok &= isfinite(v[k]) && (!lg[k] || v[k] > 0.0);
+            for (int k = 0; ok && k < 2; k++) {
+                double w = lg[k] ? log10(v[k]) : v[k];
+                lo[k] = fmin(lo[k], w), hi[k] = fmax(hi[k], w);
+            }
+        }
+    }
+    if (!(lo[0] <= hi[0]))
+        return 0;
+    double *z[2] = {zx, zy};
+    for (int k = 0; k < 2; k++) {
+        double span = hi[k] - lo[k], pad = 0.12 * span;
+        if (!(pad > 1e-9 * fmax(fabs(lo[k]), fabs(hi[k])))) /* a loop flat in this direction */
+            pad = fmax(1e-3 * fmax(fabs(lo[k]), fabs(hi[k])), 1e-12);
+        z[k][0] = lo[k] - pad, z[k][1] = hi[k] + pad;
+        if (lg[k])
+            z[k][0] = pow(10.0, z[k][0]), z[k][1] = pow(10.0, z[k][1]);
+    }
+    return 1;
+}
+
 /* The inset's zoom_x and zoom_y: *has 1 with both set (lo < hi each), 0 with
- * neither; a scene error naming the key otherwise. */
+ * neither; a scene error naming the key otherwise (zoom_follow = minor without
+ * a minor-loop series too). */
 static int read_zoom(const hy_scene *s, double zx[2], double zy[2], int *has, hy_error *err)
 {
+    if (zoom_follows_minor(s)) {
+        int found = 0;
+        for (size_t i = 0; i < hy_scene_count(s, "series") && !found; i++) {
+            const char *data = "";
+            hy_scene_get_enum(s, "series", hy_scene_name_at(s, "series", i), "data", NULL, &data);
+            found = !strcmp(data, "minor");
+        }
+        *has = 0;
+        if (!found)
+            return hy_scene_error_at(s, "figure", NULL, "zoom_follow", err, HY_EINVAL,
+                                     "zoom_follow = minor needs a [series] with data = minor to follow");
+        return HY_OK;
+    }
     int zxa = 1, zya = 1;
     int hzx = hy_scene_get_pair(s, "figure", NULL, "zoom_x", zx, &zxa) == HY_SCENE_SET && !zxa;
     int hzy = hy_scene_get_pair(s, "figure", NULL, "zoom_y", zy, &zya) == HY_SCENE_SET && !zya;
@@ -406,9 +463,15 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
     int hzx, zrc = read_zoom(s, zx, zy, &hzx, err);
     if (zrc)
         return zrc;
+    if (zoom_follows_minor(s) && !(hzx = minor_window(r, ax, zx, zy)))
+        snprintf(st->note, sizeof st->note, "note: no inset: zoom_follow = minor and no minor loop at these values\n");
     if (hzx) {
         ax->zoom_x = (hy_range){zx[0], zx[1], ax->x.log, 0};
         ax->zoom_y = (hy_range){zy[0], zy[1], ax->y.log, 0};
+        if (!hy_axes_zoom_shows_data(ax))
+            snprintf(st->note, sizeof st->note,
+                     "note: no inset: its window x %g..%g, y %g..%g holds no drawn data at these values\n", zx[0],
+                     zx[1], zy[0], zy[1]);
     }
     hy_figure *f = &st->fig;
     double fs = 9;
@@ -546,6 +609,10 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
         rc = hy_scene_output_dir_check(s, cli_dir, dir, err);
     if (!rc)
         rc = write_all(&st.fig, paths, fmt, nf, err);
+    if (!rc && written) {
+        size_t len = strlen(written);
+        snprintf(written + len, written_size - len, "%s", st.note);
+    }
     for (size_t i = 0; i < nf && !rc && written; i++) {
         size_t len = strlen(written);
         snprintf(written + len, written_size - len, "%s\n", paths[i]);

@@ -203,6 +203,7 @@ typedef struct hy_scene_fig {
     char (*textbuf)[256];
     hy_axes ax;
     hy_figure fig;
+    char note[200];           /* a line for render -v (an inset left out), or "" */
 } hy_scene_fig;
 
 /* Builds the scene's figure (styles, markers, labels, annotations with their

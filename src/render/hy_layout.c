@@ -1434,6 +1434,62 @@ static void zoom_rect(const panel *p, double r[4])
 
 static int fixed_legend_box(const panel *p, double b[4]);
 
+/* Whether the segment (x0, y0)-(x1, y1) meets the rectangle [lo, hi] (x and
+ * y), clipped parametrically (Liang-Barsky). */
+static int seg_meets(double x0, double y0, double x1, double y1, const double lo[2], const double hi[2])
+{
+    double t0 = 0.0, t1 = 1.0, d[2] = {x1 - x0, y1 - y0}, o[2] = {x0, y0};
+    for (int k = 0; k < 2; k++) {
+        double e[2] = {lo[k] - o[k], hi[k] - o[k]};   /* from the start to each side */
+        if (d[k] == 0.0) {
+            if (e[0] > 0.0 || e[1] < 0.0)
+                return 0;
+            continue;
+        }
+        double a = e[0] / d[k], b = e[1] / d[k];
+        if (a > b) {
+            double t = a;
+            a = b, b = t;
+        }
+        t0 = fmax(t0, a), t1 = fmin(t1, b);
+        if (t0 > t1)
+            return 0;
+    }
+    return 1;
+}
+
+int hy_axes_zoom_shows_data(const hy_axes *ax)
+{
+    int xl = ax->x.log, yl = ax->y.log;
+    if (!usable(ax->zoom_x.lo, xl) || !usable(ax->zoom_y.lo, yl))
+        return 0;
+    double lo[2] = {tr(ax->zoom_x.lo, xl), tr(ax->zoom_y.lo, yl)}, hi[2] = {tr(ax->zoom_x.hi, xl), tr(ax->zoom_y.hi, yl)};
+    for (size_t m = 0; m < ax->nmarks; m++) {
+        const hy_mark *k = &ax->marks[m];
+        if (usable(k->x, xl) && usable(k->y, yl) && seg_meets(tr(k->x, xl), tr(k->y, yl), tr(k->x, xl), tr(k->y, yl), lo, hi))
+            return 1;
+    }
+    for (size_t s = 0; s < ax->nseries; s++) {
+        const hy_series *se = &ax->series[s];
+        int line = se->style != HY_LINE_NONE;
+        if (!line && se->marker == HY_MARKER_NONE)
+            continue;
+        int prev = 0;   /* the previous point is usable: a line joins it */
+        double px = 0.0, py = 0.0;
+        for (size_t i = 0; i < se->n; i++) {
+            if (!usable(se->x[i], xl) || !usable(se->y[i], yl)) {
+                prev = 0;
+                continue;
+            }
+            double x = tr(se->x[i], xl), y = tr(se->y[i], yl);
+            if (line && prev ? seg_meets(px, py, x, y, lo, hi) : seg_meets(x, y, x, y, lo, hi))
+                return 1;
+            px = x, py = y, prev = 1;
+        }
+    }
+    return 0;
+}
+
 /* Lays out the panel's inset (if its axes ask for one): its own panel with
  * the zoom ranges and 80 % text, in a cell of 42 % x 45 % of the frame, at
  * the spot (corners first, then a grid) that covers the least data, text,
@@ -1444,8 +1500,8 @@ static int place_inset(panel *p, hy_error *err)
     p->has_inset = 0;
     if (!p->inset_panel || !(ax->zoom_x.lo < ax->zoom_x.hi) || !(ax->zoom_y.lo < ax->zoom_y.hi) ||
         !usable(ax->zoom_x.lo, p->xlog) || !usable(ax->zoom_y.lo, p->ylog) || !isfinite(ax->zoom_x.hi) ||
-        !isfinite(ax->zoom_y.hi))
-        return HY_OK;
+        !isfinite(ax->zoom_y.hi) || !hy_axes_zoom_shows_data(ax))
+        return HY_OK;   /* an inset of an empty window would show nothing: left out */
     panel *q = p->inset_panel;
     curves *qc = q->cache;
     double qtol = q->tol, qdense = q->dense, qvtol = q->vtol;

@@ -157,6 +157,11 @@ int hy_figure_draw_layers(const hy_figure *f, const hy_canvas *data, const hy_ca
  * the data (a colour bar).  HY_EINVAL for a bad index or figure. */
 int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err);
 
+/* Whether the zoom window of ax (zoom_x x zoom_y) holds anything drawn: a
+ * mark, a point of a series drawn with markers or a line through it.  An
+ * inset over a window without (parameters moved the data away) is left out. */
+int hy_axes_zoom_shows_data(const hy_axes *ax);
+
 /* Where a box of box[2] x box[3] points (a colour bar and its labels) goes in
  * panel index's frame: the spot, among the legend's candidates, that covers
  * the least data and not the legend; its top-left corner into box[0], box[1]. */

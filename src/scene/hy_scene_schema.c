@@ -45,6 +45,7 @@ static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {"none", "circle", "square", NULL};
 static const char *const formats[] = {"svg", "pdf", "png", NULL};
 static const char *const themes[] = {"paper", "slides", NULL};
+static const char *const zoom_follows[] = {"none", "minor", NULL};
 static const char *const easings[] = {"linear", "smooth", NULL};
 #define QUALITY_NAME(name, w, h, fps) name,
 static const char *const qualities[] = {HY_QUALITY_PRESETS(QUALITY_NAME) NULL};
@@ -186,8 +187,12 @@ static const hy_scene_key_spec figure_keys[] = {
     K("shade", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "x interval highlighted in grey (e.g. the minor loop's time span)"),
     K("zoom_x", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
-      "x range of a zoomed inset (with zoom_y): the same curves enlarged, placed where they cover least"),
+      "x range of a zoomed inset (with zoom_y): the same curves enlarged, placed where they cover least; "
+      "left out when nothing drawn falls in it at the values given"),
     K("zoom_y", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL, "y range of the zoomed inset"),
+    K("zoom_follow", HY_KIND_ENUM, zoom_follows, NOLIM, 0, 0, "none",
+      "minor: the inset zooms on the minor loop's bounding box (12 % margin) whatever the parameters, "
+      "in place of zoom_x and zoom_y; none: zoom_x and zoom_y"),
     K("theme", HY_KIND_ENUM, themes, NOLIM, 0, 0, "paper",
       "paper (black on white) or slides (light on dark, lines twice as thick, text 1.4 times as large: a projector)"),
     K("columns", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 64, 0, 0, NULL,

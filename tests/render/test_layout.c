@@ -162,6 +162,33 @@ int main(void)
     CHECK(r.legend[0] > r.clip[0] + 0.5 * r.clip[2] && r.legend[1] < r.clip[1] + 0.5 * r.clip[3],
           "best legend at (%g, %g), want the top-right quarter", r.legend[0], r.legend[1]);
 
+    /* Insets (issue 21 item 7): a window the line crosses between two points
+       keeps its inset (a second white cell and two more clips: its cover and its curves); a window off
+       the line, with nothing drawn in it, is left out. */
+    {
+        static double sx[2] = {0, 1};
+        hy_series seg = {.x = sx, .y = sx, .n = 2};
+        hy_axes za = {.series = &seg, .nseries = 1, .zoom_x = {.lo = 0.4, .hi = 0.6}, .zoom_y = {.lo = 0.4, .hi = 0.6}};
+        fig.axes = &za;
+        CHECK(hy_axes_zoom_shows_data(&za), "a window the line crosses counted empty");
+        CHECK(draw(&fig, &r) == 0 && r.white_rects == 2 && r.clips == 3,
+              "inset over the line: %d white cells, %d clips (want 2 and 3)", r.white_rects, r.clips);
+        za.zoom_x = (hy_range){.lo = 0.1, .hi = 0.2}, za.zoom_y = (hy_range){.lo = 0.8, .hi = 0.9};
+        CHECK(!hy_axes_zoom_shows_data(&za), "a window off the line counted as showing data");
+        CHECK(draw(&fig, &r) == 0 && r.white_rects == 1 && r.clips == 1,
+              "inset over an empty window: %d white cells, %d clips (want 1 and 1: left out)", r.white_rects,
+              r.clips);
+        static double mx[1] = {0.15}, my[1] = {0.85};
+        hy_series dots = {.x = mx, .y = my, .n = 1, .style = HY_LINE_NONE, .marker = HY_MARKER_CIRCLE};
+        hy_series both[2] = {seg, dots};
+        za.series = both, za.nseries = 2;
+        CHECK(hy_axes_zoom_shows_data(&za) && draw(&fig, &r) == 0 && r.white_rects == 2,
+              "a marker in the window did not keep the inset");
+        dots.marker = HY_MARKER_NONE;
+        both[1] = dots;
+        CHECK(!hy_axes_zoom_shows_data(&za), "a series drawn with neither line nor marker counted as data");
+    }
+
     /* issue 10 item 4: on a y range of one ulp a segment is ~1e15 pt long, and
        legend placement converted len / 3 to int (undefined; a hang at -O3) */
     static double ux[2] = {0, 1}, uy[2] = {1, 1.0000000000000002};

@@ -10,6 +10,7 @@
 #include <cairo.h>
 #include <dirent.h>
 #include <gsl/gsl_errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -420,6 +421,58 @@ static void dist_placeholder(void)
     }
 }
 
+/* Fig. 16's inset with its parameters moved (issue 21 item 7): the fixed
+ * window over the tip is empty at σ0 = 6, so the inset is left out with a
+ * note; zoom_follow = minor sets the window around the minor loop whatever
+ * σ0: it holds the loop's extremes (the run's own minor series, independent of
+ * the window's computation) and is at most 1.5 times the loop's span wide. */
+static void inset_follows(void)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/scenes/fig16_minor_loop_ex4_sigma1.scene", SRC);
+    hy_scene_run r;
+    hy_scene_fig st;
+    if (run_figure(path, "model.sigma0=6", &r, &st))
+        return;
+    CHECK(st.ax.zoom_x.lo < st.ax.zoom_x.hi && !hy_axes_zoom_shows_data(&st.ax),
+          "fig16 at sigma0 = 6: the fixed window %g..%g x %g..%g should hold no data", st.ax.zoom_x.lo,
+          st.ax.zoom_x.hi, st.ax.zoom_y.lo, st.ax.zoom_y.hi);
+    CHECK(strstr(st.note, "no inset") != NULL, "no note for the inset left out: '%s'", st.note);
+    hy_scene_fig_free(&st);
+    hy_scene_run_free(&r);
+    const double sigmas[] = {1, 20};
+    for (size_t k = 0; k < 2; k++) {
+        char set[2][64];
+        snprintf(set[0], sizeof set[0], "model.sigma0=%g", sigmas[k]);
+        snprintf(set[1], sizeof set[1], "figure.zoom_follow=minor");
+        char *sets[] = {set[0], set[1]};
+        if (run_scene(path, sets, 2, NULL, NULL, &r))
+            return;
+        hy_error err;
+        int rc = hy_scene_run_figure(&r, &st, &err);
+        CHECK(rc == 0, "fig16 follow at sigma0 = %g: %s", sigmas[k], rc ? err.msg : "");
+        const hy_run_series *m = find(&r, "minor");
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        for (size_t i = 0; m && i < m->n; i++)
+            if (isfinite(m->x[i]) && isfinite(m->y[i])) {
+                lo[0] = fmin(lo[0], m->x[i]), hi[0] = fmax(hi[0], m->x[i]);
+                lo[1] = fmin(lo[1], m->y[i]), hi[1] = fmax(hi[1], m->y[i]);
+            }
+        const hy_range *z[2] = {&st.ax.zoom_x, &st.ax.zoom_y};
+        CHECK(!rc && m && lo[0] < hi[0], "fig16 at sigma0 = %g: no minor loop drawn", sigmas[k]);
+        for (int d = 0; !rc && d < 2; d++)
+            CHECK(z[d]->lo < lo[d] && z[d]->hi > hi[d] && z[d]->hi - z[d]->lo <= 1.5 * (hi[d] - lo[d]),
+                  "sigma0 = %g: inset %c window %g..%g, the minor loop spans %g..%g", sigmas[k], "xy"[d], z[d]->lo,
+                  z[d]->hi, lo[d], hi[d]);
+        CHECK(!rc && hy_axes_zoom_shows_data(&st.ax) && !st.note[0], "sigma0 = %g: the followed inset is empty (%s)",
+              sigmas[k], st.note);
+        printf("fig16 zoom_follow = minor, sigma0 = %g: window %g..%g x %g..%g around %g..%g x %g..%g\n", sigmas[k],
+               z[0]->lo, z[0]->hi, z[1]->lo, z[1]->hi, lo[0], hi[0], lo[1], hi[1]);
+        hy_scene_fig_free(&st);
+        hy_scene_run_free(&r);
+    }
+}
+
 /* {SECTION.key} gives a number the scene sets; a brace group without '.' is
  * markup and stays; neither kind makes the scene compute anything extra */
 static void key_placeholder(void)
@@ -532,6 +585,8 @@ static void errors(void)
                  "y = 0\n", "bad_load.scene:6:1: unknown placeholder {model.nosuch}");
     load_refused("[series a]\ndata = input\n[annotation t]\ntext = \"a\"\nx = 0\n", "annotation 't' needs x and y");
     load_refused("[series a]\ndata = input\n[figure]\nzoom_x = 0, 1\n", "a zoomed inset needs both zoom_x and zoom_y");
+    load_refused("[series a]\ndata = input\n[figure]\nzoom_follow = minor\n",
+                 "bad_load.scene:4:1: zoom_follow = minor needs a [series] with data = minor");
     scene_error("[model]\nsigma0 = 1\n[series a]\ndata = ygamma\n", "bad.scene:4:1: series 'a' (data = ygamma) needs 'gamma'");
     scene_error("[figure]\nkind = timeseries\n[series m]\ndata = minor\n",
                 "bad.scene:4:1: data = minor cannot be drawn in a figure of kind timeseries");
@@ -774,6 +829,7 @@ int main(int argc, char **argv)
     plans();
     dist_placeholder();
     key_placeholder();
+    inset_follows();
     legend_clear("fig07_ygamma_ex2");
     legend_clear("fig11_ygamma_ex3");
     legend_clear("bw_fig2b_transient_db");
