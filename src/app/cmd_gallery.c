@@ -369,6 +369,19 @@ static char **list_scenes(const char *dir, size_t *n)
 static void scene_key(const hy_scene *s, int data, char key[17])
 {
     uint64_t h = hy_scene_hash(s);
+    for (size_t i = 0; i < hy_scene_count(s, "panel"); i++) { /* a [panel] figure: its panel files' text too */
+        char *t;
+        size_t n;
+        int user;
+        hy_error e;
+        if (hy_scene_read_path(s, "panel", hy_scene_name_at(s, "panel", i), "scene", &t, &n, &user, &e))
+            continue; /* the render reports it */
+        for (size_t k = 0; k < n; k++) {
+            h ^= (unsigned char)t[k];
+            h *= UINT64_C(0x100000001b3);
+        }
+        free(t);
+    }
     char extra[64];
     snprintf(extra, sizeof extra, "\nhystviz %s%s", HY_VERSION, data ? " data" : "");
     for (const char *c = extra; *c; c++) {
