@@ -1525,6 +1525,11 @@ static int place_inset(panel *p, hy_error *err)
     const double inset = 4.0;
     double zr[4], lg[4];
     zoom_rect(p, zr);
+    /* an inset that enlarges its window less than HY_INSET_MIN_ZOOM times
+       either way (a minor loop followed as it grows) only covers the data */
+    double qw = q->cw - q->ml - q->mr, qh = q->ch - q->mt - q->mb;
+    if (!(qw > HY_INSET_MIN_ZOOM * zr[2] || qh > HY_INSET_MIN_ZOOM * zr[3]))
+        return HY_OK;
     int has_lg = fixed_legend_box(p, lg);
     double best = INFINITY, bx = p->x0 + inset, by = p->y0 + inset;
     double spanx = p->w - 2 * inset - q->cw, spany = p->h - 2 * inset - q->ch;

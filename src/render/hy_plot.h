@@ -93,6 +93,8 @@ typedef struct hy_range {
     int tight;                /* automatic limits exactly at the data's extremes */
 } hy_range;
 
+#define HY_INSET_MIN_ZOOM 1.5
+
 typedef struct hy_axes {
     const hy_series *series;
     size_t nseries;
@@ -109,7 +111,10 @@ typedef struct hy_axes {
     /* A zoomed inset (when zoom_x.lo < zoom_x.hi and zoom_y.lo < zoom_y.hi):
      * the same series and marks over these ranges, in a box about 40 % of the
      * frame placed where it covers the least data, the zoomed region outlined
-     * on the main axes; for a feature too small to see, e.g. a sliver loop. */
+     * on the main axes; for a feature too small to see, e.g. a sliver loop.
+     * Left out when the window holds nothing drawn (hy_axes_zoom_shows_data)
+     * or the inset would enlarge it less than HY_INSET_MIN_ZOOM times in
+     * both directions (it would only cover the data it repeats). */
     hy_range zoom_x, zoom_y;
 } hy_axes;
 

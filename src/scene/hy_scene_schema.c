@@ -188,7 +188,7 @@ static const hy_scene_key_spec figure_keys[] = {
       "x interval highlighted in grey (e.g. the minor loop's time span)"),
     K("zoom_x", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "x range of a zoomed inset (with zoom_y): the same curves enlarged, placed where they cover least; "
-      "left out when nothing drawn falls in it at the values given"),
+      "left out when nothing drawn falls in it at the values given or it would enlarge it less than 1.5 times"),
     K("zoom_y", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL, "y range of the zoomed inset"),
     K("zoom_follow", HY_KIND_ENUM, zoom_follows, NOLIM, 0, 0, "none",
       "minor: the inset zooms on the minor loop's bounding box (12 % margin) whatever the parameters, "

@@ -164,7 +164,8 @@ int main(void)
 
     /* Insets (issue 21 item 7): a window the line crosses between two points
        keeps its inset (a second white cell and two more clips: its cover and its curves); a window off
-       the line, with nothing drawn in it, is left out. */
+       the line, with nothing drawn in it, is left out, and so is one that
+       would enlarge its window less than HY_INSET_MIN_ZOOM times. */
     {
         static double sx[2] = {0, 1};
         hy_series seg = {.x = sx, .y = sx, .n = 2};
@@ -178,6 +179,11 @@ int main(void)
         CHECK(draw(&fig, &r) == 0 && r.white_rects == 1 && r.clips == 1,
               "inset over an empty window: %d white cells, %d clips (want 1 and 1: left out)", r.white_rects,
               r.clips);
+        za.zoom_x = (hy_range){.lo = 0.1, .hi = 0.9}, za.zoom_y = (hy_range){.lo = 0.1, .hi = 0.9};
+        CHECK(hy_axes_zoom_shows_data(&za) && draw(&fig, &r) == 0 && r.white_rects == 1 && r.clips == 1,
+              "an inset of 80 %% of the axes (enlarging less than %g times) was drawn: %d white cells",
+              HY_INSET_MIN_ZOOM, r.white_rects);
+        za.zoom_x = (hy_range){.lo = 0.1, .hi = 0.2}, za.zoom_y = (hy_range){.lo = 0.8, .hi = 0.9};
         static double mx[1] = {0.15}, my[1] = {0.85};
         hy_series dots = {.x = mx, .y = my, .n = 1, .style = HY_LINE_NONE, .marker = HY_MARKER_CIRCLE};
         hy_series both[2] = {seg, dots};
