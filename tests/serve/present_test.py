@@ -12,6 +12,7 @@ The presentation view, links and controls of `hystviz serve` in chromium
   byte; back walks to the previous values;
 - keys 1, 2, 3 switch to the presets of Fig. 15's scene, whose figures are
   those of the scene files of Figs. 15, 16 and 17, byte for byte;
+- a link with frame=N opens an animation on frame N;
 - Fig. 2 (an input-only figure) shows no model control; labels are the
   schema's symbols;
 - every slider of Fig. 15 and of bw_fig1a through 50 evenly spaced
@@ -169,6 +170,24 @@ def test_presets(dt, hv, base, scenes, tmp):
               f"key {digit}: preset {name} == hystviz render {fig}.scene (bytes), and the URL says so")
 
 
+def test_frame_link(dt, base):
+    """A link with frame=N opens the animation on frame N, and the frame
+    scrubbed to is in the URL (skipped where hystviz-animate has no GL)."""
+    A = "anim_minor_loop_ex4.scene"
+    dt.call("Page.navigate", url="about:blank")
+    dt.call("Page.navigate", url=base + "#" + A + "?frame=12")
+    if not dt.wait(f"window.hv && hv.info && hv.info.file === '{A}' && hv.info.anim", 60, "the animation"):
+        check(False, "the animation scene opens")
+        return
+    if dt.js("!!hv.info.anim.error"):
+        print("SKIP (frame link): " + dt.js("hv.info.anim.error"))
+        return
+    check(dt.wait("hv.frame === 12", 60, "frame 12"), f"a link with frame=12 opens on frame 12 ({dt.js('hv.frame')})")
+    dt.js("document.getElementById('scrub').value = 20; document.getElementById('scrub').dispatchEvent(new Event('input'))")
+    check(dt.wait("hv.frame === 20 && location.hash.includes('frame=20')", 60, "frame 20 in the URL"),
+          "the frame scrubbed to is in the URL")
+
+
 def test_controls(dt, base):
     viewport(dt, 1400, 1000)
     check(open_url(dt, base, "fig02_bimodal_input_smooth.scene", "Fig. 2"), "Fig. 2 opens")
@@ -239,6 +258,7 @@ def main():
         test_present(dt, base, shots)
         test_keys_and_links(dt, hv, base, scenes, tmp)
         test_presets(dt, hv, base, scenes, tmp)
+        test_frame_link(dt, base)
         test_controls(dt, base)
         sweep(dt, base, F15)
         sweep(dt, base, "bw_fig1a_quasistatic_loop")

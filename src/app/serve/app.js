@@ -115,7 +115,10 @@ async function openScene(file, keep, st) {
     // the new figure where it can be seen (a switch keeps no scroll position)
     if (!same && !hv.present) $('title').scrollIntoView({ block: 'start' });
   }
-  if (st && st.frame > 0 && info.anim) $('scrub').value = st.frame;
+  if (st && st.frame > 0 && info.anim && info.anim.frames > st.frame) { // the link's frame
+    $('scrub').max = info.anim.frames - 1;
+    $('scrub').value = st.frame;
+  }
   const entry = hv.scenes.find(s => s.file === file);
   $('title').textContent = (entry && entry.label ? entry.label + ' · ' : '') + (info.name || file);
   $('caption').textContent = info.caption;
@@ -796,6 +799,9 @@ document.addEventListener('keydown', ev => {
   else if (ev.key === ' ' && !$('anim').hidden && !(t && t.tagName === 'BUTTON')) { ev.preventDefault(); $('play').click(); }
   else if (/^[1-9]$/.test(ev.key)) applyPreset(+ev.key - 1);
 });
+
+// the frame shown (paused) goes into the URL, so a link opens on it
+document.addEventListener('hv-frame', () => { if (!hv.playing) pushUrl(true); });
 
 // back/forward, a link pasted or a catalogue entry clicked
 window.addEventListener('popstate', applyUrl);
