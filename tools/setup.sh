@@ -68,7 +68,12 @@ configure_for() {
 import json, sys
 j = json.load(sys.stdin)
 want = set(sys.argv[1:])
-names = {t["id"]: t["name"] for t in j["targets"]}
+import os
+src = os.getcwd()
+def qualified(t):  # path/name:type: names alone are ambiguous (the hystviz program and library)
+    d = os.path.relpath(os.path.dirname(t["defined_in"]), src)
+    return ("" if d == "." else d + "/") + t["name"] + ":" + t["type"].replace(" ", "_")
+names = {t["id"]: qualified(t) for t in j["targets"]}
 need = {names[d] for t in j["tests"] if want & {s.split(":")[-1] for s in t["suite"]} for d in t["depends"]}
 print(" ".join(sorted(need)))' $suites)
 }
