@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 # embed.py OUT.h FILE...: turns GLSL sources into one C header of string
 # constants (hy_shader_<name>_<ext>) so the binary does not need the source tree.
 import os

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ribbon.frag: two-sided Blinn-Phong lighting with one directional light
 // (eye space) plus ambient.
 #version 330 core

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ribbon.vert: the 3-D convergence ribbon; positions in a unit box, one
 // model-view-projection matrix, normals rotated by the model-view part.
 #version 330 core

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // stroke.frag: coverage-based anti-aliasing from the exact distance of the
 // pixel centre to the primitive; round joins whose two round caps are split
 // at the bisector of the turn (each pixel belongs to exactly one segment, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // stroke.vert: one instance per primitive (segment, box, disc, ring);
 // expands it to a screen-aligned quad with a one-pixel margin for coverage AA.
 // Segment ends are round caps (possibly cut by a joint's split plane), so a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* tests/tmpdir.h: where a C test keeps its files.  test_tmpdir() makes one
  * directory $TMPDIR/hy_test.XXXXXX (/tmp when TMPDIR is unset) at its first
  * call and removes it, with everything in it, when the test exits (also

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """gen_docs.py: man pages and bash completion generated at build time from
 the one place each fact lives (issue 24: they cannot drift):
   - each command's options: its --help text (the program prints it);

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """lib_symbols.py HEADER...: the functions libhystviz exports, read from its
 installed headers (the headers are the one list of the public API).
 

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tools/setup.sh: one command from a fresh Debian 12 (as root) to a built hystviz.
 #   sh tools/setup.sh gallery   install what is missing, build, render the gallery
 #   sh tools/setup.sh test      install what is missing, build, run every test suite

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* minor_loop_area.c: the area of Fig. 15's minor loop (Example 4: LuGre,
  * σ0 = 6, bimodal input 0, 0.5, 1, 1.5) from libhystviz's core.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* anim_assemble.c: frame ranges of a split animation and their assembly into
  * one video by ffmpeg's image2 demuxer (run without a shell: no quoting). */
 #include "anim_assemble.h"

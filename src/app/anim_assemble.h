@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* anim_assemble.h: `hystviz animate NAME --assemble FMT`: the video of an
  * animation whose PNG frames were rendered in pieces (--frames A:B or
  * --shard K/N, on one machine or several), encoded by ffmpeg from

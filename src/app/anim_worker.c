@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* anim_worker.c: the length-prefixed frame protocol of hystviz-animate
  * --worker (anim_worker.h): requests read and encoded, records written and
  * their headers parsed.  No GL here: hystviz serve links it too. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* anim_worker.h: the frame protocol between `hystviz serve` and
  * `hystviz-animate --worker` (docs/ARCHITECTURE.md, "Animation frames").
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* animate_main.c: the hystviz-animate program, which `hystviz animate` runs.
  * Animations live in their own executable so that only they load OpenGL
  * (OSMesa and LLVM cost ~17 ms at every process start): a cairo figure,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli_util.c: option parsing and exit statuses for the hystviz commands. */
 #include "cli_util.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli_util.h: small helpers shared by the hystviz subcommands (strict number
  * parsing, model options, exit statuses).  Files are written through
  * hy_out.h. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_animate.c: `hystviz animate NAME`: option parsing and the run of one
  * built-in animation (anim_scenes.c) through the engine (hy_anim.c). */
 #include "cmd_animate.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_animate.h: `hystviz animate NAME [options]` and `hystviz animate --list`:
  * renders a built-in animation (anim_scenes.h) to PNG frames with the GL
  * engine (hy_anim.h).  argv[0] is "animate".  Returns 0 on success, 2 for a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_boucwen.c: `hystviz boucwen`: Table 2 and synthesised benchmark data
  * (seeds/001, Sections 2-5: signal, 20x upsampling, Newmark, decimation,
  * output noise), written as CSV t,u,y through the output writer (hy_out). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_boucwen.h: the `hystviz boucwen` subcommand (the Bouc-Wen benchmark).
  *
  *     hystviz boucwen table2 [--set-param name=value]...

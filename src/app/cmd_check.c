@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_check.c: `hystviz check`: stiff and extreme parameters of seed 000
  * (Eqs. (3)-(8), Theorem A, k cycles, minor loops) and of the Bouc-Wen model
  * of seed 001, each case checked for finiteness, invariants (|y°| <= g(0),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_check.h: the `hystviz check` subcommand: stiff and extreme cases of the
  * core (σ0, g(0), γ, k cycles, degenerate minor loops, 1e6 extrema,
  * amplitudes, Bouc-Wen ν/β/δ), each against an exact or independent value.

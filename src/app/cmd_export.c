@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_export.c: `hystviz export SCENE --grid KEY=SPEC ... -o FILE.html`
  * (issue 21 item 6): the scene's SVG at every point of a sweep grid
  * (hy_grid.h: the same specs, values and row-major numbering as `hystviz

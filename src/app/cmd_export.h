@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_export.h: `hystviz export`: an interactive figure as one offline HTML
  * file, the scene's SVG at every point of a sweep grid behind a slider per
  * grid key, in shards like sweep (issue 21 item 6). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_gallery.c: `hystviz gallery`: renders every figure scene of a directory
  * with a pool of POSIX threads, skips scenes whose content hash (hy_scene_hash,
  * includes and program version folded in) matches the manifest, and writes a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_gallery.h: `hystviz gallery`: every scene of a directory rendered, in
  * parallel, into one directory with a static index.html; scenes whose text
  * (with includes) did not change since the last run are skipped.

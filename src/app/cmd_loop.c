@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_loop.c: `hystviz loop` (steady loop, y*_{u,k} or y_γ as CSV) and
  * `hystviz loops` (major and minor loops with their areas). */
 #include "cmd_loop.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_render.c: `hystviz render SCENE...` (figures) and `hystviz data SCENE`
  * (every series as CSV), with --set overrides. */
 #include "cmd_render.h"

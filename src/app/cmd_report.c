@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_report.c: `hystviz report`: work-precision diagrams (error vs time,
  * log-log, one line per solver, DiffEqDevTools conventions) for the problems
  * of hy_workprec.h, written as CSV, a Markdown summary and SVG+PNG plots. */

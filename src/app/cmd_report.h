@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_report.h: the `hystviz report` subcommand (work-precision benchmark).
  *
  *     hystviz report [-o DIR] [--quick] [--problems LIST] [--solvers LIST]

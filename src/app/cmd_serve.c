@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_serve.c: `hystviz serve [SCENE.scene|DIR]`: a live preview in the
  * browser on libmicrohttpd (one thread per connection), with a control per
  * numeric key, reload on save (inotify, Server-Sent Events), animation

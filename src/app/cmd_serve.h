@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_serve.h: `hystviz serve` (live preview in the browser) and `hystviz watch`. */
 #ifndef HY_CMD_SERVE_H
 #define HY_CMD_SERVE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_sweep.c: `hystviz sweep SCENE --grid KEY=SPEC ...`: renders the scene at
  * every point of a parameter grid (hy_grid.h) exactly as `hystviz render SCENE
  * --set KEY=VALUE ... --set output.name=NAME` would, and streams one table row

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_sweep.h: `hystviz sweep`: a figure and a table row per point of a
  * parameter grid, split into shards for GNU parallel or Slurm (issue 13). */
 #ifndef HY_CMD_SWEEP_H

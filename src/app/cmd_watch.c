@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_watch.c: `hystviz watch SCENE...`: render, then render again on every
  * save of a scene or anything it includes (inotify on the scenes'
  * directories, so rename-saves count), one line per render; scene errors are

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* dirwatch.c: inotify on directories with debouncing (see dirwatch.h). */
 #include "dirwatch.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* dirwatch.h: "something in these directories changed" through inotify, for
  * `hystviz serve` and `hystviz watch`.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* export_page.c: the page of `hystviz export`: a dictionary of distinct SVG
  * lines, cairo's path data coded as second differences of k/256 (see
  * export_page.h), gzip and base64 into src/app/export/page.html. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* export_page.h: the one-file page of `hystviz export` (issue 21 item 6):
  * every grid point's SVG, shared parts stored once, compressed, in one
  * self-contained HTML file that shows them with a slider per grid key.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_grid.c: grid specs (list, linear and log ranges), the row-major point
  * numbering of their Cartesian product, the i mod N shard partition and the
  * shard files of a split (sweep, export). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_grid.h: the parameter grid of `hystviz sweep` and the shard partition
  * shared by `sweep` and `gallery` (issue 13).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_jobs.c: the default -j: CPUs of the affinity mask (sched_getaffinity)
  * capped by the cgroup CPU quota (cgroup v2 cpu.max, v1 cfs quota/period),
  * ceil(quota / period), at least 1.  See hy_jobs.h. */

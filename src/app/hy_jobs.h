@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_jobs.h: the default number of worker threads of every command with -j
  * (sweep, gallery, animate) and of serve's concurrent renders: the CPUs this
  * process may run on (sched_getaffinity: taskset, a Slurm task's cpuset),

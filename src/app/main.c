@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* main.c: the hystviz command; wires subcommands, owns no numerics. */
 #include "hy_config.h"
 #include "hy_file.h"

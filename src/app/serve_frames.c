@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* serve_frames.c: hystviz serve's bounded pool of warm frame workers
  * (hystviz-animate --worker over a socket pair; protocol in anim_worker.h). */
 #include "serve_frames.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* serve_frames.h: hystviz serve's pool of warm frame workers
  * (`hystviz-animate --worker`, the protocol of anim_worker.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* serve_main.c: the hystviz-serve program, which `hystviz serve` runs.
  * serve lives in its own executable so that only it loads libmicrohttpd and
  * what that links (gnutls, p11-kit, nettle, gmp, idn2, ...: 12 of the 35

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* serve_util.c: see serve_util.h. */
 #include "serve_util.h"
 #include "scene_model.h"

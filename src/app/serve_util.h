@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* serve_util.h: pieces of `hystviz serve` that need no HTTP library (and are
  * tested alone): a growable text buffer with JSON escaping, scene names,
  * the controls of a scene, override checks, shell quoting and "save as new

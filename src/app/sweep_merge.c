@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sweep_merge.c: `hystviz sweep --merge DIR`: row i of the study comes from
  * shard i mod N, in order, so the joined table is the unsharded run's
  * sweep.csv byte for byte; nothing is written unless every shard is there,

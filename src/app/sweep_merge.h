@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sweep_merge.h: the shard manifests of `hystviz sweep --shard K/N` and
  * `hystviz sweep --merge DIR`, which joins them into DIR/sweep.csv.
  *

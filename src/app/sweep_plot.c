@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sweep_plot.c: the summary figure of `hystviz sweep --plot COLUMN`, drawn
  * from the streamed table (so the merge of shards draws the same bytes). */
 #include "sweep_plot.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sweep_plot.h: the summary figure of a sweep: one table column against the
  * first grid key, one curve per value of the second (issue 13). */
 #ifndef HY_SWEEP_PLOT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_boucwen.c: Bouc-Wen oscillator, Eqs. (1)-(3), integrated by the Newmark
  * rules of Eqs. (4)-(5) with Newton-Raphson on the implicit step (seeds/001,
  * Section 3); Table 2 from Table 1; the benchmark's synthesis (Section 4). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_boucwen.h: the Bouc-Wen oscillator of the nonlinear benchmark and its
  * Newmark integrator (seeds/001, Eqs. (1)-(5), Tables 1-2).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_file.c: whole-file reads with a type check and a size cap (O_NONBLOCK open,
  * fstat on the descriptor, real path from /proc/self/fd), and message excerpts. */
 #include "hy_file.h"

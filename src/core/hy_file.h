@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_file.h: reading a whole input file safely: regular files only, a size cap,
  * never blocking on a FIFO or a device; and short printable excerpts of text.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_gamma.c: exact piecewise-exponential solution of Eq. (3) of seed 000 for
  * piecewise-linear inputs, and of system (16) with its first-order filter. */
 #include "hy_gamma.h"

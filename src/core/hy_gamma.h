@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_gamma.h: the exact finite-γ solution y_γ of the time-scaled LuGre model
  * (seed 000, Eq. (3)) and of system (16).
  *

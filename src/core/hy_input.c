@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_input.c: periodic piecewise-monotone inputs, variation ρ_u (Eq. 5) and
  * normalised input ψ_u (Eqs. 9-10) of seed 000. */
 #include "hy_input.h"

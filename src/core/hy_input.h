@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_input.h: periodic piecewise-monotone inputs u(t) (seed 000, Definition 1,
  * Eqs. (5), (9)-(10)).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_jiles.c: Jiles-Atherton, dM/dH = χ_e/(1 - α χ_e), χ_e = (M_an - M)/(k δ) + c dM_an/dH_e
  * (irreversible term 0 while (M_an - M) δ < 0), integrated in H by GSL rk8pd with a
  * restart at every reversal and at every switch of that guard. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_jiles.h: the Jiles-Atherton model of ferromagnetic hysteresis (Jiles and
  * Atherton, J. Magn. Magn. Mater. 61 (1986) 48), integrated in H by GSL.
  *

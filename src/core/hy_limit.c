@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_limit.c: γ → ∞ limit y*_u, k cycles, steady state y°_u and Theorem A
  * (seed 000, Theorem 2, Eqs. (4)-(8), (10)-(14)), in overflow-free form. */
 #include "hy_limit.h"

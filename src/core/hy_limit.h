@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_limit.h: the γ → ∞ limit y*_u (seed 000, Theorem 2, Eqs. (4)-(8)), the
  * k-cycle functions y*_{u,k}, the steady state y°_u and Theorem A.
  *

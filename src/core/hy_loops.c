@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_loops.c: major and minor loops of the steady state by rainflow pairing of
  * the turning points of ψ_u (seed 000, Theorem A(b) and its multimodal
  * generalisation), with exact areas ∫ y° dψ. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_loops.h: the major loop and every minor loop of a periodic multimodal
  * input (seed 000, Theorem A(b), generalised as its Section 3.2.3 announces).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_model.c: Dahl, LuGre and Example-1 model types (seed 000, Eqs. (1), (3), (16)). */
 #include "hy_model.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_model.h: the Dahl and LuGre friction models (seed 000, Eqs. (1)-(3)) and
  * the system (16) of Example 1 (Dahl followed by the filter ẏ = -y + x).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_ode.c: GSL odeiv2 integration of Eq. (3) of seed 000 and system (16),
  * restarted at every breakpoint of u̇. */
 #include "hy_ode.h"

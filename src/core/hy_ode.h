@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_ode.h: y_γ of Eq. (3) of seed 000 (and system (16)) by GSL odeiv2
  * integration, for any input, with the stepper chosen by name.
  *

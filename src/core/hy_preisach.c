@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_preisach.c: the classical Preisach model by its Everett function
  * E(a,b) = K ∫_b^a f_α(α) [G_β(α) - G_β(b)] dα (GSL qag, inner integral in closed
  * form) and the staircase of dominant extrema, y = ∓y_s + 2 Σ_j d_j E(edge j). */

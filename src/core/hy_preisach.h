@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_preisach.h: the classical Preisach model, y(t) = ∫∫_{α≥β} μ(α,β) γ_αβ[u](t) dα dβ,
  * evaluated exactly through its Everett function E(a,b) = ∫∫_{b≤β≤α≤a} μ and the
  * staircase memory of the input's dominant extrema (wiping-out).

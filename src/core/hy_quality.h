@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_quality.h: the animation quality presets, one table for the scene schema
  * ([animation] quality) and for `hystviz animate --quality`.
  *

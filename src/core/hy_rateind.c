@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_rateind.c: feeds a rate-independent model the extrema and samples of a
  * periodic piecewise-monotone input (hy_input.h, seed 000 Definition 1). */
 #include "hy_rateind.h"

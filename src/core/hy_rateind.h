@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_rateind.h: driving rate-independent hysteresis models (Preisach,
  * Jiles-Atherton) with hystviz's inputs, and the record of a minor loop.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_ref.c: long-double references for y°, y*_u, y*_{u,k} (run-by-run
  * propagation of the limit map, Eq. (4) of seed 000) and y_γ (Eq. (3), exact
  * piecewise exponential), coded apart from hy_limit and hy_gamma. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_ref.h: independent long-double references for the closed forms, used to
  * measure the errors that `render -v`, `data` and the gallery print.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_resample.c: band-limited upsampling (DFT zero-padding, windowed sinc)
  * and MATLAB decimate(x, r, 'fir') (fir1 order 30, Hamming) for the
  * benchmark's 20x integration rate (seeds/001, Section 4). */

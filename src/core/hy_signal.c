@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_signal.c: the benchmark's test signals (random-phase multisine, sine
  * sweep, sine, input files), band-limited Gaussian output noise and the
  * e_RMS figure of merit of Eq. (6) (seeds/001, Sections 4-5). */

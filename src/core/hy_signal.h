@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_signal.h: the Bouc-Wen benchmark's signals (seeds/001, Sections 4-5):
  * input design, resampling, noise and the figure of merit of Eq. (6).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_status.c: error message formatting (see hy_status.h). */
 #include "hy_status.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_status.h: status codes and error messages shared by every hystviz module.
  *
  * Every fallible function returns an int status (HY_OK = 0 on success) and,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_out.c: the one output writer: a temporary (O_EXCL) + flock + renameat in
  * the target's open directory for files, direct writes for FIFOs and character devices, "-" for standard output,
  * and the sweep of temporaries left by killed writers (hy_out.h). */

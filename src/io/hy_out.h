@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_out.h: the one output writer of hystviz.  Every file hystviz writes
  * (figures, CSV, frames, the gallery's index and manifest, the report) goes
  * through it, so every output is whole or absent and none replaces what it

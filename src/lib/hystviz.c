@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hystviz.c: libhystviz's pipeline entry points (hystviz.h): a scene's
  * series, loops and figure in memory through the pipeline `hystviz render`
  * and `hystviz data` use (src/pipeline), so the numbers and bytes are theirs. */

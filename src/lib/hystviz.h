@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hystviz.h: libhystviz, the hystviz pipeline as a C library.
  *
  * Include this one header; it brings the numerical core with it (hy_model.h,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* schema_main.c: prints the scene schema as JSON (hy_schema_json), for the
  * generators of bash completion and docs at build time (tools/gen_docs.py). */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* anim_scenes.c: the animations of seed 000, Section 4: γ sweeps onto y*_u
  * (Examples 1-3, Figs. 4, 7, 11), the k-cycle approach to y°_u (Figs. 8-9,
  * 12-13) and Example 4's minor loop under σ0 and u_min,2 (Figs. 15-17).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* anim_scenes.h: the built-in animations of seed 000, Section 4 (Examples 1-4),
  * each a prepare/draw/release triple driven by hy_anim_run.
  *

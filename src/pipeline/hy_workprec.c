@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_workprec.c: work-precision runs (DiffEqDevTools conventions: L∞ and RMS
  * error on a fixed grid, median wall time) for Examples 1-3 of seed 000, the
  * stiff LuGre of Åström & Canudas de Wit (2008) and the Bouc-Wen benchmark of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_workprec.h: work-precision measurement (error against a reference and the
  * time it cost) for the hysteresis core: the problems of `hystviz report`,
  * one timed run of a solver, and error norms that `render -v` can reuse.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* model_bwop.c: the Bouc-Wen hysteresis operator as a rate-independent model
  * (the z equation of seed 001, Eq. (3), driven by a displacement u instead of
  * the oscillator's y):

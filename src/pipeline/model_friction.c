@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* model_friction.c: Dahl, LuGre (seed 000, Eqs. 1-3) and the Example-1
  * system (16) in the model table; their numerics are src/core (hy_model,
  * hy_gamma, hy_ode, hy_limit, hy_loops) and their stages scene_run.c. */

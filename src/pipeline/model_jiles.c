@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* model_jiles.c: the Jiles-Atherton model (J. Magn. Magn. Mater. 61 (1986)
  * 48; numerics in src/core/hy_jiles.c) in the model table: input H in A/m,
  * output B in T (quantity magnetisation: M in A/m). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* model_preisach.c: the classical Preisach model (numerics in
  * src/core/hy_preisach.c: Everett function, staircase memory) in the model
  * table, with the symmetric factorised density of model.pr_density. */

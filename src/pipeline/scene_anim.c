@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_anim.c: scene-file animations: [keyframe NAME] tracks (linear or
  * smoothstep easing, optionally in log(value)) applied as overrides per frame,
  * the scene pipeline once per distinct set of values (shared cache), GL drawing. */

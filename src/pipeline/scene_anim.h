@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_anim.h: animations declared in scene files ([animation] and
  * [keyframe NAME] sections, docs/SCENES.md "Animations").
  *

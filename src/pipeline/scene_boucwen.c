@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_boucwen.c: Bouc-Wen scenes (seeds/001, Figs. 1-2): Table 1 from [model], a
  * sine, multisine or sweep force, Newmark at fs x upsample (Eqs. 1-5), MATLAB-style
  * decimation back to fs (Section 4), then the series y, u, |y| dB, transient dB, spectrum. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_boucwen.h: the Bouc-Wen path of the scene pipeline (seeds/001, Figs. 1-2).
  *
  * A scene with `[model] kind = boucwen` is not built by the Dahl/LuGre code of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_draw.c: computed scene series → hy_figure (styles, markers, labels,
  * annotations with loop-area placeholders) → SVG/PDF/PNG files and CSV data. */
 #include <errno.h>

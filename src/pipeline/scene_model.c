@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_model.c: the model table (one line per kind in HY_MODEL_KINDS,
  * hy_scene_schema.h) and what the model files share. */
 #include "scene_model.h"

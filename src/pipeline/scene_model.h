@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_model.h: the model table of the scene pipeline, one static const
  * type per [model] kind, in the form of GSL's gsl_odeiv2_step_type.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_rateind.c: the scene stages of every rate-independent model in the
  * table (Jiles-Atherton, Preisach): load, work estimate, compute.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_run.c: scene → plan → computed series → hy_figure → files (DESIGN.md
  * data flow); the series are those of seed 000's figures: u, ψ_u, g, y*_u,
  * y°_u, y_γ, y*_{u,k}, transients, major and minor loops. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_run.h: from a parsed scene to computed series, a figure and its files
  * (DESIGN.md: parse → plan → compute → draw → write).
  *

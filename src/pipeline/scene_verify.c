@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_verify.c: the printed error of every closed-form series (y°, y*_{u,k},
  * y*, the loops, y_γ of the exact solver), measured against the long-double
  * references of hy_ref.h at the points the series drew. */

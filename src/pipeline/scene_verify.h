@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_verify.h: measured errors of the closed-form series of a scene
  * (issue 11: no printed error that was not computed).
  *

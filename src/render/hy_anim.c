@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_anim.c: animation engine: keyframe tracks and easing, quality presets,
  * a pool of threads each owning an OSMesa context, ordered ffmpeg piping,
  * atomic PNG frames and a terminal progress bar. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_anim.h: the animation engine: timeline (duration, fps, easing,
  * keyframe tracks), quality presets, parallel frame rendering (one GL
  * context per thread, frames byte-identical for any number of threads),

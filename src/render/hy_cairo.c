@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_cairo.c: cairo implementation of the hy_canvas operations. */
 #include "hy_cairo.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_cairo.h: the cairo backend of hy_canvas (vector and raster figures).
  *
  * Wraps an existing cairo context whose user space is in points.  The font

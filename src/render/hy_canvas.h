@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_canvas.h: the drawing backend interface the plot layout draws through.
  *
  * The layout code (hy_layout.c) never calls cairo or GL directly: it draws on

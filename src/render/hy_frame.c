@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_frame.c: overlay compositing (premultiplied "over", vertical flip of the
  * GL layer) and libpng frame output through the output writer (hy_out). */
 #include "hy_frame.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_frame.h: animation frames: compositing a cairo overlay over a GL layer,
  * and writing 8-bit RGB PNG frames with libpng at frame-friendly settings.
  *

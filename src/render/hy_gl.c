@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_gl.c: the OpenGL 3.3 core backend of hy_canvas (instanced capsule
  * strokes with coverage AA, dashes, colour-map effects) and the lit 3-D
  * ribbon, on either off-screen backend (hy_gl_backend.h: OSMesa or EGL). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_gl.h: the OpenGL backend (core profile 3.3+) of hy_canvas, off-screen
  * through OSMesa or EGL (hy_gl_select; llvmpipe or a GPU).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_gl_backend.h (private to hy_gl*.c): what differs between the off-screen
  * GL backends (context creation, the framebuffer a frame lands in, reading
  * the frame back); shaders, drawing and the cairo overlay are shared

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_gl_egl.c: the EGL backend (hy_gl_backend.h).  One EGL display on the
  * device platform (EGL_EXT_platform_device) for the process, initialised by
  * the first context; each context is surfaceless

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_gl_fn.h (private to the GL backends): the OpenGL entry points that
  * hy_gl.c calls, looked up at run time from the backend that made the context
  * (OSMesaGetProcAddress, eglGetProcAddress) instead of being linked.  Linking

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_gl_osmesa.c: the OSMesa backend (hy_gl_backend.h).  OSMesa renders into
  * a buffer of ours laid out as a cairo RGB24 image, so reading a frame back
  * is a glFinish. */

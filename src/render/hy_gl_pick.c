@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_gl_pick.c: which GL backend a context is made with, in one place:
  * hy_gl_select's name (animate --gl), else $HYSTVIZ_GL, else OSMesa where it
  * is built (the stated default), else EGL. */

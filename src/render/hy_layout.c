@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_layout.c: plot layout (ranges, ticks, margins, legend placement, clipping) drawn through a hy_canvas. */
 #include <math.h>
 #include <stdint.h>

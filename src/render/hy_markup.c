@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_markup.c: TeX-subset label markup (Greek, scripts, symbols) parsed into runs and set on a hy_canvas. */
 #include "hy_markup.h"
 

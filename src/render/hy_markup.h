@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_markup.h: a tiny TeX subset for plot labels, parsed into text runs.
  *
  * Supported: Greek letters (\alpha ... \omega, \varrho, \varepsilon, \vartheta,

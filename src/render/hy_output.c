@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_output.c: figure output to SVG, PDF (cairo) and PNG (libpng), written
  * through the one output writer (hy_out: temporary + rename). */
 #include <cairo-pdf.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_plot.h: figure description (pure data) and figure output.
  *
  * A figure is a grid of panels (hy_axes); each panel holds series (lines

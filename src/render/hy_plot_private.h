@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_plot_private.h: helpers shared by the layout and the output code (not public). */
 #ifndef HY_PLOT_PRIVATE_H
 #define HY_PLOT_PRIVATE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_simplify.c: polylines at the output's resolution (see hy_simplify.h). */
 #include "hy_simplify.h"
 

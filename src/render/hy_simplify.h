@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_simplify.h: polylines at the output's resolution (issue 23 item 2).
  *
  * A curve of a million points draws the same pixels as a few hundred

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_ticks.c: round-number tick selection (1, 2, 2.5, 5 x 10^k), log decades, and label fitting. */
 #include "hy_ticks.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_ticks.h: axis tick selection at round numbers and compact tick labels.
  *
  * Linear axes get ticks at 1, 2, 2.5 or 5 x 10^k; log axes get decades with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene.c: the scene object: schema defaults, typed getters, --set overrides, content hash. */
 #include "hy_scene_internal.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene.h: scene files: parse, validate, override, query (format in docs/SCENES.md).
  *
  * A scene is an INI-like text file of [section] or [section NAME] headers and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene_internal.h: private structures shared by the scene parser, values and getters. */
 #ifndef HY_SCENE_INTERNAL_H
 #define HY_SCENE_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene_parse.c: the scene file parser: lines, [section] headers, keys, includes and their precedence. */
 #include "hy_scene_internal.h"
 

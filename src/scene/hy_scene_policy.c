@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene_policy.c: the one place where a scene's files are checked: includes and
  * input files below the scene's directory (or an --include-dir), regular files
  * with size caps, include counts, and the scene's output directory. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene_policy.h: what a scene may read and write, and how much it may ask for
  * (docs/SCENES.md, "Files a scene may read and write").
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene_schema.c: the scene vocabulary, one static table (models and inputs of seed 000,
  * Sections 2-4; the Bouc-Wen benchmark of seed 001, Tables 1-2 and Sections 4-5). */
 #include "hy_scene_schema.h"

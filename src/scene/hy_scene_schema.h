@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene_schema.h: the table of scene sections and keys (kinds, ranges, defaults, docs).
  *
  * The whole scene vocabulary lives in one static table (hy_scene_schema.c).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene_value.c: scene value lexing and typed conversion (numbers, lists, lengths, colours), and typo suggestions. */
 #include "hy_scene_internal.h"
 

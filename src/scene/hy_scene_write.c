@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hy_scene_write.c: writes the effective scene (merged files, overrides, optional defaults) back as scene text. */
 #include "hy_scene_internal.h"
 

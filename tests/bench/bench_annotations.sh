@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Benchmark of annotation placement (issue 20 item 8: 400 annotations took
 # 6 s, 800 18 s, 3000 over 60 s, quadratic): `hystviz render` of a Fig. 15
 # scene with N annotations at scattered points of the loop, SVG only, for

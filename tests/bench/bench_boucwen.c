@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_boucwen.c: the benchmark's example synthesis timed: a 50 N multisine
  * period (8192 x 20 samples at 15 kHz), 4 periods + 1 extra = 5 periods =
  * 819,200 Newmark steps, then 2-2-5 decimation.  Prints figures only. */

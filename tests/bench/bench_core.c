@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_core.c: speed of the hysteresis core (prints figures, asserts nothing).
  *  1. steady-loop evaluation on a dense grid (points per second, one core);
  *  2. exact y_γ over 100 periods at 1e5 output points;

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Benchmark of the gallery, whole processes timed by the wall clock:
 #   1. the whole gallery of scenes/ from scratch with -j 2   (target < 5 s on 2 cores)
 #   2. the same gallery again with nothing changed           (target < 0.3 s)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_gl.c: GL frame timings per backend built (OSMesa, EGL): context
  * creation; 1920x1080 and 3840x2160 γ-sweep frames (GL data layer, cairo
  * overlay, finish), the readback alone and libpng writing the frame; the

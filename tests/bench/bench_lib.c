@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_lib.c SCENE_TEXT_FILE N: the C side of the Python call-overhead figure
  * (tests/bench/bench_python.py): N calls of hy_result_from_text on the scene
  * text (the 200-point steady loop hystviz.steady_loop writes), each taking its

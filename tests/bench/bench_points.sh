@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Large series (issue 23 item 2): Fig. 15 to SVG + PDF + PNG (300 dpi) in one
 # process, with compute.points = N (N points on the minor loop, 2N on the
 # major) for N = 1e3 .. 1e6, hystviz and matplotlib (tests/bench/mpl_points.py,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """bench_python.py SOURCE_ROOT LIB BENCH_LIB: the Python package's figures
 (issue 24), printed in the README's units:
   1. call overhead: hystviz.steady_loop (200 points) against the same scene

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_scene.c: parse time of large scenes (16,000 to 96,000 named sections; 64,000 is the
  * size of issue 10's quadratic-parser reproducer; 4 MiB is the cap): with hashed section
  * and key lookups the time grows linearly.  Prints; asserts nothing. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_serve.c SCENES_DIR [N]: the server side of a control change in
  * `hystviz serve`, in one warm process as the server runs it: scene text +
  * one override -> parse, plan, compute, draw, SVG bytes in memory

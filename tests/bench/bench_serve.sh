@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/bench/bench_serve.sh BENCH_SERVE HYSTVIZ SCENES_DIR: `hystviz serve`
 # benchmark (issue 16): a control change -> the updated SVG, for Fig. 15
 # (analytic), Fig. 11 (GSL) and bw_fig1a (Newmark): (1) the server's render

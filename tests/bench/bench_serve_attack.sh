@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # tests/bench/bench_serve_attack.sh HYSTVIZ SCENES_DIR ATTACK_CLIENT: the
 # latency of a legitimate Fig. 15 render (a page dragging sigma0: page id,
 # JSON as the page asks) while `hystviz serve` is under each attack of issue

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Benchmark of `hystviz sweep` (issues 13, 23), whole processes:
 #   1. a 1,000-point sweep of Fig. 15 (analytic: closed forms) with its figures
 #      (the scene's formats: SVG, PDF, PNG) at -j 1 and -j 2: points per second

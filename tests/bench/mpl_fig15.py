@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """The matplotlib yardstick for `hystviz serve` (issue 16): Fig. 15 redrawn for
 a new sigma0 inside one warm Python process, as an interactive matplotlib
 session would: NumPy recompute of the steady loop, set_data on the lines,

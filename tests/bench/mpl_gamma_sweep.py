@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The γ-sweep animation of Example 3 made with matplotlib's FuncAnimation,
 timed against `hystviz animate` making the same clip (benchmark, issue 5).
 

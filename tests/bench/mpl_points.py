@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """The matplotlib yardstick for large series (issue 23 item 2): Fig. 15 of
 Example 4 with N points on the minor loop and 2N on the major loop, as
 `hystviz render scenes/fig15_minor_loop_ex4.scene --set compute.points=N`

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """The NumPy yardstick for `hystviz sweep --formats none` (issue 23): the Fig. 15
 study's table computed by a plain Python loop over the grid with NumPy, from
 the same closed form hystviz uses (docs/ARCHITECTURE.md: a monotone run of

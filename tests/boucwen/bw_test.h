@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bw_test.h: tiny check macros and the location of the benchmark's data for
  * the Bouc-Wen tests (tests/data/boucwen, in the tree: a test that cannot find
  * it fails after saying where it looked). */

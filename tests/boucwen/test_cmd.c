@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_cmd.c: `hystviz boucwen` driven in-process: Table 2 text, CSV output
  * through a temporary file, the validation signal reproduced through the
  * command, and usage errors refused with status 2. */

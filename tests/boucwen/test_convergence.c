@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_convergence.c: the Newmark scheme of Eqs. (4)-(5) is second order.  On
  * a smooth Bouc-Wen case (γ = 0, ν = 2: ż = α ẏ − β δ ẏ z², no |·| kinks)
  * under a sine, halving h must divide the error by about 4. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_linear.c: β = 0 makes Eq. (3) ż = α ẏ, so with z(0) = 0 the hysteretic
  * force is z = α y and the oscillator is linear with stiffness k + α.  Its
  * steady-state response to a sine is compared with the exact frequency

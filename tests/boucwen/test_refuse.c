@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_refuse.c: invalid parameters, Newmark settings and input files are
  * refused with a message that names the parameter or file:line; a step that
  * cannot converge reports time and residual instead of returning NaN. */

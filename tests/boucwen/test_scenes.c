@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scenes.c: the Bouc-Wen scenes through the scene pipeline (what `hystviz
  * data` prints): Fig. 1(b) against the linear oscillator's exact steady state,
  * the decay of Fig. 2(b)'s transient, and malformed scenes refused at

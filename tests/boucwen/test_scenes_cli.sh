@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The Bouc-Wen scenes through the hystviz command: `hystviz data` of Fig. 1(b),
 # `hystviz render` of all six, and a malformed scene refused with
 # file:line:col, exit status 2 (invalid input) and no output file.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_signals.c: the benchmark's signal tools: multisine design, DFT and
  * sinc upsampling, MATLAB fir1/decimate semantics, noise, sweep, e_RMS. */
 #include "bw_test.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_sweep.c: the benchmark's sine sweeps (issue 12).  `hystviz boucwen data
  * --signal validation-sweep` against the closed-form chirp and against two
  * computations made here (Newmark + a one-stage decimation written in this

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_table2.c: Table 2 of the benchmark from Table 1 (linearised stiffness
  * k + α): 35.59 Hz and 1.12 %. */
 #include "bw_test.h"

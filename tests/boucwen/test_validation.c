@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_validation.c: the official validation multisine (data/boucwen):
  * upsample uval x20 by DFT zero-padding, integrate 3 + 1 periods, decimate
  * 2-2-5 as MATLAB decimate 'fir', and compare the last kept period with the

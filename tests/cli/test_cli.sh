@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Command-line tests of hystviz: --help, --version, loop CSV, clear errors with
 # non-zero exit status and no partial output.
 set -u

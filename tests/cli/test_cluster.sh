@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Tests of tools/cluster (issue 13): the GNU parallel recipe run for real on
 # this machine with N = 1, 3, 7 shards plus the merge equals the single run
 # byte for byte (sweep: the Fig. 15 study of the done-when at N = 3; gallery);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_grid.c: hy_grid (sweep grid specs, point numbering) and the shard
  * partition, against values computed here independently. */
 #include <math.h>

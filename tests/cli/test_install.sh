@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # tests/cli/test_install.sh BUILD_ROOT SOURCE_ROOT: an install works away from
 # the source tree (issue 24).  `meson install --destdir` into a temporary
 # directory, then from / with HOME there and nothing of the source or build

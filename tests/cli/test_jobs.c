@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_jobs.c: the default -j (hy_jobs.h): the cgroup v2 cpu.max and v1 cfs
  * parsers on sample texts, the cgroup walk on a fake /sys/fs/cgroup tree (v2,
  * v1, a parent's smaller quota), and the affinity cap: pinned to one CPU the

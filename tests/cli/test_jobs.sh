@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The default -j of every command with -j (sweep, gallery, export, animate) is the
 # CPUs the process may run on: pinned to one CPU (taskset -c 0) each --help
 # shows "here 1"; unpinned it shows hy_jobs_default's value, at most nproc.

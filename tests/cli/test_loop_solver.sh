@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # `hystviz loop --solver` edges (issue 11, parts 2-3): output times one ulp
 # from a breakpoint, --atol and its scaled default, quick refusals of stiff
 # runs (exit status 2, advice), and the σ1 default that the help states.

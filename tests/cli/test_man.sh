@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # tests/cli/test_man.sh HYSTVIZ BUILD_DOCS_DIR GEN_DOCS SOURCE_ROOT: the man pages
 # and the bash completion built from the --help texts and the schema (issue 24):
 #   - every page formats with groff without a warning and has NAME and SYNOPSIS;

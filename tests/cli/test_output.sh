@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Every file hystviz writes goes through one writer (src/io/hy_out.h): these
 # tests drive it through the commands, in a temporary directory only.
 #  - targets: an existing directory (was a double free), /dev/full (ENOSPC:

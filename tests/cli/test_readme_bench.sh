@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The README's sweep speed table is the benchmark's output (issue 23 item 5):
 # its rows are exactly those tests/bench/bench_sweep.sh prints, in its order
 # (`bench_sweep.sh --rows` gives the labels without running anything), and

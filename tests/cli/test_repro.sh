@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Reproducible outputs and build (issue 19): every output written twice by
 # identical runs is byte-identical: render's SVG, PDF and PNG, a sweep (its
 # figures, sweep.csv, the summary plot), a gallery (figures and index.html;

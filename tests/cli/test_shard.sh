@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Tests of `--shard K/N` and `--merge` (issue 13) for `hystviz sweep`: for every
 # N from 1 to 7 (and N above the point count) the shards run into separate
 # directories write disjoint sets of files whose union, merged, is the

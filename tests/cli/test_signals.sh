@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/cli/test_signals.sh HYSTVIZ HYSTVIZ_ANIMATE SCENES_DIR: signals from the
 # first instruction (README "Signals").  Each long-running command is started
 # as a background job of this non-interactive shell, which starts it with

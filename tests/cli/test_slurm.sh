@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The README's Slurm example on a real single-node Slurm (issue 19):
 # tools/cluster/slurm-local.sh brings up munged, slurmctld and slurmd on
 # loopback in a temporary directory; tools/cluster/slurm-submit.sh submits

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Tests of `hystviz sweep` (issue 13): the Fig. 15 study gives 50 figures and a
 # 50-row table whose loop areas equal `hystviz loops` at the same values (the
 # same closed form through another front end: equal as %.17g text); a point's

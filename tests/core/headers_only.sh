@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The numerical core includes no graphics header (STYLE.md, NanoVG): every
 # src/core file must compile with only the C library, GSL and its own headers.
 set -eu

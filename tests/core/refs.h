@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* refs.h: independent references for the core tests.
  *  - ref_quad_steady: y°(t) by adaptive quadrature (GSL QAG) of Eqs. (6) and (8)
  *    in the input's own time t, with u̇(t) of the real (non-normalised) input.

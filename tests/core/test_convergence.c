@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_convergence.c: ‖y_γ - y*_u‖∞ falls as γ grows (Examples 2 and 3,
  * γ = 1 … 1e6), the exact y_γ agrees with GSL, and y*_{u,k} → y°_u at the
  * predicted geometric rate e^{-aρ_T} per cycle (Theorem 2). */

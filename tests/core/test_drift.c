@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_drift.c: time that does not drift (issue 11, part 2).
  *
  * 1. The exact y_γ of the stiff LuGre (Åström & Canudas de Wit: σ0 = 1e5,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_edges.c: the numerical edges of issue 11, part 3.
  * A minor loop w wide (bimodal s·(0, 1, 2) with u_min,2 = s - w) has area
  *     A = a w² [2 g0 φ2(aw) - (g0 + y1) φ1(aw)²]

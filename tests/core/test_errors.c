@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_errors.c: bad parameters and inputs are refused with a message that
  * names what is wrong (NaN, σ0 <= 0, u_min,2 >= u_max,1, times not increasing,
  * bad files, γ <= 0, unknown stepper). */

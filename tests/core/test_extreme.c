@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_extreme.c: stiff and extreme parameters stay finite and equal an
  * independent 113-bit (__float128) reference: σ0 ∈ [1e-6, 1e12],
  * g(0) ∈ [1e-12, 1e6], input amplitudes 1e-9 … 1e6, γ ∈ [1e-6, 1e15],

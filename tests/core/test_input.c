@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_input.c: inputs, the variation ρ_u (Eq. 5) against quadrature of |u̇|,
  * ψ_u(ρ_u(t)) = u(t) (Eq. 9), ψ_u's slopes ±1 (Eq. 10), file inputs. */
 #include <gsl/gsl_errno.h>

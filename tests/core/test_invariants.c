@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_invariants.c: |y°| <= g(0); |w| <= 1 for Dahl at every γ; the major loop
  * closes (y°(T) = y°(0)); a minor loop closes in u but not in y (no
  * return-point memory, Fig. 15's circle and square differ); loop areas add up;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_jiles.c: the Jiles-Atherton model (src/core/hy_jiles.c) against an
  * implementation written apart here: long double, the Langevin function by its
  * Taylor series and coshl/sinhl, classical RK4 on a uniform grid in H with the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_preisach.c: the Preisach model (src/core/hy_preisach.c) against a
  * brute-force sum over N² relays (converging as h² = (6/N)²), against Everett
  * functions computed apart here (the closed form (F(a) - F(b))²/2 when both

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_theorem_a.c: Theorem A's closed form = exact piece-by-piece propagation
  * = quadrature of Eqs. (6)+(8) = GSL integration at large γ, for Examples 2-4
  * and 1000 random bimodal and 1000 random multimodal inputs (fixed seed). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* tutil.h: tiny assertion helpers for hystviz's C tests.  CHECK counts and
  * reports; tu_finish prints "N passed, M failed" and returns the exit code. */
 #ifndef HY_TUTIL_H

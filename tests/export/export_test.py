@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """tests/export/export_test.py HYSTVIZ SCENES_DIR [--screenshot PNG] [--bench N]
 
 `hystviz export`: the page's payload decoded here with the standard library

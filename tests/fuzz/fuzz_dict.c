@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_dict.c: the fuzzer's dictionary (libFuzzer/AFL++ -dict format), generated from the
  * scene schema so that it names every section, key and enum value there is.
  *

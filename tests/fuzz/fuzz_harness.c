@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_harness.c: one fuzz input through the parser and the `data` path, in a file sandbox
  * (see fuzz_harness.h). */
 #include "fuzz_harness.h"

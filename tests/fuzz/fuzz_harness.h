@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_harness.h: one fuzz input through the scene parser and the whole `data` path.
  *
  * The input is the text of one scene.  hy_fuzz_one parses it from memory

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_scene.c: the libFuzzer target (clang -fsanitize=fuzzer): each input is the text
  * of one scene, run through the parser and the `data` path by hy_fuzz_one.  Built
  * only with -Dfuzz=true; `sh tools/setup.sh fuzz MINUTES` builds and runs it. */

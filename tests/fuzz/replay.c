@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* replay.c: the fuzz regression test of the normal suite.  Every file given (or every
  * file in a directory given) runs through the fuzz harness in a child process, and,
  * with --hystviz PATH, through `hystviz data` as a second child, each with a time

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Tests of `hystviz gallery` on small scenes written here: a second run renders
 # nothing; a changed scene or included style re-renders exactly what depends on
 # it; a failing scene is reported as file:line, exits non-zero and keeps its

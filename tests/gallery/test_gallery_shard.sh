@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Tests of `hystviz gallery --shard K/N` and `--merge` (issue 13) on small
 # scenes written here (an include, seven figures, one that fails to compute):
 # for N = 1, 2, 3, 7 and 9 (> figures) the shards run into separate

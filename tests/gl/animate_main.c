@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* animate_main.c: a stand-alone driver for `hystviz animate` (tests and
  * benchmarks run it before main.c wires the subcommand): argv as after "hystviz". */
 #include "cmd_animate.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* animtest.h: helpers of the tests that drive `hystviz animate` in-process
  * (test_anim, test_scene_anim): run the command, count and compare frames. */
 #ifndef HY_ANIMTEST_H

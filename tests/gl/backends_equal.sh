@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # backends_equal.sh HY_ANIMATE SCENES_DIR OUT: every built-in animation and
 # every scene animation (scenes/anim_*.scene) rendered on OSMesa and on EGL
 # (llvmpipe under both) gives byte-identical frames: 3 frames each, the first,

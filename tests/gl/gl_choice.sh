@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # gl_choice.sh HY_ANIMATE OUT "BACKENDS BUILT": how a GL backend is chosen
 # (--gl, then HYSTVIZ_GL, then osmesa where built, else egl), what --gl-info
 # and --list say, and the refusals: an unknown name (status 2), a backend not

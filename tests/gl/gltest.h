@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gltest.h: helpers shared by the GL tests (checks, SKIP when there is no GL context). */
 #ifndef HY_GLTEST_H
 #define HY_GLTEST_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_anim.c: the animation engine and `hystviz animate` in-process: timeline
  * and presets, frame count and size, --frames ranges, byte-identical frames
  * across runs and across -j 1 / -j 2, the γ cache (one solve per distinct γ),

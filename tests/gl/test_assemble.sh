@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Tests of animations rendered in pieces (issue 13): frames rendered with
 # --frames A:B in three pieces, and with --shard K/N for N = 3 and 20 (more
 # pieces than frames), are byte for byte the frames and poster of one run;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_backends.c: the 3-D ribbon pass (depth, lighting, 4x multisampling
  * resolved by a blit) with 2-D strokes under and over it gives the same
  * bytes on OSMesa and on EGL, and a thread can hold one context of each,

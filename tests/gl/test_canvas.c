@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_canvas.c: the GL data layer plus cairo overlay against the all-cairo
  * rendering of the render tests' figures (same size, 1 pt = 1 px): the two
  * must agree up to anti-aliasing differences along edges. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_anim.c: `hystviz animate SCENE.scene` ([keyframe NAME] sections):
  * frame count and size, byte-identical frames for -j 1 and -j 2, first and
  * last frames equal to the still rendered through the same GL path with the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_shader.c: a deliberately broken shader gives an error naming its file
  * and stage with the compiler's log; a link error names the program. */
 #include <GL/gl.h>

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """tests/gl/worker_test.py HYSTVIZ_ANIMATE SCENES_DIR
 
 `hystviz-animate animate --worker` (src/app/anim_worker.h), the frame

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_out.c: the output writer (src/io/hy_out.h) in-process: temporary
  * names and modes, all-or-nothing groups, HY_OUT_HOLD on standard output,
  * the sweep of stale temporaries (a locked one stays), and the state

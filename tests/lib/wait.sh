@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # tests/lib/wait.sh: bounded waits for the shell tests (sh and bash), sourced:
 #     . "$(dirname "$0")/../lib/wait.sh"
 # Every wait of a test has a deadline and says what it waited for.

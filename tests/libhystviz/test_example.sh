@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # tests/libhystviz/test_example.sh BUILD_ROOT SOURCE_ROOT HYSTVIZ: docs/examples/minor_loop_area.c
 # builds with `pkg-config --cflags --libs hystviz` (the uninstalled .pc meson
 # writes) and prints Fig. 15's minor-loop area, the very number (%.17g, bit

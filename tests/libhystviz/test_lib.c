@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_lib.c SCENE HYSTVIZ: libhystviz's pipeline API (hystviz.h), linked
  * against the shared library (only what it exports):
  *  - a scene's CSV equals what `hystviz data` prints for it, byte for byte;

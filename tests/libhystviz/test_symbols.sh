@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # tests/libhystviz/test_symbols.sh LIB LIST-TOOL HEADER...: libhystviz exports
 # exactly the functions its installed headers declare (issue 24: symbol
 # visibility): no internal function leaks, none of the API is missing.

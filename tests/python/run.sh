@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/python/run.sh SOURCE_ROOT LIB HYSTVIZ [notebook]: runs test_python.py
 # (or, with "notebook", docs/examples/minor_loops.ipynb through nbclient) with a
 # Python 3 that has NumPy (Debian's python3-numpy is for /usr/bin/python3,

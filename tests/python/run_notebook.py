@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """run_notebook.py NOTEBOOK SCENES_DIR: executes the notebook top to bottom
 with nbclient and its python3 kernel (each cell's asserts must hold; a cell
 that raises fails the test), and checks the repository copy has its outputs

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """test_python.py HYSTVIZ SCENES_DIR: the Python package (src/python/hystviz)
 against the hystviz command: the same scene gives the same numbers bit for
 bit (floats parsed from `hystviz data`'s %.17g round-trip exactly), the same

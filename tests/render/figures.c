@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* figures.c: four fixed figures (gamma sweep, loop with annotations, log-log panels, markup) for render tests. */
 #include "figures.h"
 

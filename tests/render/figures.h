@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* figures.h: fixed test figures shared by the render tests and the demo (not a public API). */
 #ifndef HY_TEST_FIGURES_H
 #define HY_TEST_FIGURES_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* png_close.c: whether two PNGs show the same pixels within a tolerance.
  *
  * usage: png_close MAXDIFF A.png B.png

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rcheck.h: the failure counter and CHECK macro shared by the render and GL
  * tests (each test file prints its own summary from `fails`). */
 #ifndef HY_RCHECK_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render_demo.c: writes the fixed test figures as SVG, PDF and PNG into a directory (demo, not installed). */
 #include <stdio.h>
 

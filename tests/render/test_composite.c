@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_composite.c: hy_frame_composite against the definition, pixel by
  * pixel: out = overlay + gl * (1 - alpha), premultiplied "over" rounded to
  * nearest, GL rows flipped (exact: both are integer); and hy_png_write_xrgb

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_image.c: reference-image tests (cairo test-suite style): PNG output vs tests/reference/render_*.png.
  *
  * Passes when the images are identical or no channel of any pixel differs by

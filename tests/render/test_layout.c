@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_layout.c: layout properties through a recording canvas: text inside the figure, series
  * clipped to the frame, "best" legend corner avoids the data, non-finite points break lines. */
 #include <cairo.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_markup.c: markup parser token sequences for the paper's labels, errors, and script layout. */
 #include <stdio.h>
 #include <string.h>

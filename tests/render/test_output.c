@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_output.c: SVG structure (balanced tags, path and glyph counts), byte determinism, atomic writes. */
 #include <cairo.h>
 #include <dirent.h>

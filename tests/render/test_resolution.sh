@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Lines at the output's resolution (issue 23 item 2), through the command:
 #   1. the gallery rendered now shows the pixels of the committed gallery PNGs,
 #      per pixel within 1 grey level (png_close decodes both): simplification

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_simplify.c: lines at the output's resolution (hy_simplify.h, issue 23 item 2).
  *
  * The simplifier's promise is checked by brute force, independently of how

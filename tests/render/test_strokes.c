@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_strokes.c: line styles as drawn in the output files: a dash-dot pattern's
  * zero-length "on" entry survives into the SVG's stroke-dasharray with round
  * caps and is a round dot in the PNG; a sharp turning point is drawn with a

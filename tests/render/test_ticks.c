@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ticks.c: tick selection: round steps, counts, compact labels, log decades, no label overlap. */
 #include <math.h>
 #include <stdio.h>

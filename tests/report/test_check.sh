@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # test_check.sh RUN_CMD [OPTIONS]: `check` exits 0, prints the header, one row
 # per case and a summary whose case count matches the rows.
 set -u

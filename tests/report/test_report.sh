@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # test_report.sh RUN_CMD BUILDDIR: `report --quick` writes CSV, Markdown and
 # plots with the expected columns and rows; errors fall with the tolerance for
 # adaptive steppers on Example 3 and move by 100x for every GSL stepper on the

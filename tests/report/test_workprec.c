@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_workprec.c: the work-precision module: error norms, the long-double
  * reference against hy_gamma_exact on every piecewise-linear problem, Example
  * 1's reference against a second stepper, a run's status under a step cap. */

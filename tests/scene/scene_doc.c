@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_doc.c: generates the key reference of docs/SCENES.md from the schema table and checks the doc against it.
  *
  *   scene_doc --doc            print the reference (paste between the markers)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene_test.h: a tiny check harness and temp-dir helpers for the scene tests. */
 #ifndef SCENE_TEST_H
 #define SCENE_TEST_H

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The scene file policy and the work budget through the hystviz command
 # (docs/SCENES.md, "Files a scene may read and write", "Work budget").
 # Everything is written under a temp dir.

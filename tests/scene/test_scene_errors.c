@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_errors.c: every structural error class, its location and message text. */
 #include "scene_test.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_fuzz.c: deterministic mutation fuzzing of the parser and --set: no crash, and every error is one located line. */
 #include <ctype.h>
 

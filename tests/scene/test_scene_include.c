@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_include.c: includes: merge, precedence, relative paths, cycles, depth, missing files, content hash. */
 #include "scene_test.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_policy.c: the scene file policy (docs/SCENES.md, "Files a scene may read
  * and write"): includes, input files, output directory, caps, the include bomb, large
  * scenes, number magnitudes, quality presets.  Every file lives in a temp dir. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_schema.c: consistency of the schema table: names, kinds, ranges, defaults, lookups. */
 #include "hy_scene.h" /* first: the public header compiles on its own */
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_set.c: --set overrides: valid assignments, precedence, and every error (scene left unchanged). */
 #include "scene_test.h"
 

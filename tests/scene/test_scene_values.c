@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_values.c: value kinds: numbers, integers, bools, enums, strings, lists, lengths, colours, pairs. */
 #include "scene_test.h"
 

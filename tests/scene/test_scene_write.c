@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_write.c: hy_scene_write round trip: the written effective scene parses back to the same values. */
 #include "scene_test.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_measured.c: every error the scene pipeline prints is measured (issue 11).
  *  - the closed-form series (major/minor loops, y°, y*_{u,k}, y*) and y_γ of
  *    the exact solver carry an error measured against a long-double

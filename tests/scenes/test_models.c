@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_models.c: the model table and the rate-independent models in scenes.
  *  - the table and the schema agree: every [model] kind has one entry, every
  *    key an entry reads is a schema row of [model], every quantity it draws a

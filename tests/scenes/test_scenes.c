@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scenes.c: the scene pipeline end to end.
  *  - every scenes/NAME.scene figure loads, computes and writes SVG + PNG; the
  *    bytes are identical on a second run; the SVG is well-formed;

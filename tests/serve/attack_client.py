@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """attack_client.py: small loopback clients for test_serve_attack.sh and
 bench_serve_attack.sh (issue 20).  Every socket has a timeout; every command
 ends by itself within its stated bound.

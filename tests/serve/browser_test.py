@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """tests/serve/browser_test.py HYSTVIZ SCENES_DIR [--screenshot PNG] [--bench N]
 
 The page of `hystviz serve` in a real browser: Debian's chromium, headless,

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """tests/serve/present_test.py HYSTVIZ SCENES_DIR [--screenshots DIR]
 
 The presentation view, links and controls of `hystviz serve` in chromium

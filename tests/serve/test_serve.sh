@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # tests/serve/test_serve.sh HYSTVIZ SCENES_DIR: `hystviz serve` over HTTP (curl):
 # byte identity with `render --set` / `data`, every refusal, save as new
 # scene, reload after a rename-save through Server-Sent Events, 50 concurrent

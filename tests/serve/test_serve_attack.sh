@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # tests/serve/test_serve_attack.sh HYSTVIZ SCENES_DIR ATTACK_CLIENT: `hystviz
 # serve` against the attacks of issue 20 (loopback only; every wait has a
 # deadline; every process started here is killed by the trap):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_serve_util.c: the HTTP-free parts of `hystviz serve`: scene names,
  * override checks, JSON and shell quoting, shortest numbers, slider ranges,
  * "save as new scene" text and the never-overwriting writer. */

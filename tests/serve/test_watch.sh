@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # tests/serve/test_watch.sh HYSTVIZ SCENES_DIR: `hystviz watch`: a line per
 # render, a re-render after an in-place save, a rename-save and an edit of an
 # included file, scene errors reported while watching goes on, no render for

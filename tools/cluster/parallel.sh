@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tools/cluster/parallel.sh: a hystviz sweep or gallery split into N shards run
 # by GNU parallel (Debian package `parallel`), on this machine's cores or on
 # several machines (-S, GNU parallel's --sshlogin), then merged.

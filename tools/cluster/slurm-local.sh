@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tools/cluster/slurm-local.sh: runs a command with a single-node Slurm of its
 # own on loopback (Debian packages slurm-wlm and munge), to try the cluster
 # recipes without a cluster; tests/cli/test_slurm.sh runs the README's Slurm

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tools/cluster/slurm-submit.sh: submits a hystviz sweep or gallery as a Slurm
 # job array of N shards (tools/cluster/shard.sbatch) and a merge job that
 # starts when the array is done (tools/cluster/merge.sbatch, afterany).

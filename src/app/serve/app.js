@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // app.js: the page of `hystviz serve` (no libraries, works offline).
 // State lives in `hv` (also read by tests/serve/browser_test.py).
 'use strict';

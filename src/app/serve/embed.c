@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* embed.c: build-time helper: writes a C file defining each input file as a
  * NUL-terminated char array and its length (the pages `hystviz serve` sends).
  *   embed OUT.c NAME FILE [NAME FILE]... */

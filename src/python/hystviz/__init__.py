@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """hystviz: hysteresis models and their exact figures, from Python.
 
 The numbers come from libhystviz, the C library the `hystviz` command is

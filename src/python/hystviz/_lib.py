@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The C library libhystviz, loaded with ctypes (a foreign call releases the
 GIL for its whole duration, so long computations do not block other Python
 threads).

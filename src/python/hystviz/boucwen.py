@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The Bouc-Wen benchmark (Noël and Schoukens), from Python."""
 import ctypes
 
