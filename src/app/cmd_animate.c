@@ -641,6 +641,12 @@ static int animate(int argc, char **argv)
     int r = parse_args(argc, argv, &a);
     if (r)
         return r == 1 ? 0 : 2;
+    /* Mesa's shader disk cache: off unless the user set it.  Its writer
+       thread can still be using stdio when the process exits, and glibc then
+       aborts ("invalid stdio handle": a worker at the end of its input under
+       EGL, in a fresh-clone CI); it also wrote under ~/.cache from every
+       test.  The four shaders compile in milliseconds. */
+    setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
     if ((r = pick_backend(a.gl, a.gl_info || a.list)))
         return r;
     if (a.worker)
