@@ -631,8 +631,16 @@ static int run_worker(const anim_args *opts)
     if (ws.state)
         ws.sc->release(ws.state);
     hy_anim_renderer_free(ws.r);
-    fclose(ws.out);
-    return status;
+    if (fclose(ws.out) && !status)
+        status = 1;
+    /* the end of a worker: _exit, not exit.  Under EGL, Mesa loads its C++
+       runtime (swrast, LLVM) late, and at exit libstdc++'s stream teardown
+       flushed a FILE already freed: glibc aborted ("invalid stdio handle",
+       worker_egl in a fresh-clone CI; core: ios_base::Init::~Init ->
+       fflush of freed memory).  Everything of ours is flushed and freed here. */
+    if ((fflush(stdout) || fflush(stderr)) && !status)
+        status = 1;
+    _exit(status);
 }
 
 static int animate(int argc, char **argv)
@@ -641,11 +649,8 @@ static int animate(int argc, char **argv)
     int r = parse_args(argc, argv, &a);
     if (r)
         return r == 1 ? 0 : 2;
-    /* Mesa's shader disk cache: off unless the user set it.  Its writer
-       thread can still be using stdio when the process exits, and glibc then
-       aborts ("invalid stdio handle": a worker at the end of its input under
-       EGL, in a fresh-clone CI); it also wrote under ~/.cache from every
-       test.  The four shaders compile in milliseconds. */
+    /* Mesa's shader disk cache: off unless the user set it (it wrote under
+       ~/.cache from every run; the four shaders compile in milliseconds). */
     setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
     if ((r = pick_backend(a.gl, a.gl_info || a.list)))
         return r;
