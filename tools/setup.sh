@@ -94,6 +94,15 @@ run_tests() {
     return "$st"
 }
 
+# stage NAME: say how long the last stage took and the whole command so far
+# (the test command's budget is 10 minutes on 2 cores)
+t_start=$(date +%s); t_stage=$t_start
+stage() {
+    now=$(date +%s)
+    echo "setup: $1 took $((now - t_stage)) s ($((now - t_start)) s in all)"
+    t_stage=$now
+}
+
 case "$what" in
 gallery)
     configure build
@@ -101,16 +110,20 @@ gallery)
     ;;
 test)
     configure build
+    stage "building build/"
     run_tests build
+    stage "the tests in build/"
     # the README's Slurm example on a real single-node Slurm of its own
     # (tools/cluster/slurm-local.sh); once, not per build configuration
     sh tests/cli/test_slurm.sh build/src/app/hystviz .
+    stage "the Slurm example"
     # each GL backend alone (build/ has both: its gl suite ran on each, and
     # compared their frames); -Dgl=egl is the machine without OSMesa; only
     # what the gl suite runs is built
     for gl in osmesa egl; do
         configure_for build-$gl gl -Dgl=$gl
         run_tests build-$gl --no-rebuild --suite gl
+        stage "build-$gl (building, its gl suite)"
     done
     # the build without GL and libmicrohttpd: cairo figures work, GL tests
     # report SKIP, serve exits 3 naming what is missing.  Only the suites whose
@@ -118,17 +131,21 @@ test)
     # tagged 'config': tests/meson.build); the rest ran in build/
     configure_for build-nogl "gl serve config" -Dgl=disabled -Dmicrohttpd=disabled
     run_tests build-nogl --no-rebuild --suite gl --suite serve --suite config
+    stage "build-nogl (building, its gl, serve and config suites)"
     # GCC's -fsanitize=undefined leaves out float-cast-overflow (a double too large
     # for the integer it is converted to); it is added, and made fatal, here
     san="-fsanitize=float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
+    # -O1, as ASan's documentation advises for speed; -g keeps the stacks readable
     configure build-san -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug \
-        -Dc_args="$san" -Dc_link_args="$san"
+        -Doptimization=1 -Dc_args="$san" -Dc_link_args="$san"
+    stage "building build-san/"
     # every suite again under ASan + UBSan but the full check and the tests
     # tagged no-san (tests/meson.build: their C paths run here in other tests)
     # (fontconfig keeps a process-lifetime cache: suppressed in tests/render/lsan.supp)
     export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
         LSAN_OPTIONS=suppressions="$PWD/tests/render/lsan.supp"
     run_tests build-san --no-suite check --no-suite no-san
+    stage "the tests in build-san/"
     ;;
 bench)
     configure build
