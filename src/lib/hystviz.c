@@ -119,6 +119,19 @@ size_t hy_result_series(const hy_result *r, size_t i, const double **x, const do
     return se ? se->n : 0;
 }
 
+size_t hy_result_series_copy(const hy_result *r, size_t i, double *x, double *y, size_t cap)
+{
+    const hy_run_series *se = series_at(r, i);
+    if (!se)
+        return 0;
+    size_t m = se->n < cap ? se->n : cap;
+    if (x && m)
+        memcpy(x, se->x, m * sizeof *x);
+    if (y && m)
+        memcpy(y, se->y, m * sizeof *y);
+    return se->n;
+}
+
 const char *hy_result_series_name(const hy_result *r, size_t i)
 {
     const hy_run_series *se = series_at(r, i);

@@ -74,6 +74,11 @@ size_t hy_result_nseries(const hy_result *r);
  * may be NULL) point into r and live as long as r.  NaN separates pieces.
  * Returns n (0 for i out of range). */
 size_t hy_result_series(const hy_result *r, size_t i, const double **x, const double **y);
+/* Copies series i's first min(n, cap) points into x and y (either may be
+ * NULL: that coordinate is not copied), arrays the caller owns, and returns
+ * its n (0 for i out of range): one call where a foreign caller (the Python
+ * package) would otherwise make three. */
+size_t hy_result_series_copy(const hy_result *r, size_t i, double *x, double *y, size_t cap);
 const char *hy_result_series_name(const hy_result *r, size_t i);
 const char *hy_result_series_data(const hy_result *r, size_t i);
 

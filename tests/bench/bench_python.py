@@ -9,6 +9,7 @@
      until two periods agree to 1e-12, against hystviz's exact y°: time and
      the largest error of each against the exact closed form (hystviz's
      error is measured by the library against its long-double reference)."""
+import ctypes
 import os
 import subprocess
 import sys
@@ -52,8 +53,41 @@ with tempfile.TemporaryDirectory() as tmp:
         py_rounds.append((time.perf_counter() - t0) / N * 1e6)
 c_us, py_us = sorted(c_rounds)[3], sorted(py_rounds)[3]
 load = os.getloadavg()[0]
-print(f"python call overhead | steady_loop 200 points: {py_us:.1f} us from Python, {c_us:.1f} us in C "
+print(f"python call overhead | steady_loop 200 points: {py_us:.1f} us from Python, {c_us:.1f} us in a C program "
       f"(medians of 7 alternating rounds of {N}, load {load:.1f}): {py_us - c_us:.1f} us extra per call (goal <= 5)")
+
+# the wrapper's own cost: in this process, the same C calls through ctypes
+# (hy_result_from_text, hy_result_series, hy_result_free: what bench_lib
+# times) against hystviz.steady_loop, single calls alternating so that the
+# process's caches and load fall on both alike; median of the differences
+text = hystviz._scene(m, u, "[series y]\ndata = ysteady\n", 200).encode()
+
+
+def c_calls():
+    h = ctypes.c_void_p()
+    err = hystviz._lib.Error()
+    if hystviz._lib.from_text(b"<python>/scene.scene", text, len(text), None, 0, 0.0, ctypes.byref(h),
+                              ctypes.byref(err)):
+        raise RuntimeError(err.msg.decode())
+    hystviz._lib.series(h, 1, None, None)
+    hystviz._lib.result_free(h)
+
+
+diffs, cs = [], []
+clock = time.perf_counter
+for _ in range(20 * N):
+    t0 = clock()
+    c_calls()
+    t1 = clock()
+    hystviz.steady_loop(m, u, points=200)
+    t2 = clock()
+    diffs.append((t2 - t1) - (t1 - t0))
+    cs.append(t1 - t0)
+diffs.sort()
+cs.sort()
+print(f"python call overhead (in process) | steady_loop 200 points against the same C calls through ctypes: "
+      f"{diffs[len(diffs) // 2] * 1e6:.1f} us extra per call (median of {len(diffs)} alternating pairs; "
+      f"the C calls {cs[len(cs) // 2] * 1e6:.1f} us; load {os.getloadavg()[0]:.1f}; goal <= 5)")
 
 try:
     from scipy.integrate import solve_ivp

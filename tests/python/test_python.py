@@ -71,7 +71,11 @@ with tempfile.TemporaryDirectory() as tmp:
                      ("ygamma", lambda: hystviz.ygamma(m, u, 10, points=100)),
                      ("kcycles", lambda: hystviz.kcycles(m, u, 2, points=100))):
         tt, _, yy = fn()
-        check(tt.size == 101 and np.all(np.isfinite(yy)), f"{name}: 101 finite samples")
+        check(tt.size == 101 and np.all(np.isfinite(tt)) and np.all(np.isfinite(yy)), f"{name}: 101 finite samples")
+    # the copy retries with the size the library reports when its first guess is short
+    t2, u2, y2 = hystviz._tuy(hystviz._scene(m, u, "[series y]\ndata = ysteady\n", 200), 10)
+    check(np.array_equal(t2, t) and np.array_equal(u2, uu) and np.array_equal(y2, y),
+          "a short first buffer: the retried copy equals steady_loop's arrays")
 
     # minor loops: hystviz loops' area, %.17g, bit for bit
     loops = hystviz.minor_loops(m, u)

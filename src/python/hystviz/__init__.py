@@ -294,48 +294,54 @@ def _array(p, n):
     return a
 
 
-def _tuy(text):
+def _tuy(text, points):
     """(t, u, y) of a _scene: series 0 is the input, series 1 the output, on
-    the same grid; straight through the C calls, no Result (the short path
-    of the call-overhead benchmark)."""
+    the same grid; straight through the C calls, no Result, one copy of each
+    series into one (3, n) array (the short path of the call-overhead
+    benchmark: a few µs over the C call, tests/bench/bench_python.py)."""
     b = text.encode()
     h = ctypes.c_void_p()
     err = _lib.Error()
     _check(_lib.from_text(b"<python>/scene.scene", b, len(b), None, 0, 0.0, ctypes.byref(h), ctypes.byref(err)), err)
     try:
-        t, u, t2, y = _lib._dp(), _lib._dp(), _lib._dp(), _lib._dp()
-        n = _lib.series(h, 0, ctypes.byref(t), ctypes.byref(u))
-        if _lib.series(h, 1, ctypes.byref(t2), ctypes.byref(y)) != n or not n:
+        cap = points + 1
+        while True:
+            out = np.empty((3, cap))
+            p = out.ctypes.data
+            n = _lib.series_copy(h, 0, p, p + 8 * cap, cap)
+            if n <= cap:
+                break
+            cap = n
+        if _lib.series_copy(h, 1, None, p + 16 * cap, cap) != n or not n:
             raise RuntimeError("hystviz: input and output sampled on different grids")
-        tt, uu, yy = _array(t, n), _array(u, n), _array(y, n)
     finally:
         _lib.result_free(h)
-    if not np.isnan(tt).any():
-        return tt, uu, yy
-    keep = ~np.isnan(tt)
-    return tt[keep], uu[keep], yy[keep]
+    # the series read here (input, ysteady, ystar, ygamma, yk) are sampled on
+    # one grid without gaps: NaN separates pieces only in the minor and major
+    # loop series (src/pipeline/scene_run.c)
+    return out[0, :n], out[1, :n], out[2, :n]
 
 
 def steady_loop(model, input, points=2000):
     """The steady state y° over one period: (t, u, y) NumPy arrays (points samples)."""
-    return _tuy(_scene(model, input, "[series y]\ndata = ysteady\n", points))
+    return _tuy(_scene(model, input, "[series y]\ndata = ysteady\n", points), points)
 
 
 def limit(model, input, points=2000, cycles=1):
     """The limit y*_u as γ → ∞ from the model's x0: (t, u, y*)."""
-    return _tuy(_scene(model, input, "[series y]\ndata = ystar\n", points, cycles))
+    return _tuy(_scene(model, input, "[series y]\ndata = ystar\n", points, cycles), points * cycles)
 
 
 def ygamma(model, input, gamma, points=2000, cycles=1, solver="exact"):
     """The output y_γ at time scale gamma: (t, u, y)."""
     return _tuy(_scene(model, input, f"[series y]\ndata = ygamma\ngamma = {_fmt(float(gamma))}\n", points,
-                       cycles, f"solver = {solver}\n"))
+                       cycles, f"solver = {solver}\n"), points * cycles)
 
 
 def kcycles(model, input, k, points=2000):
     """y*_{u,k}, the limit on its k-th period, against the time within the
     period (t in [0, T]): (t, u, y)."""
-    return _tuy(_scene(model, input, f"[series y]\ndata = yk\nk = {int(k)}\n", points))
+    return _tuy(_scene(model, input, f"[series y]\ndata = yk\nk = {int(k)}\n", points), points)
 
 
 def minor_loops(model, input):

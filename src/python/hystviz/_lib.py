@@ -77,6 +77,7 @@ from_file = _sig("hy_result_from_file", ctypes.c_int, ctypes.c_char_p, ctypes.PO
 result_free = _sig("hy_result_free", None, _vp)
 nseries = _sig("hy_result_nseries", _sz, _vp)
 series = _sig("hy_result_series", _sz, _vp, _sz, ctypes.POINTER(_dp), ctypes.POINTER(_dp))
+series_copy = _sig("hy_result_series_copy", _sz, _vp, _sz, _vp, _vp, _sz)
 series_name = _sig("hy_result_series_name", ctypes.c_char_p, _vp, _sz)
 series_data = _sig("hy_result_series_data", ctypes.c_char_p, _vp, _sz)
 series_error = _sig("hy_result_series_error", ctypes.c_double, _vp, _sz, ctypes.POINTER(ctypes.c_char_p))
