@@ -34,11 +34,7 @@ static const char usage[] =
     "                   report.md, wp-PROBLEM.svg and .png\n"
     "  --quick          tolerances 1e-2, 1e-4, 1e-6, 2 repeats, caps 2e4 steps\n"
     "                   and 0.2 s (a few seconds in all; for tests)\n"
-    "  --problems LIST  comma-separated: ex2-g1 ex2-g10 ex2-g100 ex2-g1e4\n"
-    "                   ex3-g1 ex3-g10 ex3-g100 ex3-g1e4 ex1 lugre-stiff boucwen\n"
-    "                   (default all)\n"
-    "  --solvers LIST   comma-separated: exact rk2 rk4 rkf45 rkck rk8pd rk1imp\n"
-    "                   rk2imp rk4imp bsimp msadams msbdf newmark (default all)\n"
+    "%s" /* --problems, --solvers: from the tables (print_usage) */
     "  --repeats N      timed repeats per run, median reported (default 5)\n"
     "  --max-steps N    ODE step cap between two breakpoints (default 2e5)\n"
     "  --time-cap S     a run slower than S seconds is not repeated and tighter\n"
@@ -200,28 +196,42 @@ static int run_series(const hy_wp_problem *p, const char *solver, int restart, c
     return 0;
 }
 
-static char *all_solvers[] = {"exact", "rk2", "rk4", "rkf45", "rkck", "rk8pd", "rk1imp", "rk2imp",
-                              "rk4imp", "bsimp", "msadams", "msbdf", "newmark"};
+/* Every solver, in the order of the plots' colours and markers: exact, the
+ * GSL steppers (hy_ode.h's list), newmark.  Returns how many (<= MAX_LIST). */
+static int all_solvers(char **out)
+{
+    int n = 0;
+    out[n++] = "exact";
+    for (const char *const *s = hy_ode_stepper_names(); *s && n < MAX_LIST - 1; s++)
+        out[n++] = (char *)*s;
+    out[n++] = "newmark";
+    return n;
+}
 
 /* Position of a solver in all_solvers (its colour and marker in every plot). */
 static int solver_index(const char *name)
 {
-    for (int i = 0; i < (int)(sizeof all_solvers / sizeof all_solvers[0]); i++)
-        if (!strcmp(all_solvers[i], name))
+    char *all[MAX_LIST];
+    int n = all_solvers(all);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(all[i], name))
             return i;
     return 0;
 }
 
 static int run_problem(const hy_wp_problem *p, const ropts *o, runlist *L)
 {
-    char *const *all = all_solvers;
+    char *all[MAX_LIST];
+    int nall = all_solvers(all);
     char *const *sv = o->nsolvers ? o->solvers : all;
-    int ns = o->nsolvers ? o->nsolvers : (int)(sizeof all_solvers / sizeof all_solvers[0]);
+    int ns = o->nsolvers ? o->nsolvers : nall;
     for (int i = 0; i < ns; i++) {
         if (!hy_wp_solver_applies(p, sv[i]))
             continue;
-        int ode = hy_ode_stepper_known(sv[i]);
-        if (run_series(p, sv[i], 1, o, L) || (ode && run_series(p, sv[i], 0, o, L)))
+        /* GSL steppers with and without restarts at the input's breakpoints;
+         * Jiles-Atherton restarts at every reversal by its nature */
+        int straight = hy_ode_stepper_known(sv[i]) && p->kind != HY_WP_JILES;
+        if (run_series(p, sv[i], 1, o, L) || (straight && run_series(p, sv[i], 0, o, L)))
             return -1;
     }
     return 0;
@@ -412,7 +422,9 @@ static int plot_problem(const ropts *o, const hy_wp_problem *p, const runlist *L
     for (int k = 0; k < npanels; k++) {
         snprintf(title[k], sizeof title[k], "%s%s", p->title,
                  npanels == 1 ? "" : k ? ": straight through" : ": restarts at breakpoints");
-        ax[k] = (hy_axes){.series = ser[k], .nseries = ns[k], .xlabel = "max error (GSL: at its own steps)", .ylabel = "time (s)",
+        ax[k] = (hy_axes){.series = ser[k], .nseries = ns[k], .xlabel = p->kind == HY_WP_JILES ? "max error of B (T) on the output grid"
+                                                                    : "max error (GSL: at its own steps)",
+                          .ylabel = "time (s)",
                           .title = title[k], .x = {.log = 1}, .y = yr, .legend = HY_LEGEND_BEST, .grid = 1};
     }
     hy_figure fig = {.width = hy_cm(npanels * 11.0), .height = hy_cm(10), .dpi = 150, .axes = ax, .nrows = 1,
@@ -479,13 +491,50 @@ static int run_all(ropts *o, hy_wp_problem *P, int np)
     return rc;
 }
 
+/* Appends "label words... tail" to buf, wrapped before column 79 with the
+ * option column's indent (tail is split at its spaces). */
+static size_t wrapped(char *buf, size_t size, size_t len, const char *label, char *const *words, int n,
+                      const char *tail)
+{
+    char t[256], *w[MAX_LIST * 2], *save = NULL;
+    snprintf(t, sizeof t, "%s", tail);
+    int m = 0;
+    for (; m < n && m < MAX_LIST; m++)
+        w[m] = words[m];
+    for (char *tok = strtok_r(t, " ", &save); tok && m < MAX_LIST * 2; tok = strtok_r(NULL, " ", &save))
+        w[m++] = tok;
+    size_t col = (size_t)snprintf(buf + len, size - len, "%s", label);
+    len += col;
+    for (int i = 0; i < m && len < size; i++) {
+        int brk = col + 1 + strlen(w[i]) > 78;
+        len += (size_t)snprintf(buf + len, size - len, brk ? "\n%19s%s" : " %s%s", brk ? "" : w[i], brk ? w[i] : "");
+        col = (brk ? 19 : col + 1) + strlen(w[i]);
+    }
+    return len < size ? len + (size_t)snprintf(buf + len, size - len, "\n") : len;
+}
+
+/* --help: the problems and solvers listed from their tables */
+static void print_usage(void)
+{
+    char *probs[MAX_LIST], *solv[MAX_LIST], lists[1024];
+    int np = 0;
+    for (const char *const *n = hy_wp_problem_names(); *n && np < MAX_LIST; n++)
+        probs[np++] = (char *)*n;
+    int ns = all_solvers(solv);
+    size_t len = wrapped(lists, sizeof lists, 0, "  --problems LIST  comma-separated, of:", probs, np,
+                         "(default all; jiles: Fig. 1's Jiles-Atherton system, each GSL stepper, always "
+                         "restarted at reversals)");
+    wrapped(lists, sizeof lists, len, "  --solvers LIST   comma-separated, of:", solv, ns, "(default all)");
+    printf(usage, lists);
+}
+
 int hy_cmd_report(int argc, char **argv)
 {
     gsl_set_error_handler_off();
     ropts o = {.dir = "gallery/report", .cfg = hy_wp_cfg_defaults()};
     int rc = parse_opts(argc, argv, &o);
     if (rc == 1) {
-        fputs(usage, stdout);
+        print_usage();
         return 0;
     }
     if (rc)

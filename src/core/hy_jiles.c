@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_jiles.c: Jiles-Atherton, dM/dH = χ_e/(1 - α χ_e), χ_e = (M_an - M)/(k δ) + c dM_an/dH_e
- * (irreversible term 0 while (M_an - M) δ < 0), integrated in H by GSL rk8pd with a
- * restart at every reversal and at every switch of that guard. */
+ * (irreversible term 0 while (M_an - M) δ < 0), integrated in H by GSL (rk8pd, or
+ * the stepper the caller names) with a restart at every reversal and at every
+ * switch of that guard. */
 #include "hy_jiles.h"
 
 #include <gsl/gsl_errno.h>
@@ -9,6 +10,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "hy_ode.h"
+#include "hy_ode_steppers.h"
 
 #define LAMBERT_N 18       /* continued-fraction depth: < 1e-20 relative for |x| < 2 */
 #define DEN_MIN 1e-9       /* 1 - α χ_e below this: no physical solution             */
@@ -46,7 +50,7 @@ double hy_langevin_d(double x)
 
 int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double alpha, hy_error *err)
 {
-    hy_jiles t = {ms, a, k, c, alpha, 0.0, 1e-13};
+    hy_jiles t = {ms, a, k, c, alpha, 0.0, 1e-13, NULL};
     int rc = hy_jiles_validate(&t, err);
     if (!rc)
         *j = t;
@@ -78,8 +82,10 @@ int hy_jiles_validate(const hy_jiles *j, hy_error *err)
     if (!isfinite(j->m0) || !(fabs(j->m0) < j->ms))
         return hy_error_set(err, HY_EINVAL, "Jiles-Atherton initial magnetisation m0 must satisfy |m0| < Ms (got %g)",
                             j->m0);
-    if (!(j->rtol >= 1e-15 && j->rtol <= 1e-3))
-        return hy_error_set(err, HY_EINVAL, "Jiles-Atherton rtol must be in [1e-15, 1e-3] (got %g)", j->rtol);
+    if (!(j->rtol >= 1e-15 && j->rtol <= 1e-2))
+        return hy_error_set(err, HY_EINVAL, "Jiles-Atherton rtol must be in [1e-15, 1e-2] (got %g)", j->rtol);
+    if (j->stepper && !hy_ode_stepper_known(j->stepper))
+        return hy_error_set(err, HY_EINVAL, "Jiles-Atherton: unknown GSL stepper '%.40s'", j->stepper);
     return HY_OK;
 }
 
@@ -131,6 +137,31 @@ static int ja_rhs(double H, const double y[], double f[], void *params)
     return GSL_SUCCESS;
 }
 
+/* The Jacobian for the implicit steppers, by forward differences (the 2x2
+ * system is cheap; its kink at the guard is never straddled). */
+static int ja_jac(double H, const double y[], double *dfdy, double dfdt[], void *params)
+{
+    double f0[2], f1[2], yp[2] = {y[0], y[1]};
+    int st = ja_rhs(H, y, f0, params);
+    if (st)
+        return st;
+    for (int k = 0; k < 2; k++) {
+        double h = 1.5e-8 * fmax(1.0, fabs(y[k]));
+        yp[k] = y[k] + h;
+        if ((st = ja_rhs(H, yp, f1, params)))
+            return st;
+        dfdy[0 * 2 + k] = (f1[0] - f0[0]) / h;
+        dfdy[1 * 2 + k] = (f1[1] - f0[1]) / h;
+        yp[k] = y[k];
+    }
+    double hH = 1.5e-8 * fmax(1.0, fabs(H));
+    if ((st = ja_rhs(H + hH, y, f1, params)))
+        return st;
+    dfdt[0] = (f1[0] - f0[0]) / hH;
+    dfdt[1] = (f1[1] - f0[1]) / hH;
+    return GSL_SUCCESS;
+}
+
 static int ja_fail(const ja_ctx *c, int status, double H, hy_error *err)
 {
     if (c->bad)
@@ -138,10 +169,15 @@ static int ja_fail(const ja_ctx *c, int status, double H, hy_error *err)
                             "Jiles-Atherton alpha = %g is too large for k = %g: the denominator 1 - alpha dM/dHe of the "
                             "irreversible law vanishes at H = %g A/m (M = %g A/m)",
                             c->j->alpha, c->j->k, c->bad_h, c->bad_m);
-    return hy_error_set(err, HY_ENUM, "Jiles-Atherton: GSL rk8pd failed at H = %g A/m: %s", H, gsl_strerror(status));
+    return hy_error_set(err, HY_ENUM, "Jiles-Atherton: GSL %s failed at H = %g A/m: %s",
+                        c->j->stepper ? c->j->stepper : "rk8pd", H, gsl_strerror(status));
 }
 
+/* A GSL driver owns the stepper, control and evolve objects: the implicit
+ * and multistep steppers reach the control through it (GSL's
+ * gsl_odeiv2_step_set_driver); the integration calls evolve directly. */
 typedef struct ja_solver {
+    gsl_odeiv2_driver *drv;
     gsl_odeiv2_step *step;
     gsl_odeiv2_control *ctl;
     gsl_odeiv2_evolve *ev;
@@ -149,24 +185,22 @@ typedef struct ja_solver {
 
 static void solver_free(ja_solver *s)
 {
-    if (s->ev)
-        gsl_odeiv2_evolve_free(s->ev);
-    if (s->ctl)
-        gsl_odeiv2_control_free(s->ctl);
-    if (s->step)
-        gsl_odeiv2_step_free(s->step);
+    if (s->drv)
+        gsl_odeiv2_driver_free(s->drv);
 }
 
-static int solver_alloc(ja_solver *s, const hy_jiles *j, hy_error *err)
+static int solver_alloc(ja_solver *s, const hy_jiles *j, gsl_odeiv2_system *sys, hy_error *err)
 {
     static const double scale_abs[2] = {1.0, 1.0};
-    s->step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, 2);
-    s->ctl = gsl_odeiv2_control_scaled_new(j->rtol, j->rtol, 1.0, 0.0, scale_abs, 2);
-    s->ev = gsl_odeiv2_evolve_alloc(2);
-    if (!s->step || !s->ctl || !s->ev) {
-        solver_free(s);
+    const gsl_odeiv2_step_type *type = j->stepper ? hy_ode_step_type(j->stepper) : gsl_odeiv2_step_rk8pd;
+    if (!type)
+        return hy_error_set(err, HY_EINVAL, "Jiles-Atherton: unknown GSL stepper '%.40s'", j->stepper);
+    s->drv = gsl_odeiv2_driver_alloc_scaled_new(sys, type, 1.0, j->rtol, j->rtol, 1.0, 0.0, scale_abs);
+    if (!s->drv)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
-    }
+    s->step = s->drv->s;
+    s->ctl = s->drv->c;
+    s->ev = s->drv->e;
     return HY_OK;
 }
 
@@ -218,7 +252,7 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
                    hy_error *err)
 {
     ja_ctx c = {j, H > s->H ? 1.0 : -1.0, 0, 0, 0, 0, 0};
-    gsl_odeiv2_system sys = {ja_rhs, NULL, 2, &c};
+    gsl_odeiv2_system sys = {ja_rhs, ja_jac, 2, &c};
     double x = s->H, y[2] = {s->M / j->ms, 0};
     c.guard = guard_g(&c, x, y[0]) < 0;
     double h = c.delta * fmin(fabs(H - x), 0.01 * fmin(j->a, j->k));
@@ -268,7 +302,8 @@ int hy_jiles_apply(const hy_jiles *j, hy_jiles_state *s, double H, hy_jiles_stat
     if (H == s->H)
         return HY_OK;
     ja_solver sv = {0};
-    int rc = solver_alloc(&sv, j, err);
+    gsl_odeiv2_system any = {ja_rhs, ja_jac, 2, NULL}; /* the driver's own; each stretch passes its own */
+    int rc = solver_alloc(&sv, j, &any, err);
     if (!rc)
         rc = stretch(j, &sv, s, H, stats, err);
     solver_free(&sv);
@@ -280,18 +315,19 @@ int hy_jiles_apply(const hy_jiles *j, hy_jiles_state *s, double H, hy_jiles_stat
 typedef struct drive_ctx {
     const hy_jiles *j;
     hy_jiles_state s;
+    hy_jiles_stats *stats;
 } drive_ctx;
 
 static int feed(void *ctx, double u, double *y, hy_error *err)
 {
     drive_ctx *d = ctx;
-    int rc = hy_jiles_apply(d->j, &d->s, u, NULL, err);
+    int rc = hy_jiles_apply(d->j, &d->s, u, d->stats, err);
     *y = d->s.M;
     return rc;
 }
 
 int hy_jiles_drive(const hy_jiles *j, const hy_input *in, const double *t, size_t n, double *M, double *B,
-                   hy_error *err)
+                   hy_jiles_stats *stats, hy_error *err)
 {
     int rc = hy_jiles_validate(j, err);
     if (rc || n == 0)
@@ -299,7 +335,7 @@ int hy_jiles_drive(const hy_jiles *j, const hy_input *in, const double *t, size_
     double *m = M ? M : malloc(n * sizeof *m);
     if (!m)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
-    drive_ctx d = {j, {0, 0, 0}};
+    drive_ctx d = {j, {0, 0, 0}, stats};
     hy_jiles_state_init(j, &d.s, hy_input_u(in, 0));
     rc = hy_rateind_drive(in, t, n, feed, &d, m, err);
     if (!rc && B) /* the value fed last at t[i] is u(t[i]) */

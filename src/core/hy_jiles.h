@@ -11,8 +11,10 @@
  * against a negative susceptibility just after a reversal), and B = μ0 (H + M).
  *
  * The model is rate-independent, so it is integrated in H: each monotone
- * stretch of the input is one initial value problem (GSL odeiv2 rk8pd, local
- * tolerance 1e-13 relative, on M/Ms and ∫ (H + M) dH), restarted at every
+ * stretch of the input is one initial value problem (GSL odeiv2 rk8pd by
+ * default, or the stepper j->stepper names, the implicit ones with a
+ * finite-difference Jacobian; local tolerance 1e-13, on M/Ms and
+ * ∫ (H + M) dH), restarted at every
  * reversal; the switch of the guard inside a stretch is located (regula falsi
  * on single steps) and the integration restarted there, so no step straddles
  * the kink of dM/dH.  L is evaluated near 0 by its series in Lambert's
@@ -44,7 +46,10 @@ typedef struct hy_jiles {
     double c;       /* reversibility, 0 <= c < 1                               */
     double alpha;   /* mean-field coupling, >= 0, α Ms / (3a) < 1              */
     double m0;      /* initial magnetisation M (A/m), |m0| < Ms (default 0)    */
-    double rtol;    /* local relative tolerance of rk8pd (default 1e-13)       */
+    double rtol;    /* local tolerance of the stepper (default 1e-13)          */
+    const char *stepper; /* GSL stepper, a name of hy_ode_stepper_names()
+                            (NULL: rk8pd, the default; `hystviz report` runs
+                            each against rk8pd at 1e-13)                     */
 } hy_jiles;
 
 /* Langevin function L(x) = coth x - 1/x, accurate for every x (odd, L(0) = 0). */
@@ -57,7 +62,7 @@ int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double a
 /* HY_OK, or HY_EINVAL with a message naming the parameter: Ms, a, k > 0,
  * c in [0, 1), alpha >= 0 with alpha Ms/(3a) < 1 (else the anhysteretic curve
  * is not single-valued: spontaneous magnetisation), |m0| < Ms, rtol in
- * [1e-15, 1e-3], all finite. */
+ * [1e-15, 1e-2], all finite; stepper NULL or a known name. */
 int hy_jiles_validate(const hy_jiles *j, hy_error *err);
 
 typedef struct hy_jiles_state {
@@ -86,9 +91,9 @@ int hy_jiles_apply(const hy_jiles *j, hy_jiles_state *s, double H, hy_jiles_stat
 
 /* M and B (either may be NULL) at ascending times t[0..n-1] for an input of
  * hy_input.h read as H(t) in A/m, from M = j->m0 at H = u(0); every extremum
- * of the input between samples is a restart. */
+ * of the input between samples is a restart.  stats (may be NULL) is added to. */
 int hy_jiles_drive(const hy_jiles *j, const hy_input *in, const double *t, size_t n, double *M, double *B,
-                   hy_error *err);
+                   hy_jiles_stats *stats, hy_error *err);
 
 /* Features of the major loop for the symmetric drive ±hmax (cycled from the
  * demagnetised state until M at +hmax changes by < 1e-12 Ms per cycle), read

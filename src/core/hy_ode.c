@@ -9,36 +9,36 @@
 #include <string.h>
 
 #include "hy_gamma.h"
+#include "hy_ode_steppers.h"
+
+/* The steppers, by name, in the order every list shows them (one line
+ * each: the table and the name list are generated from it). */
+#define HY_ODE_STEPPERS(X) \
+    X(rk2) X(rk4) X(rkf45) X(rkck) X(rk8pd) X(rk1imp) X(rk2imp) X(rk4imp) X(bsimp) X(msadams) X(msbdf)
 
 typedef struct stepper_entry {
     const char *name;
     const gsl_odeiv2_step_type *const *type;
 } stepper_entry;
 
-static const stepper_entry steppers[] = {
-    {"rk2", &gsl_odeiv2_step_rk2},       {"rk4", &gsl_odeiv2_step_rk4},
-    {"rkf45", &gsl_odeiv2_step_rkf45},   {"rkck", &gsl_odeiv2_step_rkck},
-    {"rk8pd", &gsl_odeiv2_step_rk8pd},   {"rk1imp", &gsl_odeiv2_step_rk1imp},
-    {"rk2imp", &gsl_odeiv2_step_rk2imp}, {"rk4imp", &gsl_odeiv2_step_rk4imp},
-    {"bsimp", &gsl_odeiv2_step_bsimp},   {"msadams", &gsl_odeiv2_step_msadams},
-    {"msbdf", &gsl_odeiv2_step_msbdf},
-};
+#define STEPPER_ENTRY(n) {#n, &gsl_odeiv2_step_##n},
+static const stepper_entry steppers[] = {HY_ODE_STEPPERS(STEPPER_ENTRY)};
 #define NSTEPPERS (sizeof steppers / sizeof steppers[0])
 
-static const char *const stepper_names[NSTEPPERS + 1] = {
-    "rk2", "rk4", "rkf45", "rkck", "rk8pd", "rk1imp", "rk2imp", "rk4imp", "bsimp", "msadams", "msbdf", NULL};
+#define STEPPER_NAME(n) #n,
+static const char *const stepper_names[NSTEPPERS + 1] = {HY_ODE_STEPPERS(STEPPER_NAME) NULL};
 
 const char *const *hy_ode_stepper_names(void) { return stepper_names; }
 
-static const gsl_odeiv2_step_type *find_stepper(const char *name)
+const gsl_odeiv2_step_type *hy_ode_step_type(const char *name)
 {
-    for (size_t i = 0; i < NSTEPPERS; i++)
+    for (size_t i = 0; name && i < NSTEPPERS; i++)
         if (strcmp(steppers[i].name, name) == 0)
             return *steppers[i].type;
     return NULL;
 }
 
-int hy_ode_stepper_known(const char *name) { return name && find_stepper(name) != NULL; }
+int hy_ode_stepper_known(const char *name) { return hy_ode_step_type(name) != NULL; }
 
 hy_ode_opts hy_ode_defaults(void)
 {
@@ -204,7 +204,7 @@ static int advance_dense(gsl_odeiv2_driver *d, gsl_odeiv2_system *sys, ctx *c, c
 
 static int check_opts(const hy_ode_opts *o, hy_error *err)
 {
-    if (!o->stepper || !find_stepper(o->stepper))
+    if (!o->stepper || !hy_ode_step_type(o->stepper))
         return hy_error_set(err, HY_EINVAL, "unknown ODE stepper '%s' (rk2, rk4, rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp, msadams, msbdf)",
                             o->stepper ? o->stepper : "(null)");
     if (!isfinite(o->rtol) || o->rtol < 0 || !isfinite(o->atol) || o->atol < 0 || (o->rtol == 0 && o->atol == 0))
@@ -292,7 +292,7 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
     size_t dim = m->type->has_filter ? 2 : 1;
     gsl_odeiv2_system sys = {rhs, jac, dim, &c};
     double h0 = first_step(o, in->pieces[0].t1 - in->pieces[0].t0);
-    gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(&sys, find_stepper(o->stepper), h0, o->atol, o->rtol);
+    gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(&sys, hy_ode_step_type(o->stepper), h0, o->atol, o->rtol);
     if (!d)
         return hy_error_set(err, HY_ENOMEM, "cannot allocate the GSL driver");
     if (o->max_steps)

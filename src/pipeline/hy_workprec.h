@@ -28,10 +28,11 @@
 
 #include "hy_boucwen.h"
 #include "hy_input.h"
+#include "hy_jiles.h"
 #include "hy_model.h"
 #include "hy_status.h"
 
-enum { HY_WP_LUGRE = 0, HY_WP_BOUCWEN = 1 };
+enum { HY_WP_LUGRE = 0, HY_WP_BOUCWEN = 1, HY_WP_JILES = 2 };
 
 /* Run status, as written in the CSV "status" column. */
 enum { HY_WP_OK = 0, HY_WP_FAIL, HY_WP_STEPCAP, HY_WP_TIMECAP, HY_WP_SKIPPED };
@@ -40,11 +41,12 @@ typedef struct hy_wp_problem {
     char name[32];            /* "ex3-g10", "lugre-stiff", "boucwen"          */
     char title[128];          /* plot title (markup)                          */
     char ref_method[128];     /* how the reference was obtained               */
-    int kind;                 /* HY_WP_LUGRE or HY_WP_BOUCWEN                 */
+    int kind;                 /* HY_WP_LUGRE, HY_WP_BOUCWEN or HY_WP_JILES    */
     hy_model model;           /* LuGre kinds                                   */
     hy_input input;
     double gamma;
     hy_boucwen_params bw;     /* Bouc-Wen kind                                 */
+    hy_jiles ja;              /* Jiles-Atherton kind (input: H in A/m, output B) */
     double bw_h_ref;          /* reference step (s)                            */
     double *t, *yref;         /* output grid and reference, n points          */
     size_t n;

@@ -293,7 +293,7 @@ static void test_inputs_and_minor_loop(void)
     }
     /* drive: samples at the extrema of period 1 equal the fed sequence */
     double t[4] = {1, 2.2, 3.2, 5}, Md[4], Bd[4];
-    CHECK(!hy_jiles_drive(&j, &in, t, 4, Md, Bd, &err), "drive: %s", err.msg);
+    CHECK(!hy_jiles_drive(&j, &in, t, 4, Md, Bd, NULL, &err), "drive: %s", err.msg);
     hy_jiles_state s;
     hy_jiles_state_init(&j, &s, -750);
     const double ext[4] = {250, -550, 750, -750};
@@ -312,7 +312,7 @@ static void test_inputs_and_minor_loop(void)
         double tt[2 * NT], B[2 * NT];
         for (int k = 0; k < 2 * NT; k++)
             tt[k] = in.period * k / NT;
-        rc = hy_jiles_drive(&j, &in, tt, 2 * NT, NULL, B, &err);
+        rc = hy_jiles_drive(&j, &in, tt, 2 * NT, NULL, B, NULL, &err);
         CHECK(!rc, "%s: %s", in.desc, err.msg);
         int ok = 1;
         for (int k = 0; k < 2 * NT; k++)
@@ -323,7 +323,7 @@ static void test_inputs_and_minor_loop(void)
     const char *txt = "0 0\n1 5000\n2 -5000\n3 0\n";
     CHECK(!hy_input_text(&in, txt, strlen(txt), "inline.dat", 1, &err), "%s", err.msg);
     double tt[3] = {1, 2, 4}, B[3];
-    CHECK(!hy_jiles_drive(&j, &in, tt, 3, NULL, B, &err) && B[0] > 0 && B[1] < 0 && B[2] > 0,
+    CHECK(!hy_jiles_drive(&j, &in, tt, 3, NULL, B, NULL, &err) && B[0] > 0 && B[1] < 0 && B[2] > 0,
           "file input: B = %g, %g, %g", B[0], B[1], B[2]);
     hy_input_free(&in);
     hy_input_parse(&in, "sine:1,1", &err);
