@@ -524,6 +524,7 @@ static void render_one(const opts *o, job *j)
     if (!rc) {
         char written[4096] = "";
         hy_scene_run_name(&run, j->name, sizeof j->name);
+        run.figure_only = !o->data; /* with --data every point is written */
         rc = hy_scene_run_compute(&run, log, &err);
         if (!rc)
             rc = hy_scene_run_write(&run, o->out, NULL, written, sizeof written, &err);

@@ -75,6 +75,7 @@ static int render_one(const char *scene, const char *out, const char *formats, c
     if (st)
         return st;
     char written[8192] = "";
+    run.figure_only = 1; /* figures only (`data` writes the points) */
     if (!(st = compute(&run, verbose))) {
         if (hy_scene_run_write(&run, out, formats, written, sizeof written, &err)) {
             /* errors of the scene's [output] dir already start with file:line:col */

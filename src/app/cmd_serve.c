@@ -1104,6 +1104,8 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
     if (!rc) {
         run.cancelled = render_unwanted;
         run.cancel_ctx = &watch;
+        /* a figure, not its points (csv, json with hover) */
+        run.figure_only = format != -2 && !(a->hover && !strcmp(a->hover, "1"));
     }
     if (!rc && (rc = hy_scene_run_compute(&run, NULL, &err))) {
         hy_scene_run_free(&run);

@@ -83,6 +83,7 @@ static void render_one(watched *w, char *const *sets, size_t nsets, const char *
         return;
     }
     char written[8192] = "";
+    run.figure_only = 1;
     rc = hy_scene_run_compute(&run, NULL, &err);
     if (!rc)
         rc = hy_scene_run_write(&run, out, formats, written, sizeof written, &err);

@@ -481,7 +481,9 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
     p->solves = calloc(ns ? ns : 1, sizeof *p->solves);
     if (!p->solves)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
-    int need_steady = 0, need_loops = 0, need_grid = !(r->numbers_only && r->no_verify);
+    /* the time grid: for y_γ solves and for u and y* over the time span (the
+       table-only path outside the error sample samples no curve) */
+    int need_steady = 0, need_loops = 0, need_grid = 0;
     for (size_t i = 0; i < ns; i++) {
         const char *name = hy_scene_name_at(s, "series", i);
         int d = -1;
@@ -494,6 +496,8 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
                                      data_names[0]);
         if (d == HY_DATA_YSTAR || d == HY_DATA_YSTEADY || d == HY_DATA_YK)
             need_steady = 1;
+        if ((d == HY_DATA_INPUT || d == HY_DATA_YSTAR) && !(r->numbers_only && r->no_verify))
+            need_grid = 1;
         if (d == HY_DATA_MINOR || d == HY_DATA_MAJOR)
             need_steady = need_loops = 1;
         if (d == HY_DATA_YGAMMA || d == HY_DATA_TRANSIENT) {
@@ -517,7 +521,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
             hy_scene_text_has_placeholder(text))
             need_steady = need_loops = 1;
     }
-    if (need_grid) { /* the time grid (the table-only path outside the error sample samples no curve) */
+    if (need_grid) {
         if (!(p->t = malloc(p->npts * sizeof *p->t)))
             return hy_error_set(err, HY_ENOMEM, "out of memory for %zu points", p->npts);
         for (size_t i = 0; i < p->npts; i++)
@@ -638,6 +642,135 @@ static void sample(const hy_scene_run *r, const plan *p, hy_run_series *se, size
     }
 }
 
+/* ---- drawn-only series (figure_only) -----------------------------------
+ * A series that is drawn and never written as data need not hold every point
+ * of its grid when that has more than HY_THIN_MIN: one drawn only as its
+ * mark is evaluated at the mark; a loop (y° against ψ_u, data = minor or
+ * major) is kept at the grid points that a polyline through them needs to
+ * stay within tol of the full grid's.  Within a run of ψ_u, ψ is linear in ϱ
+ * and y° = s g0 + (y_i - s g0) e^{-a (ϱ - ϱ_i)} is monotone and convex or
+ * concave, so the chord over [ϱ, ϱ + Δ] is within
+ * Δ² a² |y_i - s g0| e^{-a (ϱ - ϱ_i)} / 8 of the curve vertically (so also
+ * perpendicularly, in any scaling of the axes).  The grid points on both
+ * sides of every run's end are kept: the extremes of x and y are the full
+ * grid's and no turn is cut.  Values are computed as sample() computes them
+ * (same ϱ, same functions), so every point drawn is one the full grid has. */
+
+static int thin_wanted(const hy_scene_run *r, double points)
+{
+    int full = 0;
+    hy_scene_get_bool(r->scene, "figure", NULL, "full_resolution", &full);
+    return r->figure_only && points > HY_THIN_MIN && !full;
+}
+
+/* Whether series se draws only its mark (style none, a marker, at). */
+static int mark_only(const hy_scene_run *r, const hy_run_series *se, double *at)
+{
+    const hy_scene *s = r->scene;
+    int style = 0, mk = 0;
+    const char *t;
+    hy_scene_get_enum(s, "series", se->name, "style", &style, &t);
+    hy_scene_get_enum(s, "series", se->name, "marker", &mk, &t);
+    return style == HY_LINE_NONE && mk && hy_scene_get_num(s, "series", se->name, "at", at) == HY_SCENE_SET;
+}
+
+/* The end of the run of ψ_u that ϱ = rho lies in, in rho's own units (past
+ * rho: an end closer than rho's resolution counts as the next double). */
+static double run_end(const hy_input *in, double rho, size_t *run, double *rmod)
+{
+    *run = hy_input_run_at(in, rho, rmod);
+    double end = rho + (in->runs[*run].rho1 - *rmod);
+    return end > rho ? end : nextafter(rho, INFINITY);
+}
+
+/* The extent of y° over [a, b] of ϱ: its extremes lie at the ends and at the
+ * ends of runs (monotone within each). */
+static double loop_y_extent(const hy_scene_run *r, double a, double b)
+{
+    double lo = hy_steady_at_rho(&r->steady, a), hi = lo, x = a, rm;
+    size_t run;
+    for (size_t n = 0; x < b && n < 4 * r->input.nruns + 4; n++) {
+        double e = run_end(&r->input, x, &run, &rm);
+        x = e < b ? e : b;
+        double y = hy_steady_at_rho(&r->steady, x);
+        lo = fmin(lo, y), hi = fmax(hi, y);
+    }
+    return hi - lo;
+}
+
+/* The chord tolerance of series se's thinned loop: HY_THIN_TOL of the
+ * narrowest y window the scene can show (y°'s range over the period, ylim,
+ * zoom_y, each minor loop's range when the inset follows it), in the units
+ * of y° before series.yscale.  0: not thinned. */
+static double thin_tol(const hy_scene_run *r, const hy_run_series *se)
+{
+    const hy_scene *s = r->scene;
+    double lo = r->steady.y_run[0], hi = lo, f = 1, v[2];
+    for (size_t i = 1; i <= r->input.nruns; i++)
+        lo = fmin(lo, r->steady.y_run[i]), hi = fmax(hi, r->steady.y_run[i]);
+    double w = hi - lo;
+    int lg = 0, is_auto = 1, follow = 0;
+    const char *t;
+    hy_scene_get_bool(s, "figure", NULL, "ylog", &lg);
+    if (lg) /* the bound is for a linear y axis */
+        return 0;
+    hy_scene_get_num(s, "series", se->name, "yscale", &f);
+    if (hy_scene_get_pair(s, "figure", NULL, "ylim", v, &is_auto) == HY_SCENE_SET && !is_auto)
+        w = fmin(w, fabs(v[1] - v[0]) / fabs(f));
+    is_auto = 1;
+    if (hy_scene_get_pair(s, "figure", NULL, "zoom_y", v, &is_auto) == HY_SCENE_SET && !is_auto)
+        w = fmin(w, fabs(v[1] - v[0]) / fabs(f));
+    hy_scene_get_enum(s, "figure", NULL, "zoom_follow", &follow, &t);
+    for (size_t i = 0; follow && i < r->loops.nminor; i++)
+        w = fmin(w, loop_y_extent(r, r->loops.minor[i].rho_start, r->loops.minor[i].rho_close));
+    return w > 0 && isfinite(w) ? HY_THIN_TOL * w : 0;
+}
+
+/* The grid index after j (of per on [a, b]) that a chord from j reaches
+ * within tol: at most the last grid point of j's run, one step past it. */
+static size_t thin_next(const hy_scene_run *r, double a, double b, size_t per, size_t j, double tol)
+{
+    double h = (b - a) / (double)(per - 1), rho = a + (b - a) * (double)j / (double)(per - 1), rm;
+    size_t i;
+    double f = floor((run_end(&r->input, rho, &i, &rm) - a) / h);
+    size_t jb = f < (double)(per - 1) ? (size_t)f : per - 1;
+    if (jb <= j)
+        return j + 1;
+    const hy_run *run = &r->input.runs[i];
+    double as = r->steady.a, D = fabs(r->steady.y_run[i] - run->sign * r->steady.g0);
+    double c = as * as * D * exp(-as * (rm - run->rho0)); /* |y''| at ϱ, its largest ahead in the run */
+    double k = c > 0 ? floor(sqrt(8 * tol / c) / h) : INFINITY;
+    k = fmin(k, floor((double)(per - 1) / HY_THIN_SPAN)); /* candidates as dense as HY_THIN_SPAN's grid */
+    if (!(k >= 1))
+        return j + 1;
+    return k >= (double)(jb - j) ? jb : j + (size_t)k;
+}
+
+/* The points thin_sample keeps on [a, b]. */
+static size_t thin_count(const hy_scene_run *r, double a, double b, size_t per, double tol)
+{
+    size_t m = 1;
+    for (size_t j = 0; j < per - 1; j = thin_next(r, a, b, per, j, tol))
+        m++;
+    return m;
+}
+
+/* Samples the loop series over [a, b] at the grid points (of per) that
+ * thin_next keeps; their number. */
+static size_t thin_sample(const hy_scene_run *r, const plan *p, hy_run_series *se, size_t off, size_t per, double a,
+                          double b, double tol)
+{
+    size_t m = 0;
+    for (size_t j = 0;; j = thin_next(r, a, b, per, j, tol)) {
+        double t = a + (b - a) * (double)j / (double)(per - 1); /* as sample() */
+        se->x[off + m] = series_x(r, se, t);
+        se->y[off + m] = series_y(r, p, se, t);
+        m++;
+        if (j >= per - 1)
+            return m;
+    }
+}
+
 /* ϱ intervals of the minor loops (minor) or of the rest of the period (major);
  * -1 if a minor loop is too narrow for ϱ at the input's scale to step past it */
 int hy_scene_loop_intervals(const hy_scene_run *r, int major, double *a, double *b, size_t max)
@@ -754,9 +887,11 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     double T = r->input.period;
     double t0 = now();
     int rc = HY_OK;
+    double mark_at = 0;
     se->err = NAN;
     se->err_ref = NULL;
     se->dist = NAN;
+    se->grid_n = 0;
     /* numbers only: u, ψ and g are not sampled; the closed forms are, so that
        their error is measured (issue 11) and the same as with figures */
     if (r->numbers_only && (se->data == HY_DATA_INPUT || se->data == HY_DATA_PSI || se->data == HY_DATA_G))
@@ -777,22 +912,28 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         int k = hy_scene_loop_intervals(r, se->data == HY_DATA_MAJOR, a, b, 64);
         if (k < 0)
             return hy_scene_too_narrow(r, err);
-        size_t total = 0;
+        size_t total = 0, full = (size_t)k * (per + 1);
+        double tol = per > 1 && thin_wanted(r, (double)full) ? thin_tol(r, se) : 0;
         for (int i = 0; i < k; i++)
-            total += per + 1;
+            total += tol > 0 ? thin_count(r, a[i], b[i], per, tol) + 1 : per + 1;
         if ((rc = hy_run_series_alloc(se, total ? total : 1, err)))
             return rc;
         size_t off = 0;
         for (int i = 0; i < k; i++) {
-            sample(r, p, se, off, per, a[i], b[i]);
-            se->x[off + per] = se->y[off + per] = NAN; /* gap */
-            off += per + 1;
+            size_t m = per;
+            if (tol > 0)
+                m = thin_sample(r, p, se, off, per, a[i], b[i], tol);
+            else
+                sample(r, p, se, off, per, a[i], b[i]);
+            se->x[off + m] = se->y[off + m] = NAN; /* gap */
+            off += m + 1;
         }
         se->n = total;
+        se->grid_n = total < full ? full : 0;
         if (r->no_verify)
             not_sampled(se);
         else
-            hy_verify_loops(r, se, a, b, k, per);
+            hy_verify_loops(r, se, a, b, k, per, total < full);
     } else if (se->data == HY_DATA_G) {
         double lim[2];
         int is_auto = 1;
@@ -807,6 +948,9 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         if ((rc = hy_run_series_alloc(se, per + 1, err)))
             return rc;
         sample(r, p, se, 0, per + 1, 0, r->input.rho_T);
+    } else if ((se->data == HY_DATA_YSTEADY || se->data == HY_DATA_YK) && thin_wanted(r, (double)per + 1) &&
+               mark_only(r, se, &mark_at) && mark_at >= 0 && mark_at < T) {
+        se->grid_n = per + 1; /* drawn as its mark: evaluated there only (below) */
     } else if (se->data == HY_DATA_YSTEADY || se->data == HY_DATA_YK) {
         if ((rc = hy_run_series_alloc(se, per + 1, err)))
             return rc;
@@ -816,7 +960,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         if (r->no_verify)
             not_sampled(se);
         else
-            hy_verify_time(r, se, NULL, per + 1);
+            hy_verify_time(r, se, NULL, se->y, per + 1);
     } else if ((se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) && r->figure_kind == FIG_LOOP) {
         /* loop figures: the last period is the steady state at this γ, the rest the transient */
         gamma_solve *g = find_solve(p, se->gamma);
@@ -860,13 +1004,17 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         if (se->data == HY_DATA_YSTAR && r->no_verify)
             not_sampled(se);
         else if (se->data == HY_DATA_YSTAR)
-            hy_verify_time(r, se, p->t, p->npts);
+            hy_verify_time(r, se, p->t, se->y, p->npts);
     }
     double at;
     if (hy_scene_get_num(s, "series", se->name, "at", &at) == HY_SCENE_SET) {
         se->has_mark = 1;
         se->mark_x = series_x(r, se, at);
         se->mark_y = series_y(r, p, se, at);
+        if (se->grid_n && !se->n && r->no_verify)
+            not_sampled(se);
+        else if (se->grid_n && !se->n) /* its one point measured */
+            hy_verify_time(r, se, &at, &se->mark_y, 1);
     }
     se->seconds = now() - t0;
     return rc;
@@ -1037,6 +1185,9 @@ int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
             const hy_run_series *se = &r->series[i];
             fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms", se->name, data_names[se->data], se->n,
                     1e3 * se->seconds);
+            if (se->grid_n)
+                fprintf(log, " (drawn: %s of the grid's %zu)", se->n ? "the points its curvature needs" : "its mark only",
+                        se->grid_n);
             if (se->err_ref && isnan(se->err))
                 fprintf(log, "  error %s", se->err_ref);
             else if (se->err_ref)

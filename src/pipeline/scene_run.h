@@ -44,7 +44,21 @@ typedef struct hy_run_series {
     double seconds;           /* compute time                                     */
     int has_mark;             /* a marker at 'at'                                 */
     double mark_x, mark_y;
+    size_t grid_n;            /* figure_only: the points of the grid it would have
+                               * sampled when it holds fewer (thinned, or drawn
+                               * as its mark only), else 0                       */
 } hy_run_series;
+
+/* figure_only: a series with more points than this on its grid is drawn from
+ * fewer (scene_run.c, "Drawn-only series"); none of the gallery's has as many. */
+enum { HY_THIN_MIN = 131072 };
+/* ... and its drawn polyline stays within this fraction of the narrowest y
+ * window the scene can show of the exact closed form's polyline. */
+#define HY_THIN_TOL 1e-6
+/* ... through at least this many points of each loop interval, evenly in ϱ,
+ * so that the output's own simplification (hy_simplify.h) finds vertices as
+ * far apart as it would on a grid of that size */
+#define HY_THIN_SPAN 32768.0
 
 /* err_ref of a series whose error was not measured because of no_verify. */
 #define HY_NOT_SAMPLED "not measured: the run was asked for no error measurement (outside hystviz sweep's sample)"
@@ -80,6 +94,15 @@ typedef struct hy_scene_run {
                                * measured: ..."); with numbers_only the
                                * closed-form series are then not sampled at all
                                * (hystviz sweep's points outside the sample)    */
+    int figure_only;          /* set before compute: the series are drawn, never
+                               * written as data (render, serve's figures, the
+                               * gallery without --data).  Series of more than
+                               * HY_THIN_MIN grid points are then drawn from
+                               * fewer: one drawn only as its mark (style none,
+                               * marker, at) is evaluated at that point; a
+                               * Dahl/LuGre loop is kept at the grid points its
+                               * curvature bound needs (HY_THIN_TOL), unless
+                               * [figure] full_resolution                       */
     int scene_borrowed;       /* scene belongs to the caller (not freed)          */
     int (*cancelled)(void *); /* set before compute (may be NULL): polled between
                                * the steps of compute and render (each gamma

@@ -56,7 +56,8 @@ static int ref_init(const hy_scene_run *r, hy_ref_limit *R, hy_run_series *se)
     return 0;
 }
 
-void hy_verify_loops(const hy_scene_run *r, hy_run_series *se, const double *a, const double *b, int k, size_t per)
+void hy_verify_loops(const hy_scene_run *r, hy_run_series *se, const double *a, const double *b, int k, size_t per,
+                     int thinned)
 {
     hy_ref_limit R;
     if (ref_init(r, &R, se))
@@ -69,7 +70,8 @@ void hy_verify_loops(const hy_scene_run *r, hy_run_series *se, const double *a, 
                 continue;
             /* the parameter sample() drew at */
             double rho = per > 1 ? a[i] + (b[i] - a[i]) * (double)j / (double)(per - 1) : a[i];
-            e = fmax(e, fabs(se->y[(size_t)i * (per + 1) + j] - hy_ref_steady_rho(&R, rho)));
+            double y = thinned ? hy_steady_at_rho(&r->steady, rho) : se->y[(size_t)i * (per + 1) + j];
+            e = fmax(e, fabs(y - hy_ref_steady_rho(&R, rho)));
         }
     set_ref(se, e, "long-double run-by-run propagation of the limit map (y° by forward composition)", stride,
             total);
@@ -89,7 +91,7 @@ static long double ystar_start(const hy_ref_limit *R, long double y00, double k)
     return y00;
 }
 
-void hy_verify_time(const hy_scene_run *r, hy_run_series *se, const double *t, size_t n)
+void hy_verify_time(const hy_scene_run *r, hy_run_series *se, const double *t, const double *y, size_t n)
 {
     hy_ref_limit R;
     if (ref_init(r, &R, se))
@@ -134,7 +136,7 @@ void hy_verify_time(const hy_scene_run *r, hy_run_series *se, const double *t, s
                 hy_ref_runs(&R, ystart, yrun);
             }
         }
-        e = fmax(e, fabs(se->y[i] - hy_ref_in_period(&R, yrun, tm)));
+        e = fmax(e, fabs(y[i] - hy_ref_in_period(&R, yrun, tm)));
     }
     set_ref(se, e, what, stride, n);
     free(yrun);

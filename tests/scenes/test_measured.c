@@ -72,7 +72,7 @@ static void detects(void)
         if (se->data != HY_DATA_YSTEADY)
             continue;
         se->y[17] += 1e-9;
-        hy_verify_time(&r, se, NULL, se->n);
+        hy_verify_time(&r, se, NULL, se->y, se->n);
         CHECK(fabs(se->err - 1e-9) < 1e-12, "%s: moved point measured as %.6g, not 1e-9", se->name, se->err);
     }
     hy_scene_run_free(&r);
