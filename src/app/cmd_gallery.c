@@ -445,7 +445,7 @@ static void job_plan(const opts *o, job *jobs, size_t i, entry *man, size_t nman
     }
     if (!hy_scene_is_figure(probe.scene))
         j->state = J_SKIP;
-    hy_scene_run_name(&probe, j->name, sizeof j->name);
+    hy_scene_probe_name(probe.scene, probe.path, j->name, sizeof j->name);
     char key[17];
     scene_key(probe.scene, o->data, key);
     hy_scene_free(probe.scene);

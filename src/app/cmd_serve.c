@@ -841,12 +841,9 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
         hy_scene_run chk; /* what render refuses before computing: the catalogue says why */
         if (!bad && (bad = hy_scene_run_load_scene(&chk, sc, path, hy_scene_policy_budget(&s->pol), &err)) == 0)
             hy_scene_run_free(&chk);
-        hy_scene_run probe = {0};
-        probe.scene = sc;
-        probe.path = path;
         char name[256];
         if (sc)
-            hy_scene_run_name(&probe, name, sizeof name);
+            hy_scene_probe_name(sc, path, name, sizeof name);
         else
             snprintf(name, sizeof name, "%.*s", (int)(strlen(v[i]) - 6), v[i]);
         sv_puts(&b, first ? "{\"file\":" : ",{\"file\":");
@@ -928,11 +925,8 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
         sv_puts(&b, ",\"controls\":[],\"anim\":null,\"error\":");
         sv_json(&b, err.msg);
     } else {
-        hy_scene_run probe = {0};
-        probe.scene = sc;
-        probe.path = path;
         char name[256];
-        hy_scene_run_name(&probe, name, sizeof name);
+        hy_scene_probe_name(sc, path, name, sizeof name);
         sv_puts(&b, ",\"name\":");
         sv_json(&b, name);
         sv_puts(&b, ",\"controls\":");

@@ -202,10 +202,7 @@ int scene_anim_load_src(scene_anim *a, const char *path, const char *text, size_
                 break;
             }
     if (!rc) {
-        hy_scene_run tmp = {0};
-        tmp.path = path;
-        tmp.scene = a->scene;
-        hy_scene_run_name(&tmp, a->name, sizeof a->name);
+        hy_scene_probe_name(a->scene, path, a->name, sizeof a->name);
         pthread_mutex_init(&a->mu, NULL);
         pthread_cond_init(&a->cv, NULL);
         return HY_OK;

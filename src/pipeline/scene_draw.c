@@ -43,19 +43,32 @@ void hy_scene_figure_label(const char *file, char *buf, size_t size)
         snprintf(buf, size, "Fig. %d", num);
 }
 
-void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size)
+/* [output] name if set, else path's file name without .scene. */
+static void output_name(const hy_decl_output *o, const char *path, char *buf, size_t size)
 {
-    const char *name;
-    if (hy_scene_get_str(r->scene, "output", NULL, "name", &name) >= 0 && name[0]) {
-        snprintf(buf, size, "%s", name);
+    if (o->name && o->name[0]) {
+        snprintf(buf, size, "%s", o->name);
         return;
     }
-    const char *base = strrchr(r->path, '/');
-    base = base ? base + 1 : r->path;
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
     snprintf(buf, size, "%s", base);
     char *dot = strrchr(buf, '.');
     if (dot && !strcmp(dot, ".scene"))
         *dot = '\0';
+}
+
+void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size)
+{
+    output_name(&r->doc.output, r->path, buf, size);
+}
+
+void hy_scene_probe_name(const hy_scene *s, const char *path, char *buf, size_t size)
+{
+    hy_decl_output o;
+    memset(&o, 0, sizeof o);
+    hy_scene_decode_section(s, "output", NULL, &o.h);
+    output_name(&o, path, buf, size);
 }
 
 /* Replaces {major.area}, {energy}, {minorN.area}, {minorN.own}, {minorN.ystart},
@@ -63,8 +76,9 @@ void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size)
  * and {NAME.dist} (max |y_γ - y*_u| over its points), and {SECTION.key} (a numeric
  * key, set or by default, e.g. {model.sigma0}) in text by their values (4 significant
  * digits, hy_markup_number); {minorN.turn} is the sign of minorN.area as an arrow: ↻ clockwise, ↺ counter-clockwise. */
-static int expand(const hy_scene_run *r, const char *name, const char *text, char *out, size_t size, hy_error *err)
+static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out, size_t size, hy_error *err)
 {
+    const char *text = a->text ? a->text : "";
     size_t o = 0;
     for (const char *c = text; *c && o + 1 < size;) {
         if (*c != '{') {
@@ -73,16 +87,16 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
         }
         const char *e = strchr(c, '}');
         if (!e)
-            return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
-                                     "unterminated '{' in annotation text (no '}' after it)");
+            return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
+                                 "unterminated '{' in annotation text (no '}' after it)");
         char key[48];
         size_t klen = (size_t)(e - c - 1);
         snprintf(key, sizeof key, "%.*s", (int)(klen < sizeof key ? klen : sizeof key - 1), c + 1);
         /* a group of any length is markup; a placeholder name is short */
         int ph = klen < sizeof key ? hy_scene_is_placeholder(key) : memchr(c + 1, '.', klen) != NULL;
         if (ph && klen >= sizeof key)
-            return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
-                                     "unknown placeholder {%.40s...}: longer than any placeholder name", key);
+            return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
+                                 "unknown placeholder {%.40s...}: longer than any placeholder name", key);
         if (!ph) { /* a markup group such as u_{min,2}: kept */
             size_t n = (size_t)(e - c + 1);
             if (o + n >= size)
@@ -121,13 +135,13 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
                 char sect[16];
                 snprintf(sect, sizeof sect, "%.*s", (int)(dot - key), key);
                 double x;
-                if (hy_scene_get_num(r->scene, sect, NULL, dot + 1, &x) >= 0)
+                if (!hy_scene_doc_num(&r->doc, sect, dot + 1, &x))
                     v = x;
             }
         }
         if (isnan(v))
-            return hy_scene_error_at(r->scene, "annotation", name, "text", err, HY_EINVAL,
-                                     "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key of a numeric key)",
+            return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
+                                 "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key of a numeric key)",
                                      key, L->nminor);
         char num[64];
         if (turn)
@@ -142,35 +156,26 @@ static int expand(const hy_scene_run *r, const char *name, const char *text, cha
     return HY_OK;
 }
 
-static hy_range range_of(const hy_scene *s, const char *key, const char *logkey)
+static hy_range range_of(const hy_scene_pair *lim, int log)
 {
     hy_range rg = {0, 0, 0, 0};
-    double v[2];
-    int is_auto = 1, lg = 0;
-    if (hy_scene_get_pair(s, "figure", NULL, key, v, &is_auto) >= 0 && !is_auto) {
-        rg.lo = v[0];
-        rg.hi = v[1];
+    if (!lim->is_auto) {
+        rg.lo = lim->v[0];
+        rg.hi = lim->v[1];
     }
-    hy_scene_get_bool(s, "figure", NULL, logkey, &lg);
-    rg.log = lg;
+    rg.log = log;
     return rg;
 }
 
 typedef hy_scene_fig fig_store;
 
 /* The figure's [figure] size and dpi (all a format check needs). */
-static void figure_size(const hy_scene *s, hy_figure *f)
+static void figure_size(const hy_decl_figure *d, hy_figure *f)
 {
-    double size[2] = {hy_cm(12), hy_cm(9)};
-    long dpi = 300;
-    hy_scene_get_length_pair_pt(s, "figure", NULL, "size", size);
-    hy_scene_get_int(s, "figure", NULL, "dpi", &dpi);
-    int full = 0;
-    hy_scene_get_bool(s, "figure", NULL, "full_resolution", &full);
-    f->full_resolution = full;
-    f->width = size[0];
-    f->height = size[1];
-    f->dpi = (double)dpi;
+    f->full_resolution = d->full_resolution;
+    f->width = d->size[0];
+    f->height = d->size[1];
+    f->dpi = (double)d->dpi;
 }
 
 void hy_scene_fig_free(hy_scene_fig *st)
@@ -187,7 +192,7 @@ void hy_scene_fig_free(hy_scene_fig *st)
 
 /* Whether key names a placeholder this scene could fill, before computing
  * (the minor loop count is known only after it; expand checks it then). */
-static int placeholder_known(const hy_scene *s, const char *key)
+static int placeholder_known(const hy_scene_doc *d, const char *key)
 {
     static const char *const whole[] = {"major.area", "major.own", "energy", "nminor"};
     static const char *const minor[] = {"area", "turn", "own", "ystart", "yclose", "gap"};
@@ -207,21 +212,12 @@ static int placeholder_known(const hy_scene *s, const char *key)
         return 0;
     char sect[48];
     snprintf(sect, sizeof sect, "%.*s", (int)(dot - key), key);
-    const char *data;
-    if (hy_scene_get_enum(s, "series", sect, "data", NULL, &data) >= 0 &&
-        (!strcmp(data, "ygamma") || !strcmp(data, "transient")) && (!strcmp(dot + 1, "gamma") || !strcmp(dot + 1, "dist")))
+    const hy_decl_series *se = hy_scene_doc_series(d, sect);
+    if (se && hy_decl_got(&se->h, offsetof(hy_decl_series, data)) >= 0 &&
+        (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) && (!strcmp(dot + 1, "gamma") || !strcmp(dot + 1, "dist")))
         return 1;
     double x;
-    return dot - key < 16 && hy_scene_get_num(s, sect, NULL, dot + 1, &x) >= 0;
-}
-
-/* Whether the scene asks its inset to follow the minor loop (zoom_follow). */
-static int zoom_follows_minor(const hy_scene *s)
-{
-    int idx = 0;
-    const char *t;
-    hy_scene_get_enum(s, "figure", NULL, "zoom_follow", &idx, &t);
-    return idx == 1;
+    return dot - key < 16 && !hy_scene_doc_num(d, sect, dot + 1, &x);
 }
 
 /* The window of an inset that follows the minor loop: the bounding box of
@@ -258,96 +254,41 @@ static int minor_window(const hy_scene_run *r, const hy_axes *ax, double zx[2], 
     return 1;
 }
 
-/* The inset's zoom_x and zoom_y: *has 1 with both set (lo < hi each), 0 with
- * neither; a scene error naming the key otherwise (zoom_follow = minor without
- * a minor-loop series too). */
-static int read_zoom(const hy_scene *s, double zx[2], double zy[2], int *has, hy_error *err)
-{
-    if (zoom_follows_minor(s)) {
-        int found = 0;
-        for (size_t i = 0; i < hy_scene_count(s, "series") && !found; i++) {
-            const char *data = "";
-            hy_scene_get_enum(s, "series", hy_scene_name_at(s, "series", i), "data", NULL, &data);
-            found = !strcmp(data, "minor");
-        }
-        *has = 0;
-        if (!found)
-            return hy_scene_error_at(s, "figure", NULL, "zoom_follow", err, HY_EINVAL,
-                                     "zoom_follow = minor needs a [series] with data = minor to follow");
-        return HY_OK;
-    }
-    int zxa = 1, zya = 1;
-    int hzx = hy_scene_get_pair(s, "figure", NULL, "zoom_x", zx, &zxa) == HY_SCENE_SET && !zxa;
-    int hzy = hy_scene_get_pair(s, "figure", NULL, "zoom_y", zy, &zya) == HY_SCENE_SET && !zya;
-    *has = hzx;
-    if (hzx != hzy)
-        return hy_scene_error_at(s, "figure", NULL, hzx ? "zoom_x" : "zoom_y", err, HY_EINVAL,
-                                 "a zoomed inset needs both zoom_x and zoom_y");
-    if (hzx && (!(zx[0] < zx[1]) || !(zy[0] < zy[1])))
-        return hy_scene_error_at(s, "figure", NULL, "zoom_x", err, HY_EINVAL,
-                                 "zoom_x and zoom_y must each be lo, hi with lo < hi");
-    return HY_OK;
-}
-
 int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
 {
-    const hy_scene *s = r->scene;
-    size_t na = hy_scene_count(s, "annotation");
-    if (!hy_scene_count(s, "series") && !na && !r->npanels)
+    const hy_scene_doc *d = &r->doc;
+    if (!d->nseries && !d->nannotation && !d->npanel)
         return hy_error_set(err, HY_EINVAL, "%s:1:1: the scene draws nothing: it has no [series NAME] (or [annotation NAME]) section; "
-                                 "a file of shared settings is included by scenes, not rendered", hy_scene_source(s));
-    for (size_t i = 0; i < na; i++) {
-        const char *name = hy_scene_name_at(s, "annotation", i), *text = "";
-        hy_scene_get_str(s, "annotation", name, "text", &text);
+                                 "a file of shared settings is included by scenes, not rendered", d->source);
+    for (size_t i = 0; i < d->nannotation; i++) {
+        const hy_decl_annotation *a = &d->annotation[i];
+        const char *text = a->text ? a->text : "";
         for (const char *c = strchr(text, '{'); c; c = strchr(c + 1, '{')) {
             const char *e = strchr(c, '}');
             if (!e)
-                return hy_scene_error_at(s, "annotation", name, "text", err, HY_EINVAL,
-                                         "unterminated '{' in annotation text (no '}' after it)");
+                return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
+                                     "unterminated '{' in annotation text (no '}' after it)");
             char key[48];
             size_t n = (size_t)(e - c - 1);
             snprintf(key, sizeof key, "%.*s", (int)(n < sizeof key ? n : sizeof key - 1), c + 1);
             int ph = n < sizeof key ? hy_scene_is_placeholder(key) : memchr(c + 1, '.', n) != NULL;
-            if (ph && (n >= sizeof key || !placeholder_known(s, key)))
-                return hy_scene_error_at(s, "annotation", name, "text", err, HY_EINVAL,
-                                         "unknown placeholder {%s%s} (major.area, major.own, energy, nminor, "
-                                         "minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; "
-                                         "SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key "
-                                         "of a numeric key)", key, n >= sizeof key ? "..." : "");
+            if (ph && (n >= sizeof key || !placeholder_known(d, key)))
+                return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
+                                     "unknown placeholder {%s%s} (major.area, major.own, energy, nminor, "
+                                     "minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; "
+                                     "SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key "
+                                     "of a numeric key)", key, n >= sizeof key ? "..." : "");
         }
-        double v;
-        if (hy_scene_get_num(s, "annotation", name, "x", &v) < 0 || hy_scene_get_num(s, "annotation", name, "y", &v) < 0)
-            return hy_scene_error_at(s, "annotation", name, NULL, err, HY_EINVAL, "annotation '%s' needs x and y", name);
-        if ((hy_scene_get_num(s, "annotation", name, "point_x", &v) >= 0) !=
-            (hy_scene_get_num(s, "annotation", name, "point_y", &v) >= 0))
-            return hy_scene_error_at(s, "annotation", name, NULL, err, HY_EINVAL,
-                                     "annotation '%s' needs both point_x and point_y, or neither", name);
     }
-    double zx[2], zy[2];
-    int hzx, zrc = read_zoom(s, zx, zy, &hzx, err);
-    if (zrc)
-        return zrc;
-    char keys[9][HY_SCENE_KEY_MAX];
-    size_t nkeys;
-    int rc = hy_scene_main_keys(s, keys, 9, &nkeys, err);
-    for (size_t i = 0; !rc && i < hy_scene_count(s, "preset"); i++) {
-        char (*sets)[HY_SCENE_SET_MAX] = malloc(HY_SCENE_PRESET_MAX * sizeof *sets);
-        rc = sets ? hy_scene_preset_sets(s, hy_scene_name_at(s, "preset", i), sets, HY_SCENE_PRESET_MAX, &nkeys, err)
-                  : hy_error_set(err, HY_ENOMEM, "out of memory");
-        free(sets);
-    }
-    return rc;
+    return HY_OK;
 }
 
 /* A [panel] figure: each panel scene's axes in a grid of [figure] columns
  * per row, in the size and fonts of this scene. */
 static int panel_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
 {
-    long cols = (long)r->npanels;
-    hy_scene_get_int(r->scene, "figure", NULL, "columns", &cols);
-    if (cols < 1 || r->npanels % (size_t)cols)
-        return hy_scene_error_at(r->scene, "figure", NULL, "columns", err, HY_EINVAL,
-                                 "columns = %ld does not divide the %zu panels into full rows", cols, r->npanels);
+    long cols = hy_decl_got(&r->doc.figure.h, offsetof(hy_decl_figure, columns)) >= 0 ? r->doc.figure.columns
+                                                                                       : (long)r->npanels;
     st->panels = calloc(r->npanels, sizeof *st->panels);
     st->axes = calloc(r->npanels, sizeof *st->axes);
     if (!st->panels || !st->axes)
@@ -365,41 +306,26 @@ static int panel_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
     return HY_OK;
 }
 
-int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
+/* The curves of the figure: style, colour, width, label and marker of each series. */
+static size_t figure_series(const hy_scene_run *r, hy_scene_fig *st)
 {
-    const hy_scene *s = r->scene;
-    size_t na = hy_scene_count(s, "annotation");
-    memset(st, 0, sizeof *st);
-    st->series = calloc(r->nseries + 1, sizeof *st->series);
-    st->marks = calloc(r->nseries + 1, sizeof *st->marks);
-    st->texts = calloc(na + 1, sizeof *st->texts);
-    st->textbuf = calloc(na + 1, sizeof *st->textbuf);
-    if (!st->series || !st->marks || !st->texts || !st->textbuf)
-        return hy_error_set(err, HY_ENOMEM, "out of memory");
     size_t nm = 0;
     for (size_t i = 0; i < r->nseries; i++) {
         const hy_run_series *rs = &r->series[i];
+        const hy_decl_series *d = hy_scene_doc_series(&r->doc, rs->name);
         hy_series *se = &st->series[i];
-        int idx = 0;
-        const char *t;
         se->x = rs->x;
         se->y = rs->y;
         se->n = rs->n;
-        hy_scene_get_enum(s, "series", rs->name, "style", &idx, &t);
-        se->style = idx;
-        hy_scene_color c;
-        if (hy_scene_get_color(s, "series", rs->name, "color", &c) == HY_SCENE_SET)
-            se->colour = (hy_colour){HY_RGB_EXPLICIT, {c.r, c.g, c.b}};
+        se->style = d->style;
+        if (hy_decl_got(&d->h, offsetof(hy_decl_series, color)) == HY_SCENE_SET)
+            se->colour = (hy_colour){HY_RGB_EXPLICIT, {d->color.r, d->color.g, d->color.b}};
         else
             se->colour = (hy_colour){(int)(i % HY_PALETTE_SIZE), {0, 0, 0}};
-        double w = 1;
-        hy_scene_get_length_pt(s, "series", rs->name, "width", &w);
-        se->width = w;
-        const char *label;
-        if (hy_scene_get_str(s, "series", rs->name, "label", &label) >= 0 && label[0])
-            se->label = label;
-        int mk = 0;
-        hy_scene_get_enum(s, "series", rs->name, "marker", &mk, &t);
+        se->width = d->width;
+        if (d->label && d->label[0])
+            se->label = d->label;
+        int mk = d->marker;
         if (mk && rs->has_mark) {
             hy_mark *m = &st->marks[nm++];
             m->x = rs->mark_x;
@@ -411,61 +337,25 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
         } else if (mk)
             se->marker = mk;
     }
-    for (size_t i = 0; i < na; i++) {
-        const char *name = hy_scene_name_at(s, "annotation", i), *text = "";
-        hy_scene_get_str(s, "annotation", name, "text", &text);
-        int rc = expand(r, name, text, st->textbuf[i], sizeof st->textbuf[i], err);
-        if (rc)
-            return rc;
-        double x, y;
-        if (hy_scene_get_num(s, "annotation", name, "x", &x) < 0 || hy_scene_get_num(s, "annotation", name, "y", &y) < 0)
-            return hy_scene_error_at(s, "annotation", name, NULL, err, HY_EINVAL, "annotation '%s' needs x and y", name);
-        st->texts[i] = (hy_text){x, y, st->textbuf[i], HY_ANCHOR_LEFT, 0, 0, {0, {0, 0, 0}}, 0, 0, 0};
-        double px, py;
-        int hx = hy_scene_get_num(s, "annotation", name, "point_x", &px) >= 0;
-        int hy = hy_scene_get_num(s, "annotation", name, "point_y", &py) >= 0;
-        if (hx != hy)
-            return hy_scene_error_at(s, "annotation", name, NULL, err, HY_EINVAL,
-                                     "annotation '%s' needs both point_x and point_y, or neither", name);
-        if (hx)
-            st->texts[i].has_point = 1, st->texts[i].px = px, st->texts[i].py = py;
-    }
+    return nm;
+}
+
+/* The inset: zoom_follow = minor (the minor loop's box, or a note that there
+ * is none), else zoom_x and zoom_y as written (hy_scene_decode checked them). */
+static void figure_zoom(const hy_scene_run *r, hy_scene_fig *st)
+{
+    const hy_decl_figure *f = &r->doc.figure;
     hy_axes *ax = &st->ax;
-    ax->series = st->series;
-    ax->nseries = r->nseries;
-    ax->marks = st->marks;
-    ax->nmarks = nm;
-    ax->texts = st->texts;
-    ax->ntexts = na;
-    const char *xl = default_xlabel[r->figure_kind], *yl = default_ylabel[r->figure_kind], *title = NULL;
-    hy_scene_get_str(s, "figure", NULL, "xlabel", &xl);
-    hy_scene_get_str(s, "figure", NULL, "ylabel", &yl);
-    if (hy_scene_get_str(s, "figure", NULL, "title", &title) >= 0 && !title[0])
-        title = NULL;
-    ax->xlabel = xl;
-    ax->ylabel = yl;
-    ax->title = title;
-    ax->x = range_of(s, "xlim", "xlog");
-    ax->y = range_of(s, "ylim", "ylog");
-    int idx = 1, grid = 0;
-    const char *t;
-    hy_scene_get_enum(s, "figure", NULL, "legend", &idx, &t);
-    ax->legend = idx;
-    hy_scene_get_bool(s, "figure", NULL, "grid", &grid);
-    ax->grid = grid;
-    double band[2];
-    int is_auto = 1;
-    if (hy_scene_get_pair(s, "figure", NULL, "shade", band, &is_auto) == HY_SCENE_SET && !is_auto) {
-        ax->band = 1;
-        ax->band_lo = band[0];
-        ax->band_hi = band[1];
-    }
     double zx[2], zy[2];
-    int hzx, zrc = read_zoom(s, zx, zy, &hzx, err);
-    if (zrc)
-        return zrc;
-    if (zoom_follows_minor(s) && !(hzx = minor_window(r, ax, zx, zy)))
-        snprintf(st->note, sizeof st->note, "note: no inset: zoom_follow = minor and no minor loop at these values\n");
+    int hzx = 0;
+    if (!strcmp(hy_decl_enum_text(&f->h, offsetof(hy_decl_figure, zoom_follow), f->zoom_follow), "minor")) {
+        if (!(hzx = minor_window(r, ax, zx, zy)))
+            snprintf(st->note, sizeof st->note, "note: no inset: zoom_follow = minor and no minor loop at these values\n");
+    } else if (hy_decl_got(&f->h, offsetof(hy_decl_figure, zoom_x)) == HY_SCENE_SET) {
+        hzx = 1;
+        memcpy(zx, f->zoom_x.v, sizeof zx);
+        memcpy(zy, f->zoom_y.v, sizeof zy);
+    }
     if (hzx) {
         ax->zoom_x = (hy_range){zx[0], zx[1], ax->x.log, 0};
         ax->zoom_y = (hy_range){zy[0], zy[1], ax->y.log, 0};
@@ -474,17 +364,55 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
                      "note: no inset: its window x %g..%g, y %g..%g holds no drawn data at these values\n", zx[0],
                      zx[1], zy[0], zy[1]);
     }
+}
+
+int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
+{
+    const hy_scene_doc *d = &r->doc;
+    const hy_decl_figure *df = &d->figure;
+    size_t na = d->nannotation;
+    memset(st, 0, sizeof *st);
+    st->series = calloc(r->nseries + 1, sizeof *st->series);
+    st->marks = calloc(r->nseries + 1, sizeof *st->marks);
+    st->texts = calloc(na + 1, sizeof *st->texts);
+    st->textbuf = calloc(na + 1, sizeof *st->textbuf);
+    if (!st->series || !st->marks || !st->texts || !st->textbuf)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    size_t nm = figure_series(r, st);
+    for (size_t i = 0; i < na; i++) {
+        const hy_decl_annotation *a = &d->annotation[i];
+        int rc = expand(r, a, st->textbuf[i], sizeof st->textbuf[i], err);
+        if (rc)
+            return rc;
+        st->texts[i] = (hy_text){a->x, a->y, st->textbuf[i], HY_ANCHOR_LEFT, 0, 0, {0, {0, 0, 0}}, 0, 0, 0};
+        if (hy_decl_got(&a->h, offsetof(hy_decl_annotation, point_x)) >= 0)
+            st->texts[i].has_point = 1, st->texts[i].px = a->point_x, st->texts[i].py = a->point_y;
+    }
+    hy_axes *ax = &st->ax;
+    ax->series = st->series;
+    ax->nseries = r->nseries;
+    ax->marks = st->marks;
+    ax->nmarks = nm;
+    ax->texts = st->texts;
+    ax->ntexts = na;
+    ax->xlabel = df->xlabel ? df->xlabel : default_xlabel[r->figure_kind];
+    ax->ylabel = df->ylabel ? df->ylabel : default_ylabel[r->figure_kind];
+    ax->title = df->title && df->title[0] ? df->title : NULL;
+    ax->x = range_of(&df->xlim, df->xlog);
+    ax->y = range_of(&df->ylim, df->ylog);
+    ax->legend = df->legend;
+    ax->grid = df->grid;
+    if (hy_decl_got(&df->h, offsetof(hy_decl_figure, shade)) == HY_SCENE_SET) {
+        ax->band = 1;
+        ax->band_lo = df->shade.v[0];
+        ax->band_hi = df->shade.v[1];
+    }
+    figure_zoom(r, st);
     hy_figure *f = &st->fig;
-    double fs = 9;
-    hy_scene_get_length_pt(s, "figure", NULL, "fontsize", &fs);
-    const char *font = "DejaVu Sans";
-    hy_scene_get_str(s, "figure", NULL, "font", &font);
-    figure_size(s, f);
-    f->font = font;
-    f->font_size = fs;
-    int theme = HY_THEME_PAPER;
-    hy_scene_get_enum(s, "figure", NULL, "theme", &theme, &t);
-    f->theme = theme;
+    figure_size(df, f);
+    f->font = df->font;
+    f->font_size = df->fontsize;
+    f->theme = df->theme;
     f->axes = ax;
     f->nrows = f->ncols = 1;
     if (r->npanels)
@@ -535,17 +463,18 @@ int hy_scene_formats_parse(const char *list, int fmt[3], size_t *n, hy_error *er
 }
 
 /* The formats to write: the override list, else the scene's [output] formats. */
-static int run_formats(const hy_scene *s, const char *formats, int fmt[3], size_t *nf, hy_error *err)
+static int run_formats(const hy_scene_doc *d, const char *formats, int fmt[3], size_t *nf, hy_error *err)
 {
     if (formats)
         return hy_scene_formats_parse(formats, fmt, nf, err);
-    size_t n = 0;
-    const char *t;
+    const hy_scene_list *l = &d->output.formats;
     *nf = 0;
-    for (size_t i = 0; hy_scene_get_enum_at(s, "output", NULL, "formats", i, &t, &n) >= 0 && i < n && *nf < 3; i++)
+    for (size_t i = 0; i < l->n && *nf < 3; i++) {
+        const char *t = hy_decl_enum_text(&d->output.h, offsetof(hy_decl_output, formats), (int)l->v[i]);
         for (int k = 0; k < 3; k++)
             if (!strcmp(t, format_ext[k]))
                 fmt[(*nf)++] = HY_FORMAT_SVG + k;
+    }
     return HY_OK;
 }
 
@@ -555,8 +484,8 @@ int hy_scene_run_check_output(const hy_scene_run *r, const char *formats, hy_err
     size_t nf;
     hy_figure f;
     memset(&f, 0, sizeof f);
-    figure_size(r->scene, &f);
-    int rc = run_formats(r->scene, formats, fmt, &nf, err);
+    figure_size(&r->doc.figure, &f);
+    int rc = run_formats(&r->doc, formats, fmt, &nf, err);
     for (size_t i = 0; i < nf && !rc; i++)
         if ((rc = hy_figure_check(&f, fmt[i], err)))
             hy_error_prefix(err, "%s", r->path);
@@ -591,7 +520,7 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     hy_scene_run_name(r, name, sizeof name);
     int fmt[3];
     size_t nf = 0;
-    int rc = run_formats(s, formats, fmt, &nf, err);
+    int rc = run_formats(&r->doc, formats, fmt, &nf, err);
     if (rc)
         return rc;
     char *odir = NULL; /* -o, or [output] dir below the scene's directory (hy_scene_policy.h) */
@@ -642,7 +571,7 @@ int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err)
     fprintf(out, "series,x,y\n");
     data_rows(r, NULL, out);
     for (size_t p = 0; p < r->npanels; p++) /* a [panel] figure: PANEL/SERIES */
-        data_rows(&r->panels[p], hy_scene_name_at(r->scene, "panel", p), out);
+        data_rows(&r->panels[p], r->doc.panel[p].h.name, out);
     if (ferror(out))
         return hy_error_set(err, HY_EIO, "error writing the data: %s", strerror(errno));
     return HY_OK;

@@ -26,8 +26,8 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static const char *const data_names[] = {"input", "psi", "g", "ystar", "ysteady", "ygamma",
-                                         "yk", "transient", "minor", "major", "boucwen"};
+#define DATA_NAME(id, name) name,
+static const char *const data_names[] = {HY_SERIES_DATA(DATA_NAME)};
 
 static double num(const hy_scene *s, const char *sec, const char *name, const char *key, double dflt)
 {
@@ -255,12 +255,14 @@ static int load_panels(hy_scene_run *r, hy_error *err)
 /* The model and input of the parsed scene r->scene; r freed on error. */
 static int build_run(hy_scene_run *r, hy_error *err)
 {
-    int idx = 0;
-    const char *t;
-    hy_scene_get_enum(r->scene, "figure", NULL, "kind", &idx, &t);
-    r->figure_kind = idx;
+    int rc = hy_scene_decode(r->scene, &r->doc, err);
+    if (rc) {
+        hy_scene_run_free(r);
+        return rc;
+    }
+    r->figure_kind = r->doc.figure.kind;
     r->mtype = hy_scene_model_of(r->scene);
-    int rc = check_quantities(r, err);
+    rc = check_quantities(r, err);
     if (!rc)
         rc = r->mtype->load(r, err);
     if (!rc)
@@ -292,6 +294,7 @@ int hy_scene_run_load_text(hy_scene_run *r, const char *path, const char *text, 
 
 void hy_scene_run_free(hy_scene_run *r)
 {
+    hy_scene_doc_free(&r->doc);
     for (size_t i = 0; i < r->npanels; i++)
         hy_scene_run_free(&r->panels[i]);
     free(r->panels);
@@ -1206,9 +1209,25 @@ int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
     return rc;
 }
 
+/* A Dahl or LuGre y_gamma (ygamma, transient) names its gamma. */
+static int check_gammas(const hy_scene_run *r, hy_error *err)
+{
+    for (size_t i = 0; i < r->doc.nseries; i++) {
+        const hy_decl_series *se = &r->doc.series[i];
+        if (hy_decl_got(&se->h, offsetof(hy_decl_series, data)) >= 0 &&
+            (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) &&
+            hy_decl_got(&se->h, offsetof(hy_decl_series, gamma)) < 0)
+            return hy_decl_error(&se->h, offsetof(hy_decl_series, data), err, HY_EINVAL,
+                                 "series '%s' (data = %s) needs 'gamma'", se->h.name, data_names[se->data]);
+    }
+    return HY_OK;
+}
+
 int hy_scene_friction_load(hy_scene_run *r, hy_error *err)
 {
     int rc = hy_scene_boucwen_load(r, err); /* refuses the Bouc-Wen-only parts */
+    if (!rc)
+        rc = check_gammas(r, err);
     if (!rc)
         rc = build_model(r, err);
     if (!rc)

@@ -24,9 +24,10 @@
 #include "hy_model.h"
 #include "hy_plot.h"
 #include "hy_scene.h"
+#include "hy_scene_decl.h"
 
-enum { HY_DATA_INPUT, HY_DATA_PSI, HY_DATA_G, HY_DATA_YSTAR, HY_DATA_YSTEADY, HY_DATA_YGAMMA,
-       HY_DATA_YK, HY_DATA_TRANSIENT, HY_DATA_MINOR, HY_DATA_MAJOR, HY_DATA_BOUCWEN };
+#define HY_DATA_ENUM(id, name) HY_DATA_##id,
+enum { HY_SERIES_DATA(HY_DATA_ENUM) HY_DATA_COUNT };
 
 typedef struct hy_run_series {
     const char *name;         /* the [series NAME]                                */
@@ -64,7 +65,9 @@ enum { HY_THIN_MIN = 131072 };
 #define HY_NOT_SAMPLED "not measured: the run was asked for no error measurement (outside hystviz sweep's sample)"
 
 typedef struct hy_scene_run {
-    hy_scene *scene;
+    hy_scene *scene;          /* the parsed scene: read by load's decode only    */
+    hy_scene_doc doc;         /* the scene decoded (hy_scene_decl.h): what the
+                               * pipeline reads, with where each value was written */
     const char *path;
     const struct hy_scene_model *mtype; /* the [model] kind's type (scene_model.h)  */
     struct hy_scene_run *panels; /* the [panel] scenes' runs, drawn side by side  */
@@ -117,10 +120,9 @@ typedef struct hy_scene_run {
  * model and input.  Errors name file:line:col.  On error r is freed. */
 int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err);
 
-/* What can be checked before computing and is not a single value's range:
- * a scene that draws nothing, annotations (x and y, point_x with point_y,
- * braces, placeholder names), the inset's zoom_x/zoom_y.  hy_scene_run_load
- * calls it (issue 20 item 11: refused after seconds of computing before). */
+/* What can be checked before computing beyond hy_scene_decode's checks:
+ * annotation texts (braces, placeholder names).  hy_scene_run_load calls it
+ * (issue 20 item 11: refused after seconds of computing before). */
 int hy_scene_run_validate(const hy_scene_run *r, hy_error *err);
 
 /* As hy_scene_run_load under pol (include dirs, work budget; NULL: defaults). */
@@ -212,6 +214,10 @@ void hy_scene_figure_label(const char *file, char *buf, size_t size);
 
 /* The output base name: [output] name, or the scene file's name without .scene. */
 void hy_scene_run_name(const hy_scene_run *r, char *buf, size_t size);
+
+/* The same name for a scene parsed but not loaded (a catalogue's probe),
+ * from its decoded [output] and the path it was read from. */
+void hy_scene_probe_name(const hy_scene *s, const char *path, char *buf, size_t size);
 
 void hy_scene_run_free(hy_scene_run *r);
 

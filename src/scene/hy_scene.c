@@ -338,7 +338,7 @@ int hy_scene_get_list(const hy_scene *s, const char *section, const char *name,
 {
     const hy__value *v;
     int rc = lookup(s, section, name, key,
-                    BIT(HY_KIND_NUMBER_LIST) | BIT(HY_KIND_INTEGER_LIST), &v, NULL, NULL);
+                    BIT(HY_KIND_NUMBER_LIST) | BIT(HY_KIND_INTEGER_LIST) | BIT(HY_KIND_ENUM_LIST), &v, NULL, NULL);
     if (rc >= 0) {
         *vals = v->list;
         *n = v->n;
@@ -466,18 +466,23 @@ int hy_scene_error_at(const hy_scene *s, const char *section, const char *name,
     hy_scene_loc loc = {hy_scene_source(s), 0, 0};
     if (!hy_scene_get_loc(s, section, name, key, &loc))
         hy_scene_get_loc(s, section, name, NULL, &loc);
-    char msg[sizeof err->msg]; /* an argument may be err->msg itself */
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    hy__error_vat(loc, err, code, fmt, ap);
     va_end(ap);
+    return code;
+}
+
+void hy__error_vat(hy_scene_loc loc, hy_error *err, int code, const char *fmt, va_list ap)
+{
+    char msg[sizeof err->msg]; /* an argument may be err->msg itself */
+    vsnprintf(msg, sizeof msg, fmt, ap);
     err->code = code;
     memcpy(err->msg, msg, sizeof msg);
     if (loc.line > 0)
         hy_error_prefix(err, "%s:%d:%d", loc.file, loc.line, loc.col);
     else
         hy_error_prefix(err, "%s", loc.file);
-    return code;
 }
 
 /* ---- overrides ---- */

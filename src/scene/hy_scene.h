@@ -124,7 +124,8 @@ int hy_scene_get_enum(const hy_scene *s, const char *section, const char *name,
 int hy_scene_get_str(const hy_scene *s, const char *section, const char *name,
                      const char *key, const char **out);
 
-/* A NUMBER_LIST or INTEGER_LIST: *vals (owned by the scene) and *n. */
+/* A NUMBER_LIST or INTEGER_LIST: *vals (owned by the scene) and *n; an
+ * ENUM_LIST gives the indices of its identifiers in the key's enum list. */
 int hy_scene_get_list(const hy_scene *s, const char *section, const char *name,
                       const char *key, const double **vals, size_t *n);
 

@@ -3,6 +3,7 @@
 #ifndef HY_SCENE_INTERNAL_H
 #define HY_SCENE_INTERNAL_H
 
+#include <stdarg.h>
 #include <stdio.h>
 
 #include "hy_scene.h"
@@ -133,6 +134,10 @@ int hy__policy_roots(hy_scene *s, const char *top_dir, const hy_scene_policy *po
  * all malloc'ed.  On error returns a status with the reason in why. */
 int hy__policy_include(hy_scene *s, const char *dir, const char *rel, char **path, char **buf,
                        size_t *len, char **canon, char *why, size_t whysz);
+
+/* Writes "file:line:col: <fmt ...>" (just "file: ..." for line 0) into err
+ * with code; the arguments may include err->msg. */
+void hy__error_vat(hy_scene_loc loc, hy_error *err, int code, const char *fmt, va_list ap);
 
 /* A fresh scene with defaults prepared; NULL and err on failure. */
 hy_scene *hy__scene_new(hy_error *err);

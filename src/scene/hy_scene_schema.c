@@ -2,6 +2,7 @@
 /* hy_scene_schema.c: the scene vocabulary, one static table (models and inputs of seed 000,
  * Sections 2-4; the Bouc-Wen benchmark of seed 001, Tables 1-2 and Sections 4-5). */
 #include "hy_scene_schema.h"
+#include "hy_scene_decl.h"
 
 #include "hy_preisach.h"
 #include "hy_quality.h"
@@ -16,11 +17,21 @@
 #define NONNEG HY_SPEC_MIN, 0.0, 0.0
 #define K(...) K_(__VA_ARGS__)
 #define K_(name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL }
+    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, 0, HY_CTYPE_NONE }
 /* KQ: a quantity's key, its symbol and unit first (see hy_scene_key_spec). */
 #define KQ(sym, unit, ...) KQ_(sym, unit, __VA_ARGS__)
 #define KQ_(sym, unit, name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit }
+    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, 0, HY_CTYPE_NONE }
+/* F and FQ: as K and KQ for a key that hy_scene_decode writes into the field
+ * of the same name of the section's struct SECT (hy_scene_decl.h): the row
+ * records the field's offset and C type, so the name is written once. */
+#define FIELD_OF(name) offsetof(SECT, name), HY_CTYPE_OF(((SECT *)0)->name)
+#define F(...) F_(__VA_ARGS__)
+#define F_(name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
+    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, FIELD_OF(name) }
+#define FQ(sym, unit, ...) FQ_(sym, unit, __VA_ARGS__)
+#define FQ_(sym, unit, name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
+    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, FIELD_OF(name) }
 #define NKEYS(a) (sizeof(a) / sizeof((a)[0]))
 
 #define MODEL_NAME(id, name) name,
@@ -34,9 +45,8 @@ static const char *const solvers[] = {"exact", "rkf45", "rk8pd", "rk4imp", "bsim
 static const char *const figure_kinds[] = {"timeseries", "loop", "input", "g", "psi", NULL};
 static const char *const legends[] = {"none", "best", "top-left", "top-right",
                                       "bottom-left", "bottom-right", NULL};
-static const char *const series_data[] = {"input", "psi", "g", "ystar", "ysteady", "ygamma",
-                                          "yk", "transient", "minor", "major", "boucwen",
-                                          NULL};
+#define DATA_NAME(id, name) name,
+static const char *const series_data[] = {HY_SERIES_DATA(DATA_NAME) NULL};
 static const char *const line_styles[] = {"solid", "dashed", "dotted", "dashdot", "none",
                                           NULL};
 static const char *const bw_quantities[] = {"output", "input", "output-db", "transient-db",
@@ -51,197 +61,213 @@ static const char *const easings[] = {"linear", "smooth", NULL};
 #define QUALITY_NAME(name, w, h, fps) name,
 static const char *const qualities[] = {HY_QUALITY_PRESETS(QUALITY_NAME) NULL};
 
+#define SECT hy_decl_model
 static const hy_scene_key_spec model_keys[] = {
-    K("kind", HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, "lugre",
+    F(kind, HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, "lugre",
       "hysteresis model: Dahl, LuGre (Eq. 3), the Example-1 filter system, the Bouc-Wen benchmark oscillator, "
       "Jiles-Atherton (ferromagnetic, input H in A/m, output B in T), classical Preisach, or the Bouc-Wen "
       "hysteresis operator (Eq. 3 of the benchmark driven by u)"),
-    KQ("σ_0", NULL, "sigma0", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
-    KQ("σ_1", NULL, "sigma1", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
-    KQ("σ_2", NULL, "sigma2", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
+    FQ("σ_0", NULL, sigma0, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
+    FQ("σ_1", NULL, sigma1, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
+    FQ("σ_2", NULL, sigma2, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
       "viscous friction sigma2; f(v) = sigma2 v (the paper takes f = 0)"),
-    KQ("F_c", NULL, "fc", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Coulomb friction force Fc"),
-    KQ("F_s", NULL, "fs", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "stiction force Fs"),
-    KQ("v_s", NULL, "vs", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck velocity vs"),
-    KQ("β", NULL, "beta", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck exponent beta of g(v)"),
-    KQ("ρ", NULL, "rho", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "constant g of the Dahl model"),
-    KQ("x_0", NULL, "x0", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "initial state x(0)"),
-    KQ("τ", NULL, "tau", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "time constant of the dahl-filter system"),
-    KQ("m_L", "kg", "m", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "boucwen: mass m_L in kg (Table 1)"),
-    KQ("c_L", "N s/m", "c", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "10", "boucwen: viscous damping c_L in N s/m"),
-    KQ("k_L", "N/m", "k", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4", "boucwen: linear stiffness k_L in N/m"),
-    KQ("α", "N/m", "alpha", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4",
+    FQ("F_c", NULL, fc, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Coulomb friction force Fc"),
+    FQ("F_s", NULL, fs, HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "stiction force Fs"),
+    FQ("v_s", NULL, vs, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck velocity vs"),
+    FQ("β", NULL, beta, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck exponent beta of g(v)"),
+    FQ("ρ", NULL, rho, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "constant g of the Dahl model"),
+    FQ("x_0", NULL, x0, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "initial state x(0)"),
+    FQ("τ", NULL, tau, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "time constant of the dahl-filter system"),
+    FQ("m_L", "kg", m, HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "boucwen: mass m_L in kg (Table 1)"),
+    FQ("c_L", "N s/m", c, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "10", "boucwen: viscous damping c_L in N s/m"),
+    FQ("k_L", "N/m", k, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4", "boucwen: linear stiffness k_L in N/m"),
+    FQ("α", "N/m", alpha, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "5e4",
       "boucwen, boucwen-operator: alpha of Eq. (3) in N/m (k + alpha > 0: the linearised stiffness of Table 2)"),
-    KQ("β", "1/m^ν", "bw_beta", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1e3",
+    FQ("β", "1/m^ν", bw_beta, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1e3",
       "boucwen, boucwen-operator: beta of Eq. (3) in 1/m^nu; 0 gives the linear oscillator of Fig. 1(b)"),
-    KQ("γ", NULL, "bw_gamma", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen, boucwen-operator: gamma of Eq. (3)"),
-    KQ("δ", NULL, "delta", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen, boucwen-operator: delta of Eq. (3)"),
-    KQ("ν", NULL, "nu", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen, boucwen-operator (1 only): exponent nu of Eq. (3)"),
-    KQ("M_s", "A/m", "ja_ms", HY_KIND_NUMBER, NULL, POS, 0, 0, "1.6e6",
+    FQ("γ", NULL, bw_gamma, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen, boucwen-operator: gamma of Eq. (3)"),
+    FQ("δ", NULL, delta, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen, boucwen-operator: delta of Eq. (3)"),
+    FQ("ν", NULL, nu, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen, boucwen-operator (1 only): exponent nu of Eq. (3)"),
+    FQ("M_s", "A/m", ja_ms, HY_KIND_NUMBER, NULL, POS, 0, 0, "1.6e6",
       "jiles-atherton: saturation magnetisation Ms in A/m (default: Jiles & Atherton 1986)"),
-    KQ("a", "A/m", "ja_a", HY_KIND_NUMBER, NULL, POS, 0, 0, "1100",
+    FQ("a", "A/m", ja_a, HY_KIND_NUMBER, NULL, POS, 0, 0, "1100",
       "jiles-atherton: a in A/m, the width of the anhysteretic curve Ms L(H_e/a)"),
-    KQ("k", "A/m", "ja_k", HY_KIND_NUMBER, NULL, POS, 0, 0, "400", "jiles-atherton: pinning k in A/m (the loop's half-width)"),
-    KQ("c", NULL, "ja_c", HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX | HY_SPEC_MAX_EXCL, 0, 1, 0, 0, "0.2",
+    FQ("k", "A/m", ja_k, HY_KIND_NUMBER, NULL, POS, 0, 0, "400", "jiles-atherton: pinning k in A/m (the loop's half-width)"),
+    FQ("c", NULL, ja_c, HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX | HY_SPEC_MAX_EXCL, 0, 1, 0, 0, "0.2",
       "jiles-atherton: reversible fraction c"),
-    KQ("α", NULL, "ja_alpha", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1.6e-3",
+    FQ("α", NULL, ja_alpha, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1.6e-3",
       "jiles-atherton: mean-field coupling alpha (alpha Ms / (3a) < 1, and small enough for k)"),
-    KQ("M_0", "A/m", "ja_m0", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0",
+    FQ("M_0", "A/m", ja_m0, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0",
       "jiles-atherton: magnetisation M in A/m at t = 0 (|m0| < Ms; 0: demagnetised)"),
-    K("pr_density", HY_KIND_ENUM, hy_preisach_dist_names, NOLIM, 0, 0, "gaussian",
+    F(pr_density, HY_KIND_ENUM, hy_preisach_dist_names, NOLIM, 0, 0, "gaussian",
       "preisach: distribution of both switching fields (factorised density)"),
-    K("pr_hc", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0.5",
+    F(pr_hc, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0.5",
       "preisach: centre of the up-switching fields alpha (the down-switching beta around -pr_hc), in input units"),
-    K("pr_width", HY_KIND_NUMBER, NULL, POS, 0, 0, "0.2",
+    F(pr_width, HY_KIND_NUMBER, NULL, POS, 0, 0, "0.2",
       "preisach: width of both switching-field distributions, in input units"),
-    K("pr_ys", HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "preisach: output at positive saturation"),
+    F(pr_ys, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "preisach: output at positive saturation"),
 };
+#undef SECT
 
+#define SECT hy_decl_input
 static const hy_scene_key_spec input_keys[] = {
-    K("kind", HY_KIND_ENUM, input_kinds, NOLIM, 0, 0, "bimodal",
+    F(kind, HY_KIND_ENUM, input_kinds, NOLIM, 0, 0, "bimodal",
       "input family: bimodal (Eq. 10), multimodal, triangle, sine, pwl, samples from a file; boucwen models take sine, multisine or sweep"),
-    KQ("u_{min,1}", NULL, "umin1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "bimodal input: first minimum u_min,1"),
-    KQ("u_{min,2}", NULL, "umin2", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.2", "bimodal input: second minimum u_min,2"),
-    KQ("u_{max,1}", NULL, "umax1", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "bimodal input: first maximum u_max,1"),
-    KQ("u_{max,2}", NULL, "umax2", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1.5", "bimodal input: second maximum u_max,2"),
-    K("t", HY_KIND_NUMBER_LIST, NULL, NONNEG, 4, 4, NULL,
+    FQ("u_{min,1}", NULL, umin1, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "bimodal input: first minimum u_min,1"),
+    FQ("u_{min,2}", NULL, umin2, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.2", "bimodal input: second minimum u_min,2"),
+    FQ("u_{max,1}", NULL, umax1, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "bimodal input: first maximum u_max,1"),
+    FQ("u_{max,2}", NULL, umax2, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1.5", "bimodal input: second maximum u_max,2"),
+    F(t, HY_KIND_NUMBER_LIST, NULL, NONNEG, 4, 4, NULL,
       "bimodal input: times t1, t2, t3, t4 of the extrema (default: normalised, t = rho)"),
-    K("shape", HY_KIND_ENUM, input_shapes, NOLIM, 0, 0, "linear",
+    F(shape, HY_KIND_ENUM, input_shapes, NOLIM, 0, 0, "linear",
       "how a monotone piece goes from one extremum to the next"),
-    K("extrema", HY_KIND_NUMBER_LIST, NULL, NOLIM, 2, 0, NULL,
+    F(extrema, HY_KIND_NUMBER_LIST, NULL, NOLIM, 2, 0, NULL,
       "multimodal input: the successive extrema of one period"),
-    K("times", HY_KIND_NUMBER_LIST, NULL, NONNEG, 2, 0, NULL,
+    F(times, HY_KIND_NUMBER_LIST, NULL, NONNEG, 2, 0, NULL,
       "multimodal input: the times of the extrema (default: normalised)"),
-    KQ("A", NULL, "amp", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1",
+    FQ("A", NULL, amp, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1",
       "triangle or sine input: amplitude (a force in N for a boucwen model); sweep input: force in N, default 40 "
       "(the paper's sweep, as `hystviz boucwen data --signal sweep`)"),
-    KQ("u_0", NULL, "offset", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "triangle or sine input: mean value"),
-    KQ("T", "s", "period", HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "triangle or sine input: period T"),
-    KQ("u_{min}", NULL, "min", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    FQ("u_0", NULL, offset, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "triangle or sine input: mean value"),
+    FQ("T", "s", period, HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "triangle or sine input: period T"),
+    FQ("u_{min}", NULL, min, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "triangle input: minimum (instead of amp and offset)"),
-    KQ("u_{max}", NULL, "max", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    FQ("u_{max}", NULL, max, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "triangle input: maximum (instead of amp and offset)"),
-    K("points", HY_KIND_NUMBER_LIST, NULL, HY_SPEC_EVEN, 0, 0, 4, 0, NULL,
+    F(points, HY_KIND_NUMBER_LIST, NULL, HY_SPEC_EVEN, 0, 0, 4, 0, NULL,
       "pwl input: one period as t0, u0, t1, u1, ..."),
-    K("file", HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
+    F(file, HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
       "file input: two-column text file t u, relative to the scene file"),
-    KQ("f_s", "Hz", "fs", HY_KIND_NUMBER, NULL, POS, 0, 0, "750",
+    FQ("f_s", "Hz", fs, HY_KIND_NUMBER, NULL, POS, 0, 0, "750",
       "boucwen inputs: working sampling rate in Hz (the figures' samples; a sine needs period x fs whole)"),
-    KQ("N", NULL, "samples", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 64, 10000000, 0, 0, "8192",
+    FQ("N", NULL, samples, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 64, 10000000, 0, 0, "8192",
       "multisine input: samples per period at fs (frequency resolution fs / samples)"),
-    K("band", HY_KIND_PAIR, NULL, NOLIM, 0, 0, "5, 150",
+    F(band, HY_KIND_PAIR, NULL, NOLIM, 0, 0, "5, 150",
       "multisine input: excited band in Hz; sweep input: start and end frequency in Hz, default 20, 50 (the paper's)"),
-    KQ("u_{RMS}", "N", "rms", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "50",
+    FQ("u_{RMS}", "N", rms, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "50",
       "multisine input: standard deviation (RMS) in N"),
-    K("seed", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
-    KQ("r", "Hz/min", "rate", HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute (the paper's 10)"),
+    F(seed, HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
+    FQ("r", "Hz/min", rate, HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute (the paper's 10)"),
 };
+#undef SECT
 
+#define SECT hy_decl_compute
 static const hy_scene_key_spec compute_keys[] = {
-    K("gamma", HY_KIND_NUMBER_LIST, NULL, POS, 1, 0, "1, 10, 100",
+    F(gamma, HY_KIND_NUMBER_LIST, NULL, POS, 1, 0, "1, 10, 100",
       "time scales gamma for y_gamma (Figs. 4, 7, 11)"),
-    K("k", HY_KIND_INTEGER_LIST, NULL, NONNEG, 1, 0, "0, 1, 2, 3",
+    F(k, HY_KIND_INTEGER_LIST, NULL, NONNEG, 1, 0, "0, 1, 2, 3",
       "periods k for `y*_{u,k}` (Figs. 8, 12, 13)"),
-    KQ("periods", NULL, "cycles", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 100000, 0, 0, "1",
+    FQ("periods", NULL, cycles, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 100000, 0, 0, "1",
       "number of input periods simulated"),
-    K("solver", HY_KIND_ENUM, solvers, NOLIM, 0, 0, "exact",
+    F(solver, HY_KIND_ENUM, solvers, NOLIM, 0, 0, "exact",
       "integrator: exact (piecewise exponential) or a GSL odeiv2 stepper"),
-    KQ("rtol", NULL, "rtol", HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MIN_EXCL | HY_SPEC_MAX, 0, 1, 0, 0,
+    FQ("rtol", NULL, rtol, HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MIN_EXCL | HY_SPEC_MAX, 0, 1, 0, 0,
       "1e-8", "relative tolerance of adaptive solvers"),
-    KQ("atol", NULL, "atol", HY_KIND_NUMBER, NULL, POS, 0, 0, "1e-10", "absolute tolerance of adaptive solvers"),
-    K("tspan", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
+    FQ("atol", NULL, atol, HY_KIND_NUMBER, NULL, POS, 0, 0, "1e-10", "absolute tolerance of adaptive solvers"),
+    F(tspan, HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "time interval computed and drawn (default: the periods simulated)"),
-    KQ("points", "per period", "points", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 10000000, 0, 0, "2000",
+    FQ("points", "per period", points, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 10000000, 0, 0, "2000",
       "output samples per input period (a curve over the time span has points x periods)"),
-    KQ("settle", "periods", "settle", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 0, 100000, 0, 0, "0",
+    FQ("settle", "periods", settle, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 0, 100000, 0, 0, "0",
       "boucwen: input periods integrated from rest and discarded before the 'cycles' drawn"),
-    KQ("upsample", NULL, "upsample", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 1000, 0, 0, "20",
+    FQ("upsample", NULL, upsample, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 1000, 0, 0, "20",
       "boucwen: Newmark integration rate as a multiple of the input's fs (15000 Hz = 20 x 750 Hz)"),
-    K("decimate", HY_KIND_ENUM, decimations, NOLIM, 0, 0, "staged",
+    F(decimate, HY_KIND_ENUM, decimations, NOLIM, 0, 0, "staged",
       "boucwen: back to fs like MATLAB decimate(y, r, 'fir') in prime-factor stages or one stage, or none (keep fs x upsample)"),
-    KQ("noise", "mm", "noise", HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
+    FQ("noise", "mm", noise, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
       "boucwen: RMS in mm of Gaussian noise added to y, white up to half the output rate (the benchmark's data: 8e-3)"),
 };
+#undef SECT
 
+#define SECT hy_decl_figure
 static const hy_scene_key_spec figure_keys[] = {
-    K("kind", HY_KIND_ENUM, figure_kinds, NOLIM, 0, 0, "timeseries",
+    F(kind, HY_KIND_ENUM, figure_kinds, NOLIM, 0, 0, "timeseries",
       "what the axes show: signals versus t, an output-versus-input loop, u(t), g(v), psi_u"),
-    K("title", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"", "title above the axes (empty: none)"),
-    K("caption", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"",
+    F(title, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"", "title above the axes (empty: none)"),
+    F(caption, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"",
       "one-line caption of what the figure shows (the gallery page prints it; not drawn)"),
-    K("xlabel", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
+    F(xlabel, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
       "x-axis label; TeX-like markup such as `y^\\circ_u` passes through (default: from kind)"),
-    K("ylabel", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "y-axis label (default: from kind)"),
-    K("xlim", HY_KIND_LIMITS, NULL, NOLIM, 0, 0, "auto", "x-axis range, or auto"),
-    K("ylim", HY_KIND_LIMITS, NULL, NOLIM, 0, 0, "auto", "y-axis range, or auto"),
-    K("xlog", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "logarithmic x axis"),
-    K("ylog", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "logarithmic y axis"),
-    K("size", HY_KIND_LENGTH_PAIR, NULL, POS, 0, 0, "12cm, 9cm", "width, height of the figure"),
-    K("dpi", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 36, 2400, 0, 0, "300",
+    F(ylabel, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "y-axis label (default: from kind)"),
+    F(xlim, HY_KIND_LIMITS, NULL, NOLIM, 0, 0, "auto", "x-axis range, or auto"),
+    F(ylim, HY_KIND_LIMITS, NULL, NOLIM, 0, 0, "auto", "y-axis range, or auto"),
+    F(xlog, HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "logarithmic x axis"),
+    F(ylog, HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "logarithmic y axis"),
+    F(size, HY_KIND_LENGTH_PAIR, NULL, POS, 0, 0, "12cm, 9cm", "width, height of the figure"),
+    F(dpi, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 36, 2400, 0, 0, "300",
       "raster resolution of PNG output and of px lengths"),
-    K("full_resolution", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false",
+    F(full_resolution, HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false",
       "draw every computed point of each line (an SVG to zoom or reuse); false: lines within 0.1 px at dpi (docs/ARCHITECTURE.md)"),
-    K("legend", HY_KIND_ENUM, legends, NOLIM, 0, 0, "best", "where the legend goes"),
-    K("font", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"serif\"", "font family of all text"),
-    K("fontsize", HY_KIND_LENGTH, NULL, POS, 0, 0, "9pt", "size of axis labels and legend text"),
-    K("grid", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "draw grid lines at the ticks"),
-    K("shade", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
+    F(legend, HY_KIND_ENUM, legends, NOLIM, 0, 0, "best", "where the legend goes"),
+    F(font, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"serif\"", "font family of all text"),
+    F(fontsize, HY_KIND_LENGTH, NULL, POS, 0, 0, "9pt", "size of axis labels and legend text"),
+    F(grid, HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false", "draw grid lines at the ticks"),
+    F(shade, HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "x interval highlighted in grey (e.g. the minor loop's time span)"),
-    K("zoom_x", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
+    F(zoom_x, HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "x range of a zoomed inset (with zoom_y): the same curves enlarged, placed where they cover least; "
       "left out when nothing drawn falls in it at the values given or it would enlarge it less than 1.5 times"),
-    K("zoom_y", HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL, "y range of the zoomed inset"),
-    K("zoom_follow", HY_KIND_ENUM, zoom_follows, NOLIM, 0, 0, "none",
+    F(zoom_y, HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL, "y range of the zoomed inset"),
+    F(zoom_follow, HY_KIND_ENUM, zoom_follows, NOLIM, 0, 0, "none",
       "minor: the inset zooms on the minor loop's bounding box (12 % margin) whatever the parameters, "
       "in place of zoom_x and zoom_y; none: zoom_x and zoom_y"),
-    K("theme", HY_KIND_ENUM, themes, NOLIM, 0, 0, "paper",
+    F(theme, HY_KIND_ENUM, themes, NOLIM, 0, 0, "paper",
       "paper (black on white) or slides (light on dark, lines twice as thick, text 1.4 times as large: a projector)"),
-    K("columns", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 64, 0, 0, NULL,
+    F(columns, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 64, 0, 0, NULL,
       "[panel] figures: panels per row (default: all in one row); it must divide the number of panels"),
 };
+#undef SECT
 
+#define SECT hy_decl_panel
 static const hy_scene_key_spec panel_keys[] = {
-    K("scene", HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
+    F(scene, HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
       "a scene file drawn in this panel (its model, input, series, axes and annotations; relative to this file)"),
 };
+#undef SECT
 
+#define SECT hy_decl_series
 static const hy_scene_key_spec series_keys[] = {
-    K("data", HY_KIND_ENUM, series_data, NOLIM, 0, 0, NULL, "which computed signal is drawn"),
-    KQ("γ", NULL, "gamma", HY_KIND_NUMBER, NULL, POS, 0, 0, NULL, "time scale of a ygamma curve"),
-    KQ("k", NULL, "k", HY_KIND_INTEGER, NULL, NONNEG, 0, 0, NULL, "period index of a yk curve"),
-    K("style", HY_KIND_ENUM, line_styles, NOLIM, 0, 0, "solid", "line dash pattern"),
-    K("color", HY_KIND_COLOR, NULL, NOLIM, 0, 0, NULL,
+    F(data, HY_KIND_ENUM, series_data, NOLIM, 0, 0, NULL, "which computed signal is drawn"),
+    FQ("γ", NULL, gamma, HY_KIND_NUMBER, NULL, POS, 0, 0, NULL, "time scale of a ygamma curve"),
+    FQ("k", NULL, k, HY_KIND_INTEGER, NULL, NONNEG, 0, 0, NULL, "period index of a yk curve"),
+    F(style, HY_KIND_ENUM, line_styles, NOLIM, 0, 0, "solid", "line dash pattern"),
+    F(color, HY_KIND_COLOR, NULL, NOLIM, 0, 0, NULL,
       "line colour (default: next Okabe-Ito colour)"),
-    K("width", HY_KIND_LENGTH, NULL, POS, 0, 0, "1pt", "line width"),
-    K("marker", HY_KIND_ENUM, markers, NOLIM, 0, 0, "none", "marker drawn at the point 'at'"),
-    K("label", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "legend entry (default: none)"),
-    KQ("t", NULL, "at", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    F(width, HY_KIND_LENGTH, NULL, POS, 0, 0, "1pt", "line width"),
+    F(marker, HY_KIND_ENUM, markers, NOLIM, 0, 0, "none", "marker drawn at the point 'at'"),
+    F(label, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "legend entry (default: none)"),
+    FQ("t", NULL, at, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "parameter value (e.g. t1) where the marker is placed"),
-    K("quantity", HY_KIND_ENUM, bw_quantities, NOLIM, 0, 0, "output",
+    F(quantity, HY_KIND_ENUM, bw_quantities, NOLIM, 0, 0, "output",
       "data = boucwen: y in mm, u in N, |y| in dB re 1 mm, transient y - y(last period) in dB, the last period's spectrum, "
       "the largest |y| in mm each second, or (sweep) the windowed-sinc route's largest error each second in u (N) or y (mm)"),
-    K("yscale", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1",
+    F(yscale, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1",
       "factor applied to the series' y values (and its marker), e.g. 1/Ms to draw M/Ms or B/B_s normalised to saturation"),
-    KQ("floor", "dB", "floor", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    FQ("floor", "dB", floor, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "data = boucwen, dB quantities: values below it and exact zeros are drawn at this level (default: zeros leave gaps)"),
 };
+#undef SECT
 
+#define SECT hy_decl_annotation
 static const hy_scene_key_spec annotation_keys[] = {
-    K("text", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "text drawn at (x, y)"),
-    KQ("x", NULL, "x", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "x position in data coordinates"),
-    KQ("y", NULL, "y", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y position in data coordinates"),
-    K("point_x", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    F(text, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "text drawn at (x, y)"),
+    FQ("x", NULL, x, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "x position in data coordinates"),
+    FQ("y", NULL, y, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y position in data coordinates"),
+    F(point_x, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "x of the point the text is about: a leader line joins them (with point_y; default: none)"),
-    K("point_y", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y of that point"),
+    F(point_y, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL, "y of that point"),
 };
+#undef SECT
 
+#define SECT hy_decl_output
 static const hy_scene_key_spec output_keys[] = {
-    K("name", HY_KIND_NAME, NULL, NOLIM, 0, 0, NULL,
+    F(name, HY_KIND_NAME, NULL, NOLIM, 0, 0, NULL,
       "base name of the output files (default: the scene file's name)"),
-    K("formats", HY_KIND_ENUM_LIST, formats, NOLIM, 1, 0, "svg", "output formats written"),
-    K("dir", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\".\"",
+    F(formats, HY_KIND_ENUM_LIST, formats, NOLIM, 1, 0, "svg", "output formats written"),
+    F(dir, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\".\"",
       "output directory, relative to the scene file's directory and below it (-o beats it)"),
 };
+#undef SECT
 
 static const hy_scene_key_spec animation_keys[] = {
     KQ("duration", "s", "duration", HY_KIND_NUMBER, NULL, POS, 0, 0, "5", "length of the animation in seconds"),

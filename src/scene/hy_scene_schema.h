@@ -29,6 +29,22 @@
     X(preisach, "preisach")                 \
     X(bwop, "boucwen-operator")
 
+/* What a [series] draws, one line per kind: X(ID, "name").  The schema's
+ * data list and the pipeline's HY_DATA_ID values (scene_run.h) are both
+ * generated from it, so the index decode gives is the HY_DATA_ value. */
+#define HY_SERIES_DATA(X)                   \
+    X(INPUT, "input")                       \
+    X(PSI, "psi")                           \
+    X(G, "g")                               \
+    X(YSTAR, "ystar")                       \
+    X(YSTEADY, "ysteady")                   \
+    X(YGAMMA, "ygamma")                     \
+    X(YK, "yk")                             \
+    X(TRANSIENT, "transient")               \
+    X(MINOR, "minor")                       \
+    X(MAJOR, "major")                       \
+    X(BOUCWEN, "boucwen")
+
 /* What a value must look like. */
 typedef enum hy_scene_kind {
     HY_KIND_NUMBER,       /* finite decimal number: 1, -2.5, 3e-4               */
@@ -67,7 +83,9 @@ enum {
  * limit), default written as scene text (NULL = none), a one-line doc, and
  * for a quantity its symbol as the papers print it (markup: "u_{min,2}",
  * "σ_0"; NULL = none) and its unit ("Hz", "N s/m"; NULL = none or
- * dimensionless), which serve's controls show. */
+ * dimensionless), which serve's controls show; for a key that hy_scene_decode
+ * reads (hy_scene_decl.h), the offset of the field it fills in its section's
+ * struct and that field's C type (HY_CTYPE_*; 0: the key is not decoded). */
 typedef struct hy_scene_key_spec {
     const char *name;
     hy_scene_kind kind;
@@ -79,6 +97,8 @@ typedef struct hy_scene_key_spec {
     const char *doc;
     const char *symbol;
     const char *unit;
+    size_t field;
+    int ctype;
 } hy_scene_key_spec;
 
 /* One section: [name] or, when takes_name, [name LABEL]; repeatable sections

@@ -588,7 +588,9 @@ static void errors(void)
     load_refused("[series a]\ndata = input\n[figure]\nzoom_x = 0, 1\n", "a zoomed inset needs both zoom_x and zoom_y");
     load_refused("[series a]\ndata = input\n[figure]\nzoom_follow = minor\n",
                  "bad_load.scene:4:1: zoom_follow = minor needs a [series] with data = minor");
-    scene_error("[model]\nsigma0 = 1\n[series a]\ndata = ygamma\n", "bad.scene:4:1: series 'a' (data = ygamma) needs 'gamma'");
+    /* issue 22: found by load (decode, the model's load), no longer by compute's plan */
+    load_refused("[model]\nsigma0 = 1\n[series a]\ndata = ygamma\n", "bad_load.scene:4:1: series 'a' (data = ygamma) needs 'gamma'");
+    load_refused("[series a]\ndata = yk\n", "bad_load.scene:2:1: series 'a' (data = yk) needs 'k'");
     scene_error("[figure]\nkind = timeseries\n[series m]\ndata = minor\n",
                 "bad.scene:4:1: data = minor cannot be drawn in a figure of kind timeseries");
     scene_error("[input]\nkind = bimodal\numin2 = 1.2\n[series a]\ndata = input\n", "bad.scene:3:1: Definition 1 needs u_min,2 < u_max,1");

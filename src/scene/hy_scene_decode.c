@@ -1,0 +1,314 @@
+/* SPDX-License-Identifier: MIT */
+/* hy_scene_decode.c: one generic decoder from a parsed scene to typed structs, driven by the
+ * schema's field table (offset and C type per key), and the checks that span keys and sections. */
+#include "hy_scene_decl.h"
+#include "hy_scene_internal.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+int hy_scene_kind_ctype(hy_scene_kind kind)
+{
+    switch (kind) {
+    case HY_KIND_NUMBER:
+    case HY_KIND_LENGTH: return HY_CTYPE_DOUBLE;
+    case HY_KIND_INTEGER: return HY_CTYPE_LONG;
+    case HY_KIND_BOOL:
+    case HY_KIND_ENUM: return HY_CTYPE_INT;
+    case HY_KIND_STRING:
+    case HY_KIND_NAME:
+    case HY_KIND_PATH: return HY_CTYPE_STR;
+    case HY_KIND_NUMBER_LIST:
+    case HY_KIND_INTEGER_LIST:
+    case HY_KIND_ENUM_LIST: return HY_CTYPE_LIST;
+    case HY_KIND_LENGTH_PAIR: return HY_CTYPE_DOUBLE2;
+    case HY_KIND_COLOR: return HY_CTYPE_COLOR;
+    case HY_KIND_PAIR:
+    case HY_KIND_LIMITS: return HY_CTYPE_PAIR;
+    }
+    return HY_CTYPE_NONE;
+}
+
+/* Reads key k of [sec name] into the field at p through the getter of its
+ * kind; returns what the getter found. */
+static int read_key(const hy_scene *s, const char *sec, const char *name, const hy_scene_key_spec *k, char *p)
+{
+    switch (k->kind) {
+    case HY_KIND_NUMBER: return hy_scene_get_num(s, sec, name, k->name, (double *)(void *)p);
+    case HY_KIND_LENGTH: return hy_scene_get_length_pt(s, sec, name, k->name, (double *)(void *)p);
+    case HY_KIND_INTEGER: return hy_scene_get_int(s, sec, name, k->name, (long *)(void *)p);
+    case HY_KIND_BOOL: return hy_scene_get_bool(s, sec, name, k->name, (int *)(void *)p);
+    case HY_KIND_ENUM: return hy_scene_get_enum(s, sec, name, k->name, (int *)(void *)p, NULL);
+    case HY_KIND_STRING:
+    case HY_KIND_NAME:
+    case HY_KIND_PATH: return hy_scene_get_str(s, sec, name, k->name, (const char **)(void *)p);
+    case HY_KIND_NUMBER_LIST:
+    case HY_KIND_INTEGER_LIST:
+    case HY_KIND_ENUM_LIST: {
+        hy_scene_list *l = (hy_scene_list *)(void *)p;
+        return hy_scene_get_list(s, sec, name, k->name, &l->v, &l->n);
+    }
+    case HY_KIND_LENGTH_PAIR: return hy_scene_get_length_pair_pt(s, sec, name, k->name, (double *)(void *)p);
+    case HY_KIND_COLOR: return hy_scene_get_color(s, sec, name, k->name, (hy_scene_color *)(void *)p);
+    case HY_KIND_PAIR:
+    case HY_KIND_LIMITS: {
+        hy_scene_pair *q = (hy_scene_pair *)(void *)p;
+        return hy_scene_get_pair(s, sec, name, k->name, q->v, &q->is_auto);
+    }
+    }
+    return HY_SCENE_BADKEY;
+}
+
+int hy_scene_decode_section(const hy_scene *s, const char *section, const char *name, hy_decl_head *h)
+{
+    int si = hy_scene_schema_section(section);
+    if (si < 0)
+        return HY_EINVAL;
+    const hy_scene_section_spec *spec = hy_scene_schema(NULL) + si;
+    h->spec = spec;
+    h->name = name;
+    h->source = hy_scene_source(s);
+    h->loc = (hy_scene_loc){h->source, 0, 0};
+    hy_scene_get_loc(s, section, name, NULL, &h->loc);
+    for (size_t j = 0; j < spec->nkeys && j < HY_SCENE_KEYS_MAX; j++) {
+        const hy_scene_key_spec *k = &spec->keys[j];
+        hy_decl_field *f = &h->at[j];
+        f->loc = (hy_scene_loc){h->source, 0, 0};
+        if (!k->ctype) {
+            f->got = HY_SCENE_BADKEY;
+            continue;
+        }
+        f->got = read_key(s, section, name, k, (char *)h + k->field);
+        if (f->got == HY_SCENE_SET)
+            hy_scene_get_loc(s, section, name, k->name, &f->loc);
+    }
+    return HY_OK;
+}
+
+/* Decodes every [section NAME] of a kind into a calloc'd array of n structs
+ * of size each; *out NULL when there is none. */
+static int decode_named(const hy_scene *s, const char *section, size_t size, void **out, size_t *n, hy_error *err)
+{
+    *n = hy_scene_count(s, section);
+    *out = NULL;
+    if (!*n)
+        return HY_OK;
+    char *a = calloc(*n, size);
+    if (!a)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    *out = a;
+    for (size_t i = 0; i < *n; i++)
+        hy_scene_decode_section(s, section, hy_scene_name_at(s, section, i), (hy_decl_head *)(void *)(a + i * size));
+    return HY_OK;
+}
+
+#define OFF(T, f) offsetof(T, f)
+#define GOT(p, T, f) hy_decl_got(&(p)->h, OFF(T, f))
+
+/* The index of text in the enum list of key of section (both known). */
+static int enum_index(const char *section, const char *key, const char *text)
+{
+    int si = hy_scene_schema_section(section), ki = hy_scene_schema_key(si, key);
+    const char *const *e = hy_scene_schema(NULL)[si].keys[ki].enums;
+    for (int i = 0; e[i]; i++)
+        if (!strcmp(e[i], text))
+            return i;
+    return -1;
+}
+
+/* An annotation is placed at x, y; a leader line needs both point_x and point_y. */
+static int check_annotations(const hy_scene_doc *d, hy_error *err)
+{
+    for (size_t i = 0; i < d->nannotation; i++) {
+        const hy_decl_annotation *a = &d->annotation[i];
+        if (GOT(a, hy_decl_annotation, x) < 0 || GOT(a, hy_decl_annotation, y) < 0)
+            return hy_decl_error(&a->h, HY_DECL_HEAD, err, HY_EINVAL, "annotation '%s' needs x and y", a->h.name);
+        if ((GOT(a, hy_decl_annotation, point_x) < 0) != (GOT(a, hy_decl_annotation, point_y) < 0))
+            return hy_decl_error(&a->h, HY_DECL_HEAD, err, HY_EINVAL,
+                                 "annotation '%s' needs both point_x and point_y, or neither", a->h.name);
+    }
+    return HY_OK;
+}
+
+/* The inset: zoom_follow = minor follows a minor-loop series; else zoom_x
+ * and zoom_y come together. */
+static int check_zoom(const hy_scene_doc *d, hy_error *err)
+{
+    const hy_decl_figure *f = &d->figure;
+    if (f->zoom_follow == enum_index("figure", "zoom_follow", "minor")) {
+        int minor = enum_index("series", "data", "minor");
+        for (size_t i = 0; i < d->nseries; i++)
+            if (GOT(&d->series[i], hy_decl_series, data) >= 0 && d->series[i].data == minor)
+                return HY_OK;
+        return hy_decl_error(&f->h, OFF(hy_decl_figure, zoom_follow), err, HY_EINVAL,
+                             "zoom_follow = minor needs a [series] with data = minor to follow");
+    }
+    int hzx = GOT(f, hy_decl_figure, zoom_x) == HY_SCENE_SET, hzy = GOT(f, hy_decl_figure, zoom_y) == HY_SCENE_SET;
+    if (hzx != hzy)
+        return hy_decl_error(&f->h, hzx ? OFF(hy_decl_figure, zoom_x) : OFF(hy_decl_figure, zoom_y), err, HY_EINVAL,
+                             "a zoomed inset needs both zoom_x and zoom_y");
+    return HY_OK;
+}
+
+/* A yk series names its k (whether ygamma needs a gamma is the model's: a
+ * rate-independent one has y_gamma = y*). */
+static int check_series(const hy_scene_doc *d, hy_error *err)
+{
+    int yk = enum_index("series", "data", "yk");
+    for (size_t i = 0; i < d->nseries; i++) {
+        const hy_decl_series *se = &d->series[i];
+        if (GOT(se, hy_decl_series, data) < 0)
+            continue; /* which data a model draws, and its message, is the model's (its load) */
+        if (se->data == yk && GOT(se, hy_decl_series, k) < 0)
+            return hy_decl_error(&se->h, OFF(hy_decl_series, data), err, HY_EINVAL, "series '%s' (data = yk) needs 'k'",
+                                 se->h.name);
+    }
+    return HY_OK;
+}
+
+/* A [panel] names its scene; columns divides the panels into full rows. */
+static int check_panels(const hy_scene_doc *d, hy_error *err)
+{
+    for (size_t i = 0; i < d->npanel; i++)
+        if (GOT(&d->panel[i], hy_decl_panel, scene) < 0)
+            return hy_decl_error(&d->panel[i].h, HY_DECL_HEAD, err, HY_EINVAL, "[panel %s] needs 'scene = \"FILE\"'",
+                                 d->panel[i].h.name);
+    long cols = d->figure.columns;
+    if (d->npanel && GOT(&d->figure, hy_decl_figure, columns) >= 0 && (cols < 1 || d->npanel % (size_t)cols))
+        return hy_decl_error(&d->figure.h, OFF(hy_decl_figure, columns), err, HY_EINVAL,
+                             "columns = %ld does not divide the %zu panels into full rows", cols, d->npanel);
+    return HY_OK;
+}
+
+/* [controls] main and every [preset NAME] set name keys of the schema. */
+static int check_controls(const hy_scene *s, hy_error *err)
+{
+    char keys[9][HY_SCENE_KEY_MAX];
+    size_t nkeys;
+    int rc = hy_scene_main_keys(s, keys, 9, &nkeys, err);
+    for (size_t i = 0; !rc && i < hy_scene_count(s, "preset"); i++) {
+        char (*sets)[HY_SCENE_SET_MAX] = malloc(HY_SCENE_PRESET_MAX * sizeof *sets);
+        rc = sets ? hy_scene_preset_sets(s, hy_scene_name_at(s, "preset", i), sets, HY_SCENE_PRESET_MAX, &nkeys, err)
+                  : hy_error_set(err, HY_ENOMEM, "out of memory");
+        free(sets);
+    }
+    return rc;
+}
+
+int hy_scene_decode(const hy_scene *s, hy_scene_doc *d, hy_error *err)
+{
+    memset(d, 0, sizeof *d);
+    d->source = hy_scene_source(s);
+    hy_scene_decode_section(s, "model", NULL, &d->model.h);
+    hy_scene_decode_section(s, "input", NULL, &d->input.h);
+    hy_scene_decode_section(s, "compute", NULL, &d->compute.h);
+    hy_scene_decode_section(s, "figure", NULL, &d->figure.h);
+    hy_scene_decode_section(s, "output", NULL, &d->output.h);
+    void *p;
+    int rc = decode_named(s, "series", sizeof *d->series, &p, &d->nseries, err);
+    d->series = p;
+    if (!rc) {
+        rc = decode_named(s, "annotation", sizeof *d->annotation, &p, &d->nannotation, err);
+        d->annotation = p;
+    }
+    if (!rc) {
+        rc = decode_named(s, "panel", sizeof *d->panel, &p, &d->npanel, err);
+        d->panel = p;
+    }
+    if (!rc)
+        rc = check_annotations(d, err);
+    if (!rc)
+        rc = check_zoom(d, err);
+    if (!rc)
+        rc = check_series(d, err);
+    if (!rc)
+        rc = check_panels(d, err);
+    if (!rc)
+        rc = check_controls(s, err);
+    return rc;
+}
+
+void hy_scene_doc_free(hy_scene_doc *d)
+{
+    free(d->series);
+    free(d->annotation);
+    free(d->panel);
+    d->series = NULL;
+    d->annotation = NULL;
+    d->panel = NULL;
+    d->nseries = d->nannotation = d->npanel = 0;
+}
+
+/* The index of the key that fills offset off of h's struct, or -1. */
+static int key_at(const hy_decl_head *h, size_t off)
+{
+    for (size_t j = 0; h->spec && j < h->spec->nkeys && j < HY_SCENE_KEYS_MAX; j++)
+        if (h->spec->keys[j].ctype && h->spec->keys[j].field == off)
+            return (int)j;
+    return -1;
+}
+
+int hy_decl_got(const hy_decl_head *h, size_t off)
+{
+    int j = key_at(h, off);
+    return j < 0 ? HY_SCENE_BADKEY : h->at[j].got;
+}
+
+const char *hy_decl_enum_text(const hy_decl_head *h, size_t off, int idx)
+{
+    int j = key_at(h, off);
+    const char *const *e = j < 0 ? NULL : h->spec->keys[j].enums;
+    for (int i = 0; e && e[i]; i++)
+        if (i == idx)
+            return e[i];
+    return "";
+}
+
+int hy_decl_error(const hy_decl_head *h, size_t off, hy_error *err, int code, const char *fmt, ...)
+{
+    if (!err)
+        return code;
+    int j = off == HY_DECL_HEAD ? -1 : key_at(h, off);
+    hy_scene_loc loc = j >= 0 && h->at[j].loc.line > 0 ? h->at[j].loc : h->loc;
+    if (!loc.file)
+        loc.file = h->source;
+    va_list ap;
+    va_start(ap, fmt);
+    hy__error_vat(loc, err, code, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+int hy_scene_doc_num(const hy_scene_doc *d, const char *section, const char *key, double *out)
+{
+    const hy_decl_head *hs[] = {&d->model.h, &d->input.h, &d->compute.h, &d->figure.h, &d->output.h};
+    for (size_t i = 0; i < sizeof hs / sizeof hs[0]; i++) {
+        const hy_decl_head *h = hs[i];
+        if (!h->spec || strcmp(h->spec->name, section))
+            continue;
+        int j = hy_scene_schema_key((int)(h->spec - hy_scene_schema(NULL)), key);
+        if (j < 0 || j >= HY_SCENE_KEYS_MAX || h->at[j].got < 0)
+            return -1;
+        const hy_scene_key_spec *k = &h->spec->keys[j];
+        const char *p = (const char *)h + k->field;
+        if (k->kind == HY_KIND_NUMBER)
+            memcpy(out, p, sizeof *out);
+        else if (k->kind == HY_KIND_INTEGER) {
+            long v;
+            memcpy(&v, p, sizeof v);
+            *out = (double)v;
+        } else
+            return -1;
+        return 0;
+    }
+    return -1;
+}
+
+const hy_decl_series *hy_scene_doc_series(const hy_scene_doc *d, const char *name)
+{
+    for (size_t i = 0; i < d->nseries; i++)
+        if (!strcmp(d->series[i].h.name, name))
+            return &d->series[i];
+    return NULL;
+}

@@ -1,0 +1,123 @@
+/* SPDX-License-Identifier: MIT */
+/* test_scene_decode.c: the field table and hy_scene_decode: every decoded key fills a field of its
+ * kind's C type, values and defaults arrive in the structs, and each keeps where it was written. */
+#include "hy_scene_decl.h" /* first: the header compiles on its own */
+
+#include "scene_test.h"
+
+/* Every row that names a field names one of its kind's C type, inside its
+ * struct's head-free part, and no two rows of a section fill one field. */
+static void table(void)
+{
+    size_t n;
+    const hy_scene_section_spec *sec = hy_scene_schema(&n);
+    size_t decoded = 0;
+    for (size_t i = 0; i < n; i++) {
+        CHECK(sec[i].nkeys <= HY_SCENE_KEYS_MAX);
+        for (size_t j = 0; j < sec[i].nkeys; j++) {
+            const hy_scene_key_spec *k = &sec[i].keys[j];
+            if (!k->ctype)
+                continue;
+            decoded++;
+            if (k->ctype != hy_scene_kind_ctype(k->kind) || k->field < sizeof(hy_decl_head))
+                fprintf(stderr, "%s.%s: ctype %d, its kind wants %d; field at %zu\n", sec[i].name, k->name, k->ctype,
+                        hy_scene_kind_ctype(k->kind), k->field), st_failures++;
+            for (size_t m = 0; m < j; m++)
+                if (sec[i].keys[m].ctype && sec[i].keys[m].field == k->field)
+                    fprintf(stderr, "%s: %s and %s fill one field\n", sec[i].name, sec[i].keys[m].name, k->name),
+                        st_failures++;
+        }
+    }
+    CHECK(decoded >= 100); /* model, input, compute, figure, series, annotation, panel, output */
+}
+
+/* Values, defaults, absent keys and their locations. */
+static void values(void)
+{
+    hy_scene *s = PARSE_OK("d.scene", "[model]\nkind = dahl\nsigma0 = 3\n\n[figure]\n  xlim = 0, 4\nsize = 10cm, 2in\n"
+                                      "zoom_follow = none\n[series b]\ndata = ygamma\ngamma = 10\ncolor = #ff0000\n"
+                                      "[series a]\ndata = input\nlabel = \"u\"\n[output]\nformats = png, svg\n");
+    if (!s)
+        return;
+    hy_scene_doc d;
+    hy_error err = {0, ""};
+    CHECK(hy_scene_decode(s, &d, &err) == HY_OK);
+    CHECK_STR(hy_decl_enum_text(&d.model.h, offsetof(hy_decl_model, kind), d.model.kind), "dahl");
+    CHECK_NEAR(d.model.sigma0, 3, 0);
+    CHECK_NEAR(d.model.fs, 2, 0); /* the schema default */
+    CHECK(hy_decl_got(&d.model.h, offsetof(hy_decl_model, sigma0)) == HY_SCENE_SET);
+    CHECK(hy_decl_got(&d.model.h, offsetof(hy_decl_model, fs)) == HY_SCENE_DEFAULT);
+    CHECK(d.model.h.at[1].loc.line == 3 && d.model.h.at[1].loc.col == 1);
+    CHECK(!d.figure.xlim.is_auto && d.figure.xlim.v[0] == 0 && d.figure.xlim.v[1] == 4);
+    CHECK(d.figure.ylim.is_auto);
+    CHECK_NEAR(d.figure.size[0], 10 * 72 / 2.54, 1e-12);
+    CHECK_NEAR(d.figure.size[1], 144, 0);
+    CHECK(d.figure.dpi == 300);
+    CHECK(hy_decl_got(&d.figure.h, offsetof(hy_decl_figure, xlabel)) == HY_SCENE_ABSENT && !d.figure.xlabel);
+    CHECK(d.nseries == 2 && !strcmp(d.series[0].h.name, "b") && !strcmp(d.series[1].h.name, "a"));
+    CHECK(hy_scene_doc_series(&d, "a") == &d.series[1] && !hy_scene_doc_series(&d, "c"));
+    CHECK(d.series[0].color.r == 1 && d.series[0].color.g == 0 && d.series[0].gamma == 10);
+    CHECK_STR(d.series[1].label, "u");
+    CHECK_NEAR(d.series[1].width, 1, 0);
+    CHECK(d.output.formats.n == 2);
+    CHECK_STR(hy_decl_enum_text(&d.output.h, offsetof(hy_decl_output, formats), (int)d.output.formats.v[0]), "png");
+    double x;
+    CHECK(!hy_scene_doc_num(&d, "model", "sigma0", &x) && x == 3);
+    CHECK(!hy_scene_doc_num(&d, "compute", "cycles", &x) && x == 1); /* an integer, by default */
+    CHECK(hy_scene_doc_num(&d, "model", "kind", &x) < 0 && hy_scene_doc_num(&d, "model", "nosuch", &x) < 0);
+    /* an error at a field names where it was written, else the section, else the file */
+    hy_decl_error(&d.figure.h, offsetof(hy_decl_figure, xlim), &err, HY_EINVAL, "bad %s", "xlim");
+    CHECK_STR(err.msg, "d.scene:6:3: bad xlim");
+    hy_decl_error(&d.figure.h, offsetof(hy_decl_figure, ylim), &err, HY_EINVAL, "bad");
+    CHECK_STR(err.msg, "d.scene:5:1: bad");
+    hy_decl_error(&d.compute.h, offsetof(hy_decl_compute, points), &err, HY_EINVAL, "bad");
+    CHECK_STR(err.msg, "d.scene: bad");
+    hy_scene_doc_free(&d);
+    hy_scene_free(s);
+}
+
+/* The checks that span keys and sections, each at the place it names, all
+ * before anything is computed. */
+static void refused(const char *text, const char *want, int line)
+{
+    hy_scene *s = st_parse_ok("c.scene", text, line);
+    if (!s)
+        return;
+    hy_scene_doc d;
+    hy_error err = {0, ""};
+    int rc = hy_scene_decode(s, &d, &err);
+    if (rc != HY_EINVAL || strcmp(err.msg, want)) {
+        fprintf(stderr, "line %d: got %d \"%s\"\n expected \"%s\"\n", line, rc, err.msg, want);
+        st_failures++;
+    }
+    hy_scene_doc_free(&d);
+    hy_scene_free(s);
+}
+#define REFUSED(text, want) refused(text, want, __LINE__)
+
+static void cross(void)
+{
+    REFUSED("[series a]\ndata = input\n[annotation t]\ntext = \"a\"\nx = 0\n", "c.scene:3:1: annotation 't' needs x and y");
+    REFUSED("[series a]\ndata = input\n[annotation t]\ntext = \"a\"\nx = 0\ny = 1\npoint_y = 2\n",
+            "c.scene:3:1: annotation 't' needs both point_x and point_y, or neither");
+    REFUSED("[series a]\ndata = input\n[figure]\nzoom_y = 0, 1\n", "c.scene:4:1: a zoomed inset needs both zoom_x and zoom_y");
+    REFUSED("[series a]\ndata = input\n[figure]\nzoom_follow = minor\n",
+            "c.scene:4:1: zoom_follow = minor needs a [series] with data = minor to follow");
+    REFUSED("[series a]\ndata = yk\n", "c.scene:2:1: series 'a' (data = yk) needs 'k'");
+    REFUSED("[panel a]\n", "c.scene:1:1: [panel a] needs 'scene = \"FILE\"'");
+    REFUSED("[figure]\ncolumns = 2\n[panel a]\nscene = \"a.scene\"\n[panel b]\nscene = \"a.scene\"\n[panel c]\nscene = \"a.scene\"\n",
+            "c.scene:2:1: columns = 2 does not divide the 3 panels into full rows");
+    REFUSED("[series a]\ndata = input\n[controls]\nmain = \"model.kind\"\n",
+            "c.scene:4:1: main: 'model.kind' is not a numeric key of [model], [input], [compute] or a [series NAME], "
+            "written as for --set (model.sigma0, series.NAME.gamma)");
+}
+
+int main(void)
+{
+    table();
+    values();
+    cross();
+    if (st_failures)
+        fprintf(stderr, "test_scene_decode: %d check(s) failed\n", st_failures);
+    return st_failures ? 1 : 0;
+}
