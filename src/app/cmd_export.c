@@ -24,6 +24,7 @@
 #include <zlib.h>
 
 #include "cli_util.h"
+#include "export_anim.h"
 #include "export_page.h"
 #include "hy_grid.h"
 #include "hy_jobs.h"
@@ -37,6 +38,8 @@
 static const char export_help[] =
     "usage: hystviz export SCENE --grid SECTION.KEY=SPEC... [-o FILE.html] [--set SECTION.KEY=VALUE]...\n"
     "                      [-j N] [--shard K/N] [--include-dir DIR]... [--max-work N] [-q]\n"
+    "       hystviz export ANIMATION [-o FILE.html] [--set SECTION.KEY=VALUE]... [--size WxH] [-j N]\n"
+    "                      [--include-dir DIR]... [--max-work N] [-q]\n"
     "       hystviz export --merge FILE.html\n"
     "\n"
     "An interactive figure as one offline file: the scene is rendered at every point\n"
@@ -51,9 +54,19 @@ static const char export_help[] =
     "compressed.  A point the scene refuses (e.g. u_min,2 > u_max,1) is shown as\n"
     "refused, with the scene's message.\n"
     "\n"
+    "An animation (a built-in NAME of `hystviz animate --list`, or a scene with\n"
+    "[keyframe] sections), given without --grid, exports as a player: every frame\n"
+    "rendered as `hystviz animate` renders it (frame i byte for byte the PNG of\n"
+    "`hystviz animate ANIMATION --frames i:i+1` with the same --set and --size),\n"
+    "played at the animation's frame rate (its easing is in the frames), with\n"
+    "play/pause (space), a scrub slider (left/right step) and a frame counter.\n"
+    "Frames equal to an earlier one are stored once.\n"
+    "\n"
     "  --grid K=SPEC      a grid axis (repeatable; at most "
     "20000 points in all)\n"
     "  --set S.K=V        a fixed override applied to every point before the grid\n"
+    "                     (an animation scene: in every frame; its keyframes beat it)\n"
+    "  --size WxH         (animations) the frame size in pixels (default: the animation's)\n"
     "  -o, --output FILE  the page (default: the scene's name with .html, here)\n"
     "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
     "  --shard K/N        only points with index mod N = K (0 <= K < N), into\n"
@@ -67,17 +80,18 @@ static const char export_help[] =
     "exit status: 0 the page is written (refused points shown as such); 2 usage\n"
     "error, an unreadable scene or bad grid, every point refused, or shards missing\n"
     "or of another study (nothing written); 1 a point failed to compute or a file\n"
-    "could not be written (nothing written).\n";
+    "could not be written (nothing written); 3 an animation, but hystviz was built\n"
+    "without OpenGL (nothing written).\n";
 
 typedef struct export_opts {
-    const char *scene, *out, *merge;
+    const char *scene, *out, *merge, *size;
     char **sets;
     size_t nsets;
     hy_grid grid;
     hy_scene_policy pol;
     const char **dirs;
     long jobs, shard_k, shard_n;
-    int sharded, quiet;
+    int sharded, quiet, anim; /* anim: no --grid, an animation */
     char out_buf[4096];
 } export_opts;
 
@@ -90,6 +104,25 @@ typedef struct point_res {
 } point_res;
 
 /* ---- options ------------------------------------------------------------ */
+
+/* Whether o->scene, given without --grid, is an animation: 1 a built-in
+ * name (hystviz-animate checks it) or a scene with [keyframe] sections, 0 a
+ * scene without, -1 an unreadable or invalid scene (message printed). */
+static int is_animation(const export_opts *o)
+{
+    size_t n = strlen(o->scene);
+    if (!strchr(o->scene, '/') && !(n > 6 && !strcmp(o->scene + n - 6, ".scene")))
+        return 1;
+    hy_scene *sc = NULL;
+    hy_error err = {0};
+    if (hy_scene_parse_file_policy(o->scene, &o->pol, &sc, &err)) {
+        fprintf(stderr, "hystviz export: %s\n", err.msg);
+        return -1;
+    }
+    int anim = hy_scene_count(sc, "keyframe") > 0;
+    hy_scene_free(sc);
+    return anim;
+}
 
 /* 0 ok, 1 help printed, 2 usage error (message printed). */
 static int parse_opts(int argc, char **argv, export_opts *o)
@@ -122,6 +155,8 @@ static int parse_opts(int argc, char **argv, export_opts *o)
             }
         } else if (!strcmp(a, "--set") && v)
             o->sets[o->nsets++] = argv[++i];
+        else if (!strcmp(a, "--size") && v)
+            o->size = argv[++i];
         else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
             o->out = argv[++i];
         else if ((!strcmp(a, "-j") || !strcmp(a, "--jobs")) && v) {
@@ -153,8 +188,16 @@ static int parse_opts(int argc, char **argv, export_opts *o)
         fprintf(stderr, "hystviz export: give a scene file (see hystviz export --help)\n");
         return 2;
     }
-    if (!o->grid.naxes) {
-        fprintf(stderr, "hystviz export: give at least one --grid KEY=SPEC (a slider each)\n");
+    if (!o->grid.naxes && (o->anim = is_animation(o)) != 1)
+        return o->anim ? 2 : (fprintf(stderr, "hystviz export: give at least one --grid KEY=SPEC (a slider each); "
+                                      "'%s' has no [keyframe] sections, so it is no animation\n", o->scene), 2);
+    if (o->anim && o->sharded) {
+        fprintf(stderr, "hystviz export: an animation is exported whole (-j N renders its frames in parallel); "
+                "--shard is for --grid\n");
+        return 2;
+    }
+    if (o->size && !o->anim) {
+        fprintf(stderr, "hystviz export: --size is for animations (a figure's size is its scene's)\n");
         return 2;
     }
     if (hy_grid_points(&o->grid) > EXPORT_MAX_POINTS) {
@@ -691,7 +734,10 @@ int hy_cmd_export(int argc, char **argv)
 {
     export_opts o;
     int rc = parse_opts(argc, argv, &o);
-    if (!rc)
+    if (!rc && o.anim) {
+        exp_anim_opts ao = {o.scene, o.sets, o.nsets, &o.pol, o.size, o.jobs, o.out, o.quiet};
+        rc = exp_anim_run(&ao);
+    } else if (!rc)
         rc = o.merge ? export_merge(o.merge, o.quiet) : export_run(&o);
     else if (rc == 1)
         rc = 0;

@@ -336,7 +336,7 @@ int exp_gzip(const void *data, size_t n, unsigned char **out, size_t *outlen, hy
     return HY_OK;
 }
 
-static void base64(FILE *f, const unsigned char *s, size_t n)
+void exp_base64(FILE *f, const unsigned char *s, size_t n)
 {
     static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     for (size_t i = 0; i < n; i += 3) {
@@ -381,7 +381,7 @@ int exp_page_write(exp_page *pg, const char *meta_json, FILE *f, hy_error *err)
     fwrite(t, 1, (size_t)(meta - t), f);
     fputs(meta_json, f);
     fwrite(meta + 6, 1, (size_t)(pay - meta - 6), f);
-    base64(f, gz, gzlen);
+    exp_base64(f, gz, gzlen);
     fwrite(pay + 9, 1, hy_export_html_len - (size_t)(pay + 9 - t), f);
     free(gz);
     return HY_OK;

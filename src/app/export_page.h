@@ -72,4 +72,7 @@ void exp_json_str(FILE *f, const char *s, size_t len);
 /* gzip of n bytes at level 9 into *out (malloc'd, *outlen bytes). */
 int exp_gzip(const void *data, size_t n, unsigned char **out, size_t *outlen, hy_error *err);
 
+/* Writes n bytes as base64, in lines of 76 characters. */
+void exp_base64(FILE *f, const unsigned char *s, size_t n);
+
 #endif

@@ -14,6 +14,12 @@ tests/serve/browser_test.py), opened from file:// with no server: at
 render --set's bytes, a refused position says so.  The chromium part SKIPs
 (exit 77 if it is all that is left) where chromium is absent.
 
+An animation (scenes/anim_minor_loop_ex4.scene, and a built-in) exports as a
+player: the page has no external URL, and frame i taken out of it is byte for
+byte `hystviz animate ... --frames i:i+1`; in chromium, from file://, it
+plays (the frame counter advances within a deadline) and, paused and
+scrubbed to frame i, shows those bytes.
+
 --bench N: instead, the export's size and build time for the Fig. 15 grid
 (-j 1 and -j 2) and N slider moves in the page: input event -> new figure
 in the DOM and laid out, and -> the next frame (median, p95).
@@ -165,6 +171,108 @@ def test_payload(hv, scenes, tmp):
     return big, small
 
 
+# ---- animations -----------------------------------------------------------------------
+
+ANIM_SIZE = "320x180"  # small frames: the test renders every frame of the clip
+
+
+def decode_anim(path):
+    """The animation page's meta and its frames (PNG bytes, frame i = pngs[order[i]]), and the page
+    without its frames (where no URL may be)."""
+    html = open(path, encoding="utf-8").read()
+    meta = json.loads(re.search(r'<script id="meta" type="application/json">(.*?)</script>', html, re.S).group(1))
+    frame_re = r'<script class="frame" type="application/octet-stream">(.*?)</script>'
+    pngs = [base64.b64decode("".join(b.split())) for b in re.findall(frame_re, html, re.S)]
+    return meta, pngs, re.sub(frame_re, "", html, flags=re.S)
+
+
+def animate_frame(hv, name, i, tmp, extra=()):
+    """The PNG of `hystviz animate NAME --frames i:i+1 --size ANIM_SIZE`."""
+    out = tempfile.mkdtemp(dir=tmp)
+    try:
+        r = subprocess.run([hv, "animate", name, "--frames", f"{i}:{i + 1}", "--size", ANIM_SIZE, "-o", out, "-q",
+                            "-j", "1"] + list(extra), capture_output=True, text=True, timeout=120)
+        if r.returncode:
+            return None
+        sub = [d for d in os.listdir(out) if os.path.isdir(os.path.join(out, d))][0]
+        return open(os.path.join(out, sub, f"frame_{i:05d}.png"), "rb").read()
+    finally:
+        shutil.rmtree(out)
+
+
+def test_anim(hv, scenes, tmp):
+    scene = os.path.join(scenes, "anim_minor_loop_ex4.scene")
+    info = subprocess.run([hv, "animate", scene, "--info", "--size", ANIM_SIZE], capture_output=True, text=True)
+    m = re.match(r"frames (\d+) fps (\S+) size (\d+)x(\d+)", info.stdout)
+    if not m:
+        print("SKIP (animations): hystviz animate cannot render here: " + info.stderr.strip())
+        return None
+    nframes, fps = int(m.group(1)), float(m.group(2))
+    page = os.path.join(tmp, "anim.html")
+    t0 = time.time()
+    r = export(hv, [scene, "--size", ANIM_SIZE, "-j", "2", "-o", page])
+    check(r.returncode == 0 and os.path.exists(page), f"export of an animation scene: exit {r.returncode} "
+          f"in {time.time() - t0:.1f} s, {os.path.getsize(page) if os.path.exists(page) else -1} bytes "
+          f"{r.stderr.strip()}")
+    meta, pngs, rest = decode_anim(page)
+    check(meta["frames"] == nframes and meta["fps"] == fps and len(meta["order"]) == nframes and
+          max(meta["order"]) == len(pngs) - 1, f"{nframes} frames at {fps} fps, {len(pngs)} distinct PNGs stored")
+    urls = re.findall(r"(?:https?:|ftp:|data:|blob:[a-z])\S*|(?:src|href)\s*=\s*\"[^\"#]", rest, re.I)
+    check(not urls and "import(" not in rest and "@import" not in rest,
+          f"the page names no external resource: {urls[:3]}")
+    for i in (0, nframes // 2, nframes - 1):
+        want = animate_frame(hv, scene, i, tmp)
+        check(want is not None and pngs[meta["order"][i]] == want,
+              f"frame {i} of the page == animate --frames {i}:{i + 1}, byte for byte ({len(want or b'')} bytes)")
+    # a built-in animation, and -j 1 gives the same page as -j 2
+    b1, b2 = os.path.join(tmp, "b1.html"), os.path.join(tmp, "b2.html")
+    r1 = export(hv, ["minor-loop-ex4", "--size", ANIM_SIZE, "-j", "1", "-o", b1, "-q"])
+    r2 = export(hv, ["minor-loop-ex4", "--size", ANIM_SIZE, "-j", "2", "-o", b2, "-q"])
+    same = r1.returncode == 0 and r2.returncode == 0 and open(b1, "rb").read() == open(b2, "rb").read()
+    check(same, f"a built-in animation exports; -j 1 and -j 2 give the same page ({r1.stderr}{r2.stderr})")
+    bmeta, bpngs, _ = decode_anim(b1)
+    k = len(bmeta["order"]) // 3
+    check(bpngs[bmeta["order"][k]] == animate_frame(hv, "minor-loop-ex4", k, tmp),
+          f"built-in frame {k} == animate --frames {k}:{k + 1}")
+    # refused: --grid-less still scene, --shard, an unknown animation; nothing written
+    out = os.path.join(tmp, "bad.html")
+    for args, want, text in [
+            ([os.path.join(scenes, "fig15_minor_loop_ex4.scene"), "-o", out], 2, "no animation"),
+            ([scene, "--shard", "0/2", "-o", out], 2, "--shard is for --grid"),
+            (["no-such-animation", "-o", out], 2, "no-such-animation"),
+            ([scene, "--size", "3x3", "-o", out], 2, "--size")]:
+        r = export(hv, args)
+        check(r.returncode == want and text in r.stderr and not os.path.exists(out),
+              f"export {' '.join(os.path.basename(a) for a in args)}: exit {r.returncode}, nothing written: "
+              f"{r.stderr.strip()[:140]}")
+    check(not [f for f in os.listdir(tmp) if f.startswith("hystviz-export-")], "no temporary frames left")
+    return page
+
+
+def test_anim_browser(dt, hv, scenes, tmp, page):
+    scene = os.path.join(scenes, "anim_minor_loop_ex4.scene")
+    meta, pngs, _ = decode_anim(page)
+    dt.call("Page.navigate", url="file://" + page)
+    check(dt.wait("location.pathname.endsWith('/anim.html') && window.hv && hv.ready", 60,
+                  "the animation page to decode"), "the animation page decodes from file://")
+    shown = """(async () => { const b = new Uint8Array(await (await fetch(hv.png)).arrayBuffer());
+        let s = ''; for (const c of b) s += String.fromCharCode(c); return btoa(s); })()"""
+    check(dt.js("hv.frame") == 0 and base64.b64decode(dt.js(shown)) == pngs[meta["order"][0]], "frame 0 is shown first")
+    dt.js("hv.play()")
+    t0 = time.time()
+    ok = dt.wait("hv.frame >= 15", 20, "playback to reach frame 15")
+    dt_s = time.time() - t0
+    f, text = dt.js("[hv.frame, document.getElementById('counter').textContent]")  # one moment: it plays on
+    check(ok and text.startswith(f"frame {f + 1} / {meta['frames']}"),
+          f"it plays: frame {f} after {dt_s:.2f} s at {meta['fps']} fps, counter '{text}'")
+    dt.js("hv.pause()")
+    k = meta["frames"] // 2
+    dt.js(f"(() => {{ const s = document.getElementById('scrub'); s.value = {k}; s.dispatchEvent(new Event('input')); }})()")
+    check(dt.js("hv.frame") == k and not dt.js("hv.playing") and
+          base64.b64decode(dt.js(shown)) == animate_frame(hv, scene, k, tmp),
+          f"scrubbed to frame {k} (paused), the page shows animate --frames {k}:{k + 1}, byte for byte")
+
+
 def test_errors(hv, scenes, tmp):
     fig15 = os.path.join(scenes, "fig15_minor_loop_ex4.scene")
     out = os.path.join(tmp, "e.html")
@@ -309,6 +417,7 @@ def main():
             return 0
         big, small = test_payload(hv, scenes, tmp)
         test_errors(hv, scenes, tmp)
+        anim = test_anim(hv, scenes, tmp)
         if not have_chromium:
             if bt.need_chromium():
                 raise RuntimeError("chromium is not installed (CI=true: sh tools/setup.sh test installs it)")
@@ -322,6 +431,8 @@ def main():
                 dt.call("Page.enable")
                 dt.call("Runtime.enable")
                 test_browser(dt, hv, scenes, tmp, big, small, screenshot)
+                if anim:
+                    test_anim_browser(dt, hv, scenes, tmp, anim)
     finally:
         if chrome:
             bt.stop_group(chrome)  # its renderers too: they write into tmp until gone
