@@ -76,20 +76,25 @@ long hy_jobs_parse_cfs(const char *quota, const char *period)
     return ceil_div(q, p);
 }
 
+/* dir/name into path (a truncated path is not read: 0, no quota). */
+static int file_in(char *path, size_t size, const char *dir, const char *name)
+{
+    int n = snprintf(path, size, "%s/%s", dir, name);
+    return n > 0 && (size_t)n < size;
+}
+
 /* The quota (0: none) in directory dir: v2 cpu.max, else v1 cfs files. */
 static long dir_quota(const char *dir, int v2)
 {
     char path[4400], a[128], b[128];
     if (v2) {
-        snprintf(path, sizeof path, "%s/cpu.max", dir);
-        long c = read_text(path, a, sizeof a) ? 0 : hy_jobs_parse_cpu_max(a);
+        long c = !file_in(path, sizeof path, dir, "cpu.max") || read_text(path, a, sizeof a) ? 0
+                                                                                              : hy_jobs_parse_cpu_max(a);
         return c > 0 ? c : 0;
     }
-    snprintf(path, sizeof path, "%s/cpu.cfs_quota_us", dir);
-    if (read_text(path, a, sizeof a))
+    if (!file_in(path, sizeof path, dir, "cpu.cfs_quota_us") || read_text(path, a, sizeof a))
         return 0;
-    snprintf(path, sizeof path, "%s/cpu.cfs_period_us", dir);
-    if (read_text(path, b, sizeof b))
+    if (!file_in(path, sizeof path, dir, "cpu.cfs_period_us") || read_text(path, b, sizeof b))
         return 0;
     long c = hy_jobs_parse_cfs(a, b);
     return c > 0 ? c : 0;
