@@ -826,8 +826,11 @@ int main(int argc, char **argv)
     gsl_set_error_handler_off();
     all_scenes();
     gallery_edges();
-    const char *refs[] = {"fig05_g_stribeck", "fig11_ygamma_ex3", "fig15_minor_loop_ex4", "multimodal_three_minor_loops"};
-    for (size_t i = 0; i < 4; i++)
+    /* the paper's figures by kind, and the magnetic ones of issue 22 (Fig. 1,
+       Jiles-Atherton; the five models side by side, Preisach among them) */
+    const char *refs[] = {"fig05_g_stribeck", "fig11_ygamma_ex3", "fig15_minor_loop_ex4", "multimodal_three_minor_loops",
+                          "fig01_magnetic_minor_loop", "five_models_minor_loops"};
+    for (size_t i = 0; i < sizeof refs / sizeof refs[0]; i++)
         compare_reference(refs[i]);
     plans();
     dist_placeholder();
