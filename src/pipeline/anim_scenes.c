@@ -6,6 +6,8 @@
  * was removed: it had no axes or scale; hy_gl's ribbon pass stays.) */
 #include "anim_scenes.h"
 
+#include "anim_preisach.h"
+
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -554,6 +556,8 @@ static const anim_scene scenes[] = {
      6.0, kcycle3_prepare, kcycle_draw, kcycle_describe, sweep_release},
     {"minor-loop-ex4", "Example 4 (Figs. 15-17): the minor loop as sigma0 goes 1 -> 6 and u_min,2 0.2 -> 0.5",
      6.0, ex4_prepare, ex4_draw, ex4_describe, sweep_release},
+    {"preisach-plane", "Preisach model, Fig. 2's input: the (alpha, beta) plane's staircase memory beside the loop",
+     8.0, pplane_prepare, pplane_draw, pplane_describe, pplane_release},
 };
 
 const anim_scene *const *anim_scene_list(void)

@@ -55,11 +55,12 @@ struct hy_gl {
     GLuint fbo0;                       /* the framebuffer that is the frame (0: the default) */
     int w, h;
     double scale;
-    GLuint stroke_prog, stroke_dash_prog, ribbon_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
+    GLuint stroke_prog, stroke_dash_prog, ribbon_prog, plane_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
     GLuint ms_fbo, ms_rb[2];          /* 4x multisampled frame, used once a frame has 3-D */
     int in_ms;                        /* this frame draws into ms_fbo (resolved at hy_gl_read) */
     hy_rgb bg;                        /* the frame's clear colour */
     GLint u_size, u_size_dash, u_ndash, u_dash, u_dash_total, u_mvp, u_mv, u_light;
+    GLint u_plane[11];                /* plane.frag's uniforms, in plane_uniforms' order */
     double *pts;                       /* current path: x, y pairs (pixels) */
     size_t npts, cap;
     size_t *starts;                    /* subpath start indices */
@@ -228,9 +229,17 @@ static int build_programs(hy_gl *g, hy_error *err)
         {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert, NULL},
         {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag, NULL},
     };
+    const hy_gl_stage plane[2] = {
+        {hy_shader_plane_vert_file, GL_VERTEX_SHADER, hy_shader_plane_vert, NULL},
+        {hy_shader_plane_frag_file, GL_FRAGMENT_SHADER, hy_shader_plane_frag, NULL},
+    };
     if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(stroke_dash, 2, &g->stroke_dash_prog, err) ||
-        hy_gl_program(ribbon, 2, &g->ribbon_prog, err))
+        hy_gl_program(ribbon, 2, &g->ribbon_prog, err) || hy_gl_program(plane, 2, &g->plane_prog, err))
         return HY_ENUM;
+    static const char *const plane_uniforms[11] = {"u_rect", "u_height", "u_range", "u_s", "u_n", "u_kind0",
+                                                   "u_dist", "u_dens", "u_up", "u_down", NULL};
+    for (int i = 0; plane_uniforms[i]; i++)
+        g->u_plane[i] = gl->GetUniformLocation(g->plane_prog, plane_uniforms[i]);
     g->u_size = gl->GetUniformLocation(g->stroke_prog, "u_size");
     g->u_size_dash = gl->GetUniformLocation(g->stroke_dash_prog, "u_size");
     g->u_ndash = gl->GetUniformLocation(g->stroke_dash_prog, "u_ndash");
@@ -1009,6 +1018,53 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
     lock(g);
     use(g);
     int rc = gl_draw_ribbon_unlocked(g, r, err);
+    unlock(g);
+    return rc;
+}
+
+/* ---- the relay plane ---- */
+
+static int gl_draw_plane_unlocked(hy_gl *g, const hy_gl_plane *pl, hy_error *err)
+{
+    if (!(pl->vw >= 1 && pl->vh >= 1 && pl->xlo < pl->xhi && pl->ylo < pl->yhi && pl->sa > 0 && pl->sb > 0) ||
+        pl->n < 0 || pl->n > HY_GL_PLANE_MAX || !pl->s)
+        return hy_error_set(err, HY_EINVAL, "a relay plane needs a panel, ranges, widths > 0 and at most %d "
+                            "extrema (got %d)", HY_GL_PLANE_MAX, pl->n);
+    submit(g);                        /* the 2-D data drawn so far stays underneath */
+    float s[HY_GL_PLANE_MAX + 1];
+    for (int j = 0; j <= pl->n; j++) /* the saturations as far-off finite values */
+        s[j] = (float)(pl->s[j] > 1e30 ? 1e30 : pl->s[j] < -1e30 ? -1e30 : pl->s[j]);
+    const GLint *u = g->u_plane;
+    gl->UseProgram(g->plane_prog);
+    gl->Uniform4f(u[0], (float)pl->vx, (float)pl->vy, (float)pl->vw, (float)pl->vh);
+    gl->Uniform1f(u[1], (float)g->h);
+    gl->Uniform4f(u[2], (float)pl->xlo, (float)pl->xhi, (float)pl->ylo, (float)pl->yhi);
+    gl->Uniform1fv(u[3], pl->n + 1, s);
+    gl->Uniform1i(u[4], pl->n);
+    gl->Uniform1i(u[5], pl->kind0 > 0 ? 1 : -1);
+    gl->Uniform1i(u[6], pl->dist);
+    gl->Uniform4f(u[7], (float)pl->ma, (float)pl->sa, (float)pl->mb, (float)pl->sb);
+    gl->Uniform3f(u[8], (float)pl->up.r, (float)pl->up.g, (float)pl->up.b);
+    gl->Uniform3f(u[9], (float)pl->down.r, (float)pl->down.g, (float)pl->down.b);
+    gl->Disable(GL_BLEND);
+    gl->Disable(GL_DEPTH_TEST);
+    gl->Enable(GL_SCISSOR_TEST);      /* whole pixels of the panel only */
+    GLint x0 = (GLint)lround(pl->vx), y1 = (GLint)lround(pl->vy + pl->vh);
+    GLint x1 = (GLint)lround(pl->vx + pl->vw), y0 = (GLint)lround(pl->vy);
+    gl->Scissor(x0, g->h - y1, x1 - x0, y1 - y0);
+    gl->Viewport(0, 0, g->w, g->h);
+    gl->BindVertexArray(g->vao);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    gl->BindVertexArray(0);
+    gl->Disable(GL_SCISSOR_TEST);
+    return HY_OK;
+}
+
+int hy_gl_draw_plane(hy_gl *g, const hy_gl_plane *pl, hy_error *err)
+{
+    lock(g);
+    use(g);
+    int rc = gl_draw_plane_unlocked(g, pl, err);
     unlock(g);
     return rc;
 }

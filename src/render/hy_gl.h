@@ -101,6 +101,27 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err);
  * labels drawn by the overlay.  Returns 0 when it is behind the camera. */
 int hy_gl_ribbon_project(const hy_gl *g, const hy_gl_ribbon *r, const double xyz[3], double *px, double *py);
 
+/* The relay plane of a Preisach model (shaders/plane.frag.glsl): in the
+ * pixel rectangle vx, vy, vw, vh (y down) showing beta from xlo to xhi across
+ * and alpha from ylo to yhi up, every pixel with alpha >= beta at its centre
+ * is the relay (alpha, beta), coloured up or down as the staircase memory
+ * s[0..n] (alternating extrema, s[0] = -inf or +inf as kind0 = -1 or +1: the
+ * initial saturation) leaves it, shaded by the density shape dist (0
+ * Gaussian, 1 Lorentzian) of centres ma, mb and widths sa, sb; pixels with
+ * alpha < beta are left as they are.  Drawn now, over the 2-D data so far. */
+#define HY_GL_PLANE_MAX 63
+typedef struct hy_gl_plane {
+    double vx, vy, vw, vh;
+    double xlo, xhi, ylo, yhi;
+    const double *s;
+    int n, kind0;
+    int dist;
+    double ma, sa, mb, sb;
+    hy_rgb up, down;
+} hy_gl_plane;
+/* HY_EINVAL for a bad rectangle or range, or n > HY_GL_PLANE_MAX. */
+int hy_gl_draw_plane(hy_gl *g, const hy_gl_plane *pl, hy_error *err);
+
 /* Finishes drawing and returns the frame in the context's own buffer, laid
  * out as a cairo RGB24 image (a native-endian 0x??RRGGBB word per pixel,
  * stride 4 * width, top row first), valid until the next drawing on this

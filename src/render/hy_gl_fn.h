@@ -22,12 +22,12 @@
     X(AttachShader) X(BindBuffer) X(BindFramebuffer) X(BindRenderbuffer) X(BindVertexArray) \
     X(BlendFuncSeparate) X(BlitFramebuffer) X(BufferData) X(CheckFramebufferStatus) X(Clear) X(ClearColor) \
     X(ClearDepth) X(CompileShader) X(CreateProgram) X(CreateShader) X(DeleteFramebuffers) X(DeleteProgram) \
-    X(DeleteRenderbuffers) X(DeleteShader) X(DepthFunc) X(Disable) X(DrawArraysInstanced) X(DrawElements) \
+    X(DeleteRenderbuffers) X(DeleteShader) X(DepthFunc) X(Disable) X(DrawArrays) X(DrawArraysInstanced) X(DrawElements) \
     X(Enable) X(EnableVertexAttribArray) X(Finish) X(FramebufferRenderbuffer) X(GenBuffers) X(GenFramebuffers) \
     X(GenRenderbuffers) X(GenVertexArrays) X(GetError) X(GetProgramInfoLog) X(GetProgramiv) \
     X(GetShaderInfoLog) X(GetShaderiv) X(GetString) X(GetUniformLocation) X(LinkProgram) X(PixelStorei) \
     X(ReadPixels) X(RenderbufferStorage) X(RenderbufferStorageMultisample) X(Scissor) X(ShaderSource) \
-    X(Uniform1f) X(Uniform1fv) X(Uniform1i) X(Uniform2f) X(Uniform3f) X(UniformMatrix4fv) X(UseProgram) \
+    X(Uniform1f) X(Uniform1fv) X(Uniform1i) X(Uniform2f) X(Uniform3f) X(Uniform4f) X(UniformMatrix4fv) X(UseProgram) \
     X(VertexAttribDivisor) X(VertexAttribPointer) X(Viewport)
 
 #define HY_GL_FN_FIELD(name) __typeof__(gl##name) *name;
