@@ -7,22 +7,18 @@
  * libmicrohttpd it still exists and says what is missing (exit 3).  argv as
  * after "hystviz". */
 #include <gsl/gsl_errno.h>
-#include <malloc.h>
 #include <signal.h>
 
 #include "cli_util.h"
 #include "cmd_serve.h"
+#include "serve_malloc.h"
 
 int main(int argc, char **argv)
 {
     sigset_t stop;
     cli_signals_block(&stop); /* first: serve takes SIGINT/SIGTERM itself (sigwait) */
     gsl_set_error_handler_off();
-    /* a render's big arrays (Newmark, decimation, the raster, the answer)
-       come from the heap and go back to it, not to the kernel: the next
-       render reuses pages instead of faulting fresh ones in (issue 23 item 4) */
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);
-    mallopt(M_TRIM_THRESHOLD, 256 << 20);
+    sv_malloc_tune(); /* freed render memory is reused, not faulted in again */
     if (argc < 2) {
         static char name[] = "serve", *args[] = {name, NULL};
         return cli_stdout_status("serve", hy_cmd_serve(1, args));

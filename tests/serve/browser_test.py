@@ -576,14 +576,14 @@ def bench(dt, base, n, scenes):
         dt.wait(f"hv.info && hv.info.file === '{f}.scene' && hv.renders >= 1 && !hv.inflight", 60)
         if key is None or not dt.js(f"!!document.querySelector('input[type=range][data-key=\"{key}\"]')"):
             key = dt.js("hv.info.controls[0].key")
-        srv, e2e, refused = [], [], 0
+        srv, e2e, cpu, refused = [], [], [], 0
         for i in range(n):
             # one control change: an input event, then the time until the new SVG is in the DOM
             # (or the scene's error is shown: counted, not timed)
             r = dt.js(f"""new Promise(res => {{
                 const el = document.querySelector('input[type=range][data-key="{key}"]');
                 const t0 = performance.now();
-                const ok = () => {{ document.removeEventListener('hv-error', bad); res([hv.serverMs, performance.now() - t0]); }};
+                const ok = () => {{ document.removeEventListener('hv-error', bad); res([hv.serverMs, performance.now() - t0, hv.serverCpuMs]); }};
                 const bad = () => {{ document.removeEventListener('hv-rendered', ok); res(null); }};
                 document.addEventListener('hv-rendered', ok, {{once: true}});
                 document.addEventListener('hv-error', bad, {{once: true}});
@@ -594,11 +594,13 @@ def bench(dt, base, n, scenes):
                 continue
             srv.append(r[0])
             e2e.append(r[1])
+            cpu.append(r[2])
         if not srv:
             print(f"bench-serve-browser {f}: every change refused")
             continue
         print(f"bench-serve-browser {f} ({key}, {len(srv)} changes, {refused} refused): server render median {pct(srv, 50):.1f} ms "
-              f"p95 {pct(srv, 95):.1f} ms; browser end-to-end median {pct(e2e, 50):.1f} ms p95 {pct(e2e, 95):.1f} ms",
+              f"p95 {pct(srv, 95):.1f} ms (its CPU median {pct(cpu, 50):.1f} ms); browser end-to-end median {pct(e2e, 50):.1f} ms "
+              f"p95 {pct(e2e, 95):.1f} ms; load average {os.getloadavg()[0]:.1f}",
               flush=True)
     # reload on save: rename-save of style.scene -> the new figure in the page
     f = "fig15_minor_loop_ex4"

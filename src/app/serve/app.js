@@ -8,7 +8,7 @@ const hv = window.hv = {
   page: Array.from(crypto.getRandomValues(new Uint8Array(8)), b => b.toString(16).padStart(2, '0')).join(''),
   scenes: [], info: null, sets: {}, lastKey: null, present: false, dragging: false,
   seq: 0, inflight: false, pending: false,
-  svg: null, cmd: '', renders: 0, changes: 0, error: null, serverMs: NaN, pageMs: NaN,
+  svg: null, cmd: '', renders: 0, changes: 0, error: null, serverMs: NaN, serverCpuMs: NaN, pageMs: NaN,
   hover: null, hoverTimer: 0,
   frame: -1, frameB64: null, frameSeq: 0, frameInflight: false, framePending: -1, playing: false,
 };
@@ -387,6 +387,7 @@ function show(j, q, t0) {
   hv.error = null;
   hv.map = j.map;
   hv.serverMs = 1000 * j.seconds;
+  hv.serverCpuMs = 1000 * j.cpu;
   hv.work = j.work;
   hv.budget = j.budget;
   hv.pageMs = performance.now() - t0;
