@@ -5,8 +5,10 @@
  * (hy_scene_run_load/compute/render), figure_only and with serve's
  * allocator settings (serve_malloc.h).  Fig. 15 (analytic), Fig. 11 (GSL)
  * and bw_fig1a (Newmark); a new value per change, as a slider drag sends.
- * Prints median, 95th percentile and minimum of the wall time, the median
- * CPU time and the load average; asserts nothing. */
+ * Prints a Markdown table, the README's (tests/cli/test_readme_bench.sh
+ * checks its rows and format): median, 95th percentile and minimum of the
+ * wall time, the median CPU time and the load average; asserts nothing.
+ * `bench_serve --rows` prints the header and first cells only. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -75,6 +77,7 @@ int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
     sv_malloc_tune();
+    int rows_only = argc > 1 && !strcmp(argv[1], "--rows");
     const char *dir = argc > 1 ? argv[1] : "scenes";
     int n = argc > 2 ? atoi(argv[2]) : 100;
     static const struct {
@@ -84,7 +87,11 @@ int main(int argc, char **argv)
     } figs[] = {{"fig15_minor_loop_ex4.scene", "model.sigma0", 1, 60, 1},
                 {"fig11_ygamma_ex3.scene", "model.sigma0", 1, 60, 2},
                 {"bw_fig1a_quasistatic_loop.scene", "input.amp", 60, 180, 4}};
-    for (size_t f = 0; f < sizeof figs / sizeof figs[0]; f++) {
+    printf("| figure (control) | server render, warm process (`bench_serve`): wall median / p95 (min) | CPU median | "
+           "load |\n|---|---|---|---|\n");
+    for (size_t f = 0; rows_only && f < sizeof figs / sizeof figs[0]; f++)
+        printf("| %s (%s) |\n", figs[f].file, figs[f].key);
+    for (size_t f = 0; !rows_only && f < sizeof figs / sizeof figs[0]; f++) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", dir, figs[f].file);
         int m = n / figs[f].n_div > 5 ? n / figs[f].n_div : 5;
@@ -109,9 +116,10 @@ int main(int argc, char **argv)
             load = NAN;
         if (la)
             fclose(la);
-        printf("bench-serve-render %s (%s, %d changes, %d refused, %zu-byte SVG): median %.2f ms, p95 %.2f ms, "
-               "min %.2f ms; CPU median %.2f ms; load average %.1f\n", figs[f].file, figs[f].key, ok, failed, bytes,
-               1e3 * med, 1e3 * p95, 1e3 * mn, 1e3 * cmed, load);
+        printf("| %s (%s) | %.2f / %.2f ms (min %.2f) | %.2f ms | %.1f |\n", figs[f].file, figs[f].key, 1e3 * med,
+               1e3 * p95, 1e3 * mn, 1e3 * cmed, load);
+        fprintf(stderr, "bench-serve-render %s: %d changes, %d refused, %zu-byte SVG\n", figs[f].file, ok, failed,
+                bytes);
         free(t);
         free(cpu);
     }

@@ -5,11 +5,17 @@
 # (`bench_sweep.sh --rows` gives the labels without running anything), and
 # every row has the benchmark's format: wall in s, points/s and points per CPU
 # second as whole numbers with thousands commas, max RSS in MB (or, for the
-# NumPy pairing, the yardstick's figures in parentheses).  Values are not
-# compared: they are measured by `sh tools/setup.sh bench` and copied.
-# usage: test_readme_bench.sh SOURCE_ROOT
+# NumPy pairing, the yardstick's figures in parentheses).  The same for the
+# large-series table of tests/bench/bench_points.sh (its header line, its N
+# in order, wall and CPU in s with 3 decimals, max RSS in MB, the three
+# files' sizes in kB).  Values are not compared: they are measured by
+# `sh tools/setup.sh bench` and copied.
+# The serve tables likewise: tests/bench/bench_serve.c's (warm process) and
+# tests/serve/browser_test.py --bench's (chromium).
+# usage: test_readme_bench.sh SOURCE_ROOT BENCH_SERVE
 set -u
 root=$1
+bench_serve=$2
 pass=0
 fail=0
 ok() { pass=$((pass + 1)); }
@@ -36,6 +42,36 @@ while IFS= read -r row; do
     echo "$row" | grep -Eq '^\| .+ \| [0-9]+\.[0-9]+ s \| [0-9]{1,3}(,[0-9]{3})* \| [0-9]{1,3}(,[0-9]{3})* \| ([0-9]+\.[0-9] MB|\(NumPy loop [0-9.]+ s wall, [0-9.]+ s CPU; ratio hystviz/NumPy [0-9.]+ wall, [0-9.]+ CPU\)) \|$' &&
         ok || bad "README row $n is not in the benchmark's format: $row"
 done < "$tmp/rows"
+# a table of another benchmark: WANT (its --rows output: header, separator,
+# first cells) against the README's table that starts at the same header;
+# each row's other cells must match the extended regex REST
+table() {
+    name=$1 want=$2 rest=$3
+    head -n 1 "$want" > "$tmp/head"
+    awk -v h="$(cat "$tmp/head")" '$0 == h { on = 1; print; next }
+         on && /^\|/ { print; next }
+         on { exit }' "$root/README.md" > "$tmp/rows"
+    [ -s "$tmp/rows" ] && ok || { bad "README.md has no $name table headed: $(cat "$tmp/head")"; return; }
+    { sed 2q "$tmp/rows"; sed -n '3,$s/^\(| [^|]* |\).*$/\1/p' "$tmp/rows"; } > "$tmp/have"
+    if cmp -s "$want" "$tmp/have"; then ok; else
+        bad "README's $name table (header, separator, first cells) differs from the benchmark's (< benchmark, > README):"
+        diff "$want" "$tmp/have" | grep '^[<>]'
+    fi
+    sed 1,2d "$tmp/rows" | while IFS= read -r row; do
+        echo "$row" | grep -Eq "^\| [^|]+ \| $rest \|\$" || echo "$row"
+    done > "$tmp/bad"
+    [ -s "$tmp/bad" ] && bad "README $name rows not in the benchmark's format: $(cat "$tmp/bad")" || ok
+}
+# large series: wall and CPU in s with 3 decimals, max RSS in MB, the files in kB
+cell='[0-9]+\.[0-9]{3} s \| [0-9]+\.[0-9]{3} s \| [0-9]+\.[0-9] MB \| [0-9]+ / [0-9]+ / [0-9]+ kB'
+sh "$root/tests/bench/bench_points.sh" --rows > "$tmp/points" || bad "bench_points.sh --rows failed"
+table large-series "$tmp/points" "$cell \| ($cell|\(matplotlib missing\) \| \| \| )"
+# serve, warm process: ms with 2 decimals, the load with 1
+"$bench_serve" --rows > "$tmp/serve" || bad "bench_serve --rows failed"
+table serve "$tmp/serve" '[0-9]+\.[0-9]{2} / [0-9]+\.[0-9]{2} ms \(min [0-9]+\.[0-9]{2}\) \| [0-9]+\.[0-9]{2} ms \| [0-9]+\.[0-9]'
+# serve in chromium: ms with 1 decimal
+python3 "$root/tests/serve/browser_test.py" --rows > "$tmp/browser" || bad "browser_test.py --rows failed"
+table serve-browser "$tmp/browser" '[0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9]'
 # the text that quotes the table names the command that made it
 grep -q 'sh tools/setup.sh bench' "$root/README.md" && ok || bad "README does not name sh tools/setup.sh bench"
 echo "test_readme_bench: $pass passed, $fail failed"

@@ -568,10 +568,22 @@ def bench_play(dt, base, seconds, scenes):
               f"{os.cpu_count()} CPUs", flush=True)
 
 
+BENCH_FIGS = [("fig15_minor_loop_ex4", "model.sigma0"), ("fig11_ygamma_ex3", "model.sigma0"),
+              ("bw_fig1a_quasistatic_loop", "input.amp")]
+# the benchmark's table, the README's (tests/cli/test_readme_bench.sh checks its rows and format)
+BENCH_HEADER = ("| figure (control) | in chromium: server render wall / CPU, median | "
+                "input event → new SVG in the DOM, median / p95 | load |\n|---|---|---|---|")
+
+
+def bench_rows():
+    print(BENCH_HEADER)
+    for f, key in BENCH_FIGS:
+        print(f"| {f} ({key}) |")
+
+
 def bench(dt, base, n, scenes):
-    figs = [("fig15_minor_loop_ex4", "model.sigma0"), ("fig11_ygamma_ex3", "model.sigma0"),
-            ("bw_fig1a_quasistatic_loop", "input.amp")]
-    for f, key in figs:
+    print(BENCH_HEADER, flush=True)
+    for f, key in BENCH_FIGS:
         dt.call("Page.navigate", url=base + "#" + f + ".scene")
         dt.wait(f"hv.info && hv.info.file === '{f}.scene' && hv.renders >= 1 && !hv.inflight", 60)
         if key is None or not dt.js(f"!!document.querySelector('input[type=range][data-key=\"{key}\"]')"):
@@ -596,12 +608,11 @@ def bench(dt, base, n, scenes):
             e2e.append(r[1])
             cpu.append(r[2])
         if not srv:
-            print(f"bench-serve-browser {f}: every change refused")
+            print(f"bench-serve-browser {f}: every change refused", file=sys.stderr)
             continue
-        print(f"bench-serve-browser {f} ({key}, {len(srv)} changes, {refused} refused): server render median {pct(srv, 50):.1f} ms "
-              f"p95 {pct(srv, 95):.1f} ms (its CPU median {pct(cpu, 50):.1f} ms); browser end-to-end median {pct(e2e, 50):.1f} ms "
-              f"p95 {pct(e2e, 95):.1f} ms; load average {os.getloadavg()[0]:.1f}",
-              flush=True)
+        print(f"| {f} ({key}) | {pct(srv, 50):.1f} / {pct(cpu, 50):.1f} ms | {pct(e2e, 50):.1f} / {pct(e2e, 95):.1f} ms | "
+              f"{os.getloadavg()[0]:.1f} |", flush=True)
+        print(f"bench-serve-browser {f}: {len(srv)} changes, {refused} refused", file=sys.stderr, flush=True)
     # reload on save: rename-save of style.scene -> the new figure in the page
     f = "fig15_minor_loop_ex4"
     dt.call("Page.navigate", url=base + "#" + f + ".scene")
@@ -681,6 +692,9 @@ def run_session(hv, src, prefix, body, check_exit=True):
 
 
 def main():
+    if sys.argv[1:] == ["--rows"]:
+        bench_rows()
+        return 0
     hv, src = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2])
     screenshot = sys.argv[sys.argv.index("--screenshot") + 1] if "--screenshot" in sys.argv else None
     nbench = int(sys.argv[sys.argv.index("--bench") + 1]) if "--bench" in sys.argv else 0
