@@ -42,5 +42,6 @@ void main()
     }
     float w = shape((alpha - u_dens.x) / u_dens.y) * shape((beta - u_dens.z) / u_dens.w);
     vec3 base = state > 0 ? u_up : u_down;
+    w = floor(w * 32.0 + 0.5) / 32.0;    // 33 shades: flat bands compress (PNG) far better than a gradient
     o_colour = vec4(mix(vec3(1.0), base, 0.12 + 0.88 * w), 1.0);
 }
