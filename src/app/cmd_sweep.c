@@ -699,7 +699,7 @@ static int check_study(study *s, uint64_t *hash)
     int bad_output = (o->figures && hy_scene_run_check_output(&r, o->formats, &err)) ||
                      hy_scene_run_estimate(&r, &work, what, sizeof what, &err) ||
                      (work > hy_scene_policy_budget(&o->pol) &&
-                      hy_scene_run_over_budget(r.scene, work, hy_scene_policy_budget(&o->pol), what, &err));
+                      hy_scene_run_over_budget(&r.doc, work, hy_scene_policy_budget(&o->pol), what, &err));
     hy_scene_run_free(&r);
     if (bad_output) {
         fprintf(stderr, "hystviz sweep: %s\n", err.msg);

@@ -143,12 +143,12 @@ static int op_validate(const bwop *p, hy_error *err)
     return HY_OK;
 }
 
-static int op_read(const hy_scene *s, void *par, hy_error *err)
+static int op_read(const hy_decl_model *m, void *par, hy_error *err)
 {
     bwop *p = par;
     *p = (bwop){1, 1, 0.5, 0.5, 1, 0};
-    hy_scene_model_read_numbers(s, keys, offsets, p);
-    return hy_scene_model_relocate(s, &hy_scene_model_bwop, op_validate(p, err), err);
+    hy_scene_model_read_numbers(m, keys, offsets, p);
+    return hy_scene_model_relocate(m, &hy_scene_model_bwop, op_validate(p, err), err);
 }
 
 const hy_scene_model hy_scene_model_bwop = {

@@ -49,12 +49,12 @@ static int ja_copy(const void *par, void *dst, const void *src, hy_error *err)
 static const hy_rateind_type ja_type = {"jiles-atherton", sizeof(hy_jiles_state), HY_RI_PATH_AREA, ja_init,
                                         ja_apply, ja_copy, NULL, NULL};
 
-static int ja_read(const hy_scene *s, void *par, hy_error *err)
+static int ja_read(const hy_decl_model *m, void *par, hy_error *err)
 {
     hy_jiles *j = par;
     hy_jiles_init(j, 1.6e6, 1100, 400, 0.2, 1.6e-3, err); /* rtol; every key has a schema default */
-    hy_scene_model_read_numbers(s, keys, offsets, j);
-    return hy_scene_model_relocate(s, &hy_scene_model_jiles, hy_jiles_validate(j, err), err);
+    hy_scene_model_read_numbers(m, keys, offsets, j);
+    return hy_scene_model_relocate(m, &hy_scene_model_jiles, hy_jiles_validate(j, err), err);
 }
 
 const hy_scene_model hy_scene_model_jiles = {

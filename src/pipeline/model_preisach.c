@@ -63,17 +63,11 @@ static int pr_area(const void *par, double lo, double hi, double *area, hy_error
 static const hy_rateind_type pr_type = {"preisach", sizeof(hy_preisach_mem), HY_RI_RETURN_POINT, pr_init,
                                         pr_apply, pr_copy, pr_free, pr_area};
 
-static int pr_read(const hy_scene *s, void *par, hy_error *err)
+static int pr_read(const hy_decl_model *m, void *par, hy_error *err)
 {
-    double hc = 0.5, width = 0.2, ys = 1;
-    int idx = 0;
-    const char *dist = NULL;
-    hy_scene_get_enum(s, "model", NULL, "pr_density", &idx, &dist);
-    hy_scene_get_num(s, "model", NULL, "pr_hc", &hc);
-    hy_scene_get_num(s, "model", NULL, "pr_width", &width);
-    hy_scene_get_num(s, "model", NULL, "pr_ys", &ys);
-    int rc = hy_preisach_symmetric(par, hy_preisach_dist_find(dist), hc, width, ys, err);
-    return hy_scene_model_relocate(s, &hy_scene_model_preisach, rc, err);
+    const char *dist = hy_decl_enum_text(&m->h, offsetof(hy_decl_model, pr_density), m->pr_density);
+    int rc = hy_preisach_symmetric(par, hy_preisach_dist_find(dist), m->pr_hc, m->pr_width, m->pr_ys, err);
+    return hy_scene_model_relocate(m, &hy_scene_model_preisach, rc, err);
 }
 
 const hy_scene_model hy_scene_model_preisach = {

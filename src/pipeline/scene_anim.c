@@ -300,7 +300,11 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
         if (!rc && work > budget) {
             char what[96];
             snprintf(what, sizeof what, "%ld frames%s", nframes, f + 1 < nframes && a->nkf ? ", counted so far" : "");
-            rc = hy_scene_run_over_budget(a->scene, work, budget, what, err);
+            hy_scene_doc d; /* the scene as written, for where the refusal points */
+            rc = hy_scene_decode_fill(a->scene, &d, err);
+            if (!rc)
+                rc = hy_scene_run_over_budget(&d, work, budget, what, err);
+            hy_scene_doc_free(&d);
         }
     }
     hy_scene_free(s);

@@ -50,177 +50,153 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static double num(const hy_scene *s, const char *sec, const char *key, double dflt)
-{
-    double v;
-    return hy_scene_get_num(s, sec, NULL, key, &v) >= 0 ? v : dflt;
-}
+#define IN(f) offsetof(hy_decl_input, f)
+#define CO(f) offsetof(hy_decl_compute, f)
+#define SE(f) offsetof(hy_decl_series, f)
 
-static long integer(const hy_scene *s, const char *sec, const char *key, long dflt)
-{
-    long v;
-    return hy_scene_get_int(s, sec, NULL, key, &v) >= 0 ? v : dflt;
-}
+/* The identifier of an ENUM field of a decoded section. */
+#define ENUM_TEXT(sec, T, f) hy_decl_enum_text(&(sec)->h, offsetof(T, f), (sec)->f)
 
-static int enum_index(const hy_scene *s, const char *sec, const char *name, const char *key)
+/* The first of keys (NULL-terminated) written in h's section, or HY_DECL_HEAD
+ * (the section): where a message about several keys points. */
+static size_t first_set(const hy_decl_head *h, const char *const *keys)
 {
-    int idx = 0;
-    const char *t;
-    hy_scene_get_enum(s, sec, name, key, &idx, &t);
-    return idx;
-}
-
-static const char *enum_text(const hy_scene *s, const char *sec, const char *name, const char *key)
-{
-    int idx;
-    const char *t = "";
-    hy_scene_get_enum(s, sec, name, key, &idx, &t);
-    return t;
-}
-
-/* The first of keys (NULL-terminated) written in [sec], or NULL (the section):
- * where a message about several keys points. */
-static const char *first_set(const hy_scene *s, const char *sec, const char *const *keys)
-{
-    hy_scene_loc loc;
     for (size_t i = 0; keys[i]; i++)
-        if (hy_scene_get_loc(s, sec, NULL, keys[i], &loc))
-            return keys[i];
-    return NULL;
+        if (hy_decl_got(h, hy_decl_offset(h, keys[i])) == HY_SCENE_SET)
+            return hy_decl_offset(h, keys[i]);
+    return HY_DECL_HEAD;
 }
 
-/* Re-raises the core message in err at the scene location of key (NULL: the
- * section), prefixed with what. */
-static int relocate(const hy_scene *s, const char *sec, const char *key, hy_error *err, int code, const char *what)
+/* Re-raises the core message in err at the scene location of the field at
+ * off (HY_DECL_HEAD: the section), prefixed with what. */
+static int relocate(const hy_decl_head *h, size_t off, hy_error *err, int code, const char *what)
 {
-    return hy_scene_error_at(s, sec, NULL, key, err, code, "%s%s", what, err->msg);
+    return hy_decl_error(h, off, err, code, "%s%s", what, err->msg);
 }
 
-int hy_scene_is_boucwen(const hy_scene *s)
+int hy_scene_is_boucwen(const hy_scene_doc *d)
 {
-    return !strcmp(enum_text(s, "model", NULL, "kind"), "boucwen");
+    return !strcmp(ENUM_TEXT(&d->model, hy_decl_model, kind), "boucwen");
 }
 
 /* Table 1 from [model]; the schema has checked each value's own range. */
-static int read_params(const hy_scene *s, hy_boucwen_params *p, hy_error *err)
+static int read_params(const hy_decl_model *m, hy_boucwen_params *p, hy_error *err)
 {
     hy_boucwen_params_default(p);
-    p->m = num(s, "model", "m", p->m);
-    p->c = num(s, "model", "c", p->c);
-    p->k = num(s, "model", "k", p->k);
-    p->alpha = num(s, "model", "alpha", p->alpha);
-    p->beta = num(s, "model", "bw_beta", p->beta);
-    p->gamma = num(s, "model", "bw_gamma", p->gamma);
-    p->delta = num(s, "model", "delta", p->delta);
-    p->nu = num(s, "model", "nu", p->nu);
-    hy_scene_loc loc;
+    p->m = m->m;
+    p->c = m->c;
+    p->k = m->k;
+    p->alpha = m->alpha;
+    p->beta = m->bw_beta;
+    p->gamma = m->bw_gamma;
+    p->delta = m->delta;
+    p->nu = m->nu;
     if (!(p->k + p->alpha > 0))
-        return hy_scene_error_at(s, "model", NULL, hy_scene_get_loc(s, "model", NULL, "k", &loc) ? "k" : "alpha",
-                                 err, HY_EINVAL,
-                                 "k + alpha (the linearised stiffness of Table 2) must be > 0, got k = %g, alpha = %g",
-                                 p->k, p->alpha);
+        return hy_decl_error(&m->h,
+                             hy_decl_got(&m->h, offsetof(hy_decl_model, k)) == HY_SCENE_SET ? offsetof(hy_decl_model, k)
+                                                                                            : offsetof(hy_decl_model, alpha),
+                             err, HY_EINVAL,
+                             "k + alpha (the linearised stiffness of Table 2) must be > 0, got k = %g, alpha = %g",
+                             p->k, p->alpha);
     if (hy_boucwen_params_validate(p, err))
-        return relocate(s, "model", NULL, err, HY_EINVAL, "");
+        return relocate(&m->h, HY_DECL_HEAD, err, HY_EINVAL, "");
     return HY_OK;
 }
 
-static int read_sine(const hy_scene *s, bw_setup *b, hy_error *err)
+static int read_sine(const hy_decl_input *in, bw_setup *b, hy_error *err)
 {
-    b->amp = num(s, "input", "amp", 1);
-    b->period = num(s, "input", "period", 2);
-    b->offset = num(s, "input", "offset", 0);
+    b->amp = in->amp;
+    b->period = in->period;
+    b->offset = in->offset;
     double nd = b->period * b->fs;
-    hy_scene_loc loc;
     if (!(nd <= BW_MAX_SAMPLES)) /* before the conversion below: fs may be 1e300 */
-        return hy_scene_error_at(s, "input", NULL, hy_scene_get_loc(s, "input", NULL, "fs", &loc) ? "fs" : "period",
-                                 err, HY_EINVAL,
-                                 "a Bouc-Wen sine of period x fs = %g x %g = %.3g samples is more than the %.0f "
-                                 "integration samples a scene may use", b->period, b->fs, nd, BW_MAX_SAMPLES);
+        return hy_decl_error(&in->h, hy_decl_got(&in->h, IN(fs)) == HY_SCENE_SET ? IN(fs) : IN(period), err, HY_EINVAL,
+                             "a Bouc-Wen sine of period x fs = %g x %g = %.3g samples is more than the %.0f "
+                             "integration samples a scene may use", b->period, b->fs, nd, BW_MAX_SAMPLES);
     if (fabs(nd - nearbyint(nd)) > 1e-9 * nd || nearbyint(nd) < 4)
-        return hy_scene_error_at(s, "input", NULL, "period", err, HY_EINVAL,
-                                 "a Bouc-Wen sine needs a whole number (>= 4) of samples per period: "
-                                 "period x fs = %g x %g = %.10g",
-                                 b->period, b->fs, nd);
+        return hy_decl_error(&in->h, IN(period), err, HY_EINVAL,
+                             "a Bouc-Wen sine needs a whole number (>= 4) of samples per period: "
+                             "period x fs = %g x %g = %.10g",
+                             b->period, b->fs, nd);
     b->nd = (size_t)nearbyint(nd);
     return HY_OK;
 }
 
-static int read_multisine(const hy_scene *s, bw_setup *b, hy_error *err)
+static int read_multisine(const hy_decl_input *in, bw_setup *b, hy_error *err)
 {
-    double band[2] = {5, 150};
     size_t kmin, kmax;
-    hy_scene_get_pair(s, "input", NULL, "band", band, NULL);
     hy_multisine_default(&b->ms);
     b->ms.fs = b->fs;
-    b->ms.n = (size_t)integer(s, "input", "samples", 8192);
-    b->ms.fmin = band[0];
-    b->ms.fmax = band[1];
-    b->ms.rms = num(s, "input", "rms", 50);
+    b->ms.n = (size_t)in->samples;
+    b->ms.fmin = in->band.v[0];
+    b->ms.fmax = in->band.v[1];
+    b->ms.rms = in->rms;
     b->ms.seed = b->seed;
     static const char *const culprits[] = {"band", "fs", "samples", NULL};
     if (hy_multisine_lines(&b->ms, &kmin, &kmax, err))
-        return relocate(s, "input", first_set(s, "input", culprits), err, HY_EINVAL, "");
+        return relocate(&in->h, first_set(&in->h, culprits), err, HY_EINVAL, "");
     b->nd = b->ms.n;
     return HY_OK;
 }
 
-static int read_sweep(const hy_scene *s, bw_setup *b, hy_error *err)
+static int read_sweep(const hy_decl_input *in, const hy_decl_compute *co, bw_setup *b, hy_error *err)
 {
     static const char *const periodic[] = {"cycles", "settle"};
     hy_sweep_default(&b->sw); /* the defaults of `hystviz boucwen data --signal sweep` too */
-    double band[2];
     for (size_t i = 0; i < 2; i++)
-        if (hy_scene_get_int(s, "compute", NULL, periodic[i], &b->cycles) == HY_SCENE_SET)
-            return hy_scene_error_at(s, "compute", NULL, periodic[i], err, HY_EINVAL,
-                                     "'%s' counts input periods, and a sweep is not periodic", periodic[i]);
+        if (hy_decl_got(&co->h, hy_decl_offset(&co->h, periodic[i])) == HY_SCENE_SET)
+            return hy_decl_error(&co->h, hy_decl_offset(&co->h, periodic[i]), err, HY_EINVAL,
+                                 "'%s' counts input periods, and a sweep is not periodic", periodic[i]);
     b->cycles = 1;
     /* keys the scene leaves unset keep hy_sweep_default (the schema's defaults
      * of amp and band are the triangle's and the multisine's) */
-    double v;
-    if (hy_scene_get_pair(s, "input", NULL, "band", band, NULL) != HY_SCENE_SET)
-        band[0] = b->sw.f0, band[1] = b->sw.f1;
-    if (hy_scene_get_num(s, "input", NULL, "amp", &v) == HY_SCENE_SET)
-        b->sw.amp = v;
-    if (hy_scene_get_num(s, "input", NULL, "rate", &v) == HY_SCENE_SET)
-        b->sw.rate = v / 60.0;
+    double band[2] = {b->sw.f0, b->sw.f1};
+    if (hy_decl_got(&in->h, IN(band)) == HY_SCENE_SET)
+        band[0] = in->band.v[0], band[1] = in->band.v[1];
+    if (hy_decl_got(&in->h, IN(amp)) == HY_SCENE_SET)
+        b->sw.amp = in->amp;
+    if (hy_decl_got(&in->h, IN(rate)) == HY_SCENE_SET)
+        b->sw.rate = in->rate / 60.0;
     b->sw.f0 = band[0];
     b->sw.f1 = band[1];
     b->nd = hy_sweep_length(&b->sw, b->fs);
     if (b->nd == 0) {
         static const char *const culprits[] = {"rate", "band", "fs", "amp", NULL};
         hy_sweep_fill(&b->sw, b->fs, NULL, 0, err);
-        return relocate(s, "input", first_set(s, "input", culprits), err, HY_EINVAL, "");
+        return relocate(&in->h, first_set(&in->h, culprits), err, HY_EINVAL, "");
     }
     if (b->nd < 16)
-        return hy_scene_error_at(s, "input", NULL, "band", err, HY_EINVAL,
-                                 "the sweep lasts %zu samples at fs = %g Hz; at least 16 are needed", b->nd, b->fs);
+        return hy_decl_error(&in->h, IN(band), err, HY_EINVAL,
+                             "the sweep lasts %zu samples at fs = %g Hz; at least 16 are needed", b->nd, b->fs);
     return HY_OK;
 }
 
 /* [input] and [compute]; the memory bound is checked here, before any allocation. */
-static int read_signal(const hy_scene *s, bw_setup *b, hy_error *err)
+static int read_signal(const hy_scene_doc *d, bw_setup *b, hy_error *err)
 {
-    const char *kind = enum_text(s, "input", NULL, "kind");
-    b->fs = num(s, "input", "fs", 750);
-    b->r = (size_t)integer(s, "compute", "upsample", 20);
-    b->dec = enum_index(s, "compute", NULL, "decimate");
-    b->cycles = integer(s, "compute", "cycles", 1);
-    b->settle = integer(s, "compute", "settle", 0);
-    b->noise = 1e-3 * num(s, "compute", "noise", 0);
-    b->seed = (uint64_t)integer(s, "input", "seed", 1);
+    const hy_decl_input *in = &d->input;
+    const hy_decl_compute *co = &d->compute;
+    const char *kind = ENUM_TEXT(in, hy_decl_input, kind);
+    b->fs = in->fs;
+    b->r = (size_t)co->upsample;
+    b->dec = co->decimate;
+    b->cycles = co->cycles;
+    b->settle = co->settle;
+    b->noise = 1e-3 * co->noise;
+    b->seed = (uint64_t)in->seed;
     int rc;
     if (!strcmp(kind, "sine")) {
         b->input = IN_SINE;
-        rc = read_sine(s, b, err);
+        rc = read_sine(in, b, err);
     } else if (!strcmp(kind, "multisine")) {
         b->input = IN_MULTISINE;
-        rc = read_multisine(s, b, err);
+        rc = read_multisine(in, b, err);
     } else if (!strcmp(kind, "sweep")) {
         b->input = IN_SWEEP;
-        rc = read_sweep(s, b, err);
+        rc = read_sweep(in, co, b, err);
     } else
-        return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL,
-                                 "a boucwen model takes [input] kind = sine, multisine or sweep, not %s", kind);
+        return hy_decl_error(&in->h, IN(kind), err, HY_EINVAL,
+                             "a boucwen model takes [input] kind = sine, multisine or sweep, not %s", kind);
     if (rc)
         return rc;
     /* the periodic synthesis integrates one extra period for the filter's edge */
@@ -228,10 +204,33 @@ static int read_signal(const hy_scene *s, bw_setup *b, hy_error *err)
     double total = periods * (double)b->nd * (double)b->r;
     b->work = total;
     if (total > BW_MAX_SAMPLES)
-        return hy_scene_error_at(s, "compute", NULL, b->input == IN_SWEEP ? "upsample" : "cycles", err, HY_EINVAL,
-                                 "%.0f integration samples (%g periods of %zu samples at %g Hz x %zu) "
-                                 "is more than %.0f",
-                                 total, periods, b->nd, b->fs, b->r, BW_MAX_SAMPLES);
+        return hy_decl_error(&co->h, b->input == IN_SWEEP ? CO(upsample) : CO(cycles), err, HY_EINVAL,
+                             "%.0f integration samples (%g periods of %zu samples at %g Hz x %zu) "
+                             "is more than %.0f",
+                             total, periods, b->nd, b->fs, b->r, BW_MAX_SAMPLES);
+    return HY_OK;
+}
+
+/* What one series of a boucwen scene may draw: its quantity against the
+ * figure's kind and the input's. */
+static int check_quantity(const hy_scene_run *r, const bw_setup *b, const hy_decl_series *ds, hy_error *err)
+{
+    int q = ds->quantity;
+    const char *why = NULL;
+    if ((q == Q_SINC_INPUT || q == Q_SINC_OUTPUT) && b->input != IN_SWEEP)
+        why = "compares the sinc-upsampled sweep with the exact one: it needs [input] kind = sweep";
+    else if (q >= Q_ENVELOPE && r->figure_kind == FIG_LOOP)
+        why = "is a value a second, drawn against t, not in a loop figure";
+    else if ((q == Q_TRANSIENT_DB || q == Q_SPECTRUM) && b->input == IN_SWEEP)
+        why = "needs a periodic input (sine or multisine), not a sweep";
+    else if (q == Q_SPECTRUM && r->figure_kind == FIG_LOOP)
+        why = "is drawn against frequency, not in a loop figure";
+    if (why)
+        return hy_decl_error(&ds->h, SE(quantity), err, HY_EINVAL, "quantity = %s %s", quantity_names[q], why);
+    if (q == Q_TRANSIENT_DB && b->cycles < 2)
+        return hy_decl_error(&ds->h, SE(quantity), err, HY_EINVAL,
+                             "quantity = transient-db subtracts the last period: it needs [compute] cycles >= 2, got %ld",
+                             b->cycles);
     return HY_OK;
 }
 
@@ -239,40 +238,24 @@ static int read_signal(const hy_scene *s, bw_setup *b, hy_error *err)
 static int check_series(const hy_scene_run *r, bw_setup *b, hy_error *err)
 {
     static const char *const kinds[] = {"timeseries", "loop", "input", "g", "psi"};
-    const hy_scene *s = r->scene;
+    const hy_scene_doc *d = &r->doc;
     if (r->figure_kind != FIG_TIMESERIES && r->figure_kind != FIG_LOOP)
-        return hy_scene_error_at(s, "figure", NULL, "kind", err, HY_EINVAL,
-                                 "a boucwen scene draws a figure of kind timeseries or loop, not %s",
-                                 r->figure_kind >= 0 && r->figure_kind < 5 ? kinds[r->figure_kind] : "this");
+        return hy_decl_error(&d->figure.h, offsetof(hy_decl_figure, kind), err, HY_EINVAL,
+                             "a boucwen scene draws a figure of kind timeseries or loop, not %s",
+                             r->figure_kind >= 0 && r->figure_kind < 5 ? kinds[r->figure_kind] : "this");
     b->need_output = 0;
-    for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
-        const char *name = hy_scene_name_at(s, "series", i), *data;
-        int idx, q = enum_index(s, "series", name, "quantity");
-        if (hy_scene_get_enum(s, "series", name, "data", &idx, &data) < 0)
-            return hy_scene_error_at(s, "series", name, NULL, err, HY_EINVAL,
-                                     "series '%s' needs 'data = boucwen' (and a 'quantity')", name);
-        if (strcmp(data, "boucwen"))
-            return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL,
-                                     "a boucwen model draws 'data = boucwen' series (with a 'quantity'), not %s", data);
-        if ((q == Q_SINC_INPUT || q == Q_SINC_OUTPUT) && b->input != IN_SWEEP)
-            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
-                                     "quantity = %s compares the sinc-upsampled sweep with the exact one: "
-                                     "it needs [input] kind = sweep", quantity_names[q]);
-        if (q >= Q_ENVELOPE && r->figure_kind == FIG_LOOP)
-            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
-                                     "quantity = %s is a value a second, drawn against t, not in a loop figure",
-                                     quantity_names[q]);
-        if ((q == Q_TRANSIENT_DB || q == Q_SPECTRUM) && b->input == IN_SWEEP)
-            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
-                                     "quantity = %s needs a periodic input (sine or multisine), not a sweep",
-                                     quantity_names[q]);
-        if (q == Q_TRANSIENT_DB && b->cycles < 2)
-            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
-                                     "quantity = transient-db subtracts the last period: it needs [compute] cycles >= 2, got %ld",
-                                     b->cycles);
-        if (q == Q_SPECTRUM && r->figure_kind == FIG_LOOP)
-            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
-                                     "quantity = spectrum is drawn against frequency, not in a loop figure");
+    for (size_t i = 0; i < d->nseries; i++) {
+        const hy_decl_series *ds = &d->series[i];
+        int q = ds->quantity, rc;
+        if (hy_decl_got(&ds->h, SE(data)) < 0)
+            return hy_decl_error(&ds->h, HY_DECL_HEAD, err, HY_EINVAL,
+                                 "series '%s' needs 'data = boucwen' (and a 'quantity')", ds->h.name);
+        if (ds->data != HY_DATA_BOUCWEN)
+            return hy_decl_error(&ds->h, SE(data), err, HY_EINVAL,
+                                 "a boucwen model draws 'data = boucwen' series (with a 'quantity'), not %s",
+                                 ENUM_TEXT(ds, hy_decl_series, data));
+        if ((rc = check_quantity(r, b, ds, err)))
+            return rc;
         b->need_output |= q != Q_INPUT && q != Q_SINC_INPUT;
         b->need_sinc |= q == Q_SINC_OUTPUT ? 2 : q == Q_SINC_INPUT;
         b->work += (double)b->nd * (double)(b->input == IN_SWEEP ? 1 : b->cycles) *
@@ -280,11 +263,11 @@ static int check_series(const hy_scene_run *r, bw_setup *b, hy_error *err)
         if (q == Q_SINC_INPUT || q == Q_SINC_OUTPUT) /* the sinc-upsampled force, and its own Newmark run */
             b->work += (double)b->nd * (double)b->r * (q == Q_SINC_OUTPUT ? 2.0 : 1.0);
     }
-    for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
-        const char *name = hy_scene_name_at(s, "annotation", i), *text;
-        if (hy_scene_get_str(s, "annotation", name, "text", &text) >= 0 && strchr(text, '{'))
-            return hy_scene_error_at(s, "annotation", name, "text", err, HY_EINVAL,
-                                     "{...} placeholders measure Dahl/LuGre loops; a boucwen scene has none");
+    for (size_t i = 0; i < d->nannotation; i++) {
+        const hy_decl_annotation *a = &d->annotation[i];
+        if (a->text && strchr(a->text, '{'))
+            return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
+                                 "{...} placeholders measure Dahl/LuGre loops; a boucwen scene has none");
     }
     return HY_OK;
 }
@@ -292,29 +275,26 @@ static int check_series(const hy_scene_run *r, bw_setup *b, hy_error *err)
 static int read_setup(const hy_scene_run *r, bw_setup *b, hy_error *err)
 {
     memset(b, 0, sizeof *b);
-    int rc = read_params(r->scene, &b->p, err);
+    int rc = read_params(&r->doc.model, &b->p, err);
     if (!rc)
-        rc = read_signal(r->scene, b, err);
+        rc = read_signal(&r->doc, b, err);
     if (!rc)
         rc = check_series(r, b, err);
     return rc;
 }
 
 /* Other models: the boucwen-only input kinds and series are refused here, by name. */
-static int refuse_boucwen_parts(const hy_scene *s, hy_error *err)
+static int refuse_boucwen_parts(const hy_scene_doc *d, hy_error *err)
 {
-    const char *kind = enum_text(s, "input", NULL, "kind");
+    const char *kind = ENUM_TEXT(&d->input, hy_decl_input, kind);
+    const char *model = ENUM_TEXT(&d->model, hy_decl_model, kind);
     if (!strcmp(kind, "multisine") || !strcmp(kind, "sweep"))
-        return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL,
-                                 "input kind %s is a force for [model] kind = boucwen, not for %s", kind,
-                                 enum_text(s, "model", NULL, "kind"));
-    for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
-        const char *name = hy_scene_name_at(s, "series", i);
-        if (!strcmp(enum_text(s, "series", name, "data"), "boucwen"))
-            return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL,
-                                     "data = boucwen needs [model] kind = boucwen (this model is %s)",
-                                     enum_text(s, "model", NULL, "kind"));
-    }
+        return hy_decl_error(&d->input.h, IN(kind), err, HY_EINVAL,
+                             "input kind %s is a force for [model] kind = boucwen, not for %s", kind, model);
+    for (size_t i = 0; i < d->nseries; i++)
+        if (hy_decl_got(&d->series[i].h, SE(data)) >= 0 && d->series[i].data == HY_DATA_BOUCWEN)
+            return hy_decl_error(&d->series[i].h, SE(data), err, HY_EINVAL,
+                                 "data = boucwen needs [model] kind = boucwen (this model is %s)", model);
     return HY_OK;
 }
 
@@ -328,8 +308,8 @@ int hy_scene_boucwen_work(const hy_scene_run *r, double *work, hy_error *err)
 
 int hy_scene_boucwen_load(hy_scene_run *r, hy_error *err)
 {
-    if (!hy_scene_is_boucwen(r->scene))
-        return refuse_boucwen_parts(r->scene, err);
+    if (!hy_scene_is_boucwen(&r->doc))
+        return refuse_boucwen_parts(&r->doc, err);
     bw_setup b;
     return read_setup(r, &b, err);
 }
@@ -429,7 +409,7 @@ static int sinc_route(const bw_setup *b, const double *u, size_t nu, bw_record *
     return rc;
 }
 
-static int make_record(const hy_scene *s, const bw_setup *b, bw_record *rec, hy_error *err)
+static int make_record(const hy_scene_doc *d, const bw_setup *b, bw_record *rec, hy_error *err)
 {
     double *u = NULL, *yall = NULL;
     size_t nu, step = b->dec == DEC_NONE ? 1 : b->r;
@@ -437,7 +417,7 @@ static int make_record(const hy_scene *s, const bw_setup *b, bw_record *rec, hy_
     int rc = make_force(b, &u, &nu, err);
     if (rc) {
         free(u);
-        return relocate(s, "input", "kind", err, rc, "");
+        return relocate(&d->input.h, IN(kind), err, rc, "");
     }
     int sweep = b->input == IN_SWEEP;
     size_t nout = sweep ? (nu + step - 1) / step : nu / step; /* per period, or all */
@@ -464,13 +444,13 @@ static int make_record(const hy_scene *s, const bw_setup *b, bw_record *rec, hy_
         double t0 = now();
         rc = b->need_output ? simulate(b, u, nu, yall, err) : HY_OK;
         if (rc)
-            rc = relocate(s, "model", NULL, err, rc, "Bouc-Wen integration failed: ");
+            rc = relocate(&d->model.h, HY_DECL_HEAD, err, rc, "Bouc-Wen integration failed: ");
         else if (b->need_output)
             memcpy(rec->y, yall + skip, nkeep * sizeof *rec->y);
         if (!rc && b->need_sinc) {
             rc = sinc_route(b, u, nu, rec, skip, err);
             if (rc)
-                rc = relocate(s, "model", NULL, err, rc, "the sinc route's integration failed: ");
+                rc = relocate(&d->model.h, HY_DECL_HEAD, err, rc, "the sinc route's integration failed: ");
         }
         /* as `hystviz boucwen data`: the noise stream is seeded apart from the phases */
         if (!rc && b->noise > 0 && b->need_output)
@@ -558,11 +538,11 @@ static int per_second(const double *a, const double *b, size_t n, double rate, d
 }
 
 /* dB series: values below [series] floor and the gaps of exact zeros drawn at it. */
-static void apply_floor(const hy_scene *s, hy_run_series *se)
+static void apply_floor(hy_run_series *se)
 {
-    double floor_db;
-    int q = enum_index(s, "series", se->name, "quantity");
-    if (q == Q_OUTPUT || q == Q_INPUT || hy_scene_get_num(s, "series", se->name, "floor", &floor_db) != HY_SCENE_SET)
+    double floor_db = se->decl->floor;
+    int q = se->decl->quantity;
+    if (q == Q_OUTPUT || q == Q_INPUT || hy_decl_got(&se->decl->h, SE(floor)) != HY_SCENE_SET)
         return;
     for (size_t i = 0; i < se->n && se->y; i++)
         if (!(se->y[i] >= floor_db))
@@ -572,12 +552,12 @@ static void apply_floor(const hy_scene *s, hy_run_series *se)
 static int fill_series(const hy_scene_run *r, const bw_setup *b, const bw_record *rec, hy_run_series *se,
                        hy_error *err)
 {
-    int q = enum_index(r->scene, "series", se->name, "quantity");
+    int q = se->decl->quantity;
     se->err = NAN;
     se->err_ref = NULL;
     if (q == Q_SPECTRUM) {
         int rc = spectrum(rec, se, err);
-        apply_floor(r->scene, se);
+        apply_floor(se);
         return rc;
     }
     if (q == Q_ENVELOPE)
@@ -602,7 +582,7 @@ static int fill_series(const hy_scene_run *r, const bw_setup *b, const bw_record
         default: se->y[i] = 1e3 * rec->y[i]; break;
         }
     }
-    apply_floor(r->scene, se);
+    apply_floor(se);
     if (q == Q_OUTPUT) {
         se->err = linear_error(b, rec);
         if (!isnan(se->err))
@@ -612,12 +592,12 @@ static int fill_series(const hy_scene_run *r, const bw_setup *b, const bw_record
 }
 
 /* A marker at the sample nearest to t = at (f = at for a spectrum). */
-static void place_marker(const hy_scene_run *r, const bw_record *rec, hy_run_series *se)
+static void place_marker(const bw_record *rec, hy_run_series *se)
 {
-    double at;
-    if (se->n == 0 || hy_scene_get_num(r->scene, "series", se->name, "at", &at) != HY_SCENE_SET)
+    double at = se->decl->at;
+    if (se->n == 0 || hy_decl_got(&se->decl->h, SE(at)) != HY_SCENE_SET)
         return;
-    int q = enum_index(r->scene, "series", se->name, "quantity");
+    int q = se->decl->quantity;
     double f = q == Q_SPECTRUM ? at * (double)rec->nper / rec->fs_out : (at - rec->t[0]) * rec->fs_out;
     size_t i = f > 0 ? (size_t)fmin(nearbyint(f), (double)(se->n - 1)) : 0;
     if (q >= Q_ENVELOPE) /* a point a second: the nearest */
@@ -635,7 +615,7 @@ static void log_run(const hy_scene_run *r, FILE *log)
     for (size_t i = 0; i < r->nseries; i++) {
         const hy_run_series *se = &r->series[i];
         fprintf(log, "  series %-12s data=boucwen quantity=%-12s %7zu points %8.3f ms", se->name,
-                enum_text(r->scene, "series", se->name, "quantity"), se->n, 1e3 * se->seconds);
+                ENUM_TEXT(se->decl, hy_decl_series, quantity), se->n, 1e3 * se->seconds);
         if (se->err_ref)
             fprintf(log, "  error %.3g vs %s", se->err, se->err_ref);
         fputc('\n', log);
@@ -672,24 +652,25 @@ int hy_scene_boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
     int rc = read_setup(r, &b, err);
     if (rc)
         return rc;
-    size_t ns = hy_scene_count(r->scene, "series");
+    size_t ns = r->doc.nseries;
     r->series = calloc(ns ? ns : 1, sizeof *r->series);
     if (!r->series)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     r->nseries = ns;
     for (size_t i = 0; i < ns; i++) {
-        r->series[i].name = hy_scene_name_at(r->scene, "series", i);
+        r->series[i].decl = &r->doc.series[i];
+        r->series[i].name = r->doc.series[i].h.name;
         r->series[i].data = HY_DATA_BOUCWEN;
     }
     rc = hy_scene_run_check_cancel(r, err);
     if (!rc)
-        rc = make_record(r->scene, &b, &rec, err);
+        rc = make_record(&r->doc, &b, &rec, err);
     for (size_t i = 0; i < ns && !rc; i++) {
         double t0 = now();
         if (!(rc = hy_scene_run_check_cancel(r, err)))
             rc = fill_series(r, &b, &rec, &r->series[i], err);
         if (!rc)
-            place_marker(r, &rec, &r->series[i]);
+            place_marker(&rec, &r->series[i]);
         r->series[i].seconds = now() - t0;
     }
     if (!rc)
@@ -708,7 +689,7 @@ static const char *const bw_keys[] = {"m", "c", "k", "alpha", "bw_beta", "bw_gam
 /* Newmark steps and series samples, plus the annotations' placement. */
 static int bw_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
-    size_t na = hy_scene_count(r->scene, "annotation");
+    size_t na = r->doc.nannotation;
     int rc = hy_scene_boucwen_work(r, work, err);
     *work += (double)na * HY_PLACE_SPOTS;
     if (what && size)

@@ -10,7 +10,7 @@
  * benchmark, then stored as hy_run_series that scene_draw.c draws unchanged:
  *
  *     rc = hy_scene_boucwen_load(r, err);          // in hy_scene_run_load
- *     if (hy_scene_is_boucwen(r->scene))           // in hy_scene_run_compute
+ *     if (hy_scene_is_boucwen(&r->doc))           // in hy_scene_run_compute
  *         return hy_scene_boucwen_compute(r, log, err);
  *
  * Every error names file:line:col of the key at fault (docs/SCENES.md).
@@ -23,7 +23,7 @@
 #include "scene_run.h"
 
 /* True if the scene's [model] kind is boucwen. */
-int hy_scene_is_boucwen(const hy_scene *s);
+int hy_scene_is_boucwen(const hy_scene_doc *d);
 
 /* Checks a parsed scene before anything is computed.  A boucwen scene:
  * parameters, input, compute keys, figure kind and every series (errors at

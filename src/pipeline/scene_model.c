@@ -31,12 +31,9 @@ const hy_scene_model *hy_scene_model_find(const char *kind)
     return NULL;
 }
 
-const hy_scene_model *hy_scene_model_of(const hy_scene *s)
+const hy_scene_model *hy_scene_model_of(const hy_decl_model *m)
 {
-    int idx;
-    const char *kind = NULL;
-    hy_scene_get_enum(s, "model", NULL, "kind", &idx, &kind);
-    const hy_scene_model *mt = hy_scene_model_find(kind);
+    const hy_scene_model *mt = hy_scene_model_find(hy_decl_enum_text(&m->h, offsetof(hy_decl_model, kind), m->kind));
     return mt ? mt : hy_scene_model_find("lugre");
 }
 
@@ -50,16 +47,16 @@ int hy_scene_model_has_key(const hy_scene_model *mt, const char *key)
     return 0;
 }
 
-void hy_scene_model_read_numbers(const hy_scene *s, const char *const *keys, const size_t *offsets, void *par)
+void hy_scene_model_read_numbers(const hy_decl_model *m, const char *const *keys, const size_t *offsets, void *par)
 {
     for (size_t i = 0; keys[i]; i++) {
-        double v;
-        if (hy_scene_get_num(s, "model", NULL, keys[i], &v) >= 0)
-            memcpy((char *)par + offsets[i], &v, sizeof v);
+        size_t off = hy_decl_offset(&m->h, keys[i]);
+        if (hy_decl_got(&m->h, off) >= 0) /* a number key of the table: a double in m */
+            memcpy((char *)par + offsets[i], (const char *)m + off, sizeof(double));
     }
 }
 
-int hy_scene_model_relocate(const hy_scene *s, const hy_scene_model *mt, int rc, hy_error *err)
+int hy_scene_model_relocate(const hy_decl_model *m, const hy_scene_model *mt, int rc, hy_error *err)
 {
     if (!rc)
         return rc;
@@ -67,6 +64,6 @@ int hy_scene_model_relocate(const hy_scene *s, const hy_scene_model *mt, int rc,
     memcpy(msg, err->msg, sizeof msg);
     for (size_t i = 0; mt->core_names && mt->core_names[i]; i++)
         if (strstr(msg, mt->core_names[i]))
-            return hy_scene_error_at(s, "model", NULL, mt->params[i], err, rc, "%s: %s", mt->params[i], msg);
-    return hy_scene_error_at(s, "model", NULL, NULL, err, rc, "%s", msg);
+            return hy_decl_error(&m->h, hy_decl_offset(&m->h, mt->params[i]), err, rc, "%s: %s", mt->params[i], msg);
+    return hy_decl_error(&m->h, HY_DECL_HEAD, err, rc, "%s", msg);
 }

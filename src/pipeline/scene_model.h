@@ -53,7 +53,7 @@ typedef struct hy_scene_model {
     /* rate-independent models only (else NULL / 0) */
     const hy_rateind_type *ri;
     size_t ri_par_size;
-    int (*read)(const hy_scene *s, void *par, hy_error *err);
+    int (*read)(const hy_decl_model *m, void *par, hy_error *err); /* from the decoded [model] */
     /* how the core's messages name params[i] (NULL: no relocation) */
     const char *const *core_names;
 } hy_scene_model;
@@ -73,7 +73,7 @@ const char *hy_scene_cap_name(unsigned cap);
 const hy_scene_model *hy_scene_model_find(const char *kind);
 /* The model of the scene's [model] kind (its default when unset); never NULL
  * for a parsed scene (the schema admits only the table's kinds). */
-const hy_scene_model *hy_scene_model_of(const hy_scene *s);
+const hy_scene_model *hy_scene_model_of(const hy_decl_model *m);
 /* Whether key is one of the model's [model] keys (kind included). */
 int hy_scene_model_has_key(const hy_scene_model *mt, const char *key);
 
@@ -84,8 +84,8 @@ enum { FIG_TIMESERIES, FIG_LOOP, FIG_INPUT, FIG_G, FIG_PSI };
 
 /* The scene's [input] as r->input (every input hystviz has). */
 int hy_scene_run_build_input(hy_scene_run *r, hy_error *err);
-/* HY_DATA_* of series name's data; -1 when it has none. */
-int hy_scene_series_data(const hy_scene *s, const char *name, int *data);
+/* HY_DATA_* of a decoded series' data into *data; -1 when it has none. */
+int hy_scene_series_data(const hy_decl_series *ds, int *data);
 /* The series data names, indexed by HY_DATA_*. */
 const char *hy_scene_data_name(int data);
 
@@ -116,10 +116,10 @@ int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err);
 
 /* Reads the model's keys (all numbers) into par at the given offsets, with the
  * schema's defaults: keys[i] fills the double at offsets[i]. */
-void hy_scene_model_read_numbers(const hy_scene *s, const char *const *keys, const size_t *offsets, void *par);
+void hy_scene_model_read_numbers(const hy_decl_model *m, const char *const *keys, const size_t *offsets, void *par);
 /* Re-raises a core message (err->msg) with status rc at the [model] key it
  * names (the first mt->core_names[i] found in it is mt->params[i]), else at
  * [model]; rc 0 returns 0. */
-int hy_scene_model_relocate(const hy_scene *s, const hy_scene_model *mt, int rc, hy_error *err);
+int hy_scene_model_relocate(const hy_decl_model *m, const hy_scene_model *mt, int rc, hy_error *err);
 
 #endif

@@ -38,15 +38,15 @@ static int foreign_keys(const hy_scene_run *r, hy_error *err)
     size_t nsec;
     const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
     const hy_scene_section_spec *ms = &spec[hy_scene_schema_section("model")];
-    for (size_t j = 0; j < ms->nkeys; j++) {
-        hy_scene_loc loc;
+    const hy_decl_head *h = &r->doc.model.h;
+    for (size_t j = 0; j < ms->nkeys && j < HY_SCENE_KEYS_MAX; j++) {
         const char *key = ms->keys[j].name;
-        if (hy_scene_get_loc(r->scene, "model", NULL, key, &loc) && !hy_scene_model_has_key(r->mtype, key)) {
+        if (h->at[j].got == HY_SCENE_SET && !hy_scene_model_has_key(r->mtype, key)) {
             char list[256] = "";
             for (size_t i = 0; r->mtype->params[i]; i++)
                 snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", r->mtype->params[i]);
-            return hy_scene_error_at(r->scene, "model", NULL, key, err, HY_EINVAL,
-                                     "'%s' is not a parameter of a %s model (its keys: %s)", key, r->mtype->name, list);
+            return hy_decl_error(h, ms->keys[j].field, err, HY_EINVAL,
+                                 "'%s' is not a parameter of a %s model (its keys: %s)", key, r->mtype->name, list);
         }
     }
     return HY_OK;
@@ -55,22 +55,17 @@ static int foreign_keys(const hy_scene_run *r, hy_error *err)
 /* Series a rate-independent model draws; gamma is not needed (y_γ = y*). */
 static int check_series(const hy_scene_run *r, hy_error *err)
 {
-    const hy_scene *s = r->scene;
-    for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
-        const char *name = hy_scene_name_at(s, "series", i);
+    for (size_t i = 0; i < r->doc.nseries; i++) { /* yk's k: checked by decode */
+        const hy_decl_series *ds = &r->doc.series[i];
         int d = -1;
-        long k;
-        if (hy_scene_series_data(s, name, &d))
-            return hy_scene_error_at(s, "series", name, NULL, err, HY_EINVAL,
-                                     "series '%s' needs 'data = ...' (input, psi, ystar, ysteady, ygamma, yk, "
-                                     "transient, minor, major)", name);
+        if (hy_scene_series_data(ds, &d))
+            return hy_decl_error(&ds->h, HY_DECL_HEAD, err, HY_EINVAL,
+                                 "series '%s' needs 'data = ...' (input, psi, ystar, ysteady, ygamma, yk, "
+                                 "transient, minor, major)", ds->h.name);
         if (d == HY_DATA_G)
-            return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL,
-                                     "data = g is the friction function g(v) of Dahl and LuGre; a %s model has none",
-                                     r->mtype->name);
-        if (d == HY_DATA_YK && hy_scene_get_int(s, "series", name, "k", &k) < 0)
-            return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL, "series '%s' (data = yk) needs 'k'",
-                                     name);
+            return hy_decl_error(&ds->h, offsetof(hy_decl_series, data), err, HY_EINVAL,
+                                 "data = g is the friction function g(v) of Dahl and LuGre; a %s model has none",
+                                 r->mtype->name);
     }
     return HY_OK;
 }
@@ -83,7 +78,7 @@ int hy_scene_rateind_load(hy_scene_run *r, hy_error *err)
     if (!rc && !(r->ri_par = calloc(1, r->mtype->ri_par_size)))
         rc = hy_error_set(err, HY_ENOMEM, "out of memory");
     if (!rc)
-        rc = r->mtype->read(r->scene, r->ri_par, err);
+        rc = r->mtype->read(&r->doc.model, r->ri_par, err);
     if (!rc)
         rc = hy_scene_run_build_input(r, err);
     if (!rc)
@@ -95,9 +90,8 @@ int hy_scene_rateind_load(hy_scene_run *r, hy_error *err)
  * points): the grid, one period, or one period per loop. */
 int hy_scene_rateind_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
-    const hy_scene *s = r->scene;
     double t0, t1;
-    size_t npts, per, ns = hy_scene_count(s, "series"), na = hy_scene_count(s, "annotation");
+    size_t npts, per, ns = r->doc.nseries, na = r->doc.nannotation;
     long cycles;
     int rc = hy_scene_run_grid(r, &t0, &t1, &npts, &per, &cycles, err);
     if (rc)
@@ -105,7 +99,7 @@ int hy_scene_rateind_estimate(const hy_scene_run *r, double *work, char *what, s
     double loops = fmin(64.0, fmax(1.0, (double)r->input.nruns)), sum = 0;
     for (size_t i = 0; i < ns; i++) {
         int d = HY_DATA_INPUT;
-        hy_scene_series_data(s, hy_scene_name_at(s, "series", i), &d);
+        hy_scene_series_data(&r->doc.series[i], &d);
         sum += d == HY_DATA_MINOR || d == HY_DATA_MAJOR ? ((double)per + 1) * loops
                : d == HY_DATA_YSTEADY || d == HY_DATA_YK || d == HY_DATA_PSI ? (double)per + 1
                                                                                : (double)npts;
@@ -128,12 +122,9 @@ typedef struct ri_plan {
     long cycles;
 } ri_plan;
 
-static int quantity_of(const hy_scene_run *r, const char *name)
+static int quantity_of(const hy_scene_run *r, const hy_decl_series *ds)
 {
-    int idx;
-    const char *q = NULL;
-    if (hy_scene_get_enum(r->scene, "series", name, "quantity", &idx, &q) < 0 || !q)
-        return 0;
+    const char *q = hy_decl_enum_text(&ds->h, offsetof(hy_decl_series, quantity), ds->quantity);
     for (int i = 0; r->mtype->quantities[i]; i++)
         if (!strcmp(r->mtype->quantities[i], q))
             return i;
@@ -160,7 +151,7 @@ static int sample_from(const hy_rateind *m, const hy_input *in, int by_rho, cons
 /* Re-raises a model error in compute at the [model] key it names. */
 static int at_model(const hy_scene_run *r, int rc, hy_error *err)
 {
-    return hy_scene_model_relocate(r->scene, r->mtype, rc, err);
+    return hy_scene_model_relocate(&r->doc.model, r->mtype, rc, err);
 }
 
 static int need_steady_state(hy_scene_run *r, ri_plan *p, hy_error *err)
@@ -315,7 +306,7 @@ static int loop_series(hy_scene_run *r, ri_plan *p, hy_run_series *se, int q, hy
 static int compute_series(hy_scene_run *r, ri_plan *p, hy_run_series *se, hy_error *err)
 {
     const hy_input *in = &r->input;
-    int q = quantity_of(r, se->name), loopfig = r->figure_kind == FIG_LOOP, rc = HY_OK;
+    int q = quantity_of(r, se->decl), loopfig = r->figure_kind == FIG_LOOP, rc = HY_OK;
     double T = in->period, t0 = now();
     se->err = se->dist = NAN;
     if (r->numbers_only) /* the sweep's table: loops only (computed in the plan) */
@@ -347,8 +338,8 @@ static int compute_series(hy_scene_run *r, ri_plan *p, hy_run_series *se, hy_err
         for (size_t i = 0; i < n; i++)
             se->x[i] = loopfig ? hy_input_u(in, se->x[i]) : se->x[i] - shift;
     }
-    double at;
-    if (!rc && hy_scene_get_num(r->scene, "series", se->name, "at", &at) == HY_SCENE_SET) {
+    double at = se->decl->at;
+    if (!rc && hy_decl_got(&se->decl->h, offsetof(hy_decl_series, at)) == HY_SCENE_SET) {
         int by_rho = se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR || se->data == HY_DATA_PSI;
         int from_steady = by_rho || se->data == HY_DATA_YSTEADY;
         double x = at + (se->data == HY_DATA_YK ? (double)se->k * T : 0);
@@ -359,8 +350,8 @@ static int compute_series(hy_scene_run *r, ri_plan *p, hy_run_series *se, hy_err
         else if (se->data == HY_DATA_PSI)
             se->mark_y = hy_input_psi(in, at);
         else if (!(at >= 0))
-            rc = hy_scene_error_at(r->scene, "series", se->name, "at", err, HY_EINVAL,
-                                   "'at' is a time or variation >= 0 for a %s model, got %g", r->mtype->name, at);
+            rc = hy_decl_error(&se->decl->h, offsetof(hy_decl_series, at), err, HY_EINVAL,
+                               "'at' is a time or variation >= 0 for a %s model, got %g", r->mtype->name, at);
         else
             rc = at_model(r, sample_from(from_steady ? &p->steady : &p->init, in, by_rho, &x, 1, q, &se->mark_y,
                                          NULL, err), err);
@@ -388,7 +379,6 @@ static void log_run(const hy_scene_run *r, const ri_plan *p, FILE *log)
 int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
     double t_start = now();
-    const hy_scene *s = r->scene;
     ri_plan p;
     memset(&p, 0, sizeof p);
     int rc = hy_scene_run_series_new(r, err);
@@ -403,12 +393,9 @@ int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err)
         need_loops |= se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR;
         rc = hy_scene_check_series_kind(r, se, err);
     }
-    for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
-        const char *text;
-        if (hy_scene_get_str(s, "annotation", hy_scene_name_at(s, "annotation", i), "text", &text) >= 0 &&
-            hy_scene_text_has_placeholder(text))
+    for (size_t i = 0; i < r->doc.nannotation; i++)
+        if (r->doc.annotation[i].text && hy_scene_text_has_placeholder(r->doc.annotation[i].text))
             need_steady = need_loops = 1;
-    }
     if (!rc) {
         rc = at_model(r, hy_rateind_alloc(&p.init, r->mtype->ri, r->ri_par, hy_input_u(&r->input, 0), err), err);
         p.have_init = !rc;

@@ -29,21 +29,15 @@ static double now(void)
 #define DATA_NAME(id, name) name,
 static const char *const data_names[] = {HY_SERIES_DATA(DATA_NAME)};
 
-static double num(const hy_scene *s, const char *sec, const char *name, const char *key, double dflt)
-{
-    double v;
-    return hy_scene_get_num(s, sec, name, key, &v) >= 0 ? v : dflt;
-}
-
 /* Re-raises a core message at the scene location of the key it names. */
-static int located(const hy_scene *s, const char *sec, const char *const *keys, hy_error *err)
+static int located(const hy_decl_head *h, const char *const *keys, hy_error *err)
 {
     char msg[sizeof err->msg];
     memcpy(msg, err->msg, sizeof msg);
     for (size_t i = 0; keys[i]; i++) {
         size_t n = strlen(keys[i]);
         if (!strncmp(msg, keys[i], n) && (msg[n] == ' ' || msg[n] == '[' || msg[n] == '/'))
-            return hy_scene_error_at(s, sec, NULL, keys[i], err, err->code, "%s", msg);
+            return hy_decl_error(h, hy_decl_offset(h, keys[i]), err, err->code, "%s", msg);
     }
     /* Definition 1 messages name u_min,1 ... u_max,2: point at the first one named */
     static const char *const paper[] = {"u_min,1", "u_min,2", "u_max,1", "u_max,2"};
@@ -57,10 +51,9 @@ static int located(const hy_scene *s, const char *sec, const char *const *keys, 
             which = i;
         }
     }
-    hy_scene_loc loc;
-    if (which >= 0 && hy_scene_get_loc(s, sec, NULL, key_of[which], &loc) == 1)
-        return hy_scene_error_at(s, sec, NULL, key_of[which], err, err->code, "%s", msg);
-    return hy_scene_error_at(s, sec, NULL, NULL, err, err->code, "%s", msg);
+    if (which >= 0 && hy_decl_got(h, hy_decl_offset(h, key_of[which])) == HY_SCENE_SET)
+        return hy_decl_error(h, hy_decl_offset(h, key_of[which]), err, err->code, "%s", msg);
+    return hy_decl_error(h, HY_DECL_HEAD, err, err->code, "%s", msg);
 }
 
 const char *hy_scene_data_name(int data)
@@ -71,25 +64,53 @@ const char *hy_scene_data_name(int data)
 static int build_model(hy_scene_run *r, hy_error *err)
 {
     static const char *const keys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
-    const hy_scene *s = r->scene;
-    const char *kind = "lugre";
-    int idx;
-    hy_scene_get_enum(s, "model", NULL, "kind", &idx, &kind);
+    const hy_decl_model *d = &r->doc.model;
+    const char *kind = hy_decl_enum_text(&d->h, offsetof(hy_decl_model, kind), d->kind);
     hy_model *m = &r->model;
     if (!strcmp(kind, "dahl"))
-        hy_model_dahl_init(m, num(s, "model", NULL, "rho", 1), num(s, "model", NULL, "fc", 1));
+        hy_model_dahl_init(m, d->rho, d->fc);
     else if (!strcmp(kind, "dahl-filter"))
-        hy_model_dahl_filter_init(m, num(s, "model", NULL, "rho", 1), num(s, "model", NULL, "fc", 1),
-                                  num(s, "model", NULL, "tau", 1));
+        hy_model_dahl_filter_init(m, d->rho, d->fc, d->tau);
     else {
-        hy_model_lugre_init(m, num(s, "model", NULL, "sigma0", 1), num(s, "model", NULL, "sigma1", 1),
-                            num(s, "model", NULL, "fc", 1), num(s, "model", NULL, "fs", 2),
-                            num(s, "model", NULL, "vs", 1), num(s, "model", NULL, "beta", 1));
-        m->sigma2 = num(s, "model", NULL, "sigma2", 0);
+        hy_model_lugre_init(m, d->sigma0, d->sigma1, d->fc, d->fs, d->vs, d->beta);
+        m->sigma2 = d->sigma2;
     }
-    m->x0 = num(s, "model", NULL, "x0", 0);
+    m->x0 = d->x0;
     if (hy_model_validate(m, err))
-        return located(s, "model", keys, err);
+        return located(&d->h, keys, err);
+    return HY_OK;
+}
+
+/* A pwl input from its points t0, u0, t1, u1, ... */
+static int pwl_input(hy_input *in, const hy_scene_list *pts, hy_error *err)
+{
+    size_t n = pts->n;
+    double *t = malloc(n * sizeof *t);
+    if (!t)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t i = 0; i < n / 2; i++) {
+        t[i] = pts->v[2 * i];
+        t[n / 2 + i] = pts->v[2 * i + 1];
+    }
+    int rc = hy_input_pwl(in, t, t + n / 2, n / 2, err);
+    free(t);
+    return rc;
+}
+
+/* A file input: the samples of [input] file, read through the scene's path
+ * policy (the one read of the scene after decode: the policy's roots). */
+static int file_input(hy_scene_run *r, hy_error *err)
+{
+    const hy_decl_input *d = &r->doc.input;
+    char *text;
+    size_t len;
+    int user, rc = hy_scene_read_path(r->scene, "input", NULL, "file", &text, &len, &user, err);
+    if (rc)
+        return rc; /* located at the key by the policy */
+    rc = hy_input_text(&r->input, text, len, d->file, user, err);
+    free(text);
+    if (rc)
+        return hy_decl_error(&d->h, offsetof(hy_decl_input, file), err, rc, "%s", err->msg);
     return HY_OK;
 }
 
@@ -97,70 +118,43 @@ int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
 {
     static const char *const keys[] = {"umin1", "umin2", "umax1", "umax2", "extrema", "times", "amp", "period",
                                        "offset", "points", "file", NULL};
-    const hy_scene *s = r->scene;
-    const char *kind = "bimodal", *shape_s = "linear";
-    int idx, rc;
-    hy_scene_get_enum(s, "input", NULL, "kind", &idx, &kind);
-    hy_scene_get_enum(s, "input", NULL, "shape", &idx, &shape_s);
-    int shape = strcmp(shape_s, "cosine") ? HY_SHAPE_LINEAR : HY_SHAPE_COSINE;
-    const double *v;
-    size_t n;
+    const hy_decl_input *d = &r->doc.input;
+    const hy_decl_head *h = &d->h;
+    const char *kind = hy_decl_enum_text(h, offsetof(hy_decl_input, kind), d->kind);
+    const char *shape_s = hy_decl_enum_text(h, offsetof(hy_decl_input, shape), d->shape);
+    int shape = strcmp(shape_s, "cosine") ? HY_SHAPE_LINEAR : HY_SHAPE_COSINE, rc;
     if (!strcmp(kind, "bimodal")) {
-        int have_t = hy_scene_get_list(s, "input", NULL, "t", &v, &n) >= 0 && n == 4;
-        rc = hy_input_bimodal(&r->input, num(s, "input", NULL, "umin1", 0), num(s, "input", NULL, "umin2", 0.2),
-                              num(s, "input", NULL, "umax1", 1), num(s, "input", NULL, "umax2", 1.5), have_t ? v : NULL,
-                              shape, err);
+        int have_t = hy_decl_got(h, offsetof(hy_decl_input, t)) >= 0 && d->t.n == 4;
+        rc = hy_input_bimodal(&r->input, d->umin1, d->umin2, d->umax1, d->umax2, have_t ? d->t.v : NULL, shape, err);
         if (rc && strstr(err->msg, "t1 < t2"))
-            return hy_scene_error_at(s, "input", NULL, "t", err, rc, "%s", err->msg);
+            return hy_decl_error(h, offsetof(hy_decl_input, t), err, rc, "%s", err->msg);
     } else if (!strcmp(kind, "multimodal")) {
-        if (hy_scene_get_list(s, "input", NULL, "extrema", &v, &n) < 0)
-            return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL, "a multimodal input needs 'extrema'");
-        const double *tm = NULL;
-        size_t nt = 0;
-        if (hy_scene_get_list(s, "input", NULL, "times", &tm, &nt) >= 0 && nt != n + 1)
-            return hy_scene_error_at(s, "input", NULL, "times", err, HY_EINVAL,
-                                     "'times' needs %zu values (0, then the time of each extremum after the first, then the period), got %zu",
-                                     n + 1, nt);
-        rc = hy_input_multimodal(&r->input, v, n, tm, shape, err);
+        if (hy_decl_got(h, offsetof(hy_decl_input, extrema)) < 0)
+            return hy_decl_error(h, offsetof(hy_decl_input, kind), err, HY_EINVAL, "a multimodal input needs 'extrema'");
+        int have_tm = hy_decl_got(h, offsetof(hy_decl_input, times)) >= 0;
+        if (have_tm && d->times.n != d->extrema.n + 1)
+            return hy_decl_error(h, offsetof(hy_decl_input, times), err, HY_EINVAL,
+                                 "'times' needs %zu values (0, then the time of each extremum after the first, then the period), got %zu",
+                                 d->extrema.n + 1, d->times.n);
+        rc = hy_input_multimodal(&r->input, d->extrema.v, d->extrema.n, have_tm ? d->times.v : NULL, shape, err);
     } else if (!strcmp(kind, "triangle")) {
-        double amp = num(s, "input", NULL, "amp", 1), off = num(s, "input", NULL, "offset", 0);
-        rc = hy_input_triangle(&r->input, num(s, "input", NULL, "min", off - amp), num(s, "input", NULL, "max", off + amp),
-                               num(s, "input", NULL, "period", 2), err);
+        double lo = hy_decl_got(h, offsetof(hy_decl_input, min)) >= 0 ? d->min : d->offset - d->amp;
+        double hi = hy_decl_got(h, offsetof(hy_decl_input, max)) >= 0 ? d->max : d->offset + d->amp;
+        rc = hy_input_triangle(&r->input, lo, hi, d->period, err);
     } else if (!strcmp(kind, "sine"))
-        rc = hy_input_sine(&r->input, num(s, "input", NULL, "amp", 1), num(s, "input", NULL, "period", 2),
-                           num(s, "input", NULL, "offset", 0), err);
+        rc = hy_input_sine(&r->input, d->amp, d->period, d->offset, err);
     else if (!strcmp(kind, "pwl")) {
-        if (hy_scene_get_list(s, "input", NULL, "points", &v, &n) < 0)
-            return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL, "a pwl input needs 'points = t0, u0, t1, u1, ...'");
-        double *t = malloc(n * sizeof *t);
-        if (!t)
-            return hy_error_set(err, HY_ENOMEM, "out of memory");
-        for (size_t i = 0; i < n / 2; i++) {
-            t[i] = v[2 * i];
-            t[n / 2 + i] = v[2 * i + 1];
-        }
-        rc = hy_input_pwl(&r->input, t, t + n / 2, n / 2, err);
-        free(t);
+        if (hy_decl_got(h, offsetof(hy_decl_input, points)) < 0)
+            return hy_decl_error(h, offsetof(hy_decl_input, kind), err, HY_EINVAL, "a pwl input needs 'points = t0, u0, t1, u1, ...'");
+        rc = pwl_input(&r->input, &d->points, err);
     } else { /* file */
-        const char *path;
-        if (hy_scene_get_str(s, "input", NULL, "file", &path) < 0)
-            return hy_scene_error_at(s, "input", NULL, "kind", err, HY_EINVAL, "a file input needs 'file = \"PATH\"'");
-        char *text;
-        size_t len;
-        int user;
-        rc = hy_scene_read_path(s, "input", NULL, "file", &text, &len, &user, err);
-        if (rc)
-            return rc; /* located at the key by the policy */
-        rc = hy_input_text(&r->input, text, len, path, user, err);
-        free(text);
-        if (rc) {
-            char msg[sizeof err->msg]; /* copied: hy_scene_error_at formats into err->msg */
-            memcpy(msg, err->msg, sizeof msg);
-            return hy_scene_error_at(s, "input", NULL, "file", err, rc, "%s", msg);
-        }
+        if (hy_decl_got(h, offsetof(hy_decl_input, file)) < 0)
+            return hy_decl_error(h, offsetof(hy_decl_input, kind), err, HY_EINVAL, "a file input needs 'file = \"PATH\"'");
+        if ((rc = file_input(r, err)))
+            return rc;
     }
     if (rc)
-        return located(s, "input", keys, err);
+        return located(h, keys, err);
     r->have_input = 1;
     return HY_OK;
 }
@@ -197,14 +191,11 @@ int hy_scene_run_load_scene(hy_scene_run *r, hy_scene *scene, const char *path, 
 /* A series' quantity, where written, is one the model draws. */
 static int check_quantities(const hy_scene_run *r, hy_error *err)
 {
-    const hy_scene *s = r->scene;
-    for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
-        const char *name = hy_scene_name_at(s, "series", i), *q = NULL;
-        hy_scene_loc loc;
-        int idx;
-        if (!hy_scene_get_loc(s, "series", name, "quantity", &loc) ||
-            hy_scene_get_enum(s, "series", name, "quantity", &idx, &q) < 0)
+    for (size_t i = 0; i < r->doc.nseries; i++) {
+        const hy_decl_series *ds = &r->doc.series[i];
+        if (hy_decl_got(&ds->h, offsetof(hy_decl_series, quantity)) != HY_SCENE_SET)
             continue;
+        const char *q = hy_decl_enum_text(&ds->h, offsetof(hy_decl_series, quantity), ds->quantity);
         size_t j = 0;
         while (r->mtype->quantities[j] && strcmp(r->mtype->quantities[j], q))
             j++;
@@ -213,8 +204,8 @@ static int check_quantities(const hy_scene_run *r, hy_error *err)
             for (j = 0; r->mtype->quantities[j]; j++)
                 snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", j ? ", " : "",
                          r->mtype->quantities[j]);
-            return hy_scene_error_at(s, "series", name, "quantity", err, HY_EINVAL,
-                                     "a %s model draws quantity %s, not %s", r->mtype->name, list, q);
+            return hy_decl_error(&ds->h, offsetof(hy_decl_series, quantity), err, HY_EINVAL,
+                                 "a %s model draws quantity %s, not %s", r->mtype->name, list, q);
         }
     }
     return HY_OK;
@@ -224,19 +215,17 @@ static int check_quantities(const hy_scene_run *r, hy_error *err)
  * scene has no panels), read through the scene's path policy. */
 static int load_panels(hy_scene_run *r, hy_error *err)
 {
-    const hy_scene *s = r->scene;
-    size_t n = hy_scene_count(s, "panel");
+    size_t n = r->doc.npanel;
     if (!n)
         return HY_OK;
     if (!(r->panels = calloc(n, sizeof *r->panels)))
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     for (size_t i = 0; i < n; i++) {
-        const char *name = hy_scene_name_at(s, "panel", i), *path;
-        if (hy_scene_get_str(s, "panel", name, "scene", &path) < 0)
-            return hy_scene_error_at(s, "panel", name, NULL, err, HY_EINVAL, "[panel %s] needs 'scene = \"FILE\"'", name);
+        const hy_decl_panel *dp = &r->doc.panel[i];
+        const char *name = dp->h.name, *path = dp->scene; /* decode refused a panel without one */
         char *text;
         size_t len;
-        int user, rc = hy_scene_read_path(s, "panel", name, "scene", &text, &len, &user, err);
+        int user, rc = hy_scene_read_path(r->scene, "panel", name, "scene", &text, &len, &user, err);
         if (rc)
             return rc;
         rc = hy_scene_run_load_text(&r->panels[i], path, text, len, NULL, 0, NULL, err);
@@ -246,8 +235,8 @@ static int load_panels(hy_scene_run *r, hy_error *err)
         r->npanels = i + 1;
         r->panels[i].budget = r->budget;
         if (r->panels[i].npanels)
-            return hy_scene_error_at(s, "panel", name, "scene", err, HY_EINVAL,
-                                     "%s has panels of its own: a panel is one figure", path);
+            return hy_decl_error(&dp->h, offsetof(hy_decl_panel, scene), err, HY_EINVAL,
+                                 "%s has panels of its own: a panel is one figure", path);
     }
     return HY_OK;
 }
@@ -261,7 +250,7 @@ static int build_run(hy_scene_run *r, hy_error *err)
         return rc;
     }
     r->figure_kind = r->doc.figure.kind;
-    r->mtype = hy_scene_model_of(r->scene);
+    r->mtype = hy_scene_model_of(&r->doc.model);
     rc = check_quantities(r, err);
     if (!rc)
         rc = r->mtype->load(r, err);
@@ -353,33 +342,29 @@ static void plan_line(const plan *p, hy_scene_run *r, const char *fmt, ...)
     va_end(ap);
 }
 
-int hy_scene_series_data(const hy_scene *s, const char *name, int *data)
+int hy_scene_series_data(const hy_decl_series *ds, int *data)
 {
-    int idx;
-    const char *text;
-    if (hy_scene_get_enum(s, "series", name, "data", &idx, &text) < 0)
+    if (hy_decl_got(&ds->h, offsetof(hy_decl_series, data)) < 0)
         return -1;
-    for (int i = 0; i < (int)(sizeof data_names / sizeof *data_names); i++)
-        if (!strcmp(text, data_names[i]))
-            *data = i;
+    *data = ds->data; /* the schema's list is HY_SERIES_DATA's order */
     return 0;
 }
 
-unsigned hy_scene_reads(const hy_scene *s)
+unsigned hy_scene_doc_reads(const hy_scene_doc *doc)
 {
     unsigned reads = 0;
-    for (size_t i = 0; i < hy_scene_count(s, "series"); i++) {
-        int d = -1;
-        if (hy_scene_series_data(s, hy_scene_name_at(s, "series", i), &d))
+    for (size_t i = 0; i < doc->nseries; i++) {
+        const hy_decl_series *ds = &doc->series[i];
+        int d = ds->data;
+        if (hy_decl_got(&ds->h, offsetof(hy_decl_series, data)) < 0)
             return HY_READS_MODEL | HY_READS_G | HY_READS_INPUT; /* refused later: nothing to hide */
         if (d == HY_DATA_G)
             reads |= HY_READS_G;
         else
             reads |= HY_READS_INPUT | (d == HY_DATA_INPUT || d == HY_DATA_PSI ? 0u : HY_READS_MODEL | HY_READS_G);
     }
-    for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
-        const char *text = "";
-        hy_scene_get_str(s, "annotation", hy_scene_name_at(s, "annotation", i), "text", &text);
+    for (size_t i = 0; i < doc->nannotation; i++) {
+        const char *text = doc->annotation[i].text ? doc->annotation[i].text : "";
         if (strstr(text, "{model."))
             reads |= HY_READS_MODEL | HY_READS_G;
         if (strstr(text, "{input."))
@@ -388,12 +373,20 @@ unsigned hy_scene_reads(const hy_scene *s)
     return reads;
 }
 
+unsigned hy_scene_reads(const hy_scene *s)
+{
+    hy_scene_doc d;
+    hy_error err;
+    unsigned reads = hy_scene_decode_fill(s, &d, &err) ? HY_READS_MODEL | HY_READS_G | HY_READS_INPUT
+                                                        : hy_scene_doc_reads(&d);
+    hy_scene_doc_free(&d);
+    return reads;
+}
+
 static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
 {
-    const hy_scene *s = r->scene;
-    int idx;
-    const char *solver = "exact";
-    hy_scene_get_enum(s, "compute", NULL, "solver", &idx, &solver);
+    const hy_decl_compute *dc = &r->doc.compute;
+    const char *solver = hy_decl_enum_text(&dc->h, offsetof(hy_decl_compute, solver), dc->solver);
     g->y = malloc(p->npts * sizeof *g->y);
     if (!g->y)
         return hy_error_set(err, HY_ENOMEM, "out of memory for %zu points", p->npts);
@@ -414,8 +407,8 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
     } else {
         hy_ode_opts o = hy_ode_defaults();
         o.stepper = strcmp(solver, "exact") ? solver : "rk8pd";
-        o.rtol = num(s, "compute", NULL, "rtol", 1e-8);
-        o.atol = num(s, "compute", NULL, "atol", 1e-10);
+        o.rtol = dc->rtol;
+        o.atol = dc->atol;
         rc = hy_ode_solve(&r->model, &r->input, g->gamma, &o, p->t, p->npts, g->y, NULL, err);
         if (!rc && exact_ok && p->verbose && !r->no_verify) { /* the error, measured only when asked */
             double *ye = malloc(p->npts * sizeof *ye);
@@ -429,7 +422,7 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
         } else if (!rc && exact_ok && p->verbose)
             g->ref = HY_NOT_SAMPLED;
         if (rc)
-            return hy_scene_error_at(s, "compute", NULL, "solver", err, rc, "gamma = %g: %s", g->gamma, err->msg);
+            return hy_decl_error(&dc->h, offsetof(hy_decl_compute, solver), err, rc, "gamma = %g: %s", g->gamma, err->msg);
     }
     g->seconds = now() - t0;
     return rc;
@@ -446,19 +439,15 @@ static gamma_solve *find_solve(plan *p, double gamma)
 int hy_scene_run_grid(const hy_scene_run *r, double *t0, double *t1, size_t *npts, size_t *per, long *cycles,
                       hy_error *err)
 {
-    const hy_scene *s = r->scene;
-    long pts = 2000;
-    hy_scene_get_int(s, "compute", NULL, "points", &pts);
-    *cycles = 1;
-    hy_scene_get_int(s, "compute", NULL, "cycles", cycles);
-    double span[2];
-    int is_auto = 1;
+    const hy_decl_compute *dc = &r->doc.compute;
+    long pts = dc->points;
+    *cycles = dc->cycles;
     double T = r->input.period;
-    if (hy_scene_get_pair(s, "compute", NULL, "tspan", span, &is_auto) == HY_SCENE_SET && !is_auto) {
-        *t0 = span[0];
-        *t1 = span[1];
+    if (hy_decl_got(&dc->h, offsetof(hy_decl_compute, tspan)) == HY_SCENE_SET) {
+        *t0 = dc->tspan.v[0];
+        *t1 = dc->tspan.v[1];
         if (*t0 < 0)
-            return hy_scene_error_at(s, "compute", NULL, "tspan", err, HY_EINVAL, "tspan must start at t >= 0 (got %g)", *t0);
+            return hy_decl_error(&dc->h, offsetof(hy_decl_compute, tspan), err, HY_EINVAL, "tspan must start at t >= 0 (got %g)", *t0);
     } else {
         *t0 = 0;
         *t1 = (double)*cycles * T;
@@ -466,8 +455,8 @@ int hy_scene_run_grid(const hy_scene_run *r, double *t0, double *t1, size_t *npt
     double periods = (*t1 - *t0) / T;
     double np = (double)pts * fmax(1.0, periods);
     if (!(np <= 2e7)) /* NaN too: np is converted below */
-        return hy_scene_error_at(s, "compute", NULL, "points", err, HY_EINVAL,
-                                 "%g points per period over %g periods is more than 2e7 points", (double)pts, periods);
+        return hy_decl_error(&dc->h, offsetof(hy_decl_compute, points), err, HY_EINVAL,
+                             "%g points per period over %g periods is more than 2e7 points", (double)pts, periods);
     *npts = (size_t)np + 1;
     *per = (size_t)pts;
     return HY_OK;
@@ -476,27 +465,19 @@ int hy_scene_run_grid(const hy_scene_run *r, double *t0, double *t1, size_t *npt
 /* Decides the grid and the shared computations; solves each distinct γ once. */
 static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
 {
-    const hy_scene *s = r->scene;
     int grc = hy_scene_run_grid(r, &p->t0, &p->t1, &p->npts, &p->per_period, &p->cycles, err);
     if (grc)
         return grc;
-    size_t ns = hy_scene_count(s, "series");
+    size_t ns = r->doc.nseries;
     p->solves = calloc(ns ? ns : 1, sizeof *p->solves);
     if (!p->solves)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     /* the time grid: for y_γ solves and for u and y* over the time span (the
        table-only path outside the error sample samples no curve) */
     int need_steady = 0, need_loops = 0, need_grid = 0;
-    for (size_t i = 0; i < ns; i++) {
-        const char *name = hy_scene_name_at(s, "series", i);
-        int d = -1;
-        if (hy_scene_series_data(s, name, &d))
-            return hy_scene_error_at(s, "series", name, NULL, err, HY_EINVAL, "series '%s' needs 'data = ...' (%s)", name,
-                                     "input, psi, g, ystar, ysteady, ygamma, yk, transient, minor, major");
-        if (d == HY_DATA_BOUCWEN)
-            return hy_scene_error_at(s, "series", name, "data", err, HY_EUNSUP,
-                                     "data = boucwen is drawn by the Bouc-Wen scenes' own kind, not in a %s figure",
-                                     data_names[0]);
+    for (size_t i = 0; i < ns; i++) { /* data, gamma and k checked by load (check_friction_series) */
+        const hy_decl_series *ds = &r->doc.series[i];
+        int d = ds->data;
         if (d == HY_DATA_YSTAR || d == HY_DATA_YSTEADY || d == HY_DATA_YK)
             need_steady = 1;
         if ((d == HY_DATA_INPUT || d == HY_DATA_YSTAR) && !(r->numbers_only && r->no_verify))
@@ -504,26 +485,14 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         if (d == HY_DATA_MINOR || d == HY_DATA_MAJOR)
             need_steady = need_loops = 1;
         if (d == HY_DATA_YGAMMA || d == HY_DATA_TRANSIENT) {
-            double g;
-            if (hy_scene_get_num(s, "series", name, "gamma", &g) < 0)
-                return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL, "series '%s' (data = %s) needs 'gamma'",
-                                         name, data_names[d]);
-            if (!find_solve(p, g))
-                p->solves[p->nsolves++].gamma = g;
+            if (!find_solve(p, ds->gamma))
+                p->solves[p->nsolves++].gamma = ds->gamma;
             need_grid = 1;
         }
-        if (d == HY_DATA_YK) {
-            long k;
-            if (hy_scene_get_int(s, "series", name, "k", &k) < 0)
-                return hy_scene_error_at(s, "series", name, "data", err, HY_EINVAL, "series '%s' (data = yk) needs 'k'", name);
-        }
     }
-    for (size_t i = 0; i < hy_scene_count(s, "annotation"); i++) {
-        const char *text;
-        if (hy_scene_get_str(s, "annotation", hy_scene_name_at(s, "annotation", i), "text", &text) >= 0 &&
-            hy_scene_text_has_placeholder(text))
+    for (size_t i = 0; i < r->doc.nannotation; i++)
+        if (r->doc.annotation[i].text && hy_scene_text_has_placeholder(r->doc.annotation[i].text))
             need_steady = need_loops = 1;
-    }
     if (need_grid) {
         if (!(p->t = malloc(p->npts * sizeof *p->t)))
             return hy_error_set(err, HY_ENOMEM, "out of memory for %zu points", p->npts);
@@ -535,7 +504,7 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         static const char *const mkeys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
         int rc = hy_steady_init(&r->steady, &r->model, &r->input, err);
         if (rc)
-            return located(s, "model", mkeys, err); /* at the key the message names, else at [model] */
+            return located(&r->doc.model.h, mkeys, err); /* at the key the message names, else at [model] */
         r->have_steady = 1;
         plan_line(p, r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
     }
@@ -608,18 +577,19 @@ static double series_x(const hy_scene_run *r, const hy_run_series *se, double t)
 
 int hy_scene_run_series_new(hy_scene_run *r, hy_error *err)
 {
-    const hy_scene *s = r->scene;
-    size_t ns = hy_scene_count(s, "series");
+    size_t ns = r->doc.nseries;
     r->series = calloc(ns ? ns : 1, sizeof *r->series);
     if (!r->series)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     for (size_t i = 0; i < ns; i++) {
         hy_run_series *se = &r->series[i];
-        se->name = hy_scene_name_at(s, "series", i);
-        if (hy_scene_series_data(s, se->name, &se->data))
+        const hy_decl_series *ds = &r->doc.series[i];
+        se->decl = ds;
+        se->name = ds->h.name;
+        if (hy_scene_series_data(ds, &se->data))
             se->data = HY_DATA_INPUT;
-        hy_scene_get_num(s, "series", se->name, "gamma", &se->gamma);
-        hy_scene_get_int(s, "series", se->name, "k", &se->k);
+        se->gamma = ds->gamma;
+        se->k = ds->k;
     }
     r->nseries = ns;
     return HY_OK;
@@ -661,20 +631,15 @@ static void sample(const hy_scene_run *r, const plan *p, hy_run_series *se, size
 
 static int thin_wanted(const hy_scene_run *r, double points)
 {
-    int full = 0;
-    hy_scene_get_bool(r->scene, "figure", NULL, "full_resolution", &full);
-    return r->figure_only && points > HY_THIN_MIN && !full;
+    return r->figure_only && points > HY_THIN_MIN && !r->doc.figure.full_resolution;
 }
 
 /* Whether series se draws only its mark (style none, a marker, at). */
-static int mark_only(const hy_scene_run *r, const hy_run_series *se, double *at)
+static int mark_only(const hy_run_series *se, double *at)
 {
-    const hy_scene *s = r->scene;
-    int style = 0, mk = 0;
-    const char *t;
-    hy_scene_get_enum(s, "series", se->name, "style", &style, &t);
-    hy_scene_get_enum(s, "series", se->name, "marker", &mk, &t);
-    return style == HY_LINE_NONE && mk && hy_scene_get_num(s, "series", se->name, "at", at) == HY_SCENE_SET;
+    const hy_decl_series *d = se->decl;
+    *at = d->at;
+    return d->style == HY_LINE_NONE && d->marker && hy_decl_got(&d->h, offsetof(hy_decl_series, at)) == HY_SCENE_SET;
 }
 
 /* The end of the run of ψ_u that ϱ = rho lies in, in rho's own units (past
@@ -707,23 +672,18 @@ static double loop_y_extent(const hy_scene_run *r, double a, double b)
  * of y° before series.yscale.  0: not thinned. */
 static double thin_tol(const hy_scene_run *r, const hy_run_series *se)
 {
-    const hy_scene *s = r->scene;
-    double lo = r->steady.y_run[0], hi = lo, f = 1, v[2];
+    const hy_decl_figure *df = &r->doc.figure;
+    double lo = r->steady.y_run[0], hi = lo, f = se->decl->yscale;
     for (size_t i = 1; i <= r->input.nruns; i++)
         lo = fmin(lo, r->steady.y_run[i]), hi = fmax(hi, r->steady.y_run[i]);
     double w = hi - lo;
-    int lg = 0, is_auto = 1, follow = 0;
-    const char *t;
-    hy_scene_get_bool(s, "figure", NULL, "ylog", &lg);
-    if (lg) /* the bound is for a linear y axis */
+    if (df->ylog) /* the bound is for a linear y axis */
         return 0;
-    hy_scene_get_num(s, "series", se->name, "yscale", &f);
-    if (hy_scene_get_pair(s, "figure", NULL, "ylim", v, &is_auto) == HY_SCENE_SET && !is_auto)
-        w = fmin(w, fabs(v[1] - v[0]) / fabs(f));
-    is_auto = 1;
-    if (hy_scene_get_pair(s, "figure", NULL, "zoom_y", v, &is_auto) == HY_SCENE_SET && !is_auto)
-        w = fmin(w, fabs(v[1] - v[0]) / fabs(f));
-    hy_scene_get_enum(s, "figure", NULL, "zoom_follow", &follow, &t);
+    if (hy_decl_got(&df->h, offsetof(hy_decl_figure, ylim)) == HY_SCENE_SET && !df->ylim.is_auto)
+        w = fmin(w, fabs(df->ylim.v[1] - df->ylim.v[0]) / fabs(f));
+    if (hy_decl_got(&df->h, offsetof(hy_decl_figure, zoom_y)) == HY_SCENE_SET)
+        w = fmin(w, fabs(df->zoom_y.v[1] - df->zoom_y.v[0]) / fabs(f));
+    int follow = df->zoom_follow; /* nonzero: minor (the schema's none, minor) */
     for (size_t i = 0; follow && i < r->loops.nminor; i++)
         w = fmin(w, loop_y_extent(r, r->loops.minor[i].rho_start, r->loops.minor[i].rho_close));
     return w > 0 && isfinite(w) ? HY_THIN_TOL * w : 0;
@@ -853,12 +813,12 @@ static double distance_to_limit(const hy_scene_run *r, const plan *p, const gamm
 int hy_scene_too_narrow(const hy_scene_run *r, hy_error *err)
 {
     static const char *const inkeys[] = {"points", "file", "extrema", NULL};
-    const char *key = NULL;
-    hy_scene_loc loc;
-    for (size_t i = 0; inkeys[i] && !key; i++)
-        if (hy_scene_get_loc(r->scene, "input", NULL, inkeys[i], &loc))
-            key = inkeys[i];
-    return hy_scene_error_at(r->scene, "input", NULL, key, err, HY_EINVAL,
+    const hy_decl_head *h = &r->doc.input.h;
+    size_t off = HY_DECL_HEAD;
+    for (size_t i = 0; inkeys[i] && off == HY_DECL_HEAD; i++)
+        if (hy_decl_got(h, hy_decl_offset(h, inkeys[i])) == HY_SCENE_SET)
+            off = hy_decl_offset(h, inkeys[i]);
+    return hy_decl_error(h, off, err, HY_EINVAL,
                              "a minor loop of this input is narrower than the resolution of ϱ at its "
                              "scale (ρ_T = %g): the major loop cannot be computed", r->input.rho_T);
 }
@@ -885,7 +845,6 @@ static void not_sampled(hy_run_series *se)
 
 static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error *err)
 {
-    const hy_scene *s = r->scene;
     size_t per = p->per_period;
     double T = r->input.period;
     double t0 = now();
@@ -938,9 +897,8 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         else
             hy_verify_loops(r, se, a, b, k, per, total < full);
     } else if (se->data == HY_DATA_G) {
-        double lim[2];
-        int is_auto = 1;
-        if (hy_scene_get_pair(s, "figure", NULL, "xlim", lim, &is_auto) < 0 || is_auto) {
+        double lim[2] = {r->doc.figure.xlim.v[0], r->doc.figure.xlim.v[1]};
+        if (r->doc.figure.xlim.is_auto) {
             lim[0] = -4 * r->model.vs;
             lim[1] = 4 * r->model.vs;
         }
@@ -952,7 +910,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
             return rc;
         sample(r, p, se, 0, per + 1, 0, r->input.rho_T);
     } else if ((se->data == HY_DATA_YSTEADY || se->data == HY_DATA_YK) && thin_wanted(r, (double)per + 1) &&
-               mark_only(r, se, &mark_at) && mark_at >= 0 && mark_at < T) {
+               mark_only(se, &mark_at) && mark_at >= 0 && mark_at < T) {
         se->grid_n = per + 1; /* drawn as its mark: evaluated there only (below) */
     } else if (se->data == HY_DATA_YSTEADY || se->data == HY_DATA_YK) {
         if ((rc = hy_run_series_alloc(se, per + 1, err)))
@@ -1009,8 +967,8 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         else if (se->data == HY_DATA_YSTAR)
             hy_verify_time(r, se, p->t, se->y, p->npts);
     }
-    double at;
-    if (hy_scene_get_num(s, "series", se->name, "at", &at) == HY_SCENE_SET) {
+    double at = se->decl->at;
+    if (hy_decl_got(&se->decl->h, offsetof(hy_decl_series, at)) == HY_SCENE_SET) {
         se->has_mark = 1;
         se->mark_x = series_x(r, se, at);
         se->mark_y = series_y(r, p, se, at);
@@ -1039,7 +997,7 @@ int hy_scene_check_series_kind(const hy_scene_run *r, const hy_run_series *se, h
     else
         bad = se->data == HY_DATA_G || se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR;
     if (bad)
-        return hy_scene_error_at(r->scene, "series", se->name, "data", err, HY_EINVAL,
+        return hy_decl_error(&se->decl->h, offsetof(hy_decl_series, data), err, HY_EINVAL,
                                  "data = %s cannot be drawn in a figure of kind %s", data_names[se->data],
                                  kinds[r->figure_kind]);
     return HY_OK;
@@ -1077,28 +1035,25 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
  * solve plus the points of every series (docs/SCENES.md, "Work budget"). */
 int hy_scene_friction_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
-    const hy_scene *s = r->scene;
+    const hy_decl_compute *dc = &r->doc.compute;
     /* placing an annotation tries up to HY_PLACE_SPOTS spots (issue 20 item 8) */
-    size_t na = hy_scene_count(s, "annotation");
+    size_t na = r->doc.nannotation;
     double place = (double)na * HY_PLACE_SPOTS;
-    long pts = 2000, cycles = 1;
-    hy_scene_get_int(s, "compute", NULL, "points", &pts);
-    hy_scene_get_int(s, "compute", NULL, "cycles", &cycles);
-    double span[2], T = r->input.period, periods = (double)cycles;
-    int is_auto = 1;
-    if (hy_scene_get_pair(s, "compute", NULL, "tspan", span, &is_auto) == HY_SCENE_SET && !is_auto)
-        periods = (span[1] - span[0]) / T;
+    long pts = dc->points, cycles = dc->cycles;
+    double T = r->input.period, periods = (double)cycles;
+    if (hy_decl_got(&dc->h, offsetof(hy_decl_compute, tspan)) == HY_SCENE_SET)
+        periods = (dc->tspan.v[1] - dc->tspan.v[0]) / T;
     double npts = (double)pts * fmax(1.0, periods) + 1, pointsum = 0, *gam = NULL;
-    size_t ns = hy_scene_count(s, "series"), ng = 0;
+    size_t ns = r->doc.nseries, ng = 0;
     if (ns && !(gam = malloc(ns * sizeof *gam)))
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     for (size_t i = 0; i < ns; i++) {
-        const char *name = hy_scene_name_at(s, "series", i);
+        const hy_decl_series *ds = &r->doc.series[i];
         int d = HY_DATA_INPUT;
-        double g;
-        hy_scene_series_data(s, name, &d);
+        double g = ds->gamma;
+        hy_scene_series_data(ds, &d);
         pointsum += series_points(r, d, npts, (double)pts);
-        if ((d == HY_DATA_YGAMMA || d == HY_DATA_TRANSIENT) && hy_scene_get_num(s, "series", name, "gamma", &g) >= 0) {
+        if ((d == HY_DATA_YGAMMA || d == HY_DATA_TRANSIENT) && hy_decl_got(&ds->h, offsetof(hy_decl_series, gamma)) >= 0) {
             size_t j = 0;
             while (j < ng && gam[j] != g)
                 j++;
@@ -1114,20 +1069,21 @@ int hy_scene_friction_estimate(const hy_scene_run *r, double *work, char *what, 
     return HY_OK;
 }
 
-int hy_scene_run_over_budget(const hy_scene *s, double work, double budget, const char *what, hy_error *err)
+int hy_scene_run_over_budget(const hy_scene_doc *d, double work, double budget, const char *what, hy_error *err)
 {
     static const char *const keys[] = {"points", "cycles", "tspan", "gamma", "settle", "upsample", NULL};
     const char *fmt = "the scene asks for about %.3g units of work (%s), more than the budget of %.3g; "
                       "raise it with --max-work N if this is intended";
-    hy_scene_loc loc;
-    for (size_t i = 0; keys[i]; i++)
-        if (hy_scene_get_loc(s, "compute", NULL, keys[i], &loc) && loc.line > 0)
-            return hy_scene_error_at(s, "compute", NULL, keys[i], err, HY_EINVAL, fmt, work, what, budget);
-    const char *first = hy_scene_name_at(s, "series", 0);
-    if (first && hy_scene_get_loc(s, "series", first, NULL, &loc) && loc.line > 0)
-        return hy_scene_error_at(s, "series", first, NULL, err, HY_EINVAL, fmt, work, what, budget);
+    const hy_decl_head *h = &d->compute.h;
+    for (size_t i = 0; keys[i]; i++) {
+        size_t off = hy_decl_offset(h, keys[i]);
+        if (hy_decl_loc(h, off).line > 0)
+            return hy_decl_error(h, off, err, HY_EINVAL, fmt, work, what, budget);
+    }
+    if (d->nseries && d->series[0].h.loc.line > 0)
+        return hy_decl_error(&d->series[0].h, HY_DECL_HEAD, err, HY_EINVAL, fmt, work, what, budget);
     hy_error_set(err, HY_EINVAL, fmt, work, what, budget);
-    hy_error_prefix(err, "%s:1:1", hy_scene_source(s));
+    hy_error_prefix(err, "%s:1:1", d->source);
     return HY_EINVAL;
 }
 
@@ -1147,7 +1103,7 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
     double budget = r->budget > 0 ? r->budget : HY_SCENE_WORK_DEFAULT;
     if (r->work > budget) { /* the breakdown only for the message */
         hy_scene_run_estimate(r, &r->work, what, sizeof what, err);
-        return hy_scene_run_over_budget(r->scene, r->work, budget, what, err);
+        return hy_scene_run_over_budget(&r->doc, r->work, budget, what, err);
     }
     int rc = HY_OK;
     for (size_t i = 0; !rc && i < r->npanels; i++)
@@ -1156,8 +1112,8 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
         rc = r->mtype->compute(r, log, err);
     for (size_t i = 0; !rc && i < r->nseries; i++) { /* series.yscale, where written */
         hy_run_series *se = &r->series[i];
-        double f;
-        if (hy_scene_get_num(r->scene, "series", se->name, "yscale", &f) != HY_SCENE_SET)
+        double f = se->decl->yscale;
+        if (hy_decl_got(&se->decl->h, offsetof(hy_decl_series, yscale)) != HY_SCENE_SET)
             continue;
         for (size_t j = 0; j < se->n; j++)
             se->y[j] *= f;
@@ -1209,13 +1165,20 @@ int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
     return rc;
 }
 
-/* A Dahl or LuGre y_gamma (ygamma, transient) names its gamma. */
-static int check_gammas(const hy_scene_run *r, hy_error *err)
+/* What a Dahl or LuGre series draws: a data it has, and a y_gamma (ygamma,
+ * transient) names its gamma (found by compute's plan before issue 22). */
+static int check_friction_series(const hy_scene_run *r, hy_error *err)
 {
     for (size_t i = 0; i < r->doc.nseries; i++) {
         const hy_decl_series *se = &r->doc.series[i];
-        if (hy_decl_got(&se->h, offsetof(hy_decl_series, data)) >= 0 &&
-            (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) &&
+        if (hy_decl_got(&se->h, offsetof(hy_decl_series, data)) < 0)
+            return hy_decl_error(&se->h, HY_DECL_HEAD, err, HY_EINVAL, "series '%s' needs 'data = ...' (%s)", se->h.name,
+                                 "input, psi, g, ystar, ysteady, ygamma, yk, transient, minor, major");
+        if (se->data == HY_DATA_BOUCWEN)
+            return hy_decl_error(&se->h, offsetof(hy_decl_series, data), err, HY_EUNSUP,
+                                 "data = boucwen is drawn by the Bouc-Wen scenes' own kind, not in a %s figure",
+                                 data_names[0]);
+        if ((se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) &&
             hy_decl_got(&se->h, offsetof(hy_decl_series, gamma)) < 0)
             return hy_decl_error(&se->h, offsetof(hy_decl_series, data), err, HY_EINVAL,
                                  "series '%s' (data = %s) needs 'gamma'", se->h.name, data_names[se->data]);
@@ -1227,7 +1190,7 @@ int hy_scene_friction_load(hy_scene_run *r, hy_error *err)
 {
     int rc = hy_scene_boucwen_load(r, err); /* refuses the Bouc-Wen-only parts */
     if (!rc)
-        rc = check_gammas(r, err);
+        rc = check_friction_series(r, err);
     if (!rc)
         rc = build_model(r, err);
     if (!rc)
@@ -1235,7 +1198,3 @@ int hy_scene_friction_load(hy_scene_run *r, hy_error *err)
     return rc;
 }
 
-int hy_scene_is_figure(const hy_scene *s)
-{
-    return hy_scene_count(s, "series") > 0 || hy_scene_count(s, "panel") > 0;
-}

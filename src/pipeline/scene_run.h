@@ -31,6 +31,7 @@ enum { HY_SERIES_DATA(HY_DATA_ENUM) HY_DATA_COUNT };
 
 typedef struct hy_run_series {
     const char *name;         /* the [series NAME]                                */
+    const hy_decl_series *decl; /* its decoded section (in r->doc)              */
     int data;                 /* HY_DATA_*                                         */
     double gamma;             /* for ygamma/transient                              */
     long k;                   /* for yk                                            */
@@ -155,9 +156,12 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
  * serve shows controls only for what is read.  (The bits: hy_scene.h.) */
 unsigned hy_scene_reads(const hy_scene *s);
 
+/* The same of a decoded scene. */
+unsigned hy_scene_doc_reads(const hy_scene_doc *d);
+
 /* Writes the budget refusal (at [compute] points/cycles/tspan/gamma if written,
  * else at the first series, else file:1:1) and returns HY_EINVAL. */
-int hy_scene_run_over_budget(const hy_scene *s, double work, double budget, const char *what, hy_error *err);
+int hy_scene_run_over_budget(const hy_scene_doc *d, double work, double budget, const char *what, hy_error *err);
 
 /* HY_ECANCEL (with a message) if r->cancelled says the work is no longer
  * wanted, else HY_OK. */
@@ -198,9 +202,6 @@ int hy_scene_run_csv(const hy_scene_run *r, char **buf, size_t *len, hy_error *e
 /* Prints every series as CSV: header "series,x,y", values %.17g. */
 int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err);
 
-/* Whether a parsed scene is a figure: it has a [series] or a [panel]
- * section (else it is a file of shared settings that scenes include). */
-int hy_scene_is_figure(const hy_scene *s);
 
 /* Where a scene file goes in the catalogue (gallery page, hystviz serve), from
  * its name: 0 the minor-loops paper's figures (figNN_), 1 the Bouc-Wen

@@ -197,6 +197,14 @@ int hy_scene_kind_ctype(hy_scene_kind kind);
  * with "file:line:col: what" in err; call hy_scene_doc_free either way. */
 int hy_scene_decode(const hy_scene *s, hy_scene_doc *d, hy_error *err);
 
+/* As hy_scene_decode without the checks: the structs only (hystviz serve
+ * reads a scene's series to choose its controls).  HY_ENOMEM or HY_OK. */
+int hy_scene_decode_fill(const hy_scene *s, hy_scene_doc *d, hy_error *err);
+
+/* Whether a parsed scene is a figure: it has a [series] or a [panel]
+ * section (else it is a file of shared settings that scenes include). */
+int hy_scene_is_figure(const hy_scene *s);
+
 /* Fills the section struct whose head is h from [section name] of s (name
  * NULL for an unnamed section).  Returns HY_OK, or HY_EINVAL for an unknown
  * section. */
@@ -204,6 +212,12 @@ int hy_scene_decode_section(const hy_scene *s, const char *section, const char *
 
 /* Frees what hy_scene_decode allocated (the named sections' arrays). */
 void hy_scene_doc_free(hy_scene_doc *d);
+
+/* The offset of the field that key fills in h's struct, or HY_DECL_HEAD. */
+size_t hy_decl_offset(const hy_decl_head *h, const char *key);
+
+/* Where the field at offset off was written ({file, 0, 0}: not written). */
+hy_scene_loc hy_decl_loc(const hy_decl_head *h, size_t off);
 
 /* What decode found for the field at byte offset off of h's struct:
  * HY_SCENE_SET, _DEFAULT, _ABSENT, or _BADKEY if no key fills it. */

@@ -196,7 +196,28 @@ static int check_controls(const hy_scene *s, hy_error *err)
     return rc;
 }
 
+int hy_scene_is_figure(const hy_scene *s)
+{
+    return hy_scene_count(s, "series") > 0 || hy_scene_count(s, "panel") > 0;
+}
+
 int hy_scene_decode(const hy_scene *s, hy_scene_doc *d, hy_error *err)
+{
+    int rc = hy_scene_decode_fill(s, d, err);
+    if (!rc)
+        rc = check_annotations(d, err);
+    if (!rc)
+        rc = check_zoom(d, err);
+    if (!rc)
+        rc = check_series(d, err);
+    if (!rc)
+        rc = check_panels(d, err);
+    if (!rc)
+        rc = check_controls(s, err);
+    return rc;
+}
+
+int hy_scene_decode_fill(const hy_scene *s, hy_scene_doc *d, hy_error *err)
 {
     memset(d, 0, sizeof *d);
     d->source = hy_scene_source(s);
@@ -216,16 +237,6 @@ int hy_scene_decode(const hy_scene *s, hy_scene_doc *d, hy_error *err)
         rc = decode_named(s, "panel", sizeof *d->panel, &p, &d->npanel, err);
         d->panel = p;
     }
-    if (!rc)
-        rc = check_annotations(d, err);
-    if (!rc)
-        rc = check_zoom(d, err);
-    if (!rc)
-        rc = check_series(d, err);
-    if (!rc)
-        rc = check_panels(d, err);
-    if (!rc)
-        rc = check_controls(s, err);
     return rc;
 }
 
@@ -247,6 +258,20 @@ static int key_at(const hy_decl_head *h, size_t off)
         if (h->spec->keys[j].ctype && h->spec->keys[j].field == off)
             return (int)j;
     return -1;
+}
+
+size_t hy_decl_offset(const hy_decl_head *h, const char *key)
+{
+    for (size_t j = 0; h->spec && j < h->spec->nkeys && j < HY_SCENE_KEYS_MAX; j++)
+        if (h->spec->keys[j].ctype && !strcmp(h->spec->keys[j].name, key))
+            return h->spec->keys[j].field;
+    return HY_DECL_HEAD;
+}
+
+hy_scene_loc hy_decl_loc(const hy_decl_head *h, size_t off)
+{
+    int j = off == HY_DECL_HEAD ? -1 : key_at(h, off);
+    return j < 0 ? (hy_scene_loc){h->source, 0, 0} : h->at[j].loc;
 }
 
 int hy_decl_got(const hy_decl_head *h, size_t off)

@@ -477,7 +477,7 @@ static double integer(const hy_scene *s, const char *sec, const char *key, long 
 static int within_cap(const hy_scene_run *r)
 {
     const hy_scene *s = r->scene;
-    if (hy_scene_is_boucwen(s)) {
+    if (hy_scene_is_boucwen(&r->doc)) {
         int idx = 0;
         const char *kind = "sine", *dec = "staged";
         hy_scene_get_enum(s, "input", NULL, "kind", &idx, &kind);
