@@ -783,6 +783,14 @@ static char *scene_caption(const job *j)
         }
     }
     free(text);
+    hy_scene *sc = NULL;
+    char *out = NULL;
+    hy_error err = {0};
+    if (cap && strchr(cap, '{') && !hy_scene_parse_file(j->path, &sc, &err) && !hy_scene_expand(sc, cap, &out, &err)) {
+        free(cap); /* its placeholders ({model.sigma0}) replaced by the scene's values */
+        cap = out;
+    }
+    hy_scene_free(sc);
     return cap;
 }
 

@@ -44,7 +44,7 @@ static const char serve_help[] =
     "                 per run and one a second; anyone who can load the page can save\n"
     "\n"
     "A page may set (as `render --set`) numbers, switches, choices, lengths and colours of\n"
-    "[model], [input], [compute], [series], [figure] and [annotation]; never a file path,\n"
+    "[model], [input], [compute], [series], [figure], [annotation] and [param]; never a file path,\n"
     "text, [output] or an animation.  Budgets: one answer is at most 32 MB; renders run a\n"
     "few at a time (requests without a page id get half of them; 64 wait, more get 503 with\n"
     "Retry-After); a request whose client has gone is dropped before computing; idle\n"
@@ -785,13 +785,24 @@ static int by_name(const void *a, const void *b)
     return d ? d : strcmp(x, y);
 }
 
+/* The [figure] caption with its placeholders ({model.sigma0}) replaced by
+ * the scene's values (overrides included), as JSON; 0 when it has none. */
+static int figure_caption(sv_buf *b, const hy_scene *sc)
+{
+    const char *cap = NULL;
+    char *out = NULL;
+    hy_error err = {0};
+    if (!sc || hy_scene_get_str(sc, "figure", NULL, "caption", &cap) != HY_SCENE_SET || !cap || !*cap)
+        return 0;
+    sv_json(b, hy_scene_expand(sc, cap, &out, &err) ? cap : out);
+    free(out);
+    return 1;
+}
+
 /* The caption: the scene's [figure] caption (as the gallery), else its header comment. */
 static void scene_caption(sv_buf *b, const hy_scene *sc, const char *text)
 {
-    const char *cap = NULL;
-    if (sc && hy_scene_get_str(sc, "figure", NULL, "caption", &cap) == HY_SCENE_SET && cap && *cap)
-        sv_json(b, cap);
-    else
+    if (!figure_caption(b, sc))
         caption(b, text);
 }
 
@@ -1160,6 +1171,9 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
         sv_num(&b, run.work);
         sv_puts(&b, ",\"budget\":");
         sv_num(&b, run.budget);
+        sv_puts(&b, ",\"caption\":"); /* with the values drawn ("σ0 = {model.sigma0}") */
+        if (!figure_caption(&b, run.scene))
+            sv_puts(&b, "null");
         sv_puts(&b, ",\"cmd\":");
         sv_buf cmd = {0};
         command_line(&cmd, path, a, "svg");

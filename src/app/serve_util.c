@@ -161,9 +161,10 @@ static const struct {
 } page_settable[] = {
     {"model", PAGE_VALUES},  {"input", PAGE_VALUES},  {"compute", PAGE_VALUES},
     {"series", PAGE_VALUES}, {"figure", PAGE_VALUES}, {"annotation", PAGE_VALUES},
+    {"param", PAGE_VALUES},
 };
 
-const char *sv_settable_sections(void) { return "model, input, compute, series, figure and annotation"; }
+const char *sv_settable_sections(void) { return "model, input, compute, series, figure, annotation and param"; }
 
 int sv_set_ok(const char *set, hy_error *err)
 {
@@ -295,16 +296,20 @@ static const struct {
     {"compute", "", "", "points", NULL, NULL, NULL, 0, 0, 1},
 };
 
+/* One control: of key k of [sec label], or with param (the name of a
+ * [param NAME] that the key reads, and others with it) of that parameter,
+ * with k's symbol, unit and range. */
 static void control(sv_buf *b, int *first, const hy_scene *s, const hy_scene_key_spec *k, const char *sec,
-                    const char *label, int set, const char *model, const char *input, int main)
+                    const char *label, int set, const char *model, const char *input, int main, const char *param)
 {
     double v;
-    if (hy_scene_get_num(s, sec, label, k->name, &v) < 0)
+    if (param ? hy_scene_get_num(s, "param", param, "value", &v) != HY_SCENE_SET
+              : hy_scene_get_num(s, sec, label, k->name, &v) < 0)
         return;
     double lo, hi;
     int lg, d = -1;
     sv_slider_range(k, v, &lo, &hi, &lg);
-    for (size_t i = 0; i < sizeof domains / sizeof domains[0] && d < 0; i++)
+    for (size_t i = 0; i < sizeof domains / sizeof domains[0] && d < 0 && !param; i++)
         if (!strcmp(domains[i].sec, sec) && !strcmp(domains[i].key, k->name) &&
             (!domains[i].kind[0] || !strcmp(domains[i].kind, input)) &&
             (!domains[i].model[0] || !strcmp(domains[i].model, model)))
@@ -319,7 +324,9 @@ static void control(sv_buf *b, int *first, const hy_scene *s, const hy_scene_key
     sv_puts(b, *first ? "{\"key\":" : ",{\"key\":");
     *first = 0;
     char full[160];
-    if (label)
+    if (param)
+        snprintf(full, sizeof full, "param.%s.value", param);
+    else if (label)
         snprintf(full, sizeof full, "%s.%s.%s", sec, label, k->name);
     else
         snprintf(full, sizeof full, "%s.%s", sec, k->name);
@@ -333,7 +340,13 @@ static void control(sv_buf *b, int *first, const hy_scene *s, const hy_scene_key
     sv_printf(b, ",\"log\":%s,\"range\":", lg ? "true" : "false");
     sv_json(b, range);
     sv_puts(b, ",\"doc\":");
-    sv_json(b, k->doc ? k->doc : "");
+    if (param) {
+        char doc[300];
+        snprintf(doc, sizeof doc, "$%s, read by every key written '= $%s' (%s: %s)", param, param, k->name,
+                 k->doc ? k->doc : "");
+        sv_json(b, doc);
+    } else
+        sv_json(b, k->doc ? k->doc : "");
     sv_puts(b, ",\"sym\":");
     sv_json(b, k->symbol ? k->symbol : "");
     sv_puts(b, ",\"unit\":");
@@ -367,6 +380,8 @@ void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads)
     hy_scene_get_enum(s, "model", NULL, "kind", &idx, &model);
     hy_scene_get_enum(s, "input", NULL, "kind", &idx, &input);
     int first = 1;
+    const char *fed[64]; /* the parameters shown so far */
+    size_t nfed = 0;
     sv_puts(b, "[");
     for (size_t i = 0; i < sizeof secs / sizeof secs[0]; i++) {
         int si = hy_scene_schema_section(secs[i]);
@@ -389,8 +404,22 @@ void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads)
                 for (size_t m = 0; m < nmain && !main; m++)
                     if (!strcmp(mains[m], full))
                         main = (int)m + 1;
-                if (got == HY_SCENE_SET || (got == HY_SCENE_DEFAULT && (main || wanted(secs[i], kind, k->name))))
-                    control(b, &first, s, k, secs[i], label, got == HY_SCENE_SET, model, input, main);
+                const char *ref = hy_scene_get_ref(s, secs[i], label, k->name);
+                if (ref) { /* one control for the parameter, at its first reader */
+                    size_t p = 0;
+                    while (p < nfed && strcmp(fed[p], ref))
+                        p++;
+                    if (p < nfed || nfed == sizeof fed / sizeof fed[0])
+                        continue;
+                    fed[nfed++] = ref;
+                    snprintf(full, sizeof full, "param.%s.value", ref);
+                    main = 0;
+                    for (size_t m = 0; m < nmain && !main; m++)
+                        if (!strcmp(mains[m], full))
+                            main = (int)m + 1;
+                    control(b, &first, s, k, secs[i], label, 1, model, input, main, ref);
+                } else if (got == HY_SCENE_SET || (got == HY_SCENE_DEFAULT && (main || wanted(secs[i], kind, k->name))))
+                    control(b, &first, s, k, secs[i], label, got == HY_SCENE_SET, model, input, main, NULL);
             }
         }
     }

@@ -99,6 +99,9 @@ void hy_scene_free(hy_scene *s)
     for (size_t i = 0; i < s->nundo; i++)
         hy__value_clear(&s->undo[i].old.v);
     free(s->undo);
+    for (size_t i = 0; i < s->nrefs; i++)
+        free(s->refs[i]);
+    free(s->refs);
     if (s->defaults && s->defoff) {
         for (size_t i = 0; i < nsec; i++)
             for (size_t j = 0; j < spec[i].nkeys; j++)
@@ -565,7 +568,7 @@ static int check_target(const hy_scene *s, const char *a, const char *secname, c
 
 /* Keeps the slot's old value (moved: the slot's is then the log's) for
  * hy_scene_restore; -1 on allocation failure, the slot untouched. */
-static int undo_push(hy_scene *s, size_t sec, size_t key, const hy__slot *slot)
+int hy__undo_push(hy_scene *s, size_t sec, size_t key, const hy__slot *slot)
 {
     if (s->nundo == s->capundo) {
         size_t cap = s->capundo ? 2 * s->capundo : 16;
@@ -634,10 +637,30 @@ static int apply_override(hy_scene *s, const char *a, int sec, const char *name,
         snprintf(where, sizeof where, "[%s %s]", ss->name, name);
     else
         snprintf(where, sizeof where, "[%s]", ss->name);
-    int rc = hy__value_parse(&ss->keys[k], where, NULL, value, strlen(value), 1, &v, &col, msg,
-                             sizeof msg);
+    size_t ref = 0;
+    int rc = hy__ref_parse(s, &ss->keys[k], where, value, strlen(value), 1, &ref, &col, msg, sizeof msg);
+    if (rc > 0)
+        return hy_error_set(err, rc, "--set %s: %s", a, msg);
+    if (rc == 0) { /* $NAME: the parameter's value now */
+        const char *pn = s->refs[ref - 1];
+        int ps = hy_scene_schema_section("param");
+        const hy__section *px = hy__scene_find(s, ps, pn);
+        const hy__slot *pv = px ? &px->slots[hy_scene_schema_key(ps, "value")] : NULL;
+        if (!pv || !pv->set)
+            return hy_error_set(err, HY_EINVAL, "--set %s: unknown parameter $%s: the scene has no [param %s] with a value",
+                                a, pn, pn);
+        char text[40];
+        snprintf(text, sizeof text, "%.17g", pv->v.num);
+        rc = hy__value_parse(&ss->keys[k], where, NULL, text, strlen(text), 1, &v, &col, msg, sizeof msg);
+    } else
+        rc = hy__value_parse(&ss->keys[k], where, NULL, value, strlen(value), 1, &v, &col, msg, sizeof msg);
     if (rc)
         return hy_error_set(err, rc, "--set %s: %s", a, msg);
+    if (name && !strcmp(ss->name, "param") && !strcmp(ss->keys[k].name, "value") &&
+        (rc = hy__param_propagate(s, name, v.num, a, s->marked, err))) {
+        hy__value_clear(&v);
+        return rc;
+    }
     char label[400];
     snprintf(label, sizeof label, "--set %s", a);
     int inst = hy__scene_add_file(s, label);
@@ -648,7 +671,7 @@ static int apply_override(hy_scene *s, const char *a, int sec, const char *name,
         return hy_error_set(err, HY_ENOMEM, "--set %s: out of memory", a);
     }
     hy__slot *slot = &x->slots[k];
-    if (s->marked && undo_push(s, (size_t)(x - s->secs), (size_t)k, slot)) {
+    if (s->marked && hy__undo_push(s, (size_t)(x - s->secs), (size_t)k, slot)) {
         hy__value_clear(&v);
         return hy_error_set(err, HY_ENOMEM, "--set %s: out of memory", a);
     }
@@ -658,6 +681,8 @@ static int apply_override(hy_scene *s, const char *a, int sec, const char *name,
     slot->set = 1;
     slot->inst = inst;
     slot->loc = loc;
+    slot->ref = ref;
+    slot->refcol = 0;
     hy__scene_hash_bytes(s, "\n--set ", 7);
     hy__scene_hash_bytes(s, a, strlen(a));
     return HY_OK;
@@ -682,7 +707,7 @@ int hy_scene_set(hy_scene *s, const char *assignment, hy_error *err)
 /* The sections whose keys serve shows as controls (cmd_serve.c's serve_util). */
 static int main_section(const char *sec)
 {
-    static const char *const secs[] = {"model", "input", "compute", "series"};
+    static const char *const secs[] = {"model", "input", "compute", "series", "param"};
     for (size_t i = 0; i < sizeof secs / sizeof secs[0]; i++)
         if (!strcmp(sec, secs[i]))
             return 1;

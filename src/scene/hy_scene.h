@@ -206,6 +206,19 @@ int hy_scene_main_keys(const hy_scene *s, char (*keys)[HY_SCENE_KEY_MAX], size_t
 int hy_scene_preset_sets(const hy_scene *s, const char *name, char (*sets)[HY_SCENE_SET_MAX], size_t max, size_t *n,
                          hy_error *err);
 
+/* The name of the [param NAME] whose value the key reads (written `key =
+ * $NAME`, docs/SCENES.md), owned by the scene, or NULL when the key holds its
+ * own value (or is not set). */
+const char *hy_scene_get_ref(const hy_scene *s, const char *section, const char *name, const char *key);
+
+/* Writes text with each placeholder {section.key} or {section.NAME.key}
+ * (a number, integer, identifier or name key of the scene) replaced by the
+ * key's value as the scene has it now, overrides included, into *out
+ * (malloc'ed; the caller frees).  Other braces stay as written ("y*_{u,k}").
+ * A [figure] caption is checked at parse time (file:line:col); for other
+ * text an unknown key or one without a value gives HY_EINVAL and err. */
+int hy_scene_expand(const hy_scene *s, const char *text, char **out, hy_error *err);
+
 /* The path or display name the scene was parsed from (owned by the scene). */
 const char *hy_scene_source(const hy_scene *s);
 

@@ -32,6 +32,8 @@ typedef struct hy__slot {
     int inst; /* index in scene->files of the file (or override) that wrote it */
     hy__value v;
     hy_scene_loc loc;
+    size_t ref; /* 1 + index in scene->refs of the [param NAME] the value reads ($NAME), 0 for none */
+    int refcol; /* column of the '$' (0 in an override) */
 } hy__slot;
 
 /* One [section] or [section NAME] of the scene (merged over all files). */
@@ -78,6 +80,8 @@ struct hy_scene {
     uint64_t mark_hash;
     hy__undo *undo;
     size_t nundo, capundo;
+    char **refs; /* the parameter names that values reference ($NAME), owned, never removed */
+    size_t nrefs, caprefs;
 };
 
 /* Writes the value of key spec parsed from text[0..len) (the text after '=',
@@ -138,6 +142,30 @@ int hy__policy_include(hy_scene *s, const char *dir, const char *rel, char **pat
 /* Writes "file:line:col: <fmt ...>" (just "file: ..." for line 0) into err
  * with code; the arguments may include err->msg. */
 void hy__error_vat(hy_scene_loc loc, hy_error *err, int code, const char *fmt, va_list ap);
+
+/* A parameter reference (hy_scene_param.c, docs/SCENES.md "Named parameters").
+ * If text[0..len) (after blanks) is `$NAME` (and then only a comment), stores
+ * 1 + the index of NAME in s->refs into *ref and returns HY_OK; returns -1
+ * when the text is no reference; on a malformed one returns HY_EINVAL with
+ * *errcol and msg (col0 is the column of text[0]), HY_ENOMEM likewise. */
+int hy__ref_parse(hy_scene *s, const hy_scene_key_spec *spec, const char *where, const char *text,
+                  size_t len, int col0, size_t *ref, int *errcol, char *msg, size_t msgsz);
+
+/* Gives every slot that references a parameter the parameter's value, checked
+ * against the slot's own key (its kind and range).  An unknown name, a [param]
+ * without a value or a value the key refuses is an error at the reference. */
+int hy__scene_resolve(hy_scene *s, hy_error *err);
+
+/* After an override a (already applied) of [param name] value: gives the
+ * new value x to every slot that references name, first checking them all
+ * (on error nothing changed; the caller undoes the override).  With
+ * record, each slot's old state goes to the undo log (hy_scene_restore). */
+int hy__param_propagate(hy_scene *s, const char *name, double x, const char *a, int record,
+                        hy_error *err);
+
+/* Keeps a slot's old state for hy_scene_restore (hy_scene.c); -1 on
+ * allocation failure. */
+int hy__undo_push(hy_scene *s, size_t sec, size_t key, const hy__slot *slot);
 
 /* A fresh scene with defaults prepared; NULL and err on failure. */
 hy_scene *hy__scene_new(hy_error *err);

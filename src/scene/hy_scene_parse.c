@@ -282,7 +282,7 @@ static int unknown_key(pctx *c, fstate *fs, const char *key, int col)
 }
 
 /* Stores a parsed value, applying the include precedence (docs/SCENES.md). */
-static int assign(pctx *c, fstate *fs, int k, hy__value *v, int col, const char *key)
+static int assign(pctx *c, fstate *fs, int k, hy__value *v, int col, const char *key, size_t ref, int refcol)
 {
     size_t si = (size_t)fs->cur;
     const seen *dup = find_seen(fs, si, k);
@@ -307,6 +307,8 @@ static int assign(pctx *c, fstate *fs, int k, hy__value *v, int col, const char 
     slot->set = 1;
     slot->inst = c->stack[c->depth - 1].inst;
     slot->loc = (hy_scene_loc){cur_file(c), fs->line, col};
+    slot->ref = ref;
+    slot->refcol = refcol;
     return HY_OK;
 }
 
@@ -344,11 +346,19 @@ static int parse_key(pctx *c, fstate *fs, const char *ls, const char *p, const c
     hy__value v;
     section_label(c->s, (size_t)fs->cur, lab, sizeof lab);
     p++;
-    int rc = hy__value_parse(spec, lab, c->stack[c->depth - 1].dir, p, (size_t)(end - p),
+    size_t ref = 0;
+    int rc = hy__ref_parse(c->s, spec, lab, p, (size_t)(end - p), (int)(p - ls) + 1, &ref, &ecol, msg, sizeof msg);
+    if (rc > 0)
+        return perr(c, fs->line, ecol, rc, "%s", msg);
+    if (rc == 0) { /* the value comes from the parameter once every file is read */
+        v = (hy__value){.kind = spec->kind};
+        return assign(c, fs, k, &v, col, key, ref, ecol);
+    }
+    rc = hy__value_parse(spec, lab, c->stack[c->depth - 1].dir, p, (size_t)(end - p),
                              (int)(p - ls) + 1, &v, &ecol, msg, sizeof msg);
     if (rc)
         return perr(c, fs->line, ecol, rc, "%s", msg);
-    return assign(c, fs, k, &v, col, key);
+    return assign(c, fs, k, &v, col, key, 0, 0);
 }
 
 static int parse_text(pctx *c, const char *text, size_t len);
@@ -495,6 +505,8 @@ static int parse_top(const char *name, const char *text, size_t len, const hy_sc
         rc = hy__policy_roots(s, c.stack[0].dir, pol, len, err);
     if (!rc)
         rc = parse_text(&c, text, len);
+    if (!rc)
+        rc = hy__scene_resolve(s, err);
     free(c.stack[0].dir);
     free(c.stack[0].canon);
     if (rc) {

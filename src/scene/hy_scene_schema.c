@@ -101,11 +101,11 @@ static const hy_scene_key_spec model_keys[] = {
       "jiles-atherton: magnetisation M in A/m at t = 0 (|m0| < Ms; 0: demagnetised)"),
     F(pr_density, HY_KIND_ENUM, hy_preisach_dist_names, NOLIM, 0, 0, "gaussian",
       "preisach: distribution of both switching fields (factorised density)"),
-    F(pr_hc, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0.5",
+    FQ("H_c", NULL, pr_hc, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0.5",
       "preisach: centre of the up-switching fields alpha (the down-switching beta around -pr_hc), in input units"),
-    F(pr_width, HY_KIND_NUMBER, NULL, POS, 0, 0, "0.2",
+    FQ("w", NULL, pr_width, HY_KIND_NUMBER, NULL, POS, 0, 0, "0.2",
       "preisach: width of both switching-field distributions, in input units"),
-    F(pr_ys, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "preisach: output at positive saturation"),
+    FQ("y_s", NULL, pr_ys, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "preisach: output at positive saturation"),
 };
 #undef SECT
 
@@ -146,7 +146,7 @@ static const hy_scene_key_spec input_keys[] = {
       "multisine input: excited band in Hz; sweep input: start and end frequency in Hz, default 20, 50 (the paper's)"),
     FQ("u_{RMS}", "N", rms, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "50",
       "multisine input: standard deviation (RMS) in N"),
-    F(seed, HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
+    FQ("seed", NULL, seed, HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
     FQ("r", "Hz/min", rate, HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute (the paper's 10)"),
 };
 #undef SECT
@@ -185,7 +185,8 @@ static const hy_scene_key_spec figure_keys[] = {
       "what the axes show: signals versus t, an output-versus-input loop, u(t), g(v), psi_u"),
     F(title, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"", "title above the axes (empty: none)"),
     F(caption, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"",
-      "one-line caption of what the figure shows (the gallery page prints it; not drawn)"),
+      "one-line caption of what the figure shows (the gallery page and serve print it; not drawn); "
+      "{section.key} or {section.NAME.key} is replaced by that key's value: \"LuGre, σ0 = {model.sigma0}\""),
     F(xlabel, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
       "x-axis label; TeX-like markup such as `y^\\circ_u` passes through (default: from kind)"),
     F(ylabel, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "y-axis label (default: from kind)"),
@@ -241,7 +242,7 @@ static const hy_scene_key_spec series_keys[] = {
     F(quantity, HY_KIND_ENUM, bw_quantities, NOLIM, 0, 0, "output",
       "data = boucwen: y in mm, u in N, |y| in dB re 1 mm, transient y - y(last period) in dB, the last period's spectrum, "
       "the largest |y| in mm each second, or (sweep) the windowed-sinc route's largest error each second in u (N) or y (mm)"),
-    F(yscale, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1",
+    FQ("y-scale", NULL, yscale, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1",
       "factor applied to the series' y values (and its marker), e.g. 1/Ms to draw M/Ms or B/B_s normalised to saturation"),
     FQ("floor", "dB", floor, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "data = boucwen, dB quantities: values below it and exact zeros are drawn at this level (default: zeros leave gaps)"),
@@ -296,6 +297,11 @@ static const hy_scene_key_spec controls_keys[] = {
       "(hystviz serve's presentation view shows these)"),
 };
 
+static const hy_scene_key_spec param_keys[] = {
+    K("value", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+      "the parameter's value, which every key written `key = $NAME` takes (checked against each of them)"),
+};
+
 static const hy_scene_key_spec preset_keys[] = {
     K("label", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "the preset's name on its button (default: the section's NAME)"),
     K("set", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"",
@@ -315,6 +321,8 @@ static const hy_scene_section_spec sections[] = {
     S("panel", 1, 1, panel_keys, "one panel per section, in file order: a figure of several scenes side by side"),
     S("output", 0, 0, output_keys, "where the figure is written"),
     S("controls", 0, 0, controls_keys, "how hystviz serve presents the scene's parameters"),
+    S("param", 1, 1, param_keys, "a named value that several keys read (`gamma = $NAME`): they move together, "
+      "set with --set param.NAME.value=..."),
     S("preset", 1, 1, preset_keys, "a named set of values hystviz serve switches to in one click (keys 1-9)"),
     S("animation", 0, 0, animation_keys, "frame timing of an animation"),
     S("keyframe", 1, 1, keyframe_keys, "one animated numeric key per section (hystviz animate SCENE.scene)"),

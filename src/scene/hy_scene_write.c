@@ -14,7 +14,10 @@ static void write_section(const hy_scene *s, const hy__section *x, int sec, int 
         const hy__slot *slot = x ? &x->slots[j] : NULL;
         if (slot && slot->set) {
             fprintf(f, "%s = ", k->name);
-            hy__value_write(k, &slot->v, f);
+            if (slot->ref)
+                fprintf(f, "$%s", s->refs[slot->ref - 1]);
+            else
+                hy__value_write(k, &slot->v, f);
             if (slot->loc.line)
                 fprintf(f, "    # %s:%d\n", slot->loc.file, slot->loc.line);
             else

@@ -74,6 +74,20 @@ static inline void st_parse_fails(const char *name, const char *text, const char
 }
 #define PARSE_FAILS(text, want) st_parse_fails("t.scene", text, want, __LINE__)
 
+/* Applies the override a expecting failure with exactly the message want. */
+static inline void st_set_fails(hy_scene *s, const char *a, const char *want, int line)
+{
+    hy_error err = {0, ""};
+    if (hy_scene_set(s, a, &err) == 0) {
+        fprintf(stderr, "line %d: --set %s succeeded, expected: %s\n", line, a, want);
+        st_failures++;
+    } else if (strcmp(err.msg, want) != 0) {
+        fprintf(stderr, "line %d: message\n    \"%s\"\n expected\n    \"%s\"\n", line, err.msg, want);
+        st_failures++;
+    }
+}
+#define SET_FAILS(s, a, want) st_set_fails(s, a, want, __LINE__)
+
 /* Creates a fresh temp directory; path in buf. */
 static inline void st_tempdir(char *buf, size_t n)
 {

@@ -67,6 +67,16 @@ int main(void)
                           k->kind == HY_KIND_LENGTH || k->kind == HY_KIND_LENGTH_PAIR;
             int list = k->kind == HY_KIND_NUMBER_LIST || k->kind == HY_KIND_INTEGER_LIST ||
                        k->kind == HY_KIND_ENUM_LIST;
+            /* a key hystviz serve may show as a slider (a number or integer of
+               the sections serve_util.c's sv_controls_json reads) is labelled
+               with its symbol as the papers print it */
+            static const char *const ctl_secs[] = {"model", "input", "compute", "series"};
+            int ctl = 0;
+            for (size_t c = 0; c < sizeof ctl_secs / sizeof ctl_secs[0]; c++)
+                ctl |= !strcmp(sec[i].name, ctl_secs[c]) && (k->kind == HY_KIND_NUMBER || k->kind == HY_KIND_INTEGER);
+            if (ctl && (!k->symbol || !k->symbol[0]))
+                fprintf(stderr, "%s.%s: a numeric key with a control has no symbol\n", sec[i].name, k->name);
+            CHECK(!ctl || (k->symbol && k->symbol[0]));
             if (!is_key_name(k->name) || !k->doc || !k->doc[0])
                 fprintf(stderr, "bad name or doc: %s.%s\n", sec[i].name, k->name);
             CHECK(is_key_name(k->name) && k->doc && k->doc[0]);

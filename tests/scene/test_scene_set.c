@@ -5,18 +5,6 @@
 static const char *scene_text =
     "[model]\nsigma0 = 6\n[series ystar]\ndata = ystar\nstyle = solid\n[series y.1]\ndata = ygamma\n";
 
-static void set_fails(hy_scene *s, const char *a, const char *want, int line)
-{
-    hy_error err = {0, ""};
-    if (hy_scene_set(s, a, &err) == 0) {
-        fprintf(stderr, "line %d: --set %s succeeded, expected: %s\n", line, a, want);
-        st_failures++;
-    } else if (strcmp(err.msg, want) != 0) {
-        fprintf(stderr, "line %d: message\n    \"%s\"\n expected\n    \"%s\"\n", line, err.msg, want);
-        st_failures++;
-    }
-}
-#define SET_FAILS(s, a, want) set_fails(s, a, want, __LINE__)
 
 static void valid(void)
 {

@@ -168,7 +168,8 @@ def render_svg(hv, scene, sets, out):
         args += ["--set", s]
     subprocess.run(args, check=True, capture_output=True, timeout=120)
     name = re.search(r"^name = (\S+)", open(scene).read(), re.M)
-    with open(os.path.join(out, name.group(1) + ".svg"), encoding="utf-8") as f:
+    base = name.group(1) if name else os.path.basename(scene)[:-len(".scene")]  # default: the file's name
+    with open(os.path.join(out, base + ".svg"), encoding="utf-8") as f:
         return f.read()
 
 
@@ -190,6 +191,11 @@ def slider_box(dt, key):
     return dt.js(f"""(() => {{ const r = document.querySelector('input[type=range][data-key="{key}"]');
         r.scrollIntoView({{block: 'center'}}); const b = r.getBoundingClientRect();
         return [b.left, b.top, b.width, b.height]; }})()""")
+
+
+def key_focus_body(dt):
+    """Takes the focus from any control, so that a key goes to the page's own handler."""
+    dt.js("document.activeElement && document.activeElement.blur && document.activeElement.blur()")
 
 
 def drag(dt, key, frac_from, frac_to, steps=8):

@@ -19,6 +19,13 @@ The presentation view, links and controls of `hystviz serve` in chromium
 - every slider of Fig. 15 and of bw_fig1a through 50 evenly spaced
   positions (the page's own value at each position, the others at their
   values) is refused at 0 of them;
+- Fig. 4 shows one control per named time scale ([param gamma20], read by
+  a loop and its transient), and moving it changes both series (the SVG
+  equals `render --set param.gamma20.value=...`);
+- pin keeps the curves as a faint ghost under the next figure (unpin, or
+  another scene, drops it); a slider's play button moves its value back and
+  forth (three new figures within a deadline, one request in flight at a
+  time, every value inside the slider's domain) until space stops it;
 - a decimal comma is read as a point; a value out of its domain gets one
   plain-language line and moves nothing; a refused value's message has no
   "--set" prefix.
@@ -224,6 +231,88 @@ def test_controls(dt, base):
     check(msg and "--set" not in msg, f"the server's message without the --set prefix: '{msg}'")
 
 
+def test_pin_play(dt, base):
+    """Pin keeps the curves as a ghost under the next figure (unpin drops it);
+    a slider's play button moves its value back and forth, one request at a
+    time, until space stops it, inside the slider's domain."""
+    check(open_url(dt, base, F15 + ".scene", "Fig. 15"), "Fig. 15 opens")
+    ncurves = dt.js("curvesOf(hv.svg).length")
+    dt.js("document.getElementById('pin').click()")
+    label = dt.js("document.getElementById('pin').textContent")
+    check(dt.js("hv.pinned && hv.pinned.length") == ncurves and ncurves > 0 and label == "unpin (g)",
+          f"pin keeps the {ncurves} curves shown (the button now says '{label}')")
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="model.sigma0"]');
+        b.value = '20'; b.dispatchEvent(new Event('change')); })()""")
+    check(dt.wait("hv.sets['model.sigma0'] === '20' && !hv.inflight && !hv.pending && hv.error === null", 60,
+                  "sigma0 = 20"), "sigma0 = 20 renders")
+    ghost = dt.js("""(() => { const svg = document.querySelector('#figure svg'), g = svg.querySelector('g.ghost');
+        const first = Array.from(svg.querySelectorAll('path')).find(p => !p.closest('g.ghost')
+            && /fill:none/.test(p.getAttribute('style')) && /stroke-linejoin:round/.test(p.getAttribute('style')));
+        return g ? [g.querySelectorAll('path').length, g.getAttribute('opacity'),
+                    !!(g.compareDocumentPosition(first) & Node.DOCUMENT_POSITION_FOLLOWING)] : null; })()""")
+    check(ghost is not None and ghost[0] == ncurves and float(ghost[1]) < 0.5 and ghost[2],
+          f"after pin and a move the old curves lie faintly under the new ones: {ghost}")
+    check(dt.js("!hv.svg.includes('ghost')"), "... drawn by the page: the server's SVG is unchanged")
+    dt.js("document.getElementById('pin').click()")
+    check(dt.js("hv.pinned === null && !document.querySelector('#figure svg g.ghost')"), "unpin removes the ghost")
+    bt.key_focus_body(dt)
+    dt.key("KeyG", "g")
+    check(dt.js("hv.pinned !== null"), "key g pins")
+    # play sigma0: count the figures that arrive and the requests in flight
+    dt.js("""(() => { hv.t = { svgs: new Set(), vals: [], now: 0, max: 0 };
+        const f = window.fetch;
+        window.fetch = (u, o) => {
+            if (typeof u !== 'string' || !u.startsWith('/api/render?') || !u.includes('&page=')) return f(u, o);
+            hv.t.now++; hv.t.max = Math.max(hv.t.max, hv.t.now);
+            return f(u, o).finally(() => { hv.t.now--; }); };
+        document.addEventListener('hv-rendered', () => { hv.t.svgs.add(hv.svg); hv.t.vals.push(+hv.sets['model.sigma0']); });
+        document.querySelector('button.playkey[data-key="model.sigma0"]').click(); })()""")
+    check(dt.js("hv.sliderPlay && hv.sliderPlay.key") == "model.sigma0", "the play button of sigma0 plays it")
+    check(dt.wait("hv.t.svgs.size >= 3", 60, "three figures while playing"),
+          f"playing sigma0 shows new figures ({dt.js('hv.t.svgs.size')} distinct SVGs)")
+    dt.key("Space", " ")
+    check(dt.js("hv.sliderPlay === null"), "space stops the play")
+    bt.settle(dt)
+    n = dt.js("hv.renders")
+    lo, hi, vals = dt.js("ctlOf('model.sigma0').lo"), dt.js("ctlOf('model.sigma0').hi"), dt.js("hv.t.vals")
+    v = float(dt.js("hv.sets['model.sigma0']"))
+    check(lo <= v <= hi and all(lo <= x <= hi for x in vals),
+          f"every value played lies in the slider's domain [{lo}, {hi}]: {vals[:6]}..., stopped at {v}")
+    check(dt.js("hv.t.max") == 1, f"never more than one render request in flight ({dt.js('hv.t.max')})")
+    dt.js("new Promise(r => setTimeout(r, 300))")
+    check(dt.js("hv.renders") == n and not dt.js("hv.inflight"), "stopped: no more renders")
+    dt.js("document.querySelector('button.playkey[data-key=\"input.umin2\"]').click()")
+    dt.js("document.querySelector('button.playkey[data-key=\"input.umin2\"]').click()")
+    check(dt.js("hv.sliderPlay === null"), "a second click on the button stops it")
+    bt.settle(dt)
+
+
+def test_linked(dt, hv, base, scenes, tmp):
+    """Fig. 4's time scales are [param] values, each read by a loop and its
+    transient: one control per gamma, and moving it moves both series."""
+    f4 = "fig04_example1_gamma_loops"
+    check(open_url(dt, base, f4 + ".scene", "Fig. 4"), "Fig. 4 opens")
+    check(dt.js("hv.pinned === null && !document.querySelector('#figure svg g.ghost')"),
+          "another scene drops the pinned curves")
+    keys = [k for k in dt.js("hv.info.controls.map(c => c.key)") if "gamma" in k]
+    check(keys == ["param.gamma20.value", "param.gamma200.value", "param.gamma2000.value"],
+          f"Fig. 4 shows one control per named gamma, none per series: {keys}")
+    lab = dt.js("document.querySelector('.ctl[data-key=\"param.gamma20.value\"] label').textContent")
+    check(lab.startswith("γ"), f"the parameter's control has the symbol of the keys it feeds: '{lab}'")
+    dt.js("""(() => { const b = document.querySelector('input[type=text][data-key="param.gamma20.value"]');
+        b.value = '30'; b.dispatchEvent(new Event('change')); })()""")
+    check(dt.wait("hv.sets['param.gamma20.value'] === '30' && !hv.inflight && !hv.pending && hv.error === null", 60,
+                  "gamma20 = 30"), "typing 30 into gamma20 re-renders")
+    scene = os.path.join(scenes, f4 + ".scene")
+    got = dt.js("hv.svg")
+    check(got == bt.render_svg(hv, scene, ["param.gamma20.value=30"], os.path.join(tmp, "f4a")),
+          "the figure == hystviz render --set param.gamma20.value=30 (bytes)")
+    both = bt.render_svg(hv, scene, ["series.transient20.gamma=30", "series.g20.gamma=30"], os.path.join(tmp, "f4b"))
+    one = bt.render_svg(hv, scene, ["series.g20.gamma=30"], os.path.join(tmp, "f4c"))
+    check(got == both and got != one, "... which moved the loop and its transient (== both series set to 30, "
+          "!= the loop alone)")
+
+
 def sweep(dt, base, scene, npos=50):
     """Every slider through npos evenly spaced positions (the others at their
     file values): the value the page would send at each, rendered by serve
@@ -261,6 +350,8 @@ def main():
         test_presets(dt, hv, base, scenes, tmp)
         test_frame_link(dt, base)
         test_controls(dt, base)
+        test_pin_play(dt, base)
+        test_linked(dt, hv, base, scenes, tmp)
         sweep(dt, base, F15)
         sweep(dt, base, "bw_fig1a_quasistatic_loop")
     rc = bt.run_session(hv, src, "hystviz-present-", body)

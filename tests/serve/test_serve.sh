@@ -113,7 +113,9 @@ assert files == sorted(files, key=lambda f: (part(f), f)), files
 assert "style.scene" not in files                       # an include, no figure
 cap = re.search(r'^caption = "(.*)"$', open(sys.argv[2]).read(), re.M).group(1)
 fig15 = next(s for s in j if s["file"] == "fig15_minor_loop_ex4.scene")
-assert fig15["caption"] == cap and fig15["label"] == "Fig. 15", fig15
+# its placeholder says the scene's value (as the gallery's caption)
+assert "{model.sigma0}" in cap and fig15["caption"] == cap.replace("{model.sigma0}", "6"), fig15
+assert fig15["label"] == "Fig. 15", fig15
 EOF
 fi
 # a figure with a GSL solve and one with Newmark, no overrides
@@ -195,6 +197,11 @@ if [ -f scenes/mine.scene ]; then
             --format svg -o "$T/r2" &&
         cmp -s "$T/r/mine.svg" "$T/r2/$F.svg" && ok "saved scene renders the figure it was saved from" ||
         fail "saved scene renders something else"
+    # the caption's placeholder tells the saved value, and a render with other values tells those
+    curl -s "$base/api/scene?scene=mine.scene" | grep -q '"caption":"Example 4 (LuGre, σ0 = 2.5): ' &&
+        ok "the saved scene's caption tells the saved sigma0 (2.5)" || fail "saved caption: $(curl -s "$base/api/scene?scene=mine.scene" | head -c 300)"
+    curl -s "$base/api/render?scene=mine.scene&set=model.sigma0%3D7&fmt=json" | grep -q '"caption":"Example 4 (LuGre, σ0 = 7): ' &&
+        ok "a render's caption tells the values drawn (sigma0 = 7)" || fail "render caption"
     cp scenes/mine.scene "$T/mine.before"
     expect 409 "/api/save?$saveq&name=mine" -X POST -H "X-Hystviz-Token: $token"
     cmp -s scenes/mine.scene "$T/mine.before" || fail "a second save overwrote mine.scene"

@@ -184,6 +184,24 @@ int main(void)
     hy_scene_free(s);
     free(nt);
 
+    /* a [param] read by two series: one control for it, with the readers'
+       symbol, none for the readers; a page may set it */
+    {
+        static const char linked[] = "[series t]\ndata = transient\ngamma = $g\n[series y]\ndata = ygamma\n"
+                                     "gamma = $g\n[series z]\ndata = ygamma\ngamma = 5\n[param g]\nvalue = 20\n";
+        hy_scene *ls = NULL;
+        CHECK(hy_scene_parse_buffer("l.scene", linked, strlen(linked), &ls, &err) == HY_OK);
+        sv_buf cb = {0};
+        if (ls)
+            sv_controls_json(&cb, ls, HY_READS_MODEL | HY_READS_G | HY_READS_INPUT);
+        const char *p = cb.s ? strstr(cb.s, "{\"key\":\"param.g.value\",\"value\":\"20\"") : NULL;
+        CHECK(p && strstr(p, "\"sym\":\"γ\"") && !strstr(p + 20, "param.g.value"));
+        CHECK(cb.s && !strstr(cb.s, "series.t.gamma") && !strstr(cb.s, "series.y.gamma") && strstr(cb.s, "series.z.gamma"));
+        CHECK(sv_set_ok("param.g.value=30", &err) == HY_OK);
+        free(cb.s);
+        hy_scene_free(ls);
+    }
+
     /* sv_read_beneath: the file itself, a link inside; never a link out, a
        directory or a FIFO (issue 20: read through the descriptor checked) */
     char sub[300], lin[300], lout[300], fifo[300], outside[300];

@@ -11,6 +11,7 @@ const hv = window.hv = {
   svg: null, cmd: '', renders: 0, changes: 0, error: null, serverMs: NaN, serverCpuMs: NaN, pageMs: NaN,
   hover: null, hoverTimer: 0,
   frame: -1, frameB64: null, frameSeq: 0, frameInflight: false, framePending: -1, playing: false,
+  pinned: null, sliderPlay: null,
 };
 const $ = id => document.getElementById(id);
 const enc = encodeURIComponent;
@@ -112,6 +113,8 @@ async function openScene(file, keep, st) {
     hv.sets = st ? st.sets : theme ? { 'figure.theme': theme } : {};
     hv.preset = st ? st.preset : null;
     hv.lastKey = null; hv.svg = null; $('figure').replaceChildren(); hv.hover = null;
+    sliderPlayStop();
+    if (!same) hv.pinned = null; // a ghost belongs to its scene
     $('newname').value = '';
     // the new figure where it can be seen (a switch keeps no scroll position)
     if (!same && !hv.present) $('title').scrollIntoView({ block: 'start' });
@@ -264,6 +267,8 @@ function buildControls(info) {
     el('button', { type: 'button', onclick: resetValues, title: 'r' }, 'reset to file'),
     el('button', { type: 'button', onclick: () => setPresent(!hv.present), title: 'p', class: 'presentbtn' },
       'presentation (p)'),
+    el('button', { type: 'button', id: 'pin', onclick: togglePin, title: 'g: keep the curves shown now as a faint ghost under the next ones',
+      class: hv.pinned ? 'on' : '' }, hv.pinned ? 'unpin (g)' : 'pin (g)'),
     el('label', { title: 'figure.theme = slides: dark background, thicker lines, larger text (t)' },
       el('input', { type: 'checkbox', id: 'slides', onchange: ev => setTheme(ev.target.checked) }), ' slides theme'),
     ...(info.presets || []).map((p, i) => el('button', { type: 'button', class: 'preset' + (hv.preset === p.name ? ' on' : ''),
@@ -277,10 +282,13 @@ function buildControls(info) {
     const box = el('input', { type: 'text', value: cur, 'data-key': c.key, 'aria-label': ctlName(c) + ' value',
       inputmode: 'decimal' });
     const err = el('div', { class: 'err', 'data-key': c.key });
+    const play = el('button', { type: 'button', class: 'playkey' + (hv.sliderPlay && hv.sliderPlay.key === c.key ? ' on' : ''),
+      'data-key': c.key, 'aria-label': 'play ' + ctlName(c), title: 'play: move ' + ctlName(c) + ' back and forth over its range (space stops)',
+      onclick: () => toggleSliderPlay(c.key) }, hv.sliderPlay && hv.sliderPlay.key === c.key ? '■' : '▶');
     const div = el('div', { class: 'ctl' + (hv.sets[c.key] !== undefined ? ' changed' : '') + (mains.includes(c) ? ' main' : ''),
       'data-key': c.key },
       el('label', { title }, labelNode(c), el('span', { class: 'file' }, 'file: ' + c.value + (c.set ? '' : ' (default)'))),
-      range, el('div', { class: 'row' }, box, el('span', { class: 'note' }, c.range + (c.log ? ' · log slider' : ''))), err);
+      range, el('div', { class: 'row' }, box, play, el('span', { class: 'note' }, c.range + (c.log ? ' · log slider' : ''))), err);
     range.value = toPos(c, parseFloat(cur));
     const apply = (v) => {
       if (v === c.value) delete hv.sets[c.key]; else hv.sets[c.key] = v;
@@ -318,6 +326,7 @@ function buildControls(info) {
 function applyPreset(i) {
   const p = hv.info && hv.info.presets && hv.info.presets[i];
   if (!p) return;
+  sliderPlayStop();
   const theme = hv.sets['figure.theme'];
   hv.sets = {};
   for (const a of p.sets) { const e = a.indexOf('='); hv.sets[a.slice(0, e).trim()] = a.slice(e + 1).trim(); }
@@ -330,6 +339,7 @@ function applyPreset(i) {
 }
 
 function resetValues() {
+  sliderPlayStop();
   const theme = hv.sets['figure.theme'];
   hv.sets = theme ? { 'figure.theme': theme } : {};
   hv.preset = null;
@@ -376,11 +386,13 @@ async function doRender() {
   }
   hv.inflight = false;
   if (hv.pending) doRender();
+  else if (hv.sliderPlay) requestAnimationFrame(sliderPlayStep); // the next step once the server has answered
 }
 
 function show(j, q, t0) {
   const fig = $('figure');
   fig.innerHTML = j.svg;
+  drawGhost();
   fig.classList.remove('stale');
   hv.svg = j.svg;
   hv.cmd = j.cmd;
@@ -393,6 +405,7 @@ function show(j, q, t0) {
   hv.pageMs = performance.now() - t0;
   hv.renders++;
   $('cmd').textContent = j.cmd;
+  if (typeof j.caption === 'string') $('caption').textContent = j.caption; // its placeholders say the values drawn
   $('message').hidden = true;
   for (const e of document.querySelectorAll('.ctl .err')) e.textContent = '';
   $('status').textContent = 'live · render ' + hv.serverMs.toFixed(1) + ' ms on the server, ' + hv.pageMs.toFixed(1) + ' ms in the page';
@@ -428,6 +441,92 @@ function showError(msg) {
   for (const e of document.querySelectorAll('.ctl .err')) e.textContent = e.dataset.key === key ? msg : '';
   document.dispatchEvent(new CustomEvent('hv-error'));
 }
+
+// ---- compare: pin the curves shown now as a ghost under the next ones -----------
+// A figure's curves are its unfilled, round-joined strokes (axes, ticks and
+// frames are mitre-joined, text is filled glyphs): copied from the pinned SVG
+// and drawn faintly just before the new figure's first curve, so the new
+// curves lie on top.  The server's SVG (hv.svg) stays as it came.
+
+function curvesOf(svgText) {
+  const doc = new DOMParser().parseFromString(svgText, 'image/svg+xml');
+  return Array.from(doc.querySelectorAll('path')).filter(p => {
+    const st = p.getAttribute('style') || '';
+    return /fill:none/.test(st) && /stroke-linejoin:round/.test(st);
+  });
+}
+
+function drawGhost() {
+  const svg = $('figure').querySelector('svg');
+  if (!svg || !hv.pinned) return;
+  const g = document.createElementNS('http://www.w3.org/2000/svg', 'g');
+  g.setAttribute('class', 'ghost');
+  g.setAttribute('opacity', '0.28');
+  for (const p of hv.pinned) g.append(document.importNode(p, true));
+  const first = Array.from(svg.querySelectorAll('path')).find(p => /fill:none/.test(p.getAttribute('style') || '')
+    && /stroke-linejoin:round/.test(p.getAttribute('style') || ''));
+  if (first) first.parentNode.insertBefore(g, first); else svg.append(g);
+}
+
+function togglePin() {
+  hv.pinned = hv.pinned || !hv.svg ? null : curvesOf(hv.svg);
+  const svg = $('figure').querySelector('svg');
+  if (!hv.pinned && svg) for (const g of svg.querySelectorAll('g.ghost')) g.remove();
+  const b = $('pin');
+  if (b) { b.textContent = hv.pinned ? 'unpin (g)' : 'pin (g)'; b.classList.toggle('on', !!hv.pinned); }
+}
+
+// ---- play a slider (Desmos): its value back and forth over its domain -----------
+// One step each time the server has answered the last one (never two requests
+// at once), 1/50 of the slider's travel; the values are the slider's own
+// (valueAt: inside the domain given the other values).  Stopped by its button,
+// space, a preset, reset or another scene.
+
+const PLAY_STEP = 20; // of the slider's 1000 positions
+
+function toggleSliderPlay(key) {
+  const was = hv.sliderPlay && hv.sliderPlay.key;
+  sliderPlayStop();
+  if (was === key) return;
+  const c = ctlOf(key), r = $('controls').querySelector('input[type=range][data-key="' + key + '"]');
+  if (!c || !r) return;
+  hv.sliderPlay = { key, dir: +r.value >= 1000 ? -1 : 1, pos: +r.value, steps: 0 };
+  hv.frozen = { key, d: domain(c) };
+  hv.dragging = true; // one change in the history, the domain held
+  playButtons();
+  if (!hv.inflight) sliderPlayStep();
+}
+
+function sliderPlayStop() {
+  if (!hv.sliderPlay) return;
+  hv.sliderPlay = null;
+  hv.dragging = false;
+  playButtons();
+  syncSliders();
+  pushUrl(true);
+}
+
+function playButtons() {
+  for (const b of document.querySelectorAll('button.playkey')) {
+    const on = !!hv.sliderPlay && hv.sliderPlay.key === b.dataset.key;
+    b.textContent = on ? '■' : '▶';
+    b.classList.toggle('on', on);
+  }
+}
+
+function sliderPlayStep() {
+  const sp = hv.sliderPlay;
+  if (!sp || hv.inflight) return;
+  const r = $('controls').querySelector('input[type=range][data-key="' + sp.key + '"]');
+  if (!r) { sliderPlayStop(); return; }
+  let p = sp.pos + sp.dir * PLAY_STEP;
+  if (p >= 1000) { p = 1000; sp.dir = -1; } else if (p <= 0) { p = 0; sp.dir = 1; }
+  sp.pos = p;
+  sp.steps++;
+  r.value = p;
+  r.dispatchEvent(new Event('input'));
+}
+
 
 // ---- values under the cursor -------------------------------------------------
 
@@ -798,6 +897,8 @@ document.addEventListener('keydown', ev => {
     if (document.fullscreenElement) document.exitFullscreen(); else document.documentElement.requestFullscreen().catch(() => {});
   } else if (ev.key === 'r') resetValues();
   else if (ev.key === 't') setTheme(hv.sets['figure.theme'] !== 'slides');
+  else if (ev.key === 'g') togglePin();
+  else if (ev.key === ' ' && hv.sliderPlay) { ev.preventDefault(); sliderPlayStop(); }
   else if (ev.key === ' ' && !$('anim').hidden && !(t && t.tagName === 'BUTTON')) { ev.preventDefault(); $('play').click(); }
   else if (/^[1-9]$/.test(ev.key)) applyPreset(+ev.key - 1);
 });
