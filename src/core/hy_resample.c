@@ -159,6 +159,24 @@ void hy_fir1_lowpass(size_t r, double b[HY_DECIMATE_TAPS])
         b[i] /= sum;
 }
 
+/* Output k of the decimation by r: the taps b over x around k r, the
+ * record reflected past its ends. */
+static double decimate_one(const double *x, size_t n, size_t r, const double *b, size_t k)
+{
+    const long M = (HY_DECIMATE_TAPS - 1) / 2;
+    long c = (long)(k * r);
+    double acc = 0.0;
+    if (c >= M && c + M < (long)n) {
+        const double *xc = x + c - M;
+        for (long j = 0; j < HY_DECIMATE_TAPS; j++)
+            acc += b[j] * xc[j];
+    } else {
+        for (long j = 0; j < HY_DECIMATE_TAPS; j++)
+            acc += b[j] * reflect(x, n, c - M + j);
+    }
+    return acc;
+}
+
 int hy_signal_decimate(const double *x, size_t n, size_t r, double *y,
                        hy_error *err)
 {
@@ -175,20 +193,26 @@ int hy_signal_decimate(const double *x, size_t n, size_t r, double *y,
                             M + 1, n);
     double b[HY_DECIMATE_TAPS];
     hy_fir1_lowpass(r, b);
-    size_t nout = (n + r - 1) / r;
-    for (size_t k = 0; k < nout; k++) {
-        long c = (long)(k * r);
-        double acc = 0.0;
-        if (c >= M && c + M < (long)n) {
-            const double *xc = x + c - M;
-            for (long j = 0; j < HY_DECIMATE_TAPS; j++)
-                acc += b[j] * xc[j];
-        } else {
-            for (long j = 0; j < HY_DECIMATE_TAPS; j++)
-                acc += b[j] * reflect(x, n, c - M + j);
+    size_t nout = (n + r - 1) / r, k = 0;
+    while (k < nout && (long)(k * r) < M) /* the reflected head */
+        y[k] = decimate_one(x, n, r, b, k), k++;
+    /* four outputs at a time inside the record: each sum in the order
+       decimate_one adds (the same roundings), but four chains of additions
+       in flight instead of one (the FIR was 13 % of a bw_fig1a render in
+       serve) */
+    for (; k + 4 <= nout && (long)((k + 3) * r) + M < (long)n; k += 4) {
+        const double *x0 = x + k * r - M, *x1 = x0 + r, *x2 = x1 + r, *x3 = x2 + r;
+        double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
+        for (long j = 0; j < HY_DECIMATE_TAPS; j++) {
+            a0 += b[j] * x0[j];
+            a1 += b[j] * x1[j];
+            a2 += b[j] * x2[j];
+            a3 += b[j] * x3[j];
         }
-        y[k] = acc;
+        y[k] = a0, y[k + 1] = a1, y[k + 2] = a2, y[k + 3] = a3;
     }
+    for (; k < nout; k++)
+        y[k] = decimate_one(x, n, r, b, k);
     return HY_OK;
 }
 
