@@ -188,6 +188,7 @@ void hy_scene_fig_free(hy_scene_fig *st)
     free(st->marks);
     free(st->texts);
     free(st->textbuf);
+    free(st->labelbuf);
 }
 
 /* Whether key names a placeholder this scene could fill, before computing
@@ -323,8 +324,14 @@ static size_t figure_series(const hy_scene_run *r, hy_scene_fig *st)
         else
             se->colour = (hy_colour){(int)(i % HY_PALETTE_SIZE), {0, 0, 0}};
         se->width = d->width;
-        if (d->label && d->label[0])
+        char *lab = NULL;
+        hy_error e = {0};
+        if (d->label && strchr(d->label, '{') && !hy_scene_expand(r->scene, d->label, &lab, &e)) {
+            snprintf(st->labelbuf[i], sizeof st->labelbuf[i], "%s", lab); /* "\\gamma = {param.g20.value}" */
+            se->label = st->labelbuf[i];
+        } else if (d->label && d->label[0])
             se->label = d->label;
+        free(lab);
         int mk = d->marker;
         if (mk && rs->has_mark) {
             hy_mark *m = &st->marks[nm++];
@@ -376,7 +383,8 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
     st->marks = calloc(r->nseries + 1, sizeof *st->marks);
     st->texts = calloc(na + 1, sizeof *st->texts);
     st->textbuf = calloc(na + 1, sizeof *st->textbuf);
-    if (!st->series || !st->marks || !st->texts || !st->textbuf)
+    st->labelbuf = calloc(r->nseries + 1, sizeof *st->labelbuf);
+    if (!st->series || !st->marks || !st->texts || !st->textbuf || !st->labelbuf)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     size_t nm = figure_series(r, st);
     for (size_t i = 0; i < na; i++) {

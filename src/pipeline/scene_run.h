@@ -232,6 +232,7 @@ typedef struct hy_scene_fig {
     hy_mark *marks;
     hy_text *texts;
     char (*textbuf)[256];
+    char (*labelbuf)[256];    /* series labels with their {section.key} placeholders filled in */
     hy_axes ax;
     hy_figure fig;
     char note[200];           /* a line for render -v (an inset left out), or "" */

@@ -318,17 +318,21 @@ int hy_scene_expand(const hy_scene *s, const char *text, char **out, hy_error *e
     return HY_OK;
 }
 
-/* The [figure] caption's placeholders name keys with values (at the caption's line). */
+/* The placeholders of the [figure] caption and of each [series] label name
+ * keys with values (else an error at the key's line). */
 static int check_caption(const hy_scene *s, hy_error *err)
 {
-    const char *cap = NULL;
-    char *out = NULL;
-    if (hy_scene_get_str(s, "figure", NULL, "caption", &cap) != HY_SCENE_SET || !strchr(cap, '{'))
-        return HY_OK;
-    hy_error e = {0};
-    int rc = hy_scene_expand(s, cap, &out, &e);
-    free(out);
-    if (rc)
-        return hy_scene_error_at(s, "figure", NULL, "caption", err, rc, "caption: %s", e.msg);
+    for (size_t i = 0; i <= hy_scene_count(s, "series"); i++) {
+        const char *sec = i ? "series" : "figure", *name = i ? hy_scene_name_at(s, "series", i - 1) : NULL;
+        const char *key = i ? "label" : "caption", *text = NULL;
+        char *out = NULL;
+        if (hy_scene_get_str(s, sec, name, key, &text) != HY_SCENE_SET || !strchr(text, '{'))
+            continue;
+        hy_error e = {0};
+        int rc = hy_scene_expand(s, text, &out, &e);
+        free(out);
+        if (rc)
+            return hy_scene_error_at(s, sec, name, key, err, rc, "%s: %s", key, e.msg);
+    }
     return HY_OK;
 }

@@ -143,6 +143,8 @@ static void captions(void)
     PARSE_FAILS("[figure]\ncaption = \"σ0 = {model.sigma}\"\n",
                 "t.scene:2:1: caption: '{model.sigma}' names no key of the scene format (write {section.key} or "
                 "{section.NAME.key})");
+    PARSE_FAILS("[series a]\ndata = ygamma\nlabel = \"\\\\gamma = {param.g.value}\"\n",
+                "t.scene:3:1: label: '{param.g.value}' has no value in this scene (is the section's name right?)");
     PARSE_FAILS("[figure]\ncaption = \"{figure.xlim}\"\n",
                 "t.scene:2:1: caption: '{figure.xlim}' (limits) cannot be shown: a placeholder shows a number, an identifier or a name");
 }

@@ -307,10 +307,11 @@ def test_linked(dt, hv, base, scenes, tmp):
     got = dt.js("hv.svg")
     check(got == bt.render_svg(hv, scene, ["param.gamma20.value=30"], os.path.join(tmp, "f4a")),
           "the figure == hystviz render --set param.gamma20.value=30 (bytes)")
-    both = bt.render_svg(hv, scene, ["series.transient20.gamma=30", "series.g20.gamma=30"], os.path.join(tmp, "f4b"))
-    one = bt.render_svg(hv, scene, ["series.g20.gamma=30"], os.path.join(tmp, "f4c"))
-    check(got == both and got != one, "... which moved the loop and its transient (== both series set to 30, "
-          "!= the loop alone)")
+    lab = 'series.g20.label="\\gamma = 30"'
+    both = bt.render_svg(hv, scene, ["series.transient20.gamma=30", "series.g20.gamma=30", lab], os.path.join(tmp, "f4b"))
+    one = bt.render_svg(hv, scene, ["series.g20.gamma=30", lab], os.path.join(tmp, "f4c"))
+    check(got == both and got != one, "... which moved the loop, its transient and its legend entry (== both series "
+          "and the label set to 30, != the loop alone)")
 
 
 def sweep(dt, base, scene, npos=50):
