@@ -202,7 +202,8 @@ def animate_frame(hv, name, i, tmp, extra=()):
 
 def test_anim(hv, scenes, tmp):
     scene = os.path.join(scenes, "anim_minor_loop_ex4.scene")
-    info = subprocess.run([hv, "animate", scene, "--info", "--size", ANIM_SIZE], capture_output=True, text=True)
+    info = subprocess.run([hv, "animate", scene, "--info", "--size", ANIM_SIZE], capture_output=True, text=True,
+                          timeout=60)
     m = re.match(r"frames (\d+) fps (\S+) size (\d+)x(\d+)", info.stdout)
     if not m:
         print("SKIP (animations): hystviz animate cannot render here: " + info.stderr.strip())
