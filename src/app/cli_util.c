@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "hy_jobs.h"
 #include "hy_out.h"
 
 int cli_num(const char *opt, const char *s, double *out)
@@ -61,43 +62,49 @@ void cli_model_defaults(cli_model *cm)
     cm->tau = 1;
 }
 
-int cli_model_option(cli_model *cm, int argc, char **argv, int *i)
+enum { M_MODEL = CLI_MODEL_FIRST, M_SIGMA0, M_SIGMA1, M_SIGMA2, M_FC, M_FS, M_VS, M_BETA, M_RHO, M_TAU, M_X0 };
+
+const cli_opt cli_model_opts[] = {
+    {"model", 0, "dahl|lugre|dahl-filter", "the model (default lugre)", M_MODEL, 0, NULL, NULL, NULL},
+    {"sigma0", 0, "S0", "bristle stiffness sigma0 (LuGre; default 1)", M_SIGMA0, 0, NULL, NULL, NULL},
+    {"sigma1", 0, "S1", "bristle damping sigma1 (LuGre; default 1)", M_SIGMA1, 0, NULL, NULL, NULL},
+    {"sigma2", 0, "S2", "viscous friction sigma2 (LuGre; default 0)", M_SIGMA2, 0, NULL, NULL, NULL},
+    {"fc", 0, "FC", "Coulomb level (default 1)", M_FC, 0, NULL, NULL, NULL},
+    {"fs", 0, "FS", "static level (LuGre; default 2):\ng(v) = FC + (FS-FC) e^{-|v/VS|^B}", M_FS, 0, NULL, NULL, NULL},
+    {"vs", 0, "VS", "Stribeck velocity (LuGre; default 1)", M_VS, 0, NULL, NULL, NULL},
+    {"beta", 0, "B", "Stribeck exponent (LuGre; default 1)", M_BETA, 0, NULL, NULL, NULL},
+    {"rho", 0, "R", "Dahl's rate (Dahl, dahl-filter; default 1)", M_RHO, 0, NULL, NULL, NULL},
+    {"tau", 0, "T", "time constant of the filter of system (16) (default 1)", M_TAU, 0, NULL, NULL, NULL},
+    {"x0", 0, "Z0", "initial state (default 0)", M_X0, 0, NULL, NULL, NULL},
+    {0},
+};
+
+int cli_model_take(cli_model *cm, int id, const char *v)
 {
-    static const struct { const char *name; size_t off; } opts[] = {
-        {"--sigma0", offsetof(cli_model, sigma0)}, {"--sigma1", offsetof(cli_model, sigma1)},
-        {"--sigma2", offsetof(cli_model, sigma2)}, {"--fc", offsetof(cli_model, fc)},
-        {"--fs", offsetof(cli_model, fs)},         {"--vs", offsetof(cli_model, vs)},
-        {"--beta", offsetof(cli_model, beta)},     {"--rho", offsetof(cli_model, rho)},
-        {"--tau", offsetof(cli_model, tau)},       {"--x0", offsetof(cli_model, x0)},
+    static const size_t off[] = {
+        offsetof(cli_model, sigma0), offsetof(cli_model, sigma1), offsetof(cli_model, sigma2),
+        offsetof(cli_model, fc),     offsetof(cli_model, fs),     offsetof(cli_model, vs),
+        offsetof(cli_model, beta),   offsetof(cli_model, rho),    offsetof(cli_model, tau),
+        offsetof(cli_model, x0),
     };
-    const char *a = argv[*i];
-    const char *val = *i + 1 < argc ? argv[*i + 1] : NULL;
-    if (strcmp(a, "--model") == 0) {
-        if (!val) {
-            fprintf(stderr, "hystviz: --model needs a value (dahl, lugre, dahl-filter)\n");
+    if (id == M_MODEL) {
+        if (!hy_model_type_find(v)) {
+            fprintf(stderr, "hystviz: --model: unknown model '%s' (dahl, lugre, dahl-filter)\n", v);
             return -1;
         }
-        if (!hy_model_type_find(val)) {
-            fprintf(stderr, "hystviz: --model: unknown model '%s' (dahl, lugre, dahl-filter)\n", val);
-            return -1;
-        }
-        cm->kind = val;
-        (*i)++;
+        cm->kind = v;
         return 1;
     }
-    for (size_t k = 0; k < sizeof opts / sizeof opts[0]; k++) {
-        if (strcmp(a, opts[k].name) == 0) {
-            if (cli_num(a, val, (double *)((char *)cm + opts[k].off)))
-                return -1;
-            if (k == 0)
-                cm->set_sigma0 = 1;
-            if (k == 4)
-                cm->set_fs = 1;
-            (*i)++;
-            return 1;
-        }
-    }
-    return 0;
+    if (id < M_SIGMA0 || id > M_X0)
+        return 0;
+    const char *name = cli_model_opts[id - M_MODEL].lng;
+    char opt[16];
+    snprintf(opt, sizeof opt, "--%s", name);
+    if (cli_num(opt, v, (double *)((char *)cm + off[id - M_SIGMA0])))
+        return -1;
+    cm->set_sigma0 |= id == M_SIGMA0;
+    cm->set_fs |= id == M_FS;
+    return 1;
 }
 
 int cli_model_build(const cli_model *cm, hy_model *m)
@@ -136,20 +143,18 @@ int cli_stdout_status(const char *cmd, int rc)
     return rc;
 }
 
-int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, int argc, char **argv,
-                      int *i)
+enum { P_INCLUDE_DIR = CLI_POLICY_FIRST, P_MAX_WORK };
+
+const cli_opt cli_policy_opts[] = {
+    {"include-dir", 0, "DIR", "a directory scenes may include from (and read input files\n"
+     "below), besides their own; repeatable", P_INCLUDE_DIR, 0, NULL, NULL, NULL},
+    {"max-work", 0, "N", "the work budget of one scene (default 1e8; docs/SCENES.md)", P_MAX_WORK, 0, NULL, NULL, NULL},
+    {0},
+};
+
+int cli_policy_take(hy_scene_policy *pol, const char **dirs, const char *cmd, int id, const char *v)
 {
-    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
-    if (!strncmp(a, "--include-dir=", 14) || !strncmp(a, "--max-work=", 11))
-        v = strchr(a, '=') + 1;
-    else if (strcmp(a, "--include-dir") && strcmp(a, "--max-work"))
-        return 0;
-    else if (!v) {
-        fprintf(stderr, "hystviz %s: %s needs a value\n", cmd, a);
-        return -1;
-    } else
-        (*i)++;
-    if (!strncmp(a, "--include-dir", 13)) {
+    if (id == P_INCLUDE_DIR) {
         if (!*v) {
             fprintf(stderr, "hystviz %s: --include-dir needs a directory\n", cmd);
             return -1;
@@ -158,6 +163,8 @@ int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, 
         pol->include_dirs = dirs;
         return 1;
     }
+    if (id != P_MAX_WORK)
+        return 0;
     double w;
     if (cli_num("--max-work", v, &w))
         return -1;
@@ -168,6 +175,22 @@ int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, 
     pol->max_work = w;
     return 1;
 }
+
+/* The default of -j as --help states it (here) or a manual page (doc). */
+static const char *jobs_more(char *buf, size_t size, int doc)
+{
+    if (doc)
+        return ")";
+    snprintf(buf, size, ": here %ld)", hy_jobs_default());
+    return buf;
+}
+
+const cli_opt cli_jobs_opts[] = {
+    {"jobs", 'j', "N", "worker threads (default: the CPUs this process may run on,\n"
+     "its CPU affinity (taskset, a Slurm task's CPUs) capped by\n"
+     "its cgroup's CPU quota (cpu.max), rounded up", CLI_JOBS, 0, jobs_more, NULL, NULL},
+    {0},
+};
 
 /* The signals a command takes: INT and TERM (and HUP where not ignored). */
 static void stop_signals(sigset_t *set)
@@ -219,4 +242,22 @@ int cli_signals_end(void)
         return -1;
     pthread_detach(t);
     return 0;
+}
+
+/* TEMPORARY until every command uses cli_next */
+int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    int id = 0;
+    if (!strncmp(a, "--include-dir=", 14) || !strncmp(a, "--max-work=", 11))
+        v = strchr(a, '=') + 1;
+    else if (strcmp(a, "--include-dir") && strcmp(a, "--max-work"))
+        return 0;
+    else if (!v) {
+        fprintf(stderr, "hystviz %s: %s needs a value\n", cmd, a);
+        return -1;
+    } else
+        (*i)++;
+    id = !strncmp(a, "--include-dir", 13) ? P_INCLUDE_DIR : P_MAX_WORK;
+    return cli_policy_take(pol, dirs, cmd, id, v);
 }

@@ -7,6 +7,7 @@
 
 #include <signal.h>
 #include <stdio.h>
+#include "cli_opt.h"
 #include "hy_model.h"
 #include "hy_scene_policy.h"
 
@@ -15,16 +16,19 @@ int cli_num(const char *opt, const char *s, double *out);
 /* Parses an integer in [lo, hi]; on failure prints a message and returns -1. */
 int cli_long(const char *opt, const char *s, long lo, long hi, long *out);
 
-/* Model options: --model --sigma0 --sigma1 --sigma2 --fc --fs --vs --beta --rho --tau --x0.
- * cli_model_option returns 1 if argv[*i] was a model option (consuming its value),
- * 0 if not, -1 on error (message printed). */
+/* Model options: --model --sigma0 --sigma1 --sigma2 --fc --fs --vs --beta --rho --tau --x0
+ * (the table cli_model_opts; ids CLI_MODEL_FIRST..). */
 typedef struct cli_model {
     const char *kind;
     double sigma0, sigma1, sigma2, fc, fs, vs, beta, rho, tau, x0;
     int set_sigma0, set_fs;
 } cli_model;
+enum { CLI_MODEL_FIRST = 1000, CLI_POLICY_FIRST = 1100, CLI_JOBS = 1200 };
+extern const cli_opt cli_model_opts[];
 void cli_model_defaults(cli_model *cm);
-int cli_model_option(cli_model *cm, int argc, char **argv, int *i);
+/* Takes option id (from cli_next) with value v: 1 if it was a model option,
+ * 0 if not, -1 on error (message printed, naming the option). */
+int cli_model_take(cli_model *cm, int id, const char *v);
 /* Builds and validates the model; prints the message and returns nonzero on error. */
 int cli_model_build(const cli_model *cm, hy_model *m);
 
@@ -41,11 +45,17 @@ int cli_exit_status(int code);
  * 1, else rc.  Every command's last step (main). */
 int cli_stdout_status(const char *cmd, int rc);
 
-/* Scene policy options: --include-dir DIR (repeatable; dirs has room for one
- * per argument) and --max-work N.  Returns 1 if argv[*i] was one (consuming
- * its value), 0 if not, -1 on error (message printed, prefixed with cmd). */
-int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, int argc, char **argv,
-                      int *i);
+/* Scene policy options (the table cli_policy_opts): --include-dir DIR
+ * (repeatable; dirs has room for one per argument) and --max-work N.  Takes
+ * option id with value v: 1 if it was one, 0 if not, -1 on error (message
+ * printed, prefixed with "hystviz cmd"). */
+extern const cli_opt cli_policy_opts[];
+int cli_policy_take(hy_scene_policy *pol, const char **dirs, const char *cmd, int id, const char *v);
+
+/* -j, --jobs N (id CLI_JOBS), its help describing the default (hy_jobs). */
+extern const cli_opt cli_jobs_opts[];
+
+int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, int argc, char **argv, int *i);
 
 /* Signals, from the first instruction of main (README "Signals"): blocks
  * SIGINT, SIGTERM and SIGHUP in the calling thread, so every thread started

@@ -4,6 +4,7 @@
  * output noise), written as CSV t,u,y through the output writer (hy_out). */
 #include "cmd_boucwen.h"
 
+#include "cli_opt.h"
 #include "hy_boucwen.h"
 #include "hy_config.h"
 #include "hy_file.h"
@@ -36,70 +37,83 @@ static const char usage[] =
     "data        write CSV 't,u,y' (s, N, m) at the working rate, %.17g\n"
     "\n";
 
-/* The data options (apart from the text above: C99's 4095-character limit). */
-static const char usage_data[] =
-    "data options:\n"
-    "  --signal multisine   random-phase multisine 5-150 Hz, 8192 samples a\n"
-    "                       period at 750 Hz, std 50 N (set at the integration\n"
-    "                       rate); P periods from rest (default 5), the first\n"
-    "                       holds the transient; decimated in stages 2, 2, 5\n"
-    "  --signal validation  the official validation input uval_multisine.txt,\n"
-    "                       P steady-state periods (default 1; comparable with\n"
-    "                       yval_multisine.txt); noiseless unless --noise;\n"
-    "                       decimated in stages 2, 2, 5 (as the data set)\n"
-    "  --signal validation-sweep\n"
-    "                       the benchmark's validation sine sweep, the data\n"
-    "                       set yval_sinesweep (BoucWenFiles.zip, folder Test\n"
-    "                       signals/Validation signals/, nonlinearbenchmark.org):\n"
-    "                       u = 40 sin(2 pi (18 t + t^2/12)), t = n/750,\n"
-    "                       n = 0..152999: 18 -> 52 Hz at 10 Hz/min over 204 s;\n"
-    "                       made at 15000 Hz, decimated in ONE stage as the\n"
-    "                       data set was (MATLAB decimate(y, 20, 'fir'));\n"
-    "                       noiseless unless --noise; 153000 rows\n"
-    "  --signal sweep       linear sine sweep from rest, t in [0, T): defaults\n"
-    "                       the paper's 40 N, 20 -> 50 Hz at 10 Hz/min (180 s,\n"
-    "                       135000 rows; the scene's [input] kind = sweep has\n"
-    "                       the same); made at the integration rate; decimated\n"
-    "                       in stages 2, 2, 5 unless --single-stage\n"
-    "  --band F1,F2         sweep: start and end frequency in Hz (20,50)\n"
-    "  --rate HZ_PER_MIN    sweep: frequency rate in Hz per minute (10)\n"
-    "  --amp N              sweep: force amplitude in N (40)\n"
-    "  --signal sine        120 N at 1 Hz, P periods from rest (default 10);\n"
-    "                       decimated in stages 2, 2, 5\n"
-    "  --signal file        the force in --input FILE: one value a line or\n"
-    "                       't,u' lines (uniform t gives fs); n samples are\n"
-    "                       upsampled by a Kaiser-windowed sinc to n x UPSAMPLE\n"
-    "                       and decimated back to one row per input sample\n"
-    "                       (its limit on the validation sweep: y within 5e-8 m,\n"
-    "                       1.3e-8 m RMS; scenes/bw_sinc_upsampling_error.scene);\n"
-    "                       with --upsample 1 the 't,u' file is at the\n"
-    "                       integration rate and is decimated to --fs (its rate\n"
-    "                       / fs a whole number); decimated in stages unless\n"
-    "                       --single-stage; t is written from 0\n"
-    "  --input FILE         input force file (implies --signal file)\n"
-    "  --data-dir DIR       folder of uval_multisine.txt (validation; default\n"
-    "                       $HY_BOUCWEN_DATA, then the installed copy in\n"
-    "                       @DATA_DIR@/boucwen,\n"
-    "                       then tests/data/boucwen of the source tree)\n"
-    "  --periods P          number of periods written (periodic signals)\n"
-    "  --noise RMS          output noise RMS in metres, Gaussian band-limited\n"
-    "                       to 0-fs/2 (default 8e-6 = 8e-3 mm; 0 = none;\n"
-    "                       validation and validation-sweep: 0)\n"
-    "  --seed S             seed of the multisine phases and the noise (1)\n"
-    "  --fs HZ              working sampling rate (750; file: from t if given,\n"
-    "                       with --upsample 1 the output rate)\n"
-    "  --upsample R         integration rate factor (20)\n"
-    "  --single-stage       decimate in one stage instead of prime factors\n"
-    "                       (validation-sweep: always)\n"
-    "  --set-param N=V      change a parameter: m c k alpha beta gamma delta nu\n"
-    "                       (Table 1: 2 10 5e4 5e4 1e3 0.8 -1.1 1)\n"
-    "  -o FILE              output file (written to a temporary name, then\n"
-    "                       renamed; '-' or none: standard output)\n"
-    "  -h, --help           this text\n"
+/* After the options (C99's 4095-character limit keeps it apart from usage). */
+static const char signals[] =
+    "signals (--signal KIND):\n"
+    "  multisine         random-phase multisine 5-150 Hz, 8192 samples a\n"
+    "                    period at 750 Hz, std 50 N (set at the integration\n"
+    "                    rate); P periods from rest (default 5), the first\n"
+    "                    holds the transient; decimated in stages 2, 2, 5\n"
+    "  validation        the official validation input uval_multisine.txt,\n"
+    "                    P steady-state periods (default 1; comparable with\n"
+    "                    yval_multisine.txt); noiseless unless --noise;\n"
+    "                    decimated in stages 2, 2, 5 (as the data set)\n"
+    "  validation-sweep  the benchmark's validation sine sweep, the data\n"
+    "                    set yval_sinesweep (BoucWenFiles.zip, folder Test\n"
+    "                    signals/Validation signals/, nonlinearbenchmark.org):\n"
+    "                    u = 40 sin(2 pi (18 t + t^2/12)), t = n/750,\n"
+    "                    n = 0..152999: 18 -> 52 Hz at 10 Hz/min over 204 s;\n"
+    "                    made at 15000 Hz, decimated in ONE stage as the\n"
+    "                    data set was (MATLAB decimate(y, 20, 'fir'));\n"
+    "                    noiseless unless --noise; 153000 rows\n"
+    "  sweep             linear sine sweep from rest, t in [0, T): defaults\n"
+    "                    the paper's 40 N, 20 -> 50 Hz at 10 Hz/min (180 s,\n"
+    "                    135000 rows; the scene's [input] kind = sweep has\n"
+    "                    the same); made at the integration rate; decimated\n"
+    "                    in stages 2, 2, 5 unless --single-stage\n"
+    "  sine              120 N at 1 Hz, P periods from rest (default 10);\n"
+    "                    decimated in stages 2, 2, 5\n"
+    "  file              the force in --input FILE: one value a line or\n"
+    "                    't,u' lines (uniform t gives fs); n samples are\n"
+    "                    upsampled by a Kaiser-windowed sinc to n x UPSAMPLE\n"
+    "                    and decimated back to one row per input sample\n"
+    "                    (its limit on the validation sweep: y within 5e-8 m,\n"
+    "                    1.3e-8 m RMS; scenes/bw_sinc_upsampling_error.scene);\n"
+    "                    with --upsample 1 the 't,u' file is at the\n"
+    "                    integration rate and is decimated to --fs (its rate\n"
+    "                    / fs a whole number); decimated in stages unless\n"
+    "                    --single-stage; t is written from 0\n"
     "\n"
-    "Options take their value as the next argument or after '=' (--fs=750).\n"
     "Exit status: 0 done, 1 computation or output failed, 2 usage error or a\n"
     "refused parameter (nothing written).  Scenes draw the same system: [model] kind = boucwen (docs/SCENES.md).\n";
+
+/* The installed data directory (not compiled into a string literal: a long
+ * install prefix would pass C's 4095-character limit). */
+static const char *data_dir_more(char *buf, size_t size, int doc)
+{
+    (void)doc;
+    snprintf(buf, size, "%s/boucwen,\nthen tests/data/boucwen of the source tree)", HY_DATA_DIR);
+    return buf;
+}
+
+enum { OPT_SIGNAL = CLI_FIRST, OPT_INPUT, OPT_DATA_DIR, OPT_OUT, OPT_PERIODS, OPT_NOISE, OPT_SEED, OPT_FS,
+       OPT_UPSAMPLE, OPT_PARAM, OPT_BAND, OPT_RATE, OPT_AMP, OPT_SINGLE };
+static const cli_opt bw_opts[] = {
+    {"signal", 0, "KIND", "data: the force, multisine, validation, validation-sweep,\n"
+     "sweep, sine or file (below)", OPT_SIGNAL, 0, NULL, NULL, NULL},
+    {"band", 0, "F1,F2", "sweep: start and end frequency in Hz (20,50)", OPT_BAND, 0, NULL, NULL, NULL},
+    {"rate", 0, "HZ_PER_MIN", "sweep: frequency rate in Hz per minute (10)", OPT_RATE, 0, NULL, NULL, NULL},
+    {"amp", 0, "N", "sweep: force amplitude in N (40)", OPT_AMP, 0, NULL, NULL, NULL},
+    {"input", 0, "FILE", "input force file (implies --signal file)", OPT_INPUT, 0, NULL, NULL, NULL},
+    {"data-dir", 0, "DIR", "folder of uval_multisine.txt (validation; default\n"
+     "$HY_BOUCWEN_DATA, then the installed copy in\n", OPT_DATA_DIR, 0, data_dir_more, NULL, NULL},
+    {"periods", 0, "P", "number of periods written (periodic signals)", OPT_PERIODS, 0, NULL, NULL, NULL},
+    {"noise", 0, "RMS", "output noise RMS in metres, Gaussian band-limited\n"
+     "to 0-fs/2 (default 8e-6 = 8e-3 mm; 0 = none;\n"
+     "validation and validation-sweep: 0)", OPT_NOISE, 0, NULL, NULL, NULL},
+    {"seed", 0, "S", "seed of the multisine phases and the noise (1)", OPT_SEED, 0, NULL, NULL, NULL},
+    {"fs", 0, "HZ", "working sampling rate (750; file: from t if given,\n"
+     "with --upsample 1 the output rate)", OPT_FS, 0, NULL, NULL, NULL},
+    {"upsample", 0, "R", "integration rate factor (20)", OPT_UPSAMPLE, 0, NULL, NULL, NULL},
+    {"single-stage", 0, NULL, "decimate in one stage instead of prime factors\n"
+     "(validation-sweep: always)", OPT_SINGLE, 0, NULL, NULL, NULL},
+    {"set-param", 0, "N=V", "change a parameter: m c k alpha beta gamma delta nu\n"
+     "(Table 1: 2 10 5e4 5e4 1e3 0.8 -1.1 1); repeatable", OPT_PARAM, 0, NULL, NULL, NULL},
+    {NULL, 'o', "FILE", "output file (written to a temporary name, then\n"
+     "renamed; '-' or none: standard output)", OPT_OUT, 0, NULL, NULL, NULL},
+    {0},
+};
+static const cli_cmd bw_cli = {"boucwen", usage, signals, NULL, bw_opts};
 
 typedef struct opts {
     const char *signal, *input, *data_dir, *out;
@@ -174,82 +188,66 @@ static int parse_band(const char *s, double band[2])
     return band[0] >= 0 && band[1] > band[0] ? 0 : -1;
 }
 
-/* Value of option a[i] ("--x v" or "--x=v"); advances *i; NULL if missing. */
-static const char *optval(int argc, char **argv, int *i, const char *name)
+/* One option; 0 or 2 (message printed). */
+static int take(opts *o, int id, const char *v)
 {
-    size_t len = strlen(name);
-    if (strncmp(argv[*i], name, len) == 0 && argv[*i][len] == '=')
-        return argv[*i] + len + 1;
-    if (strcmp(argv[*i], name) == 0 && *i + 1 < argc)
-        return argv[++*i];
-    return NULL;
+    hy_error err = {0};
+    size_t sz;
+    switch (id) {
+    case OPT_SIGNAL: o->signal = v; return 0;
+    case OPT_INPUT: o->input = v; return 0;
+    case OPT_DATA_DIR: o->data_dir = v; return 0;
+    case OPT_OUT: o->out = v; return 0;
+    case OPT_SINGLE: o->staged = 0; return 0;
+    case OPT_PERIODS:
+        if (parse_size(v, &o->periods) || o->periods < 1 || o->periods > 1000)
+            return bad_usage("--periods '%s' must be an integer in 1..1000", v);
+        return 0;
+    case OPT_NOISE:
+        if (parse_double(v, &o->noise) || !isfinite(o->noise) || o->noise < 0)
+            return bad_usage("--noise '%s' must be a finite RMS >= 0 in metres", v);
+        return 0;
+    case OPT_SEED:
+        if (parse_size(v, &sz))
+            return bad_usage("--seed '%s' must be a non-negative integer", v);
+        o->seed = (uint64_t)sz;
+        return 0;
+    case OPT_FS:
+        if (parse_double(v, &o->fs) || !isfinite(o->fs) || o->fs <= 0)
+            return bad_usage("--fs '%s' must be a positive number of Hz", v);
+        return 0;
+    case OPT_UPSAMPLE:
+        if (parse_size(v, &o->upsample) || o->upsample < 1 || o->upsample > 1000)
+            return bad_usage("--upsample '%s' must be an integer in 1..1000", v);
+        return 0;
+    case OPT_BAND:
+        if (parse_band(v, o->band))
+            return bad_usage("--band '%s' must be F1,F2 in Hz with 0 <= F1 < F2", v);
+        return 0;
+    case OPT_RATE:
+        if (parse_double(v, &o->rate) || !isfinite(o->rate) || o->rate <= 0)
+            return bad_usage("--rate '%s' must be a positive number of Hz per minute", v);
+        return 0;
+    case OPT_AMP:
+        if (parse_double(v, &o->amp) || !isfinite(o->amp) || o->amp < 0)
+            return bad_usage("--amp '%s' must be a finite force >= 0 in N", v);
+        return 0;
+    default: /* OPT_PARAM */
+        return hy_boucwen_params_parse(&o->p, v, &err) ? bad_usage("%s", err.msg) : 0;
+    }
 }
 
-static int is_opt(const char *arg, const char *name)
-{
-    size_t len = strlen(name);
-    return strncmp(arg, name, len) == 0 && (arg[len] == '\0' || arg[len] == '=');
-}
-
-/* Parses argv[first..]; returns 0 or an exit status. */
+/* Parses argv[first..]; returns 0, 1 (help printed) or an exit status. */
 static int parse_opts(int argc, char **argv, int first, opts *o)
 {
-    for (int i = first; i < argc; i++) {
-        const char *a = argv[i], *v;
-        hy_error err = {0};
-        if (strcmp(a, "--single-stage") == 0) {
-            o->staged = 0;
-            continue;
-        }
-        static const char *valued[] = {"--signal", "--input", "--data-dir", "-o",
-                                       "--periods", "--noise", "--seed", "--fs",
-                                       "--upsample", "--set-param", "--band",
-                                       "--rate", "--amp"};
-        const char *name = NULL;
-        for (size_t k = 0; k < sizeof valued / sizeof *valued; k++)
-            if (is_opt(a, valued[k]))
-                name = valued[k];
-        if (!name)
-            return bad_usage("unknown option '%s'", a);
-        if (!(v = optval(argc, argv, &i, name)))
-            return bad_usage("option %s needs a value", name);
-        if (strcmp(name, "--signal") == 0)
-            o->signal = v;
-        else if (strcmp(name, "--input") == 0)
-            o->input = v;
-        else if (strcmp(name, "--data-dir") == 0)
-            o->data_dir = v;
-        else if (strcmp(name, "-o") == 0)
-            o->out = v;
-        else if (strcmp(name, "--periods") == 0) {
-            if (parse_size(v, &o->periods) || o->periods < 1 || o->periods > 1000)
-                return bad_usage("--periods '%s' must be an integer in 1..1000", v);
-        } else if (strcmp(name, "--noise") == 0) {
-            if (parse_double(v, &o->noise) || !isfinite(o->noise) || o->noise < 0)
-                return bad_usage("--noise '%s' must be a finite RMS >= 0 in metres", v);
-        } else if (strcmp(name, "--seed") == 0) {
-            size_t s;
-            if (parse_size(v, &s))
-                return bad_usage("--seed '%s' must be a non-negative integer", v);
-            o->seed = (uint64_t)s;
-        } else if (strcmp(name, "--fs") == 0) {
-            if (parse_double(v, &o->fs) || !isfinite(o->fs) || o->fs <= 0)
-                return bad_usage("--fs '%s' must be a positive number of Hz", v);
-        } else if (strcmp(name, "--upsample") == 0) {
-            if (parse_size(v, &o->upsample) || o->upsample < 1 || o->upsample > 1000)
-                return bad_usage("--upsample '%s' must be an integer in 1..1000", v);
-        } else if (strcmp(name, "--band") == 0) {
-            if (parse_band(v, o->band))
-                return bad_usage("--band '%s' must be F1,F2 in Hz with 0 <= F1 < F2", v);
-        } else if (strcmp(name, "--rate") == 0) {
-            if (parse_double(v, &o->rate) || !isfinite(o->rate) || o->rate <= 0)
-                return bad_usage("--rate '%s' must be a positive number of Hz per minute", v);
-        } else if (strcmp(name, "--amp") == 0) {
-            if (parse_double(v, &o->amp) || !isfinite(o->amp) || o->amp < 0)
-                return bad_usage("--amp '%s' must be a finite force >= 0 in N", v);
-        } else if (hy_boucwen_params_parse(&o->p, v, &err)) {
-            return bad_usage("%s", err.msg);
-        }
+    cli_parser p;
+    cli_parser_init(&p, &bw_cli, argc, argv, first);
+    for (int id; (id = cli_next(&p)) != CLI_END;) {
+        if (id == CLI_STOP || id == CLI_ERROR)
+            return id == CLI_STOP ? 1 : 2;
+        int rc = take(o, id, p.val);
+        if (rc)
+            return rc;
     }
     return 0;
 }
@@ -296,18 +294,6 @@ static const char *source_data_dir(char *buf, size_t size)
         return buf;
     }
     return NULL;
-}
-
-/* The help text, with the installed data directory (not compiled into a
- * string literal: a long install prefix would pass C's 4095-character limit). */
-static void print_usage(void)
-{
-    static const char mark[] = "@DATA_DIR@";
-    fputs(usage, stdout);
-    const char *at = strstr(usage_data, mark);
-    fwrite(usage_data, 1, (size_t)(at - usage_data), stdout);
-    fputs(HY_DATA_DIR, stdout);
-    fputs(at + sizeof mark - 1, stdout);
 }
 
 /* Finds uval_multisine.txt: --data-dir, $HY_BOUCWEN_DATA, the installed
@@ -614,19 +600,14 @@ int hy_cmd_boucwen(int argc, char **argv)
         return bad_usage("%s", "needs 'table2', 'data' or '--help'");
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {
-        print_usage();
+        cli_help(stdout, &bw_cli, "boucwen");
         return 0;
     }
     int is_table = strcmp(argv[1], "table2") == 0;
     if (!is_table && strcmp(argv[1], "data") != 0)
         return bad_usage("unknown subcommand '%s' (table2, data)", argv[1]);
-    for (int i = 2; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0) {
-            print_usage();
-            return 0;
-        }
     int rc = parse_opts(argc, argv, 2, &o);
     if (rc)
-        return rc;
+        return rc == 1 ? 0 : rc;
     return is_table ? cmd_table2(&o) : cmd_data(&o);
 }

@@ -8,6 +8,7 @@
  * relays of width 1e-9 of the input range). */
 #include "cmd_check.h"
 
+#include "cli_opt.h"
 #include "hy_boucwen.h"
 #include "hy_gamma.h"
 #include "hy_jiles.h"
@@ -35,9 +36,15 @@ static const char usage[] =
     "stiff ODE runs under a step cap, Bouc-Wen nu 0.5..20, beta 0, delta +-gamma.\n"
     "A request outside what can be computed passes when it is refused with a\n"
     "clear message (result 'refused').  Exit status 1 when any case fails.\n"
-    "\n"
-    "  --quick     fewer sweep points and smaller inputs (a second or two)\n"
-    "  --verbose   print the message of every refusal and failure\n";
+    "\n";
+
+enum { OPT_QUICK = CLI_FIRST, OPT_VERBOSE };
+static const cli_opt check_opts[] = {
+    {"quick", 0, NULL, "fewer sweep points and smaller inputs (a second or two)", OPT_QUICK, 0, NULL, NULL, NULL},
+    {"verbose", 'v', NULL, "print the message of every refusal and failure", OPT_VERBOSE, 0, NULL, NULL, NULL},
+    {0},
+};
+static const cli_cmd check_cli = {"check", usage, NULL, NULL, check_opts};
 
 enum { CASE_TIME_CAP = 30 }; /* seconds: a slower case fails (a hang would be caught by the test timeout) */
 
@@ -609,18 +616,13 @@ int hy_cmd_check(int argc, char **argv)
 {
     gsl_set_error_handler_off();
     cctx cx = {0};
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--quick")) {
-            cx.quick = 1;
-        } else if (!strcmp(argv[i], "--verbose") || !strcmp(argv[i], "-v")) {
-            cx.verbose = 1;
-        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            fputs(usage, stdout);
-            return 0;
-        } else {
-            fprintf(stderr, "hystviz check: unknown option '%s' (try hystviz check --help)\n", argv[i]);
-            return 2;
-        }
+    cli_parser p;
+    cli_parser_init(&p, &check_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;) {
+        if (id == CLI_STOP || id == CLI_ERROR)
+            return id == CLI_STOP ? 0 : 2;
+        cx.quick |= id == OPT_QUICK;
+        cx.verbose |= id == OPT_VERBOSE;
     }
     double t0 = hy_wp_now();
     printf("%-24s %-44s %-9s %9s %8s %8s\n", "case", "parameters", "result", "error", "bound", "time_s");

@@ -15,7 +15,7 @@
 #include "hy_ode.h"
 #include "hy_out.h"
 
-static const char loop_help[] =
+static const char loop_usage[] =
     "usage: hystviz loop [MODEL OPTIONS] --input SPEC [--points N] [--k K]\n"
     "                    [--gamma G [--solver NAME] [--cycles C] [--rtol R] [--atol A]] [-o FILE]\n"
     "       hystviz loops [MODEL OPTIONS] --input SPEC [-o FILE]\n"
@@ -25,27 +25,42 @@ static const char loop_help[] =
     "  --k K          the k-cycle function y*_{u,K}(t) = y*_u(t + K T) (exact)\n"
     "  --gamma G      y_γ at finite γ over C periods from z(0) = x0 (--cycles, default 1),\n"
     "                 exact for piecewise-linear inputs, else --solver (default rkf45)\n"
-    "  --rtol R --atol A  the GSL steppers' local error control, atol + rtol |z| on\n"
-    "                 the state z (|z| <= g(0)/sigma0): default rtol 1e-10 and\n"
-    "                 atol = 1e-2 rtol g(0)/sigma0, i.e. 1e-2 rtol g(0) in y = sigma0 z\n"
-    "                 (g(0) = FS for LuGre, FC for Dahl).  A stepper that is too\n"
-    "                 stiff for the input (its work estimate from the stiffness ratio\n"
-    "                 sigma0*du/g of each piece passes 1e7 evaluations) is refused at\n"
-    "                 once (exit status 2) with the advice to use exact, bsimp or msbdf\n"
     "loops prints one CSV row per loop (the major loop first): its ϱ interval,\n"
     "the input and output where it starts and closes, and ∮ y du (energy per cycle).\n"
-    "\n"
-    "model options (defaults: the LuGre of Example 2, sigma0 = sigma1 = FC = VS =\n"
-    "BETA = 1, FS = 2, sigma2 = 0, x0 = 0):\n"
-    "  --model dahl|lugre|dahl-filter   --sigma0 S0 --sigma1 S1 --sigma2 S2\n"
-    "  --fc FC --fs FS --vs VS --beta B (LuGre g(v) = FC + (FS-FC) e^{-|v/VS|^B})\n"
-    "  --rho R (Dahl)  --tau T (filter of system (16))  --x0 Z0 (initial state)\n"
+    "The model options' defaults are the LuGre of Example 2:\n"
+    "sigma0 = sigma1 = FC = VS = BETA = 1, FS = 2, sigma2 = 0, x0 = 0.\n"
+    "\n";
+
+static const char loop_tail[] =
     "input SPEC:\n"
     "  bimodal:umin1,umin2,umax1,umax2[,t1,t2,t3,t4][:cosine]   multimodal:e0,e1,...[:cosine]\n"
     "  triangle:min,max,T   sine:amp,T[,offset]   pwl:t0,u0,t1,u1,...   file:PATH\n"
     "example:\n"
     "  hystviz loop --model lugre --sigma0 6 --fc 1 --fs 2 --vs 1 --beta 1 \\\n"
     "               --input bimodal:0,0.5,1,1.5 --points 200\n";
+
+enum { OPT_INPUT = CLI_FIRST, OPT_OUT, OPT_SOLVER, OPT_POINTS, OPT_CYCLES, OPT_K, OPT_GAMMA, OPT_RTOL, OPT_ATOL };
+static const cli_opt loop_opts[] = {
+    {.group = cli_model_opts},
+    {"input", 0, "SPEC", "the input u (below); required", OPT_INPUT, 0, NULL, NULL, NULL},
+    {"points", 0, "N", "points over the period (default 200)", OPT_POINTS, 0, NULL, NULL, NULL},
+    {"k", 0, "K", "the k-cycle function y*_{u,K} instead of y°_u", OPT_K, 0, NULL, NULL, NULL},
+    {"gamma", 0, "G", "y_γ at finite γ = G instead of y°_u", OPT_GAMMA, 0, NULL, NULL, NULL},
+    {"solver", 0, "NAME", "the solver of --gamma: exact or a GSL stepper (rkf45, ...)", OPT_SOLVER, 0, NULL, NULL,
+     NULL},
+    {"cycles", 0, "C", "periods of --gamma (default 1)", OPT_CYCLES, 0, NULL, NULL, NULL},
+    {"rtol", 0, "R", "the GSL steppers' local error control, atol + rtol |z| on\n"
+     "the state z (|z| <= g(0)/sigma0): default rtol 1e-10 and\n"
+     "atol = 1e-2 rtol g(0)/sigma0, i.e. 1e-2 rtol g(0) in y = sigma0 z\n"
+     "(g(0) = FS for LuGre, FC for Dahl).  A stepper that is too\n"
+     "stiff for the input (its work estimate from the stiffness ratio\n"
+     "sigma0*du/g of each piece passes 1e7 evaluations) is refused at\n"
+     "once (exit status 2) with the advice to use exact, bsimp or msbdf", OPT_RTOL, 0, NULL, NULL, NULL},
+    {"atol", 0, "A", "see --rtol", OPT_ATOL, 0, NULL, NULL, NULL},
+    {"output", 'o', "FILE", "the CSV file (default: standard output)", OPT_OUT, 0, NULL, NULL, NULL},
+    {0},
+};
+static const cli_cmd loop_cli = {NULL, loop_usage, loop_tail, NULL, loop_opts};
 
 typedef struct loop_args {
     cli_model cm;
@@ -55,6 +70,32 @@ typedef struct loop_args {
     int have_k, have_gamma, have_atol;
 } loop_args;
 
+/* One option; 0 or 2 (message printed). */
+static int take(loop_args *a, int id, const char *s, const char *v)
+{
+    switch (id) {
+    case OPT_INPUT: a->input = v; return 0;
+    case OPT_OUT: a->out = v; return 0;
+    case OPT_SOLVER: a->solver = v; return 0;
+    case OPT_POINTS: return cli_long(s, v, 2, 100000000L, &a->points) ? 2 : 0;
+    case OPT_CYCLES: return cli_long(s, v, 1, 1000000L, &a->cycles) ? 2 : 0;
+    case OPT_K:
+        if (cli_num(s, v, &a->k))
+            return 2;
+        if (a->k < 0 || a->k != floor(a->k)) {
+            fprintf(stderr, "hystviz: --k must be a whole number >= 0 (got %s)\n", v);
+            return 2;
+        }
+        a->have_k = 1;
+        return 0;
+    case OPT_GAMMA: a->have_gamma = 1; return cli_num(s, v, &a->gamma) ? 2 : 0;
+    case OPT_RTOL: return cli_num(s, v, &a->rtol) ? 2 : 0;
+    case OPT_ATOL: a->have_atol = 1; return cli_num(s, v, &a->atol) ? 2 : 0;
+    default: return cli_model_take(&a->cm, id, v) < 0 ? 2 : 0;
+    }
+}
+
+/* 0, 1 help printed, or 2 (message printed). */
 static int parse_args(int argc, char **argv, loop_args *a)
 {
     memset(a, 0, sizeof *a);
@@ -62,60 +103,13 @@ static int parse_args(int argc, char **argv, loop_args *a)
     a->points = 200;
     a->cycles = 1;
     a->rtol = 1e-10;
-    for (int i = 1; i < argc; i++) {
-        const char *s = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int r = cli_model_option(&a->cm, argc, argv, &i);
-        if (r < 0)
+    cli_parser p;
+    cli_parser_init(&p, &loop_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;) {
+        if (id == CLI_STOP || id == CLI_ERROR)
+            return id == CLI_STOP ? 1 : 2;
+        if (take(a, id, p.optname, p.val))
             return 2;
-        if (r > 0)
-            continue;
-        if (!strcmp(s, "-h") || !strcmp(s, "--help")) {
-            fputs(loop_help, stdout);
-            return 1;
-        } else if (!strcmp(s, "--input") && v) {
-            a->input = v;
-            i++;
-        } else if ((!strcmp(s, "-o") || !strcmp(s, "--output")) && v) {
-            a->out = v;
-            i++;
-        } else if (!strcmp(s, "--solver") && v) {
-            a->solver = v;
-            i++;
-        } else if (!strcmp(s, "--points")) {
-            if (cli_long(s, v, 2, 100000000L, &a->points))
-                return 2;
-            i++;
-        } else if (!strcmp(s, "--cycles")) {
-            if (cli_long(s, v, 1, 1000000L, &a->cycles))
-                return 2;
-            i++;
-        } else if (!strcmp(s, "--k")) {
-            if (cli_num(s, v, &a->k))
-                return 2;
-            if (a->k < 0 || a->k != floor(a->k)) {
-                fprintf(stderr, "hystviz: --k must be a whole number >= 0 (got %s)\n", v);
-                return 2;
-            }
-            a->have_k = 1;
-            i++;
-        } else if (!strcmp(s, "--gamma")) {
-            if (cli_num(s, v, &a->gamma))
-                return 2;
-            a->have_gamma = 1;
-            i++;
-        } else if (!strcmp(s, "--rtol")) {
-            if (cli_num(s, v, &a->rtol))
-                return 2;
-            i++;
-        } else if (!strcmp(s, "--atol")) {
-            if (cli_num(s, v, &a->atol))
-                return 2;
-            a->have_atol = 1;
-            i++;
-        } else {
-            fprintf(stderr, "hystviz loop: unknown or incomplete option '%s' (see hystviz loop --help)\n", s);
-            return 2;
-        }
     }
     if (!a->input) {
         fprintf(stderr, "hystviz loop: --input SPEC is required (see hystviz loop --help)\n");

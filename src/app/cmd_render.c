@@ -11,7 +11,7 @@
 #include "hy_out.h"
 #include "scene_run.h"
 
-static const char render_help[] =
+static const char render_usage[] =
     "usage: hystviz render SCENE... [-o DIR] [--set SECTION.KEY=VALUE]... [--format svg,pdf,png] [-v]\n"
     "                      [--include-dir DIR]... [--max-work N]\n"
     "       hystviz data SCENE [--set SECTION.KEY=VALUE]... [-o FILE] [--include-dir DIR]... [--max-work N]\n"
@@ -20,16 +20,20 @@ static const char render_help[] =
     "[output] dir, relative to the scene's directory) as NAME.svg/.pdf/.png: all of\n"
     "a figure's files or none of them.\n"
     "data prints every series the scene draws as CSV 'series,x,y' (%.17g).\n"
-    "\n"
-    "  -o DIR / FILE      output directory (render) or CSV file (data)\n"
-    "  --set S.K=V        override a scene key, e.g. --set model.sigma0=1\n"
-    "                     or --set series.ystar.style=dashed\n"
-    "  --format LIST      formats to write instead of the scene's\n"
-    "  -v, --verbose      print the plan, each step's time and each series' error\n"
-    "                     against the exact answer where one exists\n"
-    "  --include-dir DIR  a directory scenes may include from (and read input files\n"
-    "                     below), besides their own; repeatable\n"
-    "  --max-work N       the work budget of one scene (default 1e8; docs/SCENES.md)\n";
+    "\n";
+
+enum { OPT_OUT = CLI_FIRST, OPT_SET, OPT_FORMAT, OPT_VERBOSE };
+static const cli_opt render_opts[] = {
+    {"output", 'o', "DIR|FILE", "output directory (render) or CSV file (data)", OPT_OUT, 0, NULL, NULL, NULL},
+    {"set", 0, "S.K=V", "override a scene key, e.g. --set model.sigma0=1\n"
+     "or --set series.ystar.style=dashed; repeatable", OPT_SET, CLI_SCENE_KEY, NULL, NULL, NULL},
+    {"format", 0, "LIST", "formats to write instead of the scene's", OPT_FORMAT, 0, NULL, "render", NULL},
+    {"verbose", 'v', NULL, "print the plan, each step's time and each series' error\n"
+     "against the exact answer where one exists", OPT_VERBOSE, 0, NULL, NULL, NULL},
+    {.group = cli_policy_opts},
+    {0},
+};
+static const cli_cmd render_cli = {NULL, render_usage, NULL, "SCENE", render_opts};
 
 /* Of two exit statuses the one to report: invalid input over failure. */
 static int worse(int a, int b)
@@ -136,35 +140,23 @@ int hy_cmd_render(int argc, char **argv)
         return 1;
     }
     int rc = 0, failed = 0;
-    for (int i = 1; i < argc && !rc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(render_help, stdout);
-            free(sets);
-            free(scenes);
-            free(dirs);
-            return 0;
-        }
-        int po = cli_policy_option(&pol, dirs, argv[0], argc, argv, &i);
-        if (po < 0)
-            rc = 2;
-        else if (po > 0)
-            continue;
-        else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
-            out = argv[++i];
-        else if (!strcmp(a, "--set") && v)
-            sets[nsets++] = argv[++i];
-        else if (!strncmp(a, "--set=", 6))
-            sets[nsets++] = argv[i] + 6;
-        else if (!strcmp(a, "--format") && v && !is_data)
-            formats = argv[++i];
-        else if (!strcmp(a, "-v") || !strcmp(a, "--verbose"))
+    cli_parser p;
+    cli_parser_init(&p, &render_cli, argc, argv, 1);
+    for (int id; !rc && (id = cli_next(&p)) != CLI_END;) {
+        if (id == CLI_STOP || id == CLI_ERROR)
+            rc = id == CLI_STOP ? -1 : 2;
+        else if (id == OPT_OUT)
+            out = p.val;
+        else if (id == OPT_SET)
+            sets[nsets++] = (char *)p.val;
+        else if (id == OPT_FORMAT)
+            formats = p.val;
+        else if (id == OPT_VERBOSE)
             verbose = 1;
-        else if (a[0] == '-') {
-            fprintf(stderr, "hystviz %s: unknown or incomplete option '%s' (see hystviz %s --help)\n", argv[0], a, argv[0]);
+        else if (id == CLI_ARG)
+            scenes[nscenes++] = (char *)p.val;
+        else if (cli_policy_take(&pol, dirs, argv[0], id, p.val) < 0)
             rc = 2;
-        } else
-            scenes[nscenes++] = argv[i];
     }
     if (!rc && (nscenes == 0 || (is_data && nscenes != 1))) {
         fprintf(stderr, "hystviz %s: give %s scene file (see hystviz %s --help)\n", argv[0], is_data ? "one" : "at least one",
@@ -189,5 +181,5 @@ int hy_cmd_render(int argc, char **argv)
     free(sets);
     free(scenes);
     free(dirs);
-    return rc ? rc : failed;
+    return rc < 0 ? 0 : rc ? rc : failed;
 }

@@ -29,17 +29,9 @@ static const char usage[] =
     "between breakpoints; their error is measured at those step ends (CSV\n"
     "err_steps, plotted) and on a 300-point grid served by the cubic Hermite\n"
     "interpolant of the step ends (err_max, err_l2); see docs/SOLVERS.md.\n"
-    "\n"
-    "  -o DIR           output folder (default gallery/report): report.csv,\n"
-    "                   report.md, wp-PROBLEM.svg and .png\n"
-    "  --quick          tolerances 1e-2, 1e-4, 1e-6, 2 repeats, caps 2e4 steps\n"
-    "                   and 0.2 s (a few seconds in all; for tests)\n"
-    "%s" /* --problems, --solvers: from the tables (print_usage) */
-    "  --repeats N      timed repeats per run, median reported (default 5)\n"
-    "  --max-steps N    ODE step cap between two breakpoints (default 2e5)\n"
-    "  --time-cap S     a run slower than S seconds is not repeated and tighter\n"
-    "                   tolerances of that solver are skipped (default 2)\n"
-    "\n"
+    "\n";
+
+static const char tail[] =
     "Runs that fail or hit a cap are rows with status fail/stepcap/timecap/\n"
     "skipped; the report goes on.  Exit status 0 when the report is written.\n";
 
@@ -54,6 +46,25 @@ typedef struct ropts {
     int set_repeats, set_steps, set_cap;
     char buf_p[1024], buf_s[1024];
 } ropts;
+
+static const char *problems_more(char *buf, size_t size, int doc);
+static const char *solvers_more(char *buf, size_t size, int doc);
+
+enum { OPT_DIR = CLI_FIRST, OPT_QUICK, OPT_PROBLEMS, OPT_SOLVERS, OPT_REPEATS, OPT_STEPS, OPT_CAP };
+static const cli_opt report_opts[] = {
+    {NULL, 'o', "DIR", "output folder (default gallery/report): report.csv,\n"
+     "report.md, wp-PROBLEM.svg and .png", OPT_DIR, 0, NULL, NULL, NULL},
+    {"quick", 0, NULL, "tolerances 1e-2, 1e-4, 1e-6, 2 repeats, caps 2e4 steps\n"
+     "and 0.2 s (a few seconds in all; for tests)", OPT_QUICK, 0, NULL, NULL, NULL},
+    {"problems", 0, "LIST", NULL, OPT_PROBLEMS, 0, problems_more, NULL, NULL},
+    {"solvers", 0, "LIST", NULL, OPT_SOLVERS, 0, solvers_more, NULL, NULL},
+    {"repeats", 0, "N", "timed repeats per run, median reported (default 5)", OPT_REPEATS, 0, NULL, NULL, NULL},
+    {"max-steps", 0, "N", "ODE step cap between two breakpoints (default 2e5)", OPT_STEPS, 0, NULL, NULL, NULL},
+    {"time-cap", 0, "S", "a run slower than S seconds is not repeated and tighter\n"
+     "tolerances of that solver are skipped (default 2)", OPT_CAP, 0, NULL, NULL, NULL},
+    {0},
+};
+static const cli_cmd report_cli = {"report", usage, tail, NULL, report_opts};
 
 typedef struct runlist {
     hy_wp_run *r;
@@ -81,42 +92,37 @@ static int parse_opts(int argc, char **argv, ropts *o)
 {
     long v;
     double d;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help"))
-            return 1;
-        if (!strcmp(a, "--quick")) {
+    cli_parser p;
+    cli_parser_init(&p, &report_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;) {
+        const char *a = p.optname, *val = p.val;
+        if (id == CLI_STOP || id == CLI_ERROR)
+            return id == CLI_STOP ? 1 : 2;
+        if (id == OPT_QUICK) {
             o->quick = 1;
-            continue;
-        }
-        if (!val)
-            return usage_error("unknown option or missing value for", a);
-        i++;
-        if (!strcmp(a, "-o")) {
+        } else if (id == OPT_DIR) {
             o->dir = val;
-        } else if (!strcmp(a, "--problems")) {
+        } else if (id == OPT_PROBLEMS) {
             if (split_list(val, o->buf_p, sizeof o->buf_p, o->problems, &o->nproblems))
                 return usage_error("empty problem list", val);
-        } else if (!strcmp(a, "--solvers")) {
+        } else if (id == OPT_SOLVERS) {
             if (split_list(val, o->buf_s, sizeof o->buf_s, o->solvers, &o->nsolvers))
                 return usage_error("empty solver list", val);
-        } else if (!strcmp(a, "--repeats")) {
+        } else if (id == OPT_REPEATS) {
             if (cli_long(a, val, 1, 64, &v))
                 return 2;
             o->cfg.repeats = (int)v;
             o->set_repeats = 1;
-        } else if (!strcmp(a, "--max-steps")) {
+        } else if (id == OPT_STEPS) {
             if (cli_long(a, val, 1, 1000000000L, &v))
                 return 2;
             o->cfg.max_steps = (unsigned long)v;
             o->set_steps = 1;
-        } else if (!strcmp(a, "--time-cap")) {
+        } else if (id == OPT_CAP) {
             if (cli_num(a, val, &d) || !(d > 0))
                 return usage_error("--time-cap needs seconds > 0, not", val);
             o->cfg.time_cap = d;
             o->set_cap = 1;
-        } else {
-            return usage_error("unknown option", a);
         }
     }
     for (int i = 0; i < o->nsolvers; i++)
@@ -491,10 +497,9 @@ static int run_all(ropts *o, hy_wp_problem *P, int np)
     return rc;
 }
 
-/* Appends "label words... tail" to buf, wrapped before column 79 with the
- * option column's indent (tail is split at its spaces). */
-static size_t wrapped(char *buf, size_t size, size_t len, const char *label, char *const *words, int n,
-                      const char *tail)
+/* Into buf: "comma-separated, of:", the words and tail, broken into lines
+ * that fit the help's description column. */
+static const char *wrapped(char *buf, size_t size, char *const *words, int n, const char *tail)
 {
     char t[256], *w[MAX_LIST * 2], *save = NULL;
     snprintf(t, sizeof t, "%s", tail);
@@ -503,29 +508,33 @@ static size_t wrapped(char *buf, size_t size, size_t len, const char *label, cha
         w[m] = words[m];
     for (char *tok = strtok_r(t, " ", &save); tok && m < MAX_LIST * 2; tok = strtok_r(NULL, " ", &save))
         w[m++] = tok;
-    size_t col = (size_t)snprintf(buf + len, size - len, "%s", label);
-    len += col;
+    size_t len = (size_t)snprintf(buf, size, "comma-separated, of:"), col = len;
     for (int i = 0; i < m && len < size; i++) {
-        int brk = col + 1 + strlen(w[i]) > 78;
-        len += (size_t)snprintf(buf + len, size - len, brk ? "\n%19s%s" : " %s%s", brk ? "" : w[i], brk ? w[i] : "");
-        col = (brk ? 19 : col + 1) + strlen(w[i]);
+        int brk = col + 1 + strlen(w[i]) > 56;
+        len += (size_t)snprintf(buf + len, size - len, "%s%s", brk ? "\n" : " ", w[i]);
+        col = (brk ? 0 : col + 1) + strlen(w[i]);
     }
-    return len < size ? len + (size_t)snprintf(buf + len, size - len, "\n") : len;
+    return buf;
 }
 
-/* --help: the problems and solvers listed from their tables */
-static void print_usage(void)
+/* --problems, --solvers: listed from their tables */
+static const char *problems_more(char *buf, size_t size, int doc)
 {
-    char *probs[MAX_LIST], *solv[MAX_LIST], lists[1024];
+    char *probs[MAX_LIST];
     int np = 0;
+    (void)doc;
     for (const char *const *n = hy_wp_problem_names(); *n && np < MAX_LIST; n++)
         probs[np++] = (char *)*n;
-    int ns = all_solvers(solv);
-    size_t len = wrapped(lists, sizeof lists, 0, "  --problems LIST  comma-separated, of:", probs, np,
-                         "(default all; jiles: Fig. 1's Jiles-Atherton system, each GSL stepper, always "
-                         "restarted at reversals)");
-    wrapped(lists, sizeof lists, len, "  --solvers LIST   comma-separated, of:", solv, ns, "(default all)");
-    printf(usage, lists);
+    return wrapped(buf, size, probs, np,
+                   "(default all; jiles: Fig. 1's Jiles-Atherton system, each GSL stepper, always "
+                   "restarted at reversals)");
+}
+
+static const char *solvers_more(char *buf, size_t size, int doc)
+{
+    char *solv[MAX_LIST];
+    (void)doc;
+    return wrapped(buf, size, solv, all_solvers(solv), "(default all)");
 }
 
 int hy_cmd_report(int argc, char **argv)
@@ -533,10 +542,8 @@ int hy_cmd_report(int argc, char **argv)
     gsl_set_error_handler_off();
     ropts o = {.dir = "gallery/report", .cfg = hy_wp_cfg_defaults()};
     int rc = parse_opts(argc, argv, &o);
-    if (rc == 1) {
-        print_usage();
+    if (rc == 1)
         return 0;
-    }
     if (rc)
         return rc;
     if (o.quick) {

@@ -18,10 +18,11 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "cli_opt.h"
 #include "dirwatch.h"
 #include "scene_run.h"
 
-static const char watch_help[] =
+static const char watch_usage[] =
     "usage: hystviz watch SCENE... [-o DIR] [--set SECTION.KEY=VALUE]... [--format svg,pdf,png]\n"
     "\n"
     "Renders each scene as `hystviz render` does, then again whenever it or a file it\n"
@@ -29,12 +30,18 @@ static const char watch_help[] =
     "seen too), until Ctrl-C.  One line per render: the time, the scene, the files\n"
     "written and the render time, and the largest error measured against an exact\n"
     "answer; or the scene's error (the last good files stay, watching goes on).\n"
-    "\n"
-    "  -o DIR          output directory (default: each scene's [output] dir)\n"
-    "  --set S.K=V     override a scene key (as render)\n"
-    "  --format LIST   formats to write instead of the scene's\n"
-    "\n"
-    "Exit status: 0 after Ctrl-C, 1 if the directories cannot be watched, 2 for a bad option.\n";
+    "\n";
+
+enum { OPT_OUT = CLI_FIRST, OPT_SET, OPT_FORMAT };
+static const cli_opt watch_opts[] = {
+    {"output", 'o', "DIR", "output directory (default: each scene's [output] dir)", OPT_OUT, 0, NULL, NULL, NULL},
+    {"set", 0, "S.K=V", "override a scene key (as render); repeatable", OPT_SET, CLI_SCENE_KEY, NULL, NULL, NULL},
+    {"format", 0, "LIST", "formats to write instead of the scene's", OPT_FORMAT, 0, NULL, NULL, NULL},
+    {0},
+};
+static const cli_cmd watch_cli = {"watch", watch_usage,
+    "Exit status: 0 after Ctrl-C, 1 if the directories cannot be watched, 2 for a bad option.\n", "SCENE",
+    watch_opts};
 
 typedef struct watched {
     const char *path;
@@ -135,24 +142,23 @@ int hy_cmd_watch(int argc, char **argv)
         return 1;
     }
     int rc = 0;
-    for (int i = 1; i < argc && !rc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(watch_help, stdout);
+    cli_parser p;
+    cli_parser_init(&p, &watch_cli, argc, argv, 1);
+    for (int id; !rc && (id = cli_next(&p)) != CLI_END;) {
+        if (id == CLI_STOP) {
             free(sets);
             free(ws);
             return 0;
-        } else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
-            out = argv[++i];
-        else if (!strcmp(a, "--set") && v)
-            sets[nsets++] = argv[++i];
-        else if (!strcmp(a, "--format") && v)
-            formats = argv[++i];
-        else if (a[0] == '-') {
-            fprintf(stderr, "hystviz watch: unknown or incomplete option '%s' (see hystviz watch --help)\n", a);
+        } else if (id == CLI_ERROR)
             rc = 2;
-        } else
-            ws[nw++].path = a;
+        else if (id == OPT_OUT)
+            out = p.val;
+        else if (id == OPT_SET)
+            sets[nsets++] = (char *)p.val;
+        else if (id == OPT_FORMAT)
+            formats = p.val;
+        else
+            ws[nw++].path = p.val;
     }
     if (!rc && !nw) {
         fprintf(stderr, "hystviz watch: give at least one scene file (see hystviz watch --help)\n");

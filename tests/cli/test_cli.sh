@@ -45,7 +45,7 @@ expect_err "sigma0 must be > 0" loop --sigma0 -1 --input bimodal:0,0.5,1,1.5
 expect_err "'nan' is not a finite number" loop --sigma0 nan --input bimodal:0,0.5,1,1.5
 expect_err "u_min,2 < u_max,1" loop --input bimodal:0,1.2,1,1.5
 expect_err "unknown command 'lop'" lop
-expect_err "unknown or incomplete option '--sigma'" loop --sigma 3 --input bimodal:0,0.5,1,1.5
+expect_err "unknown option '--sigma'" loop --sigma 3 --input bimodal:0,0.5,1,1.5
 expect_err "--input SPEC is required" loop
 expect_err "unknown model 'lugr'" loop --model lugr --input bimodal:0,0.5,1,1.5
 expect_err "gamma must be a finite number > 0" loop --gamma 0 --input bimodal:0,0.5,1,1.5
