@@ -14,87 +14,89 @@
 
 /* ---- keyframes ---- */
 
+#define KF_AT(f) offsetof(hy_decl_keyframe, f)
+
 /* Splits "section.key" / "section.NAME.key" and checks it against the schema
- * and the scene; fills k->target and k->integer. */
-static int resolve_key(const hy_scene *s, scene_kf *k, const char *text, hy_error *err)
+ * and the decoded scene d; fills k->target and k->integer. */
+static int resolve_key(const hy_scene_doc *d, scene_kf *k, const char *text, hy_error *err)
 {
+    const hy_decl_head *h = &k->decl->h;
+    size_t at = KF_AT(key);
     const char *d1 = strchr(text, '.'), *d2 = strrchr(text, '.');
     char sec[64] = "", name[96] = "", key[64] = "";
     if (!d1 || d1 == text || !d2[1] || (size_t)(d1 - text) >= sizeof sec || strlen(d2 + 1) >= sizeof key)
-        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL,
-                                 "keyframe '%s': key \"%s\" is not section.key or section.NAME.key", k->label, text);
+        return hy_decl_error(h, at, err, HY_EINVAL, "keyframe '%s': key \"%s\" is not section.key or section.NAME.key",
+                             k->label, text);
     memcpy(sec, text, (size_t)(d1 - text));
     strcpy(key, d2 + 1);
     if (d2 > d1) {
         if ((size_t)(d2 - d1 - 1) >= sizeof name)
-            return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL, "keyframe '%s': name too long", k->label);
+            return hy_decl_error(h, at, err, HY_EINVAL, "keyframe '%s': name too long", k->label);
         memcpy(name, d1 + 1, (size_t)(d2 - d1 - 1));
     }
     int si = hy_scene_schema_section(sec), ki = hy_scene_schema_key(si, key);
     size_t nsec;
     const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
     if (si < 0 || ki < 0 || !strcmp(sec, "keyframe") || !strcmp(sec, "animation"))
-        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL,
-                                 "keyframe '%s': unknown key \"%s\" (write it as for --set: model.sigma0, series.NAME.gamma)",
-                                 k->label, text);
+        return hy_decl_error(h, at, err, HY_EINVAL,
+                             "keyframe '%s': unknown key \"%s\" (write it as for --set: model.sigma0, series.NAME.gamma)",
+                             k->label, text);
     if (spec[si].takes_name != (name[0] != '\0'))
-        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL, "keyframe '%s': [%s] sections %s a name (\"%s\")",
-                                 k->label, sec, spec[si].takes_name ? "need" : "take no", text);
-    hy_scene_loc loc;
-    if (name[0] && !hy_scene_get_loc(s, sec, name, NULL, &loc))
-        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL,
-                                 "keyframe '%s': the scene has no [%s %s]", k->label, sec, name);
+        return hy_decl_error(h, at, err, HY_EINVAL, "keyframe '%s': [%s] sections %s a name (\"%s\")", k->label, sec,
+                             spec[si].takes_name ? "need" : "take no", text);
+    if (name[0] && !hy_scene_doc_find(d, sec, name))
+        return hy_decl_error(h, at, err, HY_EINVAL, "keyframe '%s': the scene has no [%s %s]", k->label, sec, name);
     hy_scene_kind kind = spec[si].keys[ki].kind;
     if (kind != HY_KIND_NUMBER && kind != HY_KIND_INTEGER)
-        return hy_scene_error_at(s, "keyframe", k->label, "key", err, HY_EINVAL,
-                                 "keyframe '%s': \"%s\" is not numeric (its kind: %s); only numbers and integers can be animated", k->label,
-                                 text, hy_scene_kind_name(kind));
+        return hy_decl_error(h, at, err, HY_EINVAL,
+                             "keyframe '%s': \"%s\" is not numeric (its kind: %s); only numbers and integers can be animated",
+                             k->label, text, hy_scene_kind_name(kind));
     k->integer = kind == HY_KIND_INTEGER;
     snprintf(k->target, sizeof k->target, "%s", text);
     return HY_OK;
 }
 
-/* Reads and validates one [keyframe NAME]; ease0 is the [animation] easing. */
-static int load_kf(const hy_scene *s, scene_kf *k, int ease0, hy_error *err)
+/* Validates one decoded [keyframe NAME] into k; ease0 is the [animation] easing. */
+static int load_kf(const hy_scene_doc *d, scene_kf *k, int ease0, hy_error *err)
 {
-    const char *text, *lb = k->label;
-    size_t nv;
-    if (hy_scene_get_str(s, "keyframe", lb, "key", &text) < 0)
-        return hy_scene_error_at(s, "keyframe", lb, NULL, err, HY_EINVAL, "keyframe '%s' needs a key", lb);
-    int rc = resolve_key(s, k, text, err);
+    const hy_decl_keyframe *kd = k->decl;
+    const hy_decl_head *h = &kd->h;
+    const char *lb = k->label;
+    if (hy_decl_got(h, KF_AT(key)) < 0)
+        return hy_decl_error(h, HY_DECL_HEAD, err, HY_EINVAL, "keyframe '%s' needs a key", lb);
+    int rc = resolve_key(d, k, kd->key, err);
     if (rc)
         return rc;
-    if (hy_scene_get_list(s, "keyframe", lb, "times", &k->t, &k->n) < 0 ||
-        hy_scene_get_list(s, "keyframe", lb, "values", &k->v, &nv) < 0)
-        return hy_scene_error_at(s, "keyframe", lb, NULL, err, HY_EINVAL, "keyframe '%s' needs times and values", lb);
-    if (nv != k->n)
-        return hy_scene_error_at(s, "keyframe", lb, "values", err, HY_EINVAL,
-                                 "keyframe '%s': %zu values for %zu times (they must be as many)", lb, nv, k->n);
+    if (hy_decl_got(h, KF_AT(times)) < 0 || hy_decl_got(h, KF_AT(values)) < 0)
+        return hy_decl_error(h, HY_DECL_HEAD, err, HY_EINVAL, "keyframe '%s' needs times and values", lb);
+    k->t = kd->times.v;
+    k->n = kd->times.n;
+    k->v = kd->values.v;
+    if (kd->values.n != k->n)
+        return hy_decl_error(h, KF_AT(values), err, HY_EINVAL, "keyframe '%s': %zu values for %zu times (they must be as many)",
+                             lb, kd->values.n, k->n);
     for (size_t i = 1; i < k->n; i++)
         if (!(k->t[i] > k->t[i - 1]))
-            return hy_scene_error_at(s, "keyframe", lb, "times", err, HY_EINVAL,
-                                     "keyframe '%s': times must be strictly ascending (%g after %g)", lb, k->t[i], k->t[i - 1]);
-    k->ease = ease0;
-    const char *et;
-    hy_scene_get_enum(s, "keyframe", lb, "easing", &k->ease, &et);
-    hy_scene_get_bool(s, "keyframe", lb, "log", &k->log);
+            return hy_decl_error(h, KF_AT(times), err, HY_EINVAL,
+                                 "keyframe '%s': times must be strictly ascending (%g after %g)", lb, k->t[i], k->t[i - 1]);
+    k->ease = hy_decl_got(h, KF_AT(easing)) >= 0 ? kd->easing : ease0;
+    k->log = kd->log;
     for (size_t i = 0; k->log && i < k->n; i++)
         if (!(k->v[i] > 0))
-            return hy_scene_error_at(s, "keyframe", lb, "values", err, HY_EINVAL,
-                                     "keyframe '%s': log = true needs values > 0 (value %zu is %g)", lb, i + 1, k->v[i]);
+            return hy_decl_error(h, KF_AT(values), err, HY_EINVAL,
+                                 "keyframe '%s': log = true needs values > 0 (value %zu is %g)", lb, i + 1, k->v[i]);
     return HY_OK;
 }
 
+/* The [animation] timing (set or default) from the decoded scene. */
 static void read_timing(scene_anim *a)
 {
-    const hy_scene *s = a->scene;
-    long fps = 30;
-    a->duration = 5;
-    hy_scene_get_num(s, "animation", NULL, "duration", &a->duration);
-    a->fps_set = hy_scene_get_int(s, "animation", NULL, "fps", &fps) == HY_SCENE_SET;
-    a->fps = (double)fps;
-    a->quality = "720p30";
-    a->quality_set = hy_scene_get_enum(s, "animation", NULL, "quality", NULL, &a->quality) == HY_SCENE_SET;
+    const hy_decl_animation *an = &a->doc.animation;
+    a->duration = an->duration;
+    a->fps = (double)an->fps;
+    a->fps_set = hy_decl_got(&an->h, offsetof(hy_decl_animation, fps)) == HY_SCENE_SET;
+    a->quality = hy_decl_enum_text(&an->h, offsetof(hy_decl_animation, quality), an->quality);
+    a->quality_set = hy_decl_got(&an->h, offsetof(hy_decl_animation, quality)) == HY_SCENE_SET;
 }
 
 int scene_anim_load(scene_anim *a, const char *path, hy_error *err)
@@ -181,24 +183,24 @@ int scene_anim_load_src(scene_anim *a, const char *path, const char *text, size_
         memset(a, 0, sizeof *a);
         return rc;
     }
-    read_timing(a);
-    int ease0 = 1;
-    const char *et;
-    hy_scene_get_enum(a->scene, "animation", NULL, "easing", &ease0, &et);
-    a->nkf = hy_scene_count(a->scene, "keyframe");
-    a->kf = calloc(a->nkf + 1, sizeof *a->kf);
-    if (!a->kf)
+    rc = hy_scene_decode_fill(a->scene, &a->doc, err);
+    if (!rc)
+        read_timing(a);
+    a->nkf = a->doc.nkeyframe;
+    a->kf = rc ? NULL : calloc(a->nkf + 1, sizeof *a->kf);
+    if (!rc && !a->kf)
         rc = hy_error_set(err, HY_ENOMEM, "out of memory");
     for (size_t i = 0; !rc && i < a->nkf; i++) {
-        a->kf[i].label = hy_scene_name_at(a->scene, "keyframe", i);
-        rc = load_kf(a->scene, &a->kf[i], ease0, err);
+        a->kf[i].decl = &a->doc.keyframe[i];
+        a->kf[i].label = a->doc.keyframe[i].h.name;
+        rc = load_kf(&a->doc, &a->kf[i], a->doc.animation.easing, err);
     }
     for (size_t i = 0; !rc && i < a->nkf; i++)
         for (size_t j = 0; j < i; j++)
             if (!strcmp(a->kf[i].target, a->kf[j].target)) {
-                rc = hy_scene_error_at(a->scene, "keyframe", a->kf[i].label, "key", err, HY_EINVAL,
-                                       "keyframe '%s' animates %s, as keyframe '%s' does", a->kf[i].label, a->kf[i].target,
-                                       a->kf[j].label);
+                rc = hy_decl_error(&a->kf[i].decl->h, KF_AT(key), err, HY_EINVAL,
+                                   "keyframe '%s' animates %s, as keyframe '%s' does", a->kf[i].label, a->kf[i].target,
+                                   a->kf[j].label);
                 break;
             }
     if (!rc) {
@@ -207,6 +209,7 @@ int scene_anim_load_src(scene_anim *a, const char *path, const char *text, size_
         pthread_cond_init(&a->cv, NULL);
         return HY_OK;
     }
+    hy_scene_doc_free(&a->doc);
     hy_scene_free(a->scene);
     free(a->kf);
     free_src(a);
@@ -268,7 +271,7 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
         return rc;
     char buf[4096], *sets[64];
     if (a->nkf > 64)
-        rc = hy_scene_error_at(a->scene, "keyframe", a->kf[64].label, NULL, err, HY_EINVAL, "at most 64 keyframe sections");
+        rc = hy_decl_error(&a->kf[64].decl->h, HY_DECL_HEAD, err, HY_EINVAL, "at most 64 keyframe sections");
     for (long f = 0; !rc && f < nframes; f++) {
         double t = scene_anim_time(f, nframes, duration);
         if (scene_anim_sets(a, t, buf, sizeof buf, sets)) {
@@ -279,18 +282,17 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
             hy_error e2 = {0};
             if (hy_scene_set(s, sets[i], &e2)) {
                 const char *why = strstr(e2.msg, ": ");
-                rc = hy_scene_error_at(a->scene, "keyframe", a->kf[i].label, "values", err, HY_EINVAL,
-                                       "keyframe '%s': at frame %ld (t = %g s) %s is refused%s", a->kf[i].label, f, t,
-                                       sets[i], why ? why : "");
+                rc = hy_decl_error(&a->kf[i].decl->h, KF_AT(values), err, HY_EINVAL,
+                                   "keyframe '%s': at frame %ld (t = %g s) %s is refused%s", a->kf[i].label, f, t, sets[i],
+                                   why ? why : "");
             }
         }
         hy_scene_run r;
         hy_error e3 = {0};
         double w = 0;
         if (!rc && (a->nkf || f == 0) && load_run(a, &r, sets, &e3))
-            rc = a->nkf ? hy_scene_error_at(a->scene, "keyframe", a->kf[0].label, NULL, err, e3.code,
-                                            "at frame %ld (t = %g s) the keyframe values give an invalid scene: %s", f, t,
-                                            e3.msg)
+            rc = a->nkf ? hy_decl_error(&a->kf[0].decl->h, HY_DECL_HEAD, err, e3.code,
+                                        "at frame %ld (t = %g s) the keyframe values give an invalid scene: %s", f, t, e3.msg)
                         : (*err = e3, e3.code);
         else if (!rc && (a->nkf || f == 0)) {
             rc = hy_scene_run_estimate(&r, &w, NULL, 0, err);
@@ -300,11 +302,7 @@ int scene_anim_check(const scene_anim *a, long nframes, double duration, hy_erro
         if (!rc && work > budget) {
             char what[96];
             snprintf(what, sizeof what, "%ld frames%s", nframes, f + 1 < nframes && a->nkf ? ", counted so far" : "");
-            hy_scene_doc d; /* the scene as written, for where the refusal points */
-            rc = hy_scene_decode_fill(a->scene, &d, err);
-            if (!rc)
-                rc = hy_scene_run_over_budget(&d, work, budget, what, err);
-            hy_scene_doc_free(&d);
+            rc = hy_scene_run_over_budget(&a->doc, work, budget, what, err); /* at the scene as written */
         }
     }
     hy_scene_free(s);
@@ -346,6 +344,7 @@ void scene_anim_free(scene_anim *a)
     free(a->entries);
     free(a->frame_hash);
     free(a->kf);
+    hy_scene_doc_free(&a->doc);
     hy_scene_free(a->scene);
     free_src(a);
     pthread_mutex_destroy(&a->mu);

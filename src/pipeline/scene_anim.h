@@ -26,10 +26,12 @@
 #include <stdint.h>
 
 #include "hy_scene.h"
+#include "hy_scene_decl.h"
 #include "hy_status.h"
 
 /* One [keyframe NAME]: the key it drives and its keys. */
 typedef struct scene_kf {
+    const hy_decl_keyframe *decl; /* the decoded section (owned by scene_anim.doc) */
     const char *label;        /* the section's NAME (owned by the scene)      */
     char target[160];         /* "section.key" or "section.NAME.key"          */
     int integer;              /* the key is an INTEGER: values are rounded    */
@@ -45,7 +47,8 @@ typedef struct scene_entry scene_entry;
 
 typedef struct scene_anim {
     const char *path;
-    hy_scene *scene;          /* the scene as parsed (for timing and errors)  */
+    hy_scene *scene;          /* the scene as parsed                          */
+    hy_scene_doc doc;         /* ... decoded: timing, keyframes, error places */
     scene_kf *kf;
     size_t nkf;
     double duration, fps;     /* the [animation] values (or defaults)         */

@@ -42,10 +42,13 @@ typedef struct hy_scene_pair {
 } hy_scene_pair;
 
 /* What decode found for one key: HY_SCENE_SET, _DEFAULT or _ABSENT (the
- * field then holds zero), and where the scene wrote it (line 0: not written). */
+ * field then holds zero), where the scene wrote it (line 0: not written) and,
+ * for a value written `key = $NAME`, the NAME of the [param NAME] it reads
+ * (else NULL). */
 typedef struct hy_decl_field {
     int got;
     hy_scene_loc loc;
+    const char *ref;
 } hy_decl_field;
 
 /* The first member of every decoded section: which section, its label, where
@@ -154,21 +157,51 @@ typedef struct hy_decl_output {
     const char *dir;
 } hy_decl_output;
 
+typedef struct hy_decl_controls {
+    hy_decl_head h;
+    const char *main;
+} hy_decl_controls;
+
+typedef struct hy_decl_param {
+    hy_decl_head h;
+    double value;
+} hy_decl_param;
+
+typedef struct hy_decl_preset {
+    hy_decl_head h;
+    const char *label, *set;
+} hy_decl_preset;
+
+typedef struct hy_decl_animation {
+    hy_decl_head h;
+    double duration;
+    long fps;
+    int easing, quality;
+} hy_decl_animation;
+
+typedef struct hy_decl_keyframe {
+    hy_decl_head h;
+    const char *key;
+    hy_scene_list times, values;
+    int easing, log;
+} hy_decl_keyframe;
+
+/* The sections a doc holds, X(name): each fills the member `name` of type
+ * hy_decl_<name>, the named ones as an array `name` of `nname` structs.
+ * Decode, free and hy_scene_doc_find are generated from these lists. */
+#define HY_DOC_UNNAMED(X) X(model) X(input) X(compute) X(figure) X(output) X(controls) X(animation)
+#define HY_DOC_NAMED(X) X(series) X(annotation) X(panel) X(param) X(preset) X(keyframe)
+
 /* A whole scene: its unnamed sections and, in file order, its named ones. */
+#define HY_DOC_ONE(sec) hy_decl_##sec sec;
+#define HY_DOC_ARRAY(sec) hy_decl_##sec *sec; size_t n##sec;
 typedef struct hy_scene_doc {
     const char *source;
-    hy_decl_model model;
-    hy_decl_input input;
-    hy_decl_compute compute;
-    hy_decl_figure figure;
-    hy_decl_output output;
-    hy_decl_series *series;
-    size_t nseries;
-    hy_decl_annotation *annotation;
-    size_t nannotation;
-    hy_decl_panel *panel;
-    size_t npanel;
+    HY_DOC_UNNAMED(HY_DOC_ONE)
+    HY_DOC_NAMED(HY_DOC_ARRAY)
 } hy_scene_doc;
+#undef HY_DOC_ONE
+#undef HY_DOC_ARRAY
 
 /* The C type of a decoded field (hy_scene_key_spec.ctype; 0: not decoded). */
 enum {
@@ -242,6 +275,16 @@ const char *hy_decl_enum_text(const hy_decl_head *h, size_t off, int idx);
  * unnamed section of d, set or default, into *out: 0, or -1 if there is no
  * such key or no value ({model.sigma0} placeholders). */
 int hy_scene_doc_num(const hy_scene_doc *d, const char *section, const char *key, double *out);
+
+/* The value of the numeric (NUMBER or INTEGER) key of h's section, set or
+ * default, into *out: returns HY_SCENE_SET or HY_SCENE_DEFAULT, or a
+ * negative HY_SCENE_ status (no such key, no value: *out unchanged). */
+int hy_decl_num(const hy_decl_head *h, const char *key, double *out);
+
+/* The head of the decoded [section name] of d (name NULL for an unnamed
+ * section, whose head is there even when the scene lacks the section), or
+ * NULL if d has no such section. */
+const hy_decl_head *hy_scene_doc_find(const hy_scene_doc *d, const char *section, const char *name);
 
 /* The decoded [series NAME] of d, or NULL. */
 const hy_decl_series *hy_scene_doc_series(const hy_scene_doc *d, const char *name);

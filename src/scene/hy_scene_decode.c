@@ -80,8 +80,10 @@ int hy_scene_decode_section(const hy_scene *s, const char *section, const char *
             continue;
         }
         f->got = read_key(s, section, name, k, (char *)h + k->field);
-        if (f->got == HY_SCENE_SET)
+        if (f->got == HY_SCENE_SET) {
             hy_scene_get_loc(s, section, name, k->name, &f->loc);
+            f->ref = hy_scene_get_ref(s, section, name, k->name);
+        }
     }
     return HY_OK;
 }
@@ -221,34 +223,29 @@ int hy_scene_decode_fill(const hy_scene *s, hy_scene_doc *d, hy_error *err)
 {
     memset(d, 0, sizeof *d);
     d->source = hy_scene_source(s);
-    hy_scene_decode_section(s, "model", NULL, &d->model.h);
-    hy_scene_decode_section(s, "input", NULL, &d->input.h);
-    hy_scene_decode_section(s, "compute", NULL, &d->compute.h);
-    hy_scene_decode_section(s, "figure", NULL, &d->figure.h);
-    hy_scene_decode_section(s, "output", NULL, &d->output.h);
+#define ONE(sec) hy_scene_decode_section(s, #sec, NULL, &d->sec.h);
+    HY_DOC_UNNAMED(ONE)
+#undef ONE
+    int rc = HY_OK;
     void *p;
-    int rc = decode_named(s, "series", sizeof *d->series, &p, &d->nseries, err);
-    d->series = p;
-    if (!rc) {
-        rc = decode_named(s, "annotation", sizeof *d->annotation, &p, &d->nannotation, err);
-        d->annotation = p;
+#define NAMED(sec)                                                       \
+    if (!rc) {                                                           \
+        rc = decode_named(s, #sec, sizeof *d->sec, &p, &d->n##sec, err); \
+        d->sec = p;                                                      \
     }
-    if (!rc) {
-        rc = decode_named(s, "panel", sizeof *d->panel, &p, &d->npanel, err);
-        d->panel = p;
-    }
+    HY_DOC_NAMED(NAMED)
+#undef NAMED
     return rc;
 }
 
 void hy_scene_doc_free(hy_scene_doc *d)
 {
-    free(d->series);
-    free(d->annotation);
-    free(d->panel);
-    d->series = NULL;
-    d->annotation = NULL;
-    d->panel = NULL;
-    d->nseries = d->nannotation = d->npanel = 0;
+#define NAMED(sec)   \
+    free(d->sec);    \
+    d->sec = NULL;   \
+    d->n##sec = 0;
+    HY_DOC_NAMED(NAMED)
+#undef NAMED
 }
 
 /* The index of the key that fills offset off of h's struct, or -1. */
@@ -305,28 +302,49 @@ int hy_decl_error(const hy_decl_head *h, size_t off, hy_error *err, int code, co
     return code;
 }
 
+int hy_decl_num(const hy_decl_head *h, const char *key, double *out)
+{
+    int j = h->spec ? hy_scene_schema_key((int)(h->spec - hy_scene_schema(NULL)), key) : -1;
+    if (j < 0 || j >= HY_SCENE_KEYS_MAX || !h->spec->keys[j].ctype)
+        return HY_SCENE_BADKEY;
+    if (h->at[j].got < 0)
+        return h->at[j].got;
+    const hy_scene_key_spec *k = &h->spec->keys[j];
+    const char *p = (const char *)h + k->field;
+    if (k->kind == HY_KIND_NUMBER)
+        memcpy(out, p, sizeof *out);
+    else if (k->kind == HY_KIND_INTEGER) {
+        long v;
+        memcpy(&v, p, sizeof v);
+        *out = (double)v;
+    } else
+        return HY_SCENE_BADKEY;
+    return h->at[j].got;
+}
+
+const hy_decl_head *hy_scene_doc_find(const hy_scene_doc *d, const char *section, const char *name)
+{
+#define ONE(sec)                                  \
+    if (!name && !strcmp(section, #sec))          \
+        return &d->sec.h;
+#define NAMED(sec)                                \
+    for (size_t i = 0; name && !strcmp(section, #sec) && i < d->n##sec; i++) \
+        if (!strcmp(d->sec[i].h.name, name))      \
+            return &d->sec[i].h;
+    HY_DOC_UNNAMED(ONE)
+    HY_DOC_NAMED(NAMED)
+#undef ONE
+#undef NAMED
+    return NULL;
+}
+
 int hy_scene_doc_num(const hy_scene_doc *d, const char *section, const char *key, double *out)
 {
+    /* the sections a figure's {section.key} reads (not [animation]: a still has none) */
     const hy_decl_head *hs[] = {&d->model.h, &d->input.h, &d->compute.h, &d->figure.h, &d->output.h};
-    for (size_t i = 0; i < sizeof hs / sizeof hs[0]; i++) {
-        const hy_decl_head *h = hs[i];
-        if (!h->spec || strcmp(h->spec->name, section))
-            continue;
-        int j = hy_scene_schema_key((int)(h->spec - hy_scene_schema(NULL)), key);
-        if (j < 0 || j >= HY_SCENE_KEYS_MAX || h->at[j].got < 0)
-            return -1;
-        const hy_scene_key_spec *k = &h->spec->keys[j];
-        const char *p = (const char *)h + k->field;
-        if (k->kind == HY_KIND_NUMBER)
-            memcpy(out, p, sizeof *out);
-        else if (k->kind == HY_KIND_INTEGER) {
-            long v;
-            memcpy(&v, p, sizeof v);
-            *out = (double)v;
-        } else
-            return -1;
-        return 0;
-    }
+    for (size_t i = 0; i < sizeof hs / sizeof hs[0]; i++)
+        if (hs[i]->spec && !strcmp(hs[i]->spec->name, section))
+            return hy_decl_num(hs[i], key, out) >= 0 ? 0 : -1;
     return -1;
 }
 

@@ -271,44 +271,54 @@ static const hy_scene_key_spec output_keys[] = {
 };
 #undef SECT
 
+#define SECT hy_decl_animation
 static const hy_scene_key_spec animation_keys[] = {
-    KQ("duration", "s", "duration", HY_KIND_NUMBER, NULL, POS, 0, 0, "5", "length of the animation in seconds"),
-    KQ("fps", "1/s", "fps", HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 240, 0, 0, "30",
+    FQ("duration", "s", duration, HY_KIND_NUMBER, NULL, POS, 0, 0, "5", "length of the animation in seconds"),
+    FQ("fps", "1/s", fps, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 240, 0, 0, "30",
       "frames per second"),
-    K("easing", HY_KIND_ENUM, easings, NOLIM, 0, 0, "smooth", "how the animated parameter moves"),
-    K("quality", HY_KIND_ENUM, qualities, NOLIM, 0, 0, "720p30", "frame size and rate preset (the presets of hystviz animate --quality)"),
+    F(easing, HY_KIND_ENUM, easings, NOLIM, 0, 0, "smooth", "how the animated parameter moves"),
+    F(quality, HY_KIND_ENUM, qualities, NOLIM, 0, 0, "720p30", "frame size and rate preset (the presets of hystviz animate --quality)"),
 };
+#undef SECT
 
+#define SECT hy_decl_keyframe
 static const hy_scene_key_spec keyframe_keys[] = {
-    K("key", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
+    F(key, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
       "the numeric scene key animated, written as for --set: \"model.sigma0\", \"input.umin2\", \"series.g.gamma\""),
-    K("times", HY_KIND_NUMBER_LIST, NULL, NONNEG, 1, 0, NULL,
+    F(times, HY_KIND_NUMBER_LIST, NULL, NONNEG, 1, 0, NULL,
       "times of the keys in seconds, strictly ascending"),
-    K("values", HY_KIND_NUMBER_LIST, NULL, NOLIM, 1, 0, NULL,
+    F(values, HY_KIND_NUMBER_LIST, NULL, NOLIM, 1, 0, NULL,
       "the key's value at each time (as many as times); held before the first and after the last"),
-    K("easing", HY_KIND_ENUM, easings, NOLIM, 0, 0, NULL,
+    F(easing, HY_KIND_ENUM, easings, NOLIM, 0, 0, NULL,
       "how the value moves between two keys (default: the [animation] easing)"),
-    K("log", HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false",
+    F(log, HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false",
       "interpolate log(value) (values > 0), e.g. for a time scale gamma"),
 };
+#undef SECT
 
+#define SECT hy_decl_controls
 static const hy_scene_key_spec controls_keys[] = {
-    K("main", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
+    F(main, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
       "the numeric keys that matter most, written as for --set and separated by commas: \"model.sigma0, input.umin2\" "
       "(hystviz serve's presentation view shows these)"),
 };
+#undef SECT
 
+#define SECT hy_decl_param
 static const hy_scene_key_spec param_keys[] = {
-    K("value", HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    F(value, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "the parameter's value, which every key written `key = $NAME` takes (checked against each of them)"),
 };
+#undef SECT
 
+#define SECT hy_decl_preset
 static const hy_scene_key_spec preset_keys[] = {
-    K("label", HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "the preset's name on its button (default: the section's NAME)"),
-    K("set", HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"",
+    F(label, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "the preset's name on its button (default: the section's NAME)"),
+    F(set, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"",
       "the values of the preset, written as for --set and separated by ';': "
       "\"model.sigma0=1; input.umin2=0.2; figure.zoom_x=0.94, 1.02\""),
 };
+#undef SECT
 
 #define S(name, named, rep, keys, doc) { name, named, rep, keys, NKEYS(keys), doc }
 

@@ -6,7 +6,7 @@
 root=$1
 converted="src/pipeline/scene_draw.c src/pipeline/scene_run.c src/pipeline/scene_rateind.c src/pipeline/scene_model.c
 src/pipeline/model_friction.c src/pipeline/model_jiles.c src/pipeline/model_preisach.c src/pipeline/model_bwop.c
-src/pipeline/scene_boucwen.c"
+src/pipeline/scene_boucwen.c src/pipeline/scene_anim.c"
 pat='hy_scene_get_[a-z_]*(\|hy_scene_count(\|hy_scene_name_at(\|hy_scene_error_at('
 fail=0
 for f in $converted; do
