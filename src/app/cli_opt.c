@@ -7,11 +7,14 @@
 
 #include "hy_config.h"
 
+/* " NAME", or nothing for the program itself (name ""): two %s. */
+#define SP(name) (name)[0] ? " " : "", (name)
+
 /* Every command's: ids handled here, never returned. */
 enum { ID_HELP = -10, ID_VERSION = -11, ID_JSON = -12 };
 static const cli_opt builtin[] = {
     {"help", 'h', NULL, "this text", ID_HELP, 0, NULL, NULL, NULL},
-    {"version", 0, NULL, "the program version", ID_VERSION, 0, NULL, NULL, NULL},
+    {"version", 'V', NULL, "the program version", ID_VERSION, 0, NULL, NULL, NULL},
     {0},
 };
 static const cli_opt json_opt = {"options-json", 0, NULL, NULL, ID_JSON, 0, NULL, NULL, NULL};
@@ -72,7 +75,7 @@ static const cli_opt *classify(cli_parser *p, int *i, const char **val, int *bad
     }
     const cli_opt *o = (k.n || !a[2]) ? each_all(p->cmd, p->name, match, &k) : NULL;
     if (!o || (a[1] == '-' && !k.n)) {
-        fprintf(stderr, "hystviz %s: unknown option '%s' (see hystviz %s --help)\n", p->name, a, p->name);
+        fprintf(stderr, "hystviz%s%s: unknown option '%s' (see hystviz%s%s --help)\n", SP(p->name), a, SP(p->name));
         *bad = 1;
         return NULL;
     }
@@ -82,15 +85,16 @@ static const cli_opt *classify(cli_parser *p, int *i, const char **val, int *bad
         snprintf(p->optname, sizeof p->optname, "-%c", o->shrt);
     *val = NULL;
     if (eq && !o->arg) {
-        fprintf(stderr, "hystviz %s: option %s takes no value (see hystviz %s --help)\n", p->name, p->optname, p->name);
+        fprintf(stderr, "hystviz%s%s: option %s takes no value (see hystviz%s%s --help)\n", SP(p->name), p->optname,
+                SP(p->name));
         *bad = 1;
     } else if (eq)
         *val = eq + 1;
     else if (o->arg && *i < p->argc)
         *val = p->argv[(*i)++];
     else if (o->arg) {
-        fprintf(stderr, "hystviz %s: option %s needs a value (%s) (see hystviz %s --help)\n", p->name, p->optname, o->arg,
-                p->name);
+        fprintf(stderr, "hystviz%s%s: option %s needs a value (%s) (see hystviz%s%s --help)\n", SP(p->name), p->optname,
+                o->arg, SP(p->name));
         *bad = 1;
     }
     return o;
@@ -128,8 +132,8 @@ static int check_all(cli_parser *p)
         if (bad)
             return CLI_ERROR;
         if (!o && !p->cmd->args) {
-            fprintf(stderr, "hystviz %s: unexpected argument '%s' (see hystviz %s --help)\n", p->name, val, p->name);
-            return CLI_ERROR;
+            p->val = val;
+            return cli_unexpected(p);
         }
         if (o && o->id == ID_HELP)
             cli_help(stdout, p->cmd, p->name);
@@ -163,6 +167,13 @@ int cli_next(cli_parser *p)
         return p->opt ? p->opt->id : CLI_ARG; /* checked: no error, no built-in option */
     }
     return CLI_END;
+}
+
+int cli_unexpected(const cli_parser *p)
+{
+    fprintf(stderr, "hystviz%s%s: unexpected argument '%s' (see hystviz%s%s --help)\n", SP(p->name), p->val,
+            SP(p->name));
+    return CLI_ERROR;
 }
 
 /* ---- help ---- */

@@ -88,6 +88,11 @@ void cli_parser_init(cli_parser *p, const cli_cmd *cmd, int argc, char **argv, i
  * output, or CLI_ERROR after printing the one-line message to standard error. */
 int cli_next(cli_parser *p);
 
+/* For a positional argument the command does not take (p->val): prints
+ * "hystviz CMD: unexpected argument 'X' (see hystviz CMD --help)" and returns
+ * CLI_ERROR. */
+int cli_unexpected(const cli_parser *p);
+
 /* The command's --help: usage, the options section from the table, tail. */
 void cli_help(FILE *f, const cli_cmd *cmd, const char *name);
 

@@ -143,18 +143,16 @@ int cli_stdout_status(const char *cmd, int rc)
     return rc;
 }
 
-enum { P_INCLUDE_DIR = CLI_POLICY_FIRST, P_MAX_WORK };
-
 const cli_opt cli_policy_opts[] = {
     {"include-dir", 0, "DIR", "a directory scenes may include from (and read input files\n"
-     "below), besides their own; repeatable", P_INCLUDE_DIR, 0, NULL, NULL, NULL},
-    {"max-work", 0, "N", "the work budget of one scene (default 1e8; docs/SCENES.md)", P_MAX_WORK, 0, NULL, NULL, NULL},
+     "below), besides their own; repeatable", CLI_INCLUDE_DIR, 0, NULL, NULL, NULL},
+    {"max-work", 0, "N", "the work budget of one scene (default 1e8; docs/SCENES.md)", CLI_MAX_WORK, 0, NULL, NULL, NULL},
     {0},
 };
 
 int cli_policy_take(hy_scene_policy *pol, const char **dirs, const char *cmd, int id, const char *v)
 {
-    if (id == P_INCLUDE_DIR) {
+    if (id == CLI_INCLUDE_DIR) {
         if (!*v) {
             fprintf(stderr, "hystviz %s: --include-dir needs a directory\n", cmd);
             return -1;
@@ -163,7 +161,7 @@ int cli_policy_take(hy_scene_policy *pol, const char **dirs, const char *cmd, in
         pol->include_dirs = dirs;
         return 1;
     }
-    if (id != P_MAX_WORK)
+    if (id != CLI_MAX_WORK)
         return 0;
     double w;
     if (cli_num("--max-work", v, &w))
@@ -242,22 +240,4 @@ int cli_signals_end(void)
         return -1;
     pthread_detach(t);
     return 0;
-}
-
-/* TEMPORARY until every command uses cli_next */
-int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, int argc, char **argv, int *i)
-{
-    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
-    int id = 0;
-    if (!strncmp(a, "--include-dir=", 14) || !strncmp(a, "--max-work=", 11))
-        v = strchr(a, '=') + 1;
-    else if (strcmp(a, "--include-dir") && strcmp(a, "--max-work"))
-        return 0;
-    else if (!v) {
-        fprintf(stderr, "hystviz %s: %s needs a value\n", cmd, a);
-        return -1;
-    } else
-        (*i)++;
-    id = !strncmp(a, "--include-dir", 13) ? P_INCLUDE_DIR : P_MAX_WORK;
-    return cli_policy_take(pol, dirs, cmd, id, v);
 }

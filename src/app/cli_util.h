@@ -23,7 +23,7 @@ typedef struct cli_model {
     double sigma0, sigma1, sigma2, fc, fs, vs, beta, rho, tau, x0;
     int set_sigma0, set_fs;
 } cli_model;
-enum { CLI_MODEL_FIRST = 1000, CLI_POLICY_FIRST = 1100, CLI_JOBS = 1200 };
+enum { CLI_MODEL_FIRST = 1000, CLI_INCLUDE_DIR = 1100, CLI_MAX_WORK, CLI_JOBS = 1200 };
 extern const cli_opt cli_model_opts[];
 void cli_model_defaults(cli_model *cm);
 /* Takes option id (from cli_next) with value v: 1 if it was a model option,
@@ -54,8 +54,6 @@ int cli_policy_take(hy_scene_policy *pol, const char **dirs, const char *cmd, in
 
 /* -j, --jobs N (id CLI_JOBS), its help describing the default (hy_jobs). */
 extern const cli_opt cli_jobs_opts[];
-
-int cli_policy_option(hy_scene_policy *pol, const char **dirs, const char *cmd, int argc, char **argv, int *i);
 
 /* Signals, from the first instruction of main (README "Signals"): blocks
  * SIGINT, SIGTERM and SIGHUP in the calling thread, so every thread started

@@ -39,44 +39,61 @@ static const char animate_help[] =
     "keys per frame, its [animation] section gives duration, fps, easing and quality (the\n"
     "options below beat it); NAME is then the scene's output name (docs/SCENES.md).\n"
     "\n"
-    "  -o, --output DIR   output directory (default: frames)\n"
-    "  --quality Q        480p15 (854x480@15), 480p30, 720p30 (default), 720p60, 1080p30,\n"
-    "                     1080p60, 1440p60, 2160p60\n"
-    "  --size WxH         frame size in pixels (overrides the preset's)\n"
-    "  --fps F            frames per second (overrides the preset's)\n"
-    "  --duration S       seconds (default: the animation's, 6, or the scene's)\n"
-    "  --frames A:B       render only frames A .. B-1 (B may be empty: to the end)\n"
-    "  --shard K/N        render only piece K of N (0 <= K < N): frames\n"
-    "                     floor(F*K/N) .. floor(F*(K+1)/N)-1 of the F frames\n"
-    "  --assemble FMT     render nothing: encode the frames DIR/NAME/frame_*.png, rendered\n"
-    "                     in pieces (--frames, --shard; same size, fps, duration), into\n"
-    "                     DIR/NAME.FMT with ffmpeg; refused, listing them, if frames are missing\n"
-    "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
-    "                     (at most 64): each thread has its own GL context; the\n"
-    "                     frames are identical for any N\n"
-    "  --quiet            no progress bar (it is shown only when stderr is a terminal)\n"
-    "  --video FMT        also encode DIR/NAME.FMT by piping frames to ffmpeg (must be on PATH);\n"
-    "                     the file appears only when the whole clip is encoded\n"
-    "  --no-frames        with --video: write the video (and poster) but no PNG frames\n"
-    "  --gl B             GL backend: osmesa or egl (default: $HYSTVIZ_GL, else osmesa where\n"
-    "                     built, else egl); frames are the same on either with the software rasteriser\n"
-    "  --list             the animations and what they show, then the GL backend and renderer\n"
-    "  --gl-info          the GL backends built, the one used, its EGL devices and renderer\n"
-    "  --info             print 'frames N fps F size WxH duration S' for these options and stop\n"
-    "\n"
+    "With a scene, --include-dir, --max-work (the budget of all frames together) and\n"
+    "--set (in every frame; the keyframes' values beat it) work as for render.\n"
+    "-j is at most 64: each thread has its own GL context; the frames are identical\n"
+    "for any N.\n"
+    "\n";
+
+static const char animate_tail[] =
     "environment:\n"
     "  HYSTVIZ_GL=osmesa|egl    the backend when --gl is not given\n"
     "  HYSTVIZ_EGL_DEVICE=N     EGL device N (--gl-info lists them; default: the first GPU,\n"
     "                           else the software rasteriser)\n"
-    "  --include-dir DIR  (SCENE.scene) a directory the scene may include from; repeatable\n"
-    "  --max-work N       (SCENE.scene) work budget of all frames together (default 1e8)\n"
-    "  --set KEY=VALUE    (SCENE.scene) override a key as `hystviz render --set` does, in every\n"
-    "                     frame; the keyframes' values beat it; repeatable\n"
-    "  --worker           answer frame requests on standard input with PNG frames on standard\n"
-    "                     output, one GL context kept (the protocol of hystviz serve: src/app/anim_worker.h)\n"
     "\n"
     "example:\n"
     "  hystviz animate gamma-sweep-ex2 -o frames --quality 480p15 -j 2\n";
+
+enum { OPT_OUT = CLI_FIRST, OPT_QUALITY, OPT_SIZE, OPT_FPS, OPT_DURATION, OPT_FRAMES, OPT_SHARD, OPT_ASSEMBLE,
+       OPT_QUIET, OPT_VIDEO, OPT_NO_FRAMES, OPT_GL, OPT_LIST, OPT_GL_INFO, OPT_INFO, OPT_SET, OPT_WORKER };
+static const cli_opt animate_opts[] = {
+    {"output", 'o', "DIR", "output directory (default: frames)", OPT_OUT, 0, NULL, NULL, NULL},
+    {"quality", 0, "Q", "480p15 (854x480@15), 480p30, 720p30 (default), 720p60, 1080p30,\n"
+     "1080p60, 1440p60, 2160p60", OPT_QUALITY, 0, NULL, NULL, NULL},
+    {"size", 0, "WxH", "frame size in pixels (overrides the preset's)", OPT_SIZE, 0, NULL, NULL, NULL},
+    {"fps", 0, "F", "frames per second (overrides the preset's)", OPT_FPS, 0, NULL, NULL, NULL},
+    {"duration", 0, "S", "seconds (default: the animation's, 6, or the scene's)", OPT_DURATION, 0, NULL, NULL, NULL},
+    {"frames", 0, "A:B", "render only frames A .. B-1 (B may be empty: to the end)", OPT_FRAMES, 0, NULL, NULL,
+     NULL},
+    {"shard", 0, "K/N", "render only piece K of N (0 <= K < N): frames\n"
+     "floor(F*K/N) .. floor(F*(K+1)/N)-1 of the F frames", OPT_SHARD, 0, NULL, NULL, NULL},
+    {"assemble", 0, "FMT", "render nothing: encode the frames DIR/NAME/frame_*.png, rendered\n"
+     "in pieces (--frames, --shard; same size, fps, duration), into\n"
+     "DIR/NAME.FMT with ffmpeg; refused, listing them, if frames are missing", OPT_ASSEMBLE, 0, NULL, NULL, NULL},
+    {.group = cli_jobs_opts},
+    {"quiet", 'q', NULL, "no progress bar (it is shown only when stderr is a terminal)", OPT_QUIET, 0, NULL, NULL,
+     NULL},
+    {"video", 0, "FMT", "also encode DIR/NAME.FMT by piping frames to ffmpeg (must be on PATH);\n"
+     "the file appears only when the whole clip is encoded", OPT_VIDEO, 0, NULL, NULL, NULL},
+    {"no-frames", 0, NULL, "with --video: write the video (and poster) but no PNG frames", OPT_NO_FRAMES, 0, NULL,
+     NULL, NULL},
+    {"gl", 0, "B", "GL backend: osmesa or egl (default: $HYSTVIZ_GL, else osmesa where\n"
+     "built, else egl); frames are the same on either with the software rasteriser", OPT_GL, 0, NULL, NULL, NULL},
+    {"list", 0, NULL, "the animations and what they show, then the GL backend and renderer", OPT_LIST, 0, NULL, NULL,
+     NULL},
+    {"gl-info", 0, NULL, "the GL backends built, the one used, its EGL devices and renderer", OPT_GL_INFO, 0, NULL,
+     NULL, NULL},
+    {"info", 0, NULL, "print 'frames N fps F size WxH duration S' for these options and stop", OPT_INFO, 0, NULL, NULL,
+     NULL},
+    {"set", 0, "KEY=VALUE", "(SCENE.scene) override a key in every frame; repeatable", OPT_SET, CLI_SCENE_KEY, NULL,
+     NULL, NULL},
+    {.group = cli_policy_opts},
+    {"worker", 0, NULL, "answer frame requests on standard input with PNG frames on standard\n"
+     "output, one GL context kept (the protocol of hystviz serve: src/app/anim_worker.h)", OPT_WORKER, 0, NULL, NULL,
+     NULL},
+    {0},
+};
+static const cli_cmd animate_cli = {"animate", animate_help, animate_tail, "NAME|SCENE.scene", animate_opts};
 
 #if HY_HAVE_GL
 
@@ -125,79 +142,65 @@ static int parse_size(const char *v, int *w, int *h)
     return 0;
 }
 
-/* One option at argv[*i]; 0 handled, 1 help printed, 2 usage error. */
-static int parse_one(anim_args *a, int argc, char **argv, int *i)
+/* One option; 0 handled or 2 usage error (message printed). */
+static int take(anim_args *a, cli_parser *p, int id)
 {
-    const char *s = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    const char *v = p->val;
     long n;
-    if (!strcmp(s, "-h") || !strcmp(s, "--help"))
-        return hy_jobs_help(stdout, animate_help), 1;
-    if (!strcmp(s, "--info"))
-        return a->info = 1, 0;
-    if (!strcmp(s, "--list"))
-        return a->list = 1, 0;
-    if (!strcmp(s, "--gl-info"))
-        return a->gl_info = 1, 0;
-    if (!strcmp(s, "--quiet") || !strcmp(s, "-q"))
-        return a->p.quiet = 1, 0;
-    if (!strcmp(s, "--no-frames"))
-        return a->p.no_frames = 1, 0;
-    if (!strcmp(s, "--worker"))
-        return a->worker = 1, 0;
-    if (s[0] != '-')
-        return fprintf(stderr, "hystviz animate: one animation at a time ('%s' and '%s')\n", a->name, s), 2;
-    if ((!strncmp(s, "--include-dir", 13) || !strncmp(s, "--max-work", 10)) && a->pol.ninclude_dirs < 64)
-        switch (cli_policy_option(&a->pol, a->dirs, "animate", argc, argv, i)) {
-        case 1: return 0;
-        case 0: return fprintf(stderr, "hystviz animate: unknown option '%s' (see hystviz animate --help)\n", s), 2;
-        default: return 2;
-        }
-    if (!v)
-        return fprintf(stderr, "hystviz animate: unknown option '%s' or it needs a value (see --help)\n", s), 2;
-    (*i)++;
-    if (!strcmp(s, "-o") || !strcmp(s, "--output"))
-        a->p.outdir = v;
-    else if (!strcmp(s, "--quality"))
-        a->quality = v, a->have_quality = 1;
-    else if (!strcmp(s, "--video"))
-        a->p.video = v;
-    else if (!strcmp(s, "--gl"))
-        a->gl = v;
-    else if (!strcmp(s, "--size")) {
+    hy_error err = {0};
+    switch (id) {
+    case OPT_INFO: return a->info = 1, 0;
+    case OPT_LIST: return a->list = 1, 0;
+    case OPT_GL_INFO: return a->gl_info = 1, 0;
+    case OPT_QUIET: return a->p.quiet = 1, 0;
+    case OPT_NO_FRAMES: return a->p.no_frames = 1, 0;
+    case OPT_WORKER: return a->worker = 1, 0;
+    case OPT_OUT: return a->p.outdir = v, 0;
+    case OPT_QUALITY: return a->quality = v, a->have_quality = 1, 0;
+    case OPT_VIDEO: return a->p.video = v, 0;
+    case OPT_GL: return a->gl = v, 0;
+    case OPT_ASSEMBLE: return a->assemble = v, 0;
+    case OPT_SIZE:
         if (parse_size(v, &a->w, &a->h))
             return fprintf(stderr, "hystviz animate: --size '%s' is not WxH with 16 <= W, H <= 8192\n", v), 2;
-        a->have_size = 1;
-    } else if (!strcmp(s, "--fps")) {
-        if (cli_num(s, v, &a->fps) || !(a->fps > 0 && a->fps <= 240))
+        return a->have_size = 1, 0;
+    case OPT_FPS:
+        if (cli_num(p->optname, v, &a->fps) || !(a->fps > 0 && a->fps <= 240))
             return fprintf(stderr, "hystviz animate: --fps must be in (0, 240]\n"), 2;
-        a->have_fps = 1;
-    } else if (!strcmp(s, "--duration")) {
-        if (cli_num(s, v, &a->duration) || !(a->duration > 0 && a->duration <= 3600))
+        return a->have_fps = 1, 0;
+    case OPT_DURATION:
+        if (cli_num(p->optname, v, &a->duration) || !(a->duration > 0 && a->duration <= 3600))
             return fprintf(stderr, "hystviz animate: --duration must be in (0, 3600] seconds\n"), 2;
-        a->have_duration = 1;
-    } else if (!strcmp(s, "--frames")) {
+        return a->have_duration = 1, 0;
+    case OPT_FRAMES:
         if (parse_range(v, &a->p.first, &a->p.last))
             return fprintf(stderr, "hystviz animate: --frames '%s' is not A:B with 0 <= A < B (or A:)\n", v), 2;
-        a->have_frames = 1;
-    } else if (!strcmp(s, "--shard")) {
-        hy_error err = {0};
+        return a->have_frames = 1, 0;
+    case OPT_SHARD:
         if (hy_shard_parse(v, &a->shard_k, &a->shard_n, &err))
             return fprintf(stderr, "hystviz animate: %s\n", err.msg), 2;
-    } else if (!strcmp(s, "--set")) {
+        return 0;
+    case OPT_SET:
         if (a->nsets == SCENE_ANIM_MAX_SETS)
             return fprintf(stderr, "hystviz animate: at most %d --set\n", SCENE_ANIM_MAX_SETS), 2;
-        a->sets[a->nsets++] = (char *)v;
-    } else if (!strcmp(s, "--assemble")) {
-        a->assemble = v;
-    } else if (!strcmp(s, "-j") || !strcmp(s, "--jobs")) {
-        if (cli_long(s, v, 1, 64, &n))
+        return a->sets[a->nsets++] = (char *)v, 0;
+    case CLI_JOBS:
+        if (cli_long(p->optname, v, 1, 64, &n))
             return 2;
-        a->p.jobs = (int)n;
-    } else
-        return fprintf(stderr, "hystviz animate: unknown option '%s' (see hystviz animate --help)\n", s), 2;
-    return 0;
+        return a->p.jobs = (int)n, 0;
+    case CLI_ARG:
+        if (a->name)
+            return fprintf(stderr, "hystviz animate: one animation at a time ('%s' and '%s')\n", a->name, v), 2;
+        return a->name = v, 0;
+    default:
+        if (a->pol.ninclude_dirs >= sizeof a->dirs / sizeof a->dirs[0])
+            return fprintf(stderr, "hystviz animate: at most %zu --include-dir\n", sizeof a->dirs / sizeof a->dirs[0]),
+                   2;
+        return cli_policy_take(&a->pol, a->dirs, "animate", id, v) < 0 ? 2 : 0;
+    }
 }
 
+/* 0, 1 help printed, 2 usage error (message printed). */
 static int parse_args(int argc, char **argv, anim_args *a)
 {
     memset(a, 0, sizeof *a);
@@ -206,14 +209,13 @@ static int parse_args(int argc, char **argv, anim_args *a)
     long jobs = hy_jobs_default();
     a->p.jobs = jobs < 64 ? (int)jobs : 64;
     a->quality = "720p30";
-    for (int i = 1; i < argc; i++) {
-        if (argv[i][0] != '-' && !a->name) {
-            a->name = argv[i];
-            continue;
-        }
-        int r = parse_one(a, argc, argv, &i);
-        if (r)
-            return r;
+    cli_parser p;
+    cli_parser_init(&p, &animate_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;) {
+        if (id == CLI_STOP || id == CLI_ERROR)
+            return id == CLI_STOP ? 1 : 2;
+        if (take(a, &p, id))
+            return 2;
     }
     if ((a->have_frames && a->shard_n) || (a->assemble && (a->have_frames || a->shard_n || a->p.video))) {
         fprintf(stderr, "hystviz animate: %s\n", a->assemble ? "--assemble renders nothing: it takes no --frames, "
@@ -530,10 +532,9 @@ static int worker_answer(worker_state *ws, const aw_request *rq, long *count)
         fprintf(stderr, "hystviz animate: worker: the name '%.40s' is not an animation\n", rq->name);
         return 2;
     }
-    char *argv[8 + 2 * AW_MAX_SETS], size[40], range[64];
+    char *argv[9 + 2 * AW_MAX_SETS], size[40], range[64];
     int n = 0;
     argv[n++] = "animate";
-    argv[n++] = rq->name;
     if (rq->width || rq->height) {
         snprintf(size, sizeof size, "%dx%d", rq->width, rq->height);
         argv[n++] = "--size", argv[n++] = size;
@@ -546,6 +547,7 @@ static int worker_answer(worker_state *ws, const aw_request *rq, long *count)
     }
     for (size_t i = 0; i < rq->nsets; i++)
         argv[n++] = "--set", argv[n++] = rq->sets[i];
+    argv[n++] = "--", argv[n++] = rq->name; /* a name, whatever it starts with */
     anim_args a;
     if (parse_args(n, argv, &a))
         return 2;
@@ -702,10 +704,11 @@ int hy_cmd_animate(int argc, char **argv) { return animate(argc, argv); }
 
 int hy_cmd_animate(int argc, char **argv)
 {
-    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-        hy_jobs_help(stdout, animate_help);
-        return 0;
-    }
+    cli_parser p;
+    cli_parser_init(&p, &animate_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;)
+        if (id == CLI_STOP || id == CLI_ERROR)
+            return id == CLI_STOP ? 0 : 2;
     static const char why[] = "hystviz animate: this hystviz was built without OSMesa and EGL, so it cannot render "
                               "animations (install libosmesa6-dev or libegl-dev and reconfigure with -Dgl=auto)\n";
     for (int i = 1; i < argc; i++)

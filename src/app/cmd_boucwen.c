@@ -598,10 +598,13 @@ int hy_cmd_boucwen(int argc, char **argv)
     hy_boucwen_params_default(&o.p);
     if (argc < 2)
         return bad_usage("%s", "needs 'table2', 'data' or '--help'");
-    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
-        strcmp(argv[1], "help") == 0) {
+    if (strcmp(argv[1], "help") == 0) {
         cli_help(stdout, &bw_cli, "boucwen");
         return 0;
+    }
+    if (argv[1][0] == '-') { /* --help, --version, or an option before the subcommand */
+        int rc = parse_opts(argc, argv, 1, &o);
+        return rc == 1 ? 0 : rc ? rc : bad_usage("%s", "needs 'table2' or 'data' before its options");
     }
     int is_table = strcmp(argv[1], "table2") == 0;
     if (!is_table && strcmp(argv[1], "data") != 0)

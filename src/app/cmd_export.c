@@ -62,26 +62,34 @@ static const char export_help[] =
     "play/pause (space), a scrub slider (left/right step) and a frame counter.\n"
     "Frames equal to an earlier one are stored once.\n"
     "\n"
-    "  --grid K=SPEC      a grid axis (repeatable; at most "
-    "20000 points in all)\n"
-    "  --set S.K=V        a fixed override applied to every point before the grid\n"
-    "                     (an animation scene: in every frame; its keyframes beat it)\n"
-    "  --size WxH         (animations) the frame size in pixels (default: the animation's)\n"
-    "  -o, --output FILE  the page (default: the scene's name with .html, here)\n"
-    "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
-    "  --shard K/N        only points with index mod N = K (0 <= K < N), into\n"
-    "                     FILE.shard-K-of-N for --merge\n"
-    "  --merge FILE       join FILE's N shards (FILE.shard-K-of-N) into FILE, the\n"
-    "                     page the unsharded run writes (refused unless all N are there)\n"
-    "  --include-dir DIR  a directory scenes may include from, as for render (repeatable)\n"
-    "  --max-work N       the work budget of each point, as render's (default 1e8)\n"
-    "  -q, --quiet        print only errors\n"
-    "\n"
+    "\n";
+
+static const char export_tail[] =
     "exit status: 0 the page is written (refused points shown as such); 2 usage\n"
     "error, an unreadable scene or bad grid, every point refused, or shards missing\n"
     "or of another study (nothing written); 1 a point failed to compute or a file\n"
     "could not be written (nothing written); 3 an animation, but hystviz was built\n"
     "without OpenGL (nothing written).\n";
+
+enum { OPT_GRID = CLI_FIRST, OPT_SET, OPT_SIZE, OPT_OUT, OPT_SHARD, OPT_MERGE, OPT_QUIET };
+static const cli_opt export_opts_table[] = {
+    {"grid", 0, "K=SPEC", "a grid axis (repeatable; at most 20000 points in all)", OPT_GRID, CLI_SCENE_KEY, NULL,
+     NULL, NULL},
+    {"set", 0, "S.K=V", "a fixed override applied to every point before the grid\n"
+     "(an animation scene: in every frame; its keyframes beat it)", OPT_SET, CLI_SCENE_KEY, NULL, NULL, NULL},
+    {"size", 0, "WxH", "(animations) the frame size in pixels (default: the animation's)", OPT_SIZE, 0, NULL, NULL,
+     NULL},
+    {"output", 'o', "FILE", "the page (default: the scene's name with .html, here)", OPT_OUT, 0, NULL, NULL, NULL},
+    {.group = cli_jobs_opts},
+    {"shard", 0, "K/N", "only points with index mod N = K (0 <= K < N), into\n"
+     "FILE.shard-K-of-N for --merge", OPT_SHARD, 0, NULL, NULL, NULL},
+    {"merge", 0, "FILE", "join FILE's N shards (FILE.shard-K-of-N) into FILE, the\n"
+     "page the unsharded run writes (refused unless all N are there)", OPT_MERGE, 0, NULL, NULL, NULL},
+    {.group = cli_policy_opts},
+    {"quiet", 'q', NULL, "print only errors", OPT_QUIET, 0, NULL, NULL, NULL},
+    {0},
+};
+static const cli_cmd export_cli = {"export", export_help, export_tail, "SCENE", export_opts_table};
 
 typedef struct export_opts {
     const char *scene, *out, *merge, *size;
@@ -138,45 +146,42 @@ static int parse_opts(int argc, char **argv, export_opts *o)
         return 2;
     }
     hy_error err = {0};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int po = cli_policy_option(&o->pol, o->dirs, "export", argc, argv, &i);
-        if (po < 0)
-            return 2;
-        if (po > 0)
-            continue;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            hy_jobs_help(stdout, export_help);
-            return 1;
-        } else if (!strcmp(a, "--grid") && v) {
-            if (hy_grid_add(&o->grid, argv[++i], &err)) {
+    cli_parser p;
+    cli_parser_init(&p, &export_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;) {
+        const char *v = p.val;
+        if (id == CLI_STOP || id == CLI_ERROR)
+            return id == CLI_STOP ? 1 : 2;
+        if (id == OPT_GRID) {
+            if (hy_grid_add(&o->grid, v, &err)) {
                 fprintf(stderr, "hystviz export: %s\n", err.msg);
                 return 2;
             }
-        } else if (!strcmp(a, "--set") && v)
-            o->sets[o->nsets++] = argv[++i];
-        else if (!strcmp(a, "--size") && v)
-            o->size = argv[++i];
-        else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
-            o->out = argv[++i];
-        else if ((!strcmp(a, "-j") || !strcmp(a, "--jobs")) && v) {
-            if (cli_long(a, argv[++i], 1, 1024, &o->jobs))
+        } else if (id == OPT_SET)
+            o->sets[o->nsets++] = (char *)v;
+        else if (id == OPT_SIZE)
+            o->size = v;
+        else if (id == OPT_OUT)
+            o->out = v;
+        else if (id == CLI_JOBS) {
+            if (cli_long(p.optname, v, 1, 1024, &o->jobs))
                 return 2;
-        } else if (!strcmp(a, "--shard") && v) {
-            if (hy_shard_parse(argv[++i], &o->shard_k, &o->shard_n, &err)) {
+        } else if (id == OPT_SHARD) {
+            if (hy_shard_parse(v, &o->shard_k, &o->shard_n, &err)) {
                 fprintf(stderr, "hystviz export: %s\n", err.msg);
                 return 2;
             }
             o->sharded = 1;
-        } else if (!strcmp(a, "--merge") && v)
-            o->merge = argv[++i];
-        else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
+        } else if (id == OPT_MERGE)
+            o->merge = v;
+        else if (id == OPT_QUIET)
             o->quiet = 1;
-        else if (a[0] == '-' || o->scene) {
-            fprintf(stderr, "hystviz export: unknown or incomplete option '%s' (see hystviz export --help)\n", a);
+        else if (id == CLI_ARG && o->scene)
+            return cli_unexpected(&p), 2;
+        else if (id == CLI_ARG)
+            o->scene = v;
+        else if (cli_policy_take(&o->pol, o->dirs, "export", id, v) < 0)
             return 2;
-        } else
-            o->scene = a;
     }
     if (o->merge && (o->scene || o->grid.naxes || o->sharded || o->out)) {
         fprintf(stderr, "hystviz export: --merge FILE takes no scene, --grid, --shard or -o\n");

@@ -43,25 +43,31 @@ static const char gallery_help[] =
     "A scene file name with a control character is refused before anything is\n"
     "rendered or written (exit 2).\n"
     "\n"
-    "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
-    "  --scenes DIR       where the scenes are (default: scenes, or the papers' scenes\n"
-    "                     an install ships, PREFIX/share/hystviz/scenes, when there is\n"
-    "                     no scenes directory here)\n"
-    "  -o, --output DIR   the gallery directory (default: gallery)\n"
-    "  --force            render every scene, changed or not\n"
-    "  --data             also write NAME.csv (hystviz data) per figure\n"
-    "  --times            add render times to index.html (off by default: the\n"
-    "                     committed page stays byte-stable; --no-times is the default)\n"
-    "  -q, --quiet        print only errors (no progress, no summary)\n"
-    "  --include-dir DIR  a directory scenes may include from, besides their own (repeatable)\n"
-    "  --max-work N       the work budget of each scene (default 1e8; docs/SCENES.md)\n"
-    "  --shard K/N        render only figure scenes number K, K+N, K+2N, ... (in file\n"
-    "                     name order) and write their records to DIR/.manifest.shard-K-of-N\n"
-    "                     instead of the manifest and index.html (0 <= K < N)\n"
-    "  --merge            join the N shard records into DIR/.manifest and index.html, as\n"
-    "                     the unsharded run writes them; refused, with the missing\n"
-    "                     shards listed, unless all N are there for the same scenes\n"
-    "  -h, --help         this text\n";
+    "\n";
+
+enum { OPT_SCENES = CLI_FIRST, OPT_OUT, OPT_FORCE, OPT_DATA, OPT_TIMES, OPT_NO_TIMES, OPT_QUIET, OPT_SHARD, OPT_MERGE };
+static const cli_opt gallery_opts[] = {
+    {.group = cli_jobs_opts},
+    {"scenes", 0, "DIR", "where the scenes are (default: scenes, or the papers' scenes\n"
+     "an install ships, PREFIX/share/hystviz/scenes, when there is\n"
+     "no scenes directory here)", OPT_SCENES, 0, NULL, NULL, NULL},
+    {"output", 'o', "DIR", "the gallery directory (default: gallery)", OPT_OUT, 0, NULL, NULL, NULL},
+    {"force", 0, NULL, "render every scene, changed or not", OPT_FORCE, 0, NULL, NULL, NULL},
+    {"data", 0, NULL, "also write NAME.csv (hystviz data) per figure", OPT_DATA, 0, NULL, NULL, NULL},
+    {"times", 0, NULL, "add render times to index.html (off by default: the\n"
+     "committed page stays byte-stable)", OPT_TIMES, 0, NULL, NULL, NULL},
+    {"no-times", 0, NULL, "no render times (the default)", OPT_NO_TIMES, 0, NULL, NULL, NULL},
+    {"quiet", 'q', NULL, "print only errors (no progress, no summary)", OPT_QUIET, 0, NULL, NULL, NULL},
+    {.group = cli_policy_opts},
+    {"shard", 0, "K/N", "render only figure scenes number K, K+N, K+2N, ... (in file\n"
+     "name order) and write their records to DIR/.manifest.shard-K-of-N\n"
+     "instead of the manifest and index.html (0 <= K < N)", OPT_SHARD, 0, NULL, NULL, NULL},
+    {"merge", 0, NULL, "join the N shard records into DIR/.manifest and index.html, as\n"
+     "the unsharded run writes them; refused, with the missing\n"
+     "shards listed, unless all N are there for the same scenes", OPT_MERGE, 0, NULL, NULL, NULL},
+    {0},
+};
+static const cli_cmd gallery_cli = {"gallery", gallery_help, NULL, NULL, gallery_opts};
 
 enum { J_SKIP, J_UNCHANGED, J_PENDING, J_RENDERED, J_FAILED };
 
@@ -922,53 +928,45 @@ static const char default_scenes[] = "scenes";
 static int parse_opts(int argc, char **argv, opts *o)
 {
     *o = (opts){.scenes = default_scenes, .out = "gallery", .jobs = hy_jobs_default()};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            hy_jobs_help(stdout, gallery_help);
-            return 1;
-        } else if ((!strcmp(a, "-j") || !strcmp(a, "--jobs")) && v) {
+    cli_parser p;
+    cli_parser_init(&p, &gallery_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;) {
+        const char *v = p.val;
+        hy_error err = {0};
+        switch (id) {
+        case CLI_STOP: return 1;
+        case CLI_ERROR: return 2;
+        case CLI_JOBS: {
             char *end;
             errno = 0;
-            o->jobs = strtol(argv[++i], &end, 10);
+            o->jobs = strtol(v, &end, 10);
             if (errno || *end || end == v || o->jobs < 1 || o->jobs > 1024) {
                 fprintf(stderr, "hystviz gallery: -j '%s': give a number of threads from 1 to 1024\n", v);
                 return 2;
             }
-        } else if (!strcmp(a, "--scenes") && v)
-            o->scenes = argv[++i];
-        else if ((!strncmp(a, "--include-dir", 13) || !strncmp(a, "--max-work", 10)) &&
-                 o->pol.ninclude_dirs < sizeof o->dirs / sizeof o->dirs[0]) {
-            int r = cli_policy_option(&o->pol, o->dirs, "gallery", argc, argv, &i);
-            if (r <= 0) {
-                if (!r)
-                    fprintf(stderr, "hystviz gallery: unknown option '%s' (see hystviz gallery --help)\n", a);
-                return 2;
-            }
+            break;
         }
-        else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
-            o->out = argv[++i];
-        else if (!strcmp(a, "--force"))
-            o->force = 1;
-        else if (!strcmp(a, "--data"))
-            o->data = 1;
-        else if (!strcmp(a, "--no-times"))
-            o->times = 0;
-        else if (!strcmp(a, "--times"))
-            o->times = 1;
-        else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
-            o->quiet = 1;
-        else if (!strcmp(a, "--shard") && v) {
-            hy_error err = {0};
-            if (hy_shard_parse(argv[++i], &o->shard_k, &o->shard_n, &err)) {
+        case OPT_SCENES: o->scenes = v; break;
+        case OPT_OUT: o->out = v; break;
+        case OPT_FORCE: o->force = 1; break;
+        case OPT_DATA: o->data = 1; break;
+        case OPT_TIMES: o->times = 1; break;
+        case OPT_NO_TIMES: o->times = 0; break;
+        case OPT_QUIET: o->quiet = 1; break;
+        case OPT_MERGE: o->merge = 1; break;
+        case OPT_SHARD:
+            if (hy_shard_parse(v, &o->shard_k, &o->shard_n, &err)) {
                 fprintf(stderr, "hystviz gallery: %s\n", err.msg);
                 return 2;
             }
-        } else if (!strcmp(a, "--merge"))
-            o->merge = 1;
-        else {
-            fprintf(stderr, "hystviz gallery: unknown or incomplete option '%s' (see hystviz gallery --help)\n", a);
-            return 2;
+            break;
+        default:
+            if (o->pol.ninclude_dirs >= sizeof o->dirs / sizeof o->dirs[0]) {
+                fprintf(stderr, "hystviz gallery: at most %zu --include-dir\n", sizeof o->dirs / sizeof o->dirs[0]);
+                return 2;
+            }
+            if (cli_policy_take(&o->pol, o->dirs, "gallery", id, v) < 0)
+                return 2;
         }
     }
     o->progress = !o->quiet && isatty(STDERR_FILENO);

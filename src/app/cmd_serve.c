@@ -26,23 +26,9 @@ static const char serve_help[] =
     "hystviz-animate workers, the sliders applied), a reload of every open page when a\n"
     "scene file or one it includes is saved, and (with --allow-save) \"save as new scene\".\n"
     "With SCENE.scene, the page opens that scene (the others in its directory stay reachable).\n"
-    "\n"
-    "  --port N       port (default 8017; 0 picks a free one, printed)\n"
-    "  --host ADDR    address to bind (default 127.0.0.1); any other needs --public\n"
-    "  --public       allow --host to be reachable from other machines: anyone who can\n"
-    "                 reach the port reads every scene file of DIR (and what they include)\n"
-    "                 and makes this machine render figures (CPU and memory within the\n"
-    "                 budgets below); with --allow-save also writes new scenes into DIR\n"
-    "  --open         open the page in the desktop's browser (xdg-open)\n"
-    "  --max-work W   work budget of one render (default 2e6, 50 times the largest\n"
-    "                 gallery figure; `hystviz render` allows 1e8):\n"
-    "                 a page's request for more is refused before computing (422)\n"
-    "  --include-dir DIR  a directory scenes may include from and read input files\n"
-    "                 from, besides their own (as for hystviz render)\n"
-    "  --allow-save   enable \"save as new scene\": the page carries a token that lets it\n"
-    "                 write NEW.scene files into DIR (never replacing one), at most 100\n"
-    "                 per run and one a second; anyone who can load the page can save\n"
-    "\n"
+    "\n";
+
+static const char serve_tail[] =
     "A page may set (as `render --set`) numbers, switches, choices, lengths and colours of\n"
     "[model], [input], [compute], [series], [figure], [annotation] and [param]; never a file path,\n"
     "text, [output] or an animation.  Budgets: one answer is at most 32 MB; renders run a\n"
@@ -56,15 +42,37 @@ static const char serve_help[] =
     "Ctrl-C, 1 if the port cannot be bound, 2 for a bad option, 3 if built without\n"
     "libmicrohttpd.\n";
 
+enum { OPT_PORT = CLI_FIRST, OPT_HOST, OPT_PUBLIC, OPT_OPEN, OPT_MAX_WORK, OPT_ALLOW_SAVE };
+static const cli_opt serve_opts[] = {
+    {"port", 0, "N", "port (default 8017; 0 picks a free one, printed)", OPT_PORT, 0, NULL, NULL, NULL},
+    {"host", 0, "ADDR", "address to bind (default 127.0.0.1); any other needs --public", OPT_HOST, 0, NULL, NULL,
+     NULL},
+    {"public", 0, NULL, "allow --host to be reachable from other machines: anyone who can\n"
+     "reach the port reads every scene file of DIR (and what they include)\n"
+     "and makes this machine render figures (CPU and memory within the\n"
+     "budgets below); with --allow-save also writes new scenes into DIR", OPT_PUBLIC, 0, NULL, NULL, NULL},
+    {"open", 0, NULL, "open the page in the desktop's browser (xdg-open)", OPT_OPEN, 0, NULL, NULL, NULL},
+    {"max-work", 0, "W", "work budget of one render (default 2e6, 50 times the largest\n"
+     "gallery figure; `hystviz render` allows 1e8):\n"
+     "a page's request for more is refused before computing (422)", OPT_MAX_WORK, 0, NULL, NULL, NULL},
+    {"include-dir", 0, "DIR", "a directory scenes may include from and read input files\n"
+     "from, besides their own (as for hystviz render); repeatable", CLI_INCLUDE_DIR, 0, NULL, NULL, NULL},
+    {"allow-save", 0, NULL, "enable \"save as new scene\": the page carries a token that lets it\n"
+     "write NEW.scene files into DIR (never replacing one), at most 100\n"
+     "per run and one a second; anyone who can load the page can save", OPT_ALLOW_SAVE, 0, NULL, NULL, NULL},
+    {0},
+};
+static const cli_cmd serve_cli = {"serve", serve_help, serve_tail, "SCENE.scene|DIR", serve_opts};
+
 #if !HY_HAVE_MICROHTTPD
 
 int hy_cmd_serve(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            fputs(serve_help, stdout);
-            return 0;
-        }
+    cli_parser p;
+    cli_parser_init(&p, &serve_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;)
+        if (id == CLI_STOP || id == CLI_ERROR)
+            return id == CLI_STOP ? 0 : 2;
     fprintf(stderr, "hystviz serve: this hystviz was built without libmicrohttpd (Debian: apt-get install "
                     "libmicrohttpd-dev, then meson setup --reconfigure build -Dmicrohttpd=enabled)\n");
     return 3;
@@ -2022,50 +2030,46 @@ int hy_cmd_serve(int argc, char **argv)
     double max_work = SERVE_WORK_DEFAULT;
     hy_scene_policy pol = hy_scene_policy_default();
     const char *incdirs[SERVE_INCLUDE_DIRS];
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(serve_help, stdout);
-            return 0;
-        } else if (!strncmp(a, "--include-dir", 13)) { /* as render's (cli_policy_option) */
+    cli_parser p;
+    cli_parser_init(&p, &serve_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;) {
+        const char *v = p.val;
+        switch (id) {
+        case CLI_STOP: return 0;
+        case CLI_ERROR: return 2;
+        case CLI_INCLUDE_DIR: /* as render's */
             if (pol.ninclude_dirs == SERVE_INCLUDE_DIRS) {
                 fprintf(stderr, "hystviz serve: at most %d --include-dir\n", SERVE_INCLUDE_DIRS);
                 return 2;
             }
-            if (cli_policy_option(&pol, incdirs, "serve", argc, argv, &i) <= 0) {
-                if (a[13] && a[13] != '=')
-                    fprintf(stderr, "hystviz serve: unknown argument '%s' (see hystviz serve --help)\n", a);
+            if (cli_policy_take(&pol, incdirs, "serve", id, v) < 0)
                 return 2;
-            }
-        } else if (!strcmp(a, "--port")) {
+            break;
+        case OPT_PORT:
             if (parse_port(v, &port)) {
-                fprintf(stderr, "hystviz serve: --port '%s': give a port from 0 to 65535\n", v ? v : "");
+                fprintf(stderr, "hystviz serve: --port '%s': give a port from 0 to 65535\n", v);
                 return 2;
             }
-            i++;
-        } else if (!strcmp(a, "--host") && v) {
-            host = argv[++i];
-            host_given = 1;
-        } else if (!strcmp(a, "--max-work")) {
+            break;
+        case OPT_HOST: host = v, host_given = 1; break;
+        case OPT_MAX_WORK: {
             char *end;
             errno = 0;
-            max_work = v ? strtod(v, &end) : NAN;
-            if (!v || errno || *end || end == v || !(max_work >= 1) || !isfinite(max_work)) {
-                fprintf(stderr, "hystviz serve: --max-work '%s': give a number of at least 1 (e.g. 1e8)\n", v ? v : "");
+            max_work = strtod(v, &end);
+            if (errno || *end || end == v || !(max_work >= 1) || !isfinite(max_work)) {
+                fprintf(stderr, "hystviz serve: --max-work '%s': give a number of at least 1 (e.g. 1e8)\n", v);
                 return 2;
             }
-            i++;
-        } else if (!strcmp(a, "--allow-save"))
-            allow_save = 1;
-        else if (!strcmp(a, "--public"))
-            public_ = 1;
-        else if (!strcmp(a, "--open"))
-            open_browser = 1;
-        else if (a[0] == '-' || target) {
-            fprintf(stderr, "hystviz serve: unknown or extra argument '%s' (see hystviz serve --help)\n", a);
-            return 2;
-        } else
-            target = a;
+            break;
+        }
+        case OPT_ALLOW_SAVE: allow_save = 1; break;
+        case OPT_PUBLIC: public_ = 1; break;
+        case OPT_OPEN: open_browser = 1; break;
+        default: /* CLI_ARG */
+            if (target)
+                return cli_unexpected(&p), 2;
+            target = v;
+        }
     }
     (void)host_given;
     server *s = calloc(1, sizeof *s);

@@ -61,33 +61,44 @@ static const char sweep_help[] =
     STR(VERIFY_EVERY) ", or\n"
     "every point (K = 1) with --verify; elsewhere SERIES.err is empty, and with\n"
     "--formats none no curve is sampled there: only the table's scalars are computed.\n"
-    "Empty: not computed by this scene.  Numbers are %.17g.\n"
+    "Empty: not computed by this scene.  Numbers are %.17g.  --include-dir and\n"
+    "--max-work apply to each point as render's; a point over the work budget is an\n"
+    "invalid row.\n"
     "\n"
-    "  --grid K=SPEC      a grid axis (repeatable)\n"
-    "  --set S.K=V        a fixed override applied to every point before the grid\n"
-    "  -o, --output DIR   the study directory (default: sweep)\n"
-    "  -j, --jobs N\n" /* hy_jobs_help: the one description of -j */
-    "  --formats LIST     svg,pdf,png (default: the scene's), or none: the table only\n"
-    "  --shard K/N        only points with index mod N = K (0 <= K < N); the rows go\n"
-    "                     to DIR/sweep.shard-K-of-N.csv for --merge\n"
-    "  --merge DIR        join DIR's N shard manifests into DIR/sweep.csv (refused,\n"
-    "                     with the missing shards listed, unless all N are there,\n"
-    "                     and the commands that re-run them, by hand and sbatch)\n"
-    "  --plot COLUMN      also draw DIR/sweep_COLUMN.svg and .png: the table's COLUMN\n"
-    "                     (e.g. minor1_area) against the first grid key, one curve per\n"
-    "                     value of the second (with --shard: give it to --merge)\n"
-    "  --include-dir DIR  a directory scenes may include from (and read input files\n"
-    "                     from), besides the scene's own (repeatable)\n"
-    "  --max-work N       the work budget of each point, as render's (default 1e8;\n"
-    "                     docs/SCENES.md); a point over it is an invalid row\n"
-    "  --verify           measure the errors at every point (default: 1 in " STR(VERIFY_EVERY) ")\n"
-    "  --times            add compute_s (compute time of the point, seconds); the\n"
-    "                     table is then no longer byte-stable between runs\n"
-    "  -q, --quiet        print only errors\n"
-    "\n"
+    "\n";
+
+static const char sweep_tail[] =
     "exit status: 0 every point ok; 2 usage error, invalid scene or grid value (nothing\n"
     "written), or a point the scene refused (its row says why); 1 a point failed to\n"
     "compute or a file could not be written.\n";
+
+enum { OPT_GRID = CLI_FIRST, OPT_SET, OPT_OUT, OPT_FORMATS, OPT_SHARD, OPT_MERGE, OPT_PLOT, OPT_VERIFY, OPT_TIMES,
+       OPT_QUIET };
+static const cli_opt sweep_opts_table[] = {
+    {"grid", 0, "K=SPEC", "a grid axis (repeatable)", OPT_GRID, CLI_SCENE_KEY, NULL, NULL, NULL},
+    {"set", 0, "S.K=V", "a fixed override applied to every point before the grid", OPT_SET, CLI_SCENE_KEY, NULL,
+     NULL, NULL},
+    {"output", 'o', "DIR", "the study directory (default: sweep)", OPT_OUT, 0, NULL, NULL, NULL},
+    {.group = cli_jobs_opts},
+    {"formats", 0, "LIST", "svg,pdf,png (default: the scene's), or none: the table only", OPT_FORMATS, 0, NULL, NULL,
+     NULL},
+    {"shard", 0, "K/N", "only points with index mod N = K (0 <= K < N); the rows go\n"
+     "to DIR/sweep.shard-K-of-N.csv for --merge", OPT_SHARD, 0, NULL, NULL, NULL},
+    {"merge", 0, "DIR", "join DIR's N shard manifests into DIR/sweep.csv (refused,\n"
+     "with the missing shards listed, unless all N are there,\n"
+     "and the commands that re-run them, by hand and sbatch)", OPT_MERGE, 0, NULL, NULL, NULL},
+    {"plot", 0, "COLUMN", "also draw DIR/sweep_COLUMN.svg and .png: the table's COLUMN\n"
+     "(e.g. minor1_area) against the first grid key, one curve per\n"
+     "value of the second (with --shard: give it to --merge)", OPT_PLOT, 0, NULL, NULL, NULL},
+    {.group = cli_policy_opts}, /* a point over --max-work is an invalid row */
+    {"verify", 0, NULL, "measure the errors at every point (default: 1 in " STR(VERIFY_EVERY) ")", OPT_VERIFY, 0,
+     NULL, NULL, NULL},
+    {"times", 0, NULL, "add compute_s (compute time of the point, seconds); the\n"
+     "table is then no longer byte-stable between runs", OPT_TIMES, 0, NULL, NULL, NULL},
+    {"quiet", 'q', NULL, "print only errors", OPT_QUIET, 0, NULL, NULL, NULL},
+    {0},
+};
+static const cli_cmd sweep_cli = {"sweep", sweep_help, sweep_tail, "SCENE", sweep_opts_table};
 
 typedef struct sweep_opts {
     const char *scene, *out, *formats, *merge, *plot;
@@ -158,55 +169,52 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
         return 2;
     }
     hy_error err = {0};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int po = cli_policy_option(&o->pol, o->dirs, "sweep", argc, argv, &i);
-        if (po < 0)
-            return 2;
-        if (po > 0)
-            continue;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            hy_jobs_help(stdout, sweep_help);
-            return 1;
-        } else if (!strcmp(a, "--grid") && v) {
-            if (refused_key(a, v))
+    cli_parser p;
+    cli_parser_init(&p, &sweep_cli, argc, argv, 1);
+    for (int id; (id = cli_next(&p)) != CLI_END;) {
+        const char *v = p.val;
+        if (id == CLI_STOP || id == CLI_ERROR)
+            return id == CLI_STOP ? 1 : 2;
+        if (id == OPT_GRID) {
+            if (refused_key(p.optname, v))
                 return 2;
-            if (hy_grid_add(&o->grid, argv[++i], &err)) {
+            if (hy_grid_add(&o->grid, v, &err)) {
                 fprintf(stderr, "hystviz sweep: %s\n", err.msg);
                 return 2;
             }
-        } else if (!strcmp(a, "--set") && v) {
-            if (refused_key(a, v))
+        } else if (id == OPT_SET) {
+            if (refused_key(p.optname, v))
                 return 2;
-            o->sets[o->nsets++] = argv[++i];
-        } else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && v)
-            o->out = argv[++i];
-        else if ((!strcmp(a, "-j") || !strcmp(a, "--jobs")) && v) {
-            if (cli_long(a, argv[++i], 1, 1024, &o->jobs))
+            o->sets[o->nsets++] = (char *)v;
+        } else if (id == OPT_OUT)
+            o->out = v;
+        else if (id == CLI_JOBS) {
+            if (cli_long(p.optname, v, 1, 1024, &o->jobs))
                 return 2;
-        } else if (!strcmp(a, "--formats") && v)
-            o->formats = argv[++i];
-        else if (!strcmp(a, "--shard") && v) {
-            if (hy_shard_parse(argv[++i], &o->shard_k, &o->shard_n, &err)) {
+        } else if (id == OPT_FORMATS)
+            o->formats = v;
+        else if (id == OPT_SHARD) {
+            if (hy_shard_parse(v, &o->shard_k, &o->shard_n, &err)) {
                 fprintf(stderr, "hystviz sweep: %s\n", err.msg);
                 return 2;
             }
             o->sharded = 1;
-        } else if (!strcmp(a, "--merge") && v)
-            o->merge = argv[++i];
-        else if (!strcmp(a, "--plot") && v)
-            o->plot = argv[++i];
-        else if (!strcmp(a, "--times"))
+        } else if (id == OPT_MERGE)
+            o->merge = v;
+        else if (id == OPT_PLOT)
+            o->plot = v;
+        else if (id == OPT_TIMES)
             o->times = 1;
-        else if (!strcmp(a, "--verify"))
+        else if (id == OPT_VERIFY)
             o->verify_every = 1;
-        else if (!strcmp(a, "-q") || !strcmp(a, "--quiet"))
+        else if (id == OPT_QUIET)
             o->quiet = 1;
-        else if (a[0] == '-' || o->scene) {
-            fprintf(stderr, "hystviz sweep: unknown or incomplete option '%s' (see hystviz sweep --help)\n", a);
+        else if (id == CLI_ARG && o->scene)
+            return cli_unexpected(&p), 2;
+        else if (id == CLI_ARG)
+            o->scene = v;
+        else if (cli_policy_take(&o->pol, o->dirs, "sweep", id, v) < 0)
             return 2;
-        } else
-            o->scene = a;
     }
     if (o->merge && (o->scene || o->grid.naxes || o->sharded)) {
         fprintf(stderr, "hystviz sweep: --merge DIR takes no scene, --grid or --shard\n");

@@ -206,20 +206,3 @@ long hy_jobs_default(void)
     }
     return n;
 }
-
-void hy_jobs_help(FILE *f, const char *help)
-{
-    static const char mark[] = "  -j, --jobs N\n";
-    const char *at = strstr(help, mark);
-    if (!at) {
-        fputs(help, f);
-        return;
-    }
-    fwrite(help, 1, (size_t)(at - help), f);
-    fprintf(f,
-            "  -j, --jobs N       worker threads (default: the CPUs this process may run on,\n"
-            "                     its CPU affinity (taskset, a Slurm task's CPUs) capped by\n"
-            "                     its cgroup's CPU quota (cpu.max), rounded up: here %ld)\n",
-            hy_jobs_default());
-    fputs(at + sizeof mark - 1, f);
-}

@@ -7,8 +7,8 @@
  * parents), rounded up, at least 1.
  *
  *     long jobs = hy_jobs_default();
- *     hy_jobs_help(stdout, cmd_help);   the help text, its "  -j, --jobs N\n"
- *                                       line replaced by the one description
+ *
+ * -j's one description, with this default, is cli_jobs_opts (cli_util.h).
  */
 #ifndef HY_JOBS_H
 #define HY_JOBS_H
@@ -30,9 +30,5 @@ long hy_jobs_parse_cfs(const char *quota, const char *period);
  * /proc/self/cgroup) names, read under sysfs (normally "/sys/fs/cgroup"):
  * the smallest of its own and its parents' limits. */
 long hy_jobs_cgroup_quota(const char *proc_cgroup, const char *sysfs);
-
-/* Prints help, with its line "  -j, --jobs N\n" (if any) replaced by the
- * description of -j and of its resolved default on this machine. */
-void hy_jobs_help(FILE *f, const char *help);
 
 #endif

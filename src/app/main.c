@@ -44,10 +44,11 @@ static const char usage[] =
     "  serve     live preview in the browser: sliders, reload on save, animation scrubber\n"
     "  watch     re-render scene files on every save (one line per render)\n"
     "\n"
-    "options:\n"
-    "  -h, --help     this text (COMMAND --help: that command's options)\n"
-    "  --version      the program version\n"
-    "\n"
+    "Each command takes --help (its options), --version and its options as\n"
+    "--name VALUE, --name=VALUE or -n VALUE; '--' ends the options.\n"
+    "\n";
+
+static const char tail[] =
     "exit status (every command):\n"
     "  0  done\n"
     "  1  failure while running (a file could not be written, a computation failed)\n"
@@ -62,6 +63,9 @@ static const char usage[] =
     "example:\n"
     "  hystviz loop --model lugre --sigma0 6 --fc 1 --fs 2 --vs 1 --beta 1 \\\n"
     "               --input bimodal:0,0.5,1,1.5 --points 200\n";
+
+static const cli_opt no_opts[] = {{0}}; /* -h/--help and --version: every command's */
+static const cli_cmd main_cli = {"", usage, tail, NULL, no_opts};
 
 typedef struct command {
     const char *name;
@@ -107,20 +111,18 @@ int main(int argc, char **argv)
     cli_signals_block(&stop); /* first: a signal at any moment of start-up is taken (README "Signals") */
     gsl_set_error_handler_off(); /* every GSL status is checked where it is returned */
     if (argc < 2) {
-        fputs(usage, stderr);
+        cli_help(stderr, &main_cli, "");
         return 2;
     }
-    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
-        printf("hystviz %s\n", HY_VERSION);
+    if (!strcmp(argv[1], "help")) {
+        cli_help(stdout, &main_cli, "");
         return cli_stdout_status(NULL, 0);
     }
-    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
-        fputs(usage, stdout);
-        return cli_stdout_status(NULL, 0);
-    }
-    if (argc == 3 && (!strcmp(argv[2], "--version") || !strcmp(argv[2], "-V"))) { /* hystviz CMD --version */
-        printf("hystviz %s\n", HY_VERSION);
-        return cli_stdout_status(NULL, 0);
+    if (argv[1][0] == '-') { /* --help, --version, --options-json; a command's are its own */
+        cli_parser p;
+        cli_parser_init(&p, &main_cli, argc, argv, 1);
+        int id = cli_next(&p);
+        return id == CLI_STOP ? cli_stdout_status(NULL, 0) : 2; /* nothing else is accepted */
     }
     if (!strcmp(argv[1], "animate"))
         return run_sibling("hystviz-animate", argv); /* the signals stay blocked (and pending) across exec */

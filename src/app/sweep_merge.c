@@ -82,6 +82,8 @@ char *hy_sweep_shard_rerun(int argc, char **argv)
         else if (i && i + 1 < argc &&
                  (!strcmp(argv[i], "-j") || !strcmp(argv[i], "--jobs") || !strcmp(argv[i], "--shard")))
             i++; /* the re-run gives its own */
+        else if (i && (!strncmp(argv[i], "--jobs=", 7) || !strncmp(argv[i], "--shard=", 8)))
+            continue; /* the same, as one argument */
         else {
             if (i)
                 text_add(&t, " ", 1);

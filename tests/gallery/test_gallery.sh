@@ -222,7 +222,7 @@ rm "$S/e_dup.scene"
 run data --data
 [ $st -eq 0 ] && head -1 "$G/a_loop.csv" | grep -q '^series,x,y$' && grep -q 'href="a_loop.csv"' "$G/index.html" && ok || bad "--data"
 "$hv" gallery --bogus > /dev/null 2> "$tmp/opt.err"
-[ $? -eq 2 ] && grep -q "unknown or incomplete option '--bogus'" "$tmp/opt.err" && ok || bad "unknown option"
+[ $? -eq 2 ] && grep -q "unknown option '--bogus'" "$tmp/opt.err" && ok || bad "unknown option"
 "$hv" gallery -j 0 > /dev/null 2>&1
 [ $? -eq 2 ] && ok || bad "-j 0 accepted"
 "$hv" gallery --scenes "$tmp/none" -o "$tmp/x" > /dev/null 2> "$tmp/none.err"
