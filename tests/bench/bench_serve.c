@@ -8,7 +8,8 @@
  * Prints a Markdown table, the README's (tests/cli/test_readme_bench.sh
  * checks its rows and format): median, 95th percentile and minimum of the
  * wall time, the median CPU time and the load average; asserts nothing.
- * `bench_serve --rows` prints the header and first cells only. */
+ * `bench_serve --rows` prints the header and first cells only;
+ * `bench_serve SCENES_DIR N FILE` times only the figure FILE (profiling). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -80,6 +81,7 @@ int main(int argc, char **argv)
     int rows_only = argc > 1 && !strcmp(argv[1], "--rows");
     const char *dir = argc > 1 ? argv[1] : "scenes";
     int n = argc > 2 ? atoi(argv[2]) : 100;
+    const char *only = argc > 3 ? argv[3] : NULL;
     static const struct {
         const char *file, *key;
         double lo, hi;
@@ -92,6 +94,8 @@ int main(int argc, char **argv)
     for (size_t f = 0; rows_only && f < sizeof figs / sizeof figs[0]; f++)
         printf("| %s (%s) |\n", figs[f].file, figs[f].key);
     for (size_t f = 0; !rows_only && f < sizeof figs / sizeof figs[0]; f++) {
+        if (only && strcmp(only, figs[f].file))
+            continue;
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", dir, figs[f].file);
         int m = n / figs[f].n_div > 5 ? n / figs[f].n_div : 5;
