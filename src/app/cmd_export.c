@@ -127,7 +127,11 @@ static int is_animation(const export_opts *o)
         fprintf(stderr, "hystviz export: %s\n", err.msg);
         return -1;
     }
-    int anim = hy_scene_count(sc, "keyframe") > 0;
+    hy_scene_doc d;
+    int anim = hy_scene_decode_fill(sc, &d, &err) ? -1 : d.nkeyframe > 0;
+    if (anim < 0)
+        fprintf(stderr, "hystviz export: %s\n", err.msg);
+    hy_scene_doc_free(&d);
     hy_scene_free(sc);
     return anim;
 }
@@ -240,9 +244,16 @@ static int describe(const export_opts *o, char **meta, uint64_t *hash)
             hy_scene_free(base);
             return 2;
         }
-    const char *name = NULL;
+    hy_scene_doc d;
+    if (hy_scene_decode_fill(base, &d, &err)) {
+        fprintf(stderr, "hystviz export: %s\n", err.msg);
+        hy_scene_doc_free(&d);
+        hy_scene_free(base);
+        return 1;
+    }
+    const char *name = d.output.name;
     char fallback[256];
-    if (hy_scene_get_str(base, "output", NULL, "name", &name) < 0 || !name || !*name) {
+    if (hy_decl_got(&d.output.h, offsetof(hy_decl_output, name)) < 0 || !name || !*name) {
         const char *b = strrchr(o->scene, '/') ? strrchr(o->scene, '/') + 1 : o->scene;
         snprintf(fallback, sizeof fallback, "%.*s", (int)strcspn(b, "."), b);
         name = fallback;
@@ -251,6 +262,7 @@ static int describe(const export_opts *o, char **meta, uint64_t *hash)
     size_t len = 0;
     FILE *f = open_memstream(meta, &len);
     if (!f) {
+        hy_scene_doc_free(&d);
         hy_scene_free(base);
         return 1;
     }
@@ -278,6 +290,7 @@ static int describe(const export_opts *o, char **meta, uint64_t *hash)
         fputs("]}", f);
     }
     fputs("]}", f);
+    hy_scene_doc_free(&d);
     hy_scene_free(base);
     return fclose(f) ? 1 : 0;
 }

@@ -376,12 +376,16 @@ static char **list_scenes(const char *dir, size_t *n)
 static void scene_key(const hy_scene *s, int data, char key[17])
 {
     uint64_t h = hy_scene_hash(s);
-    for (size_t i = 0; i < hy_scene_count(s, "panel"); i++) { /* a [panel] figure: its panel files' text too */
+    hy_scene_doc d;
+    hy_error e;
+    if (hy_scene_decode_fill(s, &d, &e))
+        hy_scene_doc_free(&d); /* out of memory: the key without the panels (the render reports it) */
+    for (size_t i = 0; i < d.npanel; i++) { /* a [panel] figure: its panel files' text too */
         char *t;
         size_t n;
         int user;
-        hy_error e;
-        if (hy_scene_read_path(s, "panel", hy_scene_name_at(s, "panel", i), "scene", &t, &n, &user, &e))
+        /* the file's bytes, read as the scene resolves the path (a file, not a value) */
+        if (hy_scene_read_path(s, "panel", d.panel[i].h.name, "scene", &t, &n, &user, &e))
             continue; /* the render reports it */
         for (size_t k = 0; k < n; k++) {
             h ^= (unsigned char)t[k];
@@ -389,6 +393,7 @@ static void scene_key(const hy_scene *s, int data, char key[17])
         }
         free(t);
     }
+    hy_scene_doc_free(&d);
     char extra[64];
     snprintf(extra, sizeof extra, "\nhystviz %s%s", HY_VERSION, data ? " data" : "");
     for (const char *c = extra; *c; c++) {

@@ -793,14 +793,17 @@ static int by_name(const void *a, const void *b)
     return d ? d : strcmp(x, y);
 }
 
-/* The [figure] caption with its placeholders ({model.sigma0}) replaced by
- * the scene's values (overrides included), as JSON; 0 when it has none. */
-static int figure_caption(sv_buf *b, const hy_scene *sc)
+/* The [figure] caption of d (sc decoded) with its placeholders
+ * ({model.sigma0}) replaced by the scene's values (overrides included), as
+ * JSON; 0 when it has none.  hy_scene_expand fills them from sc: a
+ * placeholder shows a value as the scene text writes it, any key of any
+ * section (not only the decoded numbers). */
+static int figure_caption(sv_buf *b, const hy_scene *sc, const hy_scene_doc *d)
 {
-    const char *cap = NULL;
+    const char *cap = d->figure.caption;
     char *out = NULL;
     hy_error err = {0};
-    if (!sc || hy_scene_get_str(sc, "figure", NULL, "caption", &cap) != HY_SCENE_SET || !cap || !*cap)
+    if (!sc || hy_decl_got(&d->figure.h, offsetof(hy_decl_figure, caption)) != HY_SCENE_SET || !cap || !*cap)
         return 0;
     sv_json(b, hy_scene_expand(sc, cap, &out, &err) ? cap : out);
     free(out);
@@ -808,15 +811,15 @@ static int figure_caption(sv_buf *b, const hy_scene *sc)
 }
 
 /* The caption: the scene's [figure] caption (as the gallery), else its header comment. */
-static void scene_caption(sv_buf *b, const hy_scene *sc, const char *text)
+static void scene_caption(sv_buf *b, const hy_scene *sc, const hy_scene_doc *d, const char *text)
 {
-    if (!figure_caption(b, sc))
+    if (!figure_caption(b, sc, d))
         caption(b, text);
 }
 
-static int is_animation(const hy_scene *sc)
+static int is_animation(const hy_scene_doc *d)
 {
-    return hy_scene_count(sc, "keyframe") > 0;
+    return d->nkeyframe > 0;
 }
 
 static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
@@ -870,6 +873,12 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
         if (!bad && (bad = hy_scene_run_load_scene(&chk, sc, path, hy_scene_policy_budget(&s->pol), &err)) == 0)
             hy_scene_run_free(&chk);
         char name[256];
+        hy_scene_doc d = {0};
+        hy_error derr = {0};
+        if (sc && hy_scene_decode_fill(sc, &d, &derr)) {
+            hy_scene_doc_free(&d); /* out of memory: shown without caption and as a still */
+            memset(&d, 0, sizeof d);
+        }
         if (sc)
             hy_scene_probe_name(sc, path, name, sizeof name);
         else
@@ -880,11 +889,11 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
         sv_puts(&b, ",\"name\":");
         sv_json(&b, name);
         sv_puts(&b, ",\"caption\":");
-        scene_caption(&b, sc, text);
+        scene_caption(&b, sc, &d, text);
         char label[32];
         hy_scene_figure_label(v[i], label, sizeof label);
         sv_printf(&b, ",\"label\":\"%s\",\"part\":%d", label, hy_scene_catalogue_part(v[i]));
-        sv_printf(&b, ",\"anim\":%s", sc && is_animation(sc) ? "true" : "false");
+        sv_printf(&b, ",\"anim\":%s", is_animation(&d) ? "true" : "false");
         if (bad) {
             if (strstr(err.msg, "cannot read included file") && !s->pol.ninclude_dirs)
                 hy_error_set(&err, err.code, "%.400s (a file of another directory: start serve with --include-dir DIR)",
@@ -894,6 +903,7 @@ static enum MHD_Result api_scenes(server *s, struct MHD_Connection *c)
         }
         sv_puts(&b, "}");
         free(text);
+        hy_scene_doc_free(&d);
         hy_scene_free(sc);
         free(v[i]);
     }
@@ -947,8 +957,16 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
     sv_puts(&b, ",\"text\":");
     sv_json(&b, text);
     int bad = hy_scene_parse_buffer_policy(path, text, tl, &s->pol, &sc, &err);
+    hy_scene_doc d = {0};
+    if (!bad && hy_scene_decode_fill(sc, &d, &err)) {
+        hy_scene_doc_free(&d);
+        hy_scene_free(sc);
+        free(text);
+        free(b.s);
+        return send_error_json(c, 500, err.msg);
+    }
     sv_puts(&b, ",\"caption\":");
-    scene_caption(&b, bad ? NULL : sc, text);
+    scene_caption(&b, bad ? NULL : sc, &d, text);
     if (bad) {
         sv_puts(&b, ",\"controls\":[],\"anim\":null,\"error\":");
         sv_json(&b, err.msg);
@@ -958,13 +976,14 @@ static enum MHD_Result api_scene(server *s, struct MHD_Connection *c, const args
         sv_puts(&b, ",\"name\":");
         sv_json(&b, name);
         sv_puts(&b, ",\"controls\":");
-        sv_controls_json(&b, sc, hy_scene_reads(sc));
+        sv_controls_json(&b, sc, &d, hy_scene_doc_reads(&d));
         sv_puts(&b, ",\"presets\":");
-        sv_presets_json(&b, sc);
-        if (is_animation(sc))
+        sv_presets_json(&b, sc, &d);
+        if (is_animation(&d))
             json_anim(&b, s, c, hy_scene_hash(sc), path, text, tl);
         else
             sv_puts(&b, ",\"anim\":null");
+        hy_scene_doc_free(&d);
         hy_scene_free(sc);
     }
     free(text);
@@ -1180,7 +1199,7 @@ static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const arg
         sv_puts(&b, ",\"budget\":");
         sv_num(&b, run.budget);
         sv_puts(&b, ",\"caption\":"); /* with the values drawn ("σ0 = {model.sigma0}") */
-        if (!figure_caption(&b, run.scene))
+        if (!figure_caption(&b, run.scene, &run.doc))
             sv_puts(&b, "null");
         sv_puts(&b, ",\"cmd\":");
         sv_buf cmd = {0};

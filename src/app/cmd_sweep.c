@@ -663,23 +663,26 @@ static int check_study(study *s, uint64_t *hash)
             }
         }
     }
-    size_t ns = hy_scene_count(base, "series");
+    hy_scene_doc d = {0};
+    if (!rc && hy_scene_decode_fill(base, &d, &err))
+        rc = 2;
+    size_t ns = rc ? 0 : d.nseries;
     s->series = calloc(ns ? ns : 1, sizeof *s->series);
     s->series_dist = calloc(ns ? ns : 1, sizeof *s->series_dist);
     if (!s->series || !s->series_dist)
         rc = 2;
     for (size_t k = 0; k < ns && !rc; k++) {
-        const char *name = hy_scene_name_at(base, "series", k), *data = "";
-        int idx;
-        hy_scene_get_enum(base, "series", name, "data", &idx, &data);
-        size_t n = strlen(name) + 1;
+        const hy_decl_series *se = &d.series[k];
+        size_t n = strlen(se->h.name) + 1;
         if (!(s->series[k] = malloc(n)))
             rc = 2;
         else
-            memcpy(s->series[k], name, n);
-        s->series_dist[k] = data && (!strcmp(data, "ygamma") || !strcmp(data, "transient"));
+            memcpy(s->series[k], se->h.name, n);
+        s->series_dist[k] = hy_decl_got(&se->h, offsetof(hy_decl_series, data)) >= 0 &&
+                            (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT);
         s->nseries++;
     }
+    hy_scene_doc_free(&d);
     hy_scene_free(base);
     if (rc)
         return rc;

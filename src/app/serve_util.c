@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* serve_util.c: see serve_util.h. */
 #include "serve_util.h"
+#include "hy_scene_decl.h"
 #include "scene_model.h"
 
 #include <errno.h>
@@ -296,16 +297,12 @@ static const struct {
     {"compute", "", "", "points", NULL, NULL, NULL, 0, 0, 1},
 };
 
-/* One control: of key k of [sec label], or with param (the name of a
- * [param NAME] that the key reads, and others with it) of that parameter,
- * with k's symbol, unit and range. */
-static void control(sv_buf *b, int *first, const hy_scene *s, const hy_scene_key_spec *k, const char *sec,
-                    const char *label, int set, const char *model, const char *input, int main, const char *param)
+/* One control of value v: of key k of [sec label], or with param (the name
+ * of a [param NAME] that the key reads, and others with it) of that
+ * parameter, with k's symbol, unit and range. */
+static void control(sv_buf *b, int *first, double v, const hy_scene_key_spec *k, const char *sec, const char *label,
+                    int set, const char *model, const char *input, int main, const char *param)
 {
-    double v;
-    if (param ? hy_scene_get_num(s, "param", param, "value", &v) != HY_SCENE_SET
-              : hy_scene_get_num(s, sec, label, k->name, &v) < 0)
-        return;
     double lo, hi;
     int lg, d = -1;
     sv_slider_range(k, v, &lo, &hi, &lg);
@@ -365,7 +362,16 @@ static void control(sv_buf *b, int *first, const hy_scene *s, const hy_scene_key
     sv_puts(b, "}");
 }
 
-void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads)
+/* The place (1-9) of section.[label.]key in the [controls] main keys, 0 if none. */
+static int main_place(char (*mains)[HY_SCENE_KEY_MAX], size_t nmain, const char *full)
+{
+    for (size_t m = 0; m < nmain; m++)
+        if (!strcmp(mains[m], full))
+            return (int)m + 1;
+    return 0;
+}
+
+void sv_controls_json(sv_buf *b, const hy_scene *s, const hy_scene_doc *d, unsigned reads)
 {
     static const char *const secs[] = {"model", "input", "compute", "series"};
     size_t nsec;
@@ -375,10 +381,8 @@ void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads)
     hy_error err = {0};
     if (hy_scene_main_keys(s, mains, 9, &nmain, &err))
         nmain = 0; /* the render says what is wrong */
-    const char *model = "", *input = "";
-    int idx;
-    hy_scene_get_enum(s, "model", NULL, "kind", &idx, &model);
-    hy_scene_get_enum(s, "input", NULL, "kind", &idx, &input);
+    const char *model = hy_decl_enum_text(&d->model.h, offsetof(hy_decl_model, kind), d->model.kind);
+    const char *input = hy_decl_enum_text(&d->input.h, offsetof(hy_decl_input, kind), d->input.kind);
     int first = 1;
     const char *fed[64]; /* the parameters shown so far */
     size_t nfed = 0;
@@ -389,59 +393,55 @@ void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads)
             continue;
         const hy_scene_section_spec *ss = &spec[si];
         const char *kind = !strcmp(secs[i], "model") ? model : !strcmp(secs[i], "input") ? input : "";
-        size_t nlab = ss->takes_name ? hy_scene_count(s, secs[i]) : 1;
-        for (size_t l = 0; l < nlab; l++) {
-            const char *label = ss->takes_name ? hy_scene_name_at(s, secs[i], l) : NULL;
-            for (size_t j = 0; j < ss->nkeys; j++) {
+        const hy_decl_head *h;
+        for (size_t l = 0; (h = hy_scene_doc_at(d, secs[i], l)) != NULL; l++) {
+            const char *label = ss->takes_name ? h->name : NULL;
+            for (size_t j = 0; j < ss->nkeys && j < HY_SCENE_KEYS_MAX; j++) {
                 const hy_scene_key_spec *k = &ss->keys[j];
                 if ((k->kind != HY_KIND_NUMBER && k->kind != HY_KIND_INTEGER) || !is_read(secs[i], k->name, reads))
                     continue;
-                double v;
-                int got = hy_scene_get_num(s, secs[i], label, k->name, &v);
+                double v = 0;
+                int got = hy_decl_num(h, k->name, &v);
                 char full[HY_SCENE_KEY_MAX + 64];
                 snprintf(full, sizeof full, "%s.%s%s%s", secs[i], label ? label : "", label ? "." : "", k->name);
-                int main = 0;
-                for (size_t m = 0; m < nmain && !main; m++)
-                    if (!strcmp(mains[m], full))
-                        main = (int)m + 1;
-                const char *ref = hy_scene_get_ref(s, secs[i], label, k->name);
+                int main = main_place(mains, nmain, full);
+                const char *ref = h->at[j].ref;
                 if (ref) { /* one control for the parameter, at its first reader */
                     size_t p = 0;
                     while (p < nfed && strcmp(fed[p], ref))
                         p++;
-                    if (p < nfed || nfed == sizeof fed / sizeof fed[0])
+                    const hy_decl_head *ph = hy_scene_doc_find(d, "param", ref);
+                    if (p < nfed || nfed == sizeof fed / sizeof fed[0] || !ph || hy_decl_num(ph, "value", &v) != HY_SCENE_SET)
                         continue;
                     fed[nfed++] = ref;
                     snprintf(full, sizeof full, "param.%s.value", ref);
-                    main = 0;
-                    for (size_t m = 0; m < nmain && !main; m++)
-                        if (!strcmp(mains[m], full))
-                            main = (int)m + 1;
-                    control(b, &first, s, k, secs[i], label, 1, model, input, main, ref);
+                    control(b, &first, v, k, secs[i], label, 1, model, input, main_place(mains, nmain, full), ref);
                 } else if (got == HY_SCENE_SET || (got == HY_SCENE_DEFAULT && (main || wanted(secs[i], kind, k->name))))
-                    control(b, &first, s, k, secs[i], label, got == HY_SCENE_SET, model, input, main, NULL);
+                    control(b, &first, v, k, secs[i], label, got == HY_SCENE_SET, model, input, main, NULL);
             }
         }
     }
     sv_puts(b, "]");
 }
 
-void sv_presets_json(sv_buf *b, const hy_scene *s)
+void sv_presets_json(sv_buf *b, const hy_scene *s, const hy_scene_doc *d)
 {
     sv_puts(b, "[");
     char (*sets)[HY_SCENE_SET_MAX] = malloc(HY_SCENE_PRESET_MAX * sizeof *sets);
-    for (size_t i = 0, first = 1; sets && i < hy_scene_count(s, "preset"); i++) {
-        const char *name = hy_scene_name_at(s, "preset", i), *label = name;
+    for (size_t i = 0, first = 1; sets && i < d->npreset; i++) {
+        const hy_decl_preset *p = &d->preset[i];
+        const char *name = p->h.name;
         size_t n;
         hy_error err = {0};
+        /* the set text split and checked against the schema as --set is (the
+           scene's function, which names a bad value's place) */
         if (hy_scene_preset_sets(s, name, sets, HY_SCENE_PRESET_MAX, &n, &err))
             continue; /* the render says what is wrong (hy_scene_run_validate) */
-        hy_scene_get_str(s, "preset", name, "label", &label);
         sv_puts(b, first ? "{\"name\":" : ",{\"name\":");
         first = 0;
         sv_json(b, name);
         sv_puts(b, ",\"label\":");
-        sv_json(b, label);
+        sv_json(b, hy_decl_got(&p->h, offsetof(hy_decl_preset, label)) == HY_SCENE_SET ? p->label : name);
         sv_puts(b, ",\"sets\":[");
         for (size_t j = 0; j < n; j++) {
             if (j)
@@ -552,8 +552,12 @@ char *sv_scene_with_sets(const hy_scene *s, const char *path, const char *text, 
                          const char *out_name, hy_error *err)
 {
     line_edit *ed = calloc(nsets + 1, sizeof *ed);
-    if (!ed)
+    hy_scene_doc d = {0}; /* where the file writes each key and section header */
+    if (!ed || hy_scene_decode_fill(s, &d, err)) {
+        free(ed);
+        hy_scene_doc_free(&d);
         return hy_error_set(err, HY_ENOMEM, "out of memory"), NULL;
+    }
     size_t ned = 0;
     char outset[300];
     snprintf(outset, sizeof outset, "output.name=%s", out_name);
@@ -566,6 +570,7 @@ char *sv_scene_with_sets(const hy_scene *s, const char *path, const char *text, 
             d2--;
         if (!eq || !d1 || d2 - 1 < d1) {
             free(ed);
+            hy_scene_doc_free(&d);
             return hy_error_set(err, HY_EINVAL, "--set %s: expected section.key=value", a), NULL;
         }
         char sec[64], label[128] = "", key[64];
@@ -575,14 +580,16 @@ char *sv_scene_with_sets(const hy_scene *s, const char *path, const char *text, 
             snprintf(label, sizeof label, "%.*s", (int)(d2 - 1 - d1 - 1), d1 + 1);
         const char *lb = label[0] ? label : NULL;
         line_edit *e = &ed[ned++];
-        hy_scene_loc loc;
+        const hy_decl_head *h = hy_scene_doc_find(&d, sec, lb);
+        hy_scene_loc kl = h ? hy_decl_loc(h, hy_decl_offset(h, key)) : (hy_scene_loc){path, 0, 0};
         snprintf(e->text, sizeof e->text, "%s = %s", key, eq + 1);
-        if (hy_scene_get_loc(s, sec, lb, key, &loc) == 1 && loc.line > 0 && same_file(loc.file, path))
-            e->replace = loc.line;
-        else if (hy_scene_get_loc(s, sec, lb, NULL, &loc) == 1 && loc.line > 0 && same_file(loc.file, path))
-            e->after = loc.line;
+        if (kl.line > 0 && same_file(kl.file, path))
+            e->replace = kl.line;
+        else if (h && h->loc.line > 0 && same_file(h->loc.file, path))
+            e->after = h->loc.line;
         else if (lb) { /* a named section from an include: hy_scene_set refused it already */
             free(ed);
+            hy_scene_doc_free(&d);
             return hy_error_set(err, HY_EINVAL, "--set %s: [%s %s] is not in %s", a, sec, lb, path), NULL;
         } else {
             /* a section the file lacks: one new section for all its keys */
@@ -633,6 +640,7 @@ char *sv_scene_with_sets(const hy_scene *s, const char *path, const char *text, 
             sv_puts(&b, "\n");
         }
     free(ed);
+    hy_scene_doc_free(&d);
     if (b.oom) {
         free(b.s);
         return hy_error_set(err, HY_ENOMEM, "out of memory"), NULL;

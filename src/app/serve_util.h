@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "hy_scene.h"
+#include "hy_scene_decl.h"
 #include "hy_status.h"
 
 /* A growable NUL-terminated buffer; oom is set once an append failed. */
@@ -55,13 +56,15 @@ const char *sv_settable_sections(void);
  * sym and unit come from the schema; main is the key's place (1-9) in the
  * scene's [controls] main, 0 if not listed; above/below name the keys whose
  * current values bound this one strictly, per the key whose inverse is the
- * step (period x fs whole). */
-void sv_controls_json(sv_buf *b, const hy_scene *s, unsigned reads);
+ * step (period x fs whole).  The values come from d, s decoded
+ * (hy_scene_decode_fill); s gives only the [controls] main keys. */
+void sv_controls_json(sv_buf *b, const hy_scene *s, const hy_scene_doc *d, unsigned reads);
 
 /* Appends the JSON array of the scene's [preset NAME] sections, in file
  * order: {"name":"fig16","label":"Fig. 16: sigma0 = 1","sets":["model.sigma0=1",...]};
- * a preset whose set is malformed is left out (the render refuses the scene). */
-void sv_presets_json(sv_buf *b, const hy_scene *s);
+ * a preset whose set is malformed is left out (the render refuses the scene).
+ * d is s decoded; s splits each preset's set text. */
+void sv_presets_json(sv_buf *b, const hy_scene *s, const hy_scene_doc *d);
 
 /* Slider range for a key spec and its current value: [lo, hi], logarithmic
  * when the range spans decades; kept inside the documented bounds. */

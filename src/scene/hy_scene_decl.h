@@ -286,6 +286,11 @@ int hy_decl_num(const hy_decl_head *h, const char *key, double *out);
  * NULL if d has no such section. */
 const hy_decl_head *hy_scene_doc_find(const hy_scene_doc *d, const char *section, const char *name);
 
+/* How many [section NAME] d holds (1 for an unnamed section, 0 for an
+ * unknown one), and the head of the i-th in file order (NULL past the end). */
+size_t hy_scene_doc_count(const hy_scene_doc *d, const char *section);
+const hy_decl_head *hy_scene_doc_at(const hy_scene_doc *d, const char *section, size_t i);
+
 /* The decoded [series NAME] of d, or NULL. */
 const hy_decl_series *hy_scene_doc_series(const hy_scene_doc *d, const char *name);
 

@@ -322,19 +322,47 @@ int hy_decl_num(const hy_decl_head *h, const char *key, double *out)
     return h->at[j].got;
 }
 
-const hy_decl_head *hy_scene_doc_find(const hy_scene_doc *d, const char *section, const char *name)
+size_t hy_scene_doc_count(const hy_scene_doc *d, const char *section)
 {
-#define ONE(sec)                                  \
-    if (!name && !strcmp(section, #sec))          \
-        return &d->sec.h;
-#define NAMED(sec)                                \
-    for (size_t i = 0; name && !strcmp(section, #sec) && i < d->n##sec; i++) \
-        if (!strcmp(d->sec[i].h.name, name))      \
-            return &d->sec[i].h;
+#define ONE(sec)               \
+    if (!strcmp(section, #sec)) \
+        return 1;
+#define NAMED(sec)             \
+    if (!strcmp(section, #sec)) \
+        return d->n##sec;
     HY_DOC_UNNAMED(ONE)
     HY_DOC_NAMED(NAMED)
 #undef ONE
 #undef NAMED
+    return 0;
+}
+
+const hy_decl_head *hy_scene_doc_at(const hy_scene_doc *d, const char *section, size_t i)
+{
+#define ONE(sec)                          \
+    if (!strcmp(section, #sec))           \
+        return i ? NULL : &d->sec.h;
+#define NAMED(sec)                        \
+    if (!strcmp(section, #sec))           \
+        return i < d->n##sec ? &d->sec[i].h : NULL;
+    HY_DOC_UNNAMED(ONE)
+    HY_DOC_NAMED(NAMED)
+#undef ONE
+#undef NAMED
+    return NULL;
+}
+
+const hy_decl_head *hy_scene_doc_find(const hy_scene_doc *d, const char *section, const char *name)
+{
+    size_t n = hy_scene_doc_count(d, section);
+    int si = hy_scene_schema_section(section);
+    if (si < 0 || !hy_scene_schema(NULL)[si].takes_name != !name)
+        return NULL;
+    for (size_t i = 0; i < n; i++) {
+        const hy_decl_head *h = hy_scene_doc_at(d, section, i);
+        if (!name || !strcmp(h->name, name))
+            return h;
+    }
     return NULL;
 }
 

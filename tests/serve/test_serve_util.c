@@ -192,8 +192,10 @@ int main(void)
         hy_scene *ls = NULL;
         CHECK(hy_scene_parse_buffer("l.scene", linked, strlen(linked), &ls, &err) == HY_OK);
         sv_buf cb = {0};
-        if (ls)
-            sv_controls_json(&cb, ls, HY_READS_MODEL | HY_READS_G | HY_READS_INPUT);
+        hy_scene_doc ld = {0};
+        if (ls && hy_scene_decode_fill(ls, &ld, &err) == HY_OK)
+            sv_controls_json(&cb, ls, &ld, HY_READS_MODEL | HY_READS_G | HY_READS_INPUT);
+        hy_scene_doc_free(&ld);
         const char *p = cb.s ? strstr(cb.s, "{\"key\":\"param.g.value\",\"value\":\"20\"") : NULL;
         CHECK(p && strstr(p, "\"sym\":\"γ\"") && !strstr(p + 20, "param.g.value"));
         CHECK(cb.s && !strstr(cb.s, "series.t.gamma") && !strstr(cb.s, "series.y.gamma") && strstr(cb.s, "series.z.gamma"));
