@@ -240,8 +240,9 @@ static int wanted(const char *sec, const char *kind, const char *key)
     const char *const *l = NULL;
     if (!strcmp(sec, "model")) { /* the model's own keys, from the model table */
         const hy_scene_model *mt = hy_scene_model_find(kind);
-        l = mt ? mt->params : NULL;
-    } else if (!strcmp(sec, "input") && !strcmp(kind, "bimodal"))
+        return mt && strcmp(key, "kind") && hy_scene_model_has_key(mt, key);
+    }
+    if (!strcmp(sec, "input") && !strcmp(kind, "bimodal"))
         l = bimodal;
     for (size_t i = 0; l && l[i]; i++)
         if (!strcmp(l[i], key))

@@ -50,7 +50,7 @@ double hy_langevin_d(double x)
 
 int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double alpha, hy_error *err)
 {
-    hy_jiles t = {ms, a, k, c, alpha, 0.0, 1e-13, NULL};
+    hy_jiles t = {ms, a, k, c, alpha, 0.0, HY_JILES_RTOL, NULL};
     int rc = hy_jiles_validate(&t, err);
     if (!rc)
         *j = t;

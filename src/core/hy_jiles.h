@@ -38,6 +38,7 @@
 #include "hy_rateind.h"
 
 #define HY_MU0 1.25663706212e-6 /* vacuum permeability, N/A² (CODATA 2018) */
+#define HY_JILES_RTOL 1e-13     /* the stepper's default local tolerance (hy_jiles.rtol) */
 
 typedef struct hy_jiles {
     double ms;      /* saturation magnetisation Ms (A/m), > 0                  */

@@ -283,8 +283,13 @@ char *hy_schema_json(void)
         const hy_scene_model *mt = hy_scene_models[i];
         fputs(i ? ",{\"name\":" : "{\"name\":", f);
         json_str(f, mt->name);
-        fputs(",\"params\":", f);
-        json_list(f, mt->params);
+        fputs(",\"params\":[", f);
+        const char *p;
+        for (size_t k = 0; (p = hy_scene_model_param(mt, k)); k++) {
+            fputs(k ? "," : "", f);
+            json_str(f, p);
+        }
+        fputc(']', f);
         fputs(",\"quantities\":", f);
         json_list(f, mt->quantities);
         fputs(",\"state\":", f);

@@ -11,8 +11,9 @@
  * z = 0 located in closed form (r* = log1p(−z0/z∞)/κ) and the step restarted
  * there; ∫ z du along the path is the exact integral of the same expression.
  * It saturates at z_s = α / (β (γ + δ)) when β (γ + δ) > 0 (else z grows
- * without bound as u rises: refused).  One file and one line of
- * HY_MODEL_KINDS: the model table's own example of adding a model. */
+ * without bound as u rises: refused).  One file and one line of the model
+ * table (src/pipeline/meson.build); its keys are the Bouc-Wen oscillator's
+ * shared rows of hy_scene_schema.c (alpha, bw_beta, ...). */
 #include <math.h>
 #include <stddef.h>
 #include <string.h>

@@ -1,17 +1,34 @@
 /* SPDX-License-Identifier: MIT */
 /* model_jiles.c: the Jiles-Atherton model (J. Magn. Magn. Mater. 61 (1986)
  * 48; numerics in src/core/hy_jiles.c) in the model table: input H in A/m,
- * output B in T (quantity magnetisation: M in A/m). */
+ * output B in T (quantity magnetisation: M in A/m).  Its [model] keys fill
+ * a hy_jiles (rows: hy_scene_model_rows.h). */
 #include <stddef.h>
-#include <string.h>
 
 #include "hy_jiles.h"
+#include "hy_scene_model_rows.h"
+
+#define PAR hy_jiles
+HY_MODEL_ROWS(jiles, hy_jiles,
+    HY_ROW("M_s", "A/m", ja_ms, ms, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "1.6e6",
+           "jiles-atherton: saturation magnetisation Ms in A/m (default: Jiles & Atherton 1986)"),
+    HY_ROW("a", "A/m", ja_a, a, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "1100",
+           "jiles-atherton: a in A/m, the width of the anhysteretic curve Ms L(H_e/a)"),
+    HY_ROW("k", "A/m", ja_k, k, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "400",
+           "jiles-atherton: pinning k in A/m (the loop's half-width)"),
+    HY_ROW("c", NULL, ja_c, c, HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX | HY_SPEC_MAX_EXCL, 0, 1, 0, 0, "0.2",
+           "jiles-atherton: reversible fraction c"),
+    HY_ROW("α", NULL, ja_alpha, alpha, HY_KIND_NUMBER, NULL, HY_NONNEG, 0, 0, "1.6e-3",
+           "jiles-atherton: mean-field coupling alpha (alpha Ms / (3a) < 1, and small enough for k)"),
+    HY_ROW("M_0", "A/m", ja_m0, m0, HY_KIND_NUMBER, NULL, HY_NOLIM, 0, 0, "0",
+           "jiles-atherton: magnetisation M in A/m at t = 0 (|m0| < Ms; 0: demagnetised)"));
+
+#ifndef HY_MODEL_ROWS_ONLY /* the stages (the pipeline's compile of this file) */
+#include <string.h>
+
 #include "scene_model.h"
 
-static const char *const keys[] = {"ja_ms", "ja_a", "ja_k", "ja_c", "ja_alpha", "ja_m0", NULL};
-static const size_t offsets[] = {offsetof(hy_jiles, ms), offsetof(hy_jiles, a), offsetof(hy_jiles, k),
-                                 offsetof(hy_jiles, c), offsetof(hy_jiles, alpha), offsetof(hy_jiles, m0)};
-/* how hy_jiles.c's messages name each key (alpha before k: one message names both) */
+/* how hy_jiles.c's messages name each row's key (alpha before k: one message names both) */
 static const char *const core_names[] = {"Jiles-Atherton Ms", "Jiles-Atherton a (", "Jiles-Atherton k (",
                                          "Jiles-Atherton c (", "Jiles-Atherton alpha", "m0", NULL};
 static const char *const quantities[] = {"output", "magnetisation", NULL};
@@ -52,13 +69,15 @@ static const hy_rateind_type ja_type = {"jiles-atherton", sizeof(hy_jiles_state)
 static int ja_read(const hy_decl_model *m, void *par, hy_error *err)
 {
     hy_jiles *j = par;
-    hy_jiles_init(j, 1.6e6, 1100, 400, 0.2, 1.6e-3, err); /* rtol; every key has a schema default */
-    hy_scene_model_read_numbers(m, keys, offsets, j);
+    memcpy(j, m->par, sizeof *j); /* every row: set or its default */
+    j->rtol = HY_JILES_RTOL;
+    j->stepper = NULL;
     return hy_scene_model_relocate(m, &hy_scene_model_jiles, hy_jiles_validate(j, err), err);
 }
 
 const hy_scene_model hy_scene_model_jiles = {
-    "jiles-atherton", keys, quantities, "H (A/m)", "B (T)",
+    "jiles-atherton", NULL, quantities, "H (A/m)", "B (T)",
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_GSL,
     "H, M and the path integral of B dH (GSL rk8pd in H, restarted at every reversal)", hy_scene_rateind_load,
     hy_scene_rateind_estimate, hy_scene_rateind_compute, &ja_type, sizeof(hy_jiles), ja_read, core_names};
+#endif

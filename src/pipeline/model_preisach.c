@@ -1,15 +1,37 @@
 /* SPDX-License-Identifier: MIT */
 /* model_preisach.c: the classical Preisach model (numerics in
  * src/core/hy_preisach.c: Everett function, staircase memory) in the model
- * table, with the symmetric factorised density of model.pr_density. */
+ * table, with the symmetric factorised density of its [model] keys (rows:
+ * hy_scene_model_rows.h). */
+#include <stddef.h>
+
+#include "hy_preisach.h"
+#include "hy_scene_model_rows.h"
+
+/* The [model] keys: the density hy_preisach_symmetric builds. */
+typedef struct pr_par {
+    int density; /* index in hy_preisach_dist_names: the HY_PREISACH_ value */
+    double hc, width, ys;
+} pr_par;
+
+#define PAR pr_par
+HY_MODEL_ROWS(preisach, pr_par,
+    HY_ROW(NULL, NULL, pr_density, density, HY_KIND_ENUM, hy_preisach_dist_names, HY_NOLIM, 0, 0, "gaussian",
+           "preisach: distribution of both switching fields (factorised density)"),
+    HY_ROW("H_c", NULL, pr_hc, hc, HY_KIND_NUMBER, NULL, HY_NONNEG, 0, 0, "0.5",
+           "preisach: centre of the up-switching fields alpha (the down-switching beta around -pr_hc), in input units"),
+    HY_ROW("w", NULL, pr_width, width, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "0.2",
+           "preisach: width of both switching-field distributions, in input units"),
+    HY_ROW("y_s", NULL, pr_ys, ys, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "1", "preisach: output at positive saturation"));
+
+#ifndef HY_MODEL_ROWS_ONLY /* the stages (the pipeline's compile of this file) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "hy_preisach.h"
 #include "scene_model.h"
 
-static const char *const keys[] = {"pr_density", "pr_hc", "pr_width", "pr_ys", NULL};
+/* how hy_preisach.c's messages name each row's key */
 static const char *const core_names[] = {"distribution", "centre must", "width", "ys", NULL};
 static const char *const quantities[] = {"output", NULL};
 
@@ -65,14 +87,15 @@ static const hy_rateind_type pr_type = {"preisach", sizeof(hy_preisach_mem), HY_
 
 static int pr_read(const hy_decl_model *m, void *par, hy_error *err)
 {
-    const char *dist = hy_decl_enum_text(&m->h, offsetof(hy_decl_model, pr_density), m->pr_density);
-    int rc = hy_preisach_symmetric(par, hy_preisach_dist_find(dist), m->pr_hc, m->pr_width, m->pr_ys, err);
+    const pr_par *p = (const void *)m->par;
+    int rc = hy_preisach_symmetric(par, p->density, p->hc, p->width, p->ys, err);
     return hy_scene_model_relocate(m, &hy_scene_model_preisach, rc, err);
 }
 
 const hy_scene_model hy_scene_model_preisach = {
-    "preisach", keys, quantities, NULL, NULL,
+    "preisach", NULL, quantities, NULL, NULL,
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_CLOSED_MINOR | HY_CAP_ENERGY | HY_CAP_RETURN_POINT |
         HY_CAP_RATE_INDEPENDENT | HY_CAP_EXACT_STEP,
     "the staircase of the input's dominant extrema (wiping-out)", hy_scene_rateind_load, hy_scene_rateind_estimate,
     hy_scene_rateind_compute, &pr_type, sizeof(hy_preisach), pr_read, core_names};
+#endif

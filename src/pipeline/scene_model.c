@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* scene_model.c: the model table (one line per kind in HY_MODEL_KINDS,
- * hy_scene_schema.h) and what the model files share. */
+ * generated from src/pipeline/meson.build's table) and what the model files share. */
 #include "scene_model.h"
 
 #include <string.h>
@@ -37,12 +37,28 @@ const hy_scene_model *hy_scene_model_of(const hy_decl_model *m)
     return mt ? mt : hy_scene_model_find("lugre");
 }
 
+const char *hy_scene_model_param(const hy_scene_model *mt, size_t i)
+{
+    if (mt->params) {
+        for (size_t j = 0; j < i; j++)
+            if (!mt->params[j])
+                return NULL;
+        return mt->params[i];
+    }
+    const hy_scene_section_spec *ms = hy_scene_schema(NULL) + hy_scene_schema_section("model");
+    for (size_t j = 0; j < ms->nkeys; j++)
+        if (ms->keys[j].model && !strcmp(ms->keys[j].model, mt->name) && i-- == 0)
+            return ms->keys[j].name;
+    return NULL;
+}
+
 int hy_scene_model_has_key(const hy_scene_model *mt, const char *key)
 {
     if (!strcmp(key, "kind"))
         return 1;
-    for (size_t i = 0; mt->params[i]; i++)
-        if (!strcmp(mt->params[i], key))
+    const char *p;
+    for (size_t i = 0; (p = hy_scene_model_param(mt, i)); i++)
+        if (!strcmp(p, key))
             return 1;
     return 0;
 }
@@ -63,7 +79,9 @@ int hy_scene_model_relocate(const hy_decl_model *m, const hy_scene_model *mt, in
     char msg[sizeof err->msg];
     memcpy(msg, err->msg, sizeof msg);
     for (size_t i = 0; mt->core_names && mt->core_names[i]; i++)
-        if (strstr(msg, mt->core_names[i]))
-            return hy_decl_error(&m->h, hy_decl_offset(&m->h, mt->params[i]), err, rc, "%s: %s", mt->params[i], msg);
+        if (strstr(msg, mt->core_names[i])) {
+            const char *key = hy_scene_model_param(mt, i);
+            return hy_decl_error(&m->h, hy_decl_offset(&m->h, key), err, rc, "%s: %s", key, msg);
+        }
     return hy_decl_error(&m->h, HY_DECL_HEAD, err, rc, "%s", msg);
 }

@@ -2,11 +2,13 @@
 /* scene_model.h: the model table of the scene pipeline, one static const
  * type per [model] kind, in the form of GSL's gsl_odeiv2_step_type.
  *
- * Each model kind (HY_MODEL_KINDS in hy_scene_schema.h) has one file that
- * exports `const hy_scene_model hy_scene_model_<id>`: its name, the [model]
- * keys it reads (rows of the schema table, which hold their kind, range,
- * default, unit and doc), what it can compute (caps), the quantities a series
- * can draw from it, and the three stages the pipeline dispatches through it:
+ * Each model kind (one line of the model table, src/pipeline/meson.build,
+ * which generates HY_MODEL_KINDS) has one file that exports
+ * `const hy_scene_model hy_scene_model_<id>`: its name, the [model] keys it
+ * reads (its own rows, HY_MODEL_ROWS of hy_scene_model_rows.h, or the
+ * schema's shared rows it names; each row holds its kind, range, default,
+ * unit and doc), what it can compute (caps), the quantities a series can
+ * draw from it, and the three stages the pipeline dispatches through it:
  *
  *     const hy_scene_model *mt = hy_scene_model_of(scene);
  *     rc = mt->load(r, err);                 // scene -> model + input, checked
@@ -14,9 +16,10 @@
  *     rc = mt->compute(r, log, err);         // series, loops
  *
  * A rate-independent model (Jiles-Atherton, Preisach) fills `ri` (its core
- * type, hy_rateind.h) and `read` (parameters from [model] into a struct of
- * ri_par_size bytes) and takes load/estimate/compute from scene_rateind.c;
- * nothing else in the pipeline knows it.
+ * type, hy_rateind.h) and `read` (its core parameters, a struct of
+ * ri_par_size bytes, from the decoded [model]: its rows' struct at m->par)
+ * and takes load/estimate/compute from scene_rateind.c; nothing else in the
+ * pipeline knows it.
  */
 #ifndef HY_SCENE_MODEL_H
 #define HY_SCENE_MODEL_H
@@ -40,7 +43,8 @@ enum {
 
 typedef struct hy_scene_model {
     const char *name;                 /* the [model] kind                                      */
-    const char *const *params;        /* the [model] keys it reads (schema rows), NULL-ended   */
+    const char *const *params;        /* the shared [model] keys it reads, NULL-ended; NULL for
+                                       * a model with its own rows (hy_scene_model_param)     */
     const char *const *quantities;    /* values of a series' quantity it draws, NULL-ended;
                                        * the first is the default (rate-independent models:
                                        * index q is out[q] of hy_rateind.h)                    */
@@ -54,7 +58,7 @@ typedef struct hy_scene_model {
     const hy_rateind_type *ri;
     size_t ri_par_size;
     int (*read)(const hy_decl_model *m, void *par, hy_error *err); /* from the decoded [model] */
-    /* how the core's messages name params[i] (NULL: no relocation) */
+    /* how the core's messages name key i (hy_scene_model_param; NULL: no relocation) */
     const char *const *core_names;
 } hy_scene_model;
 
@@ -74,6 +78,9 @@ const hy_scene_model *hy_scene_model_find(const char *kind);
 /* The model of the scene's [model] kind (its default when unset); never NULL
  * for a parsed scene (the schema admits only the table's kinds). */
 const hy_scene_model *hy_scene_model_of(const hy_decl_model *m);
+/* The i-th [model] key the model reads (its params, else its own rows in
+ * the schema's order), or NULL past the last. */
+const char *hy_scene_model_param(const hy_scene_model *mt, size_t i);
 /* Whether key is one of the model's [model] keys (kind included). */
 int hy_scene_model_has_key(const hy_scene_model *mt, const char *key);
 
@@ -114,12 +121,12 @@ int hy_scene_rateind_load(hy_scene_run *r, hy_error *err);
 int hy_scene_rateind_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err);
 int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err);
 
-/* Reads the model's keys (all numbers) into par at the given offsets, with the
- * schema's defaults: keys[i] fills the double at offsets[i]. */
+/* Reads shared [model] keys (all numbers) into par at the given offsets, with
+ * the schema's defaults: keys[i] fills the double at offsets[i]. */
 void hy_scene_model_read_numbers(const hy_decl_model *m, const char *const *keys, const size_t *offsets, void *par);
 /* Re-raises a core message (err->msg) with status rc at the [model] key it
- * names (the first mt->core_names[i] found in it is mt->params[i]), else at
- * [model]; rc 0 returns 0. */
+ * names (the first mt->core_names[i] found in it is hy_scene_model_param(mt,
+ * i)), else at [model]; rc 0 returns 0. */
 int hy_scene_model_relocate(const hy_decl_model *m, const hy_scene_model *mt, int rc, hy_error *err);
 
 #endif

@@ -41,12 +41,13 @@ static int foreign_keys(const hy_scene_run *r, hy_error *err)
     const hy_decl_head *h = &r->doc.model.h;
     for (size_t j = 0; j < ms->nkeys && j < HY_SCENE_KEYS_MAX; j++) {
         const char *key = ms->keys[j].name;
-        if (h->at[j].got == HY_SCENE_SET && !hy_scene_model_has_key(r->mtype, key)) {
+        if (h->at[j].loc.line > 0 && !hy_scene_model_has_key(r->mtype, key)) { /* written (set) */
             char list[256] = "";
-            for (size_t i = 0; r->mtype->params[i]; i++)
-                snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", r->mtype->params[i]);
-            return hy_decl_error(h, ms->keys[j].field, err, HY_EINVAL,
-                                 "'%s' is not a parameter of a %s model (its keys: %s)", key, r->mtype->name, list);
+            const char *p;
+            for (size_t i = 0; (p = hy_scene_model_param(r->mtype, i)); i++)
+                snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", p);
+            return hy_decl_error_row(h, j, err, HY_EINVAL, "'%s' is not a parameter of a %s model (its keys: %s)",
+                                     key, r->mtype->name, list);
         }
     }
     return HY_OK;

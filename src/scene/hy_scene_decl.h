@@ -26,6 +26,9 @@
 
 #include "hy_scene.h"
 
+/* The largest parameter struct a model's own rows may fill (hy_decl_model.par). */
+#define HY_MODEL_PAR_MAX 256
+
 /* The most keys a section may have (a schema test checks every section). */
 #define HY_SCENE_KEYS_MAX 40
 
@@ -66,15 +69,14 @@ typedef struct hy_decl_head {
  * (in pt) double, INTEGER long, BOOL and ENUM (the index) int, STRING, NAME
  * and PATH const char *, lists hy_scene_list, PAIR and LIMITS hy_scene_pair,
  * LENGTH_PAIR double[2] (pt), COLOR hy_scene_color.  The field's name is the
- * key's name. */
+ * key's name.  A model that declares its own [model] rows (hy_scene_model_rows.h)
+ * has its parameter struct at par, filled for a scene of its kind. */
 typedef struct hy_decl_model {
     hy_decl_head h;
     int kind;
     double sigma0, sigma1, sigma2, fc, fs, vs, beta, rho, x0, tau;
     double m, c, k, alpha, bw_beta, bw_gamma, delta, nu;
-    double ja_ms, ja_a, ja_k, ja_c, ja_alpha, ja_m0;
-    int pr_density;
-    double pr_hc, pr_width, pr_ys;
+    _Alignas(max_align_t) unsigned char par[HY_MODEL_PAR_MAX];
 } hy_decl_model;
 
 typedef struct hy_decl_input {
@@ -262,6 +264,14 @@ int hy_decl_got(const hy_decl_head *h, size_t off);
  * may include err->msg. */
 #define HY_DECL_HEAD ((size_t)-1)
 int hy_decl_error(const hy_decl_head *h, size_t off, hy_error *err, int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+
+/* As hy_decl_error at the j-th key of h's section: where it was written
+ * (also a row of another model, which fills nothing), else the header. */
+int hy_decl_error_row(const hy_decl_head *h, size_t j, hy_error *err, int code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 5, 6)))
 #endif

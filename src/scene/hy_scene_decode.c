@@ -71,12 +71,16 @@ int hy_scene_decode_section(const hy_scene *s, const char *section, const char *
     h->source = hy_scene_source(s);
     h->loc = (hy_scene_loc){h->source, 0, 0};
     hy_scene_get_loc(s, section, name, NULL, &h->loc);
+    const char *kind = NULL; /* the section's kind, for a model's own rows */
     for (size_t j = 0; j < spec->nkeys && j < HY_SCENE_KEYS_MAX; j++) {
         const hy_scene_key_spec *k = &spec->keys[j];
         hy_decl_field *f = &h->at[j];
         f->loc = (hy_scene_loc){h->source, 0, 0};
-        if (!k->ctype) {
+        if (k->model && !kind && hy_scene_get_enum(s, section, name, "kind", NULL, &kind) < 0)
+            kind = "";
+        if (!k->ctype || (k->model && strcmp(k->model, kind))) { /* another model's row fills nothing */
             f->got = HY_SCENE_BADKEY;
+            hy_scene_get_loc(s, section, name, k->name, &f->loc);
             continue;
         }
         f->got = read_key(s, section, name, k, (char *)h + k->field);
@@ -248,11 +252,12 @@ void hy_scene_doc_free(hy_scene_doc *d)
 #undef NAMED
 }
 
-/* The index of the key that fills offset off of h's struct, or -1. */
+/* The index of the key that fills offset off of h's struct, or -1 (the
+ * rows of another model than the section's kind fill nothing: BADKEY). */
 static int key_at(const hy_decl_head *h, size_t off)
 {
     for (size_t j = 0; h->spec && j < h->spec->nkeys && j < HY_SCENE_KEYS_MAX; j++)
-        if (h->spec->keys[j].ctype && h->spec->keys[j].field == off)
+        if (h->at[j].got != HY_SCENE_BADKEY && h->spec->keys[j].field == off)
             return (int)j;
     return -1;
 }
@@ -260,7 +265,7 @@ static int key_at(const hy_decl_head *h, size_t off)
 size_t hy_decl_offset(const hy_decl_head *h, const char *key)
 {
     for (size_t j = 0; h->spec && j < h->spec->nkeys && j < HY_SCENE_KEYS_MAX; j++)
-        if (h->spec->keys[j].ctype && !strcmp(h->spec->keys[j].name, key))
+        if (h->at[j].got != HY_SCENE_BADKEY && !strcmp(h->spec->keys[j].name, key))
             return h->spec->keys[j].field;
     return HY_DECL_HEAD;
 }
@@ -287,17 +292,32 @@ const char *hy_decl_enum_text(const hy_decl_head *h, size_t off, int idx)
     return "";
 }
 
+static void error_vrow(const hy_decl_head *h, int j, hy_error *err, int code, const char *fmt, va_list ap)
+{
+    hy_scene_loc loc = j >= 0 && j < HY_SCENE_KEYS_MAX && h->at[j].loc.line > 0 ? h->at[j].loc : h->loc;
+    if (!loc.file)
+        loc.file = h->source;
+    hy__error_vat(loc, err, code, fmt, ap);
+}
+
 int hy_decl_error(const hy_decl_head *h, size_t off, hy_error *err, int code, const char *fmt, ...)
 {
     if (!err)
         return code;
-    int j = off == HY_DECL_HEAD ? -1 : key_at(h, off);
-    hy_scene_loc loc = j >= 0 && h->at[j].loc.line > 0 ? h->at[j].loc : h->loc;
-    if (!loc.file)
-        loc.file = h->source;
     va_list ap;
     va_start(ap, fmt);
-    hy__error_vat(loc, err, code, fmt, ap);
+    error_vrow(h, off == HY_DECL_HEAD ? -1 : key_at(h, off), err, code, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+int hy_decl_error_row(const hy_decl_head *h, size_t j, hy_error *err, int code, const char *fmt, ...)
+{
+    if (!err)
+        return code;
+    va_list ap;
+    va_start(ap, fmt);
+    error_vrow(h, j < HY_SCENE_KEYS_MAX ? (int)j : -1, err, code, fmt, ap);
     va_end(ap);
     return code;
 }

@@ -3,11 +3,13 @@
  * Sections 2-4; the Bouc-Wen benchmark of seed 001, Tables 1-2 and Sections 4-5). */
 #include "hy_scene_schema.h"
 #include "hy_scene_decl.h"
+#include "hy_scene_model_rows.h"
 
-#include "hy_preisach.h"
 #include "hy_quality.h"
 
+#include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* NOLIM, POS and NONNEG stand for the three fields flags, min, max; K expands
@@ -17,21 +19,21 @@
 #define NONNEG HY_SPEC_MIN, 0.0, 0.0
 #define K(...) K_(__VA_ARGS__)
 #define K_(name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, 0, HY_CTYPE_NONE }
+    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, 0, HY_CTYPE_NONE, NULL }
 /* KQ: a quantity's key, its symbol and unit first (see hy_scene_key_spec). */
 #define KQ(sym, unit, ...) KQ_(sym, unit, __VA_ARGS__)
 #define KQ_(sym, unit, name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, 0, HY_CTYPE_NONE }
+    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, 0, HY_CTYPE_NONE, NULL }
 /* F and FQ: as K and KQ for a key that hy_scene_decode writes into the field
  * of the same name of the section's struct SECT (hy_scene_decl.h): the row
  * records the field's offset and C type, so the name is written once. */
 #define FIELD_OF(name) offsetof(SECT, name), HY_CTYPE_OF(((SECT *)0)->name)
 #define F(...) F_(__VA_ARGS__)
 #define F_(name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, FIELD_OF(name) }
+    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, FIELD_OF(name), NULL }
 #define FQ(sym, unit, ...) FQ_(sym, unit, __VA_ARGS__)
 #define FQ_(sym, unit, name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, FIELD_OF(name) }
+    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, FIELD_OF(name), NULL }
 #define NKEYS(a) (sizeof(a) / sizeof((a)[0]))
 
 #define MODEL_NAME(id, name) name,
@@ -88,24 +90,6 @@ static const hy_scene_key_spec model_keys[] = {
     FQ("γ", NULL, bw_gamma, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen, boucwen-operator: gamma of Eq. (3)"),
     FQ("δ", NULL, delta, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen, boucwen-operator: delta of Eq. (3)"),
     FQ("ν", NULL, nu, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen, boucwen-operator (1 only): exponent nu of Eq. (3)"),
-    FQ("M_s", "A/m", ja_ms, HY_KIND_NUMBER, NULL, POS, 0, 0, "1.6e6",
-      "jiles-atherton: saturation magnetisation Ms in A/m (default: Jiles & Atherton 1986)"),
-    FQ("a", "A/m", ja_a, HY_KIND_NUMBER, NULL, POS, 0, 0, "1100",
-      "jiles-atherton: a in A/m, the width of the anhysteretic curve Ms L(H_e/a)"),
-    FQ("k", "A/m", ja_k, HY_KIND_NUMBER, NULL, POS, 0, 0, "400", "jiles-atherton: pinning k in A/m (the loop's half-width)"),
-    FQ("c", NULL, ja_c, HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX | HY_SPEC_MAX_EXCL, 0, 1, 0, 0, "0.2",
-      "jiles-atherton: reversible fraction c"),
-    FQ("α", NULL, ja_alpha, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1.6e-3",
-      "jiles-atherton: mean-field coupling alpha (alpha Ms / (3a) < 1, and small enough for k)"),
-    FQ("M_0", "A/m", ja_m0, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0",
-      "jiles-atherton: magnetisation M in A/m at t = 0 (|m0| < Ms; 0: demagnetised)"),
-    F(pr_density, HY_KIND_ENUM, hy_preisach_dist_names, NOLIM, 0, 0, "gaussian",
-      "preisach: distribution of both switching fields (factorised density)"),
-    FQ("H_c", NULL, pr_hc, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0.5",
-      "preisach: centre of the up-switching fields alpha (the down-switching beta around -pr_hc), in input units"),
-    FQ("w", NULL, pr_width, HY_KIND_NUMBER, NULL, POS, 0, 0, "0.2",
-      "preisach: width of both switching-field distributions, in input units"),
-    FQ("y_s", NULL, pr_ys, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "preisach: output at positive saturation"),
 };
 #undef SECT
 
@@ -322,7 +306,20 @@ static const hy_scene_key_spec preset_keys[] = {
 
 #define S(name, named, rep, keys, doc) { name, named, rep, keys, NKEYS(keys), doc }
 
-static const hy_scene_section_spec sections[] = {
+/* [model]'s rows: the shared rows above, then each model's own rows (its
+ * file's HY_MODEL_ROWS, hy_scene_model_rows.h) in the order of the model
+ * table, marked with its kind; assembled once, on the first call below. */
+#define ROWS_DECL(id, name) extern const hy_model_rows hy_model_rows_##id;
+HY_MODEL_ROW_KINDS(ROWS_DECL)
+#define ROWS_ENTRY(id, name) {name, &hy_model_rows_##id},
+static const struct {
+    const char *kind;
+    const hy_model_rows *rows;
+} model_rows[] = {HY_MODEL_ROW_KINDS(ROWS_ENTRY){NULL, NULL}};
+static hy_scene_key_spec model_all[HY_SCENE_KEYS_MAX];
+static pthread_once_t assembled = PTHREAD_ONCE_INIT;
+
+static hy_scene_section_spec sections[] = {
     S("model", 0, 0, model_keys, "the hysteresis model and its parameters"),
     S("input", 0, 0, input_keys, "the periodic input u(t)"),
     S("compute", 0, 0, compute_keys, "what is integrated and how"),
@@ -339,8 +336,28 @@ static const hy_scene_section_spec sections[] = {
     S("keyframe", 1, 1, keyframe_keys, "one animated numeric key per section (hystviz animate SCENE.scene)"),
 };
 
+static void assemble(void)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < NKEYS(model_keys); i++)
+        model_all[n++] = model_keys[i];
+    for (size_t m = 0; model_rows[m].kind; m++)
+        for (size_t i = 0; i < model_rows[m].rows->n; i++) {
+            if (n == HY_SCENE_KEYS_MAX) { /* a table error: fails every test at once */
+                fprintf(stderr, "hystviz: [model] has more than HY_SCENE_KEYS_MAX = %d keys (hy_scene_decl.h)\n",
+                        HY_SCENE_KEYS_MAX);
+                abort();
+            }
+            model_all[n] = model_rows[m].rows->rows[i];
+            model_all[n++].model = model_rows[m].kind;
+        }
+    sections[0].keys = model_all; /* sections[0] is [model] */
+    sections[0].nkeys = n;
+}
+
 const hy_scene_section_spec *hy_scene_schema(size_t *n)
 {
+    pthread_once(&assembled, assemble);
     if (n)
         *n = NKEYS(sections);
     return sections;
@@ -348,6 +365,7 @@ const hy_scene_section_spec *hy_scene_schema(size_t *n)
 
 int hy_scene_schema_section(const char *name)
 {
+    pthread_once(&assembled, assemble);
     for (size_t i = 0; i < NKEYS(sections); i++)
         if (sections[i].name[0] == name[0] && strcmp(sections[i].name, name) == 0) /* first byte: a cheap filter */
             return (int)i;
@@ -356,6 +374,7 @@ int hy_scene_schema_section(const char *name)
 
 int hy_scene_schema_key(int sec, const char *key)
 {
+    pthread_once(&assembled, assemble);
     if (sec < 0 || (size_t)sec >= NKEYS(sections))
         return -1;
     for (size_t j = 0; j < sections[sec].nkeys; j++)

@@ -16,18 +16,12 @@
 
 #include <stddef.h>
 
-/* The model kinds, one line per model: X(id, "name").  The schema's [model]
- * kind list and the pipeline's model table (src/pipeline/scene_model.c, which
- * expects a `hy_scene_model_<id>` from each model's own file) are both
- * generated from it, so a model is added here, once. */
-#define HY_MODEL_KINDS(X)                   \
-    X(dahl, "dahl")                         \
-    X(lugre, "lugre")                       \
-    X(dahl_filter, "dahl-filter")           \
-    X(boucwen, "boucwen")                   \
-    X(jiles, "jiles-atherton")              \
-    X(preisach, "preisach")                 \
-    X(bwop, "boucwen-operator")
+/* The model kinds: HY_MODEL_KINDS(X), X(id, "kind") per model, generated
+ * from the model table (src/pipeline/meson.build).  The schema's [model]
+ * kind list and the pipeline's model table (src/pipeline/scene_model.c,
+ * which expects a `hy_scene_model_<id>` from each model's own file) are both
+ * generated from it, so a model is added there, once. */
+#include "hy_models.h"
 
 /* What a [series] draws, one line per kind: X(ID, "name").  The schema's
  * data list and the pipeline's HY_DATA_ID values (scene_run.h) are both
@@ -85,7 +79,9 @@ enum {
  * "σ_0"; NULL = none) and its unit ("Hz", "N s/m"; NULL = none or
  * dimensionless), which serve's controls show; for a key that hy_scene_decode
  * reads (hy_scene_decl.h), the offset of the field it fills in its section's
- * struct and that field's C type (HY_CTYPE_*; 0: the key is not decoded). */
+ * struct and that field's C type (HY_CTYPE_*; 0: the key is not decoded);
+ * for a [model] key that one model declares in its own file
+ * (hy_scene_model_rows.h), that model's kind (NULL: any kind's key). */
 typedef struct hy_scene_key_spec {
     const char *name;
     hy_scene_kind kind;
@@ -99,6 +95,7 @@ typedef struct hy_scene_key_spec {
     const char *unit;
     size_t field;
     int ctype;
+    const char *model;
 } hy_scene_key_spec;
 
 /* One section: [name] or, when takes_name, [name LABEL]; repeatable sections

@@ -22,13 +22,61 @@ static void table(void)
             if (k->ctype != hy_scene_kind_ctype(k->kind) || k->field < sizeof(hy_decl_head))
                 fprintf(stderr, "%s.%s: ctype %d, its kind wants %d; field at %zu\n", sec[i].name, k->name, k->ctype,
                         hy_scene_kind_ctype(k->kind), k->field), st_failures++;
-            for (size_t m = 0; m < j; m++)
-                if (sec[i].keys[m].ctype && sec[i].keys[m].field == k->field)
+            size_t par = offsetof(hy_decl_model, par); /* a model's own rows: inside par */
+            if (k->model && (i != 0 || k->field < par || k->field >= par + HY_MODEL_PAR_MAX))
+                fprintf(stderr, "%s.%s (model %s) fills no byte of hy_decl_model.par\n", sec[i].name, k->name,
+                        k->model), st_failures++;
+            for (size_t m = 0; m < j; m++) /* two models' own rows share par */
+                if (sec[i].keys[m].ctype && sec[i].keys[m].field == k->field &&
+                    (!k->model || !sec[i].keys[m].model || !strcmp(k->model, sec[i].keys[m].model)))
                     fprintf(stderr, "%s: %s and %s fill one field\n", sec[i].name, sec[i].keys[m].name, k->name),
                         st_failures++;
         }
     }
     CHECK(decoded >= 100); /* model, input, compute, figure, series, annotation, panel, output */
+}
+
+/* A model's own rows (hy_scene_model_rows.h): those of the scene's kind fill
+ * its struct (set or default), those of another kind fill nothing but keep
+ * where they were written. */
+static void own_rows(void)
+{
+    int sec = hy_scene_schema_section("model");
+    const hy_scene_section_spec *ms = hy_scene_schema(NULL) + sec;
+    const char *a = NULL, *b = NULL, *kind_a = NULL; /* a row of one model, b of another */
+    for (size_t j = 0; j < ms->nkeys; j++)
+        if (ms->keys[j].model && ms->keys[j].kind == HY_KIND_NUMBER && ms->keys[j].def) {
+            if (!a)
+                a = ms->keys[j].name, kind_a = ms->keys[j].model;
+            else if (!b && strcmp(ms->keys[j].model, kind_a))
+                b = ms->keys[j].name;
+        }
+    CHECK(a && b);
+    if (!a || !b)
+        return;
+    char text[256];
+    snprintf(text, sizeof text, "[model]\nkind = %s\n%s = 7\n%s = 5\n", kind_a, b, a);
+    hy_scene *s = PARSE_OK("m.scene", text);
+    if (!s)
+        return;
+    hy_scene_doc d;
+    hy_error err = {0, ""};
+    CHECK(hy_scene_decode(s, &d, &err) == HY_OK);
+    double v = 0;
+    CHECK(hy_scene_doc_num(&d, "model", a, &v) == 0 && v == 5);
+    size_t off = hy_decl_offset(&d.model.h, a);
+    CHECK(off != HY_DECL_HEAD && hy_decl_got(&d.model.h, off) == HY_SCENE_SET);
+    CHECK(hy_decl_loc(&d.model.h, off).line == 4);
+    double at;
+    memcpy(&at, (const char *)&d.model + off, sizeof at);
+    CHECK(at == 5);
+    CHECK(hy_decl_offset(&d.model.h, b) == HY_DECL_HEAD && hy_scene_doc_num(&d, "model", b, &v) == -1);
+    int jb = hy_scene_schema_key(sec, b);
+    CHECK(d.model.h.at[jb].got == HY_SCENE_BADKEY && d.model.h.at[jb].loc.line == 3);
+    hy_decl_error_row(&d.model.h, (size_t)jb, &err, HY_EINVAL, "no");
+    CHECK_STR(err.msg, "m.scene:3:1: no");
+    hy_scene_doc_free(&d);
+    hy_scene_free(s);
 }
 
 /* Values, defaults, absent keys and their locations. */
@@ -116,6 +164,7 @@ int main(void)
 {
     table();
     values();
+    own_rows();
     cross();
     if (st_failures)
         fprintf(stderr, "test_scene_decode: %d check(s) failed\n", st_failures);

@@ -71,9 +71,12 @@ static void table_matches_schema(void)
         const hy_scene_model *mt = hy_scene_models[nt];
         CHECK(mt->load && mt->estimate && mt->compute, "%s: a stage is missing", mt->name);
         CHECK(!mt->ri || (mt->read && mt->ri_par_size), "%s: a rate-independent entry needs read", mt->name);
-        for (size_t i = 0; mt->params[i]; i++)
-            CHECK(hy_scene_schema_key(hy_scene_schema_section("model"), mt->params[i]) >= 0,
-                  "%s reads '%s', which is no [model] key of the schema", mt->name, mt->params[i]);
+        const char *p;
+        size_t np = 0;
+        for (; (p = hy_scene_model_param(mt, np)); np++)
+            CHECK(hy_scene_schema_key(hy_scene_schema_section("model"), p) >= 0,
+                  "%s reads '%s', which is no [model] key of the schema", mt->name, p);
+        CHECK(np > 0, "%s reads no [model] key", mt->name);
         for (size_t i = 0; mt->quantities[i]; i++) {
             int found = 0;
             for (size_t j = 0; series->keys[quantity].enums[j]; j++)
@@ -260,6 +263,12 @@ static void refusals(void)
             "bad.scene:3:1: ja_m0: Jiles-Atherton initial magnetisation m0");
     refused("[model]\nkind = jiles-atherton\nsigma0 = 6\n[series a]\ndata = input\n", 1,
             "bad.scene:3:1: 'sigma0' is not a parameter of a jiles-atherton model");
+    refused("[model]\nkind = jiles-atherton\nja_k = 300\npr_hc = 0.3\n[series a]\ndata = input\n", 1,
+            "bad.scene:4:1: 'pr_hc' is not a parameter of a jiles-atherton model (its keys: ja_ms, ja_a, ja_k, "
+            "ja_c, ja_alpha, ja_m0)"); /* another model's own row: decoded into nothing, refused where written */
+    refused("[model]\nkind = preisach\nja_ms = 1e6\n[series a]\ndata = input\n", 1,
+            "bad.scene:3:1: 'ja_ms' is not a parameter of a preisach model (its keys: pr_density, pr_hc, pr_width, "
+            "pr_ys)");
     refused("[model]\nkind = preisach\n[figure]\nkind = g\n[series a]\ndata = g\n", 1,
             "data = g is the friction function g(v) of Dahl and LuGre; a preisach model has none");
     refused("[model]\nkind = lugre\n[series a]\ndata = ysteady\nquantity = magnetisation\n", 1,
