@@ -28,6 +28,7 @@ ends by itself within its stated bound.
 Every command connects from $ATTACK_SOURCE if it is set (e.g. 127.0.0.2).
 """
 import os
+import signal
 import socket
 import sys
 import threading
@@ -191,8 +192,15 @@ def cmd_streams(port, n, seconds):
 
 
 def cmd_flood(port, k, seconds, path, header=None):
+    """Floods for `seconds`, or until SIGTERM: it then says how many requests
+    were answered and exits at once (its sockets close unanswered)."""
     end = time.monotonic() + seconds
     done = [0] * k
+
+    def stop(*_):
+        print(f"answered {sum(done)} (stopped)", flush=True)
+        os._exit(0)
+    signal.signal(signal.SIGTERM, stop)
 
     def run(i):
         while time.monotonic() < end:

@@ -334,9 +334,12 @@ EOF
     # the warm workers: bounded, a killed one restarted and reaped, none after SIGINT
     for i in $(seq 12); do curl -s -o /dev/null "$base/api/frame?scene=@gamma-sweep-ex2&frame=$i" & clients="$clients $!"; done
     most=0
-    for _ in $(seq 60); do
+    for _ in $(seq 60); do # sampled while any of the 12 requests runs (3 s at most)
         n=$(pgrep -P $srv | wc -l)
         [ "$n" -gt "$most" ] && most=$n
+        running=0
+        for p in $clients; do kill -0 $p 2>/dev/null && running=1 && break; done
+        [ $running -eq 1 ] || break
         sleep 0.05
     done
     for p in $clients; do wait_pid $p 60 "a frame request"; done
