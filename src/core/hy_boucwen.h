@@ -122,4 +122,12 @@ int hy_boucwen_synth_periodic(const hy_boucwen_params *p,
                               size_t n_period, size_t periods, double *y_out,
                               hy_error *err);
 
+/* hy_boucwen_synth_periodic's periods first .. periods - 1 alone, the same
+ * bits: writes (periods - first) * n_period / r samples.  The settling
+ * periods before first are integrated but not decimated, and the extra
+ * period only as far as the filter reads it. */
+int hy_boucwen_synth_periodic_kept(const hy_boucwen_params *p, const hy_newmark_opts *o, double fs, size_t r,
+                                   int staged, const double *u_period, size_t n_period, size_t first,
+                                   size_t periods, double *y_out, hy_error *err);
+
 #endif

@@ -216,12 +216,11 @@ int hy_signal_decimate(const double *x, size_t n, size_t r, double *y,
     return HY_OK;
 }
 
-int hy_signal_decimate_stages(const double *x, size_t n, size_t r, int staged,
-                              double *y, size_t *ny, hy_error *err)
+/* The factors of a staged (prime factors, increasing) or single-stage
+ * decimation by r into f; returns their count (0 for r = 1). */
+static size_t decimate_factors(size_t r, int staged, size_t f[64])
 {
-    if (r < 1)
-        return hy_error_set(err, HY_EINVAL, "decimation factor r must be >= 1");
-    size_t f[64], nf = 0;
+    size_t nf = 0;
     if (staged) {
         size_t q = r;
         for (size_t p = 2; q > 1 && nf < 64; p++)
@@ -229,10 +228,31 @@ int hy_signal_decimate_stages(const double *x, size_t n, size_t r, int staged,
                 f[nf++] = p;
                 q /= p;
             }
-    } else {
+    } else if (r > 1) {
         f[nf++] = r;
     }
-    if (nf == 0 || (nf == 1 && f[0] == 1)) {
+    return nf;
+}
+
+size_t hy_signal_decimate_reach(size_t r, int staged)
+{
+    /* stage s reads M of its inputs either side, each F_s = f_1 .. f_(s-1)
+       samples of the record apart: M (1 + f_1 + f_1 f_2 + ...) */
+    size_t f[64], nf = decimate_factors(r, staged, f), reach = 0, span = 1;
+    for (size_t s = 0; s < nf; s++) {
+        reach += (size_t)(HY_DECIMATE_TAPS - 1) / 2 * span;
+        span *= f[s];
+    }
+    return reach;
+}
+
+int hy_signal_decimate_stages(const double *x, size_t n, size_t r, int staged,
+                              double *y, size_t *ny, hy_error *err)
+{
+    if (r < 1)
+        return hy_error_set(err, HY_EINVAL, "decimation factor r must be >= 1");
+    size_t f[64], nf = decimate_factors(r, staged, f);
+    if (nf == 0) {
         memmove(y, x, n * sizeof *y);
         *ny = n;
         return HY_OK;

@@ -154,6 +154,13 @@ int hy_signal_decimate(const double *x, size_t n, size_t r, double *y,
 int hy_signal_decimate_stages(const double *x, size_t n, size_t r, int staged,
                               double *y, size_t *ny, hy_error *err);
 
+/* How far hy_signal_decimate_stages(·, r, staged) reaches: output k is a
+ * function of the input samples k r - reach .. k r + reach alone (and of
+ * reflections of the record only where that window leaves it).  So a record
+ * cut anywhere outside those windows, at a multiple of r at its start, gives
+ * the same bits for the outputs whose windows it holds.  r >= 1. */
+size_t hy_signal_decimate_reach(size_t r, int staged);
+
 /* Gaussian noise band-limited to [0, band_hz] at rate fs, scaled so that its
  * sample RMS is exactly rms (rms = 0 writes zeros).  band_hz >= fs/2 gives
  * white noise; otherwise the DFT lines above band_hz are removed.  Seeded and

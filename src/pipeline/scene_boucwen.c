@@ -357,7 +357,9 @@ static int make_force(const bw_setup *b, double **u, size_t *n, hy_error *err)
     return rc;
 }
 
-/* Integrates the whole record (settle + cycles periods, or the sweep) into y. */
+/* Integrates the whole record (settle + cycles periods, or the sweep) into y;
+ * decimated periodic records hold only the kept periods (y's settling
+ * samples are left unwritten: make_record reads from skip on). */
 static int simulate(const bw_setup *b, const double *u, size_t nu, double *y, hy_error *err)
 {
     hy_newmark_opts o;
@@ -368,8 +370,9 @@ static int simulate(const bw_setup *b, const double *u, size_t nu, double *y, hy
         return hy_boucwen_synth(&b->p, &o, b->fs, b->r, staged, u, nu, y, err);
     if (b->input == IN_SWEEP)
         return hy_boucwen_simulate(&b->p, &o, 1.0 / (b->fs * (double)b->r), u, nu, NULL, y, NULL, err);
-    if (b->dec != DEC_NONE)
-        return hy_boucwen_synth_periodic(&b->p, &o, b->fs, b->r, staged, u, nu, P, y, err);
+    if (b->dec != DEC_NONE) /* the kept periods alone (the settling ones are not read) */
+        return hy_boucwen_synth_periodic_kept(&b->p, &o, b->fs, b->r, staged, u, nu, (size_t)b->settle, P,
+                                              y + (size_t)b->settle * (nu / b->r), err);
     double *ua = malloc(P * nu * sizeof *ua);
     if (!ua)
         return hy_error_set(err, HY_ENOMEM, "out of memory for %zu input samples", P * nu);
