@@ -576,8 +576,8 @@ $('figure').addEventListener('mouseleave', () => { $('tip').hidden = true; });
 // ---- animations ------------------------------------------------------------------
 // Frames are PNGs from the server's warm frame workers: byte for byte `hystviz animate
 // SCENE --frames i:i+1 --set …` (the sliders' overrides).  Playing streams windows of
-// frames ahead (/api/frames), decodes a few ahead (createImageBitmap) and shows frame
-// floor(t * fps) at the clip's rate on a canvas, so the scene's easing is seen as
+// frames ahead (/api/frames), decodes a few ahead (createImageBitmap) and shows the
+// frames one by one at the clip's rate on a canvas, so the scene's easing is seen as
 // written; a frame not there yet holds the clock (the clip slows, it never skips).
 // A slider moved while playing drops what was fetched for the old values: the next
 // frames shown use the new ones.  Paused, frame i comes alone (/api/frame).
@@ -694,7 +694,7 @@ async function loadFrame(i) {
 // Fetches the next window of frames not yet here, from the one being shown.
 function animFetch() {
   if (anim.stream || !hv.playing) return;
-  let from = Math.floor(anim.pos) % anim.n, k = 0;
+  let from = anim.pos, k = 0;
   while (k < anim.n && anim.png.has(from)) { from = (from + 1) % anim.n; k++; }
   if (k >= Math.ceil(WINDOW_S * anim.fps) || k === anim.n) return; // enough ahead
   const to = Math.min(anim.n, from + Math.ceil(WINDOW_S * anim.fps));
@@ -743,13 +743,13 @@ async function readStream(url, ctl, key) {
 
 function animFail(msg) {
   anim.error = msg;
-  $('frameinfo').textContent = 'frame ' + Math.floor(anim.pos) % anim.n + ': ' + msg;
+  $('frameinfo').textContent = 'frame ' + anim.pos + ': ' + msg;
   animStop();
 }
 
 // Decodes the frames about to be shown; closes those behind.
 function decodeAhead() {
-  const cur = Math.floor(anim.pos) % anim.n;
+  const cur = anim.pos;
   for (const [i, b] of anim.bmp) {
     const ahead = (i - cur + anim.n) % anim.n;
     if (ahead > DECODE_AHEAD) { b.close(); anim.bmp.delete(i); }
@@ -765,25 +765,33 @@ function decodeAhead() {
   }
 }
 
+// Frame anim.pos is due at anim.due; each display frame shows at most one clip
+// frame, so none is skipped: a late display frame is made up by the next ones
+// (at most one clip frame of debt is kept, so the clip never races), and a frame
+// not decoded yet holds the clock.
 function tick(now) {
   if (!hv.playing) return;
-  const dt = Math.min(0.25, (now - anim.last) / 1000);
-  anim.last = now;
-  const next = Math.floor(anim.pos + dt * anim.fps), i = next % anim.n;
-  const b = anim.bmp.get(i);
-  if (b) {
-    if (i !== hv.frame) { showBitmap(b); hv.frame = i; anim.shown++; }
-    anim.pos = anim.pos + dt * anim.fps;
-    if (anim.pos >= anim.n) anim.pos -= anim.n;
-    if (now - (anim.textAt || 0) > 250) { // the scrubber and the line below it 4 times a second: no layout per frame
-      anim.textAt = now;
-      $('scrub').value = i;
-      const rate = anim.shown / Math.max(1e-3, (now - anim.t0) / 1000);
-      $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · ' + rate.toFixed(0) + ' of the clip\'s '
-        + anim.fps + ' frames/s shown';
+  const i = anim.pos, period = 1000 / anim.fps;
+  if (now + 2 >= anim.due) { // due (2 ms early is on time: display frames are not exact)
+    const b = anim.bmp.get(i);
+    if (b) {
+      showBitmap(b);
+      hv.frame = i;
+      anim.shown++;
+      anim.pos = (i + 1) % anim.n;
+      anim.due = Math.max(anim.due + period, now - period);
+    } else {
+      anim.stalls++; // not here yet: the clock waits for it
+      anim.due = now;
     }
-  } else
-    anim.stalls++; // not here yet: the clock waits for it
+  }
+  if (now - (anim.textAt || 0) > 250) { // the scrubber and the line below it 4 times a second: no layout per frame
+    anim.textAt = now;
+    $('scrub').value = hv.frame;
+    const rate = anim.shown / Math.max(1e-3, (now - anim.t0) / 1000);
+    $('frameinfo').textContent = 'frame ' + hv.frame + ' / ' + anim.n + ' · ' + rate.toFixed(0) + ' of the clip\'s '
+      + anim.fps + ' frames/s shown';
+  }
   decodeAhead();
   animFetch();
   anim.raf = requestAnimationFrame(tick);
@@ -795,7 +803,7 @@ function animPlay() {
   $('play').textContent = 'pause';
   anim.error = null;
   anim.pos = (+$('scrub').value + 1) % anim.n;
-  anim.last = performance.now();
+  anim.last = anim.due = performance.now();
   anim.shown = 0;
   anim.stalls = 0;
   anim.t0 = anim.last;
