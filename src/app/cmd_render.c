@@ -163,7 +163,7 @@ int hy_cmd_render(int argc, char **argv)
                 argv[0]);
         rc = 2;
     }
-    int fmt[3];
+    int fmt[HY_FORMAT_COUNT];
     size_t nfmt;
     hy_error err = {0};
     if (!rc && formats && hy_scene_formats_parse(formats, fmt, &nfmt, &err)) {

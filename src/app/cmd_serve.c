@@ -1098,14 +1098,17 @@ static void json_series(sv_buf *b, const hy_scene_run *r)
 
 static enum MHD_Result api_render(server *s, struct MHD_Connection *c, const args *a)
 {
+    static const char *const ext[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
     const char *fmt = a->fmt ? a->fmt : "svg";
-    int format = !strcmp(fmt, "svg") || !strcmp(fmt, "json") ? HY_FORMAT_SVG
-                 : !strcmp(fmt, "pdf")                       ? HY_FORMAT_PDF
-                 : !strcmp(fmt, "png")                       ? HY_FORMAT_PNG
-                 : !strcmp(fmt, "csv")                       ? -2
-                                                             : -1;
-    if (format == -1)
-        return send_error_json(c, 400, "fmt: svg, pdf, png, csv or json");
+    int format = !strcmp(fmt, "json") ? HY_FORMAT_SVG : !strcmp(fmt, "csv") ? -2 : -1; /* json: an SVG with its numbers */
+    for (int k = 0; format == -1 && ext[k]; k++)
+        if (!strcmp(fmt, ext[k]))
+            format = k;
+    if (format == -1) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "fmt: %s, csv or json", HY_FORMAT_NAMES);
+        return send_error_json(c, 400, msg);
+    }
     hy_error err = {0};
     for (size_t i = 0; i < a->nsets; i++)
         if (sv_set_ok(a->sets[i], &err))

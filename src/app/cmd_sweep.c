@@ -231,13 +231,18 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
         snprintf(buf, sizeof buf, "%s", o->formats);
         char *save = NULL;
         size_t n = 0;
-        for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save), n++)
-            if (strcmp(t, "svg") && strcmp(t, "pdf") && strcmp(t, "png")) {
-                fprintf(stderr, "hystviz sweep: --formats: unknown format '%s' (svg, pdf, png, or none)\n", t);
+        static const char *const ext[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
+        for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save), n++) {
+            size_t k = 0;
+            while (ext[k] && strcmp(t, ext[k]))
+                k++;
+            if (!ext[k]) {
+                fprintf(stderr, "hystviz sweep: --formats: unknown format '%s' (%s, or none)\n", t, HY_FORMAT_NAMES);
                 return 2;
             }
+        }
         if (!n || strlen(o->formats) >= sizeof buf) {
-            fprintf(stderr, "hystviz sweep: --formats '%s': expected a list of svg, pdf, png, or none\n", o->formats);
+            fprintf(stderr, "hystviz sweep: --formats '%s': expected a list of %s, or none\n", o->formats, HY_FORMAT_NAMES);
             return 2;
         }
     }

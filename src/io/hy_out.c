@@ -4,6 +4,7 @@
  * and the sweep of temporaries left by killed writers (hy_out.h). */
 #define _GNU_SOURCE /* O_PATH, pipe2 */
 #include "hy_out.h"
+#include "hy_formats.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -509,7 +510,9 @@ int hy_out_is_tmp_name(const char *name)
 /* "NAME.EXT.tmp.XXXXXX" of hystviz versions before hy_out. */
 static int is_legacy_tmp(const char *name)
 {
-    static const char *const ext[] = {".svg", ".pdf", ".png", ".csv", ".html", ".manifest"};
+#define DOT_EXT(id, e) "." e,
+    static const char *const ext[] = {HY_FIGURE_FORMATS(DOT_EXT) ".csv", ".html", ".manifest"};
+#undef DOT_EXT
     size_t n = strlen(name);
     if (n < 11 || memcmp(name + n - 11, ".tmp.", 5))
         return 0;

@@ -14,15 +14,23 @@
 #include "hy_signal.h"
 
 enum { IN_SINE, IN_MULTISINE, IN_SWEEP };
-enum { Q_OUTPUT, Q_INPUT, Q_OUTPUT_DB, Q_TRANSIENT_DB, Q_SPECTRUM, Q_ENVELOPE, Q_SINC_INPUT, Q_SINC_OUTPUT };
+/* Q_ID: the index of the schema's quantity list (HY_SERIES_QUANTITIES). */
+#define Q_ID(id, name, bw) Q_##id,
+enum { HY_SERIES_QUANTITIES(Q_ID) };
+#undef Q_ID
 enum { DEC_STAGED, DEC_SINGLE, DEC_NONE };
 
 /* Integration samples allowed in one scene (u, y and decimation scratch: ~32 B each). */
 #define BW_MAX_SAMPLES 40000000.0
 
-static const char *const quantity_names[] = {"output", "input", "output-db", "transient-db",
-                                             "spectrum", "envelope", "sinc-input-error",
-                                             "sinc-output-error", NULL};
+/* The quantities the benchmark draws (bw = 1 in HY_SERIES_QUANTITIES). */
+#define BW_NAME(id, name, bw) BW_NAME_##bw(name)
+#define BW_NAME_1(name) name,
+#define BW_NAME_0(name)
+static const char *const quantity_names[] = {HY_SERIES_QUANTITIES(BW_NAME) NULL};
+#undef BW_NAME
+#undef BW_NAME_1
+#undef BW_NAME_0
 
 /* Everything a boucwen scene asks for, read and checked once. */
 typedef struct bw_setup {
@@ -226,7 +234,8 @@ static int check_quantity(const hy_scene_run *r, const bw_setup *b, const hy_dec
     else if (q == Q_SPECTRUM && r->figure_kind == FIG_LOOP)
         why = "is drawn against frequency, not in a loop figure";
     if (why)
-        return hy_decl_error(&ds->h, SE(quantity), err, HY_EINVAL, "quantity = %s %s", quantity_names[q], why);
+        return hy_decl_error(&ds->h, SE(quantity), err, HY_EINVAL, "quantity = %s %s",
+                             hy_decl_enum_text(&ds->h, SE(quantity), q), why);
     if (q == Q_TRANSIENT_DB && b->cycles < 2)
         return hy_decl_error(&ds->h, SE(quantity), err, HY_EINVAL,
                              "quantity = transient-db subtracts the last period: it needs [compute] cycles >= 2, got %ld",

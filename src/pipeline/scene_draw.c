@@ -445,19 +445,20 @@ static int mkdir_p(const char *dir, hy_error *err)
     return HY_OK;
 }
 
-static const char *const format_ext[] = {"svg", "pdf", "png"};
+static const char *const format_ext[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
 
-int hy_scene_formats_parse(const char *list, int fmt[3], size_t *n, hy_error *err)
+int hy_scene_formats_parse(const char *list, int fmt[HY_FORMAT_COUNT], size_t *n, hy_error *err)
 {
     *n = 0;
     for (const char *c = list; c && *c;) {
         size_t len = strcspn(c, ",");
         int f = -1;
-        for (int k = 0; k < 3; k++)
+        for (int k = 0; format_ext[k]; k++)
             if (len == strlen(format_ext[k]) && !strncmp(c, format_ext[k], len))
                 f = k;
         if (f < 0 && len)
-            return hy_error_set(err, HY_EINVAL, "--format: unknown format '%.*s' (svg, pdf, png)", (int)(len > 40 ? 40 : len), c);
+            return hy_error_set(err, HY_EINVAL, "--format: unknown format '%.*s' (%s)", (int)(len > 40 ? 40 : len), c,
+                                HY_FORMAT_NAMES);
         int dup = f < 0;
         for (size_t i = 0; i < *n && !dup; i++)
             dup = fmt[i] == HY_FORMAT_SVG + f;
@@ -466,20 +467,20 @@ int hy_scene_formats_parse(const char *list, int fmt[3], size_t *n, hy_error *er
         c += len + (c[len] == ',');
     }
     if (!*n)
-        return hy_error_set(err, HY_EINVAL, "--format: no format given (svg, pdf, png)");
+        return hy_error_set(err, HY_EINVAL, "--format: no format given (%s)", HY_FORMAT_NAMES);
     return HY_OK;
 }
 
 /* The formats to write: the override list, else the scene's [output] formats. */
-static int run_formats(const hy_scene_doc *d, const char *formats, int fmt[3], size_t *nf, hy_error *err)
+static int run_formats(const hy_scene_doc *d, const char *formats, int fmt[HY_FORMAT_COUNT], size_t *nf, hy_error *err)
 {
     if (formats)
         return hy_scene_formats_parse(formats, fmt, nf, err);
     const hy_scene_list *l = &d->output.formats;
     *nf = 0;
-    for (size_t i = 0; i < l->n && *nf < 3; i++) {
+    for (size_t i = 0; i < l->n && *nf < HY_FORMAT_COUNT; i++) {
         const char *t = hy_decl_enum_text(&d->output.h, offsetof(hy_decl_output, formats), (int)l->v[i]);
-        for (int k = 0; k < 3; k++)
+        for (int k = 0; format_ext[k]; k++)
             if (!strcmp(t, format_ext[k]))
                 fmt[(*nf)++] = HY_FORMAT_SVG + k;
     }
@@ -488,7 +489,7 @@ static int run_formats(const hy_scene_doc *d, const char *formats, int fmt[3], s
 
 int hy_scene_run_check_output(const hy_scene_run *r, const char *formats, hy_error *err)
 {
-    int fmt[3];
+    int fmt[HY_FORMAT_COUNT];
     size_t nf;
     hy_figure f;
     memset(&f, 0, sizeof f);
@@ -503,7 +504,7 @@ int hy_scene_run_check_output(const hy_scene_run *r, const char *formats, hy_err
 /* Writes every format to a temporary, then renames them all: all or none. */
 static int write_all(const hy_figure *fig, char paths[][4400], const int *fmt, size_t nf, hy_error *err)
 {
-    hy_out out[3];
+    hy_out out[HY_FORMAT_COUNT];
     size_t opened = 0;
     int rc = HY_OK;
     for (size_t i = 0; i < nf && !rc; i++)
@@ -526,7 +527,7 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     const hy_scene *s = r->scene;
     char name[256];
     hy_scene_run_name(r, name, sizeof name);
-    int fmt[3];
+    int fmt[HY_FORMAT_COUNT];
     size_t nf = 0;
     int rc = run_formats(&r->doc, formats, fmt, &nf, err);
     if (rc)
@@ -536,7 +537,7 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     if ((rc = hy_scene_output_dir(s, cli_dir, &odir, err)))
         return rc;
     dir = odir;
-    char paths[3][4400];
+    char paths[HY_FORMAT_COUNT][4400];
     for (size_t i = 0; i < nf; i++)
         snprintf(paths[i], sizeof paths[i], "%s/%s.%s", dir, name, format_ext[fmt[i] - HY_FORMAT_SVG]);
     fig_store st;

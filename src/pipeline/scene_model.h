@@ -86,8 +86,11 @@ int hy_scene_model_has_key(const hy_scene_model *mt, const char *key);
 
 /* ---- shared by the model files (scene_run.c, scene_rateind.c) ---- */
 
-/* The figure kinds, in the order of the schema's figure kind list. */
-enum { FIG_TIMESERIES, FIG_LOOP, FIG_INPUT, FIG_G, FIG_PSI };
+/* The figure kinds FIG_ID, the index of the schema's figure kind list
+ * (both from HY_FIGURE_KINDS). */
+#define HY__FIG_ID(id, name) FIG_##id,
+enum { HY_FIGURE_KINDS(HY__FIG_ID) };
+#undef HY__FIG_ID
 
 /* The scene's [input] as r->input (every input hystviz has). */
 int hy_scene_run_build_input(hy_scene_run *r, hy_error *err);

@@ -984,7 +984,9 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
 int hy_scene_check_series_kind(const hy_scene_run *r, const hy_run_series *se, hy_error *err)
 {
     static const int ok_loop[] = {0, 1, 0, 1, 1, 1, 1, 1, 1, 1};
-    const char *kinds[] = {"timeseries", "loop", "input", "g", "psi"};
+#define FIGURE_NAME(id, name) name,
+    static const char *const kinds[] = {HY_FIGURE_KINDS(FIGURE_NAME)};
+#undef FIGURE_NAME
     int bad = 0;
     if (r->figure_kind == FIG_LOOP)
         bad = !ok_loop[se->data];

@@ -187,7 +187,7 @@ int hy_scene_run_check_output(const hy_scene_run *r, const char *formats, hy_err
 
 /* Parses a comma-separated format list ("svg,png") into HY_FORMAT_* values
  * (duplicates dropped); HY_EINVAL naming an unknown one or an empty list. */
-int hy_scene_formats_parse(const char *list, int fmt[3], size_t *n, hy_error *err);
+int hy_scene_formats_parse(const char *list, int fmt[HY_FORMAT_COUNT], size_t *n, hy_error *err);
 
 /* Draws the figure into memory as HY_FORMAT_SVG, _PDF or _PNG: *buf
  * (malloc'd, the caller frees) holds the *len bytes that hy_scene_run_write

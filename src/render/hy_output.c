@@ -247,12 +247,10 @@ int hy_format_from_path(const char *path)
     const char *dot = path ? strrchr(path, '.') : NULL;
     if (!dot)
         return -1;
-    if (!strcmp(dot, ".svg"))
-        return HY_FORMAT_SVG;
-    if (!strcmp(dot, ".pdf"))
-        return HY_FORMAT_PDF;
-    if (!strcmp(dot, ".png"))
-        return HY_FORMAT_PNG;
+    static const char *const ext[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
+    for (int k = 0; ext[k]; k++)
+        if (!strcmp(dot + 1, ext[k]))
+            return k;
     return -1;
 }
 
@@ -260,7 +258,7 @@ int hy_figure_check(const hy_figure *f, int format, hy_error *err)
 {
     if (!f)
         return hy_error_set(err, HY_EINVAL, "no figure to write");
-    if (format < HY_FORMAT_SVG || format > HY_FORMAT_PNG)
+    if (format < 0 || format >= HY_FORMAT_COUNT)
         return hy_error_set(err, HY_EINVAL, "unknown figure format %d", format);
     if (format != HY_FORMAT_PNG)
         return HY_OK;

@@ -25,13 +25,18 @@
 #include <stddef.h>
 
 #include "hy_canvas.h"
+#include "hy_formats.h"
 #include "hy_status.h"
 
 enum { HY_LINE_SOLID = 0, HY_LINE_DASHED, HY_LINE_DOTTED, HY_LINE_DASHDOT, HY_LINE_NONE };
 enum { HY_MARKER_NONE = 0, HY_MARKER_CIRCLE, HY_MARKER_SQUARE };
 enum { HY_LEGEND_NONE = 0, HY_LEGEND_BEST, HY_LEGEND_TOP_LEFT, HY_LEGEND_TOP_RIGHT,
        HY_LEGEND_BOTTOM_LEFT, HY_LEGEND_BOTTOM_RIGHT };
-enum { HY_FORMAT_SVG = 0, HY_FORMAT_PDF, HY_FORMAT_PNG };
+/* HY_FORMAT_SVG = 0, _PDF, _PNG, ... in the order of HY_FIGURE_FORMATS
+ * (hy_formats.h); HY_FORMAT_COUNT of them. */
+#define HY__FORMAT_ID(id, ext) HY_FORMAT_##id,
+enum { HY_FIGURE_FORMATS(HY__FORMAT_ID) HY_FORMAT_COUNT };
+#undef HY__FORMAT_ID
 /* The look of a figure: paper (black on white) or slides (light on dark,
  * lines twice as thick, text 1.4 times as large; for a projector). */
 enum { HY_THEME_PAPER = 0, HY_THEME_SLIDES };

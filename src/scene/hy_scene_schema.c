@@ -5,6 +5,7 @@
 #include "hy_scene_decl.h"
 #include "hy_scene_model_rows.h"
 
+#include "hy_formats.h"
 #include "hy_quality.h"
 
 #include <pthread.h>
@@ -44,19 +45,19 @@ static const char *const input_shapes[] = {"linear", "cosine", NULL};
 static const char *const solvers[] = {"exact", "rkf45", "rk8pd", "rk4imp", "bsimp", "msbdf",
                                       "rk2", "rk4", "rkck", "rk1imp", "rk2imp", "msadams",
                                       NULL};
-static const char *const figure_kinds[] = {"timeseries", "loop", "input", "g", "psi", NULL};
+#define FIGURE_NAME(id, name) name,
+static const char *const figure_kinds[] = {HY_FIGURE_KINDS(FIGURE_NAME) NULL};
 static const char *const legends[] = {"none", "best", "top-left", "top-right",
                                       "bottom-left", "bottom-right", NULL};
 #define DATA_NAME(id, name) name,
 static const char *const series_data[] = {HY_SERIES_DATA(DATA_NAME) NULL};
 static const char *const line_styles[] = {"solid", "dashed", "dotted", "dashdot", "none",
                                           NULL};
-static const char *const bw_quantities[] = {"output", "input", "output-db", "transient-db",
-                                            "spectrum", "envelope", "sinc-input-error",
-                                            "sinc-output-error", "magnetisation", NULL};
+#define QUANTITY_NAME(id, name, bw) name,
+static const char *const bw_quantities[] = {HY_SERIES_QUANTITIES(QUANTITY_NAME) NULL};
 static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {"none", "circle", "square", NULL};
-static const char *const formats[] = {"svg", "pdf", "png", NULL};
+static const char *const formats[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
 static const char *const themes[] = {"paper", "slides", NULL};
 static const char *const zoom_follows[] = {"none", "minor", NULL};
 static const char *const easings[] = {"linear", "smooth", NULL};

@@ -39,6 +39,31 @@
     X(MAJOR, "major")                       \
     X(BOUCWEN, "boucwen")
 
+/* The figure kinds, one line per kind: X(ID, "name").  The schema's
+ * [figure] kind list and the pipeline's FIG_ID values (scene_model.h) are
+ * both generated from it. */
+#define HY_FIGURE_KINDS(X)                  \
+    X(TIMESERIES, "timeseries")             \
+    X(LOOP, "loop")                         \
+    X(INPUT, "input")                       \
+    X(G, "g")                               \
+    X(PSI, "psi")
+
+/* What a [series] quantity draws, one line per quantity: X(ID, "name", bw),
+ * bw 1 where the Bouc-Wen benchmark draws it.  The schema's quantity list,
+ * scene_boucwen.c's Q_ID values and its model's list of quantities are
+ * generated from it. */
+#define HY_SERIES_QUANTITIES(X)                  \
+    X(OUTPUT, "output", 1)                       \
+    X(INPUT, "input", 1)                         \
+    X(OUTPUT_DB, "output-db", 1)                 \
+    X(TRANSIENT_DB, "transient-db", 1)           \
+    X(SPECTRUM, "spectrum", 1)                   \
+    X(ENVELOPE, "envelope", 1)                   \
+    X(SINC_INPUT, "sinc-input-error", 1)         \
+    X(SINC_OUTPUT, "sinc-output-error", 1)       \
+    X(MAGNETISATION, "magnetisation", 0)
+
 /* What a value must look like. */
 typedef enum hy_scene_kind {
     HY_KIND_NUMBER,       /* finite decimal number: 1, -2.5, 3e-4               */
