@@ -4,15 +4,16 @@
  * A model file (src/pipeline/model_NAME.c, one line in the model table of
  * src/pipeline/meson.build) names its parameter struct and writes one row
  * per [model] key: symbol, unit, key, the struct field it fills, then kind,
- * enums, range, list lengths, default and doc as the schema's rows do:
+ * enums, range, list lengths, default and doc as the schema's rows do
+ * (each model_*.c with a three-column table line is a whole example):
  *
- *     typedef struct play_par { double r, y0; } play_par;
- *     #define PAR play_par
- *     HY_MODEL_ROWS(play, play_par,
- *         HY_ROW("r", NULL, play_r, r, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "1", "play: half-width r"),
- *         HY_ROW("y_0", NULL, play_y0, y0, HY_KIND_NUMBER, NULL, HY_NOLIM, 0, 0, "0", "play: y at t = 0"));
+ *     typedef struct xx_par { double r, y0; } xx_par;
+ *     #define PAR xx_par
+ *     HY_MODEL_ROWS(xx, xx_par,
+ *         HY_ROW("r", NULL, xx_r, r, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "1", "xx: half-width r"),
+ *         HY_ROW("y_0", NULL, xx_y0, y0, HY_KIND_NUMBER, NULL, HY_NOLIM, 0, 0, "0", "xx: y at t = 0"));
  *     #ifndef HY_MODEL_ROWS_ONLY
- *     ... the stages: const play_par *p = (const void *)m->par (hy_decl_model) ...
+ *     ... the stages: const xx_par *p = (const void *)m->par (hy_decl_model) ...
  *     #endif
  *
  * The build compiles the file twice: into the scene library with

@@ -22,10 +22,9 @@ d = json.load(sys.stdin)
 print(" ".join(next(m["params"] for m in d["models"] if m["name"] == sys.argv[1])))' "$kind") ||
         { echo "$kind: not in the schema's model table"; fail=1; continue; }
     [ -n "$keys" ] || { echo "$kind reads no key"; fail=1; }
-    for k in $keys; do
-        hits=$(others "$file" | xargs grep -lw -e "$k")
-        [ -z "$hits" ] || { echo "$kind's key $k is named outside $file: $hits"; fail=1; }
-    done
+    pat=$(printf '%s\n' $keys | paste -sd'|')
+    hits=$(others "$file" | xargs grep -HnwE "$pat")
+    [ -z "$hits" ] || { echo "$kind's keys are named outside $file:"; echo "$hits"; fail=1; }
     hits=$(others "$file" | grep -v '/src/app/cmd_check\.c$' | xargs grep -lF "\"$kind\"")
     [ -z "$hits" ] || { echo "$kind is named outside $file: $hits"; fail=1; }
     lines=$(find "$root" -name meson.build ! -path "$root/build*" ! -path "$root/subprojects/*" | xargs grep -n "$file")

@@ -43,7 +43,16 @@ static void structure(void)
     PARSE_FAILS("[model]\nsigam0 = 6\n", "t.scene:2:1: unknown key 'sigam0' in [model]; did you mean 'sigma0'?");
     PARSE_FAILS("[figure]\n  xlable = \"u\"\n", "t.scene:2:3: unknown key 'xlable' in [figure]; did you mean 'xlabel'?");
     PARSE_FAILS("[series a]\ncolour = 2\n", "t.scene:2:1: unknown key 'colour' in [series a]; did you mean 'color'?");
-    PARSE_FAILS("[model]\nzzzzzz = 6\n", "t.scene:2:1: unknown key 'zzzzzz' in [model]; valid keys are kind, sigma0, sigma1, sigma2, fc, fs, vs, beta, rho, x0, tau, m, c, k, alpha, bw_beta, bw_gamma, delta, nu, ja_ms, ja_a, ja_k, ja_c, ja_alpha, ja_m0, pr_density, pr_hc, pr_width, pr_ys");
+    /* [model]'s keys: the shared rows, then each model's own in table order (a new model appends its own) */
+    char keys[1024] = "", want[1200];
+    const hy_scene_section_spec *ms = hy_scene_schema(NULL) + hy_scene_schema_section("model");
+    for (size_t i = 0; i < ms->nkeys; i++)
+        snprintf(keys + strlen(keys), sizeof keys - strlen(keys), "%s%s", i ? ", " : "", ms->keys[i].name);
+    const char *known = "kind, sigma0, sigma1, sigma2, fc, fs, vs, beta, rho, x0, tau, m, c, k, alpha, bw_beta, "
+                        "bw_gamma, delta, nu, ja_ms, ja_a, ja_k, ja_c, ja_alpha, ja_m0, pr_density, pr_hc, pr_width, pr_ys";
+    CHECK(!strncmp(keys, known, strlen(known)));
+    snprintf(want, sizeof want, "t.scene:2:1: unknown key 'zzzzzz' in [model]; valid keys are %s", keys);
+    PARSE_FAILS("[model]\nzzzzzz = 6\n", want);
     PARSE_FAILS("[model]\nsigma0 = 1\nfc = 2\nsigma0 = 3\n",
                 "t.scene:4:1: duplicate key 'sigma0' in [model] (first set at line 2)");
     PARSE_FAILS("[model]\nsigma0 = 1\n[input]\n[model]\n", "t.scene:4:1: duplicate section [model] (first at line 1)");
