@@ -382,6 +382,33 @@ static void panels(void)
     CHECK(rc == HY_EINVAL && strstr(err.msg, "columns = 4 does not divide the 6 panels"), "columns at load: %s", err.msg);
 }
 
+/* The play operator (model_play.c) under the default bimodal input (0 up to
+ * 1, down to 0.2, up to 1.5): the minor loop from the dragged branch is the
+ * parallelogram of area 2r (1 - 0.2 - 2r) = 0.12 at r = 0.1, closing where it
+ * started, y = u_max,1 - r = 0.9 (exact pieces: a few ulps). */
+static void play_loop(void)
+{
+    hy_scene_run r;
+    hy_error err;
+    if (run_text("play.scene", "[model]\nkind = play\nplay_r = 0.1\n[input]\nkind = bimodal\n[figure]\nkind = loop\n"
+                 "[series minor]\ndata = minor\n", NULL, 0, &r, &err)) {
+        CHECK(0, "play scene: %s", err.msg);
+        return;
+    }
+    CHECK(r.have_loops && r.loops.nminor == 1, "one minor loop (got %zu)", r.loops.nminor);
+    if (r.loops.nminor == 1) {
+        const hy_loop *m = &r.loops.minor[0];
+        CHECK_CLOSE(m->area, 2 * 0.1 * (1 - 0.2 - 2 * 0.1), 1e-15, "play minor loop area");
+        CHECK_CLOSE(m->y_start, 0.9, 1e-15, "play minor loop y at its start");
+        CHECK_CLOSE(m->y_close, 0.9, 1e-15, "play minor loop y at its close");
+    }
+    hy_scene_run_free(&r);
+    refused("[model]\nkind = play\nplay_r = 0\n[series a]\ndata = input\n", 1,
+            "bad.scene:3:10: 'play_r' in [model] must be > 0");
+    refused("[model]\nkind = play\nja_k = 3\n[series a]\ndata = input\n", 1,
+            "bad.scene:3:1: 'ja_k' is not a parameter of a play model (its keys: play_r, play_y0)");
+}
+
 int main(int argc, char **argv)
 {
     SRC = argc > 1 ? argv[1] : ".";
@@ -393,5 +420,6 @@ int main(int argc, char **argv)
     refusals();
     bouc_wen_operator();
     panels();
+    play_loop();
     return tu_finish("models");
 }
