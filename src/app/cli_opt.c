@@ -116,19 +116,15 @@ static void print_json(FILE *f, const cli_cmd *c, const char *name);
  * CLI_STOP (help, version or the table printed) or CLI_ERROR (message printed). */
 static int check_all(cli_parser *p)
 {
-    int dd = 0;
     for (int i = p->i; i < p->argc;) {
         const char *val;
-        int bad, was_dd = dd;
-        const cli_opt *o;
-        if (!dd && !strcmp(p->argv[i], "--")) {
-            dd = 1;
+        int bad;
+        if (!p->dashdash && !strcmp(p->argv[i], "--")) {
+            p->dashdash = 1;
             i++;
             continue;
         }
-        p->dashdash = was_dd;
-        o = classify(p, &i, &val, &bad);
-        p->dashdash = 0;
+        const cli_opt *o = classify(p, &i, &val, &bad);
         if (bad)
             return CLI_ERROR;
         if (!o && !p->cmd->args) {
@@ -153,6 +149,7 @@ int cli_next(cli_parser *p)
     if (!p->checked) {
         p->checked = 1;
         int rc = check_all(p);
+        p->dashdash = 0; /* the options are now returned from p->i again */
         if (rc != CLI_END)
             return rc;
     }

@@ -52,6 +52,23 @@ expect_err "gamma must be a finite number > 0" loop --gamma 0 --input bimodal:0,
 expect_err "cannot write" loop --input bimodal:0,0.5,1,1.5 -o /nonexistent/dir/x.csv
 [ ! -e /nonexistent/dir/x.csv ] && ok || bad "partial file"
 
+# the option parser (src/app/cli_opt.c): the forms of a value, '--', and one
+# line naming the command and the option for each kind of mistake
+"$hv" loop --input=bimodal:0,0.2,1,1.5 --points=200 -o "$tmp/eq.csv" && cmp -s "$tmp/a.csv" "$tmp/eq.csv" && ok ||
+    bad "--name=VALUE differs from --name VALUE"
+[ "$("$hv" render --version)" = "$("$hv" --version)" ] && [ "$("$hv" serve x.scene --version)" = "$("$hv" --version)" ] &&
+    ok || bad "COMMAND --version"
+expect_err "hystviz loop: option --points needs a value (N) (see hystviz loop --help)" loop --input sine:1,1 --points
+expect_err "hystviz check: option --quick takes no value" check --quick=1
+expect_err "hystviz check: unexpected argument 'x'" check x
+expect_err "hystviz: unknown option '--bogus' (see hystviz --help)" --bogus
+expect_err "hystviz data: unknown option '--format'" data x.scene --format svg
+# checked whole before anything acts: the bad option at the end stops the render
+expect_err "hystviz render: unknown option '--bogus'" render "$tmp/none.scene" -o "$tmp/r" --bogus
+[ ! -e "$tmp/r" ] && ok || bad "render acted before its line was checked"
+# after '--' every argument is a scene, even one named like an option
+expect_err "--help: cannot read scene file" render -- --help
+
 # hystviz itself never loads OpenGL (animations run in hystviz-animate) nor
 # the HTTP and TLS libraries (serve runs in hystviz-serve)
 if command -v ldd > /dev/null; then
