@@ -76,6 +76,7 @@ done
 n=$(ls "$docs"/hystviz-*.1 | wc -l)
 [ "$n" -eq "$(echo "$cmds" | wc -w)" ] || fail "$n command pages for $(echo "$cmds" | wc -w) commands"
 [ "$(complete hystviz swe)" = sweep ] || fail "complete 'hystviz swe': '$(complete hystviz swe)'"
+[ "$(complete hystviz loop --model dahl | tr '\n' ' ')" = "dahl dahl-filter " ] || fail "complete --model dahl (its choices)"
 complete hystviz sweep --gr | grep -qx -- --grid || fail "complete 'hystviz sweep --gr'"
 complete hystviz render x.scene --set model.sig | grep -qx 'model.sigma0=' || fail "complete --set model.sig"
 complete hystviz sweep x.scene --grid input.umi | grep -qx 'input.umin2=' || fail "complete --grid input.umi"
