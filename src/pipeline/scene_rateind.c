@@ -41,7 +41,7 @@ static int foreign_keys(const hy_scene_run *r, hy_error *err)
     const hy_decl_head *h = &r->doc.model.h;
     for (size_t j = 0; j < ms->nkeys && j < HY_SCENE_KEYS_MAX; j++) {
         const char *key = ms->keys[j].name;
-        if (h->at[j].loc.line > 0 && !hy_scene_model_has_key(r->mtype, key)) { /* written (set) */
+        if (h->at[j].set && !hy_scene_model_has_key(r->mtype, key)) {
             char list[256] = "";
             const char *p;
             for (size_t i = 0; (p = hy_scene_model_param(r->mtype, i)); i++)

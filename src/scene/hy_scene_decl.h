@@ -45,11 +45,13 @@ typedef struct hy_scene_pair {
 } hy_scene_pair;
 
 /* What decode found for one key: HY_SCENE_SET, _DEFAULT or _ABSENT (the
- * field then holds zero), where the scene wrote it (line 0: not written) and,
- * for a value written `key = $NAME`, the NAME of the [param NAME] it reads
- * (else NULL). */
+ * field then holds zero; _BADKEY: the key fills no field, e.g. a row of
+ * another model than [model] kind), whether the scene or an override wrote
+ * it, where (line 0: not written, or an override) and, for a value written
+ * `key = $NAME`, the NAME of the [param NAME] it reads (else NULL). */
 typedef struct hy_decl_field {
     int got;
+    int set;
     hy_scene_loc loc;
     const char *ref;
 } hy_decl_field;

@@ -80,11 +80,12 @@ int hy_scene_decode_section(const hy_scene *s, const char *section, const char *
             kind = "";
         if (!k->ctype || (k->model && strcmp(k->model, kind))) { /* another model's row fills nothing */
             f->got = HY_SCENE_BADKEY;
-            hy_scene_get_loc(s, section, name, k->name, &f->loc);
+            f->set = hy_scene_get_loc(s, section, name, k->name, &f->loc);
             continue;
         }
         f->got = read_key(s, section, name, k, (char *)h + k->field);
-        if (f->got == HY_SCENE_SET) {
+        f->set = f->got == HY_SCENE_SET;
+        if (f->set) {
             hy_scene_get_loc(s, section, name, k->name, &f->loc);
             f->ref = hy_scene_get_ref(s, section, name, k->name);
         }

@@ -72,9 +72,18 @@ static void own_rows(void)
     CHECK(at == 5);
     CHECK(hy_decl_offset(&d.model.h, b) == HY_DECL_HEAD && hy_scene_doc_num(&d, "model", b, &v) == -1);
     int jb = hy_scene_schema_key(sec, b);
-    CHECK(d.model.h.at[jb].got == HY_SCENE_BADKEY && d.model.h.at[jb].loc.line == 3);
+    CHECK(d.model.h.at[jb].got == HY_SCENE_BADKEY && d.model.h.at[jb].set && d.model.h.at[jb].loc.line == 3);
     hy_decl_error_row(&d.model.h, (size_t)jb, &err, HY_EINVAL, "no");
     CHECK_STR(err.msg, "m.scene:3:1: no");
+    hy_scene_doc_free(&d);
+    char set[128]; /* an override of another model's row: set, at no line */
+    snprintf(set, sizeof set, "model.%s=2", b);
+    CHECK(hy_scene_set(s, set, &err) == HY_OK);
+    snprintf(set, sizeof set, "model.%s=9", a);
+    CHECK(hy_scene_set(s, set, &err) == HY_OK);
+    CHECK(hy_scene_decode(s, &d, &err) == HY_OK);
+    CHECK(d.model.h.at[jb].got == HY_SCENE_BADKEY && d.model.h.at[jb].set);
+    CHECK(hy_scene_doc_num(&d, "model", a, &v) == 0 && v == 9);
     hy_scene_doc_free(&d);
     hy_scene_free(s);
 }

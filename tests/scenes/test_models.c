@@ -255,6 +255,15 @@ static void refused(const char *text, int at_load, const char *want)
 
 static void refusals(void)
 {
+    /* another model's key from --set: refused too (it has no line: at [model]) */
+    char pr_hc[] = "model.pr_hc=1", *set[] = {pr_hc};
+    hy_scene_run r;
+    hy_error err = {0};
+    int rc = hy_scene_run_load_text(&r, "o.scene", JA, strlen(JA), set, 1, NULL, &err);
+    CHECK(rc != 0 && strstr(err.msg, "o.scene:1:1: 'pr_hc' is not a parameter of a jiles-atherton model"),
+          "--set model.pr_hc on a jiles-atherton scene: %d %s", rc, rc ? err.msg : "");
+    if (!rc)
+        hy_scene_run_free(&r);
     refused("[model]\nkind = jiles-atherton\nja_c = 1\n[series a]\ndata = input\n", 1,
             "bad.scene:3:8: 'ja_c' in [model] must be in [0, 1)");
     refused("[model]\nkind = jiles-atherton\nja_alpha = 0.01\n[series a]\ndata = input\n", 1,
