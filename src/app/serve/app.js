@@ -588,6 +588,8 @@ const anim = hv.anim = {
 };
 const WINDOW_S = 2;     // seconds of frames asked for ahead by one stream
 const DECODE_AHEAD = 8; // frames decoded ahead of the one shown
+const BUFFER = 6;       // frames decoded ahead before the clock runs (at play, after a stall)
+const DEBT = 4;         // clip frames a late page may make up (then the clip slows instead)
 
 function animKey() {
   return hv.info ? hv.info.file + '\n' + Object.entries(hv.sets).map(([k, v]) => k + '=' + v).join('\n') : '';
@@ -767,22 +769,36 @@ function decodeAhead() {
 
 // Frame anim.pos is due at anim.due; each display frame shows at most one clip
 // frame, so none is skipped: a late display frame is made up by the next ones
-// (at most one clip frame of debt is kept, so the clip never races), and a frame
-// not decoded yet holds the clock.
+// (at most DEBT clip frames: a longer wait slows the clip rather than racing it).  The clock
+// waits for BUFFER frames decoded ahead when play starts and after a frame did
+// not come in time (one short wait, as a video player buffers, rather than a
+// stutter of many).
+function bufferedAhead() {
+  const want = Math.min(BUFFER, anim.n);
+  let k = 0;
+  while (k < want && anim.bmp.has((anim.pos + k) % anim.n)) k++;
+  return k >= want;
+}
+
 function tick(now) {
   if (!hv.playing) return;
   const i = anim.pos, period = 1000 / anim.fps;
-  if (now + 2 >= anim.due) { // due (2 ms early is on time: display frames are not exact)
+  if (anim.buffering) {
+    if (bufferedAhead() || now - anim.bufferSince > 1000) { anim.buffering = false; anim.due = now; }
+    else anim.stalls++;
+  }
+  if (!anim.buffering && now + 2 >= anim.due) { // due (2 ms early is on time: display frames are not exact)
     const b = anim.bmp.get(i);
     if (b) {
       showBitmap(b);
       hv.frame = i;
       anim.shown++;
       anim.pos = (i + 1) % anim.n;
-      anim.due = Math.max(anim.due + period, now - period);
-    } else {
-      anim.stalls++; // not here yet: the clock waits for it
-      anim.due = now;
+      anim.due = Math.max(anim.due + period, now - DEBT * period);
+    } else { // not here yet: the clock waits for it and a few after it
+      anim.stalls++;
+      anim.buffering = true;
+      anim.bufferSince = now;
     }
   }
   if (now - (anim.textAt || 0) > 250) { // the scrubber and the line below it 4 times a second: no layout per frame
@@ -803,7 +819,8 @@ function animPlay() {
   $('play').textContent = 'pause';
   anim.error = null;
   anim.pos = (+$('scrub').value + 1) % anim.n;
-  anim.last = anim.due = performance.now();
+  anim.last = anim.due = anim.bufferSince = performance.now();
+  anim.buffering = true;
   anim.shown = 0;
   anim.stalls = 0;
   anim.t0 = anim.last;
