@@ -6,6 +6,7 @@ session would: NumPy recompute of the steady loop, set_data on the lines,
 the annotation's text, canvas draw, and the SVG written to memory.
 
 usage: /usr/bin/python3 tests/bench/mpl_fig15.py [HYSTVIZ SCENE] [N]
+       python3 tests/bench/mpl_fig15.py --rows
 
 The loop is the closed form hystviz draws (docs/ARCHITECTURE.md: a run of
 variation D maps y to e^(-aD) y + s g(0) (1 - e^(-aD)), a = sigma0/g(0),
@@ -13,18 +14,19 @@ at the fixed point of the period map), on the bimodal input 0 -> 1 -> 0.5
 -> 1.5 -> 0 with 2000 points per unit of variation as the scene samples.
 With HYSTVIZ and SCENE given it first checks its circle and square markers
 against `hystviz data` (printed).  Prints median and 95th percentile with
-and without the SVG; asserts nothing.  Needs python3-matplotlib (Debian)."""
+and without the SVG as the README's table (tests/cli/test_readme_bench.sh
+checks its rows and format; --rows prints the header and first cells only,
+without matplotlib); asserts nothing.  Needs python3-matplotlib (Debian)."""
 import io
 import os
 import subprocess
 import sys
 import time
 
-import numpy as np
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+try:
+    import numpy as np
+except ImportError:                         # --rows needs neither NumPy nor matplotlib
+    np = None
 
 G0 = 2.0                                   # g(0) = Fs of Example 4
 RUNS = [(1, 0.0, 1.0), (-1, 1.0, 0.5), (1, 0.5, 1.5), (-1, 1.5, 0.0)]   # sign, from, to
@@ -47,12 +49,25 @@ def loop(sigma0):
     return us, ys
 
 
+# the benchmark's table, the README's
+TABLE_HEADER = ("| yardstick (`tests/bench/mpl_fig15.py`, one warm process) | redraw + SVG to memory, median / p95 | "
+                "without the SVG, median / p95 | SVG | load |\n|---|---|---|---|---|")
+ROW = "| matplotlib: Fig. 15 for a new sigma0 (NumPy recompute, set_data, draw) |"
+
+
 def pct(v, q):
     v = sorted(v)
     return v[min(len(v) - 1, int(round(q / 100 * (len(v) - 1))))]
 
 
 def main():
+    if sys.argv[1:2] == ["--rows"]:
+        print(TABLE_HEADER)
+        print(ROW)
+        return
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
     n = int(sys.argv[3]) if len(sys.argv) > 3 else 60
     if len(sys.argv) > 2:
         out = subprocess.run([sys.argv[1], "data", sys.argv[2]], capture_output=True, text=True, check=True).stdout
@@ -94,9 +109,11 @@ def main():
         if i >= 3:                          # the first draws load fonts and caches
             times.append(t1 - t0)
             times_nosvg.append(t_draw - t0)
-    print(f"mpl-fig15 redraw for a new sigma0 ({n} changes, {len(buf.getvalue())}-byte SVG): "
-          f"median {1e3 * pct(times, 50):.1f} ms, p95 {1e3 * pct(times, 95):.1f} ms; "
-          f"without the SVG: median {1e3 * pct(times_nosvg, 50):.1f} ms, p95 {1e3 * pct(times_nosvg, 95):.1f} ms")
+    print(f"mpl-fig15: {n} changes", file=sys.stderr)
+    print(TABLE_HEADER)
+    print(f"{ROW} {1e3 * pct(times, 50):.1f} / {1e3 * pct(times, 95):.1f} ms | "
+          f"{1e3 * pct(times_nosvg, 50):.1f} / {1e3 * pct(times_nosvg, 95):.1f} ms | {len(buf.getvalue())} bytes | "
+          f"{os.getloadavg()[0]:.1f} |", flush=True)
 
 
 if __name__ == "__main__":
