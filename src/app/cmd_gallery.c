@@ -12,16 +12,20 @@
 #include <inttypes.h>
 #include <math.h>
 #include <pthread.h>
+#include <signal.h>
+#include <spawn.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "hy_config.h"
 #include "cli_util.h"
+#include "export_anim.h"
 #include "hy_file.h"
 #include "hy_grid.h"
 #include "hy_jobs.h"
@@ -615,6 +619,215 @@ static int run_pool(const opts *o, job *jobs, size_t n)
  * attribute values: the five markup characters as entities, control bytes
  * other than tab and line breaks as U+FFFD, which HTML and XML forbid) or
  * url() (href and src: percent-encoded bytes, then safe in an attribute). */
+/* ---- built-in animations' posters (DIR/gallery-builtins) --------------- */
+
+/* The built-in GL animations (hystviz animate --list) are not scenes: the
+ * scene directory names the ones the gallery shows in DIR/gallery-builtins,
+ * one "NAME FRAME" a line (# comments), and each is shown by that frame,
+ * rendered by hystviz-animate into builtin_NAME.png.  The frame is rendered
+ * when the file is missing or with --force; where hystviz-animate cannot
+ * render (built without GL) the gallery says so in one line and goes on. */
+extern char **environ;
+
+#define BUILTINS_FILE "gallery-builtins"
+#define BUILTINS_MAX 16
+#define POSTER_SIZE "640x360"
+#define POSTER_TIMEOUT_S 120
+
+typedef struct builtin {
+    char name[64];
+    long frame;
+    int have; /* builtin_NAME.png is there */
+} builtin;
+
+/* Reads DIR/gallery-builtins into b (at most BUILTINS_MAX); none is no file.
+ * 0, or 2 with one message naming the file and line. */
+static int builtins_read(const char *dir, builtin *b, size_t *n)
+{
+    *n = 0;
+    char *path = join(dir, BUILTINS_FILE);
+    if (!path)
+        return 2;
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        int e = errno;
+        if (e != ENOENT)
+            fprintf(stderr, "hystviz gallery: %s: cannot read: %s\n", path, strerror(e));
+        free(path);
+        return e == ENOENT ? 0 : 2;
+    }
+    char line[256];
+    const char *why = NULL;
+    long ln = 0;
+    while (!why && fgets(line, sizeof line, f)) {
+        ln++;
+        size_t len = strlen(line);
+        if (len == sizeof line - 1 && line[len - 1] != '\n') {
+            why = "a line longer than 254 characters";
+            break;
+        }
+        char *t = line + strspn(line, " \t");
+        if (*t == '#' || *t == '\n' || *t == '\r' || *t == '\0')
+            continue;
+        size_t m = strspn(t, "abcdefghijklmnopqrstuvwxyz0123456789-");
+        char *end = NULL;
+        long frame = -1;
+        if (m > 0 && m < sizeof b->name && (t[m] == ' ' || t[m] == '\t')) {
+            errno = 0;
+            frame = strtol(t + m, &end, 10);
+            if (end == t + m || errno || frame < 0 || frame > 1000000)
+                frame = -1;
+            else
+                end += strspn(end, " \t\r\n");
+        }
+        if (m == 0 || m >= sizeof b->name || (t[m] != ' ' && t[m] != '\t'))
+            why = "expected NAME FRAME: a built-in animation's name as `hystviz animate --list` prints it "
+                  "(a-z, 0-9, -; at most 63 characters) and a frame number";
+        else if (frame < 0)
+            why = "the frame is a whole number from 0 to 1000000";
+        else if (*end)
+            why = "one NAME and one FRAME a line";
+        else if (*n == BUILTINS_MAX)
+            why = "at most 16 built-in animations";
+        else {
+            memcpy(b[*n].name, t, m);
+            b[*n].name[m] = '\0';
+            for (size_t k = 0; k < *n && !why; k++)
+                if (!strcmp(b[k].name, b[*n].name))
+                    why = "this animation is named twice";
+            b[*n].frame = frame;
+            b[*n].have = 0;
+            if (!why)
+                (*n)++;
+        }
+    }
+    if (!why && ferror(f))
+        why = "read error";
+    fclose(f);
+    if (why)
+        fprintf(stderr, "hystviz gallery: %s:%ld: %s\n", path, ln, why);
+    free(path);
+    return why ? 2 : 0;
+}
+
+/* Runs argv with its standard output to /dev/null and its standard error
+ * into the file err, for POSTER_TIMEOUT_S at most (then killed).  Its exit
+ * status, or -1 (could not run, killed: said in why). */
+static int poster_run(char *const *argv, const char *err, char *why, size_t size)
+{
+    posix_spawn_file_actions_t fa;
+    posix_spawnattr_t at;
+    sigset_t none;
+    sigemptyset(&none);
+    posix_spawn_file_actions_init(&fa);
+    posix_spawnattr_init(&at);
+    posix_spawnattr_setsigmask(&at, &none);
+    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, err, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    pid_t pid;
+    int sp = posix_spawn(&pid, argv[0], &fa, &at, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    posix_spawnattr_destroy(&at);
+    if (sp) {
+        snprintf(why, size, "cannot run %s: %s", argv[0], strerror(sp));
+        return -1;
+    }
+    int status = 0;
+    double t0 = now();
+    for (;;) {
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid)
+            break;
+        if (w < 0 && errno != EINTR) {
+            snprintf(why, size, "lost %s: %s", argv[0], strerror(errno));
+            return -1;
+        }
+        if (now() - t0 > POSTER_TIMEOUT_S) {
+            kill(pid, SIGKILL);
+            while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+                ;
+            snprintf(why, size, "hystviz-animate took over %d s: stopped", POSTER_TIMEOUT_S);
+            return -1;
+        }
+        struct timespec ts = {0, 20000000};
+        nanosleep(&ts, NULL);
+    }
+    if (!WIFEXITED(status)) {
+        snprintf(why, size, "hystviz-animate was killed (signal %d)", WTERMSIG(status));
+        return -1;
+    }
+    return WEXITSTATUS(status);
+}
+
+/* The first line of file path into why (what hystviz-animate said). */
+static void first_line(const char *path, char *why, size_t size)
+{
+    FILE *f = fopen(path, "r");
+    why[0] = '\0';
+    if (f && fgets(why, (int)size, f))
+        why[strcspn(why, "\r\n")] = '\0';
+    if (f)
+        fclose(f);
+    if (!why[0])
+        snprintf(why, size, "hystviz-animate failed without a message");
+}
+
+/* Renders b's poster into DIR/builtin_NAME.png (atomically: rendered in a
+ * temporary directory beside it, then renamed).  0; 1 when it cannot be
+ * made here (no GL: said, not an error); -1 when it failed (said). */
+static int poster_render(const opts *o, builtin *b)
+{
+    char prog[4200], tmp[4400], err[4500], frame[4600], dst[4400], range[48], why[320];
+    if (hy_file_installed(HY_INSTALLED_LIBEXEC, "hystviz-animate", prog, sizeof prog)) {
+        fprintf(stderr, "hystviz gallery: built-in animation %s: no poster (hystviz-animate is not installed "
+                        "beside hystviz)\n", b->name);
+        return 1;
+    }
+    if (snprintf(tmp, sizeof tmp, "%s/.builtin.XXXXXX", o->out) >= (int)sizeof tmp || !mkdtemp(tmp)) {
+        fprintf(stderr, "hystviz gallery: %s: cannot make a temporary directory: %s\n", o->out, strerror(errno));
+        return -1;
+    }
+    snprintf(range, sizeof range, "%ld:%ld", b->frame, b->frame + 1);
+    snprintf(err, sizeof err, "%s/stderr", tmp);
+    char *argv[] = {prog, "animate", b->name, "--size", POSTER_SIZE, "--frames", range, "-o", tmp, "--quiet", NULL};
+    int st = poster_run(argv, err, why, sizeof why);
+    int rc = 0;
+    if (st > 0)
+        first_line(err, why, sizeof why);
+    if (st == 3) { /* built without GL: the gallery goes on without it */
+        fprintf(stderr, "hystviz gallery: built-in animation %s: no poster (%s)\n", b->name, why);
+        rc = 1;
+    } else if (st != 0) {
+        fprintf(stderr, "hystviz gallery: built-in animation %s, frame %ld: %s\n", b->name, b->frame, why);
+        rc = -1;
+    } else if (snprintf(frame, sizeof frame, "%s/%s/frame_%05ld.png", tmp, b->name, b->frame) >= (int)sizeof frame ||
+               snprintf(dst, sizeof dst, "%s/builtin_%s.png", o->out, b->name) >= (int)sizeof dst ||
+               rename(frame, dst)) {
+        fprintf(stderr, "hystviz gallery: built-in animation %s: frame %ld was not written (%s)\n", b->name,
+                b->frame, strerror(errno));
+        rc = -1;
+    } else
+        b->have = 1;
+    exp_remove_tree(tmp, 1);
+    return rc;
+}
+
+/* Every poster there (or rendered: missing, --force); -1 if one failed. */
+static int posters(const opts *o, builtin *b, size_t n)
+{
+    int rc = 0;
+    for (size_t i = 0; i < n; i++) {
+        char dst[4400];
+        struct stat st;
+        snprintf(dst, sizeof dst, "%s/builtin_%s.png", o->out, b[i].name);
+        b[i].have = !o->force && !stat(dst, &st) && S_ISREG(st.st_mode);
+        if (!b[i].have && poster_render(o, &b[i]) < 0)
+            rc = -1;
+    }
+    return rc;
+}
+
 static void html(FILE *f, const char *s, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
@@ -874,7 +1087,30 @@ static void index_times(FILE *f, const job *jobs, size_t n, const size_t count[5
     fputs("</table>\n</section>\n", f);
 }
 
-static int index_write(const opts *o, const job *jobs, size_t n, const size_t count[5], double total, hy_error *err)
+/* A built-in animation's entry: its poster (frame F of it) and how to play it. */
+static void index_builtin(FILE *f, const opts *o, const builtin *b)
+{
+    fprintf(f, "<section class=\"fig\" id=\"builtin-%s\">\n<h2>%s <small>built-in animation</small></h2>\n", b->name,
+            b->name);
+    fprintf(f, "<p class=\"err\">Frame %ld of the built-in animation %s (OpenGL, GLSL shaders): render its frames "
+               "or a video with <code>hystviz animate %s --video mp4</code>; <code>hystviz animate --list</code> "
+               "says what it shows.</p>\n",
+            b->frame, b->name, b->name);
+    char img[128], *p = NULL;
+    unsigned w = 0, h = 0;
+    snprintf(img, sizeof img, "builtin_%.63s.png", b->name);
+    if (b->have && (p = join(o->out, img)) && image_size(p, 0, &w, &h) && w) {
+        unsigned th = (unsigned)lround(400.0 * h / w);
+        fprintf(f, "<a href=\"%s\"><img src=\"%s\" width=\"400\" height=\"%u\" alt=\"%s\" /></a>\n", img, img,
+                th ? th : 1, img);
+    } else
+        fputs("<p class=\"failed\">no poster: this hystviz cannot render OpenGL frames</p>\n", f);
+    free(p);
+    fputs("</section>\n", f);
+}
+
+static int index_write(const opts *o, const job *jobs, size_t n, const builtin *b, size_t nb, const size_t count[5],
+                       double total, hy_error *err)
 {
     char *path = join(o->out, "index.html");
     hy_out out;
@@ -903,6 +1139,8 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
                 htmls(f, jobs[i].name);
                 fputs("</a>\n", f);
             }
+    for (size_t i = 0; i < nb; i++)
+        fprintf(f, "<a href=\"#builtin-%s\">%s</a>\n", b[i].name, b[i].name);
     fputs("</nav>\n", f);
     for (int part = 0; part < 4; part++) {
         int any = 0;
@@ -917,6 +1155,12 @@ static int index_write(const opts *o, const job *jobs, size_t n, const size_t co
         for (size_t i = 0; i < n; i++)
             if (jobs[i].state != J_SKIP && catalogue_part(jobs[i].file) == part)
                 index_figure(f, o, &jobs[i]);
+        fputs("</main>\n", f);
+    }
+    if (nb) {
+        fputs("<h2 class=\"part\">Built-in animations</h2>\n<main>\n", f);
+        for (size_t i = 0; i < nb; i++)
+            index_builtin(f, o, &b[i]);
         fputs("</main>\n", f);
     }
     if (o->times)
@@ -1263,7 +1507,7 @@ static void shard_remove(const opts *o)
 }
 
 /* Plans, renders, writes the manifest and the index; returns the exit status. */
-static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
+static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman, builtin *b, size_t nb)
 {
     double t0 = now();
     /* a name the page cannot carry is invalid input: refused before anything
@@ -1329,8 +1573,10 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman)
         written = 0;
     }
     free(mpath);
+    if (posters(o, b, nb))
+        rc = 1;
     double total = now() - t0;
-    if (index_write(o, jobs, n, count, total, &err)) {
+    if (index_write(o, jobs, n, b, nb, count, total, &err)) {
         fprintf(stderr, "hystviz gallery: %s\n", err.msg);
         rc = 1;
         written = 0;
@@ -1377,7 +1623,10 @@ int hy_cmd_gallery(int argc, char **argv)
     int rc = parse_opts(argc, argv, &o);
     if (rc)
         return rc == 1 ? 0 : rc;
-    size_t n = 0, nman = 0;
+    size_t n = 0, nman = 0, nb = 0;
+    builtin b[BUILTINS_MAX];
+    if (builtins_read(o.scenes, b, &nb))
+        return 2; /* before anything is rendered or written */
     char **names = list_scenes(o.scenes, &n);
     if (!names)
         return 2;
@@ -1403,7 +1652,7 @@ int hy_cmd_gallery(int argc, char **argv)
     gsl_set_error_handler_off();
     tzset(); /* cairo's PDF writer reads the time zone: set it up before the threads */
     if (!rc)
-        rc = gallery(&o, jobs, n, man, nman);
+        rc = gallery(&o, jobs, n, man, nman, b, nb);
     for (size_t i = 0; jobs && i < n; i++) {
         free(jobs[i].path);
         entry_free(&jobs[i].now);

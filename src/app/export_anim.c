@@ -228,7 +228,7 @@ static int read_frames(const char *dir, frames *f)
 
 /* Removes the renderer's output under tmp (two levels: NAME/frame_*.png and
  * the poster NAME.png), then tmp. */
-static void remove_tree(const char *tmp, int depth)
+void exp_remove_tree(const char *tmp, int depth)
 {
     DIR *d = opendir(tmp);
     struct dirent *e;
@@ -240,7 +240,7 @@ static void remove_tree(const char *tmp, int depth)
             continue;
         struct stat st;
         if (depth > 0 && !lstat(path, &st) && S_ISDIR(st.st_mode))
-            remove_tree(path, depth - 1);
+            exp_remove_tree(path, depth - 1);
         else
             unlink(path);
     }
@@ -307,7 +307,7 @@ static int render_frames(const exp_anim_opts *o, char *prog, frames *f)
         st = 1;
     } else
         st = read_frames(sub, f);
-    remove_tree(tmp, 2);
+    exp_remove_tree(tmp, 2);
     return st;
 }
 

@@ -39,4 +39,8 @@ typedef struct exp_anim_opts {
  * message printed), 3 animations not built.  Nothing is written unless 0. */
 int exp_anim_run(const exp_anim_opts *o);
 
+/* Removes directory dir with its files and, depth levels down, its
+ * directories (a temporary tree of frames; links are removed, not followed). */
+void exp_remove_tree(const char *dir, int depth);
+
 #endif

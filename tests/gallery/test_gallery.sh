@@ -303,5 +303,42 @@ wait $holder 2> /dev/null
 run unlocked
 [ $st -eq 0 ] && ok || bad "gallery after the lock was released: status $st"
 
+# 12. built-in animations named in DIR/gallery-builtins: a bad line is refused
+#     at file:line before anything is written; a good one is shown by its
+#     frame, rendered once (kept when nothing changed, the same bytes with
+#     --force), where hystviz-animate can render (GL)
+B=$tmp/bs
+mkdir "$B"
+cp "$S/look.scene" "$S/a_loop.scene" "$B/"
+printf '# posters\npreisach-plane x\n' > "$B/gallery-builtins"
+"$hv" gallery --scenes "$B" -o "$tmp/bg" -q 2> "$tmp/b.err"
+st=$?
+[ $st -eq 2 ] && grep -q "gallery-builtins:2: the frame is a whole number" "$tmp/b.err" && [ ! -e "$tmp/bg/index.html" ] && ok ||
+    bad "a bad gallery-builtins line: status $st, $(cat "$tmp/b.err")"
+printf 'preisach-plane 3\npreisach-plane 4\n' > "$B/gallery-builtins"
+"$hv" gallery --scenes "$B" -o "$tmp/bg" -q 2> "$tmp/b.err"
+[ $? -eq 2 ] && grep -q "gallery-builtins:2: this animation is named twice" "$tmp/b.err" && ok || bad "a name twice: $(cat "$tmp/b.err")"
+printf 'preisach-plane 3\n' > "$B/gallery-builtins"
+if "$hv" animate --list > /dev/null 2>&1; then
+    # hystviz-animate keeps OSMesa's context list (tests/gl/lsan.supp) under LeakSanitizer
+    LSAN_OPTIONS="suppressions=$(cd "$(dirname "$0")/.." && pwd)/gl/lsan.supp:print_suppressions=0" \
+        "$hv" gallery --scenes "$B" -o "$tmp/bg" -q 2> "$tmp/b.err"
+    st=$?
+    P=$tmp/bg/builtin_preisach-plane.png
+    [ $st -eq 0 ] && [ "$(head -c 8 "$P" | od -An -c | tr -d ' ')" = '211PNG\r\n032\n' ] &&
+        grep -q '<img src="builtin_preisach-plane.png" width="400" height="225"' "$tmp/bg/index.html" && ok ||
+        bad "the Preisach plane's poster: status $st, $(cat "$tmp/b.err")"
+    i1=$(ls -i "$P" | cut -d' ' -f1); cp "$P" "$tmp/p1.png"
+    "$hv" gallery --scenes "$B" -o "$tmp/bg" -q 2> /dev/null
+    [ "$(ls -i "$P" | cut -d' ' -f1)" = "$i1" ] && ok || bad "the poster was rendered again with nothing changed"
+    LSAN_OPTIONS="suppressions=$(cd "$(dirname "$0")/.." && pwd)/gl/lsan.supp:print_suppressions=0" \
+        "$hv" gallery --scenes "$B" -o "$tmp/bg" -q --force 2> /dev/null
+    [ "$(ls -i "$P" | cut -d' ' -f1)" != "$i1" ] && cmp -s "$P" "$tmp/p1.png" && ok ||
+        bad "--force: the poster not rendered again, or other bytes"
+    ls -A "$tmp/bg" | grep -q '^\.builtin\.' && bad "a temporary poster directory left" || ok
+else
+    echo "(12: hystviz animate cannot render here: the posters are not checked)"
+fi
+
 echo "gallery: $pass passed, $fail failed"
 [ $fail -eq 0 ]
