@@ -760,12 +760,13 @@ static int poster_run(char *const *argv, const char *err, char *why, size_t size
     return WEXITSTATUS(status);
 }
 
-/* The first line of file path into why (what hystviz-animate said). */
+/* The first line that is not blank of file path into why (what
+ * hystviz-animate said). */
 static void first_line(const char *path, char *why, size_t size)
 {
     FILE *f = fopen(path, "r");
     why[0] = '\0';
-    if (f && fgets(why, (int)size, f))
+    while (f && !why[0] && fgets(why, (int)size, f))
         why[strcspn(why, "\r\n")] = '\0';
     if (f)
         fclose(f);
