@@ -588,8 +588,9 @@ const anim = hv.anim = {
 };
 const WINDOW_S = 2;     // seconds of frames asked for ahead by one stream
 const DECODE_AHEAD = 8; // frames decoded ahead of the one shown
-const BUFFER = 6;       // frames decoded ahead before the clock runs (at play, after a stall)
-const DEBT = 4;         // clip frames a late page may make up (then the clip slows instead)
+const DECODE_PAR = 3;   // decodes at a time
+const BUFFER = 6;       // frames decoded ahead before the clock runs
+const DEBT = 8;         // clip frames a late page may make up (then the clip slows instead)
 
 function animKey() {
   return hv.info ? hv.info.file + '\n' + Object.entries(hv.sets).map(([k, v]) => k + '=' + v).join('\n') : '';
@@ -710,7 +711,11 @@ function animFetch() {
   });
 }
 
-// Reads records "TAG NUM LEN\n<bytes>" (anim_worker.h) as they arrive.
+// Reads records "TAG NUM LEN\n<bytes>" (anim_worker.h) as they arrive.  The
+// chunks wait in a list until a record is whole and are then joined once, so
+// each byte is copied once: joining every chunk onto what was left (as this
+// did before) copied a stream's bytes again per record and held the page's
+// main thread for 40-70 ms when the network handed over many frames at once.
 async function readStream(url, ctl, key) {
   let r;
   try { r = await fetch(url, { signal: ctl.signal }); } catch (e) { return; }
@@ -719,25 +724,47 @@ async function readStream(url, ctl, key) {
     if (r.status !== 409) animFail(j.error || ('HTTP ' + r.status));
     return;
   }
-  const rd = r.body.getReader();
-  let buf = new Uint8Array(0);
+  const rd = r.body.getReader(), text = new TextDecoder();
+  const parts = [];
+  let have = 0, head = null;
+  const take = n => { // the first n bytes waiting, as one array of their own
+    const out = new Uint8Array(n);
+    for (let k = 0; k < n;) {
+      const p = parts[0], m = Math.min(p.length, n - k);
+      out.set(m === p.length ? p : p.subarray(0, m), k);
+      k += m;
+      if (m === p.length) parts.shift(); else parts[0] = p.subarray(m);
+    }
+    have -= n;
+    return out;
+  };
+  const lineEnd = () => { // where the header line waiting ends, or -1
+    for (let k = 0, at = 0; k < parts.length; at += parts[k].length, k++) {
+      const i = parts[k].indexOf(10);
+      if (i >= 0) return at + i;
+    }
+    return -1;
+  };
   try {
     for (;;) {
       const { done, value } = await rd.read();
       if (done) return;
-      const b = new Uint8Array(buf.length + value.length);
-      b.set(buf); b.set(value, buf.length);
-      buf = b;
+      parts.push(value);
+      have += value.length;
       for (;;) {
-        const nl = buf.indexOf(10);
-        if (nl < 0) break;
-        const [tag, num, len] = new TextDecoder().decode(buf.subarray(0, nl)).split(' ');
-        if (buf.length < nl + 1 + +len) break;
-        const data = buf.slice(nl + 1, nl + 1 + +len);
-        buf = buf.slice(nl + 1 + +len);
+        if (!head) {
+          const nl = lineEnd();
+          if (nl < 0) break;
+          const [tag, num, len] = text.decode(take(nl + 1)).trim().split(' ');
+          head = { tag, num: +num, len: +len };
+          if (!(head.len >= 0)) { animFail('the server sent a frame stream this page cannot read'); return; }
+        }
+        if (have < head.len) break;
+        const data = take(head.len), h = head;
+        head = null;
         if (key !== anim.key) return;
-        if (tag === 'frame') { anim.png.set(+num, data.buffer); decodeAhead(); }
-        else if (tag === 'error') { animFail(new TextDecoder().decode(data)); return; }
+        if (h.tag === 'frame') { anim.png.set(h.num, data.buffer); decodeAhead(); }
+        else if (h.tag === 'error') { animFail(text.decode(data)); return; }
       }
     }
   } catch (e) { /* aborted: the sliders moved or play stopped */ }
@@ -759,20 +786,20 @@ function decodeAhead() {
   for (let d = 0; d <= DECODE_AHEAD; d++) {
     const i = (cur + d) % anim.n, buf = anim.png.get(i), key = anim.key;
     if (!buf || anim.bmp.has(i) || anim.decoding.has(i)) continue;
+    if (anim.decoding.size >= DECODE_PAR) break;
     anim.decoding.add(i);
     createImageBitmap(new Blob([buf], { type: 'image/png' })).then(b => {
       anim.decoding.delete(i);
-      if (key === anim.key) anim.bmp.set(i, b); else b.close();
+      if (key === anim.key) { anim.bmp.set(i, b); decodeAhead(); } else b.close();
     }, () => anim.decoding.delete(i));
   }
 }
 
 // Frame anim.pos is due at anim.due; each display frame shows at most one clip
-// frame, so none is skipped: a late display frame is made up by the next ones
-// (at most DEBT clip frames: a longer wait slows the clip rather than racing it).  The clock
-// waits for BUFFER frames decoded ahead when play starts and after a frame did
-// not come in time (one short wait, as a video player buffers, rather than a
-// stutter of many).
+// frame, so none is skipped: a late display frame (the page held up, or the
+// frame not yet decoded) is made up by the next ones, at most DEBT clip frames
+// (a longer wait slows the clip rather than racing it).  The clock waits for
+// BUFFER frames decoded ahead when play starts, as a video player buffers.
 function bufferedAhead() {
   const want = Math.min(BUFFER, anim.n);
   let k = 0;
@@ -791,15 +818,13 @@ function tick(now) {
     const b = anim.bmp.get(i);
     if (b) {
       showBitmap(b);
+      if (anim.shown && now - anim.shownAt > anim.maxGap) anim.maxGap = now - anim.shownAt;
+      anim.shownAt = now;
       hv.frame = i;
       anim.shown++;
       anim.pos = (i + 1) % anim.n;
       anim.due = Math.max(anim.due + period, now - DEBT * period);
-    } else { // not here yet: the clock waits for it and a few after it
-      anim.stalls++;
-      anim.buffering = true;
-      anim.bufferSince = now;
-    }
+    } else anim.stalls++; // not decoded yet: shown when it is, and the frames after it catch up
   }
   if (now - (anim.textAt || 0) > 250) { // the scrubber and the line below it 4 times a second: no layout per frame
     anim.textAt = now;
@@ -823,6 +848,7 @@ function animPlay() {
   anim.buffering = true;
   anim.shown = 0;
   anim.stalls = 0;
+  anim.maxGap = 0;
   anim.t0 = anim.last;
   animFetch();
   anim.raf = requestAnimationFrame(tick);
