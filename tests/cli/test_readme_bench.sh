@@ -71,7 +71,7 @@ table large-series "$tmp/points" "$cell \| ($cell|\(matplotlib missing\) \| \| \
 table serve "$tmp/serve" '[0-9]+\.[0-9]{2} / [0-9]+\.[0-9]{2} ms \(min [0-9]+\.[0-9]{2}\) \| [0-9]+\.[0-9]{2} ms \| [0-9]+\.[0-9]'
 # serve in chromium: ms with 1 decimal
 python3 "$root/tests/serve/browser_test.py" --rows > "$tmp/browser" || bad "browser_test.py --rows failed"
-table serve-browser "$tmp/browser" '[0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9]'
+table serve-browser "$tmp/browser" '[0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9]'
 # the matplotlib yardstick of serve (tests/bench/mpl_fig15.py): ms with 1 decimal, the SVG in bytes
 python3 "$root/tests/bench/mpl_fig15.py" --rows > "$tmp/mpl" || bad "mpl_fig15.py --rows failed"
 table serve-yardstick "$tmp/mpl" '[0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+ bytes \| [0-9]+\.[0-9]'

@@ -87,7 +87,26 @@ function pushUrl(replace) {
   if (replace) history.replaceState(null, '', h); else history.pushState(null, '', h);
 }
 
+// While a slider moves, the URL is written once it rests for URL_REST_MS or is
+// let go, not at every input event: each history entry costs the page and the
+// browser's main threads a few ms, taken from the render the move asked for.
+// The first move of a drag decides push (a new entry) or replace.
+const URL_REST_MS = 250;
+function pushUrlSoon(replace) {
+  if (!hv.urlTimer) hv.urlReplace = replace;
+  clearTimeout(hv.urlTimer);
+  hv.urlTimer = setTimeout(pushUrlNow, URL_REST_MS);
+}
+function pushUrlNow() {
+  if (!hv.urlTimer) return;
+  clearTimeout(hv.urlTimer);
+  hv.urlTimer = 0;
+  pushUrl(hv.urlReplace);
+}
+
 function applyUrl() {
+  clearTimeout(hv.urlTimer); // back/forward (or a typed URL) wins over a write not yet made
+  hv.urlTimer = 0;
   const st = parseHash();
   if (!st.file) return;
   if (!hv.info || st.file !== hv.info.file) { openScene(st.file, false, st); return; }
@@ -103,6 +122,7 @@ function applyUrl() {
 
 // st: the state a URL asks for (values, view, preset, frame), or none
 async function openScene(file, keep, st) {
+  pushUrlNow(); // the scene left keeps its last values in the history
   const r = await fetch('/api/scene?scene=' + enc(file));
   if (r.status !== 200) { showError('no scene ' + file); return; }
   const info = await r.json();
@@ -302,10 +322,10 @@ function buildControls(info) {
       const v = valueAt(c, +range.value);
       box.value = v;
       apply(v);
-      pushUrl(hv.dragging);
+      pushUrlSoon(hv.dragging);
       hv.dragging = true;
     });
-    range.addEventListener('change', () => { hv.dragging = false; syncSliders(); });
+    range.addEventListener('change', () => { hv.dragging = false; pushUrlNow(); syncSliders(); });
     box.addEventListener('change', () => {
       const t = checkTyped(c, box.value);
       if (t.err) { showNote(c.key, t.err); return; }
