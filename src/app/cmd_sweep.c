@@ -420,6 +420,9 @@ typedef struct point_buf {
                        * applied and marked: each point restores it to that
                        * and applies its own overrides (hy_scene_mark) */
     int scene_rc;     /* parsing it failed: every point reports scene_err */
+    hy_scene_doc base; /* the scene decoded once, at its mark: a point decodes
+                        * again only the sections its overrides change */
+    int have_base;
     hy_error scene_err;
     FILE *rowf;       /* a memory stream the rows are formatted in, reused */
     char *rowbuf;
@@ -437,6 +440,13 @@ static void worker_scene(const sweep_opts *o, point_buf *pb)
         pb->scene_rc = hy_scene_set(pb->scene, o->sets[k], &pb->scene_err);
     if (!pb->scene_rc)
         pb->scene_rc = hy_scene_mark(pb->scene);
+    pb->have_base = 0;
+    if (!pb->scene_rc) { /* where it does not decode, each point decodes (and reports) on its own */
+        hy_error e = {0};
+        pb->have_base = !hy_scene_decode(pb->scene, &pb->base, &e);
+        if (!pb->have_base)
+            hy_scene_doc_free(&pb->base);
+    }
 }
 
 /* Loads, computes and writes point i; returns its row (malloc'ed) and counts
@@ -465,7 +475,8 @@ static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
             rc = hy_scene_set(pb->scene, pb->sets[k], &err);
     }
     if (!rc)
-        rc = hy_scene_run_load_scene(&r, pb->scene, o->scene, hy_scene_policy_budget(&o->pol), &err);
+        rc = hy_scene_run_load_marked(&r, pb->scene, pb->have_base ? &pb->base : NULL, o->scene,
+                                      hy_scene_policy_budget(&o->pol), &err);
     if (!rc) {
         loaded = 1;
         r.numbers_only = !o->figures;
@@ -560,6 +571,8 @@ static void *worker(void *arg)
     pthread_mutex_unlock(&s->mu);
     free(pb.sets);
     free(pb.text);
+    if (pb.have_base)
+        hy_scene_doc_free(&pb.base);
     hy_scene_free(pb.scene);
     if (pb.rowf)
         fclose(pb.rowf);

@@ -180,12 +180,21 @@ static int load_parsed(hy_scene_run *r, int rc, char *const *sets, size_t nsets,
 
 int hy_scene_run_load_scene(hy_scene_run *r, hy_scene *scene, const char *path, double budget, hy_error *err)
 {
+    return hy_scene_run_load_marked(r, scene, NULL, path, budget, err);
+}
+
+int hy_scene_run_load_marked(hy_scene_run *r, hy_scene *scene, const hy_scene_doc *base, const char *path,
+                             double budget, hy_error *err)
+{
     memset(r, 0, sizeof *r);
     r->path = path;
     r->budget = budget;
     r->scene = scene;
     r->scene_borrowed = 1;
-    return build_run(r, err);
+    r->base = base;
+    int rc = build_run(r, err);
+    r->base = NULL;
+    return rc;
 }
 
 /* A series' quantity, where written, is one the model draws. */
@@ -244,7 +253,7 @@ static int load_panels(hy_scene_run *r, hy_error *err)
 /* The model and input of the parsed scene r->scene; r freed on error. */
 static int build_run(hy_scene_run *r, hy_error *err)
 {
-    int rc = hy_scene_decode(r->scene, &r->doc, err);
+    int rc = r->base ? hy_scene_decode_marked(r->scene, r->base, &r->doc, err) : hy_scene_decode(r->scene, &r->doc, err);
     if (rc) {
         hy_scene_run_free(r);
         return rc;

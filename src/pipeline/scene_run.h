@@ -108,6 +108,7 @@ typedef struct hy_scene_run {
                                * curvature bound needs (HY_THIN_TOL), unless
                                * [figure] full_resolution                       */
     int scene_borrowed;       /* scene belongs to the caller (not freed)          */
+    const hy_scene_doc *base; /* while loading: the doc decoded at the scene's mark */
     int (*cancelled)(void *); /* set before compute (may be NULL): polled between
                                * the steps of compute and render (each gamma
                                * solve, each series, the Newmark run, before
@@ -135,6 +136,13 @@ int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *set
  * and unchanged); budget as hy_scene_policy_budget gives it.  On error r is
  * freed (not the scene). */
 int hy_scene_run_load_scene(hy_scene_run *r, hy_scene *scene, const char *path, double budget, hy_error *err);
+
+/* As hy_scene_run_load_scene on a scene marked (hy_scene_mark) when base was
+ * decoded from it and since changed only by overrides: the run's doc is base
+ * with the sections they changed decoded again (hy_scene_decode_marked).
+ * base NULL: as hy_scene_run_load_scene. */
+int hy_scene_run_load_marked(hy_scene_run *r, hy_scene *scene, const hy_scene_doc *base, const char *path,
+                             double budget, hy_error *err);
 
 /* As hy_scene_run_load_policy from the scene's text, already read (the
  * caller opened the file once); path names it in messages and is where its

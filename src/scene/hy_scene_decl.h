@@ -234,6 +234,14 @@ int hy_scene_kind_ctype(hy_scene_kind kind);
  * with "file:line:col: what" in err; call hy_scene_doc_free either way. */
 int hy_scene_decode(const hy_scene *s, hy_scene_doc *d, hy_error *err);
 
+/* As hy_scene_decode, for a scene marked (hy_scene_mark) when base was
+ * decoded from it, and changed since only by overrides: d is a copy of base
+ * with the sections those overrides changed decoded again (the undo log
+ * says which), and the checks run on it; where an override made a section,
+ * the whole scene is decoded.  A sweep's point costs one section, not the
+ * scene.  base must outlive d's use; call hy_scene_doc_free on d. */
+int hy_scene_decode_marked(const hy_scene *s, const hy_scene_doc *base, hy_scene_doc *d, hy_error *err);
+
 /* As hy_scene_decode without the checks: the structs only (hystviz serve
  * reads a scene's series to choose its controls).  HY_ENOMEM or HY_OK. */
 int hy_scene_decode_fill(const hy_scene *s, hy_scene_doc *d, hy_error *err);

@@ -224,6 +224,75 @@ int hy_scene_decode(const hy_scene *s, hy_scene_doc *d, hy_error *err)
     return rc;
 }
 
+/* Decodes section x of s again into its place in d (found by kind and name):
+ * 1, or 0 where d has no such section (the caller decodes the whole scene). */
+static int redecode(const hy_scene *s, const hy__section *x, hy_scene_doc *d)
+{
+    const char *kind = hy_scene_schema(NULL)[x->spec].name;
+#define ONE(sec)                                                                    \
+    if (!x->name && !strcmp(kind, #sec)) {                                          \
+        memset(&d->sec, 0, sizeof d->sec);                                          \
+        hy_scene_decode_section(s, #sec, NULL, &d->sec.h);                          \
+        return 1;                                                                   \
+    }
+    HY_DOC_UNNAMED(ONE)
+#undef ONE
+#define NAMED(sec)                                                                  \
+    if (x->name && !strcmp(kind, #sec)) {                                           \
+        for (size_t i = 0; i < d->n##sec; i++)                                      \
+            if (d->sec[i].h.name == x->name || !strcmp(d->sec[i].h.name, x->name)) { \
+                memset(&d->sec[i], 0, sizeof d->sec[i]);                            \
+                hy_scene_decode_section(s, #sec, x->name, &d->sec[i].h);            \
+                return 1;                                                           \
+            }                                                                       \
+        return 0;                                                                   \
+    }
+    HY_DOC_NAMED(NAMED)
+#undef NAMED
+    return 0;
+}
+
+int hy_scene_decode_marked(const hy_scene *s, const hy_scene_doc *base, hy_scene_doc *d, hy_error *err)
+{
+    if (!s->marked || s->nsecs != s->mark_secs) /* sections the overrides made: decoded whole */
+        return hy_scene_decode(s, d, err);
+    *d = *base;
+    int rc = HY_OK;
+#define NAMED(sec)                                                     \
+    d->sec = NULL;                                                     \
+    if (!rc && base->n##sec) {                                         \
+        if (!(d->sec = malloc(base->n##sec * sizeof *base->sec)))      \
+            rc = hy_error_set(err, HY_ENOMEM, "out of memory");        \
+        else                                                           \
+            memcpy(d->sec, base->sec, base->n##sec * sizeof *base->sec); \
+    }
+    HY_DOC_NAMED(NAMED)
+#undef NAMED
+    if (rc)
+        return rc;
+    int controls = 0;
+    for (size_t u = 0; u < s->nundo; u++) {
+        const hy__section *x = &s->secs[s->undo[u].sec];
+        const char *kind = hy_scene_schema(NULL)[x->spec].name;
+        controls |= !strcmp(kind, "controls") || !strcmp(kind, "preset");
+        if (!redecode(s, x, d)) {
+            hy_scene_doc_free(d);
+            return hy_scene_decode(s, d, err);
+        }
+    }
+    if (!rc)
+        rc = check_annotations(d, err);
+    if (!rc)
+        rc = check_zoom(d, err);
+    if (!rc)
+        rc = check_series(d, err);
+    if (!rc)
+        rc = check_panels(d, err);
+    if (!rc && controls)
+        rc = check_controls(s, err);
+    return rc;
+}
+
 int hy_scene_decode_fill(const hy_scene *s, hy_scene_doc *d, hy_error *err)
 {
     memset(d, 0, sizeof *d);

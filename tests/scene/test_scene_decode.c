@@ -169,12 +169,68 @@ static void cross(void)
             "written as for --set (model.sigma0, series.NAME.gamma)");
 }
 
+/* Both docs the same, section by section (decoded from one scene state, the
+ * structs are equal byte for byte: both start zeroed). */
+static int same_doc(const hy_scene_doc *a, const hy_scene_doc *b)
+{
+    int same = 1;
+#define ONE(sec) same &= !memcmp(&a->sec, &b->sec, sizeof a->sec);
+    HY_DOC_UNNAMED(ONE)
+#undef ONE
+#define NAMED(sec) same &= a->n##sec == b->n##sec && (!a->n##sec || !memcmp(a->sec, b->sec, a->n##sec * sizeof *a->sec));
+    HY_DOC_NAMED(NAMED)
+#undef NAMED
+    return same;
+}
+
+/* A sweep's point: the scene marked and decoded once, then overrides (one
+ * of them a parameter that two series read) and hy_scene_decode_marked,
+ * which decodes only what changed: equal to decoding the whole scene (an
+ * override of a section the file lacks makes it: the whole is decoded); the
+ * checks still run. */
+static void marked(void)
+{
+    static const char *text = "[model]\nkind = dahl\nsigma0 = 3\n[series t20]\ndata = transient\ngamma = $g\n"
+                              "[series g20]\ndata = ygamma\ngamma = $g\n[series y]\ndata = ystar\n"
+                              "[param g]\nvalue = 20\n[figure]\nzoom_x = 0, 1\nzoom_y = 0, 1\n";
+    hy_error err = {0, ""};
+    hy_scene *s = PARSE_OK("k.scene", text);
+    if (!s)
+        return;
+    hy_scene_doc base, full, part;
+    CHECK(hy_scene_mark(s) == HY_OK && hy_scene_decode(s, &base, &err) == HY_OK);
+    static const char *const sets[][2] = {{"model.sigma0=7", NULL},
+                                          {"param.g.value=35.5", "series.y.color=#ff0000"},
+                                          {"figure.zoom_x=0.25, 0.5", "input.period=3"},
+                                          {"series.g20.gamma=4", "compute.points=500"}};
+    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
+        hy_scene_restore(s);
+        for (size_t k = 0; k < 2 && sets[i][k]; k++)
+            CHECK(hy_scene_set(s, sets[i][k], &err) == HY_OK);
+        CHECK(hy_scene_decode(s, &full, &err) == HY_OK);
+        CHECK(hy_scene_decode_marked(s, &base, &part, &err) == HY_OK);
+        CHECK(same_doc(&full, &part));
+        CHECK(!same_doc(&base, &part)); /* the override is seen */
+        hy_scene_doc_free(&full);
+        hy_scene_doc_free(&part);
+    }
+    /* the checks run on the changed doc: the inset's zoom_y taken away is refused */
+    hy_scene_restore(s);
+    CHECK(hy_scene_set(s, "figure.zoom_follow=minor", &err) == HY_OK);
+    CHECK(hy_scene_decode_marked(s, &base, &part, &err) == HY_EINVAL);
+    CHECK(strstr(err.msg, "zoom_follow = minor needs a [series] with data = minor") != NULL);
+    hy_scene_doc_free(&part);
+    hy_scene_doc_free(&base);
+    hy_scene_free(s);
+}
+
 int main(void)
 {
     table();
     values();
     own_rows();
     cross();
+    marked();
     if (st_failures)
         fprintf(stderr, "test_scene_decode: %d check(s) failed\n", st_failures);
     return st_failures ? 1 : 0;
