@@ -157,6 +157,17 @@ def test_keys_and_links(dt, hv, base, scenes, tmp):
     dt.js("history.forward()")
     check(dt.wait("hv.sets['model.sigma0'] === '100'", 20, "forward"), "forward restores the typed value")
     bt.settle(dt)
+    # a drag (input events, the button still held) is one history entry,
+    # written once the slider rests (not at every input event)
+    h0 = dt.js("history.length")
+    dt.js("""(() => { const r = document.querySelector('input[type=range][data-key="model.sigma0"]');
+        for (const p of [300, 320, 340]) { r.value = p; r.dispatchEvent(new Event('input')); } })()""")
+    v3 = dt.js("hv.sets['model.sigma0']")
+    check(dt.wait(f"location.hash.includes('model.sigma0={v3}')", 10, "the URL once the slider rests"),
+          f"the URL holds the dragged value once the slider rests: {v3}")
+    check(dt.js("history.length") == h0 + 1, f"... one new history entry for the whole drag ({h0} -> {dt.js('history.length')})")
+    dt.js("""document.querySelector('input[type=range][data-key="model.sigma0"]').dispatchEvent(new Event('change'))""")
+    bt.settle(dt)
 
 
 def test_presets(dt, hv, base, scenes, tmp):
