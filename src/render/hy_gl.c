@@ -229,17 +229,9 @@ static int build_programs(hy_gl *g, hy_error *err)
         {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert, NULL},
         {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag, NULL},
     };
-    const hy_gl_stage plane[2] = {
-        {hy_shader_plane_vert_file, GL_VERTEX_SHADER, hy_shader_plane_vert, NULL},
-        {hy_shader_plane_frag_file, GL_FRAGMENT_SHADER, hy_shader_plane_frag, NULL},
-    };
     if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(stroke_dash, 2, &g->stroke_dash_prog, err) ||
-        hy_gl_program(ribbon, 2, &g->ribbon_prog, err) || hy_gl_program(plane, 2, &g->plane_prog, err))
+        hy_gl_program(ribbon, 2, &g->ribbon_prog, err))
         return HY_ENUM;
-    static const char *const plane_uniforms[11] = {"u_rect", "u_height", "u_range", "u_s", "u_n", "u_kind0",
-                                                   "u_dist", "u_dens", "u_up", "u_down", NULL};
-    for (int i = 0; plane_uniforms[i]; i++)
-        g->u_plane[i] = gl->GetUniformLocation(g->plane_prog, plane_uniforms[i]);
     g->u_size = gl->GetUniformLocation(g->stroke_prog, "u_size");
     g->u_size_dash = gl->GetUniformLocation(g->stroke_dash_prog, "u_size");
     g->u_ndash = gl->GetUniformLocation(g->stroke_dash_prog, "u_ndash");
@@ -1024,12 +1016,34 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
 
 /* ---- the relay plane ---- */
 
+/* The plane's program, built at its first use: only the Preisach animation
+ * draws a plane, and building it with the others at every context's start
+ * made each renderer pay llvmpipe's compile of plane.frag. */
+static int plane_program(hy_gl *g, hy_error *err)
+{
+    if (g->plane_prog)
+        return HY_OK;
+    const hy_gl_stage plane[2] = {
+        {hy_shader_plane_vert_file, GL_VERTEX_SHADER, hy_shader_plane_vert, NULL},
+        {hy_shader_plane_frag_file, GL_FRAGMENT_SHADER, hy_shader_plane_frag, NULL},
+    };
+    if (hy_gl_program(plane, 2, &g->plane_prog, err))
+        return HY_ENUM;
+    static const char *const plane_uniforms[11] = {"u_rect", "u_height", "u_range", "u_s", "u_n", "u_kind0",
+                                                   "u_dist", "u_dens", "u_up", "u_down", NULL};
+    for (int i = 0; plane_uniforms[i]; i++)
+        g->u_plane[i] = gl->GetUniformLocation(g->plane_prog, plane_uniforms[i]);
+    return HY_OK;
+}
+
 static int gl_draw_plane_unlocked(hy_gl *g, const hy_gl_plane *pl, hy_error *err)
 {
     if (!(pl->vw >= 1 && pl->vh >= 1 && pl->xlo < pl->xhi && pl->ylo < pl->yhi && pl->sa > 0 && pl->sb > 0) ||
         pl->n < 0 || pl->n > HY_GL_PLANE_MAX || !pl->s)
         return hy_error_set(err, HY_EINVAL, "a relay plane needs a panel, ranges, widths > 0 and at most %d "
                             "extrema (got %d)", HY_GL_PLANE_MAX, pl->n);
+    if (plane_program(g, err))
+        return HY_ENUM;
     submit(g);                        /* the 2-D data drawn so far stays underneath */
     float s[HY_GL_PLANE_MAX + 1];
     for (int j = 0; j <= pl->n; j++) /* the saturations as far-off finite values */
