@@ -159,7 +159,7 @@ int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
     return HY_OK;
 }
 
-static int build_run(hy_scene_run *r, hy_error *err);
+static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err);
 
 int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err)
 {
@@ -172,7 +172,7 @@ static int load_parsed(hy_scene_run *r, int rc, char *const *sets, size_t nsets,
     for (size_t i = 0; !rc && i < nsets; i++)
         rc = hy_scene_set(r->scene, sets[i], err);
     if (!rc)
-        rc = build_run(r, err);
+        rc = build_run(r, NULL, err);
     else
         hy_scene_run_free(r);
     return rc;
@@ -191,10 +191,7 @@ int hy_scene_run_load_marked(hy_scene_run *r, hy_scene *scene, const hy_scene_do
     r->budget = budget;
     r->scene = scene;
     r->scene_borrowed = 1;
-    r->base = base;
-    int rc = build_run(r, err);
-    r->base = NULL;
-    return rc;
+    return build_run(r, base, err);
 }
 
 /* A series' quantity, where written, is one the model draws. */
@@ -250,10 +247,11 @@ static int load_panels(hy_scene_run *r, hy_error *err)
     return HY_OK;
 }
 
-/* The model and input of the parsed scene r->scene; r freed on error. */
-static int build_run(hy_scene_run *r, hy_error *err)
+/* The model and input of the parsed scene r->scene (decoded from base, the
+ * doc at its mark, where given); r freed on error. */
+static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err)
 {
-    int rc = r->base ? hy_scene_decode_marked(r->scene, r->base, &r->doc, err) : hy_scene_decode(r->scene, &r->doc, err);
+    int rc = base ? hy_scene_decode_marked(r->scene, base, &r->doc, err) : hy_scene_decode(r->scene, &r->doc, err);
     if (rc) {
         hy_scene_run_free(r);
         return rc;

@@ -108,7 +108,6 @@ typedef struct hy_scene_run {
                                * curvature bound needs (HY_THIN_TOL), unless
                                * [figure] full_resolution                       */
     int scene_borrowed;       /* scene belongs to the caller (not freed)          */
-    const hy_scene_doc *base; /* while loading: the doc decoded at the scene's mark */
     int (*cancelled)(void *); /* set before compute (may be NULL): polled between
                                * the steps of compute and render (each gamma
                                * solve, each series, the Newmark run, before

@@ -208,20 +208,26 @@ int hy_scene_is_figure(const hy_scene *s)
     return hy_scene_count(s, "series") > 0 || hy_scene_count(s, "panel") > 0;
 }
 
-int hy_scene_decode(const hy_scene *s, hy_scene_doc *d, hy_error *err)
+/* The checks that span keys and sections of a decoded doc; with controls,
+ * also those of [controls] main and the [preset]s (read from the scene). */
+static int check_doc(const hy_scene *s, const hy_scene_doc *d, int controls, hy_error *err)
 {
-    int rc = hy_scene_decode_fill(s, d, err);
-    if (!rc)
-        rc = check_annotations(d, err);
+    int rc = check_annotations(d, err);
     if (!rc)
         rc = check_zoom(d, err);
     if (!rc)
         rc = check_series(d, err);
     if (!rc)
         rc = check_panels(d, err);
-    if (!rc)
+    if (!rc && controls)
         rc = check_controls(s, err);
     return rc;
+}
+
+int hy_scene_decode(const hy_scene *s, hy_scene_doc *d, hy_error *err)
+{
+    int rc = hy_scene_decode_fill(s, d, err);
+    return rc ? rc : check_doc(s, d, 1, err);
 }
 
 /* Decodes section x of s again into its place in d (found by kind and name):
@@ -280,17 +286,7 @@ int hy_scene_decode_marked(const hy_scene *s, const hy_scene_doc *base, hy_scene
             return hy_scene_decode(s, d, err);
         }
     }
-    if (!rc)
-        rc = check_annotations(d, err);
-    if (!rc)
-        rc = check_zoom(d, err);
-    if (!rc)
-        rc = check_series(d, err);
-    if (!rc)
-        rc = check_panels(d, err);
-    if (!rc && controls)
-        rc = check_controls(s, err);
-    return rc;
+    return check_doc(s, d, controls, err);
 }
 
 int hy_scene_decode_fill(const hy_scene *s, hy_scene_doc *d, hy_error *err)
