@@ -17,14 +17,16 @@
 
 /* Context creation and destruction, one at a time in the whole process (they
  * touch the backends' process-wide state: OSMesa's framebuffer list, the EGL
- * display).  With OSMesa (backend->serialise) every GL
- * call sequence of a frame holds it too: Mesa 22.3's llvmpipe under OSMesa
- * crashed inside glReadPixels of one context while another drew, about 1 run
- * in 10 of the -j 2 ribbon test on a loaded machine, with the readback of
- * the time (see docs/ARCHITECTURE.md, "GL backends").  EGL contexts draw
- * concurrently: each has its own pipe context and framebuffer object.  The
- * caller's cairo overlay, compositing and PNG encoding always run in
- * parallel, and llvmpipe rasterises each frame with its own threads. */
+ * display).  With OSMesa (backend->serialise) each frame's GL work, from its
+ * first GL call to hy_gl_finish, holds it too: all surfaces draw with one
+ * OSMesa context (backend->one_context), and before that, with a context per
+ * thread, Mesa 22.3's llvmpipe under OSMesa crashed inside glReadPixels of
+ * one context while another drew, about 1 run in 10 of the -j 2 ribbon test
+ * on a loaded machine (see docs/ARCHITECTURE.md, "GL backends").  EGL
+ * contexts draw concurrently: each has its own pipe context and framebuffer
+ * object.  The caller's drawing calls (recorded, not sent), cairo overlay
+ * and PNG encoding always run in parallel, and llvmpipe rasterises each
+ * frame with its own threads. */
 static pthread_mutex_t gl_mu = PTHREAD_MUTEX_INITIALIZER;
 
 /* The context current on this thread and its entry points (gl->Clear(...)). */
@@ -48,6 +50,14 @@ typedef struct cmd {
     int ndash, clipped, clip[4];
 } cmd;
 
+/* A context's GL objects: with one_context (OSMesa) made once for all
+ * surfaces, else one set per context. */
+typedef struct gl_objs {
+    GLuint stroke_prog, stroke_dash_prog, ribbon_prog, plane_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
+    GLint u_size, u_size_dash, u_ndash, u_dash, u_dash_total, u_mvp, u_mv, u_light;
+    GLint u_plane[11];                /* plane.frag's uniforms, in plane_uniforms' order */
+} gl_objs;
+
 struct hy_gl {
     const hy_gl_backend *be;
     hy_gl_surface *surf;               /* the backend's context and frame */
@@ -55,12 +65,12 @@ struct hy_gl {
     GLuint fbo0;                       /* the framebuffer that is the frame (0: the default) */
     int w, h;
     double scale;
-    GLuint stroke_prog, stroke_dash_prog, ribbon_prog, plane_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
+    gl_objs own, *o;                  /* o: own, or the one context's shared_objs */
     GLuint ms_fbo, ms_rb[2];          /* 4x multisampled frame, used once a frame has 3-D */
     int in_ms;                        /* this frame draws into ms_fbo (resolved at hy_gl_read) */
     hy_rgb bg;                        /* the frame's clear colour */
-    GLint u_size, u_size_dash, u_ndash, u_dash, u_dash_total, u_mvp, u_mv, u_light;
-    GLint u_plane[11];                /* plane.frag's uniforms, in plane_uniforms' order */
+    int cleared;                      /* the frame's clear was sent to GL */
+    int holding;                      /* one_context: this frame's GL work holds gl_mu */
     double *pts;                       /* current path: x, y pairs (pixels) */
     size_t npts, cap;
     size_t *starts;                    /* subpath start indices */
@@ -75,23 +85,56 @@ struct hy_gl {
     char desc[256];
 };
 
-/* Makes g current on this thread if another context is. */
+/* one_context (OSMesa): the context's GL objects, how many surfaces use
+ * them, and the surface bound to the context now (all under gl_mu). */
+static gl_objs shared_objs;
+static int shared_users;
+static hy_gl *bound;
+
+/* Makes g current on this thread if another context is (with one_context:
+ * if another surface is bound to the context). */
 static void use(hy_gl *g)
 {
-    if (cur == g)
+    if (cur == g && (!g->be->one_context || bound == g))
         return;
     g->be->make_current(g->surf);
     cur = g, gl = g->fns;
+    if (g->be->one_context)
+        bound = g;
 }
 
-static void lock(const hy_gl *g)
+/* The frame's clear (hy_gl_begin's colour), sent with its first GL work. */
+static void clear_frame(hy_gl *g)
 {
-    if (g->be->serialise)
+    if (g->cleared)
+        return;
+    g->cleared = 1;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
+    gl->Disable(GL_SCISSOR_TEST);
+    gl->Viewport(0, 0, g->w, g->h);
+    gl->ClearColor((float)g->bg.r, (float)g->bg.g, (float)g->bg.b, 1.0f);
+    gl->ClearDepth(1.0);
+    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+/* Takes g's context for GL work of its frame: the lock where the backend
+ * serialises, g current, the frame's clear sent.  With one_context the lock
+ * stays held until the frame ends (release(g, 1)): another thread's frame on
+ * the same context would otherwise land between this one's clear and draws. */
+static void acquire(hy_gl *g)
+{
+    if (g->be->serialise && !g->holding)
         pthread_mutex_lock(&gl_mu);
+    g->holding = g->be->one_context;
+    use(g);
+    clear_frame(g);
 }
 
-static void unlock(const hy_gl *g)
+static void release(hy_gl *g, int frame_end)
 {
+    if (g->be->one_context && !frame_end)
+        return;
+    g->holding = 0;
     if (g->be->serialise)
         pthread_mutex_unlock(&gl_mu);
 }
@@ -229,37 +272,37 @@ static int build_programs(hy_gl *g, hy_error *err)
         {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert, NULL},
         {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag, NULL},
     };
-    if (hy_gl_program(stroke, 2, &g->stroke_prog, err) || hy_gl_program(stroke_dash, 2, &g->stroke_dash_prog, err) ||
-        hy_gl_program(ribbon, 2, &g->ribbon_prog, err))
+    if (hy_gl_program(stroke, 2, &g->o->stroke_prog, err) || hy_gl_program(stroke_dash, 2, &g->o->stroke_dash_prog, err) ||
+        hy_gl_program(ribbon, 2, &g->o->ribbon_prog, err))
         return HY_ENUM;
-    g->u_size = gl->GetUniformLocation(g->stroke_prog, "u_size");
-    g->u_size_dash = gl->GetUniformLocation(g->stroke_dash_prog, "u_size");
-    g->u_ndash = gl->GetUniformLocation(g->stroke_dash_prog, "u_ndash");
-    g->u_dash = gl->GetUniformLocation(g->stroke_dash_prog, "u_dash");
-    g->u_dash_total = gl->GetUniformLocation(g->stroke_dash_prog, "u_dash_total");
-    g->u_mvp = gl->GetUniformLocation(g->ribbon_prog, "u_mvp");
-    g->u_mv = gl->GetUniformLocation(g->ribbon_prog, "u_mv");
-    g->u_light = gl->GetUniformLocation(g->ribbon_prog, "u_light");
+    g->o->u_size = gl->GetUniformLocation(g->o->stroke_prog, "u_size");
+    g->o->u_size_dash = gl->GetUniformLocation(g->o->stroke_dash_prog, "u_size");
+    g->o->u_ndash = gl->GetUniformLocation(g->o->stroke_dash_prog, "u_ndash");
+    g->o->u_dash = gl->GetUniformLocation(g->o->stroke_dash_prog, "u_dash");
+    g->o->u_dash_total = gl->GetUniformLocation(g->o->stroke_dash_prog, "u_dash_total");
+    g->o->u_mvp = gl->GetUniformLocation(g->o->ribbon_prog, "u_mvp");
+    g->o->u_mv = gl->GetUniformLocation(g->o->ribbon_prog, "u_mv");
+    g->o->u_light = gl->GetUniformLocation(g->o->ribbon_prog, "u_light");
     return HY_OK;
 }
 
 static void setup_buffers(hy_gl *g)
 {
-    gl->GenVertexArrays(1, &g->vao);
-    gl->BindVertexArray(g->vao);
-    gl->GenBuffers(1, &g->vbo);
-    gl->BindBuffer(GL_ARRAY_BUFFER, g->vbo);
+    gl->GenVertexArrays(1, &g->o->vao);
+    gl->BindVertexArray(g->o->vao);
+    gl->GenBuffers(1, &g->o->vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, g->o->vbo);
     for (GLuint i = 0; i < 5; i++) {
         gl->EnableVertexAttribArray(i);
         gl->VertexAttribPointer(i, 4, GL_FLOAT, GL_FALSE, sizeof(inst), (const void *)(i * 4 * sizeof(float)));
         gl->VertexAttribDivisor(i, 1);
     }
-    gl->GenVertexArrays(1, &g->ribbon_vao);
-    gl->BindVertexArray(g->ribbon_vao);
-    gl->GenBuffers(1, &g->ribbon_vbo);
-    gl->GenBuffers(1, &g->ribbon_ibo);
-    gl->BindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
-    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ribbon_ibo);
+    gl->GenVertexArrays(1, &g->o->ribbon_vao);
+    gl->BindVertexArray(g->o->ribbon_vao);
+    gl->GenBuffers(1, &g->o->ribbon_vbo);
+    gl->GenBuffers(1, &g->o->ribbon_ibo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, g->o->ribbon_vbo);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->o->ribbon_ibo);
     for (GLuint i = 0; i < 3; i++) {
         gl->EnableVertexAttribArray(i);
         gl->VertexAttribPointer(i, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), (const void *)(i * 3 * sizeof(float)));
@@ -289,13 +332,18 @@ static int gl_create_unlocked(hy_gl **out, int width, int height, hy_error *err)
         return st;
     }
     cur = g, gl = g->fns;
+    if (be->one_context)
+        bound = g;
     snprintf(g->desc, sizeof g->desc, "%s / %s (%s)", (const char *)gl->GetString(GL_VERSION),
              (const char *)gl->GetString(GL_RENDERER), be->name);
-    if (build_programs(g, err)) {
-        gl_free_unlocked(g);
-        return HY_ENUM;
+    g->o = be->one_context ? &shared_objs : &g->own;
+    if (!be->one_context || !shared_users++) {   /* the one context's objects exist after its first surface */
+        if (build_programs(g, err)) {
+            gl_free_unlocked(g);
+            return HY_ENUM;
+        }
+        setup_buffers(g);
     }
-    setup_buffers(g);
     gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
     gl->Viewport(0, 0, width, height);
     *out = g;
@@ -314,6 +362,17 @@ static void gl_free_unlocked(hy_gl *g)
 {
     if (!g)
         return;
+    if (g->be->one_context) {
+        if (--shared_users > 0 && g->ms_fbo) {   /* the context lives on: g's own objects go */
+            use(g);
+            gl->DeleteFramebuffers(1, &g->ms_fbo);
+            gl->DeleteRenderbuffers(2, g->ms_rb);
+        }
+        if (!shared_users)                        /* they die with the context (close) */
+            memset(&shared_objs, 0, sizeof shared_objs);
+        if (bound == g)
+            bound = NULL;
+    }
     g->be->close(g->surf, cur == g);
     if (cur == g)
         cur = NULL, gl = NULL;
@@ -326,35 +385,27 @@ static void gl_free_unlocked(hy_gl *g)
 
 void hy_gl_free(hy_gl *g)
 {
-    pthread_mutex_lock(&gl_mu);
+    if (!g || !g->holding)            /* a frame left unfinished (an error) still holds it */
+        pthread_mutex_lock(&gl_mu);
     gl_free_unlocked(g);
     pthread_mutex_unlock(&gl_mu);
 }
 
 const char *hy_gl_describe(const hy_gl *g) { return g->desc; }
 
-static void gl_begin_unlocked(hy_gl *g, hy_rgb c)
+/* A new frame: nothing reaches GL until its first GL work (acquire), which
+ * sends the clear first. */
+void hy_gl_begin(hy_gl *g, hy_rgb c)
 {
+    if (g->holding)                   /* the last frame ended without hy_gl_finish (an error) */
+        release(g, 1);
     g->neffects = 0;
     g->nclip = 0;
     g->ncmds = 0;
     g->nbuf = g->cmd_start = 0;
     g->in_ms = 0;
     g->bg = c;
-    gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
-    gl->Disable(GL_SCISSOR_TEST);
-    gl->Viewport(0, 0, g->w, g->h);
-    gl->ClearColor((float)c.r, (float)c.g, (float)c.b, 1.0f);
-    gl->ClearDepth(1.0);
-    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-}
-
-void hy_gl_begin(hy_gl *g, hy_rgb c)
-{
-    lock(g);
-    use(g);
-    gl_begin_unlocked(g, c);
-    unlock(g);
+    g->cleared = 0;
 }
 
 int hy_gl_set_effect(hy_gl *g, const hy_gl_effect *e, hy_error *err)
@@ -431,28 +482,28 @@ static void submit(hy_gl *g)
 {
     if (!g->ncmds)
         return;
-    gl->UseProgram(g->stroke_dash_prog);
-    gl->Uniform2f(g->u_size_dash, (float)g->w, (float)g->h);
-    gl->UseProgram(g->stroke_prog);     /* solid strokes: the variant without dash code */
-    gl->Uniform2f(g->u_size, (float)g->w, (float)g->h);
-    GLuint current = g->stroke_prog;
+    gl->UseProgram(g->o->stroke_dash_prog);
+    gl->Uniform2f(g->o->u_size_dash, (float)g->w, (float)g->h);
+    gl->UseProgram(g->o->stroke_prog);     /* solid strokes: the variant without dash code */
+    gl->Uniform2f(g->o->u_size, (float)g->w, (float)g->h);
+    GLuint current = g->o->stroke_prog;
     gl->Enable(GL_BLEND);
     gl->BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     gl->Disable(GL_DEPTH_TEST);
-    gl->BindVertexArray(g->vao);
-    gl->BindBuffer(GL_ARRAY_BUFFER, g->vbo);
+    gl->BindVertexArray(g->o->vao);
+    gl->BindBuffer(GL_ARRAY_BUFFER, g->o->vbo);
     gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(g->nbuf * sizeof(inst)), g->buf, GL_STREAM_DRAW);
     int last_nd = -1;
     float last_dash[8] = {0};
     for (size_t k = 0; k < g->ncmds; k++) {
         const cmd *c = &g->cmds[k];
-        GLuint want = c->ndash > 0 ? g->stroke_dash_prog : g->stroke_prog;
+        GLuint want = c->ndash > 0 ? g->o->stroke_dash_prog : g->o->stroke_prog;
         if (want != current)
             gl->UseProgram(current = want);
         if (c->ndash > 0 && (c->ndash != last_nd || memcmp(c->dash, last_dash, sizeof last_dash))) {
-            gl->Uniform1i(g->u_ndash, c->ndash);
-            gl->Uniform1fv(g->u_dash, 8, c->dash);
-            gl->Uniform1f(g->u_dash_total, c->total > 0 ? c->total : 1.0f);
+            gl->Uniform1i(g->o->u_ndash, c->ndash);
+            gl->Uniform1fv(g->o->u_dash, 8, c->dash);
+            gl->Uniform1f(g->o->u_dash_total, c->total > 0 ? c->total : 1.0f);
             last_nd = c->ndash;
             memcpy(last_dash, c->dash, sizeof last_dash);
         }
@@ -967,10 +1018,10 @@ static void ribbon_pass(hy_gl *g, const hy_gl_ribbon *r, const double *vp)
     gl->Enable(GL_DEPTH_TEST);
     gl->DepthFunc(GL_LESS);
     gl->Disable(GL_BLEND);
-    gl->UseProgram(g->ribbon_prog);
-    gl->UniformMatrix4fv(g->u_mvp, 1, GL_FALSE, fm);
-    gl->UniformMatrix4fv(g->u_mv, 1, GL_FALSE, fmv);
-    gl->Uniform3f(g->u_light, 0.4f, 0.8f, 0.6f);
+    gl->UseProgram(g->o->ribbon_prog);
+    gl->UniformMatrix4fv(g->o->u_mvp, 1, GL_FALSE, fm);
+    gl->UniformMatrix4fv(g->o->u_mv, 1, GL_FALSE, fmv);
+    gl->Uniform3f(g->o->u_light, 0.4f, 0.8f, 0.6f);
 }
 
 static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
@@ -992,8 +1043,8 @@ static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *er
     double vp[4];
     ribbon_viewport(g, r, vp);
     ribbon_pass(g, r, vp);
-    gl->BindVertexArray(g->ribbon_vao);
-    gl->BindBuffer(GL_ARRAY_BUFFER, g->ribbon_vbo);
+    gl->BindVertexArray(g->o->ribbon_vao);
+    gl->BindBuffer(GL_ARRAY_BUFFER, g->o->ribbon_vbo);
     gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * 9 * sizeof *v), v, GL_STREAM_DRAW);
     gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ni * sizeof *idx), idx, GL_STREAM_DRAW);
     gl->DrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, NULL);
@@ -1007,10 +1058,9 @@ static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *er
 
 int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
 {
-    lock(g);
-    use(g);
+    acquire(g);
     int rc = gl_draw_ribbon_unlocked(g, r, err);
-    unlock(g);
+    release(g, 0);
     return rc;
 }
 
@@ -1021,18 +1071,18 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
  * made each renderer pay llvmpipe's compile of plane.frag. */
 static int plane_program(hy_gl *g, hy_error *err)
 {
-    if (g->plane_prog)
+    if (g->o->plane_prog)
         return HY_OK;
     const hy_gl_stage plane[2] = {
         {hy_shader_plane_vert_file, GL_VERTEX_SHADER, hy_shader_plane_vert, NULL},
         {hy_shader_plane_frag_file, GL_FRAGMENT_SHADER, hy_shader_plane_frag, NULL},
     };
-    if (hy_gl_program(plane, 2, &g->plane_prog, err))
+    if (hy_gl_program(plane, 2, &g->o->plane_prog, err))
         return HY_ENUM;
     static const char *const plane_uniforms[11] = {"u_rect", "u_height", "u_range", "u_s", "u_n", "u_kind0",
                                                    "u_dist", "u_dens", "u_up", "u_down", NULL};
     for (int i = 0; plane_uniforms[i]; i++)
-        g->u_plane[i] = gl->GetUniformLocation(g->plane_prog, plane_uniforms[i]);
+        g->o->u_plane[i] = gl->GetUniformLocation(g->o->plane_prog, plane_uniforms[i]);
     return HY_OK;
 }
 
@@ -1048,8 +1098,8 @@ static int gl_draw_plane_unlocked(hy_gl *g, const hy_gl_plane *pl, hy_error *err
     float s[HY_GL_PLANE_MAX + 1];
     for (int j = 0; j <= pl->n; j++) /* the saturations as far-off finite values */
         s[j] = (float)(pl->s[j] > 1e30 ? 1e30 : pl->s[j] < -1e30 ? -1e30 : pl->s[j]);
-    const GLint *u = g->u_plane;
-    gl->UseProgram(g->plane_prog);
+    const GLint *u = g->o->u_plane;
+    gl->UseProgram(g->o->plane_prog);
     gl->Uniform4f(u[0], (float)pl->vx, (float)pl->vy, (float)pl->vw, (float)pl->vh);
     gl->Uniform1f(u[1], (float)g->h);
     gl->Uniform4f(u[2], (float)pl->xlo, (float)pl->xhi, (float)pl->ylo, (float)pl->yhi);
@@ -1067,7 +1117,7 @@ static int gl_draw_plane_unlocked(hy_gl *g, const hy_gl_plane *pl, hy_error *err
     GLint x1 = (GLint)lround(pl->vx + pl->vw), y0 = (GLint)lround(pl->vy);
     gl->Scissor(x0, g->h - y1, x1 - x0, y1 - y0);
     gl->Viewport(0, 0, g->w, g->h);
-    gl->BindVertexArray(g->vao);
+    gl->BindVertexArray(g->o->vao);
     gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     gl->BindVertexArray(0);
     gl->Disable(GL_SCISSOR_TEST);
@@ -1076,10 +1126,9 @@ static int gl_draw_plane_unlocked(hy_gl *g, const hy_gl_plane *pl, hy_error *err
 
 int hy_gl_draw_plane(hy_gl *g, const hy_gl_plane *pl, hy_error *err)
 {
-    lock(g);
-    use(g);
+    acquire(g);
     int rc = gl_draw_plane_unlocked(g, pl, err);
-    unlock(g);
+    release(g, 0);
     return rc;
 }
 
@@ -1111,18 +1160,16 @@ static const unsigned char *gl_finish_unlocked(hy_gl *g, hy_error *err)
 
 const unsigned char *hy_gl_finish(hy_gl *g, hy_error *err)
 {
-    lock(g);
-    use(g);
+    acquire(g);
     const unsigned char *fb = gl_finish_unlocked(g, err);
-    unlock(g);
+    release(g, 1);
     return fb;
 }
 
 int hy_gl_read(hy_gl *g, unsigned char *rgba, hy_error *err)
 {
-    lock(g);
-    use(g);
+    acquire(g);
     int rc = gl_read_unlocked(g, rgba, err);
-    unlock(g);
+    release(g, 1);
     return rc;
 }

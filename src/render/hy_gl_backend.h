@@ -21,6 +21,11 @@ typedef struct hy_gl_backend {
     /* 1: every context's GL calls are serialised by hy_gl.c's process-wide
      * lock (OSMesa); 0: contexts draw concurrently, one per thread (EGL). */
     int serialise;
+    /* 1: every surface draws with the same context (OSMesa): the GL objects
+     * (programs, buffers) are made once for all, a surface is bound by
+     * make_current, and each frame's GL work, from its first call to its
+     * frame or read, runs under the lock as one piece. */
+    int one_context;
     /* Creates a w x h OpenGL 3.3 core context with an RGBA8 colour and a
      * 24-bit depth target and makes it current on this thread.  *fns: its entry
      * points; *fbo: the framebuffer that is the frame (0: the default one).

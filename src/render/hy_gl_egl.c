@@ -272,5 +272,5 @@ static int egl_check(hy_error *err)
     return st ? st : choose_device(&d, &pick, err);
 }
 
-const hy_gl_backend hy_gl_egl_backend = {"egl",     0,        egl_open,  egl_make_current, egl_frame,
-                                         egl_close, egl_info, egl_check};
+const hy_gl_backend hy_gl_egl_backend = {"egl",     0,        0,        egl_open, egl_make_current,
+                                         egl_frame, egl_close, egl_info, egl_check};

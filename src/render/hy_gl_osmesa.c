@@ -1,7 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_gl_osmesa.c: the OSMesa backend (hy_gl_backend.h).  OSMesa renders into
  * a buffer of ours laid out as a cairo RGB24 image, so reading a frame back
- * is a glFinish. */
+ * is a glFinish.  Every surface of the process draws with one OSMesa context
+ * (one_context): a surface is its own frame buffer, bound by making the
+ * context current with it.  A second context cost as much as the first
+ * (about 0.1 s of CPU at 720p: creation, the first bind's buffers, llvmpipe's
+ * compile of every shader variant again) and gained nothing, as hy_gl.c
+ * serialises OSMesa's GL calls anyway. */
 #include "hy_gl_backend.h"
 
 #include <GL/osmesa.h>
@@ -11,10 +16,14 @@
 #include "hy_frame.h"
 
 struct hy_gl_surface {
-    OSMesaContext ctx;
     unsigned char *fb;                /* the colour buffer OSMesa draws into */
     int w, h;
 };
+
+/* The process's context and how many surfaces use it; under hy_gl.c's lock
+ * (open and close are called with it held). */
+static OSMesaContext shared_ctx;
+static int shared_users;
 
 static hy_gl_fns fns;                 /* the same for every context: filled once */
 static const char *fns_missing;
@@ -28,8 +37,10 @@ static void osm_close(hy_gl_surface *s, int current)
     (void)current;
     if (!s)
         return;
-    if (s->ctx)
-        OSMesaDestroyContext(s->ctx);
+    if (--shared_users == 0) {
+        OSMesaDestroyContext(shared_ctx);
+        shared_ctx = NULL;
+    }
     free(s->fb);
     free(s);
 }
@@ -48,12 +59,13 @@ static int osm_open(hy_gl_surface **out, int w, int h, const hy_gl_fns **f, unsi
     const int attribs[] = {OSMESA_FORMAT, hy_little_endian() ? OSMESA_BGRA : OSMESA_ARGB, OSMESA_DEPTH_BITS, 24,
                            OSMESA_STENCIL_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                            OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
-    s->ctx = OSMesaCreateContextAttribs(attribs, NULL);
-    if (!s->ctx) {
-        osm_close(s, 0);
+    if (!shared_ctx && !(shared_ctx = OSMesaCreateContextAttribs(attribs, NULL))) {
+        free(s->fb);
+        free(s);
         return hy_error_set(err, HY_EUNSUP, "OSMesa could not create an OpenGL 3.3 core-profile context");
     }
-    if (!OSMesaMakeCurrent(s->ctx, s->fb, GL_UNSIGNED_BYTE, w, h)) {
+    shared_users++;
+    if (!OSMesaMakeCurrent(shared_ctx, s->fb, GL_UNSIGNED_BYTE, w, h)) {
         osm_close(s, 0);
         return hy_error_set(err, HY_EUNSUP, "OSMesa could not make a %d x %d context current", w, h);
     }
@@ -69,7 +81,7 @@ static int osm_open(hy_gl_surface **out, int w, int h, const hy_gl_fns **f, unsi
 
 static int osm_make_current(hy_gl_surface *s)
 {
-    return OSMesaMakeCurrent(s->ctx, s->fb, GL_UNSIGNED_BYTE, s->w, s->h) ? 0 : -1;
+    return OSMesaMakeCurrent(shared_ctx, s->fb, GL_UNSIGNED_BYTE, s->w, s->h) ? 0 : -1;
 }
 
 static const unsigned char *osm_frame(hy_gl_surface *s)
@@ -86,5 +98,5 @@ static int osm_check(hy_error *err)
     return HY_OK;
 }
 
-const hy_gl_backend hy_gl_osmesa_backend = {"osmesa",  1,        osm_open,  osm_make_current, osm_frame,
-                                            osm_close, osm_info, osm_check};
+const hy_gl_backend hy_gl_osmesa_backend = {"osmesa",  1,        1,        osm_open, osm_make_current,
+                                            osm_frame, osm_close, osm_info, osm_check};
