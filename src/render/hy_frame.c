@@ -15,6 +15,7 @@
 
 #include "hy_config.h"
 #include "hy_out.h"
+#include "hy_zfast.h"
 #if HY_HAVE_LIBDEFLATE
 #include <libdeflate.h>
 #endif
@@ -49,19 +50,14 @@ void hy_frame_composite(int w, int h, const unsigned char *gl, const unsigned ch
 
 hy_png_opts hy_png_frame_defaults(void)
 {
-    /* Measured by bench_gl on a 1920x1080 plot frame (flat colours, thin
-     * lines): level 1 without filtering wrote it in 16 ms / 251 KB, against
-     * 20 ms / 258 KB (level 2, sub), 29 ms / 219 KB (level 6, none) and
-     * 45-60 ms for adaptive filtering, which gains nothing on such frames. */
-#if HY_HAVE_LIBDEFLATE
-    /* libdeflate level 2, measured on a 720p gamma-sweep frame (thread CPU
-     * time, load 15-19): 6.5-7.4 ms / 140 kB against zlib level 1's 9-12 ms /
-     * 156 kB; its level 1 is slower (11.4-11.8 ms / 144 kB), level 6 the
-     * smallest near that speed (8.3-8.7 ms / 134 kB; zlib 6: 18-19 ms / 135 kB). */
-    return (hy_png_opts){2, HY_PNG_FILTER_NONE, 0, HY_PNG_LIBDEFLATE};
-#else
-    return (hy_png_opts){1, HY_PNG_FILTER_NONE, 0, HY_PNG_ZLIB};
-#endif
+    /* hy_zfast.h's encoder (runs, the row above and pixel pairs, in whole
+     * pixels): on the 720p gamma-sweep clip's frames (tests/bench/bench_gl)
+     * 1.6-1.7 ms and 77 kB a frame against libdeflate level 2's 4.3-4.6 ms
+     * and 65 kB, and zlib level 1's 9-12 ms and 78 kB (the frames before
+     * issue 23).  Earlier measurements on a 1920x1080 frame: zlib level 1
+     * without filtering 16 ms / 251 KB, level 6 29 ms / 219 KB, adaptive
+     * filtering 45-60 ms for nothing on such frames. */
+    return (hy_png_opts){2, HY_PNG_FILTER_NONE, 0, HY_PNG_FAST};
 }
 
 static void png_fail(png_structp png, png_const_charp msg)
@@ -119,11 +115,19 @@ static int encode(FILE *fp, int w, int h, const unsigned char *rgb, int xrgb_str
     return 0;
 }
 
-#if HY_HAVE_LIBDEFLATE
 static void put32(unsigned char *p, uint32_t v)
 {
     p[0] = (unsigned char)(v >> 24), p[1] = (unsigned char)(v >> 16), p[2] = (unsigned char)(v >> 8);
     p[3] = (unsigned char)v;
+}
+
+static uint32_t crc32_of(uint32_t crc, const unsigned char *p, size_t n)
+{
+#if HY_HAVE_LIBDEFLATE
+    return n ? libdeflate_crc32(crc, p, n) : crc; /* with no data it returns the initial value, not crc */
+#else
+    return (uint32_t)crc32(crc, p, (uInt)n);
+#endif
 }
 
 /* One PNG chunk: length, type, data, CRC-32 of type and data. */
@@ -132,13 +136,48 @@ static int put_chunk(FILE *fp, const char *type, const unsigned char *data, size
     unsigned char head[8], tail[4];
     put32(head, (uint32_t)n);
     memcpy(head + 4, type, 4);
-    uint32_t crc = libdeflate_crc32(0, head + 4, 4);
-    if (n) /* libdeflate_crc32 with no data returns the initial value, not crc */
-        crc = libdeflate_crc32(crc, data, n);
-    put32(tail, crc);
+    put32(tail, crc32_of(crc32_of(0, head + 4, 4), data, n));
     return fwrite(head, 1, 8, fp) == 8 && (!n || fwrite(data, 1, n, fp) == n) && fwrite(tail, 1, 4, fp) == 4 ? 0 : -1;
 }
 
+/* A PNG of its zlib stream z (n bytes): signature, IHDR (8-bit RGB, no
+ * interlace), IDAT chunks below 2^31 bytes, IEND. */
+static int put_png(FILE *fp, int w, int h, const unsigned char *z, size_t n)
+{
+    unsigned char ihdr[13];
+    put32(ihdr, (uint32_t)w);
+    put32(ihdr + 4, (uint32_t)h);
+    ihdr[8] = 8, ihdr[9] = 2, ihdr[10] = ihdr[11] = ihdr[12] = 0; /* 8-bit RGB, deflate, no interlace */
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (!n || fwrite(sig, 1, 8, fp) != 8 || put_chunk(fp, "IHDR", ihdr, 13))
+        return -1;
+    for (size_t off = 0; off < n; off += 1u << 30)
+        if (put_chunk(fp, "IDAT", z + off, n - off < (1u << 30) ? n - off : 1u << 30))
+            return -1;
+    return put_chunk(fp, "IEND", NULL, 0);
+}
+
+/* hy_zfast's encoder, one per thread, kept from frame to frame. */
+static pthread_key_t zfast_key;
+static pthread_once_t zfast_once = PTHREAD_ONCE_INIT;
+static int zfast_ok;
+
+static void zfast_free(void *p) { hy_zfast_free(p); }
+static void zfast_init(void) { zfast_ok = !pthread_key_create(&zfast_key, zfast_free); }
+
+static int encode_fast(FILE *fp, int w, int h, const unsigned char *xrgb, int stride)
+{
+    pthread_once(&zfast_once, zfast_init);
+    hy_zfast *z = zfast_ok ? pthread_getspecific(zfast_key) : NULL;
+    if (zfast_ok && !z && (z = hy_zfast_new()) && pthread_setspecific(zfast_key, z)) {
+        hy_zfast_free(z);
+        z = NULL;
+    }
+    size_t n = z ? hy_zfast_png(z, xrgb, w, h, stride) : 0;
+    return n ? put_png(fp, w, h, hy_zfast_data(z), n) : -1;
+}
+
+#if HY_HAVE_LIBDEFLATE
 /* Each thread keeps its compressor and buffers from frame to frame: fresh
  * pages cost about 20 us each on the machines measured (issue 23), which for
  * a 720p frame's 5.5 MB would take longer than compressing it. */
@@ -225,18 +264,7 @@ static int encode_deflate(FILE *fp, int w, int h, const unsigned char *px, int x
             }
         }
         size_t zn = libdeflate_zlib_compress(c, raw, n, z, bound);
-        unsigned char ihdr[13];
-        put32(ihdr, (uint32_t)w);
-        put32(ihdr + 4, (uint32_t)h);
-        ihdr[8] = 8, ihdr[9] = 2, ihdr[10] = ihdr[11] = ihdr[12] = 0; /* 8-bit RGB, deflate, no interlace */
-        static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-        if (zn && fwrite(sig, 1, 8, fp) == 8 && !put_chunk(fp, "IHDR", ihdr, 13)) {
-            rc = 0;
-            for (size_t off = 0; off < zn && !rc; off += 1u << 30) /* chunks below 2^31 bytes */
-                rc = put_chunk(fp, "IDAT", z + off, zn - off < (1u << 30) ? zn - off : 1u << 30);
-            if (!rc)
-                rc = put_chunk(fp, "IEND", NULL, 0);
-        }
+        rc = zn ? put_png(fp, w, h, z, zn) : -1;
     }
     return rc;
 }
@@ -248,8 +276,10 @@ static int encode_any(FILE *fp, int w, int h, const unsigned char *rgb, int xrgb
     hy_png_opts def = hy_png_frame_defaults();
     if (!o)
         o = &def;
+    if (o->engine == HY_PNG_FAST && xrgb_stride && w <= 10922)
+        return encode_fast(fp, w, h, rgb, xrgb_stride);
 #if HY_HAVE_LIBDEFLATE
-    if (o->engine == HY_PNG_LIBDEFLATE)
+    if (o->engine == HY_PNG_LIBDEFLATE || o->engine == HY_PNG_FAST)   /* FAST: packed RGB or too wide */
         return encode_deflate(fp, w, h, rgb, xrgb_stride, o->level);
 #endif
     return encode(fp, w, h, rgb, xrgb_stride, o);

@@ -35,9 +35,11 @@ typedef struct hy_png_opts {
     int strategy;     /* zlib strategy: 0 default, 1 filtered, 3 RLE */
     int engine;       /* HY_PNG_ZLIB (libpng), or HY_PNG_LIBDEFLATE: the IDAT
                        * stream compressed by libdeflate in one call, the
-                       * chunks written here (zlib where not built with it) */
+                       * chunks written here (zlib where not built with it),
+                       * or HY_PNG_FAST: hy_zfast.h's encoder (level and
+                       * filter unused; packed RGB input goes to the others) */
 } hy_png_opts;
-enum { HY_PNG_ZLIB = 0, HY_PNG_LIBDEFLATE = 1 };
+enum { HY_PNG_ZLIB = 0, HY_PNG_LIBDEFLATE = 1, HY_PNG_FAST = 2 };
 enum { HY_PNG_FILTER_NONE = 0, HY_PNG_FILTER_SUB, HY_PNG_FILTER_UP, HY_PNG_FILTER_PAETH, HY_PNG_FILTER_ALL };
 
 /* Whether the host stores a uint32 low byte first: a cairo RGB24 pixel is

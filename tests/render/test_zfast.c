@@ -1,0 +1,231 @@
+/* SPDX-License-Identifier: MIT */
+/* test_zfast.c: hy_zfast_png's zlib streams, inflated by zlib (an independent
+ * decoder, which also checks the Adler-32), equal the PNG image data they
+ * stand for, byte for byte: filter byte 0, then R, G, B of every pixel.
+ * Frames: flat white, noise (all literals), a plot-like frame (lines, text
+ * blocks, long runs, repeated rows), colours whose unused byte varies (only
+ * R, G, B may count), widths 1 to 10,922 (runs longer than one 258-byte
+ * match, rows at deflate's largest distance), and a skewed palette whose
+ * pixels drawn from a skewed palette; and the Huffman code lengths against
+ * package-merge's optimal length-limited codes: the same cost where 15 bits
+ * hold the Huffman code, within 0.1 % (random weights) and 2 % (Fibonacci
+ * weights, 29 levels unlimited) at 15 bits where the limit binds, 12 % for
+ * the Fibonacci weights at 7 bits (the header's code), complete always. */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <math.h>
+#include <zlib.h>
+
+#include "hy_frame.h"
+#include "hy_zfast.h"
+#include "rcheck.h"
+
+static uint32_t rnd_state = 2024u;
+static uint32_t rnd(void)
+{
+    rnd_state = rnd_state * 1664525u + 1013904223u;
+    return rnd_state >> 8;
+}
+
+/* The rows a PNG decoder expects from the pixels. */
+static unsigned char *expected(const uint32_t *px, int w, int h, size_t *n)
+{
+    *n = (size_t)h * (1 + 3 * (size_t)w);
+    unsigned char *e = malloc(*n), *d = e;
+    for (int y = 0; y < h; y++) {
+        *d++ = 0;
+        for (int x = 0; x < w; x++, d += 3) {
+            uint32_t p = px[(size_t)y * w + x];
+            d[0] = (unsigned char)(p >> 16), d[1] = (unsigned char)(p >> 8), d[2] = (unsigned char)p;
+        }
+    }
+    return e;
+}
+
+static int nstreams;
+
+static void check(hy_zfast *z, const char *what, const uint32_t *px, int w, int h)
+{
+    nstreams++;
+    size_t n, zn = hy_zfast_png(z, (const unsigned char *)px, w, h, 4 * w);
+    unsigned char *want = expected(px, w, h, &n);
+    CHECK(zn > 6, "%s %dx%d: no stream", what, w, h);
+    if (zn > 6) {
+        const unsigned char *s = hy_zfast_data(z);
+        CHECK(s[0] == 0x78 && (s[0] * 256 + s[1]) % 31 == 0, "%s: zlib header %02x %02x", what, s[0], s[1]);
+        uLongf got_n = (uLongf)n + 16;
+        unsigned char *got = malloc(got_n);
+        int rc = uncompress(got, &got_n, s, (uLong)zn);
+        CHECK(rc == Z_OK, "%s %dx%d: inflate says %d", what, w, h, rc);
+        CHECK(rc != Z_OK || (got_n == n && !memcmp(got, want, n)), "%s %dx%d: inflated %lu bytes, %s", what, w, h,
+              (unsigned long)got_n, got_n == n ? "different" : "not the image's size");
+        free(got);
+    }
+    free(want);
+}
+
+static uint32_t *frame(int w, int h) { return calloc((size_t)w * h, 4); }
+
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The cost sum freq x length of an optimal code of at most maxlen bits, by
+ * package-merge (Larmore and Hirschberg): merge the sorted weights with the
+ * pairs of the previous list maxlen - 1 times; the cost is the sum of the
+ * 2m - 2 lightest items of the last list (m symbols used). */
+static uint64_t optimal_cost(const uint32_t *freq, int n, int maxlen)
+{
+    uint64_t leaves[HY_ZFAST_MAX_SYMBOLS], list[2 * HY_ZFAST_MAX_SYMBOLS], next[2 * HY_ZFAST_MAX_SYMBOLS];
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (freq[i])
+            leaves[m++] = freq[i];
+    if (m < 2)
+        return m ? leaves[0] : 0;
+    qsort(leaves, (size_t)m, sizeof *leaves, cmp_u64);
+    memcpy(list, leaves, (size_t)m * sizeof *list);
+    int nl = m;
+    for (int level = 1; level < maxlen; level++) {
+        int np = nl / 2, a = 0, b = 0, k = 0;
+        while (a < m || b < np) {              /* merge leaves with the packages list[2b] + list[2b + 1] */
+            uint64_t pk = b < np ? list[2 * b] + list[2 * b + 1] : UINT64_MAX;
+            if (a < m && leaves[a] <= pk)
+                next[k++] = leaves[a++];
+            else
+                next[k++] = pk, b++;
+        }
+        memcpy(list, next, (size_t)k * sizeof *list);
+        nl = k;
+    }
+    uint64_t cost = 0;
+    for (int i = 0; i < 2 * m - 2; i++)
+        cost += list[i];
+    return cost;
+}
+
+/* hy_zfast_code_lengths: within the limit, complete, and its cost within
+ * slack of the optimal limited code's. */
+static void code_lengths(const char *what, const uint32_t *freq, int n, int maxlen, double slack)
+{
+    uint8_t len[HY_ZFAST_MAX_SYMBOLS];
+    hy_zfast_code_lengths(freq, n, maxlen, len);
+    uint64_t kraft = 0, cost = 0, opt = optimal_cost(freq, n, maxlen);
+    int deepest = 0, bad = 0;
+    for (int i = 0; i < n; i++) {
+        bad += (freq[i] != 0) != (len[i] != 0);
+        deepest = len[i] > deepest ? len[i] : deepest;
+        kraft += len[i] ? (uint64_t)1 << (32 - len[i]) : 0;
+        cost += (uint64_t)freq[i] * len[i];
+    }
+    CHECK(!bad, "%s: %d symbols with a code iff used violated", what, bad);
+    CHECK(deepest <= maxlen, "%s: a code of %d bits, limit %d", what, deepest, maxlen);
+    CHECK(kraft == (uint64_t)1 << 32, "%s: Kraft sum %.9f, not 1 (incomplete or over-full)", what, kraft / 4294967296.0);
+    CHECK(cost >= opt && cost <= opt * slack, "%s: cost %llu against the optimum %llu (allowed x%.3f)", what,
+          (unsigned long long)cost, (unsigned long long)opt, slack);
+}
+
+int main(void)
+{
+    hy_zfast *z = hy_zfast_new();
+    CHECK(z != NULL, "hy_zfast_new");
+    static const int ws[] = {1, 2, 3, 5, 86, 87, 173, 1280};
+    for (size_t k = 0; k < sizeof ws / sizeof ws[0]; k++) {
+        int w = ws[k], h = k % 2 ? 7 : 40;
+        uint32_t *f = frame(w, h);
+        for (size_t i = 0; i < (size_t)w * h; i++)
+            f[i] = 0xffffffffu;
+        check(z, "white", f, w, h);
+        for (size_t i = 0; i < (size_t)w * h; i++)
+            f[i] = rnd() ^ rnd() << 8;
+        check(z, "noise", f, w, h);
+        for (size_t i = 0; i < (size_t)w * h; i++)  /* the colour white, the unused byte anything */
+            f[i] = (rnd() << 24) | 0xffffffu;
+        check(z, "white, unused byte random", f, w, h);
+        free(f);
+    }
+    /* plot-like: white, axes, a few anti-aliased curves, text-like blocks
+     * repeated across the frame, rows equal to the row above */
+    int w = 1280, h = 720;
+    uint32_t *f = frame(w, h);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint32_t p = 0xffffffu;
+            if (x == 100 || y == 650 || (x > 100 && y > 600 && x % 80 == 0 && y < 610))
+                p = 0x202020u;
+            for (int c = 0; c < 3; c++) {      /* curves: y = a + b sin, 3 px wide with grey edges */
+                double cy = 300 + 40 * c + 120.0 * sin(x / (60.0 + 20 * c));
+                double d = y - cy;
+                if (d > -2 && d < 2)
+                    p = d > -1 && d < 1 ? 0xd55e00u - (uint32_t)c * 0x101010u : 0xf0b090u + (uint32_t)c;
+            }
+            if (y >= 20 && y < 34 && x >= 200 && x < 600 && ((x / 7 + y) % 5 == 0 || (x * 3 + y) % 11 == 0))
+                p = 0x000000u + (uint32_t)(x % 7) * 0x111111u;
+            f[(size_t)y * w + x] = p | 0xff000000u;
+        }
+    for (int y = 660; y < 680; y++)            /* the same "glyphs" again further down */
+        memcpy(f + (size_t)y * w + 700, f + (size_t)(y - 640) * w + 200, 400 * 4);
+    check(z, "plot", f, w, h);
+    /* the same bytes for the same frame whatever the encoder made before:
+     * tests/gl/test_assemble.sh's pieces and shards (it caught hash table
+     * entries left from the last frame) */
+    free(f);
+    /* the widest rows: one row apart is 32,767 bytes, deflate's window 32,768 */
+    w = 10922, h = 4;
+    f = frame(w, h);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            f[(size_t)y * w + x] = y == 0 || x % 97 ? (uint32_t)(x * 2654435761u) >> 8 : 0x123456u;
+    check(z, "rows 32,767 bytes apart", f, w, h);
+    free(f);
+    CHECK(hy_zfast_png(z, (const unsigned char *)"", 10923, 1, 4 * 10923) == 0, "a row wider than the window is refused");
+    /* a skewed palette: byte value k with weight Fibonacci(k) */
+    w = 600, h = 60;
+    f = frame(w, h);
+    uint32_t fib[24] = {1, 1}, total = 2;
+    for (int i = 2; i < 24; i++)
+        total += fib[i] = fib[i - 1] + fib[i - 2];
+    for (size_t i = 0; i < (size_t)w * h; i++) {
+        uint32_t p = 0;
+        for (int c = 0; c < 3; c++) {
+            uint32_t r = rnd() % total, k = 0;
+            while (r >= fib[k])
+                r -= fib[k++];
+            p = p << 8 | k;
+        }
+        f[i] = p;
+    }
+    check(z, "skewed palette", f, w, h);
+    free(f);
+    /* code lengths: weights 500..1000 (9 levels: the Huffman code itself,
+     * optimal), weights 1..1000 (the limit binds a little), Fibonacci weights
+     * (an unlimited code 29 levels deep) under 15 and 7 bits */
+    uint32_t fq[HY_ZFAST_MAX_SYMBOLS] = {0};
+    for (int i = 0; i < HY_ZFAST_MAX_SYMBOLS; i++)
+        fq[i] = i % 7 == 3 ? 0 : 500 + rnd() % 501;
+    code_lengths("weights 500..1000", fq, HY_ZFAST_MAX_SYMBOLS, 15, 1.0);
+    for (int i = 0; i < HY_ZFAST_MAX_SYMBOLS; i++)
+        fq[i] = i % 7 == 3 ? 0 : 1 + rnd() % 1000;
+    code_lengths("weights 1..1000", fq, HY_ZFAST_MAX_SYMBOLS, 15, 1.001);
+    uint32_t fb[30] = {1, 1};
+    for (int i = 2; i < 30; i++)
+        fb[i] = fb[i - 1] + fb[i - 2];
+    code_lengths("Fibonacci weights, 15 bits", fb, 30, 15, 1.02);
+    /* the clamp-and-move heuristic gives 1, 2, 3 and sixteen 7s here (11 %
+     * over the optimum); the 7-bit code only codes a block's header of at
+     * most 316 code lengths, so this costs a few bytes a block at worst */
+    code_lengths("Fibonacci weights, 7 bits (19 symbols)", fb + 11, 19, 7, 1.12);
+    uint32_t one[5] = {0, 0, 9, 0, 0}, two[3] = {5, 0, 1};
+    uint8_t l1[5], l2[3];
+    hy_zfast_code_lengths(one, 5, 15, l1);
+    hy_zfast_code_lengths(two, 3, 15, l2);
+    CHECK(l1[2] == 1 && !l1[0] && !l1[4], "one symbol: length %d", l1[2]);
+    CHECK(l2[0] == 1 && l2[2] == 1 && !l2[1], "two symbols: lengths %d %d", l2[0], l2[2]);
+    hy_zfast_free(z);
+    printf("zfast: %d streams inflated and compared, %d failed\n", nstreams, fails);
+    return fails != 0;
+}
