@@ -83,10 +83,13 @@ print(" ".join(sorted(need)))' $suites)
 run_tests() {
     dir=$1; shift
     tmp=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-tests.XXXXXX")
+    # Mesa's shader cache for this run only: nothing under ~/.cache, and
+    # each shader variant compiled once for all the tests' processes
+    shaders=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-shaders.XXXXXX")
     st=0
-    TMPDIR=$tmp meson test -C "$dir" --print-errorlogs --num-processes 2 "$@" || st=$?
+    TMPDIR=$tmp MESA_SHADER_CACHE_DIR=$shaders meson test -C "$dir" --print-errorlogs --num-processes 2 "$@" || st=$?
     left=$(ls -A "$tmp")
-    rm -rf "$tmp"
+    rm -rf "$tmp" "$shaders"
     if [ -n "$left" ]; then
         echo "setup: the tests in $dir left in \$TMPDIR: $(echo "$left" | tr '\n' ' ')" >&2
         [ "$st" -ne 0 ] || st=1

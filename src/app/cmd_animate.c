@@ -651,12 +651,13 @@ static int animate(int argc, char **argv)
     int r = parse_args(argc, argv, &a);
     if (r)
         return r == 1 ? 0 : 2;
-    /* Mesa's shader disk cache: off unless the user set it (it wrote under
-       ~/.cache from every run, and its writer thread could use stdio after
-       exit's flush).  The price: llvmpipe compiles the shaders' variants at
-       each process's first frames, about 0.1 s of CPU per process (a 120-frame
-       720p clip at -j 2: 1.32-1.38 s against 1.08-1.12 s with a warm cache). */
-    setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
+    /* Mesa's shader disk cache stays as Mesa sets it (on, under
+       ~/.cache/mesa_shader_cache; MESA_SHADER_CACHE_DISABLE=true turns it
+       off): without it llvmpipe compiles every shader variant at each run's
+       first frames, 0.08-0.1 s of a 120-frame 720p clip's 0.7-0.8 s.  It had
+       been turned off for a worker's abort at exit that was libstdc++'s
+       stream teardown (run_worker ends with _exit).  The test command points
+       it at a directory of its own (tools/setup.sh run_tests). */
     if ((r = pick_backend(a.gl, a.gl_info || a.list)))
         return r;
     if (a.worker)

@@ -268,18 +268,27 @@ static int build_programs(hy_gl *g, hy_error *err)
         {hy_shader_stroke_vert_file, GL_VERTEX_SHADER, hy_shader_stroke_vert, NULL},
         {hy_shader_stroke_frag_file, GL_FRAGMENT_SHADER, hy_shader_stroke_frag, "#define HY_DASHES 1\n"},
     };
-    const hy_gl_stage ribbon[2] = {
-        {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert, NULL},
-        {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag, NULL},
-    };
-    if (hy_gl_program(stroke, 2, &g->o->stroke_prog, err) || hy_gl_program(stroke_dash, 2, &g->o->stroke_dash_prog, err) ||
-        hy_gl_program(ribbon, 2, &g->o->ribbon_prog, err))
+    if (hy_gl_program(stroke, 2, &g->o->stroke_prog, err) || hy_gl_program(stroke_dash, 2, &g->o->stroke_dash_prog, err))
         return HY_ENUM;
     g->o->u_size = gl->GetUniformLocation(g->o->stroke_prog, "u_size");
     g->o->u_size_dash = gl->GetUniformLocation(g->o->stroke_dash_prog, "u_size");
     g->o->u_ndash = gl->GetUniformLocation(g->o->stroke_dash_prog, "u_ndash");
     g->o->u_dash = gl->GetUniformLocation(g->o->stroke_dash_prog, "u_dash");
     g->o->u_dash_total = gl->GetUniformLocation(g->o->stroke_dash_prog, "u_dash_total");
+    return HY_OK;
+}
+
+/* The ribbon's program, built at its first use (only 3-D frames draw it). */
+static int ribbon_program(hy_gl *g, hy_error *err)
+{
+    if (g->o->ribbon_prog)
+        return HY_OK;
+    const hy_gl_stage ribbon[2] = {
+        {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert, NULL},
+        {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag, NULL},
+    };
+    if (hy_gl_program(ribbon, 2, &g->o->ribbon_prog, err))
+        return HY_ENUM;
     g->o->u_mvp = gl->GetUniformLocation(g->o->ribbon_prog, "u_mvp");
     g->o->u_mv = gl->GetUniformLocation(g->o->ribbon_prog, "u_mv");
     g->o->u_light = gl->GetUniformLocation(g->o->ribbon_prog, "u_light");
@@ -1032,6 +1041,8 @@ static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *er
     float *v;
     unsigned *idx;
     size_t nv, ni;
+    if (ribbon_program(g, err))
+        return HY_ENUM;
     if (ribbon_mesh(r, &v, &idx, &nv, &ni))
         return hy_error_set(err, HY_ENOMEM, "out of memory for a %d x %d ribbon", r->nloops, r->npts);
     if (msaa_target(g, err)) {

@@ -26,8 +26,11 @@ typedef struct hy_gl_backend {
      * make_current, and each frame's GL work, from its first call to its
      * frame or read, runs under the lock as one piece. */
     int one_context;
-    /* Creates a w x h OpenGL 3.3 core context with an RGBA8 colour and a
-     * 24-bit depth target and makes it current on this thread.  *fns: its entry
+    /* Creates a w x h OpenGL 3.3 core context with an RGBA8 colour target
+     * and no depth (the 2-D strokes need none; a 3-D frame draws into a
+     * multisampled framebuffer with its own, hy_gl.c msaa_target: the depth
+     * buffer had cost its allocation and a clear at every frame), and makes
+     * it current on this thread.  *fns: its entry
      * points; *fbo: the framebuffer that is the frame (0: the default one).
      * HY_EUNSUP when the library cannot, HY_EINVAL for a bad device choice. */
     int (*open)(hy_gl_surface **out, int w, int h, const hy_gl_fns **fns, unsigned *fbo, hy_error *err);

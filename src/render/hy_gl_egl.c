@@ -24,7 +24,7 @@
 
 struct hy_gl_surface {
     EGLContext ctx;
-    GLuint fbo, rb[2];
+    GLuint fbo, rb[1];
     int w, h;
     unsigned char *fb, *row;          /* the frame read back (top row first); one row for the flip */
 };
@@ -164,13 +164,10 @@ static int make_fbo(hy_gl_surface *s)
 {
     fns.GenFramebuffers(1, &s->fbo);
     fns.BindFramebuffer(GL_FRAMEBUFFER, s->fbo);
-    fns.GenRenderbuffers(2, s->rb);
+    fns.GenRenderbuffers(1, s->rb);   /* colour only: 3-D frames have their own (hy_gl.c msaa_target) */
     fns.BindRenderbuffer(GL_RENDERBUFFER, s->rb[0]);
     fns.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, s->w, s->h);
     fns.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, s->rb[0]);
-    fns.BindRenderbuffer(GL_RENDERBUFFER, s->rb[1]);
-    fns.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, s->w, s->h);
-    fns.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->rb[1]);
     return fns.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
 

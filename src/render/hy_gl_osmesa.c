@@ -56,7 +56,7 @@ static int osm_open(hy_gl_surface **out, int w, int h, const hy_gl_fns **f, unsi
     /* Bytes B, G, R, A (little-endian hosts) or A, R, G, B (big-endian), top
      * row first: OSMesa's buffer is then a cairo RGB24 image, and the overlay
      * is drawn straight onto the frame (hy_gl_finish) */
-    const int attribs[] = {OSMESA_FORMAT, hy_little_endian() ? OSMESA_BGRA : OSMESA_ARGB, OSMESA_DEPTH_BITS, 24,
+    const int attribs[] = {OSMESA_FORMAT, hy_little_endian() ? OSMESA_BGRA : OSMESA_ARGB, OSMESA_DEPTH_BITS, 0,
                            OSMESA_STENCIL_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                            OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
     if (!shared_ctx && !(shared_ctx = OSMesaCreateContextAttribs(attribs, NULL))) {
