@@ -445,10 +445,10 @@ size_t hy_zfast_png(hy_zfast *z, const unsigned char *xrgb, int w, int h, int st
         for (int x = 0; x < w;) {
             uint32_t p = px[x];
             unsigned run = 0, above = 0;
-            if (x && same(px[x - 1], p))
-                run = same_as(px + x, p, (unsigned)(w - x));
             if (up && same(up[x], p))
                 above = same_run(px + x, up + x, (unsigned)(w - x));
+            if (above < 16 && x && same(px[x - 1], p))   /* a long match above is as good: no second scan */
+                run = same_as(px + x, p, (unsigned)(w - x));
             unsigned best = run > above ? run : above, dist = run > above ? 3u : (unsigned)rowb;
             if (best < 2 && x + 1 < w) {   /* an earlier pixel pair */
                 uint32_t hsh = pair_hash(p, px[x + 1]), q = z->hash[hsh];
