@@ -12,6 +12,7 @@
 
 #include "anim_worker.h"
 #include "cli_util.h"
+#include "hy_frame.h"
 #include "hy_jobs.h"
 
 #if HY_HAVE_GL
@@ -54,8 +55,18 @@ static const char animate_tail[] =
     "example:\n"
     "  hystviz animate gamma-sweep-ex2 -o frames --quality 480p15 -j 2\n";
 
+/* --png: the modes from their table (hy_frame.h HY_PNG_MODES) */
+static const char *png_more(char *buf, size_t size, int doc)
+{
+    (void)doc;
+#define MODE_LINE(n, d) "\n" n ": " d
+    snprintf(buf, size, "%s", HY_PNG_MODES(MODE_LINE));
+#undef MODE_LINE
+    return buf;
+}
+
 enum { OPT_OUT = CLI_FIRST, OPT_QUALITY, OPT_SIZE, OPT_FPS, OPT_DURATION, OPT_FRAMES, OPT_SHARD, OPT_ASSEMBLE,
-       OPT_QUIET, OPT_VIDEO, OPT_NO_FRAMES, OPT_GL, OPT_LIST, OPT_GL_INFO, OPT_INFO, OPT_SET, OPT_WORKER };
+       OPT_QUIET, OPT_VIDEO, OPT_NO_FRAMES, OPT_GL, OPT_LIST, OPT_GL_INFO, OPT_INFO, OPT_SET, OPT_WORKER, OPT_PNG };
 static const cli_opt animate_opts[] = {
     {"output", 'o', "DIR", "output directory (default: frames)", OPT_OUT, 0, NULL, NULL, NULL},
     {"quality", 0, "Q", "480p15 (854x480@15), 480p30, 720p30 (default), 720p60, 1080p30,\n"
@@ -77,6 +88,7 @@ static const cli_opt animate_opts[] = {
      "the file appears only when the whole clip is encoded", OPT_VIDEO, 0, NULL, NULL, NULL},
     {"no-frames", 0, NULL, "with --video: write the video (and poster) but no PNG frames", OPT_NO_FRAMES, 0, NULL,
      NULL, NULL},
+    {"png", 0, "MODE", "how PNG frames are compressed (default: fast):", OPT_PNG, 0, png_more, NULL, NULL},
     {"gl", 0, "B", "GL backend: osmesa or egl (default: $HYSTVIZ_GL, else osmesa where\n"
      "built, else egl); frames are the same on either with the software rasteriser", OPT_GL, 0, NULL, NULL, NULL},
     {"list", 0, NULL, "the animations and what they show, then the GL backend and renderer", OPT_LIST, 0, NULL, NULL,
@@ -159,6 +171,10 @@ static int take(anim_args *a, cli_parser *p, int id)
     case OPT_QUALITY: return a->quality = v, a->have_quality = 1, 0;
     case OPT_VIDEO: return a->p.video = v, 0;
     case OPT_GL: return a->gl = v, 0;
+    case OPT_PNG:
+        if (hy_png_mode(v, &a->p.png, &err))
+            return fprintf(stderr, "hystviz animate: --png: %s\n", err.msg), 2;
+        return 0;
     case OPT_ASSEMBLE: return a->assemble = v, 0;
     case OPT_SIZE:
         if (parse_size(v, &a->w, &a->h))

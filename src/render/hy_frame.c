@@ -60,6 +60,26 @@ hy_png_opts hy_png_frame_defaults(void)
     return (hy_png_opts){2, HY_PNG_FILTER_NONE, 0, HY_PNG_FAST};
 }
 
+int hy_png_mode(const char *name, hy_png_opts *o, hy_error *err)
+{
+    if (name && !strcmp(name, "fast")) {
+        *o = hy_png_frame_defaults();
+        return HY_OK;
+    }
+    if (name && !strcmp(name, "small")) {
+#if HY_HAVE_LIBDEFLATE
+        *o = (hy_png_opts){6, HY_PNG_FILTER_NONE, 0, HY_PNG_LIBDEFLATE};
+#else
+        *o = (hy_png_opts){6, HY_PNG_FILTER_NONE, 0, HY_PNG_ZLIB};
+#endif
+        return HY_OK;
+    }
+#define MODE_NAME(n, d) " " n
+    return hy_error_set(err, HY_EINVAL, "unknown PNG mode '%s' (known:" HY_PNG_MODES(MODE_NAME) ")",
+                        name ? name : "");
+#undef MODE_NAME
+}
+
 static void png_fail(png_structp png, png_const_charp msg)
 {
     (void)msg;

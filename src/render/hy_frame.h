@@ -53,8 +53,19 @@ static inline int hy_little_endian(void)
     return first;
 }
 
-/* Settings measured for flat-colour plot frames (tests/bench/bench_gl). */
+/* Settings measured for flat-colour plot frames (tests/bench/bench_gl): the
+ * first of the PNG modes below. */
 hy_png_opts hy_png_frame_defaults(void);
+
+/* The PNG modes of animation frames (`hystviz animate --png MODE`), one table:
+ * X(name, description).  Measured on the 720p gamma-sweep clip's frames
+ * (tests/bench/bench_gl prints both). */
+#define HY_PNG_MODES(X)                                                                 \
+    X("fast", "hystviz's encoder for plot frames (1.6 ms, 77 kB a 720p frame)")         \
+    X("small", "libdeflate level 6, else zlib level 6 (4.9 ms, 61 kB a 720p frame)")
+
+/* The options of mode name into *o; HY_EINVAL naming the modes if unknown. */
+int hy_png_mode(const char *name, hy_png_opts *o, hy_error *err);
 
 /* Writes rgb (w*h*3, top-down) to path atomically.  HY_EIO names the path;
  * on failure no file is left at path or at the temporary name. */

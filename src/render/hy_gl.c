@@ -85,10 +85,11 @@ struct hy_gl {
     char desc[256];
 };
 
-/* one_context (OSMesa): the context's GL objects, how many surfaces use
- * them, and the surface bound to the context now (all under gl_mu). */
+/* one_context (OSMesa): the context's GL objects (made with its first
+ * surface; the context lives as long as the process), and the surface bound
+ * to it now (both under gl_mu). */
 static gl_objs shared_objs;
-static int shared_users;
+static int shared_built;
 static hy_gl *bound;
 
 /* Makes g current on this thread if another context is (with one_context:
@@ -346,12 +347,13 @@ static int gl_create_unlocked(hy_gl **out, int width, int height, hy_error *err)
     snprintf(g->desc, sizeof g->desc, "%s / %s (%s)", (const char *)gl->GetString(GL_VERSION),
              (const char *)gl->GetString(GL_RENDERER), be->name);
     g->o = be->one_context ? &shared_objs : &g->own;
-    if (!be->one_context || !shared_users++) {   /* the one context's objects exist after its first surface */
+    if (!be->one_context || !shared_built) {   /* the one context's objects exist after its first surface */
         if (build_programs(g, err)) {
             gl_free_unlocked(g);
             return HY_ENUM;
         }
         setup_buffers(g);
+        shared_built = be->one_context;
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
     gl->Viewport(0, 0, width, height);
@@ -372,13 +374,11 @@ static void gl_free_unlocked(hy_gl *g)
     if (!g)
         return;
     if (g->be->one_context) {
-        if (--shared_users > 0 && g->ms_fbo) {   /* the context lives on: g's own objects go */
+        if (g->ms_fbo) {                /* the context lives on: g's own objects go */
             use(g);
             gl->DeleteFramebuffers(1, &g->ms_fbo);
             gl->DeleteRenderbuffers(2, g->ms_rb);
         }
-        if (!shared_users)                        /* they die with the context (close) */
-            memset(&shared_objs, 0, sizeof shared_objs);
         if (bound == g)
             bound = NULL;
     }

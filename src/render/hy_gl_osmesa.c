@@ -20,10 +20,12 @@ struct hy_gl_surface {
     int w, h;
 };
 
-/* The process's context and how many surfaces use it; under hy_gl.c's lock
- * (open and close are called with it held). */
+/* The process's context, made by the first open (under hy_gl.c's lock) and
+ * kept to the end of the process: a thread that had it current keeps a
+ * pointer to it (Mesa's current context), and OSMesaMakeCurrent on that
+ * thread flushes it first, so destroying it from another thread left a
+ * dangling context behind (bench_gl crashed at its next run). */
 static OSMesaContext shared_ctx;
-static int shared_users;
 
 static hy_gl_fns fns;                 /* the same for every context: filled once */
 static const char *fns_missing;
@@ -37,10 +39,6 @@ static void osm_close(hy_gl_surface *s, int current)
     (void)current;
     if (!s)
         return;
-    if (--shared_users == 0) {
-        OSMesaDestroyContext(shared_ctx);
-        shared_ctx = NULL;
-    }
     free(s->fb);
     free(s);
 }
@@ -64,7 +62,6 @@ static int osm_open(hy_gl_surface **out, int w, int h, const hy_gl_fns **f, unsi
         free(s);
         return hy_error_set(err, HY_EUNSUP, "OSMesa could not create an OpenGL 3.3 core-profile context");
     }
-    shared_users++;
     if (!OSMesaMakeCurrent(shared_ctx, s->fb, GL_UNSIGNED_BYTE, w, h)) {
         osm_close(s, 0);
         return hy_error_set(err, HY_EUNSUP, "OSMesa could not make a %d x %d context current", w, h);

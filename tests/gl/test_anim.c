@@ -62,6 +62,29 @@ static void test_counts(void)
     CHECK(count_frames("out_range/k-cycle-ex3") == 3 && access("out_range/k-cycle-ex3/frame_00005.png", F_OK) == 0 &&
           access("out_range/k-cycle-ex3/frame_00007.png", F_OK) == 0, "--frames 5:8 renders frames 5, 6, 7");
     CHECK(access("out_range/k-cycle-ex3.png", F_OK) != 0, "no poster without the last frame");
+    /* --png: both modes decode to the same pixels, in different bytes; an
+     * unknown mode is refused */
+    CHECK(run_cmd("animate", "k-cycle-ex3", "-o", "out_png_small", "--size", "320x180", "--frames", "5:6", "--png",
+                  "small", "--quiet", NULL) == 0, "--png small");
+    CHECK(run_cmd("animate", "k-cycle-ex3", "-o", "out_png_fast", "--size", "320x180", "--frames", "5:6", "--png",
+                  "fast", "--quiet", NULL) == 0, "--png fast");
+    CHECK(run_cmd("animate", "k-cycle-ex3", "--png", "tiny", NULL) == 2, "--png tiny is refused");
+    cairo_surface_t *pa = cairo_image_surface_create_from_png("out_png_small/k-cycle-ex3/frame_00005.png");
+    cairo_surface_t *pb = cairo_image_surface_create_from_png("out_png_fast/k-cycle-ex3/frame_00005.png");
+    int pw = cairo_image_surface_get_width(pa), ph = cairo_image_surface_get_height(pa), same_px = pw == 320;
+    cairo_surface_flush(pa), cairo_surface_flush(pb);
+    for (int y = 0; same_px && y < ph; y++)   /* RGB24 words, the unused byte aside */
+        for (int x = 0; x < pw; x++) {
+            uint32_t u, v;
+            memcpy(&u, cairo_image_surface_get_data(pa) + (size_t)y * cairo_image_surface_get_stride(pa) + 4 * x, 4);
+            memcpy(&v, cairo_image_surface_get_data(pb) + (size_t)y * cairo_image_surface_get_stride(pb) + 4 * x, 4);
+            same_px &= ((u ^ v) & 0xffffffu) == 0;
+        }
+    CHECK(same_px, "--png small and --png fast decode to different pixels");
+    CHECK(!same_file("out_png_small/k-cycle-ex3/frame_00005.png", "out_png_fast/k-cycle-ex3/frame_00005.png"),
+          "--png small wrote the same bytes as --png fast");
+    cairo_surface_destroy(pa);
+    cairo_surface_destroy(pb);
 }
 
 /* Runs scene name at 320x180, 8 fps for 3 s into dir with jobs threads; returns solves. */
