@@ -104,18 +104,23 @@ static void use(hy_gl *g)
         bound = g;
 }
 
-/* The frame's clear (hy_gl_begin's colour), sent with its first GL work. */
-static void clear_frame(hy_gl *g)
+/* Binds framebuffer fbo, whole, and clears it to the frame's colour (and
+ * its depth, where it has one). */
+static void clear_to_bg(hy_gl *g, GLuint fbo)
 {
-    if (g->cleared)
-        return;
-    g->cleared = 1;
-    gl->BindFramebuffer(GL_FRAMEBUFFER, g->fbo0);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, fbo);
     gl->Disable(GL_SCISSOR_TEST);
     gl->Viewport(0, 0, g->w, g->h);
     gl->ClearColor((float)g->bg.r, (float)g->bg.g, (float)g->bg.b, 1.0f);
     gl->ClearDepth(1.0);
     gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+/* The frame's clear (hy_gl_begin's colour), sent with its first GL work. */
+static void clear_frame(hy_gl *g)
+{
+    if (!g->cleared)
+        g->cleared = 1, clear_to_bg(g, g->fbo0);
 }
 
 /* Takes g's context for GL work of its frame: the lock where the backend
@@ -964,14 +969,8 @@ static int msaa_target(hy_gl *g, hy_error *err)
  * colour; nothing was sent to GL yet but the clear of hy_gl_begin). */
 static void enter_msaa(hy_gl *g)
 {
-    if (g->in_ms)
-        return;
-    g->in_ms = 1;
-    gl->BindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
-    gl->Disable(GL_SCISSOR_TEST);
-    gl->Viewport(0, 0, g->w, g->h);
-    gl->ClearColor((float)g->bg.r, (float)g->bg.g, (float)g->bg.b, 1.0f);
-    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (!g->in_ms)
+        g->in_ms = 1, clear_to_bg(g, g->ms_fbo);
 }
 
 /* Resolves the multisampled frame into the default framebuffer. */
