@@ -678,8 +678,10 @@ static int animate(int argc, char **argv)
        draws (LP_NUM_THREADS=0) unless the user set it: the frame threads
        already fill the cores, and handing each frame to llvmpipe's own
        threads cost time (the 720p clip at -j 2: 0.69-0.79 s against
-       0.77-0.97 s, alternating runs); at -j 1 its threads are kept. */
-    if (a.p.jobs >= 2)
+       0.77-0.97 s, alternating runs); at -j 1 its threads are kept, and in
+       serve's frame workers (--worker: one frame at a time, as soon as it
+       can be shown). */
+    if (a.p.jobs >= 2 && !a.worker)
         setenv("LP_NUM_THREADS", "0", 0);
     if ((r = pick_backend(a.gl, a.gl_info || a.list)))
         return r;
