@@ -17,7 +17,7 @@
 #define NLIT HY_ZFAST_MAX_SYMBOLS                      /* literal/length symbols 0..285 */
 #define NDIST 30
 #define NCL 19                         /* code-length symbols */
-#define BLOCK_TOKENS 32768             /* tokens per deflate block */
+#define BLOCK_TOKENS 16384             /* tokens per deflate block (32768: 0.5 % larger, 6 % faster) */
 #define HASH_BITS 14
 #define MATCH_FLAG 0x80000000u         /* token: literal byte, or flag | (len - 3) << 16 | (dist - 1) */
 
@@ -447,9 +447,10 @@ size_t hy_zfast_png(hy_zfast *z, const unsigned char *xrgb, int w, int h, int st
             unsigned run = 0, above = 0;
             if (up && same(up[x], p))
                 above = same_run(px + x, up + x, (unsigned)(w - x));
-            if (above < 16 && x && same(px[x - 1], p))   /* a long match above is as good: no second scan */
+            if (x && same(px[x - 1], p))
                 run = same_as(px + x, p, (unsigned)(w - x));
-            unsigned best = run > above ? run : above, dist = run > above ? 3u : (unsigned)rowb;
+            /* a tie goes to the run: distance 3 has no extra bits, a row's 9 to 13 */
+            unsigned best = run >= above ? run : above, dist = run >= above ? 3u : (unsigned)rowb;
             if (best < 2 && x + 1 < w) {   /* an earlier pixel pair */
                 uint32_t hsh = pair_hash(p, px[x + 1]), q = z->hash[hsh];
                 z->hash[hsh] = (uint32_t)((size_t)y * (size_t)w + (size_t)x + 1);
