@@ -52,7 +52,7 @@ hy_png_opts hy_png_frame_defaults(void)
 {
     /* hy_zfast.h's encoder (runs, the row above and pixel pairs, in whole
      * pixels): on the 720p gamma-sweep clip's frames (tests/bench/bench_gl)
-     * 1.6-1.7 ms and 77 kB a frame against libdeflate level 2's 4.3-4.6 ms
+     * 1.6-1.7 ms and 75 kB a frame against libdeflate level 2's 4.2-4.6 ms
      * and 65 kB, and zlib level 1's 9-12 ms and 78 kB (the frames before
      * issue 23).  Earlier measurements on a 1920x1080 frame: zlib level 1
      * without filtering 16 ms / 251 KB, level 6 29 ms / 219 KB, adaptive

@@ -61,7 +61,7 @@ hy_png_opts hy_png_frame_defaults(void);
  * X(name, description).  Measured on the 720p gamma-sweep clip's frames
  * (tests/bench/bench_gl prints both). */
 #define HY_PNG_MODES(X)                                                                 \
-    X("fast", "hystviz's encoder for plot frames (1.6 ms, 77 kB a 720p frame)")         \
+    X("fast", "hystviz's encoder for plot frames (1.6 ms, 75 kB a 720p frame)")         \
     X("small", "libdeflate level 6, else zlib level 6 (4.9 ms, 61 kB a 720p frame)")
 
 /* The options of mode name into *o; HY_EINVAL naming the modes if unknown. */
