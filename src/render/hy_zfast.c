@@ -476,8 +476,8 @@ size_t hy_zfast_png(hy_zfast *z, const unsigned char *xrgb, int w, int h, int st
                 literal(z, d[0]), literal(z, d[1]), literal(z, d[2]);
                 x++;
             }
-            if (z->ntok >= BLOCK_TOKENS)
-                write_block(z, 0);
+            if (z->ntok >= BLOCK_TOKENS && (write_block(z, 0), z->failed))
+                return 0;              /* out of memory: the tokens are not stored on */
         }
     }
     write_block(z, 1);
