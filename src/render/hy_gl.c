@@ -54,7 +54,8 @@ typedef struct cmd {
  * surfaces, else one set per context. */
 typedef struct gl_objs {
     GLuint stroke_prog, stroke_dash_prog, ribbon_prog, plane_prog, vao, vbo, ribbon_vao, ribbon_vbo, ribbon_ibo;
-    GLint u_size, u_size_dash, u_ndash, u_dash, u_dash_total, u_mvp, u_mv, u_light;
+    GLint u_size, u_size_dash, u_ndash, u_dash, u_dash_total;
+    GLint u_ribbon[3];                /* ribbon.vert's uniforms, in ribbon_uniforms' order */
     GLint u_plane[11];                /* plane.frag's uniforms, in plane_uniforms' order */
 } gl_objs;
 
@@ -284,21 +285,32 @@ static int build_programs(hy_gl *g, hy_error *err)
     return HY_OK;
 }
 
-/* The ribbon's program, built at its first use (only 3-D frames draw it). */
+/* Program *prog from a vertex and a fragment stage, built at its first use,
+ * with the locations of its uniforms names (NULL-terminated) in locs: the
+ * ribbon and the relay plane, which only some animations draw (building them
+ * at every context's start made each renderer pay llvmpipe's compile). */
+static int program_once(GLuint *prog, const hy_gl_stage stages[2], const char *const *names, GLint *locs,
+                        hy_error *err)
+{
+    if (*prog)
+        return HY_OK;
+    if (hy_gl_program(stages, 2, prog, err))
+        return HY_ENUM;
+    for (int i = 0; names[i]; i++)
+        locs[i] = gl->GetUniformLocation(*prog, names[i]);
+    return HY_OK;
+}
+
+enum { RIBBON_MVP, RIBBON_MV, RIBBON_LIGHT };
+
 static int ribbon_program(hy_gl *g, hy_error *err)
 {
-    if (g->o->ribbon_prog)
-        return HY_OK;
+    static const char *const ribbon_uniforms[4] = {"u_mvp", "u_mv", "u_light", NULL};
     const hy_gl_stage ribbon[2] = {
         {hy_shader_ribbon_vert_file, GL_VERTEX_SHADER, hy_shader_ribbon_vert, NULL},
         {hy_shader_ribbon_frag_file, GL_FRAGMENT_SHADER, hy_shader_ribbon_frag, NULL},
     };
-    if (hy_gl_program(ribbon, 2, &g->o->ribbon_prog, err))
-        return HY_ENUM;
-    g->o->u_mvp = gl->GetUniformLocation(g->o->ribbon_prog, "u_mvp");
-    g->o->u_mv = gl->GetUniformLocation(g->o->ribbon_prog, "u_mv");
-    g->o->u_light = gl->GetUniformLocation(g->o->ribbon_prog, "u_light");
-    return HY_OK;
+    return program_once(&g->o->ribbon_prog, ribbon, ribbon_uniforms, g->o->u_ribbon, err);
 }
 
 static void setup_buffers(hy_gl *g)
@@ -1027,9 +1039,9 @@ static void ribbon_pass(hy_gl *g, const hy_gl_ribbon *r, const double *vp)
     gl->DepthFunc(GL_LESS);
     gl->Disable(GL_BLEND);
     gl->UseProgram(g->o->ribbon_prog);
-    gl->UniformMatrix4fv(g->o->u_mvp, 1, GL_FALSE, fm);
-    gl->UniformMatrix4fv(g->o->u_mv, 1, GL_FALSE, fmv);
-    gl->Uniform3f(g->o->u_light, 0.4f, 0.8f, 0.6f);
+    gl->UniformMatrix4fv(g->o->u_ribbon[RIBBON_MVP], 1, GL_FALSE, fm);
+    gl->UniformMatrix4fv(g->o->u_ribbon[RIBBON_MV], 1, GL_FALSE, fmv);
+    gl->Uniform3f(g->o->u_ribbon[RIBBON_LIGHT], 0.4f, 0.8f, 0.6f);
 }
 
 static int gl_draw_ribbon_unlocked(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
@@ -1076,24 +1088,15 @@ int hy_gl_draw_ribbon(hy_gl *g, const hy_gl_ribbon *r, hy_error *err)
 
 /* ---- the relay plane ---- */
 
-/* The plane's program, built at its first use: only the Preisach animation
- * draws a plane, and building it with the others at every context's start
- * made each renderer pay llvmpipe's compile of plane.frag. */
 static int plane_program(hy_gl *g, hy_error *err)
 {
-    if (g->o->plane_prog)
-        return HY_OK;
+    static const char *const plane_uniforms[11] = {"u_rect", "u_height", "u_range", "u_s", "u_n", "u_kind0",
+                                                   "u_dist", "u_dens", "u_up", "u_down", NULL};
     const hy_gl_stage plane[2] = {
         {hy_shader_plane_vert_file, GL_VERTEX_SHADER, hy_shader_plane_vert, NULL},
         {hy_shader_plane_frag_file, GL_FRAGMENT_SHADER, hy_shader_plane_frag, NULL},
     };
-    if (hy_gl_program(plane, 2, &g->o->plane_prog, err))
-        return HY_ENUM;
-    static const char *const plane_uniforms[11] = {"u_rect", "u_height", "u_range", "u_s", "u_n", "u_kind0",
-                                                   "u_dist", "u_dens", "u_up", "u_down", NULL};
-    for (int i = 0; plane_uniforms[i]; i++)
-        g->o->u_plane[i] = gl->GetUniformLocation(g->o->plane_prog, plane_uniforms[i]);
-    return HY_OK;
+    return program_once(&g->o->plane_prog, plane, plane_uniforms, g->o->u_plane, err);
 }
 
 static int gl_draw_plane_unlocked(hy_gl *g, const hy_gl_plane *pl, hy_error *err)
