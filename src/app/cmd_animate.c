@@ -59,7 +59,7 @@ static const char animate_tail[] =
 static const char *png_more(char *buf, size_t size, int doc)
 {
     (void)doc;
-#define MODE_LINE(n, d) "\n" n ": " d
+#define MODE_LINE(n, level, engine, d) "\n" n ": " d
     snprintf(buf, size, "%s", HY_PNG_MODES(MODE_LINE));
 #undef MODE_LINE
     return buf;

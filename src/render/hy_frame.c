@@ -48,33 +48,29 @@ void hy_frame_composite(int w, int h, const unsigned char *gl, const unsigned ch
     }
 }
 
-hy_png_opts hy_png_frame_defaults(void)
-{
-    /* hy_zfast.h's encoder (runs, the row above and pixel pairs, in whole
-     * pixels): on the 720p gamma-sweep clip's frames (tests/bench/bench_gl)
-     * 1.6-1.7 ms and 75 kB a frame against libdeflate level 2's 4.2-4.6 ms
-     * and 65 kB, and zlib level 1's 9-12 ms and 78 kB (the frames before
-     * issue 23).  Earlier measurements on a 1920x1080 frame: zlib level 1
-     * without filtering 16 ms / 251 KB, level 6 29 ms / 219 KB, adaptive
-     * filtering 45-60 ms for nothing on such frames. */
-    return (hy_png_opts){2, HY_PNG_FILTER_NONE, 0, HY_PNG_FAST};
-}
+/* hy_zfast (fast) on the 720p gamma-sweep clip's frames: 1.6 ms and 75 kB a
+ * frame against libdeflate level 2's 4.2-4.6 ms and 65 kB (the engine
+ * before) and zlib level 1's 9-12 ms and 78 kB (the frames before issue
+ * 23); on 1920x1080 frames adaptive filtering cost 45-60 ms for nothing. */
+static const struct png_mode {
+    const char *name;
+    hy_png_opts o;
+} png_modes[] = {
+#define MODE_ROW(n, level, engine, d) {n, {level, HY_PNG_FILTER_NONE, 0, engine}},
+    HY_PNG_MODES(MODE_ROW)
+#undef MODE_ROW
+};
+
+hy_png_opts hy_png_frame_defaults(void) { return png_modes[0].o; }
 
 int hy_png_mode(const char *name, hy_png_opts *o, hy_error *err)
 {
-    if (name && !strcmp(name, "fast")) {
-        *o = hy_png_frame_defaults();
-        return HY_OK;
-    }
-    if (name && !strcmp(name, "small")) {
-#if HY_HAVE_LIBDEFLATE
-        *o = (hy_png_opts){6, HY_PNG_FILTER_NONE, 0, HY_PNG_LIBDEFLATE};
-#else
-        *o = (hy_png_opts){6, HY_PNG_FILTER_NONE, 0, HY_PNG_ZLIB};
-#endif
-        return HY_OK;
-    }
-#define MODE_NAME(n, d) " " n
+    for (size_t i = 0; name && i < sizeof png_modes / sizeof png_modes[0]; i++)
+        if (!strcmp(name, png_modes[i].name)) {
+            *o = png_modes[i].o;
+            return HY_OK;
+        }
+#define MODE_NAME(n, level, engine, d) " " n
     return hy_error_set(err, HY_EINVAL, "unknown PNG mode '%s' (known:" HY_PNG_MODES(MODE_NAME) ")",
                         name ? name : "");
 #undef MODE_NAME

@@ -53,16 +53,17 @@ static inline int hy_little_endian(void)
     return first;
 }
 
-/* Settings measured for flat-colour plot frames (tests/bench/bench_gl): the
- * first of the PNG modes below. */
-hy_png_opts hy_png_frame_defaults(void);
+/* The PNG modes of animation frames (`hystviz animate --png MODE`), one
+ * table: X(name, level, engine, description); the first is the default.
+ * Their cost on a 1920x1080 gamma-sweep frame, as tests/bench/bench_gl
+ * prints it for each mode (OSMesa, load 1.3, medians): fast 4.7 ms and
+ * 207 kB, small 13.5 ms and 173 kB. */
+#define HY_PNG_MODES(X)                                                                            \
+    X("fast", 2, HY_PNG_FAST, "hystviz's encoder for plot frames (runs, the row above, pixel pairs)") \
+    X("small", 6, HY_PNG_LIBDEFLATE, "libdeflate level 6, else zlib level 6: about 16 % smaller, 3x the time")
 
-/* The PNG modes of animation frames (`hystviz animate --png MODE`), one table:
- * X(name, description).  Measured on the 720p gamma-sweep clip's frames
- * (tests/bench/bench_gl prints both). */
-#define HY_PNG_MODES(X)                                                                 \
-    X("fast", "hystviz's encoder for plot frames (1.6 ms, 75 kB a 720p frame)")         \
-    X("small", "libdeflate level 6, else zlib level 6 (4.9 ms, 61 kB a 720p frame)")
+/* The frame default: the first PNG mode. */
+hy_png_opts hy_png_frame_defaults(void);
 
 /* The options of mode name into *o; HY_EINVAL naming the modes if unknown. */
 int hy_png_mode(const char *name, hy_png_opts *o, hy_error *err);

@@ -187,17 +187,26 @@ static int bench_frame(int w, int h, int png_table)
     qsort(rb, (size_t)ntimed, sizeof *rb, cmp_double);
     printf("  readback alone (glReadPixels RGBA of the finished %dx%d frame): min %.2f ms, median %.2f ms\n", w, h,
            1e3 * rb[0], 1e3 * rb[ntimed / 2]);
-    /* the encoder, as the engine calls it on that frame */
-    hy_png_opts d = hy_png_frame_defaults();
-    double enc[NTIMED];
-    for (int i = 0; i < ntimed; i++) {
-        double t0 = now();
-        hy_png_write_xrgb(png_path, o.w, o.h, o.fb, 4 * o.w, &d, &err);
-        enc[i] = now() - t0;
+    /* the encoder, as the engine calls it on that frame, in each PNG mode (the first: the default) */
+#define MODE_NAME(n, level, engine, desc) n,
+    static const char *const modes[] = {HY_PNG_MODES(MODE_NAME) NULL};
+#undef MODE_NAME
+    for (int m = 0; modes[m]; m++) {
+        hy_png_opts d;
+        hy_png_mode(modes[m], &d, &err);
+        double enc[NTIMED];
+        for (int i = 0; i < ntimed; i++) {
+            double t0 = now();
+            hy_png_write_xrgb(png_path, o.w, o.h, o.fb, 4 * o.w, &d, &err);
+            enc[i] = now() - t0;
+        }
+        qsort(enc, (size_t)ntimed, sizeof *enc, cmp_double);
+        struct stat sb;
+        long bytes = stat(png_path, &sb) ? -1 : (long)sb.st_size;
+        printf("  PNG encode of that frame (hy_png_write_xrgb, --png %s): min %.2f ms, median %.2f ms, %ld bytes; "
+               "render / encode %.2f (medians)\n", modes[m], 1e3 * enc[0], 1e3 * enc[ntimed / 2], bytes,
+               r_med / enc[ntimed / 2]);
     }
-    qsort(enc, (size_t)ntimed, sizeof *enc, cmp_double);
-    printf("  PNG encode of that frame (hy_png_write_xrgb, frame settings): min %.2f ms, median %.2f ms; "
-           "render / encode %.2f (medians)\n", 1e3 * enc[0], 1e3 * enc[ntimed / 2], r_med / enc[ntimed / 2]);
     double te = now();              /* the floor: clear and finish an empty frame */
     for (int i = 0; i < 10; i++) {
         hy_gl_begin(o.gl, (hy_rgb){1, 1, 1});
