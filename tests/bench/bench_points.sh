@@ -6,7 +6,7 @@
 # the same loop from its closed form) paired and alternating: wall time
 # (median of the runs), CPU time (user + system, median) and peak memory
 # (/usr/bin/time, max RSS), the files' sizes, the machine's load.  Prints a
-# Markdown table, the README's (tests/cli/test_readme_bench.sh checks its
+# Markdown table, docs/PERFORMANCE.md's (tests/cli/test_readme_bench.sh checks its
 # rows and format); asserts nothing but that the runs work.
 # Goals: 1e6 points in <= 0.25 s and <= 48 MB, files no larger than at 1e4.
 # usage: bench_points.sh HYSTVIZ SCENES_DIR [RUNS]

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 """bench_python.py SOURCE_ROOT LIB BENCH_LIB: the Python package's figures
-(issue 24), printed in the README's units:
+(issue 24), printed in docs/PERFORMANCE.md's units:
   1. call overhead: hystviz.steady_loop (200 points) against the same scene
      through the C library (bench_lib), median of 7 rounds each;
   2. the steady loop of Example 4 as a researcher would compute it with

@@ -13,10 +13,10 @@
 #      closed form and scalars in a Python loop, checked against hystviz's
 #      table first): ROUNDS alternating runs of the issue's 10,000-point grid,
 #      medians and the ratio hystviz / NumPy (goal < 0.25)
-# Rows are printed as the README's table rows (README.md, "Speed" under
-# "Parameter studies"), in its units; `bench_sweep.sh --rows` prints the rows'
+# Rows are printed as docs/PERFORMANCE.md's table rows (its "Parameter
+# studies" section), in its units; `bench_sweep.sh --rows` prints the rows'
 # labels only, without running anything: tests/cli/test_readme_bench.sh checks
-# that the README's table has exactly these rows, in this order.
+# that docs/PERFORMANCE.md's table has exactly these rows, in this order.
 # Everything is written under a temporary directory.  Asserts nothing but that
 # the runs work.  Needs /usr/bin/time (Debian `time`) and python3-numpy.
 # usage: bench_sweep.sh HYSTVIZ SCENES_DIR [ROUNDS] | bench_sweep.sh --rows
@@ -47,7 +47,7 @@ if [ $labels_only = 0 ]; then
     echo "|---|---|---|---|---|"
 fi
 
-# run LABEL POINTS ARGS...: one timed sweep into $tmp/out, printed as a README
+# run LABEL POINTS ARGS...: one timed sweep into $tmp/out, printed as a docs/PERFORMANCE.md
 # table row (with --rows: the label only).  BENCH_SWEEP_FROM=N runs only the
 # rows from the Nth on (the 1,000-point figure sweeps, rows 1-4, take minutes
 # on a loaded machine).

@@ -14,7 +14,7 @@ at the fixed point of the period map), on the bimodal input 0 -> 1 -> 0.5
 -> 1.5 -> 0 with 2000 points per unit of variation as the scene samples.
 With HYSTVIZ and SCENE given it first checks its circle and square markers
 against `hystviz data` (printed).  Prints median and 95th percentile with
-and without the SVG as the README's table (tests/cli/test_readme_bench.sh
+and without the SVG as docs/PERFORMANCE.md's table (tests/cli/test_readme_bench.sh
 checks its rows and format; --rows prints the header and first cells only,
 without matplotlib); asserts nothing.  Needs python3-matplotlib (Debian)."""
 import io
@@ -49,7 +49,7 @@ def loop(sigma0):
     return us, ys
 
 
-# the benchmark's table, the README's
+# the benchmark's table, docs/PERFORMANCE.md's
 TABLE_HEADER = ("| yardstick (`tests/bench/mpl_fig15.py`, one warm process) | redraw + SVG to memory, median / p95 | "
                 "without the SVG, median / p95 | SVG | load |\n|---|---|---|---|---|")
 ROW = "| matplotlib: Fig. 15 for a new sigma0 (NumPy recompute, set_data, draw) |"

@@ -1,6 +1,6 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# The README's sweep speed table is the benchmark's output (issue 23 item 5):
+# docs/PERFORMANCE.md's sweep speed table is the benchmark's output (issue 23 item 5):
 # its rows are exactly those tests/bench/bench_sweep.sh prints, in its order
 # (`bench_sweep.sh --rows` gives the labels without running anything), and
 # every row has the benchmark's format: wall in s, points/s and points per CPU
@@ -25,42 +25,42 @@ trap 'rm -rf "$tmp"' EXIT
 
 sh "$root/tests/bench/bench_sweep.sh" --rows > "$tmp/want" || bad "bench_sweep.sh --rows failed"
 [ "$(wc -l < "$tmp/want")" -ge 10 ] && ok || bad "bench_sweep.sh --rows printed $(wc -l < "$tmp/want") rows"
-# the README's table: from its header row to the first line that is not a row
+# the docs/PERFORMANCE.md's table: from its header row to the first line that is not a row
 awk '/^\| sweep \| wall \| points\/s \| points per CPU second \| max RSS \|$/ { on = 1; next }
      on && /^\|---/ { next }
      on && /^\|/ { print; next }
-     on { exit }' "$root/README.md" > "$tmp/rows"
-[ -s "$tmp/rows" ] && ok || bad "README.md has no '| sweep | wall | points/s | points per CPU second | max RSS |' table"
+     on { exit }' "$root/docs/PERFORMANCE.md" > "$tmp/rows"
+[ -s "$tmp/rows" ] && ok || bad "docs/PERFORMANCE.md has no '| sweep | wall | points/s | points per CPU second | max RSS |' table"
 sed 's/^| \(.*\) | [^|]* | [^|]* | [^|]* | [^|]* |$/\1/' "$tmp/rows" > "$tmp/have"
 if cmp -s "$tmp/want" "$tmp/have"; then ok; else
-    bad "README's sweep table rows differ from bench_sweep.sh's (< benchmark, > README):"
+    bad "docs/PERFORMANCE.md's sweep table rows differ from bench_sweep.sh's (< benchmark, > docs/PERFORMANCE.md):"
     diff "$tmp/want" "$tmp/have" | grep '^[<>]'
 fi
 n=0
 while IFS= read -r row; do
     n=$((n + 1))
     echo "$row" | grep -Eq '^\| .+ \| [0-9]+\.[0-9]+ s \| [0-9]{1,3}(,[0-9]{3})* \| [0-9]{1,3}(,[0-9]{3})* \| ([0-9]+\.[0-9] MB|\(NumPy loop [0-9.]+ s wall, [0-9.]+ s CPU; ratio hystviz/NumPy [0-9.]+ wall, [0-9.]+ CPU\)) \|$' &&
-        ok || bad "README row $n is not in the benchmark's format: $row"
+        ok || bad "docs/PERFORMANCE.md row $n is not in the benchmark's format: $row"
 done < "$tmp/rows"
 # a table of another benchmark: WANT (its --rows output: header, separator,
-# first cells) against the README's table that starts at the same header;
+# first cells) against the docs/PERFORMANCE.md's table that starts at the same header;
 # each row's other cells must match the extended regex REST
 table() {
     name=$1 want=$2 rest=$3
     head -n 1 "$want" > "$tmp/head"
     awk -v h="$(cat "$tmp/head")" '$0 == h { on = 1; print; next }
          on && /^\|/ { print; next }
-         on { exit }' "$root/README.md" > "$tmp/rows"
-    [ -s "$tmp/rows" ] && ok || { bad "README.md has no $name table headed: $(cat "$tmp/head")"; return; }
+         on { exit }' "$root/docs/PERFORMANCE.md" > "$tmp/rows"
+    [ -s "$tmp/rows" ] && ok || { bad "docs/PERFORMANCE.md has no $name table headed: $(cat "$tmp/head")"; return; }
     { sed 2q "$tmp/rows"; sed -n '3,$s/^\(| [^|]* |\).*$/\1/p' "$tmp/rows"; } > "$tmp/have"
     if cmp -s "$want" "$tmp/have"; then ok; else
-        bad "README's $name table (header, separator, first cells) differs from the benchmark's (< benchmark, > README):"
+        bad "docs/PERFORMANCE.md's $name table (header, separator, first cells) differs from the benchmark's (< benchmark, > docs/PERFORMANCE.md):"
         diff "$want" "$tmp/have" | grep '^[<>]'
     fi
     sed 1,2d "$tmp/rows" | while IFS= read -r row; do
         echo "$row" | grep -Eq "^\| [^|]+ \| $rest \|\$" || echo "$row"
     done > "$tmp/bad"
-    [ -s "$tmp/bad" ] && bad "README $name rows not in the benchmark's format: $(cat "$tmp/bad")" || ok
+    [ -s "$tmp/bad" ] && bad "docs/PERFORMANCE.md $name rows not in the benchmark's format: $(cat "$tmp/bad")" || ok
 }
 # large series: wall and CPU in s with 3 decimals, max RSS in MB, the files in kB
 cell='[0-9]+\.[0-9]{3} s \| [0-9]+\.[0-9]{3} s \| [0-9]+\.[0-9] MB \| [0-9]+ / [0-9]+ / [0-9]+ kB'
@@ -76,6 +76,6 @@ table serve-browser "$tmp/browser" '[0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.
 python3 "$root/tests/bench/mpl_fig15.py" --rows > "$tmp/mpl" || bad "mpl_fig15.py --rows failed"
 table serve-yardstick "$tmp/mpl" '[0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+ bytes \| [0-9]+\.[0-9]'
 # the text that quotes the table names the command that made it
-grep -q 'sh tools/setup.sh bench' "$root/README.md" && ok || bad "README does not name sh tools/setup.sh bench"
+grep -q 'sh tools/setup.sh bench' "$root/docs/PERFORMANCE.md" && ok || bad "docs/PERFORMANCE.md does not name sh tools/setup.sh bench"
 echo "test_readme_bench: $pass passed, $fail failed"
 [ $fail -eq 0 ]
