@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_layout.c: plot layout (ranges, ticks, margins, legend placement, clipping) drawn through a hy_canvas. */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -833,6 +834,7 @@ typedef struct place_grid {
     unsigned *mark, stamp;               /* visited in this query (points, then texts) */
     size_t nitem;                        /* points + annotations */
     size_t *found;
+    size_t visits;                       /* items looked at by every query so far */
 } place_grid;
 
 static void pg_cells(const place_grid *g, double x, double y, int *cx, int *cy)
@@ -1063,6 +1065,7 @@ static double pg_overlap(const panel *p, double rx, double ry, double rw, double
             int cell = r * g->nx + c;
             for (size_t k = g->start[cell]; k < g->start[cell + 1]; k++) {
                 uint32_t i = g->item[k];
+                g->visits++;
                 if (g->mark[i] == st)
                     continue;
                 g->mark[i] = st;
@@ -1076,6 +1079,7 @@ static double pg_overlap(const panel *p, double rx, double ry, double rw, double
             for (int e = g->head[cell]; e >= 0; e = g->tent[e].next) {
                 size_t id = g->npts + (size_t)g->tent[e].text;
                 double b[4];
+                g->visits++;
                 if (g->mark[id] == st)
                     continue;
                 g->mark[id] = st;
@@ -1136,11 +1140,23 @@ static int pg_leader_crosses(const panel *p, double x1, double y1, double x2, do
 /* Box (x, y, w, h) of a legend at a fixed place (a corner, or outside), or 0. */
 static int fixed_legend_box(const panel *p, double b[4]);
 
+/* Items the placement grid may look at in a panel while it still ranks the
+ * spots of a label that finds no free one (issue 36 item 1).  Ranking needs
+ * each spot's overlap summed until it passes the least so far; where labels
+ * pile up (hundreds asking for one place), that least grows with the pile
+ * and every spot of every later label walks it: quadratic.  Past this many
+ * visits a spot is only asked whether it covers anything (the walk stops at
+ * the first item), and a label with no free spot stays at its own place and
+ * is not avoided by later labels (they would walk the pile it makes).
+ * The gallery's figures look at fewer than 1e5 items. */
+#define PLACE_RANK_VISITS 4000000u
+
 /* Places every annotation: at (x, y) shifted by (dx, dy) when its box covers
  * no curve, marker, inset, fixed legend or earlier annotation; else at the
  * nearest free spot inside the frame on rings around it (with none free, the
- * least covering one).  A label with a point gets a leader line to it, and
- * prefers spots whose leader crosses no curve. */
+ * least covering one, or its own place once PLACE_RANK_VISITS are spent).
+ * A label with a point gets a leader line to it, and prefers spots whose
+ * leader crosses no curve. */
 static void place_texts(panel *p)
 {
     const hy_axes *ax = p->ax;
@@ -1162,7 +1178,7 @@ static void place_texts(panel *p)
         double lx = ax0, ly = ay0;   /* where a leader line would go */
         if (t->has_point && usable(t->px, p->xlog) && usable(t->py, p->ylog))
             lx = map_x(p, t->px), ly = map_y(p, t->py);
-        int found = 0;
+        int found = 0, rank = !p->grid || p->grid->visits < PLACE_RANK_VISITS;
         for (int pass = 0; pass < 2 && !found; pass++)
             for (int ring = 0; ring <= 30 && !found; ring++) {
                 double r = ring * 0.5 * p->fs;
@@ -1178,7 +1194,7 @@ static void place_texts(panel *p)
                         lg[1] + lg[3] > box[1])
                         continue;
                     /* avoids the curves and the annotations placed before it */
-                    double o = overlap_bounded(p, box[0], box[1], box[2], box[3], least);
+                    double o = overlap_bounded(p, box[0], box[1], box[2], box[3], rank ? least : DBL_MIN);
                     if (o < least)
                         least = o, least_x = cx, least_y = cy;
                     if (o != 0.0)
@@ -1192,7 +1208,7 @@ static void place_texts(panel *p)
                     found = 1, best_x = cx, best_y = cy;
                 }
             }
-        if (!found)   /* nowhere free: the least covering spot inside the frame */
+        if (!found && rank)   /* nowhere free: the least covering spot inside the frame */
             best_x = least_x, best_y = least_y;
         tp->ax = ax0, tp->ay = ay0;
         tp->ok = 1;
@@ -1203,7 +1219,9 @@ static void place_texts(panel *p)
         tp->leader = 0;
         if (t->has_point && usable(t->px, p->xlog) && usable(t->py, p->ylog))
             tp->ax = map_x(p, t->px), tp->ay = map_y(p, t->py), tp->leader = 1;
-        if (p->grid && pg_add_text(p->grid, (int)i, tp->box)) {
+        /* a label past the ranking budget with no free spot is not avoided by
+         * later ones: a pile at one place would make every later query walk it */
+        if (p->grid && (found || rank) && pg_add_text(p->grid, (int)i, tp->box)) {
             pg_free(p->grid); /* out of memory: the scan from here on */
             p->grid = NULL;
         }
