@@ -257,6 +257,22 @@ double hy_ode_work_estimate(const hy_model *m, const hy_input *in, double gamma,
     return per_period * fmax(cycles, 1);
 }
 
+int hy_ode_check_work(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o, double t_end,
+                      hy_error *err)
+{
+    double stiff, work = o->work_limit > 0 ? hy_ode_work_estimate(m, in, gamma, o, t_end, &stiff) : 0;
+    if (work > o->work_limit)
+        return hy_error_set(err, HY_EINVAL,
+                            "refused: %s at rtol %g needs at least %.2g evaluations of f (limit %.2g): %s (the "
+                            "stiffness ratio sigma0*du/g reaches %.3g on an input piece); use the exact solver "
+                            "(piecewise-linear inputs), bsimp or msbdf",
+                            o->stepper, o->rtol, work, o->work_limit,
+                            o->stepper[2] == 'i' || o->stepper[3] == 'i' ? "a low-order implicit method at this tolerance"
+                                                                         : "the problem is too stiff for an explicit stepper",
+                            stiff);
+    return HY_OK;
+}
+
 /* The first step on a piece of length len: h0 if given; in dense mode the
  * whole piece (the controller shrinks it as the tolerance asks, so a loose
  * tolerance costs few steps); else 1e-3 of it. */
@@ -274,16 +290,8 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
     for (size_t i = 0; i < n; i++)
         if (!isfinite(t[i]) || t[i] < 0 || (i && t[i] < t[i - 1]))
             return hy_error_set(err, HY_EINVAL, "output times must be finite, >= 0 and ascending (t[%zu] = %g)", i, t[i]);
-    double stiff, work = o->work_limit > 0 ? hy_ode_work_estimate(m, in, gamma, o, n ? t[n - 1] : 0, &stiff) : 0;
-    if (work > o->work_limit)
-        return hy_error_set(err, HY_EINVAL,
-                            "refused: %s at rtol %g needs at least %.2g evaluations of f (limit %.2g): %s (the "
-                            "stiffness ratio sigma0*du/g reaches %.3g on an input piece); use the exact solver "
-                            "(piecewise-linear inputs), bsimp or msbdf",
-                            o->stepper, o->rtol, work, o->work_limit,
-                            o->stepper[2] == 'i' || o->stepper[3] == 'i' ? "a low-order implicit method at this tolerance"
-                                                                         : "the problem is too stiff for an explicit stepper",
-                            stiff);
+    if ((rc = hy_ode_check_work(m, in, gamma, o, n ? t[n - 1] : 0, err)))
+        return rc;
     hy_ode_stats local;
     if (!stats)
         stats = &local;

@@ -64,6 +64,13 @@ int hy_ode_stepper_known(const char *name);
 double hy_ode_work_estimate(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                             double t_end, double *stiff);
 
+/* HY_OK when hy_ode_work_estimate up to t_end is within o->work_limit (or
+ * the limit is 0), else HY_EINVAL with hy_ode_solve's refusal message: what
+ * hy_ode_solve checks first, for a caller that plans several solves and
+ * refuses before it starts any. */
+int hy_ode_check_work(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o, double t_end,
+                      hy_error *err);
+
 /* y_γ at n ascending times t[] >= 0 from z(0) = m->x0.  stats may be NULL.
  * HY_EINVAL for bad model/γ/options (message names it) and for a run whose
  * work estimate passes o->work_limit (the message says "stiff", the ratio,

@@ -390,6 +390,37 @@ unsigned hy_scene_reads(const hy_scene *s)
     return reads;
 }
 
+/* The GSL options of a solve at the scene's solver (rk8pd where it asks for
+ * exact and exact does not apply); NULL when the exact solution serves. */
+static const hy_ode_opts *solve_opts(const hy_scene_run *r, hy_ode_opts *o)
+{
+    const hy_decl_compute *dc = &r->doc.compute;
+    const char *solver = hy_decl_enum_text(&dc->h, offsetof(hy_decl_compute, solver), dc->solver);
+    if (!strcmp(solver, "exact") && hy_gamma_exact_applies(&r->model, &r->input))
+        return NULL;
+    *o = hy_ode_defaults();
+    o->stepper = strcmp(solver, "exact") ? solver : "rk8pd";
+    o->rtol = dc->rtol;
+    o->atol = dc->atol;
+    return o;
+}
+
+/* Refuses, at the solver's line, a scene whose GSL solves would pass their
+ * work limit: every solve is checked before the first starts (issue 36
+ * item 1: Fig. 4 at 7000 cycles computed for 15 s before its third γ was
+ * refused). */
+static int check_solves(const hy_scene_run *r, const plan *p, hy_error *err)
+{
+    const hy_decl_compute *dc = &r->doc.compute;
+    for (size_t i = 0; i < p->nsolves; i++) {
+        hy_ode_opts o;
+        if (solve_opts(r, &o) && hy_ode_check_work(&r->model, &r->input, p->solves[i].gamma, &o, p->t1, err))
+            return hy_decl_error(&dc->h, offsetof(hy_decl_compute, solver), err, HY_EINVAL, "gamma = %g: %s",
+                                 p->solves[i].gamma, err->msg);
+    }
+    return HY_OK;
+}
+
 static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
 {
     const hy_decl_compute *dc = &r->doc.compute;
@@ -412,10 +443,8 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
         g->ref = g->refbuf;
         return rc;
     } else {
-        hy_ode_opts o = hy_ode_defaults();
-        o.stepper = strcmp(solver, "exact") ? solver : "rk8pd";
-        o.rtol = dc->rtol;
-        o.atol = dc->atol;
+        hy_ode_opts o;
+        solve_opts(r, &o);
         rc = hy_ode_solve(&r->model, &r->input, g->gamma, &o, p->t, p->npts, g->y, NULL, err);
         if (!rc && exact_ok && p->verbose && !r->no_verify) { /* the error, measured only when asked */
             double *ye = malloc(p->npts * sizeof *ye);
@@ -500,6 +529,9 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
     for (size_t i = 0; i < r->doc.nannotation; i++)
         if (r->doc.annotation[i].text && hy_scene_text_has_placeholder(r->doc.annotation[i].text))
             need_steady = need_loops = 1;
+    int crc = check_solves(r, p, err);
+    if (crc)
+        return crc;
     if (need_grid) {
         if (!(p->t = malloc(p->npts * sizeof *p->t)))
             return hy_error_set(err, HY_ENOMEM, "out of memory for %zu points", p->npts);
