@@ -5,8 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "serve_slots.h"
-
 /* The headers of every answer but the page's and 503's. */
 void sv_add_headers(struct MHD_Response *r, const char *type)
 {

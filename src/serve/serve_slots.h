@@ -22,8 +22,6 @@ int sv_render_unwanted(void *ctx);
 /* Counts a stopped render and says so on stderr, at most once a second. */
 void sv_cancelled_count(sv_server *s);
 
-enum { SV_SLOT_OK, SV_SLOT_GONE, SV_SLOT_FULL, SV_SLOT_STOP };
-
 /* Waits for one of the render slots (anon: a request without a page id);
  * SV_SLOT_OK, or why not (see serve_slots.c).  SV_SLOT_OK must be given back. */
 int sv_slot_take(sv_server *s, struct MHD_Connection *c, int anon);

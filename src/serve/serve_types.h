@@ -97,6 +97,9 @@ typedef struct sv_args {
     int bad_nul;
 } sv_args;
 
+/* Why a request got no render slot (serve_slots.h), or SV_SLOT_OK. */
+enum { SV_SLOT_OK, SV_SLOT_GONE, SV_SLOT_FULL, SV_SLOT_STOP };
+
 /* What a route answers with: the request's connection and arguments, and
  * the rest of the path after a prefix route's path ("" for an exact one). */
 typedef enum MHD_Result sv_handler(sv_server *s, struct MHD_Connection *c, const sv_args *a, const char *rest);
