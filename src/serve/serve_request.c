@@ -43,6 +43,16 @@ void sv_cond_wait_slice(pthread_cond_t *cond, pthread_mutex_t *mu)
     pthread_cond_timedwait(cond, mu, &until);
 }
 
+/* The query arguments an endpoint reads (each once; "set" repeats). */
+static const struct {
+    const char *key;
+    size_t off;
+} arg_keys[] = {
+    {"scene", offsetof(sv_args, scene)}, {"fmt", offsetof(sv_args, fmt)},     {"page", offsetof(sv_args, page)},
+    {"seq", offsetof(sv_args, seq)},     {"frame", offsetof(sv_args, frame)}, {"name", offsetof(sv_args, name)},
+    {"hover", offsetof(sv_args, hover)}, {"from", offsetof(sv_args, from)},   {"to", offsetof(sv_args, to)},
+};
+
 enum MHD_Result sv_arg_it(void *cls, enum MHD_ValueKind kind, const char *key, size_t key_size, const char *value,
                               size_t value_size)
 {
@@ -58,26 +68,15 @@ enum MHD_Result sv_arg_it(void *cls, enum MHD_ValueKind kind, const char *key, s
         a->bad_nul = 1;
         return MHD_NO;
     }
-    if (!strcmp(key, "scene"))
-        a->scene = value;
-    else if (!strcmp(key, "fmt"))
-        a->fmt = value;
-    else if (!strcmp(key, "page"))
-        a->page = value;
-    else if (!strcmp(key, "seq"))
-        a->seq = value;
-    else if (!strcmp(key, "frame"))
-        a->frame = value;
-    else if (!strcmp(key, "name"))
-        a->name = value;
-    else if (!strcmp(key, "hover"))
-        a->hover = value;
-    else if (!strcmp(key, "from"))
-        a->from = value;
-    else if (!strcmp(key, "to"))
-        a->to = value;
-    else if (!strcmp(key, "set"))
-        a->sets[a->nsets++] = value;
+    if (!strcmp(key, "set")) {
+        a->sets[a->nsets++] = value; /* nsets <= n <= MAX_ARGS */
+        return MHD_YES;
+    }
+    for (size_t i = 0; i < sizeof arg_keys / sizeof arg_keys[0]; i++)
+        if (!strcmp(key, arg_keys[i].key)) {
+            *(const char **)(void *)((char *)a + arg_keys[i].off) = value;
+            break;
+        }
     return MHD_YES;
 }
 
