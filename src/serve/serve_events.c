@@ -116,6 +116,8 @@ static sv_sse_page *sse_enter(sv_server *s, const char *id)
     return p;
 }
 
+/* GET /events?page=P: a stream of "hello", then "change" (the files) at
+ * each generation, ": ping" every SSE_PING_S; 503 over the stream limits. */
 enum MHD_Result sv_api_events(sv_server *s, struct MHD_Connection *c, const sv_args *a, const char *rest)
 {
     (void)rest;

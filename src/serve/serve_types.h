@@ -3,7 +3,8 @@
  * arguments, shared by the endpoints, the route table and the HTTP layer.
  * It includes no other serve header but the frame pool's and the text
  * buffer's; every other serve file includes it, none the other way round.
- * Every field below mu is guarded by mu. */
+ * What changes while serving (generation, slots, streams, caches, saves) is
+ * guarded by mu; the rest is set before the daemon starts. */
 #ifndef SERVE_TYPES_H
 #define SERVE_TYPES_H
 

@@ -1,11 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* hy_serve.c: `hystviz serve`: a live preview in the browser on
+/* serve_run.c: `hystviz serve`: a live preview in the browser on
  * libmicrohttpd (one thread per connection), with a control per numeric
  * key, reload on save (inotify, Server-Sent Events), animation frames from
  * warm hystviz-animate workers (serve_frames.c: no OSMesa in serve) and
  * "save as new scene".  Every figure is rendered in memory by the same
  * pipeline as `hystviz render`, so the bytes are those render writes.
- * This file starts and stops the server (hy_serve.h); the routes are in
+ * This file, the top of src/serve, starts and stops the server
+ * (hy_serve.h: the options and the call, the bottom); the routes are in
  * serve_routes.c, the HTTP layer in serve_http.c. */
 #include "hy_serve.h"
 
