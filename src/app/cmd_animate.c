@@ -101,7 +101,7 @@ static const cli_opt animate_opts[] = {
      NULL, NULL},
     {.group = cli_policy_opts},
     {"worker", 0, NULL, "answer frame requests on standard input with PNG frames on standard\n"
-     "output, one GL context kept (the protocol of hystviz serve: src/app/anim_worker.h)", OPT_WORKER, 0, NULL, NULL,
+     "output, one GL context kept (the protocol of hystviz serve: src/io/anim_worker.h)", OPT_WORKER, 0, NULL, NULL,
      NULL},
     {0},
 };

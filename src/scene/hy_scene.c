@@ -704,7 +704,7 @@ int hy_scene_set(hy_scene *s, const char *assignment, hy_error *err)
     return rc;
 }
 
-/* The sections whose keys serve shows as controls (cmd_serve.c's serve_util). */
+/* The sections whose keys serve shows as controls (src/serve/serve_util.c). */
 static int main_section(const char *sec)
 {
     static const char *const secs[] = {"model", "input", "compute", "series", "param"};

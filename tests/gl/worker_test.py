@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """tests/gl/worker_test.py HYSTVIZ_ANIMATE SCENES_DIR
 
-`hystviz-animate animate --worker` (src/app/anim_worker.h), the frame
+`hystviz-animate animate --worker` (src/io/anim_worker.h), the frame
 worker hystviz serve keeps warm: every frame it answers is byte for byte
 the PNG `animate NAME --frames I:I+1 [--set ...] [--size WxH]` writes (built-in
 and scene animations, frames asked out of order, a range, overrides, another

@@ -1,6 +1,6 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# test_decoded_only.sh ROOT: the pipeline (src/pipeline) and the commands (src/app) read the decoded
+# test_decoded_only.sh ROOT: the pipeline (src/pipeline), the commands (src/app) and serve (src/serve) read the decoded
 # scene (hy_scene_decl.h: hy_scene_decode, hy_scene_doc_find, hy_decl_error), never the scene key by
 # key: no getter, count, label or location call in any of their C files.  What is about the parse
 # itself (a scene's text written back, placeholders filled as text, a PATH key's file read) calls
@@ -8,13 +8,13 @@
 root=$1
 pat='hy_scene_get_[a-z_]*(\|hy_scene_count(\|hy_scene_name_at(\|hy_scene_error_at('
 fail=0
-files=$(cd "$root" && ls src/pipeline/*.c src/pipeline/*.h src/app/*.c src/app/*.h)
-[ -n "$files" ] || { echo "no sources under $root/src/pipeline and $root/src/app"; exit 1; }
+files=$(cd "$root" && ls src/pipeline/*.c src/pipeline/*.h src/app/*.c src/app/*.h src/serve/*.c src/serve/*.h)
+[ -n "$files" ] || { echo "no sources under $root/src/pipeline, $root/src/app and $root/src/serve"; exit 1; }
 for f in $files; do
     if grep -n "$pat" "$root/$f"; then
         echo "$f reads the scene key by key: read the decoded structs (hy_scene_doc) instead"
         fail=1
     fi
 done
-echo "decoded-only: $(echo $files | wc -w) file(s) of src/pipeline and src/app checked"
+echo "decoded-only: $(echo $files | wc -w) file(s) of src/pipeline, src/app and src/serve checked"
 exit $fail

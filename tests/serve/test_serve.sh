@@ -66,6 +66,7 @@ ln -s /etc/passwd "$T/scenes/passwd.scene"
 cd "$T" || exit 1
 
 start() { # extra options...
+    : >"$T/serve.out"; : >"$T/serve.err" # emptied first: the job's own >file may come after a wait read the last run's URL
     "$hv" serve scenes --port 0 "$@" >"$T/serve.out" 2>"$T/serve.err" &
     srv=$!
     got_port() { port=$(sed -n 's|.*http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$T/serve.out"); [ -n "$port" ]; }
@@ -393,6 +394,7 @@ mkdir -p "$T/mine"
 sed 's/^name = .*/name = mine/' "$src/fig15_minor_loop_ex4.scene" > "$T/mine/mine.scene"
 sed 's/^umin2 = 0.5$/umin2 = 1.2/' "$T/mine/mine.scene" > "$T/mine/bad.scene" # parses, refused at load
 for inc in "" "$src"; do
+    : >"$T/serve.out"; : >"$T/serve.err" # emptied first: the job's own >file may come after a wait read the last run's URL
     "$hv" serve "$T/mine" --port 0 ${inc:+--include-dir "$inc"} >"$T/serve.out" 2>"$T/serve.err" &
     srv=$!
     got_mine() { port=$(sed -n 's|.*http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$T/serve.out"); [ -n "$port" ]; }
@@ -418,6 +420,7 @@ for inc in "" "$src"; do
 done
 
 # ---- --public: a warning; IP literals are accepted as Host, names are not --------------------
+: >"$T/serve.out"; : >"$T/serve.err" # emptied first: the job's own >file may come after a wait read the last run's URL
 "$hv" serve scenes --host 127.0.0.2 --public --port 0 >"$T/serve.out" 2>"$T/serve.err" &
 srv=$!
 wait_until 30 "URL printed by serve --public" grep -q http "$T/serve.out"

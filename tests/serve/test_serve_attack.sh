@@ -44,6 +44,7 @@ printf '1\n2\n3\n' >"$T/numbers.txt"
 cd "$T" || exit 1
 
 start() { # extra options...
+    : >"$T/serve.out"; : >"$T/serve.err" # emptied first: the job's own >file may come after a wait read the last run's URL
     "$hv" serve scenes --port 0 "$@" >"$T/serve.out" 2>"$T/serve.err" &
     srv=$!
     port=

@@ -549,6 +549,87 @@ static int same_file(const char *a, const char *b)
     return !strcmp(a, b) || (!stat(a, &sa) && !stat(b, &sb) && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino);
 }
 
+/* The override a ("section[.label].key=value") as an edit of the file at
+ * path (d: where the file writes each key and section header), appended to
+ * ed[*ned]: a line replaced, a line after a section header, or a new
+ * section at the end (one for all the keys of a section the file lacks).
+ * HY_OK, or HY_EINVAL with err. */
+static int edit_of(line_edit *ed, size_t *ned, const hy_scene_doc *d, const char *path, const char *a, hy_error *err)
+{
+    const char *eq = strchr(a, '=');
+    const char *d1 = eq ? memchr(a, '.', (size_t)(eq - a)) : NULL;
+    const char *d2 = eq;
+    while (d2 && d2 > a && d2[-1] != '.')
+        d2--;
+    if (!eq || !d1 || d2 - 1 < d1)
+        return hy_error_set(err, HY_EINVAL, "--set %s: expected section.key=value", a);
+    char sec[64], label[128] = "", key[64];
+    snprintf(sec, sizeof sec, "%.*s", (int)(d1 - a), a);
+    snprintf(key, sizeof key, "%.*s", (int)(eq - d2), d2);
+    if (d2 - 1 > d1)
+        snprintf(label, sizeof label, "%.*s", (int)(d2 - 1 - d1 - 1), d1 + 1);
+    const char *lb = label[0] ? label : NULL;
+    line_edit *e = &ed[(*ned)++];
+    const hy_decl_head *h = hy_scene_doc_find(d, sec, lb);
+    hy_scene_loc kl = h ? hy_decl_loc(h, hy_decl_offset(h, key)) : (hy_scene_loc){path, 0, 0};
+    snprintf(e->text, sizeof e->text, "%s = %s", key, eq + 1);
+    if (kl.line > 0 && same_file(kl.file, path))
+        e->replace = kl.line;
+    else if (h && h->loc.line > 0 && same_file(h->loc.file, path))
+        e->after = h->loc.line;
+    else if (lb) /* a named section from an include: hy_scene_set refused it already */
+        return hy_error_set(err, HY_EINVAL, "--set %s: [%s %s] is not in %s", a, sec, lb, path);
+    else {
+        /* a section the file lacks: one new section for all its keys */
+        char head[80];
+        snprintf(head, sizeof head, "\n[%s]\n", sec);
+        line_edit *prev = NULL;
+        for (size_t j = 0; j + 1 < *ned; j++)
+            if (!ed[j].after && !ed[j].replace && !strncmp(ed[j].text, head, strlen(head)))
+                prev = &ed[j];
+        if (prev) {
+            size_t l = strlen(prev->text);
+            snprintf(prev->text + l, sizeof prev->text - l, "\n%s = %s", key, eq + 1);
+            (*ned)--;
+        } else
+            snprintf(e->text, sizeof e->text, "%s%s = %s", head, key, eq + 1);
+    }
+    return HY_OK;
+}
+
+/* Appends text with the edits applied: each line replaced or followed as
+ * an edit says, then the new sections. */
+static void apply_edits(sv_buf *b, const char *text, const line_edit *ed, size_t ned)
+{
+    int line = 1;
+    const char *p = text;
+    while (*p) {
+        const char *nl = strchr(p, '\n');
+        size_t n = nl ? (size_t)(nl - p) : strlen(p);
+        int replaced = 0;
+        for (size_t i = 0; i < ned; i++)
+            if (ed[i].replace == line && !replaced) {
+                sv_puts(b, ed[i].text);
+                replaced = 1;
+            }
+        if (!replaced)
+            sv_add(b, p, n);
+        sv_puts(b, "\n");
+        for (size_t i = 0; i < ned; i++)
+            if (ed[i].after == line) {
+                sv_puts(b, ed[i].text);
+                sv_puts(b, "\n");
+            }
+        p += n + (nl ? 1 : 0);
+        line++;
+    }
+    for (size_t i = 0; i < ned; i++)
+        if (!ed[i].after && !ed[i].replace) {
+            sv_puts(b, ed[i].text);
+            sv_puts(b, "\n");
+        }
+}
+
 char *sv_scene_with_sets(const hy_scene *s, const char *path, const char *text, char *const *sets, size_t nsets,
                          const char *out_name, hy_error *err)
 {
@@ -562,86 +643,21 @@ char *sv_scene_with_sets(const hy_scene *s, const char *path, const char *text, 
     size_t ned = 0;
     char outset[300];
     snprintf(outset, sizeof outset, "output.name=%s", out_name);
-    for (size_t i = 0; i <= nsets; i++) {
-        const char *a = i < nsets ? sets[i] : outset;
-        const char *eq = strchr(a, '=');
-        const char *d1 = eq ? memchr(a, '.', (size_t)(eq - a)) : NULL;
-        const char *d2 = eq;
-        while (d2 && d2 > a && d2[-1] != '.')
-            d2--;
-        if (!eq || !d1 || d2 - 1 < d1) {
-            free(ed);
-            hy_scene_doc_free(&d);
-            return hy_error_set(err, HY_EINVAL, "--set %s: expected section.key=value", a), NULL;
-        }
-        char sec[64], label[128] = "", key[64];
-        snprintf(sec, sizeof sec, "%.*s", (int)(d1 - a), a);
-        snprintf(key, sizeof key, "%.*s", (int)(eq - d2), d2);
-        if (d2 - 1 > d1)
-            snprintf(label, sizeof label, "%.*s", (int)(d2 - 1 - d1 - 1), d1 + 1);
-        const char *lb = label[0] ? label : NULL;
-        line_edit *e = &ed[ned++];
-        const hy_decl_head *h = hy_scene_doc_find(&d, sec, lb);
-        hy_scene_loc kl = h ? hy_decl_loc(h, hy_decl_offset(h, key)) : (hy_scene_loc){path, 0, 0};
-        snprintf(e->text, sizeof e->text, "%s = %s", key, eq + 1);
-        if (kl.line > 0 && same_file(kl.file, path))
-            e->replace = kl.line;
-        else if (h && h->loc.line > 0 && same_file(h->loc.file, path))
-            e->after = h->loc.line;
-        else if (lb) { /* a named section from an include: hy_scene_set refused it already */
-            free(ed);
-            hy_scene_doc_free(&d);
-            return hy_error_set(err, HY_EINVAL, "--set %s: [%s %s] is not in %s", a, sec, lb, path), NULL;
-        } else {
-            /* a section the file lacks: one new section for all its keys */
-            char head[80];
-            snprintf(head, sizeof head, "\n[%s]\n", sec);
-            line_edit *prev = NULL;
-            for (size_t j = 0; j + 1 < ned; j++)
-                if (!ed[j].after && !ed[j].replace && !strncmp(ed[j].text, head, strlen(head)))
-                    prev = &ed[j];
-            if (prev) {
-                size_t l = strlen(prev->text);
-                snprintf(prev->text + l, sizeof prev->text - l, "\n%s = %s", key, eq + 1);
-                ned--;
-            } else
-                snprintf(e->text, sizeof e->text, "%s%s = %s", head, key, eq + 1);
-        }
-    }
+    int rc = HY_OK;
+    for (size_t i = 0; !rc && i <= nsets; i++)
+        rc = edit_of(ed, &ned, &d, path, i < nsets ? sets[i] : outset, err);
     sv_buf b = {0};
-    sv_printf(&b, "# saved by hystviz serve from %s", path);
-    for (size_t i = 0; i < nsets; i++)
-        sv_printf(&b, " --set %s", sets[i]);
-    sv_puts(&b, "\n");
-    int line = 1;
-    const char *p = text;
-    while (*p) {
-        const char *nl = strchr(p, '\n');
-        size_t n = nl ? (size_t)(nl - p) : strlen(p);
-        int replaced = 0;
-        for (size_t i = 0; i < ned; i++)
-            if (ed[i].replace == line && !replaced) {
-                sv_puts(&b, ed[i].text);
-                replaced = 1;
-            }
-        if (!replaced)
-            sv_add(&b, p, n);
+    if (!rc) {
+        sv_printf(&b, "# saved by hystviz serve from %s", path);
+        for (size_t i = 0; i < nsets; i++)
+            sv_printf(&b, " --set %s", sets[i]);
         sv_puts(&b, "\n");
-        for (size_t i = 0; i < ned; i++)
-            if (ed[i].after == line) {
-                sv_puts(&b, ed[i].text);
-                sv_puts(&b, "\n");
-            }
-        p += n + (nl ? 1 : 0);
-        line++;
+        apply_edits(&b, text, ed, ned);
     }
-    for (size_t i = 0; i < ned; i++)
-        if (!ed[i].after && !ed[i].replace) {
-            sv_puts(&b, ed[i].text);
-            sv_puts(&b, "\n");
-        }
     free(ed);
     hy_scene_doc_free(&d);
+    if (rc)
+        return NULL;
     if (b.oom) {
         free(b.s);
         return hy_error_set(err, HY_ENOMEM, "out of memory"), NULL;

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* anim_worker.h: the frame protocol between `hystviz serve` and
+/* anim_worker.h: the frame protocol between `hystviz serve` (src/serve) and
  * `hystviz-animate --worker` (docs/ARCHITECTURE.md, "Animation frames").
  *
  * A worker keeps one GL context and answers requests read from its
