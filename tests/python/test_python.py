@@ -155,14 +155,21 @@ with tempfile.TemporaryDirectory() as tmp:
     refused("a newline in ygamma's solver", lambda: hystviz.ygamma(m, u, 10, points=10, solver="exact\n[series z]"))
     check(len(os.listdir(sd)) == 0, f"nothing written by a refused save: {os.listdir(sd)}")
     # a string parameter reaches the library through its --set parser
-    upath = os.path.join(tmp, "u2.csv")
+    upath = os.path.join(tmp, "u 2 #.csv")  # a space and a '#': the value's own characters (quoted for the parser)
     with open(upath, "w") as f:
         f.write("0,0\n0.5,1\n1,0\n")
     ufile = hystviz.Input("file", file=upath)
-    check(ufile.scene_sets() == [f"input.file={upath}".encode()] and upath not in ufile.scene_text(),
+    check(ufile.scene_sets() == [f'input.file="{upath}"'.encode()] and upath not in ufile.scene_text(),
           "a string parameter goes to the --set parser, not into scene text")
     tf, uf, yf = hystviz.steady_loop(m, ufile, points=20)
     check(tf.size == 21 and np.all(np.isfinite(yf)) and abs(uf.max() - 1) < 1e-12, "steady_loop on an input file (a string key)")
+    title = 'a "quoted" title \\ with #'
+    svg = hystviz.render(fig15, figure__title=title).svg
+    tdir = os.path.join(tmp, "titled")
+    cli("render", fig15, "--set", 'figure.title="a \\"quoted\\" title \\\\ with #"', "--format", "svg", "-o", tdir)
+    with open(os.path.join(tdir, "fig15_minor_loop_ex4.svg"), "rb") as f:
+        want = f.read()
+    check(svg == want and svg != fig.svg, "a text override is quoted for the --set parser: the SVG equals hystviz render's with the quoted title")
 
     # Bouc-Wen: the CLI's output for a force file at the integration rate
     n = 3000

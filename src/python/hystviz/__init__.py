@@ -84,6 +84,23 @@ def _text_param(what, v):
     return s
 
 
+def _set_value(key, v):
+    """v as the value of the override key ("section.key" or
+    "section.NAME.key") for the library's --set parser: a typed value as _fmt
+    writes it; a string checked (_text_param), and for a text key (kind
+    string or path) quoted as the scene format quotes ("..." with \\" and
+    \\\\), so spaces, quotes and '#' are the value's own characters."""
+    if _typed(v):
+        return _fmt(v)
+    text = _text_param(key, v)
+    parts = key.split(".")
+    sec = _SECTIONS.get(parts[0].strip())
+    kind = next((k["kind"] for k in sec["keys"] if k["name"] == parts[-1].strip()), None) if sec else None
+    if kind in ("string", "path"):
+        return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return text
+
+
 def _typed(v):
     """Whether v is a typed value (a number, a bool, or a list of them) that
     _fmt writes as scene text itself; anything else is a string, which goes to
@@ -127,7 +144,7 @@ class _Section:
         # strings go to the library's --set parser as "section.key=value"
         lines = [f"[{self.section}]", f"kind = {kind}"] + [f"{k} = {_fmt(v)}" for k, v in params.items() if _typed(v)]
         self._text = "\n".join(lines) + "\n"  # the section as scene text, made once
-        self._sets = [f"{self.section}.{k}={_text_param(f'{self.section}.{k}', v)}".encode()
+        self._sets = [f"{self.section}.{k}={_set_value(f'{self.section}.{k}', v)}".encode()
                       for k, v in params.items() if not _typed(v)]
 
     def scene_text(self):
@@ -294,12 +311,12 @@ class Result:
 
 
 def _sets(sets, overrides):
-    """Overrides as b"section.key=value" for the library's --set parser: a
-    typed value as _fmt writes it, a string as it is (no NUL, no line break)."""
+    """Overrides as b"section.key=value" for the library's --set parser
+    (_set_value: typed values as _fmt writes them, strings checked and, for
+    text keys, quoted)."""
     d = dict(sets or {})
     d.update({k.replace("__", "."): v for k, v in overrides.items()})
-    return [f"{_text_param('override key', k)}={_fmt(v) if _typed(v) else _text_param(k, v)}".encode()
-            for k, v in d.items()]
+    return [f"{_text_param('override key', k)}={_set_value(k, v)}".encode() for k, v in d.items()]
 
 
 def _carray(enc):
@@ -327,8 +344,9 @@ def _run(scene, enc, max_work=0.0):
 def run(scene, sets=None, max_work=0.0, **overrides):
     """Computes a scene: a path to a .scene file, or its text (anything with a
     newline).  Overrides as section__key=value or sets={"section.key": value}:
-    numbers are passed as typed values, strings as they are to the library's
-    --set parser (a NUL byte or a line break in either is a ValueError).
+    numbers are passed as typed values, strings to the library's --set parser,
+    quoted there for text keys (a title "a b" is the text a b, not '"a b"');
+    a NUL byte or a line break in a key or a string is a ValueError.
     Returns a Result."""
     return _run(scene, _sets(sets, overrides), max_work)
 
