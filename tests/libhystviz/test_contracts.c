@@ -15,18 +15,8 @@
 #include <unistd.h>
 
 #include "hystviz.h"
+#include "../core/tutil.h"
 #include "../tmpdir.h"
-
-static int fails;
-
-#define CHECK(c, ...)                                                                                                  \
-    do {                                                                                                               \
-        if (!(c)) {                                                                                                    \
-            printf("FAIL: " __VA_ARGS__);                                                                              \
-            printf("\n");                                                                                              \
-            fails++;                                                                                                   \
-        }                                                                                                              \
-    } while (0)
 
 static const char scene[] = "[model]\nkind = lugre\nsigma0 = 6\n[input]\nkind = bimodal\n[compute]\npoints = 50\n"
                             "[figure]\nkind = loop\n[series minor]\ndata = minor\n";
@@ -171,6 +161,5 @@ int main(void)
     }
     hy_result_free(r);
     writer();
-    printf("%s\n", fails ? "contracts: FAILED" : "contracts: ok");
-    return fails ? 1 : 0;
+    return tu_finish("contracts");
 }
