@@ -657,8 +657,8 @@ static int builtins_load(const char *dir, const char *path, char **buf, size_t *
     int e = hy_file_read(path, BUILTINS_BYTES, buf, len, &real, why, sizeof why);
     if (e == EFBIG)
         snprintf(why, sizeof why, "larger than the %d bytes allowed", BUILTINS_BYTES);
-    else if (!e && (!(root = realpath(dir, NULL)) || strncmp(real, root, strlen(root)) ||
-                    real[strlen(root)] != '/')) {
+    else if (!e && (!(root = realpath(dir, NULL)) ||
+                    (strcmp(root, "/") && (strncmp(real, root, strlen(root)) || real[strlen(root)] != '/')))) {
         snprintf(why, sizeof why, "it lies outside the scene directory (a link out of it is not followed)");
         e = EINVAL;
     }
