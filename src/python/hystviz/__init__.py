@@ -92,6 +92,8 @@ def _set_value(key, v):
     \\\\), so spaces, quotes and '#' are the value's own characters."""
     if _typed(v):
         return _fmt(v)
+    if isinstance(v, (list, tuple)):  # a list of words (identifiers: formats = svg, png)
+        return ", ".join(_set_value(key, x) for x in v)
     text = _text_param(key, v)
     parts = key.split(".")
     sec = _SECTIONS.get(parts[0].strip())
