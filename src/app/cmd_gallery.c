@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include "hy_config.h"
+#include "anim_names.h"
 #include "cli_util.h"
 #include "export_anim.h"
 #include "hy_file.h"
@@ -631,6 +632,7 @@ extern char **environ;
 
 #define BUILTINS_FILE "gallery-builtins"
 #define BUILTINS_MAX 16
+#define BUILTINS_BYTES 16384 /* 16 lines of at most 254 characters, comments besides */
 #define POSTER_SIZE "640x360"
 #define POSTER_TIMEOUT_S 120
 
@@ -640,32 +642,70 @@ typedef struct builtin {
     int have; /* builtin_NAME.png is there */
 } builtin;
 
+/* DIR/gallery-builtins under the scene file policy: a regular file (never
+ * a FIFO, device or directory: hy_file_read opens without blocking), at
+ * most BUILTINS_BYTES, whose real path lies below DIR's (a link out is
+ * refused, not read).  0 with *buf (NUL-terminated; NULL: no file), or 2
+ * with a message naming the file. */
+static int builtins_load(const char *dir, const char *path, char **buf, size_t *len)
+{
+    char why[200], *real = NULL, *root = NULL;
+    struct stat st;
+    *buf = NULL;
+    if (lstat(path, &st) && errno == ENOENT)
+        return 0;
+    int e = hy_file_read(path, BUILTINS_BYTES, buf, len, &real, why, sizeof why);
+    if (e == EFBIG)
+        snprintf(why, sizeof why, "larger than the %d bytes allowed", BUILTINS_BYTES);
+    else if (!e && (!(root = realpath(dir, NULL)) ||
+                    (strcmp(root, "/") && (strncmp(real, root, strlen(root)) || real[strlen(root)] != '/')))) {
+        snprintf(why, sizeof why, "it lies outside the scene directory (a link out of it is not followed)");
+        e = EINVAL;
+    }
+    free(real);
+    free(root);
+    if (!e)
+        return 0;
+    fprintf(stderr, "hystviz gallery: %s: cannot read: %s\n", path, why);
+    free(*buf);
+    *buf = NULL;
+    return 2;
+}
+
 /* Reads DIR/gallery-builtins into b (at most BUILTINS_MAX); none is no file.
- * 0, or 2 with one message naming the file and line. */
+ * Each name must be one of the built-in animations (anim_names.h): a line
+ * such as "--worker 1" is refused, never passed on.  0, or 2 with one
+ * message naming the file and line. */
 static int builtins_read(const char *dir, builtin *b, size_t *n)
 {
     *n = 0;
-    char *path = join(dir, BUILTINS_FILE);
+    char *path = join(dir, BUILTINS_FILE), *text = NULL;
+    size_t size = 0;
     if (!path)
         return 2;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        int e = errno;
-        if (e != ENOENT)
-            fprintf(stderr, "hystviz gallery: %s: cannot read: %s\n", path, strerror(e));
+    int rc = builtins_load(dir, path, &text, &size);
+    if (rc || !text) { /* refused (said), or no file */
         free(path);
-        return e == ENOENT ? 0 : 2;
+        return rc;
     }
     char line[256];
-    const char *why = NULL;
+    const char *why = NULL, *at = text, *stop = text + size;
     long ln = 0;
-    while (!why && fgets(line, sizeof line, f)) {
+    while (!why && at < stop) {
         ln++;
-        size_t len = strlen(line);
-        if (len == sizeof line - 1 && line[len - 1] != '\n') {
+        const char *nl = memchr(at, '\n', (size_t)(stop - at));
+        size_t len = nl ? (size_t)(nl - at) : (size_t)(stop - at);
+        if (len > sizeof line - 2) {
             why = "a line longer than 254 characters";
             break;
         }
+        if (memchr(at, '\0', len)) {
+            why = "a NUL byte (not a text file)";
+            break;
+        }
+        memcpy(line, at, len);
+        line[len] = '\0';
+        at += len + (nl != NULL);
         char *t = line + strspn(line, " \t");
         if (*t == '#' || *t == '\n' || *t == '\r' || *t == '\0')
             continue;
@@ -687,6 +727,8 @@ static int builtins_read(const char *dir, builtin *b, size_t *n)
             why = "the frame is a whole number from 0 to 1000000";
         else if (*end)
             why = "one NAME and one FRAME a line";
+        else if ((t[m] = '\0', !anim_name_known(t)))
+            why = "not a built-in animation's name (hystviz animate --list names them)";
         else if (*n == BUILTINS_MAX)
             why = "at most 16 built-in animations";
         else {
@@ -701,9 +743,7 @@ static int builtins_read(const char *dir, builtin *b, size_t *n)
                 (*n)++;
         }
     }
-    if (!why && ferror(f))
-        why = "read error";
-    fclose(f);
+    free(text);
     if (why)
         fprintf(stderr, "hystviz gallery: %s:%ld: %s\n", path, ln, why);
     free(path);
@@ -791,7 +831,8 @@ static int poster_render(const opts *o, builtin *b)
     }
     snprintf(range, sizeof range, "%ld:%ld", b->frame, b->frame + 1);
     snprintf(err, sizeof err, "%s/stderr", tmp);
-    char *argv[] = {prog, "animate", b->name, "--size", POSTER_SIZE, "--frames", range, "-o", tmp, "--quiet", NULL};
+    char *argv[] = {prog, "animate", "--size", POSTER_SIZE, "--frames", range, "-o", tmp, "--quiet", "--", b->name,
+                    NULL}; /* "--": a name is never an option */
     int st = poster_run(argv, err, why, sizeof why);
     int rc = 0;
     if (st > 0)

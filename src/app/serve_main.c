@@ -19,9 +19,14 @@ int main(int argc, char **argv)
     cli_signals_block(&stop); /* first: serve takes SIGINT/SIGTERM itself (sigwait) */
     gsl_set_error_handler_off();
     sv_malloc_tune(); /* freed render memory is reused, not faulted in again */
+    static char name[] = "serve";
     if (argc < 2) {
-        static char name[] = "serve", *args[] = {name, NULL};
+        static char *args[] = {name, NULL};
         return cli_stdout_status("serve", hy_cmd_serve(1, args));
+    }
+    if (argv[1][0] == '-') { /* `hystviz-serve --version`, `--help`: serve's own, as every command answers them */
+        argv[0] = name;
+        return cli_stdout_status("serve", hy_cmd_serve(argc, argv));
     }
     return cli_stdout_status("serve", hy_cmd_serve(argc - 1, argv + 1));
 }

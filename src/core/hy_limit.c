@@ -35,8 +35,13 @@ double hy_limit_step(double a, double g0, double y, int s, double d)
 double hy_limit_step_area(double a, double g0, double y, int s, double d)
 {
     /* ∫_0^d (e^{-ar} y + s g0 (1 - e^{-ar})) s dr = s y d φ1(ad) + a g0 d² φ2(ad) */
-    double x = a * d;
-    return s * y * d * hy_phi1(x) + (a * g0) * d * d * hy_phi2(x);
+    double x = a * d, q = (a * g0) * d * d;
+    if (isfinite(q) && x < 1e150)
+        return s * y * d * hy_phi1(x) + q * hy_phi2(x);
+    /* scaled where a g0 d² or x² (inside φ2) overflows although the area
+     * fits (runs of 1e200 and more): a d² φ2(x) = d · x φ2(x) = d (1 - φ1(x)) */
+    double xphi2 = x < 0.5 ? x * hy_phi2(x) : 1 - hy_phi1(x);
+    return s * y * d * hy_phi1(x) + g0 * (d * xphi2);
 }
 
 /* y°(0) = B/(1 - A) for the affine period map y ↦ A y + B.

@@ -152,7 +152,7 @@ static double loop_area(const hy_steady *st, const tp *seq, size_t ip, size_t iq
             break;
         int s = seq[i + 1].u > seq[i].u ? 1 : -1, closes = i >= iq && u > lo && u <= hi;
         double d = closes ? fabs(u - seq[i].u) : hi - lo, x = a * d, c = s * st->g0 - y_start;
-        area += s * (delta * d * hy_phi1(x) + c * a * d * d * hy_phi2(x));
+        area += hy_limit_step_area(a, s * c, delta, s, d); /* s (δ0 d φ1 + c a d² φ2), scaled where d² overflows */
         delta = exp(-x) * delta + c * -expm1(-x);
         if (closes)
             break;

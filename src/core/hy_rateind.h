@@ -65,8 +65,10 @@ typedef struct hy_minor_loop {
  */
 
 /* out[0] the output y, out[1] a second quantity the model can draw (NaN:
- * none; Jiles-Atherton: M), out[2] ∫ y du along the path so far (NaN: not
- * tracked). */
+ * none; Jiles-Atherton: M), out[2] a path integral along the path so far
+ * whose change over a closed path is ∮ y du (NaN: not tracked): ∫ y du, or,
+ * for a model whose y is u plus a bounded lag (the play operator), ∫ (y - u) du
+ * in the lag's scale, which neither overflows nor cancels at any |u|. */
 enum { HY_RI_NOUT = 3 };
 
 enum {

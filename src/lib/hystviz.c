@@ -4,12 +4,14 @@
  * and `hystviz data` use (src/pipeline), so the numbers and bytes are theirs. */
 #include "hystviz.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "hy_config.h"
+#include "hy_out.h"
 #include "hy_plot.h"
 #include "hy_scene.h"
 #include "hy_scene_schema.h"
@@ -46,6 +48,29 @@ static int compute(hy_result *r, hy_result **out, hy_error *err)
     return finish(r, rc, out);
 }
 
+/* The arguments every entry point that makes a result checks (hystviz.h,
+ * "Pointers"): 0, or HY_EINVAL with the message. */
+static int args_check(const char *what, const void *src, const char *const *sets, size_t nsets, double max_work,
+                      hy_result **out, hy_error *err)
+{
+    if (out)
+        *out = NULL;
+    else
+        return hy_error_set(err, HY_EINVAL, "hy_result_from_%s: out must not be NULL (nothing computed)", what);
+    if (!src)
+        return hy_error_set(err, HY_EINVAL, "hy_result_from_%s: no scene %s (NULL)", what,
+                            strcmp(what, "file") ? "text" : "path");
+    if (!sets && nsets)
+        return hy_error_set(err, HY_EINVAL, "hy_result_from_%s: sets is NULL but nsets is %zu", what, nsets);
+    for (size_t i = 0; i < nsets; i++)
+        if (!sets[i])
+            return hy_error_set(err, HY_EINVAL, "hy_result_from_%s: override sets[%zu] is NULL", what, i);
+    if (!isfinite(max_work))
+        return hy_error_set(err, HY_EINVAL, "hy_result_from_%s: the work budget max_work must be a finite number "
+                            "(<= 0: the default), got %g", what, max_work);
+    return HY_OK;
+}
+
 static hy_result *result_new(const char *name, hy_result **out, hy_error *err)
 {
     *out = NULL;
@@ -69,11 +94,12 @@ static hy_scene_policy policy(double max_work)
 int hy_result_from_text(const char *name, const char *text, size_t len, const char *const *sets, size_t nsets,
                         double max_work, hy_result **out, hy_error *err)
 {
+    int bad = args_check("text", text, sets, nsets, max_work, out, err);
+    if (bad)
+        return bad;
     hy_result *r = result_new(name, out, err);
     if (!r)
         return HY_ENOMEM;
-    if (!text)
-        return finish(r, hy_error_set(err, HY_EINVAL, "%s: no scene text", r->name), out);
     hy_scene_policy pol = policy(max_work);
     int rc = hy_scene_run_load_text(&r->run, r->name, text, len, (char *const *)sets, nsets, &pol, err);
     return rc ? finish(r, rc, out) : compute(r, out, err);
@@ -82,6 +108,9 @@ int hy_result_from_text(const char *name, const char *text, size_t len, const ch
 int hy_result_from_file(const char *path, const char *const *sets, size_t nsets, double max_work, hy_result **out,
                         hy_error *err)
 {
+    int bad = args_check("file", path, sets, nsets, max_work, out, err);
+    if (bad)
+        return bad;
     hy_result *r = result_new(path, out, err);
     if (!r)
         return HY_ENOMEM;
@@ -164,22 +193,32 @@ const hy_loops *hy_result_loops(const hy_result *r)
 
 int hy_result_render(const hy_result *r, const char *format, unsigned char **bytes, size_t *len, hy_error *err)
 {
-    *bytes = NULL;
-    *len = 0;
+    if (bytes)
+        *bytes = NULL;
+    if (len)
+        *len = 0;
+    if (!bytes || !len)
+        return hy_error_set(err, HY_EINVAL, "hy_result_render: %s must not be NULL", bytes ? "len" : "bytes");
     if (!r)
         return hy_error_set(err, HY_EINVAL, "no result to draw");
+    if (!format)
+        return hy_error_set(err, HY_EINVAL, "give one format (svg, pdf or png), not NULL");
     int fmt[3];
     size_t n = 0;
-    int rc = hy_scene_formats_parse(format ? format : "", fmt, &n, err);
+    int rc = hy_scene_formats_parse(format, fmt, &n, err);
     if (!rc && n != 1)
-        rc = hy_error_set(err, HY_EINVAL, "give one format (svg, pdf or png), not '%s'", format ? format : "");
+        rc = hy_error_set(err, HY_EINVAL, "give one format (svg, pdf or png), not '%s'", format);
     return rc ? rc : hy_scene_run_render(&r->run, fmt[0], bytes, len, NULL, err);
 }
 
 int hy_result_csv(const hy_result *r, char **text, size_t *len, hy_error *err)
 {
-    *text = NULL;
-    *len = 0;
+    if (text)
+        *text = NULL;
+    if (len)
+        *len = 0;
+    if (!text || !len)
+        return hy_error_set(err, HY_EINVAL, "hy_result_csv: %s must not be NULL", text ? "len" : "text");
     if (!r)
         return hy_error_set(err, HY_EINVAL, "no result to print");
     return hy_scene_run_csv(&r->run, text, len, err);
@@ -196,6 +235,24 @@ int hy_boucwen_run(const double *u, size_t n, double fs, double *y, hy_error *er
     if (!(fs > 0) || !isfinite(fs))
         return hy_error_set(err, HY_EINVAL, "fs must be a positive number of Hz, got %g", fs);
     return hy_boucwen_synth(&p, &o, fs, 1, 1, u, n, y, err);
+}
+
+int hy_write_file(const char *path, const void *data, size_t len, hy_error *err)
+{
+    if (!path)
+        return hy_error_set(err, HY_EINVAL, "hy_write_file: no path (NULL)");
+    if (!data && len)
+        return hy_error_set(err, HY_EINVAL, "cannot write '%s': no data (NULL) for %zu bytes", path, len);
+    hy_out o;
+    int rc = hy_out_open(&o, path, 0, err);
+    if (rc)
+        return rc;
+    if (len && fwrite(data, 1, len, hy_out_file(&o)) != len) {
+        int e = errno;
+        hy_out_abort(&o);
+        return hy_error_set(err, HY_EIO, "cannot write '%s': %s", path, strerror(e));
+    }
+    return hy_out_commit(&o, err);
 }
 
 /* ---- the schema as JSON --------------------------------------------------- */

@@ -18,6 +18,11 @@
  * Thread safety: no global state; a hy_result is used by one thread at a
  * time; distinct results may be computed and drawn concurrently.
  *
+ * Pointers: every pointer argument is either "may be NULL" (said where it
+ * is, with what NULL means) or must not be NULL; a NULL where one is needed
+ * is an error (HY_EINVAL and a message in err), never a crash.  err itself
+ * may always be NULL (no message).  Out-pointers are set on every return.
+ *
  *     hy_result *r;
  *     hy_error err;
  *     const char *sets[] = {"model.sigma0=2"};
@@ -43,7 +48,7 @@
 #include "hy_status.h"
 
 /* The library's version, "MAJOR.MINOR.PATCH" (that of the hystviz command
- * built with it). */
+ * built with it); never NULL. */
 const char *hy_version(void);
 
 /* A computed scene: its series, loops and figure. */
@@ -53,20 +58,27 @@ typedef struct hy_result hy_result;
  * includes and relative paths are looked up, as a file's path would be),
  * applies the nsets overrides "section.key=value", checks everything that
  * can be checked before computing and computes.  max_work is the work budget
- * (docs/SCENES.md; <= 0: the default of `hystviz render`).  On success *out
- * is the result (free it with hy_result_free); on error *out is NULL and err
- * names file:line:col. */
+ * (docs/SCENES.md; <= 0: the default of `hystviz render`; NaN and infinities
+ * are refused: there is no unlimited budget).  On success *out is the result
+ * (free it with hy_result_free); on error *out is NULL and err names
+ * file:line:col.
+ * Pointers: name may be NULL ("<scene>"); text must not be NULL (even for
+ * len 0); sets may be NULL only when nsets is 0, and each sets[i] must not be
+ * NULL; out must not be NULL (HY_EINVAL, nothing computed). */
 int hy_result_from_text(const char *name, const char *text, size_t len, const char *const *sets, size_t nsets,
                         double max_work, hy_result **out, hy_error *err);
 
-/* As hy_result_from_text on the file at path. */
+/* As hy_result_from_text on the file at path (must not be NULL); sets,
+ * max_work and out as there. */
 int hy_result_from_file(const char *path, const char *const *sets, size_t nsets, double max_work, hy_result **out,
                         hy_error *err);
 
 /* Frees r (NULL is allowed). */
 void hy_result_free(hy_result *r);
 
-/* The number of series (the scene's [series NAME] sections, in order). */
+/* The number of series (the scene's [series NAME] sections, in order); 0
+ * for r NULL.  Every reader below takes r NULL as "no result" (0, NULL or
+ * NaN, as it says for i out of range). */
 size_t hy_result_nseries(const hy_result *r);
 
 /* Series i: its name, what it draws ("input", "ysteady", "ygamma", "minor",
@@ -79,6 +91,7 @@ size_t hy_result_series(const hy_result *r, size_t i, const double **x, const do
  * its n (0 for i out of range): one call where a foreign caller (the Python
  * package) would otherwise make three. */
 size_t hy_result_series_copy(const hy_result *r, size_t i, double *x, double *y, size_t cap);
+/* Series i's name and its data key; NULL for i out of range or r NULL. */
 const char *hy_result_series_name(const hy_result *r, size_t i);
 const char *hy_result_series_data(const hy_result *r, size_t i);
 
@@ -87,16 +100,33 @@ const char *hy_result_series_data(const hy_result *r, size_t i);
 double hy_result_series_error(const hy_result *r, size_t i, const char **ref);
 
 /* The steady state's loops (major loop, minor loops with their areas, energy
- * per cycle; hy_loops.h) where the scene computed them, else NULL. */
+ * per cycle; hy_loops.h) where the scene computed them, else NULL (also for
+ * r NULL). */
 const hy_loops *hy_result_loops(const hy_result *r);
 
 /* The figure as "svg", "pdf" or "png" bytes (malloc'd; free with free()),
- * byte for byte what `hystviz render` writes. */
+ * byte for byte what `hystviz render` writes.  bytes and len must not be
+ * NULL (HY_EINVAL); on error *bytes is NULL and *len 0 where they are not.
+ * r NULL and format NULL are errors (HY_EINVAL). */
 int hy_result_render(const hy_result *r, const char *format, unsigned char **bytes, size_t *len, hy_error *err);
 
 /* Every series as the CSV `hystviz data` prints ("series,x,y", %.17g), a
- * malloc'd NUL-terminated text of *len bytes. */
+ * malloc'd NUL-terminated text of *len bytes.  text and len must not be
+ * NULL (HY_EINVAL); on error *text is NULL and *len 0 where they are not;
+ * r NULL is an error. */
 int hy_result_csv(const hy_result *r, char **text, size_t *len, hy_error *err);
+
+/* Writes the len bytes at data to path through hystviz's one output writer
+ * (hy_out, as every file `hystviz` writes): a temporary beside the target
+ * made with O_EXCL under a random name, renamed onto path when complete, so
+ * path is whole or untouched; a symbolic link at path is followed only to a
+ * file in path's own directory or below (one out of it is refused, never
+ * followed or replaced); a FIFO or character device at path is written as
+ * it is, never replaced; a directory, socket or block device is refused;
+ * "-" is standard output.  path must not be NULL; data may be NULL only
+ * when len is 0.  Errors: HY_EINVAL, HY_EIO with "cannot write 'PATH':
+ * reason"; no temporary is left. */
+int hy_write_file(const char *path, const void *data, size_t len, hy_error *err);
 
 /* The scene vocabulary (sections, keys, kinds, ranges, defaults, one-line
  * descriptions) as JSON, malloc'd; for bindings that build their classes
@@ -107,7 +137,8 @@ char *hy_schema_json(void);
  * u (n samples at fs Hz, integrated at that rate from rest) with the
  * benchmark's parameters and Newmark integrator (Table 1; hy_boucwen.h):
  * what `hystviz boucwen data --input FILE --upsample 1 --fs FS --noise 0`
- * prints (no measurement noise). */
+ * prints (no measurement noise).  u and y must not be NULL and n >= 1;
+ * fs finite and > 0 (HY_EINVAL otherwise). */
 int hy_boucwen_run(const double *u, size_t n, double fs, double *y, hy_error *err);
 
 #endif

@@ -6,6 +6,7 @@
  * was removed: it had no axes or scale; hy_gl's ribbon pass stays.) */
 #include "anim_scenes.h"
 
+#include "anim_names.h"
 #include "anim_preisach.h"
 
 #include <math.h>
@@ -544,21 +545,22 @@ static const char *ex4_describe(void *state)
 /* ---- the list ---- */
 
 static const anim_scene scenes[] = {
-    {"gamma-sweep-ex1", "Example 1 (Fig. 4): Dahl + filter, sine input, y_gamma vs u as gamma goes 1 -> 1000 (GSL)",
+    {HY_ANIM_GAMMA_SWEEP_EX1, "Example 1 (Fig. 4): Dahl + filter, sine input, y_gamma vs u as gamma goes 1 -> 1000 (GSL)",
      6.0, sweep1_prepare, sweep_draw, sweep_describe, sweep_release},
-    {"gamma-sweep-ex2", "Example 2 (Figs. 7, 9): LuGre, triangle input, y_gamma onto y*_u as gamma goes 1 -> 1000",
+    {HY_ANIM_GAMMA_SWEEP_EX2, "Example 2 (Figs. 7, 9): LuGre, triangle input, y_gamma onto y*_u as gamma goes 1 -> 1000",
      6.0, sweep2_prepare, sweep_draw, sweep_describe, sweep_release},
-    {"gamma-sweep-ex3", "Example 3 (Fig. 11): LuGre, bimodal input, y_gamma onto y*_u as gamma goes 1 -> 1000",
+    {HY_ANIM_GAMMA_SWEEP_EX3, "Example 3 (Fig. 11): LuGre, bimodal input, y_gamma onto y*_u as gamma goes 1 -> 1000",
      6.0, sweep3_prepare, sweep_draw, sweep_describe, sweep_release},
-    {"k-cycle-ex2", "Example 2 (Figs. 8, 9): y*_u cycle by cycle converging onto the loop y°_u",
+    {HY_ANIM_K_CYCLE_EX2, "Example 2 (Figs. 8, 9): y*_u cycle by cycle converging onto the loop y°_u",
      6.0, kcycle2_prepare, kcycle_draw, kcycle_describe, sweep_release},
-    {"k-cycle-ex3", "Example 3 (Figs. 12, 13): y*_u cycle by cycle converging onto the loop y°_u",
+    {HY_ANIM_K_CYCLE_EX3, "Example 3 (Figs. 12, 13): y*_u cycle by cycle converging onto the loop y°_u",
      6.0, kcycle3_prepare, kcycle_draw, kcycle_describe, sweep_release},
-    {"minor-loop-ex4", "Example 4 (Figs. 15-17): the minor loop as sigma0 goes 1 -> 6 and u_min,2 0.2 -> 0.5",
+    {HY_ANIM_MINOR_LOOP_EX4, "Example 4 (Figs. 15-17): the minor loop as sigma0 goes 1 -> 6 and u_min,2 0.2 -> 0.5",
      6.0, ex4_prepare, ex4_draw, ex4_describe, sweep_release},
-    {"preisach-plane", "Preisach model, Fig. 2's input: the (alpha, beta) plane's staircase memory beside the loop",
+    {HY_ANIM_PREISACH_PLANE, "Preisach model, Fig. 2's input: the (alpha, beta) plane's staircase memory beside the loop",
      8.0, pplane_prepare, pplane_draw, pplane_describe, pplane_release},
 };
+_Static_assert(sizeof scenes / sizeof scenes[0] == HY_ANIM_NBUILTIN, "anim_names.h names every built-in animation");
 
 const anim_scene *const *anim_scene_list(void)
 {

@@ -31,8 +31,13 @@ HY_MODEL_ROWS(play, play_par,
 
 #include "scene_model.h"
 
+/* The path integral is kept in the lag's scale: iy = ∫ (y - u) du, which
+ * changes by ∮ y du over a closed path (∮ u du = 0) while its terms are the
+ * lag d = y - u (|d| <= r) times du, so it neither overflows where y du would
+ * (|u| >= 1e154) nor cancels O(u^2) terms down to an O(r u) area (r = 1e-300).
+ * d is tracked as its own state: at |u| = 1e200 and r = 0.01, y = u - r is u. */
 typedef struct play_state {
-    double u, y, iy; /* input, output, ∫ y du along the path */
+    double u, y, d, iy; /* input, output, lag y - u in [-r, r], ∫ (y - u) du along the path */
 } play_state;
 
 static const char *const quantities[] = {"output", NULL};
@@ -41,7 +46,7 @@ static void outputs(const play_state *s, double out[HY_RI_NOUT])
 {
     out[0] = s->y;
     out[1] = NAN;
-    out[2] = s->iy;
+    out[2] = s->iy; /* ∫ (y - u) du: its change over a closed path is ∮ y du */
 }
 
 static int play_init(const void *par, void *st, double u0, double out[HY_RI_NOUT], hy_error *err)
@@ -52,6 +57,7 @@ static int play_init(const void *par, void *st, double u0, double out[HY_RI_NOUT
         return hy_error_set(err, HY_EINVAL, "play operator: input must be finite (got %g)", u0);
     s->u = u0;
     s->y = fmax(u0 - p->r, fmin(u0 + p->r, p->y0));
+    s->d = fmax(-p->r, fmin(p->r, p->y0 - u0)); /* the lag, not y - u: exact where y rounds to u */
     s->iy = 0;
     outputs(s, out);
     return HY_OK;
@@ -67,11 +73,18 @@ static int play_apply(const void *par, void *st, double u, double out[HY_RI_NOUT
     double dir = u > s->u ? 1.0 : -1.0;
     double grab = s->y + dir * p->r;                        /* where u starts to drag y */
     double held = dir * (u - grab) > 0 ? grab : u;          /* end of the constant piece */
-    s->iy += s->y * (held - s->u);
-    if (held != u) {                                        /* the dragged piece, y = u - dir r */
-        s->iy += ((u - dir * p->r) + s->y) / 2 * (u - held); /* trapezoid of a line: exact */
+    if (held != u)                                          /* the dragged piece, y = u - dir r */
         s->y = u - dir * p->r;
-    }
+    /* ∫ (y - u) du in the lag's terms: y constant while u moves by up to
+     * d + dir r (the lag falls from d to -dir r), then dragged at lag -dir r */
+    double move = u - s->u, free_run = s->d + dir * p->r;  /* dir * free_run in [0, 2r] */
+    double h = dir * move < dir * free_run ? move : free_run;
+    s->iy += h * (s->d - h / 2);
+    if (h != move) {
+        s->iy += -dir * p->r * (move - h);
+        s->d = -dir * p->r;
+    } else
+        s->d = fmax(-p->r, fmin(p->r, s->d - h));
     s->u = u;
     outputs(s, out);
     return HY_OK;

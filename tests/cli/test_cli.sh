@@ -80,5 +80,19 @@ fi
     { [ $rc -eq 3 ] && grep -q 'libmicrohttpd' "$tmp/serve"; } || bad "hystviz serve --help (exit $rc): $(cat "$tmp/serve")"
 "$hv" animate --help > "$tmp/anim" 2>&1 && grep -q 'animate' "$tmp/anim" && ok || bad "hystviz animate --help: $(cat "$tmp/anim")"
 
+# the helpers beside hystviz (libexec when installed) answer --version and
+# --help like every command (issue 36 item 7: "which animation?", "scenes: No
+# such file or directory")
+for helper in hystviz-animate hystviz-serve; do
+    h=$(dirname "$hv")/$helper
+    [ -x "$h" ] || continue
+    [ "$("$h" --version 2> "$tmp/h.err")" = "$("$hv" --version)" ] && ok ||
+        bad "$helper --version: $(cat "$tmp/h.err")"
+    "$h" --help > "$tmp/h.out" 2>&1
+    rc=$?
+    { [ $rc -eq 0 ] && grep -q "^usage: hystviz ${helper#hystviz-}" "$tmp/h.out"; } ||
+        { [ $rc -eq 3 ] && grep -q 'libmicrohttpd' "$tmp/h.out"; } || bad "$helper --help (exit $rc): $(head -c 300 "$tmp/h.out")"
+done
+
 echo "cli: $pass passed, $fail failed"
 [ $fail -eq 0 ]

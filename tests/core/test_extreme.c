@@ -2,7 +2,7 @@
 /* test_extreme.c: stiff and extreme parameters stay finite and equal an
  * independent 113-bit (__float128) reference: σ0 ∈ [1e-6, 1e12],
  * g(0) ∈ [1e-12, 1e6], input amplitudes 1e-9 … 1e6, γ ∈ [1e-6, 1e15],
- * k up to 1e9 cycles. */
+ * k up to 1e9 cycles; loop areas at inputs of ±1e200 and ±1e300. */
 #include <gsl/gsl_errno.h>
 
 #include "hy_gamma.h"
@@ -164,11 +164,54 @@ static void gamma_extremes(void)
         }
 }
 
+/* Loop areas at inputs of ±1e200 and ±1e300 (issue 36 item 6): the runs'
+ * a d² φ2(ad) overflowed (d², and x² inside φ2) and the areas and energy
+ * were NaN although they fit.  Dahl with σ0 = 6, g(0) = 2 on the bimodal
+ * input (-A, -A/2, A/2, A): every run saturates at once (a d = 3e200), so
+ * the loops are rectangles 2 g0 (hi - lo) up to terms g0/a (1e-200 of
+ * them): major own 2 g0 2A, minor 2 g0 A, the major's path round both, the
+ * energy both; each within 1e-12 relative. */
+static void huge_amplitudes(void)
+{
+    const double amps[] = {1e200, 1e300};
+    for (size_t k = 0; k < sizeof amps / sizeof *amps; k++) {
+        double A = amps[k], g0 = 2;
+        hy_model m;
+        hy_input in;
+        hy_error err;
+        hy_model_dahl_init(&m, 6 / g0, g0);
+        m.sigma0 = 6;
+        int rc = hy_input_bimodal(&in, -A, -0.5 * A, 0.5 * A, A, NULL, HY_SHAPE_LINEAR, &err);
+        CHECK(rc == HY_OK, "input: %s", err.msg);
+        hy_steady st;
+        if (rc || (rc = hy_steady_init(&st, &m, &in, &err))) {
+            CHECK(0, "amp %g: %s", A, err.msg);
+            hy_input_free(&in);
+            continue;
+        }
+        hy_loops L;
+        rc = hy_loops_find(&st, &L, &err);
+        double major = 2 * g0 * (2 * A), minor = 2 * g0 * A;
+        CHECK(rc == HY_OK && L.nminor == 1, "amp %g: one minor loop (%s)", A, rc ? err.msg : "");
+        if (!rc) {
+            CHECK_CLOSE(L.major.own_area / major, 1, 1e-12, "major loop's own area / 2 g0 (hi - lo)");
+            CHECK_CLOSE(L.major.area / (major + minor), 1, 1e-12, "major loop's area (round the minor too)");
+            if (L.nminor == 1)
+                CHECK_CLOSE(L.minor[0].area / minor, 1, 1e-12, "minor loop's area / 2 g0 (hi - lo)");
+            CHECK_CLOSE(L.area_period / (major + minor), 1, 1e-12, "energy per cycle");
+            hy_loops_free(&L);
+        }
+        hy_steady_free(&st);
+        hy_input_free(&in);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
     steady_grid();
     many_cycles();
     gamma_extremes();
+    huge_amplitudes();
     return tu_finish("extreme");
 }

@@ -340,5 +340,35 @@ else
     echo "(12: hystviz animate cannot render here: the posters are not checked)"
 fi
 
+# 13. gallery-builtins under the scene file policy (issue 36 item 5): a name
+#     that is no built-in animation ("--worker 1" became an option of
+#     hystviz-animate, which then waited on its input) is refused at
+#     file:line; a FIFO (it hung), a link to a device (/dev/zero spun) and a
+#     link out of the scene directory (/etc/passwd was read) are refused by
+#     name, each within 20 s and before anything is written
+B2=$tmp/bs2
+mkdir "$B2"
+cp "$S/look.scene" "$S/a_loop.scene" "$B2/"
+builtins_refused() { # WHAT PATTERN
+    timeout 20 "$hv" gallery --scenes "$B2" -o "$tmp/bg2" -q < /dev/null > /dev/null 2> "$tmp/b2.err"
+    st=$?
+    [ $st -eq 2 ] && grep -q -- "$2" "$tmp/b2.err" && [ ! -e "$tmp/bg2/index.html" ] && ok ||
+        bad "gallery-builtins $1: status $st (2 wanted), $(head -c 300 "$tmp/b2.err")"
+    rm -rf "$B2/gallery-builtins" "$tmp/bg2"
+}
+printf -- '--worker 1\n' > "$B2/gallery-builtins"
+builtins_refused "with --worker" "gallery-builtins:1: not a built-in animation's name"
+printf 'no-such-clip 1\n' > "$B2/gallery-builtins"
+builtins_refused "with an unknown name" "gallery-builtins:1: not a built-in animation's name"
+mkfifo "$B2/gallery-builtins"
+builtins_refused "as a FIFO" "gallery-builtins: cannot read: .*regular"
+ln -s /dev/zero "$B2/gallery-builtins"
+builtins_refused "-> /dev/zero" "gallery-builtins: cannot read: .*regular"
+printf 'preisach-plane 1\n' > "$tmp/outside-builtins"
+ln -s "$tmp/outside-builtins" "$B2/gallery-builtins"
+builtins_refused "-> a file outside the scene directory" "gallery-builtins: cannot read: it lies outside the scene directory"
+head -c 20000 /dev/zero | tr '\0' '#' > "$B2/gallery-builtins"
+builtins_refused "of 20000 bytes" "gallery-builtins: cannot read: larger than"
+
 echo "gallery: $pass passed, $fail failed"
 [ $fail -eq 0 ]

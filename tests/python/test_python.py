@@ -7,6 +7,7 @@ output as `hystviz boucwen data`; errors are exceptions with file:line:col.
 """
 import math
 import os
+import stat
 import subprocess
 import sys
 import tempfile
@@ -83,6 +84,92 @@ with tempfile.TemporaryDirectory() as tmp:
             if l.startswith("minor,")]
     check(len(loops) == len(want) == 1 and loops[0].area == float(want[0][9]),
           f"minor_loops area {loops[0].area!r} == hystviz loops {want[0][9] if want else None}")
+
+    # Figure.save through libhystviz's output writer, as the CLI writes (issue
+    # 36 item 3): it wrote to a predictable path.tmp<pid>, followed a link
+    # planted there, and replaced whatever was at the target (a link, a FIFO,
+    # a device); strings went into scene text as they were
+    sd = os.path.join(tmp, "save")
+    os.mkdir(sd)
+    victim = os.path.join(tmp, "victim.txt")
+    with open(victim, "w") as f:
+        f.write("victim\n")
+
+    def victim_intact():
+        with open(victim) as f:
+            return f.read() == "victim\n"
+    target = os.path.join(sd, "fig.svg")
+    planted = f"{target}.tmp{os.getpid()}"
+    os.symlink(victim, planted)
+    fig.save(target)
+    with open(target, "rb") as f:
+        check(victim_intact() and f.read() == fig.svg and not os.path.islink(target),
+              "a link planted at the old temporary name path.tmp<pid> is not followed")
+    if os.path.lexists(planted):
+        os.unlink(planted)
+    with open(victim, "w") as f:  # (the old code wrote through the link: the next checks start afresh)
+        f.write("victim\n")
+    out_link = os.path.join(sd, "out.svg")
+    os.symlink(victim, out_link)
+    try:
+        fig.save(out_link)
+        check(False, "a link at the target that leads out of its directory is refused")
+    except OSError as e:
+        check(os.path.islink(out_link) and victim_intact(), f"a link out at the target: refused, left as it was: {e}")
+    if os.path.lexists(out_link):
+        os.unlink(out_link)
+    fifo = os.path.join(sd, "pipe.svg")
+    os.mkfifo(fifo)
+    got = []
+
+    def drain():
+        with open(fifo, "rb") as f:
+            got.append(f.read())
+    th = threading.Thread(target=drain, daemon=True)  # daemon: with the old code it waits on a FIFO no one opens
+    th.start()
+    fig.save(fifo)
+    th.join(20)
+    check(stat.S_ISFIFO(os.lstat(fifo).st_mode) and got == [fig.svg],
+          "a FIFO at the target is written as it is, not replaced by a regular file")
+    os.unlink(fifo)
+    check(sorted(os.listdir(sd)) == ["fig.svg"], f"no temporary left beside the target: {sorted(os.listdir(sd))}")
+    for name in os.listdir(sd):
+        os.unlink(os.path.join(sd, name))
+
+    def refused(what, fn):
+        try:
+            fn()
+            check(False, f"{what}: refused")
+        except ValueError as e:
+            check(("NUL" in str(e) or "newline" in str(e) or "carriage" in str(e)) and "victim" not in os.listdir(sd),
+                  f"{what}: ValueError naming it: {e}")
+    refused("a NUL in Figure.save's format", lambda: fig.save(os.path.join(sd, "x.png"), format="svg\0png"))
+    refused("a newline in Figure.save's format", lambda: fig.save(os.path.join(sd, "x"), format="svg\n"))
+    refused("a NUL in Figure.save's path", lambda: fig.save(os.path.join(sd, "x.svg\0.png")))
+    refused("a NUL in render's format", lambda: r.render("svg\0"))
+    refused("a newline in a string parameter", lambda: hystviz.Input("file", file="u.csv\n[model]\nkind = dahl"))
+    refused("a NUL in a string parameter", lambda: hystviz.Input("file", file="u.csv\0x"))
+    refused("a newline in an override", lambda: hystviz.run(fig15, sets={"figure.title": "x\n[model]\nsigma0 = -1"}))
+    refused("a NUL in an override", lambda: hystviz.run(fig15, figure__title="x\0y"))
+    refused("a newline in an override's key", lambda: hystviz.run(fig15, sets={"figure.title\n[x]": "t"}))
+    refused("a newline in ygamma's solver", lambda: hystviz.ygamma(m, u, 10, points=10, solver="exact\n[series z]"))
+    check(len(os.listdir(sd)) == 0, f"nothing written by a refused save: {os.listdir(sd)}")
+    # a string parameter reaches the library through its --set parser
+    upath = os.path.join(tmp, "u 2 #.csv")  # a space and a '#': the value's own characters (quoted for the parser)
+    with open(upath, "w") as f:
+        f.write("0,0\n0.5,1\n1,0\n")
+    ufile = hystviz.Input("file", file=upath)
+    check(ufile.scene_sets() == [f'input.file="{upath}"'.encode()] and upath not in ufile.scene_text(),
+          "a string parameter goes to the --set parser, not into scene text")
+    tf, uf, yf = hystviz.steady_loop(m, ufile, points=20)
+    check(tf.size == 21 and np.all(np.isfinite(yf)) and abs(uf.max() - 1) < 1e-12, "steady_loop on an input file (a string key)")
+    title = 'a "quoted" title \\ with #'
+    svg = hystviz.render(fig15, figure__title=title).svg
+    tdir = os.path.join(tmp, "titled")
+    cli("render", fig15, "--set", 'figure.title="a \\"quoted\\" title \\\\ with #"', "--format", "svg", "-o", tdir)
+    with open(os.path.join(tdir, "fig15_minor_loop_ex4.svg"), "rb") as f:
+        want = f.read()
+    check(svg == want and svg != fig.svg, "a text override is quoted for the --set parser: the SVG equals hystviz render's with the quoted title")
 
     # Bouc-Wen: the CLI's output for a force file at the integration rate
     n = 3000

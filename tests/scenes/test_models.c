@@ -418,6 +418,46 @@ static void play_loop(void)
             "bad.scene:3:1: 'ja_k' is not a parameter of a play model (its keys: play_r, play_y0)");
 }
 
+/* The play operator's areas at both ends of the double range (issue 36 item
+ * 6): the bimodal input scaled by 1e200 (umin1 .. umax2 = -1e200 .. 1e200,
+ * r = 0.01) has a major loop of exact area 2r (2e200 - 2r) = 4e198 and a
+ * minor one of 2r (1e200 - 2r), though y du is 1e400 (they were NaN; also
+ * at 1e300 with r = 1); r =
+ * 1e-300 on (0, 0.2, 1, 1.5) has a minor loop of 2r (0.8 - 2r) = 1.6e-300
+ * (it was -0.0: the path integral's terms are O(1) and cancelled).  Each
+ * within 1e-12 relative of the exact value, energy = major + minor. */
+static void play_extreme_case(const char *input, double r, double lo, double mlo, double mhi, double hi)
+{
+    hy_scene_run run;
+    hy_error err;
+    char text[400];
+    snprintf(text, sizeof text, "[model]\nkind = play\nplay_r = %.17g\n[input]\nkind = bimodal\n%s"
+             "[figure]\nkind = loop\n[series minor]\ndata = minor\n", r, input);
+    if (run_text("play.scene", text, NULL, 0, &run, &err)) {
+        CHECK(0, "play scene r = %g: %s", r, err.msg);
+        return;
+    }
+    double major = 2 * r * ((hi - lo) - 2 * r), minor = 2 * r * ((mhi - mlo) - 2 * r);
+    CHECK(run.have_loops && run.loops.nminor == 1, "r = %g: one minor loop (got %zu)", r, run.loops.nminor);
+    /* the major loop's path goes round the minor loop too: its area holds both, its own area is its own */
+    CHECK_CLOSE(run.loops.major.area / (major + minor), 1, 1e-12, "play major loop area / (major + minor)");
+    CHECK_CLOSE(run.loops.major.own_area / major, 1, 1e-12, "play major loop's own area / 2r (hi - lo - 2r)");
+    if (run.loops.nminor == 1)
+        CHECK_CLOSE(run.loops.minor[0].area / minor, 1, 1e-12, "play minor loop area / 2r (hi - lo - 2r)");
+    CHECK_CLOSE(run.loops.area_period / (major + minor), 1, 1e-12, "play energy per cycle / (major + minor)");
+    hy_scene_run_free(&run);
+}
+
+static void play_extremes(void)
+{
+    play_extreme_case("umin1 = -1e200\numin2 = -0.5e200\numax1 = 0.5e200\numax2 = 1e200\n", 0.01, -1e200, -0.5e200,
+                      0.5e200, 1e200);
+    play_extreme_case("umin1 = -1e300\numin2 = -0.5e300\numax1 = 0.5e300\numax2 = 1e300\n", 1, -1e300, -0.5e300,
+                      0.5e300, 1e300);
+    play_extreme_case("", 1e-300, 0, 0.2, 1, 1.5);
+    play_extreme_case("", 1e-200, 0, 0.2, 1, 1.5);
+}
+
 int main(int argc, char **argv)
 {
     SRC = argc > 1 ? argv[1] : ".";
@@ -430,5 +470,6 @@ int main(int argc, char **argv)
     bouc_wen_operator();
     panels();
     play_loop();
+    play_extremes();
     return tu_finish("models");
 }

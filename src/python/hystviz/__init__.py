@@ -73,6 +73,47 @@ def _keydoc(k):
     return f"    {k['name']} [{k['kind']}{', ' + rng if rng else ''}]{dflt}: {k['doc']}"
 
 
+def _text_param(what, v):
+    """A string parameter (a value, a key, a format name) as the library
+    takes it: a NUL byte would cut it where C reads it and a line break would
+    start a new line of scene text, so either is refused with ValueError."""
+    s = v if isinstance(v, str) else str(v)
+    for ch, name in (("\0", "a NUL byte"), ("\n", "a newline"), ("\r", "a carriage return")):
+        if ch in s:
+            raise ValueError(f"hystviz: {what}: {name} is not allowed here (got {s!r})")
+    return s
+
+
+def _set_value(key, v):
+    """v as the value of the override key ("section.key" or
+    "section.NAME.key") for the library's --set parser: a typed value as _fmt
+    writes it; a string checked (_text_param), and for a text key (kind
+    string or path) quoted as the scene format quotes ("..." with \\" and
+    \\\\), so spaces, quotes and '#' are the value's own characters."""
+    if _typed(v):
+        return _fmt(v)
+    if isinstance(v, (list, tuple)):  # a list of words (identifiers: formats = svg, png)
+        return ", ".join(_set_value(key, x) for x in v)
+    text = _text_param(key, v)
+    parts = key.split(".")
+    sec = _SECTIONS.get(parts[0].strip())
+    kind = next((k["kind"] for k in sec["keys"] if k["name"] == parts[-1].strip()), None) if sec else None
+    if kind in ("string", "path"):
+        return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return text
+
+
+def _typed(v):
+    """Whether v is a typed value (a number, a bool, or a list of them) that
+    _fmt writes as scene text itself; anything else is a string, which goes to
+    the library's own --set parser (_text_param), never into scene text."""
+    if isinstance(v, (bool, int, float, np.integer, np.floating)):
+        return True
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return all(_typed(x) and not isinstance(x, (list, tuple, np.ndarray)) for x in v)
+    return False
+
+
 def _fmt(v):
     if isinstance(v, bool):
         return "true" if v else "false"
@@ -101,11 +142,20 @@ class _Section:
                 raise SceneError(1, f"[{self.section}] has no key '{k}' (help(hystviz.{type(self).__name__}))")
         self.kind = kind
         self.params = dict(params)
-        lines = [f"[{self.section}]", f"kind = {kind}"] + [f"{k} = {_fmt(v)}" for k, v in params.items()]
+        # numbers are written as scene text (typed: repr of a float or int);
+        # strings go to the library's --set parser as "section.key=value"
+        lines = [f"[{self.section}]", f"kind = {kind}"] + [f"{k} = {_fmt(v)}" for k, v in params.items() if _typed(v)]
         self._text = "\n".join(lines) + "\n"  # the section as scene text, made once
+        self._sets = [f"{self.section}.{k}={_set_value(f'{self.section}.{k}', v)}".encode()
+                      for k, v in params.items() if not _typed(v)]
 
     def scene_text(self):
+        """The section's typed keys as scene text (its string keys are in scene_sets)."""
         return self._text
+
+    def scene_sets(self):
+        """The section's string keys as overrides b"section.key=value" for the library's --set parser."""
+        return list(self._sets)
 
     def __repr__(self):
         args = ", ".join([repr(self.kind)] + [f"{k}={v!r}" for k, v in self.params.items()])
@@ -183,13 +233,23 @@ class Figure:
         return self.svg.decode("utf-8")
 
     def save(self, path, format=None):
-        """Writes the figure to path in format (svg, pdf, png; default: from the extension)."""
-        fmt = format or os.path.splitext(path)[1].lstrip(".").lower()
+        """Writes the figure to path in format (svg, pdf, png; default: from the
+        extension) through libhystviz's output writer, as `hystviz render`
+        writes (hy_write_file): a temporary beside path made with O_EXCL and
+        renamed onto it, so path is whole or untouched; a symbolic link is
+        followed only to a file in path's own directory or below (one out of
+        it is refused); a FIFO or device at path is written, never replaced.
+        OSError when it cannot be written; ValueError for a NUL byte in path
+        or a NUL or line break in format."""
+        p = os.fsencode(path)
+        if b"\0" in p:
+            raise ValueError(f"hystviz: Figure.save: a NUL byte is not allowed in the path (got {path!r})")
+        fmt = format if format is not None else os.path.splitext(os.fsdecode(p))[1].lstrip(".").lower()
+        fmt = _text_param("Figure.save format", fmt)
         data = self.svg if fmt == "svg" else self._result.render(fmt)
-        tmp = f"{path}.tmp{os.getpid()}"
-        with open(tmp, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
+        err = _lib.Error()
+        if _lib.write_file(p, data, len(data), ctypes.byref(err)):
+            raise OSError(err.msg.decode("utf-8", "replace"))
 
 
 class Result:
@@ -222,10 +282,11 @@ class Result:
 
     def render(self, format="svg"):
         """The figure's bytes in format (svg, pdf, png), as `hystviz render` writes them."""
+        fmt = _text_param("render format", format).encode()
         buf = ctypes.POINTER(ctypes.c_ubyte)()
         n = _lib._sz()
         err = _lib.Error()
-        _check(_lib.render(self._h, format.encode(), ctypes.byref(buf), ctypes.byref(n), ctypes.byref(err)), err)
+        _check(_lib.render(self._h, fmt, ctypes.byref(buf), ctypes.byref(n), ctypes.byref(err)), err)
         try:
             return ctypes.string_at(buf, n.value)
         finally:
@@ -252,17 +313,21 @@ class Result:
 
 
 def _sets(sets, overrides):
+    """Overrides as b"section.key=value" for the library's --set parser
+    (_set_value: typed values as _fmt writes them, strings checked and, for
+    text keys, quoted)."""
     d = dict(sets or {})
     d.update({k.replace("__", "."): v for k, v in overrides.items()})
-    return [f"{k}={_fmt(v)}".encode() for k, v in d.items()]
+    return [f"{_text_param('override key', k)}={_set_value(k, v)}".encode() for k, v in d.items()]
 
 
-def run(scene, sets=None, max_work=0.0, **overrides):
-    """Computes a scene: a path to a .scene file, or its text (anything with a
-    newline).  Overrides as section__key=value or sets={"section.key": value}.
-    Returns a Result."""
-    enc = _sets(sets, overrides)
-    arr = (ctypes.c_char_p * max(len(enc), 1))(*enc)
+def _carray(enc):
+    return (ctypes.c_char_p * max(len(enc), 1))(*enc)
+
+
+def _run(scene, enc, max_work=0.0):
+    """run() on overrides already encoded (_sets, scene_sets)."""
+    arr = _carray(enc)
     h = ctypes.c_void_p()
     err = _lib.Error()
     if "\n" in scene:
@@ -270,9 +335,22 @@ def run(scene, sets=None, max_work=0.0, **overrides):
         rc = _lib.from_text(b"<python>/scene.scene", text, len(text), arr, len(enc), max_work, ctypes.byref(h),
                             ctypes.byref(err))
     else:
-        rc = _lib.from_file(scene.encode(), arr, len(enc), max_work, ctypes.byref(h), ctypes.byref(err))
+        path = os.fsencode(scene)
+        if b"\0" in path:
+            raise ValueError(f"hystviz: a NUL byte is not allowed in a scene path (got {scene!r})")
+        rc = _lib.from_file(path, arr, len(enc), max_work, ctypes.byref(h), ctypes.byref(err))
     _check(rc, err)
     return Result(h.value)
+
+
+def run(scene, sets=None, max_work=0.0, **overrides):
+    """Computes a scene: a path to a .scene file, or its text (anything with a
+    newline).  Overrides as section__key=value or sets={"section.key": value}:
+    numbers are passed as typed values, strings to the library's --set parser,
+    quoted there for text keys (a title "a b" is the text a b, not '"a b"');
+    a NUL byte or a line break in a key or a string is a ValueError.
+    Returns a Result."""
+    return _run(scene, _sets(sets, overrides), max_work)
 
 
 def render(scene, sets=None, **overrides):
@@ -294,7 +372,7 @@ def _array(p, n):
     return a
 
 
-def _tuy(text, points):
+def _tuy(text, points, sets=()):
     """(t, u, y) of a _scene: series 0 is the input, series 1 the output, on
     the same grid; straight through the C calls, no Result, one copy of each
     series into one (3, n) array (the short path of the call-overhead
@@ -302,7 +380,8 @@ def _tuy(text, points):
     b = text.encode()
     h = ctypes.c_void_p()
     err = _lib.Error()
-    _check(_lib.from_text(b"<python>/scene.scene", b, len(b), None, 0, 0.0, ctypes.byref(h), ctypes.byref(err)), err)
+    _check(_lib.from_text(b"<python>/scene.scene", b, len(b), _carray(sets) if sets else None, len(sets), 0.0,
+                          ctypes.byref(h), ctypes.byref(err)), err)
     try:
         cap = points + 1
         while True:
@@ -322,31 +401,39 @@ def _tuy(text, points):
     return out[0, :n], out[1, :n], out[2, :n]
 
 
+def _sets_of(model, inp, *more):
+    """The string keys of model and inp, and more, as overrides (scene_sets)."""
+    return model.scene_sets() + inp.scene_sets() + list(more)
+
+
 def steady_loop(model, input, points=2000):
     """The steady state y° over one period: (t, u, y) NumPy arrays (points samples)."""
-    return _tuy(_scene(model, input, "[series y]\ndata = ysteady\n", points), points)
+    return _tuy(_scene(model, input, "[series y]\ndata = ysteady\n", points), points, _sets_of(model, input))
 
 
 def limit(model, input, points=2000, cycles=1):
     """The limit y*_u as γ → ∞ from the model's x0: (t, u, y*)."""
-    return _tuy(_scene(model, input, "[series y]\ndata = ystar\n", points, cycles), points * cycles)
+    return _tuy(_scene(model, input, "[series y]\ndata = ystar\n", points, cycles), points * cycles,
+                _sets_of(model, input))
 
 
 def ygamma(model, input, gamma, points=2000, cycles=1, solver="exact"):
     """The output y_γ at time scale gamma: (t, u, y)."""
+    solver = f"compute.solver={_text_param('solver', solver)}".encode()  # the --set parser, not scene text
     return _tuy(_scene(model, input, f"[series y]\ndata = ygamma\ngamma = {_fmt(float(gamma))}\n", points,
-                       cycles, f"solver = {solver}\n"), points * cycles)
+                       cycles), points * cycles, _sets_of(model, input, solver))
 
 
 def kcycles(model, input, k, points=2000):
     """y*_{u,k}, the limit on its k-th period, against the time within the
     period (t in [0, T]): (t, u, y)."""
-    return _tuy(_scene(model, input, f"[series y]\ndata = yk\nk = {int(k)}\n", points), points)
+    return _tuy(_scene(model, input, f"[series y]\ndata = yk\nk = {int(k)}\n", points), points,
+                _sets_of(model, input))
 
 
 def minor_loops(model, input):
     """The minor loops of the steady state y° (list of MinorLoop with areas)."""
-    return run(_scene(model, input, "[series y]\ndata = minor\n", 2, kind="loop")).minor
+    return _run(_scene(model, input, "[series y]\ndata = minor\n", 2, kind="loop"), _sets_of(model, input)).minor
 
 
 from . import boucwen  # noqa: E402  (uses the names above)

@@ -85,6 +85,7 @@ loops = _sig("hy_result_loops", ctypes.POINTER(Loops), _vp)
 render = _sig("hy_result_render", ctypes.c_int, _vp, ctypes.c_char_p, ctypes.POINTER(ctypes.POINTER(ctypes.c_ubyte)),
               ctypes.POINTER(_sz), _E)
 csv = _sig("hy_result_csv", ctypes.c_int, _vp, ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(_sz), _E)
+write_file = _sig("hy_write_file", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, _sz, _E)
 schema_json = _sig("hy_schema_json", ctypes.c_void_p)
 boucwen_run = _sig("hy_boucwen_run", ctypes.c_int, _dp, _sz, ctypes.c_double, _dp, _E)
 libc = ctypes.CDLL(None)

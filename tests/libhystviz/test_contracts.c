@@ -1,0 +1,165 @@
+/* SPDX-License-Identifier: MIT */
+/* test_contracts.c: every function of hystviz.h called with NULL for each
+ * pointer argument and with edge values (issue 36 item 4): a pointer the
+ * header says must not be NULL gives HY_EINVAL and a message, never a crash;
+ * one it says may be NULL gives what it says; a non-finite work budget is
+ * refused (INFINITY silently disabled the budget); hy_write_file writes
+ * through the output writer (whole file, a link out refused).  Run in the
+ * sanitizer build too (suite lib): an out-of-bounds or NULL access fails. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "hystviz.h"
+#include "../core/tutil.h"
+#include "../tmpdir.h"
+
+static const char scene[] = "[model]\nkind = lugre\nsigma0 = 6\n[input]\nkind = bimodal\n[compute]\npoints = 50\n"
+                            "[figure]\nkind = loop\n[series minor]\ndata = minor\n";
+
+/* rc is HY_EINVAL and err.msg holds needle. */
+#define REFUSED(rc, err, needle)                                                                                       \
+    CHECK((rc) == HY_EINVAL && strstr((err).msg, (needle)), "%s:%d: want HY_EINVAL with '%s', got %d '%s'", __FILE__,  \
+          __LINE__, (needle), (rc), (err).msg)
+
+static hy_result *good(void)
+{
+    hy_result *r = NULL;
+    hy_error err;
+    int rc = hy_result_from_text("t.scene", scene, sizeof scene - 1, NULL, 0, 0, &r, &err);
+    CHECK(!rc && r, "the good scene: %s", err.msg);
+    return r;
+}
+
+static void makers(void)
+{
+    hy_result *r = (hy_result *)&r; /* not NULL: must be set to NULL on error */
+    hy_error err;
+    const char *sets[] = {"model.sigma0=2", NULL};
+    REFUSED(hy_result_from_text("t", scene, sizeof scene - 1, NULL, 0, 0, NULL, &err), err, "out must not be NULL");
+    REFUSED(hy_result_from_file("x.scene", NULL, 0, 0, NULL, &err), err, "out must not be NULL");
+    CHECK(hy_result_from_text("t", scene, sizeof scene - 1, NULL, 0, 0, NULL, NULL) == HY_EINVAL, "out NULL, err NULL");
+    REFUSED(hy_result_from_text("t", NULL, 0, NULL, 0, 0, &r, &err), err, "no scene text");
+    CHECK(r == NULL, "*out NULL after an error");
+    REFUSED(hy_result_from_file(NULL, NULL, 0, 0, &r, &err), err, "no scene path");
+    REFUSED(hy_result_from_text("t", scene, sizeof scene - 1, NULL, 1, 0, &r, &err), err, "sets is NULL but nsets is 1");
+    REFUSED(hy_result_from_text("t", scene, sizeof scene - 1, sets, 2, 0, &r, &err), err, "sets[1] is NULL");
+    REFUSED(hy_result_from_file("x.scene", sets, 2, 0, &r, &err), err, "sets[1] is NULL");
+    double budgets[] = {INFINITY, -INFINITY, NAN};
+    for (int i = 0; i < 3; i++) {
+        REFUSED(hy_result_from_text("t", scene, sizeof scene - 1, NULL, 0, budgets[i], &r, &err), err,
+                "max_work must be a finite number");
+        REFUSED(hy_result_from_file("x.scene", NULL, 0, budgets[i], &r, &err), err, "max_work must be a finite number");
+    }
+    /* a budget of 1 unit is a budget: refused for its cost, not ignored */
+    int rc = hy_result_from_text("t", scene, sizeof scene - 1, NULL, 0, 1, &r, &err);
+    CHECK(rc && r == NULL && strstr(err.msg, "work"), "max_work = 1 refuses the scene: %d %s", rc, err.msg);
+    /* name NULL: "<scene>"; len 0: an empty scene (refused or computed, never read past) */
+    rc = hy_result_from_text(NULL, "[model]\nkind = dahl\nsigma0 = -1\n", 30, NULL, 0, 0, &r, &err);
+    CHECK(rc == HY_EINVAL && strstr(err.msg, "<scene>:3:"), "name NULL is <scene>: %s", err.msg);
+    rc = hy_result_from_text("t", "", 0, NULL, 0, 0, &r, &err);
+    hy_result_free(rc ? NULL : r);
+    rc = hy_result_from_text("t", scene, sizeof scene - 1, sets, 1, -5, &r, NULL); /* err NULL, <= 0: default budget */
+    CHECK(!rc && r, "err NULL with a good scene: %d", rc);
+    hy_result_free(r);
+}
+
+static void readers(hy_result *r)
+{
+    const double *x = (const double *)1, *y = (const double *)1;
+    const char *ref = "x";
+    double buf[4];
+    CHECK(hy_version() && *hy_version(), "hy_version");
+    hy_result_free(NULL);
+    CHECK(hy_result_nseries(NULL) == 0, "nseries(NULL)");
+    CHECK(hy_result_series(NULL, 0, &x, &y) == 0 && !x && !y, "series(NULL)");
+    CHECK(hy_result_series(r, 0, NULL, NULL) > 0, "series with x, y NULL");
+    CHECK(hy_result_series(r, (size_t)-1, &x, &y) == 0 && !x && !y, "series out of range");
+    CHECK(hy_result_series_copy(NULL, 0, buf, buf, 4) == 0, "series_copy(NULL)");
+    CHECK(hy_result_series_copy(r, 0, NULL, NULL, 4) > 0, "series_copy with x, y NULL");
+    CHECK(hy_result_series_copy(r, 0, buf, buf, 0) > 0, "series_copy cap 0");
+    CHECK(hy_result_series_copy(r, 99, buf, buf, 4) == 0, "series_copy out of range");
+    CHECK(!hy_result_series_name(NULL, 0) && !hy_result_series_name(r, 99), "series_name NULL / out of range");
+    CHECK(!hy_result_series_data(NULL, 0) && !hy_result_series_data(r, 99), "series_data NULL / out of range");
+    CHECK(hy_result_series_name(r, 0) && hy_result_series_data(r, 0), "series_name, series_data");
+    CHECK(isnan(hy_result_series_error(NULL, 0, &ref)) && ref == NULL, "series_error(NULL)");
+    CHECK(isnan(hy_result_series_error(r, 99, NULL)), "series_error out of range, ref NULL");
+    CHECK(hy_result_loops(NULL) == NULL && hy_result_loops(r) != NULL, "loops");
+}
+
+static void outputs(hy_result *r)
+{
+    hy_error err;
+    unsigned char *bytes = (unsigned char *)"x";
+    char *text = "x";
+    size_t len = 7;
+    REFUSED(hy_result_render(r, "svg", NULL, &len, &err), err, "bytes must not be NULL");
+    CHECK(len == 0, "render: *len 0 after an error");
+    REFUSED(hy_result_render(r, "svg", &bytes, NULL, &err), err, "len must not be NULL");
+    CHECK(bytes == NULL, "render: *bytes NULL after an error");
+    REFUSED(hy_result_render(r, "svg", NULL, NULL, &err), err, "must not be NULL");
+    REFUSED(hy_result_render(NULL, "svg", &bytes, &len, &err), err, "no result");
+    REFUSED(hy_result_render(r, NULL, &bytes, &len, &err), err, "not NULL");
+    REFUSED(hy_result_render(r, "svg,png", &bytes, &len, &err), err, "give one format");
+    CHECK(hy_result_render(r, "", &bytes, &len, &err) != 0 && !bytes, "render format \"\"");
+    CHECK(hy_result_render(r, "svg", &bytes, &len, NULL) == 0 && bytes && len > 100, "render svg, err NULL");
+    free(bytes);
+    REFUSED(hy_result_csv(r, NULL, &len, &err), err, "text must not be NULL");
+    REFUSED(hy_result_csv(r, &text, NULL, &err), err, "len must not be NULL");
+    CHECK(text == NULL, "csv: *text NULL after an error");
+    REFUSED(hy_result_csv(NULL, &text, &len, &err), err, "no result");
+    CHECK(hy_result_csv(r, &text, &len, NULL) == 0 && text && len == strlen(text), "csv, err NULL");
+    free(text);
+    char *json = hy_schema_json();
+    CHECK(json && json[0] == '{', "schema_json");
+    free(json);
+    double u[3] = {0, 1, 0}, y[3];
+    REFUSED(hy_boucwen_run(NULL, 3, 750, y, &err), err, "at least one sample");
+    REFUSED(hy_boucwen_run(u, 3, 750, NULL, &err), err, "at least one sample");
+    REFUSED(hy_boucwen_run(u, 0, 750, y, &err), err, "at least one sample");
+    REFUSED(hy_boucwen_run(u, 3, INFINITY, y, &err), err, "fs must be");
+    REFUSED(hy_boucwen_run(u, 3, NAN, y, &err), err, "fs must be");
+    CHECK(hy_boucwen_run(u, 3, 750, y, NULL) == 0 && isfinite(y[2]), "boucwen_run, err NULL");
+}
+
+static void writer(void)
+{
+    hy_error err;
+    char dir[4096], path[4200], link[4200];
+    if (!test_tmppath(dir, sizeof dir, "contracts") || mkdir(dir, 0700)) {
+        CHECK(0, "a temporary directory");
+        return;
+    }
+    snprintf(path, sizeof path, "%s/out.txt", dir);
+    REFUSED(hy_write_file(NULL, "x", 1, &err), err, "no path");
+    REFUSED(hy_write_file(path, NULL, 3, &err), err, "no data");
+    CHECK(access(path, F_OK) != 0, "nothing written for NULL data");
+    CHECK(hy_write_file(path, NULL, 0, &err) == 0, "an empty file (data NULL, len 0): %s", err.msg);
+    CHECK(hy_write_file(path, "abc", 3, NULL) == 0, "write, err NULL");
+    struct stat st;
+    CHECK(!stat(path, &st) && st.st_size == 3, "3 bytes written");
+    snprintf(link, sizeof link, "%s/link.txt", dir);
+    CHECK(!symlink("/etc/passwd", link), "a link out: %s", strerror(errno));
+    CHECK(hy_write_file(link, "x", 1, &err) == HY_EINVAL, "a link out of the directory is refused: %s", err.msg);
+    CHECK(!lstat(link, &st) && S_ISLNK(st.st_mode), "the link is left as it was");
+    unlink(link);
+    unlink(path);
+    CHECK(rmdir(dir) == 0, "nothing else left in %s (no temporary): %s", dir, strerror(errno));
+}
+
+int main(void)
+{
+    makers();
+    hy_result *r = good();
+    if (r) {
+        readers(r);
+        outputs(r);
+    }
+    hy_result_free(r);
+    writer();
+    return tu_finish("contracts");
+}
