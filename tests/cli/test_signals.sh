@@ -4,7 +4,9 @@
 # first instruction (README "Signals").  Each long-running command is started
 # as a background job of this non-interactive shell, which starts it with
 # SIGINT ignored, and is sent SIGINT 0, 10 and 100 ms (and SIGTERM 10 ms) after
-# its main began; it must end within 2 s with the documented status: 0 for
+# its main began; it must end within 10 s (a deadline, not a speed target: a
+# process that ignores the signal never ends; at load 16 on 2 cores a start
+# took more than the 2 s this once allowed) with the documented status: 0 for
 # serve and watch, 128 + N (the signal's default action) for sweep, gallery,
 # animate and hystviz-animate, and leave no temporary in its output directory
 # or in $TMPDIR.
@@ -55,19 +57,19 @@ run() {
         mkdir "$T/out"
         "$@" >"$T/log" 2>&1 </dev/null &
         pid=$!
-        # its main began: SIGINT no longer ignored (2 s at most)
+        # its main began: SIGINT no longer ignored (20 s at most)
         i=0
-        while alive "$pid" && ignores_int "$pid" && [ $i -lt 200 ]; do
+        while alive "$pid" && ignores_int "$pid" && [ $i -lt 2000 ]; do
             sleep 0.01
             i=$((i + 1))
         done
         if alive "$pid" && ignores_int "$pid"; then
-            fail "$name: still ignores SIGINT 2 s after it started (a signal at start-up is lost)"
+            fail "$name: still ignores SIGINT 20 s after it started (a signal at start-up is lost)"
         fi
         [ "$delay" = 0 ] || sleep "$delay"
         t0=$(date +%s%N)
         kill -s "$sig" "$pid" 2>/dev/null
-        wait_pid "$pid" 2 "$name after SIG$sig (sent ${delay} s after start)"
+        wait_pid "$pid" 10 "$name after SIG$sig (sent ${delay} s after start)"
         rc=$?
         ms=$((($(date +%s%N) - t0) / 1000000))
         pid=
