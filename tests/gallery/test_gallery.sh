@@ -7,6 +7,7 @@
 # links every figure and its tags nest.
 # usage: test_gallery.sh HYSTVIZ   (HYSTVIZ gallery ... must run the command)
 set -u
+. "$(dirname "$0")/../lib/wait.sh"
 hv=$1
 pass=0
 fail=0
@@ -293,11 +294,15 @@ ls -A "$G" | grep -q 'hystviz-tmp' && bad "kill -9 leftover kept: $(ls -A "$G")"
 
 # 11. one gallery run at a time per directory (flock on .lock): a run waits
 #     while another holds the lock, then goes on
-flock -o "$G/.lock" sleep 5 > /dev/null 2>&1 &
+#     (the holder's lock is waited for, not assumed after a sleep: at high load
+#     the holder may not have it yet; the gallery gets 10 s to say it waits)
+flock -o "$G/.lock" sleep 60 > /dev/null 2>&1 &
 holder=$!
-sleep 0.2
-timeout 2 "$hv" gallery --scenes "$S" -o "$G" --no-times > /dev/null 2> "$tmp/lock.err"
+held() { ! flock -n "$G/.lock" true; }
+wait_until 30 "lock held by the test's holder" held
+timeout 10 "$hv" gallery --scenes "$S" -o "$G" --no-times > /dev/null 2> "$tmp/lock.err"
 [ $? -eq 124 ] && grep -q 'waiting for another gallery run' "$tmp/lock.err" && ok || bad "gallery ran while the lock was held: $(cat "$tmp/lock.err")"
+pkill -P $holder sleep 2> /dev/null # (flock's child; killing flock alone leaves it for 60 s)
 kill $holder 2> /dev/null
 wait $holder 2> /dev/null
 run unlocked
