@@ -270,22 +270,22 @@ run tmps1
 : > "$G/a_loop.svg.tmp.Xy9Zq1"
 : > "$G/.held.svg.hystviz-tmp.LiVe01"
 : > "$G/notes.tmp.txt"
-flock -o "$G/.held.svg.hystviz-tmp.LiVe01" sleep 5 > /dev/null 2>&1 & # -o: flock itself holds it
+flock -o "$G/.held.svg.hystviz-tmp.LiVe01" sleep 60 > /dev/null 2>&1 & # -o: flock itself holds it
 holder=$!
-sleep 0.2
+held_tmp() { ! flock -n "$G/.held.svg.hystviz-tmp.LiVe01" true; }
+wait_until 30 "lock on the held temporary" held_tmp
 run tmps2
 [ ! -e "$G/.a_loop.png.hystviz-tmp.AbC123" ] && [ ! -e "$G/a_loop.svg.tmp.Xy9Zq1" ] && ok || bad "stale temporaries kept: $(ls -A "$G")"
 [ -e "$G/.held.svg.hystviz-tmp.LiVe01" ] && [ -e "$G/notes.tmp.txt" ] && ok || bad "a locked temporary or a user file was removed"
+pkill -P $holder sleep 2> /dev/null
 kill $holder 2> /dev/null
 wait $holder 2> /dev/null
 rm -f "$G/.held.svg.hystviz-tmp.LiVe01" "$G/notes.tmp.txt"
 # a real kill -9: a writer with its temporary open in the gallery directory
 "$hv" loop --input sine:1,1 --gamma 1 --cycles 1000000 --points 2 --solver rk8pd -o "$G/slow.csv" 2> /dev/null &
 slow=$!
-for _ in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
-    ls -A "$G" | grep -q '^\.slow\.csv\.hystviz-tmp\.' && break
-    sleep 0.1
-done
+slow_tmp() { ls -A "$G" | grep -q '^\.slow\.csv\.hystviz-tmp\.'; }
+wait_until 30 "the slow writer's temporary" slow_tmp
 kill -9 $slow
 wait $slow 2> /dev/null
 ls -A "$G" | grep -q '^\.slow\.csv\.hystviz-tmp\.' && ok || bad "no temporary seen before kill -9"
