@@ -21,6 +21,7 @@
 #include "hy_frame.h"
 #include "hy_zfast.h"
 #include "rcheck.h"
+#include "zstrict.h"
 
 static uint32_t rnd_state = 2024u;
 static uint32_t rnd(void)
@@ -62,6 +63,20 @@ static void check(hy_zfast *z, const char *what, const uint32_t *px, int w, int 
         CHECK(rc != Z_OK || (got_n == n && !memcmp(got, want, n)), "%s %dx%d: inflated %lu bytes, %s", what, w, h,
               (unsigned long)got_n, got_n == n ? "different" : "not the image's size");
         free(got);
+        /* the strict decoder: every code complete (a strict inflater, as
+         * chromium's createImageBitmap, refuses an incomplete one that zlib
+         * takes), and no empty block */
+        unsigned char *strict = malloc(n);
+        zstrict_info info;
+        char why[200];
+        rc = zstrict_inflate(s, zn, strict, n, &info, why, sizeof why);
+        CHECK(!rc, "%s %dx%d: the strict decoder refuses the stream: %s", what, w, h, why);
+        CHECK(rc || (info.out == n && !memcmp(strict, want, n)), "%s %dx%d: strictly inflated %zu bytes, %s", what, w,
+              h, info.out, info.out == n ? "different" : "not the image's size");
+        CHECK(!info.empty && !info.one_dist && !info.stored && !info.fixed,
+              "%s %dx%d: %d empty blocks, %d one-code distance codes, %d stored, %d fixed (%d blocks)", what, w, h,
+              info.empty, info.one_dist, info.stored, info.fixed, info.blocks);
+        free(strict);
     }
     free(want);
 }
@@ -173,6 +188,38 @@ int main(void)
     /* the same bytes for the same frame whatever the encoder made before:
      * tests/gl/test_assemble.sh's pieces and shards (it caught hash table
      * entries left from the last frame) */
+    free(f);
+    /* tokens ending exactly at a block boundary (16,384 tokens a block):
+     * a 1-pixel-wide column of colours each unlike the one above is 4
+     * literals a row (filter byte, R, G, B), so 4,096 rows end the first
+     * block with the last pixel and 8,192 the second.  The encoder of
+     * 2026-11 closed such a stream with an empty final block whose
+     * literal/length code was end-of-block alone (length 1: Kraft sum 0.5):
+     * zlib takes it, the strict decoder and chromium refuse it (issue 38).
+     * The heights around the boundaries too. */
+    static const int hs[] = {4095, 4096, 4097, 8191, 8192, 8193, 12288};
+    for (size_t k = 0; k < sizeof hs / sizeof hs[0]; k++) {
+        f = frame(1, hs[k]);
+        for (int y = 0; y < hs[k]; y++)
+            f[y] = (uint32_t)y * 0x010203u + 0x102030u;   /* each row unlike the row above */
+        check(z, "a block boundary at the end", f, 1, hs[k]);
+        free(f);
+    }
+    /* the degenerate alphabets: a block with no distance (one black pixel:
+     * literals 0 and end-of-block only), one distance (a white row: a run at
+     * distance 3), one literal value (a grey column, each row a copy of the
+     * one above after the first) */
+    uint32_t px1 = 0;
+    check(z, "one black pixel (no distance)", &px1, 1, 1);
+    f = frame(300, 1);
+    for (int x = 0; x < 300; x++)
+        f[x] = 0xffffffu;
+    check(z, "a white row (one distance)", f, 300, 1);
+    free(f);
+    f = frame(1, 50);
+    for (int y = 0; y < 50; y++)
+        f[y] = 0x000000u;
+    check(z, "a black column (one literal value, one distance)", f, 1, 50);
     free(f);
     /* the widest rows: one row apart is 32,767 bytes, deflate's window 32,768 */
     w = 10922, h = 4;
