@@ -213,7 +213,8 @@ static int reserve(hy_zfast *z, size_t more)
  * and hy_zfast_code_lengths makes it complete.  A code of one symbol would
  * be one code of length 1, half of the code space unused: zlib's inflate
  * takes that, strict inflaters (chromium's createImageBitmap among them)
- * refuse it; zlib's deflate forces two codes the same way (build_tree). */
+ * refuse it.  zlib's deflate likewise forces two codes in every tree
+ * (trees.c, build_tree; it adds symbol 0, or the one after the used one). */
 static void two_codes(uint32_t *freq, int n, int a, int b)
 {
     int used = 0;
