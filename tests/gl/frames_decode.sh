@@ -13,7 +13,8 @@
 #   png_browser  chromium headless: createImageBitmap and <img>
 #                (tests/serve/png_browser.py, 30 s a frame, 300 s in all)
 # Frames: of the seven built-in clips and the two scene clips
-# (scenes/anim_*.scene), the first two and the last two of each, and
+# (scenes/anim_*.scene), the last two of each (one hystviz run a clip: the
+# runs are most of the time), the first two of gamma-sweep-ex1, and
 # gamma-sweep-ex2 59..61 and preisach-plane 48..51 (the frames that froze in
 # the browser); with "all", every frame of the nine clips (the benchmark,
 # tests/bench: about 1,600 frames).  A decoder that is not installed is
@@ -41,11 +42,11 @@ for c in $clips; do
     if [ "$mode" = all ]; then
         render "$c" 0:
     else
-        render "$c" 0:2
         render "$c" $((n - 2)):
     fi
 done
 if [ "$mode" != all ]; then
+    render gamma-sweep-ex1 0:2
     render gamma-sweep-ex2 59:62
     render preisach-plane 48:52
 fi
