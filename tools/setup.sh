@@ -13,6 +13,9 @@
 #                               fuzz the scene parser and `data` path for MIN minutes
 #                               (default 10); new inputs go to build-fuzz/fuzz-corpus/,
 #                               failing ones to build-fuzz/fuzz-crashes/ (tests/fuzz/README.md)
+#   sh tools/setup.sh fuzz MIN zfast  the same for hy_zfast, the PNG frames' deflate encoder
+#                               (fuzz_zfast: images against zlib and a strict inflater);
+#                               build-fuzz/zfast-corpus/, build-fuzz/zfast-crashes/
 # With CI=true the build uses -Dwerror=true.
 set -eu
 cd "$(dirname "$0")/.."
@@ -28,7 +31,7 @@ pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # iproute2 (a single-node Slurm on loopback: tests/cli/test_slurm.sh);
 # python3-numpy, python3-nbclient and python3-ipykernel (the Python package and
 # its notebook: tests/python)
-case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-pip python3-wheel chromium pngcheck slurm-wlm munge iproute2" ;; bench) pkgs="$pkgs curl bash python3 chromium python3-matplotlib python3-numpy python3-scipy" ;; esac
+case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-pip python3-wheel chromium pngcheck python3-pil slurm-wlm munge iproute2" ;; bench) pkgs="$pkgs curl bash python3 chromium pngcheck python3-pil python3-matplotlib python3-numpy python3-scipy" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"
@@ -157,6 +160,8 @@ bench)
 fuzz)
     minutes=${2:-10}
     case "$minutes" in ''|*[!0-9]*) echo "setup: fuzz MINUTES takes a whole number of minutes" >&2; exit 2;; esac
+    target=${3:-scene}
+    case "$target" in scene|zfast) ;; *) echo "setup: fuzz MINUTES [scene|zfast]" >&2; exit 2;; esac
     # clang: libFuzzer instruments every library (coverage), ASan + UBSan with
     # float-cast-overflow abort at the first report; only the fuzz target is built
     fuzz_cflags="-fsanitize=fuzzer-no-link,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer"
@@ -165,6 +170,26 @@ fuzz)
     else
         CC=clang meson setup build-fuzz -Dfuzz=true -Dgl=disabled -Db_sanitize=address,undefined \
             -Db_lundef=false -Dc_args="$fuzz_cflags" >/dev/null
+    fi
+    if [ "$target" = zfast ]; then
+        # hy_zfast: an image from each input (tests/fuzz/zfast_harness.h), up to 2^16 pixels
+        meson compile -C build-fuzz fuzz_zfast
+        mkdir -p build-fuzz/zfast-corpus build-fuzz/zfast-crashes
+        before=$(ls build-fuzz/zfast-crashes | wc -l)
+        start=$(date +%s)
+        ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+        build-fuzz/tests/fuzz/fuzz_zfast -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+            -max_total_time=$((minutes * 60)) -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
+            -artifact_prefix=build-fuzz/zfast-crashes/ \
+            build-fuzz/zfast-corpus tests/fuzz/zfast-corpus tests/fuzz/zfast-repro >build-fuzz/zfast.log 2>&1 || true
+        last=$(grep -E '^#[0-9]+: cov:' build-fuzz/zfast.log | tail -n 1)
+        echo "fuzz zfast: ran $(($(date +%s) - start)) s of $minutes min, log build-fuzz/zfast.log"
+        echo "fuzz zfast: last status: ${last:-none (see the log)}"
+        after=$(ls build-fuzz/zfast-crashes | wc -l)
+        echo "fuzz zfast: findings: $((after - before)) new in build-fuzz/zfast-crashes/ ($after in all)"
+        ls -t build-fuzz/zfast-crashes | head -n $((after - before)) | sed 's|^|  build-fuzz/zfast-crashes/|'
+        echo "fuzz zfast: replay one: build-fuzz/tests/fuzz/fuzz_zfast FILE (or build/tests/fuzz/zfast_replay DIR)"
+        exit 0
     fi
     meson compile -C build-fuzz fuzz_scene fuzz_dict
     mkdir -p build-fuzz/fuzz-corpus build-fuzz/fuzz-crashes
@@ -189,7 +214,7 @@ fuzz)
     echo "fuzz: replay one: build-fuzz/tests/fuzz/fuzz_scene FILE (or build/tests/fuzz/fuzz_replay -v FILE)"
     ;;
 *)
-    echo "usage: sh tools/setup.sh gallery|test|bench|fuzz [MINUTES]" >&2
+    echo "usage: sh tools/setup.sh gallery|test|bench|fuzz [MINUTES [scene|zfast]]" >&2
     exit 2
     ;;
 esac

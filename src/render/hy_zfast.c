@@ -208,7 +208,27 @@ static int reserve(hy_zfast *z, size_t more)
 
 /* ---- blocks ---- */
 
-/* Writes the block of z's tokens with its own dynamic codes; final: BFINAL. */
+/* When fewer than two of the n symbols are used, symbols a and b get a
+ * frequency of 1 if they have none: every code then has two codes or more
+ * and hy_zfast_code_lengths makes it complete.  A code of one symbol would
+ * be one code of length 1, half of the code space unused: zlib's inflate
+ * takes that, strict inflaters (chromium's createImageBitmap among them)
+ * refuse it.  zlib's deflate likewise forces two codes in every tree
+ * (trees.c, build_tree; it adds symbol 0, or the one after the used one). */
+static void two_codes(uint32_t *freq, int n, int a, int b)
+{
+    int used = 0;
+    for (int s = 0; s < n && used < 2; s++)
+        used += freq[s] > 0;
+    if (used < 2)
+        freq[a] += !freq[a], freq[b] += !freq[b];
+}
+
+/* Writes the block of z's tokens with its own dynamic codes; final: BFINAL.
+ * Every code is complete: the literal/length code always (a block has a
+ * token besides end-of-block, and two_codes guards it anyway), the distance
+ * code with symbols 0 and 1 added when a block has no distance or one, the
+ * code-length code with 0 and 8 added when one symbol would do. */
 static void write_block(hy_zfast *z, int final)
 {
     /* at most 15 + 5 + 15 + 13 bits a token, plus the header */
@@ -217,11 +237,8 @@ static void write_block(hy_zfast *z, int final)
         return;
     }
     z->lfreq[256]++;                   /* end of block */
-    int nd = 0;
-    for (int s = 0; s < NDIST; s++)
-        nd += z->dfreq[s] > 0;
-    if (nd < 2)                        /* two distance codes at least: a complete code of 1-bit lengths */
-        z->dfreq[0] += !z->dfreq[0], z->dfreq[1] += !z->dfreq[1];
+    two_codes(z->lfreq, NLIT, 0, 1);
+    two_codes(z->dfreq, NDIST, 0, 1);
     uint8_t llen[NLIT], dlen[NDIST];
     uint16_t lcode[NLIT], dcode[NDIST];
     hy_zfast_code_lengths(z->lfreq, NLIT, 15, llen);
@@ -265,11 +282,7 @@ static void write_block(hy_zfast *z, int final)
     }
     for (int i = 0; i < ns; i++)
         cfreq[sym[i]]++;
-    int ncl = 0;
-    for (int s = 0; s < NCL; s++)
-        ncl += cfreq[s] > 0;
-    if (ncl < 2)                       /* a complete code-length code too */
-        cfreq[0] += !cfreq[0], cfreq[8] += !cfreq[8];
+    two_codes(cfreq, NCL, 0, 8);
     uint8_t clen[NCL];
     uint16_t ccode[NCL];
     hy_zfast_code_lengths(cfreq, NCL, 7, clen);
@@ -307,6 +320,19 @@ static void write_block(hy_zfast *z, int final)
     z->ntok = 0;
     memset(z->lfreq, 0, sizeof z->lfreq);
     memset(z->dfreq, 0, sizeof z->dfreq);
+}
+
+/* Writes the block once it holds BLOCK_TOKENS tokens.  Called before a step
+ * adds its tokens, never after the last: the final block holds the frame's
+ * last tokens, so no block is empty (an empty final block, written when the
+ * tokens ended exactly at a block's end, had end-of-block as its only
+ * literal/length code: issue 38).  Nonzero when memory ran out. */
+static inline int block_full(hy_zfast *z)
+{
+    if (z->ntok < BLOCK_TOKENS)
+        return 0;
+    write_block(z, 0);
+    return z->failed;                  /* out of memory: the tokens are not stored on */
 }
 
 static inline void literal(hy_zfast *z, unsigned b)
@@ -440,9 +466,13 @@ size_t hy_zfast_png(hy_zfast *z, const unsigned char *xrgb, int w, int h, int st
 #else
         adler = adler32(adler, row, (uInt)rowb);
 #endif
+        if (block_full(z))
+            return 0;
         literal(z, 0);                 /* filter type: none */
         size_t base = (size_t)y * rowb + 1;   /* stream offset of the row's first pixel */
         for (int x = 0; x < w;) {
+            if (x && block_full(z))    /* (at x = 0: checked before the filter byte) */
+                return 0;
             uint32_t p = px[x];
             unsigned run = 0, above = 0;
             if (up && same(up[x], p))
@@ -476,8 +506,6 @@ size_t hy_zfast_png(hy_zfast *z, const unsigned char *xrgb, int w, int h, int st
                 literal(z, d[0]), literal(z, d[1]), literal(z, d[2]);
                 x++;
             }
-            if (z->ntok >= BLOCK_TOKENS && (write_block(z, 0), z->failed))
-                return 0;              /* out of memory: the tokens are not stored on */
         }
     }
     write_block(z, 1);

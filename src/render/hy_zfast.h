@@ -5,9 +5,12 @@
  * bytes), the pixels of the row above (distance one row) and earlier
  * occurrences of a pixel pair found through a small hash table (glyphs,
  * lines shifted by a pixel), all in whole pixels; blocks use dynamic Huffman
- * codes (RFC 1951) limited to 15 bits.  Any inflater decodes the stream to
- * exactly the rows a PNG decoder expects; tests/gl/test_zfast.c checks it
- * against zlib's inflate.
+ * codes (RFC 1951) limited to 15 bits, every code complete (two codes at
+ * least in each alphabet, as zlib's deflate makes them) and no block empty.
+ * Any inflater decodes the stream to exactly the rows a PNG decoder
+ * expects, strict ones too (chromium's createImageBitmap refuses an
+ * incomplete code that zlib takes); tests/render/test_zfast.c checks it
+ * against zlib's inflate and the strict inflater tests/render/zstrict.c.
  *
  *     hy_zfast *z = hy_zfast_new();
  *     size_t n = hy_zfast_png(z, xrgb, w, h, stride);   // 0: out of memory
