@@ -569,6 +569,12 @@ static void data_rows(const hy_scene_run *r, const char *panel, FILE *out)
         for (size_t j = 0; j < se->n; j++)
             if (!isnan(se->x[j]))
                 fprintf(out, "%s%s%s,%.17g,%.17g\n", panel ? panel : "", panel ? "/" : "", se->name, se->x[j], se->y[j]);
+        /* data = modelled: the measured y and the residual (model - measured) at the same x */
+        for (int k = 0; se->ymeas && k < 2; k++)
+            for (size_t j = 0; j < se->n; j++)
+                if (!isnan(se->x[j]))
+                    fprintf(out, "%s%s%s@%s,%.17g,%.17g\n", panel ? panel : "", panel ? "/" : "", se->name,
+                            k ? "residual" : "measured", se->x[j], k ? se->y[j] - se->ymeas[j] : se->ymeas[j]);
         if (se->has_mark)
             fprintf(out, "%s%s%s@marker,%.17g,%.17g\n", panel ? panel : "", panel ? "/" : "", se->name, se->mark_x,
                     se->mark_y);

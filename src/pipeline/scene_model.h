@@ -99,6 +99,15 @@ int hy_scene_series_data(const hy_decl_series *ds, int *data);
 /* The series data names, indexed by HY_DATA_*. */
 const char *hy_scene_data_name(int data);
 
+/* Measured data (scene_data.c): every [data] read once, through the scene's
+ * file policy (build_run, before the model's load); r->input for [input]
+ * kind = data (the driving data's u over t = the sample index; refused for
+ * a model that is not rate-independent); the points of the series data =
+ * measured and modelled (hy_scene_run_compute, after the model's own). */
+int hy_scene_run_read_data(hy_scene_run *r, hy_error *err);
+int hy_scene_run_data_input(hy_scene_run *r, hy_error *err);
+int hy_scene_run_data_series(hy_scene_run *r, hy_error *err);
+
 /* r->series from the scene's [series] sections (name, data, gamma, k). */
 int hy_scene_run_series_new(hy_scene_run *r, hy_error *err);
 /* se->x, se->y of n points (se->n = n); HY_ENOMEM naming the series. */

@@ -310,8 +310,8 @@ static int compute_series(hy_scene_run *r, ri_plan *p, hy_run_series *se, hy_err
     int q = quantity_of(r, se->decl), loopfig = r->figure_kind == FIG_LOOP, rc = HY_OK;
     double T = in->period, t0 = now();
     se->err = se->dist = NAN;
-    if (r->numbers_only) /* the sweep's table: loops only (computed in the plan) */
-        return HY_OK;
+    if (r->numbers_only || se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+        return HY_OK; /* the sweep's table: loops only (computed in the plan); data series: scene_data.c */
     if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR)
         rc = loop_series(r, p, se, q, err);
     else if (se->data == HY_DATA_PSI) {

@@ -147,7 +147,9 @@ int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
         if (hy_decl_got(h, offsetof(hy_decl_input, points)) < 0)
             return hy_decl_error(h, offsetof(hy_decl_input, kind), err, HY_EINVAL, "a pwl input needs 'points = t0, u0, t1, u1, ...'");
         rc = pwl_input(&r->input, &d->points, err);
-    } else { /* file */
+    } else if (!strcmp(kind, "data")) /* measured u: read at load (scene_data.c) */
+        return hy_scene_run_data_input(r, err);
+    else { /* file */
         if (hy_decl_got(h, offsetof(hy_decl_input, file)) < 0)
             return hy_decl_error(h, offsetof(hy_decl_input, kind), err, HY_EINVAL, "a file input needs 'file = \"PATH\"'");
         if ((rc = file_input(r, err)))
@@ -260,6 +262,8 @@ static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err)
     r->mtype = hy_scene_model_of(&r->doc.model);
     rc = check_quantities(r, err);
     if (!rc)
+        rc = hy_scene_run_read_data(r, err); /* every [data] file, once */
+    if (!rc)
         rc = r->mtype->load(r, err);
     if (!rc)
         rc = load_panels(r, err);
@@ -297,8 +301,14 @@ void hy_scene_run_free(hy_scene_run *r)
     for (size_t i = 0; i < r->nseries; i++) {
         free(r->series[i].x);
         free(r->series[i].y);
+        free(r->series[i].ymeas);
     }
     free(r->series);
+    for (size_t i = 0; i < r->ndata; i++) {
+        hy_table_free(&r->data[i].tb);
+        free(r->data[i].area);
+    }
+    free(r->data);
     if (r->have_loops)
         hy_loops_free(&r->loops);
     if (r->have_steady)
@@ -861,6 +871,8 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     se->err_ref = NULL;
     se->dist = NAN;
     se->grid_n = 0;
+    if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+        return HY_OK; /* from the data, after the model's compute (scene_data.c) */
     /* numbers only: u, ψ and g are not sampled; the closed forms are, so that
        their error is measured (issue 11) and the same as with figures */
     if (r->numbers_only && (se->data == HY_DATA_INPUT || se->data == HY_DATA_PSI || se->data == HY_DATA_G))
@@ -995,7 +1007,9 @@ int hy_scene_check_series_kind(const hy_scene_run *r, const hy_run_series *se, h
     static const char *const kinds[] = {HY_FIGURE_KINDS(FIGURE_NAME)};
 #undef FIGURE_NAME
     int bad = 0;
-    if (r->figure_kind == FIG_LOOP)
+    if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+        bad = r->figure_kind != FIG_LOOP && r->figure_kind != FIG_TIMESERIES;
+    else if (r->figure_kind == FIG_LOOP)
         bad = !ok_loop[se->data];
     else if (r->figure_kind == FIG_G)
         bad = se->data != HY_DATA_G;
@@ -1119,6 +1133,8 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
         rc = hy_scene_run_compute(&r->panels[i], log, err);
     if (!rc)
         rc = r->mtype->compute(r, log, err);
+    if (!rc)
+        rc = hy_scene_run_data_series(r, err); /* data = measured, modelled */
     for (size_t i = 0; !rc && i < r->nseries; i++) { /* series.yscale, where written */
         hy_run_series *se = &r->series[i];
         double f = se->decl->yscale;
@@ -1126,6 +1142,8 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
             continue;
         for (size_t j = 0; j < se->n; j++)
             se->y[j] *= f;
+        for (size_t j = 0; se->ymeas && j < se->n; j++)
+            se->ymeas[j] *= f;
         se->mark_y *= f;
     }
     return rc;
