@@ -268,7 +268,8 @@ static int data_row(state *st, const char *s, size_t len, const fields *f)
     }
     if (f->n != st->ncols) {
         char what[160];
-        snprintf(what, sizeof what, "the row has %zu columns, the rows before it %zu", f->n, st->ncols);
+        snprintf(what, sizeof what, "the row has %zu column%s, the rows before it %zu", f->n, f->n == 1 ? "" : "s",
+                 st->ncols);
         return fail(rd, f->n < st->ncols ? len + 1 : f->at[st->ncols] + 1, what);
     }
     double v[HY_TABLE_NCOL] = {0, 0, 0, 0};

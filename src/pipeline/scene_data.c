@@ -325,3 +325,43 @@ int hy_scene_run_data_series(hy_scene_run *r, hy_error *err)
     }
     return HY_OK;
 }
+
+double hy_scene_data_value(const hy_scene_run *r, const hy_run_series *se, const char *field)
+{
+    const hy_run_data *rd = find_data(r, se->decl ? se->decl->of : NULL);
+    if (!rd || (se->data != HY_DATA_MEASURED && se->data != HY_DATA_MODELLED) || !se->y)
+        return NAN;
+    if (!strcmp(field, "area") && rd->r1 - rd->r0 == 1 && se->n == rd->i1 - rd->i0)
+        return hy_table_area(rd->tb.u + rd->i0, se->y, se->n);
+    if (!strcmp(field, "rms") && se->ymeas) {
+        double s = 0;
+        size_t m = 0;
+        for (size_t i = 0; i < se->n; i++)
+            if (!isnan(se->ymeas[i])) {
+                double d = se->y[i] - se->ymeas[i];
+                s += d * d;
+                m++;
+            }
+        return m ? sqrt(s / (double)m) : NAN;
+    }
+    return NAN;
+}
+
+void hy_scene_data_log(const hy_scene_run *r, FILE *log)
+{
+    for (size_t i = 0; i < r->nseries; i++) {
+        const hy_run_series *se = &r->series[i];
+        const hy_run_data *rd = find_data(r, se->decl ? se->decl->of : NULL);
+        if (!rd || (se->data != HY_DATA_MEASURED && se->data != HY_DATA_MODELLED))
+            continue;
+        fprintf(log, "  series %-12s data=%-9s %7zu points of [data %s], %zu record%s", se->name,
+                hy_scene_data_name(se->data), rd->i1 - rd->i0, rd->name, rd->r1 - rd->r0, rd->r1 - rd->r0 == 1 ? "" : "s");
+        if (se->data == HY_DATA_MEASURED) {
+            fprintf(log, "; loop areas (shoelace, counter-clockwise > 0):");
+            for (size_t j = 0; j < rd->r1 - rd->r0; j++)
+                fprintf(log, " %.6g", rd->area[j]);
+        } else
+            fprintf(log, "; RMS of model - measured %.6g", hy_scene_data_value(r, se, "rms"));
+        fputc('\n', log);
+    }
+}

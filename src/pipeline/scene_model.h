@@ -107,6 +107,11 @@ const char *hy_scene_data_name(int data);
 int hy_scene_run_read_data(hy_scene_run *r, hy_error *err);
 int hy_scene_run_data_input(hy_scene_run *r, hy_error *err);
 int hy_scene_run_data_series(hy_scene_run *r, hy_error *err);
+/* A data series' {NAME.area} (the shoelace area of its points against the
+ * measured u, one record only) and {NAME.rms} (modelled: RMS of model -
+ * measured); NaN where it has none.  And its lines of render -v. */
+double hy_scene_data_value(const hy_scene_run *r, const hy_run_series *se, const char *field);
+void hy_scene_data_log(const hy_scene_run *r, FILE *log);
 
 /* r->series from the scene's [series] sections (name, data, gamma, k). */
 int hy_scene_run_series_new(hy_scene_run *r, hy_error *err);

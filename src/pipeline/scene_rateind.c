@@ -369,6 +369,8 @@ static void log_run(const hy_scene_run *r, const ri_plan *p, FILE *log)
         fprintf(log, "  periodic after %d periods (output change <= %g of its range)\n", r->ri_periods, SETTLE_TOL);
     for (size_t i = 0; i < r->nseries; i++) {
         const hy_run_series *se = &r->series[i];
+        if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+            continue; /* their own lines: hy_scene_data_log */
         fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms\n", se->name, hy_scene_data_name(se->data), se->n,
                 1e3 * se->seconds);
     }

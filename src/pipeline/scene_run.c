@@ -1135,6 +1135,8 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
         rc = r->mtype->compute(r, log, err);
     if (!rc)
         rc = hy_scene_run_data_series(r, err); /* data = measured, modelled */
+    if (!rc && log)
+        hy_scene_data_log(r, log);
     for (size_t i = 0; !rc && i < r->nseries; i++) { /* series.yscale, where written */
         hy_run_series *se = &r->series[i];
         double f = se->decl->yscale;
@@ -1169,6 +1171,8 @@ int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
         fprintf(log, "%s: plan\n%s", r->path, r->plan);
         for (size_t i = 0; i < ns; i++) {
             const hy_run_series *se = &r->series[i];
+            if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+                continue; /* their own lines: hy_scene_data_log */
             fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms", se->name, data_names[se->data], se->n,
                     1e3 * se->seconds);
             if (se->grid_n)

@@ -138,10 +138,9 @@ static const hy_scene_key_spec input_keys[] = {
       "data input: the [data NAME] whose measured u drives the model, its records in order, each from 'start' "
       "(rate-independent models; the input's t is the sample index)"),
     F(start, HY_KIND_ENUM, data_starts, NOLIM, 0, 0, "zero",
-      "data input: the state each record starts from: zero (the model's initial state at u = 0, then along a "
-      "monotone path to the record's first u: Jiles-Atherton with ja_m0 = 0 starts demagnetised and follows the "
-      "initial curve), first (that state put at the first u), periodic (the record driven over and over until it "
-      "repeats)"),
+      "data input: the state each record starts from: zero (the model's initial state, as its [model] keys give "
+      "it, at u = 0, then along a monotone path to the record's first u: a demagnetised magnet follows its initial "
+      "curve), first (that state put at the first u), periodic (the record driven over and over until it repeats)"),
 };
 #undef SECT
 

@@ -27,7 +27,7 @@ static void bad_inputs(void)
     refused("u,y\n1,2\n-inf,1\n", &UY, "d.csv:3:1: column 1 is not a finite number");
     refused("u,y\n1,2\n1e999,1\n", &UY, "d.csv:3:1: column 1 is not a finite number");
     refused("u,y\n1,2\n0x10,1\n", &UY, "d.csv:3:1: column 1 is not a number"); /* hex is not decimal */
-    refused("u,y\n1,2\n3\n", &UY, "d.csv:3:2: the row has 1 columns, the rows before it 2");
+    refused("u,y\n1,2\n3\n", &UY, "d.csv:3:2: the row has 1 column, the rows before it 2");
     refused("u y\n1 2\n3 4 5\n", &UY, "d.csv:3:5: the row has 3 columns, the rows before it 2");
     refused("u,y\n1,2\n3,\n", &UY, "d.csv:3:3: column 2 is not a number"); /* an empty field */
     hy_table_spec h = {{"H", "B", NULL, NULL}, {1, 1, 1}};
