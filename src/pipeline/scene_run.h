@@ -255,7 +255,7 @@ int hy_scene_run_driving(const hy_scene_run *r, hy_data_view *v, hy_error *err);
  * refuses a move returns its status, y_model then partly written. */
 int hy_scene_run_model_at_data(const hy_scene_run *r, double *y_model, hy_error *err);
 
-/* Sets [model] keys of a loaded run ("model.ja_k=4.1", parsed and checked
+/* Sets [model] keys of a loaded run ("model.KEY=4.1", parsed and checked
  * as --set): each call starts from the scene as loaded (the previous call's
  * overrides undone, hy_scene_mark), so memory does not grow with calls; the
  * decoded [model] and the model's parameters change, the data stay as read.
