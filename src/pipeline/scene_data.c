@@ -282,20 +282,34 @@ static int fill(hy_scene_run *r, hy_run_series *se, const hy_run_data *rd, const
     return rc;
 }
 
-/* A series of measured or modelled data: its [data] and what it may draw. */
-static int series_data(const hy_scene_run *r, const hy_run_series *se, const hy_run_data **rd, hy_error *err)
+/* A series of measured or modelled data (decoded d): its [data] and what it may draw. */
+static int series_data(const hy_scene_run *r, const hy_decl_series *d, const hy_run_data **rd, hy_error *err)
 {
-    const hy_decl_series *d = se->decl;
     if (hy_decl_got(&d->h, offsetof(hy_decl_series, of)) < 0)
         return hy_decl_error(&d->h, offsetof(hy_decl_series, data), err, HY_EINVAL,
-                             "series '%s' (data = %s) needs 'of = NAME', a [data NAME] of the scene", se->name,
-                             hy_scene_data_name(se->data));
+                             "series '%s' (data = %s) needs 'of = NAME', a [data NAME] of the scene", d->h.name,
+                             hy_scene_data_name(d->data));
     if (!(*rd = find_data(r, d->of)))
         return hy_decl_error(&d->h, offsetof(hy_decl_series, of), err, HY_EINVAL, "no [data %s] in the scene", d->of);
-    if (se->data == HY_DATA_MODELLED && *rd != r->drive)
+    if (d->data == HY_DATA_MODELLED && *rd != r->drive)
         return hy_decl_error(&d->h, offsetof(hy_decl_series, of), err, HY_EINVAL,
                              "data = modelled draws the model at the inputs of the data that drive it: [input] kind = data "
                              "and data = %s", d->of);
+    return HY_OK;
+}
+
+int hy_scene_run_data_check(const hy_scene_run *r, hy_error *err)
+{
+    for (size_t i = 0; i < r->doc.nseries; i++) {
+        const hy_decl_series *d = &r->doc.series[i];
+        const hy_run_data *rd;
+        int rc = HY_OK;
+        if (hy_decl_got(&d->h, offsetof(hy_decl_series, data)) >= 0 &&
+            (d->data == HY_DATA_MEASURED || d->data == HY_DATA_MODELLED))
+            rc = series_data(r, d, &rd, err);
+        if (rc)
+            return rc;
+    }
     return HY_OK;
 }
 
@@ -306,7 +320,7 @@ int hy_scene_run_data_series(hy_scene_run *r, hy_error *err)
         if (se->data != HY_DATA_MEASURED && se->data != HY_DATA_MODELLED)
             continue;
         const hy_run_data *rd = NULL;
-        int rc = series_data(r, se, &rd, err);
+        int rc = series_data(r, se->decl, &rd, err);
         if (rc)
             return rc;
         se->err = se->dist = NAN;

@@ -107,6 +107,9 @@ const char *hy_scene_data_name(int data);
 int hy_scene_run_read_data(hy_scene_run *r, hy_error *err);
 int hy_scene_run_data_input(hy_scene_run *r, hy_error *err);
 int hy_scene_run_data_series(hy_scene_run *r, hy_error *err);
+/* Before computing: each data = measured or modelled series names a [data]
+ * of the scene (modelled: the one that drives the model). */
+int hy_scene_run_data_check(const hy_scene_run *r, hy_error *err);
 /* A data series' {NAME.area} (the shoelace area of its points against the
  * measured u, one record only) and {NAME.rms} (modelled: RMS of model -
  * measured); NaN where it has none.  And its lines of render -v. */

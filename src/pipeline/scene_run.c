@@ -266,6 +266,8 @@ static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err)
     if (!rc)
         rc = r->mtype->load(r, err);
     if (!rc)
+        rc = hy_scene_run_data_check(r, err); /* data = measured, modelled: their [data] */
+    if (!rc)
         rc = load_panels(r, err);
     if (!rc)
         rc = hy_scene_run_validate(r, err);
