@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hy_gamma.h"
 #include "hy_scene_policy.h"
 
 #define SETTLE_TOL 1e-12 /* start = periodic: relative change of y at a record's end counted as periodic */
@@ -94,17 +95,54 @@ static void ri_names(char *buf, size_t size)
             snprintf(buf + strlen(buf), size - strlen(buf), "%s%s", buf[0] ? ", " : "", hy_scene_models[i]->name);
 }
 
-/* Refuses a model that cannot be driven sample by sample, at the key off of h. */
-static int need_rate_independent(const hy_scene_run *r, const hy_decl_head *h, size_t off, const char *what, hy_error *err)
+/* Whether the model is one of the time-stepped friction models, driven by
+ * the exact piecewise-exponential solution at the measured times (r->model). */
+static int stepped(const hy_scene_run *r)
 {
-    if (r->mtype->ri)
+    return !r->mtype->ri && (r->mtype->caps & HY_CAP_EXACT_STEP);
+}
+
+/* Refuses a model that cannot be driven by measured data, at the key off of h. */
+static int need_drivable(const hy_scene_run *r, const hy_decl_head *h, size_t off, const char *what, hy_error *err)
+{
+    if (r->mtype->ri || stepped(r))
         return HY_OK;
     char names[200];
     ri_names(names, sizeof names);
     return hy_decl_error(h, off, err, HY_EUNSUP,
-                         "%s drives a rate-independent model (%s: the measured u in order, time plays no part); "
-                         "a %s model is time-stepped and needs the data's t, which hystviz does not drive yet",
-                         what, names, r->mtype->name);
+                         "%s drives a rate-independent model (%s: the measured u in order) or a Dahl/LuGre model "
+                         "(the measured t and u); a %s model is not driven by measured data", what, names,
+                         r->mtype->name);
+}
+
+/* The times of the driving record for a time-stepped model: t - t[0] (the
+ * sample index without a t column, for a rate-independent one), malloc'd. */
+static double *record_times(const hy_run_data *rd)
+{
+    size_t n = rd->i1 - rd->i0;
+    double *t = malloc((n + 1) * sizeof *t);
+    for (size_t i = 0; t && i < n; i++)
+        t[i] = rd->tb.t ? rd->tb.t[rd->i0 + i] - rd->tb.t[rd->i0] : (double)i;
+    return t;
+}
+
+/* What a time-stepped model needs of the data that drive it: a t column
+ * (unless the model is rate-independent: Dahl), one record, no periodic start. */
+static int stepped_ok(const hy_scene_run *r, const hy_run_data *rd, hy_error *err)
+{
+    const hy_decl_input *d = &r->doc.input;
+    if (!rd->tb.t && !(r->mtype->caps & HY_CAP_RATE_INDEPENDENT))
+        return hy_decl_error(&d->h, offsetof(hy_decl_input, data), err, HY_EINVAL,
+                             "a %s model is time-stepped: it is driven by the measured t and u, and [data %s] has no "
+                             "t column (t = NAME or index)", r->mtype->name, rd->name);
+    if (rd->r1 - rd->r0 != 1)
+        return hy_decl_error(&d->h, offsetof(hy_decl_input, data), err, HY_EINVAL,
+                             "a %s model is driven by one record of measured t and u: choose it with record = K in "
+                             "[data %s] (%zu records)", r->mtype->name, rd->name, rd->r1 - rd->r0);
+    if (d->start == START_PERIODIC)
+        return hy_decl_error(&d->h, offsetof(hy_decl_input, start), err, HY_EINVAL,
+                             "start = periodic drives rate-independent models; a %s model starts from x0", r->mtype->name);
+    return HY_OK;
 }
 
 int hy_scene_run_data_input(hy_scene_run *r, hy_error *err)
@@ -116,22 +154,24 @@ int hy_scene_run_data_input(hy_scene_run *r, hy_error *err)
     const hy_run_data *rd = find_data(r, d->data);
     if (!rd)
         return hy_decl_error(h, offsetof(hy_decl_input, data), err, HY_EINVAL, "no [data %s] in the scene", d->data);
-    int rc = need_rate_independent(r, h, offsetof(hy_decl_input, kind), "[input] kind = data", err);
+    int rc = need_drivable(r, h, offsetof(hy_decl_input, kind), "[input] kind = data", err);
+    if (!rc && stepped(r))
+        rc = stepped_ok(r, rd, err);
     if (rc)
         return rc;
     size_t n = rd->i1 - rd->i0, m = n + 1;
-    double *t = malloc(m * sizeof *t), *u = malloc(m * sizeof *u);
+    double *t = stepped(r) ? record_times(rd) : malloc(m * sizeof *t), *u = malloc(m * sizeof *u);
     if (!t || !u) {
         free(t);
         free(u);
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     }
     for (size_t i = 0; i < n; i++) {
-        t[i] = (double)i;
+        t[i] = stepped(r) ? t[i] : (double)i;
         u[i] = rd->tb.u[rd->i0 + i];
     }
-    if (u[n - 1] != u[0]) { /* closed back to the first u, one sample on */
-        t[n] = (double)n;
+    if (u[n - 1] != u[0]) { /* closed back to the first u, one mean step on */
+        t[n] = n > 1 ? t[n - 1] + t[n - 1] / (double)(n - 1) : 1.0;
         u[n] = u[0];
     } else
         m = n;
@@ -212,6 +252,13 @@ int hy_scene_run_model_at_data(const hy_scene_run *r, double *y_model, hy_error 
     hy_data_view v;
     int rc = hy_scene_run_driving(r, &v, err);
     int start = r->doc.input.start;
+    if (!rc && stepped(r)) { /* one record (load checked it): y_1 at its times, from x0 (Eq. 3, gamma = 1) */
+        double *t = record_times(r->drive);
+        rc = t ? hy_gamma_exact(&r->model, &r->input, 1.0, t, v.n, y_model, NULL, err)
+               : hy_error_set(err, HY_ENOMEM, "out of memory");
+        free(t);
+        return rc ? hy_decl_error(&r->doc.model.h, HY_DECL_HEAD, err, rc, "%s", err->msg) : HY_OK;
+    }
     for (size_t j = 0; !rc && j < v.nrec; j++) {
         size_t a = v.rec[j] - v.rec[0], n = v.rec[j + 1] - v.rec[j];
         rc = drive_record(r, start, v.u + a, n, y_model + a, err);
@@ -225,8 +272,8 @@ int hy_scene_run_set_model(hy_scene_run *r, char *const *sets, size_t nsets, hy_
         if (strncmp(sets[i], "model.", 6) || !strncmp(sets[i], "model.kind", 10))
             return hy_error_set(err, HY_EINVAL, "'%s': a loaded run changes only its [model] parameters (model.KEY=VALUE, "
                                 "not model.kind)", sets[i]);
-    if (!r->mtype->ri)
-        return need_rate_independent(r, &r->doc.model.h, HY_DECL_HEAD, "hy_scene_run_set_model", err);
+    if (!r->mtype->ri && !stepped(r))
+        return need_drivable(r, &r->doc.model.h, HY_DECL_HEAD, "hy_scene_run_set_model", err);
     int rc = HY_OK;
     if (!r->model_marked && !(rc = hy_scene_mark(r->scene))) /* the scene as loaded: each call starts there */
         r->model_marked = 1;
@@ -237,9 +284,17 @@ int hy_scene_run_set_model(hy_scene_run *r, char *const *sets, size_t nsets, hy_
     if (rc)
         return rc;
     hy_scene_doc d;
-    void *par = malloc(r->mtype->ri_par_size);
+    void *par = malloc(r->mtype->ri ? r->mtype->ri_par_size : 1);
     rc = par ? hy_scene_decode(r->scene, &d, err) : hy_error_set(err, HY_ENOMEM, "out of memory");
-    if (!rc && !(rc = r->mtype->read(&d.model, par, err))) { /* checked: only then the run's */
+    if (!rc && !r->mtype->ri) { /* Dahl, LuGre: r->model from the new [model], kept as it was if refused */
+        hy_decl_model keep = r->doc.model;
+        hy_model old = r->model;
+        r->doc.model = d.model;
+        if ((rc = hy_scene_run_build_model(r, err))) {
+            r->doc.model = keep;
+            r->model = old;
+        }
+    } else if (!rc && !(rc = r->mtype->read(&d.model, par, err))) { /* checked: only then the run's */
         r->doc.model = d.model;
         memcpy(r->ri_par, par, r->mtype->ri_par_size);
     }

@@ -92,6 +92,9 @@ int hy_scene_model_has_key(const hy_scene_model *mt, const char *key);
 enum { HY_FIGURE_KINDS(HY__FIG_ID) };
 #undef HY__FIG_ID
 
+/* The Dahl/LuGre/filter model of the decoded [model] as r->model, checked
+ * (HY_EINVAL at the key a message names). */
+int hy_scene_run_build_model(hy_scene_run *r, hy_error *err);
 /* The scene's [input] as r->input (every input hystviz has). */
 int hy_scene_run_build_input(hy_scene_run *r, hy_error *err);
 /* HY_DATA_* of a decoded series' data into *data; -1 when it has none. */

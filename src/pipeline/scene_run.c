@@ -61,7 +61,7 @@ const char *hy_scene_data_name(int data)
     return data >= 0 && data < (int)(sizeof data_names / sizeof *data_names) ? data_names[data] : "?";
 }
 
-static int build_model(hy_scene_run *r, hy_error *err)
+int hy_scene_run_build_model(hy_scene_run *r, hy_error *err)
 {
     static const char *const keys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
     const hy_decl_model *d = &r->doc.model;
@@ -1225,7 +1225,7 @@ int hy_scene_friction_load(hy_scene_run *r, hy_error *err)
     if (!rc)
         rc = check_friction_series(r, err);
     if (!rc)
-        rc = build_model(r, err);
+        rc = hy_scene_run_build_model(r, err);
     if (!rc)
         rc = hy_scene_run_build_input(r, err);
     return rc;

@@ -135,8 +135,9 @@ static const hy_scene_key_spec input_keys[] = {
     FQ("seed", NULL, seed, HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
     FQ("r", "Hz/min", rate, HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute (the paper's 10)"),
     F(data, HY_KIND_NAME, NULL, NOLIM, 0, 0, NULL,
-      "data input: the [data NAME] whose measured u drives the model, its records in order, each from 'start' "
-      "(rate-independent models; the input's t is the sample index)"),
+      "data input: the [data NAME] whose measured u drives the model: a rate-independent model its records in "
+      "order, each from 'start' (t is the sample index); Dahl, LuGre or the filter system one record's t and u "
+      "(exact solution at gamma = 1, from x0)"),
     F(start, HY_KIND_ENUM, data_starts, NOLIM, 0, 0, "zero",
       "data input: the state each record starts from: zero (the model's initial state, as its [model] keys give "
       "it, at u = 0, then along a monotone path to the record's first u: a demagnetised magnet follows its initial "

@@ -240,10 +240,13 @@ static void refusals(void)
     ferrite_like(path, sizeof path);
     hy_scene_run r;
     hy_error err;
-    int rc = load("lg.scene", "[model]\nkind = lugre\n[data f]\nfile = \"f.csv\"\nu = H\ny = B\n[input]\nkind = data\n"
-                              "data = f\n[figure]\nkind = loop\n[series m]\ndata = modelled\nof = f\n", NULL, 0, &r, &err);
-    CHECK(rc == HY_EUNSUP && strstr(err.msg, "lg.scene:8:1: [input] kind = data drives a rate-independent model") &&
-              strstr(err.msg, "a lugre model is time-stepped"), "lugre refused: %d %s", rc, err.msg);
+    int rc = load("lg.scene", "[model]\nkind = lugre\n[data f]\nfile = \"f.csv\"\nu = H\ny = B\nrecord = 1\n[input]\n"
+                              "kind = data\ndata = f\n[figure]\nkind = loop\n[series m]\ndata = modelled\nof = f\n", NULL, 0, &r, &err);
+    CHECK(rc == HY_EINVAL && strstr(err.msg, "lg.scene:10:1: a lugre model is time-stepped: it is driven by the measured t "
+                                             "and u, and [data f] has no t column"), "lugre without t: %d %s", rc, err.msg);
+    rc = load("bw.scene", "[model]\nkind = boucwen\n[data f]\nfile = \"f.csv\"\nu = H\ny = B\n[input]\nkind = data\n"
+                          "data = f\n[figure]\nkind = timeseries\n[series m]\ndata = modelled\nof = f\n", NULL, 0, &r, &err);
+    CHECK(rc != 0 && strstr(err.msg, "bw.scene:"), "boucwen refused with its place: %d %s", rc, err.msg);
     rc = load("nd.scene", "[model]\nkind = jiles-atherton\n[data f]\nfile = \"f.csv\"\nu = H\ny = B\n"
                           "[figure]\nkind = loop\n[series m]\ndata = modelled\nof = f\n", NULL, 0, &r, &err);
     CHECK(rc == HY_EINVAL && strstr(err.msg, "nd.scene:11:1: data = modelled draws the model at the inputs"),
@@ -259,6 +262,49 @@ static void refusals(void)
     CHECK(rc == HY_EINVAL && strstr(err.msg, "of.scene:5:1: no [data nope] in the scene"), "unknown data: %s", err.msg);
 }
 
+/* LuGre driven by measured t and u equals LuGre driven by the same samples as
+ * a file input, its y_gamma at gamma = 1 on a grid that is the sample times
+ * (0.25 i: exact in binary, and the period 10 = 40 x 0.25), to the bit: both
+ * are the exact solution at the same times.  Then the fitter's route for it. */
+static void lugre_by_time(void)
+{
+    char path[4200], csv[8192] = "t,u,y\n", txt[8192] = "";
+    for (int i = 0; i <= 40; i++) {
+        double u = i < 40 ? 2 * sin(2 * M_PI * i / 40.0) : 0.0, t = 0.25 * i;
+        snprintf(csv + strlen(csv), sizeof csv - strlen(csv), "%.17g,%.17g,%.17g\n", t, u, tanh(u));
+        snprintf(txt + strlen(txt), sizeof txt - strlen(txt), "%.17g %.17g\n", t, u);
+    }
+    put("lg.csv", csv, path, sizeof path);
+    put("lg.txt", txt, path, sizeof path);
+    const char *a = "[model]\nkind = lugre\nsigma0 = 6\n[data d]\nfile = \"lg.csv\"\nu = u\ny = y\nt = t\n"
+                    "[input]\nkind = data\ndata = d\n[figure]\nkind = timeseries\n[series m]\ndata = modelled\nof = d\n";
+    const char *b = "[model]\nkind = lugre\nsigma0 = 6\n[input]\nkind = file\nfile = \"lg.txt\"\n[compute]\npoints = 40\n"
+                    "[figure]\nkind = timeseries\n[series s]\ndata = ygamma\ngamma = 1\n";
+    hy_scene_run ra, rb;
+    hy_error err;
+    int rc = load("lga.scene", a, NULL, 0, &ra, &err);
+    CHECK(rc == 0, "lugre driven by t and u: %s", err.msg);
+    if (rc)
+        return;
+    if (!(rc = load("lgb.scene", b, NULL, 0, &rb, &err))) {
+        const hy_run_series *m = find(&ra, "m"), *s = find(&rb, "s");
+        size_t same = 0;
+        for (size_t i = 0; i < 41 && m->n == 41 && s->n == 41; i++)
+            same += m->x[i] == s->x[i] && m->y[i] == s->y[i];
+        CHECK(same == 41, "lugre: %zu of 41 samples equal to the bit", same);
+        hy_scene_run_free(&rb);
+    }
+    CHECK(rc == 0, "lugre by file: %s", err.msg);
+    double y1[41], y2[41];
+    char *sets[] = {"model.sigma0=2"}, *bad[] = {"model.sigma0=-1"};
+    rc = hy_scene_run_set_model(&ra, sets, 1, &err);
+    rc = rc ? rc : hy_scene_run_model_at_data(&ra, y1, &err);
+    CHECK(rc == 0 && y1[5] != find(&ra, "m")->y[5], "lugre set_model: %s", err.msg);
+    CHECK(hy_scene_run_set_model(&ra, bad, 1, &err) != 0, "sigma0 = -1 refused");
+    CHECK(hy_scene_run_model_at_data(&ra, y2, &err) == 0 && !memcmp(y1, y2, sizeof y1), "lugre kept its last model");
+    hy_scene_run_free(&ra);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -268,5 +314,6 @@ int main(void)
     fitter_calls();
     starts();
     refusals();
+    lugre_by_time();
     return tu_finish("data");
 }
