@@ -250,9 +250,10 @@ int hy_scene_run_driving(const hy_scene_run *r, hy_data_view *v, hy_error *err)
 int hy_scene_run_model_at_data(const hy_scene_run *r, double *y_model, hy_error *err)
 {
     hy_data_view v;
-    int rc = hy_scene_run_driving(r, &v, err);
-    int start = r->doc.input.start;
-    if (!rc && stepped(r)) { /* one record (load checked it): y_1 at its times, from x0 (Eq. 3, gamma = 1) */
+    int rc = hy_scene_run_driving(r, &v, err), start = r->doc.input.start;
+    if (rc)
+        return rc;
+    if (stepped(r)) { /* one record (load checked it): y_1 at its times, from x0 (Eq. 3, gamma = 1) */
         double *t = record_times(r->drive);
         rc = t ? hy_gamma_exact(&r->model, &r->input, 1.0, t, v.n, y_model, NULL, err)
                : hy_error_set(err, HY_ENOMEM, "out of memory");
