@@ -377,6 +377,8 @@ unsigned hy_scene_doc_reads(const hy_scene_doc *doc)
         int d = ds->data;
         if (hy_decl_got(&ds->h, offsetof(hy_decl_series, data)) < 0)
             return HY_READS_MODEL | HY_READS_G | HY_READS_INPUT; /* refused later: nothing to hide */
+        if (d == HY_DATA_MEASURED)
+            continue; /* the data alone: no model, no input */
         if (d == HY_DATA_G)
             reads |= HY_READS_G;
         else

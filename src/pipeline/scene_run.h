@@ -178,7 +178,7 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
 
 /* What computing and drawing the scene reads of [model] and [input], as the
  * plan decides from its series: HY_READS_MODEL, the model's dynamics (any
- * series but input, psi and g); HY_READS_G, its g(v) only (Fc, Fs, vs, beta;
+ * series but input, psi, g and measured); HY_READS_G, its g(v) only (Fc, Fs, vs, beta;
  * data = g); HY_READS_INPUT, the input (any series but g).  An annotation's
  * {model.KEY} or {input.KEY} placeholder reads that section too.  hystviz
  * serve shows controls only for what is read.  (The bits: hy_scene.h.) */
