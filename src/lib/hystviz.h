@@ -2,8 +2,9 @@
 /* hystviz.h: libhystviz, the hystviz pipeline as a C library.
  *
  * Include this one header; it brings the numerical core with it (hy_model.h,
- * hy_input.h, hy_limit.h, hy_loops.h, hy_gamma.h, hy_boucwen.h, ...: each is
- * its own manual).  Build against the installed library with
+ * hy_input.h, hy_limit.h, hy_loops.h, hy_gamma.h, hy_boucwen.h, the reader of
+ * measured data hy_table.h, ...: each is its own manual).  Build against the
+ * installed library with
  *
  *     cc prog.c $(pkg-config --cflags --libs hystviz)
  *
@@ -46,6 +47,7 @@
 #include "hy_loops.h"
 #include "hy_model.h"
 #include "hy_status.h"
+#include "hy_table.h"
 
 /* The library's version, "MAJOR.MINOR.PATCH" (that of the hystviz command
  * built with it); never NULL. */

@@ -10,6 +10,7 @@
 #include "hy_out.h"
 #include "hy_plot.h"
 #include "hy_markup.h"
+#include "scene_model.h"
 #include "scene_run.h"
 
 static const char *const default_xlabel[] = {"t", "u", "t", "\\nu", "\\varrho"};
@@ -129,7 +130,8 @@ static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out,
                 if (strlen(se->name) != (size_t)(dot - key) || strncmp(se->name, key, (size_t)(dot - key)))
                     continue;
                 int yg = se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT;
-                v = !yg ? NAN : !strcmp(dot + 1, "gamma") ? se->gamma : !strcmp(dot + 1, "dist") ? se->dist : NAN;
+                v = !yg ? hy_scene_data_value(r, se, dot + 1) /* data = measured, modelled: area, rms */
+                        : !strcmp(dot + 1, "gamma") ? se->gamma : !strcmp(dot + 1, "dist") ? se->dist : NAN;
             }
             if (isnan(v) && dot - key < 16) { /* SECTION.key: a numeric key, set or default */
                 char sect[16];
@@ -141,7 +143,7 @@ static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out,
         }
         if (isnan(v))
             return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
-                                 "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key of a numeric key)",
+                                 "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SERIES.area of a measured or modelled series of one record, SERIES.rms of a modelled one; SECTION.key of a numeric key)",
                                      key, L->nminor);
         char num[64];
         if (turn)
@@ -217,6 +219,10 @@ static int placeholder_known(const hy_scene_doc *d, const char *key)
     if (se && hy_decl_got(&se->h, offsetof(hy_decl_series, data)) >= 0 &&
         (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT) && (!strcmp(dot + 1, "gamma") || !strcmp(dot + 1, "dist")))
         return 1;
+    if (se && hy_decl_got(&se->h, offsetof(hy_decl_series, data)) >= 0 &&
+        ((se->data == HY_DATA_MEASURED && !strcmp(dot + 1, "area")) ||
+         (se->data == HY_DATA_MODELLED && (!strcmp(dot + 1, "area") || !strcmp(dot + 1, "rms")))))
+        return 1;
     double x;
     return dot - key < 16 && !hy_scene_doc_num(d, sect, dot + 1, &x);
 }
@@ -277,7 +283,8 @@ int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
                 return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
                                      "unknown placeholder {%s%s} (major.area, major.own, energy, nminor, "
                                      "minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; "
-                                     "SERIES.gamma, SERIES.dist of a ygamma or transient series; SECTION.key "
+                                     "SERIES.gamma, SERIES.dist of a ygamma or transient series; SERIES.area of a "
+                                     "measured or modelled series, SERIES.rms of a modelled one; SECTION.key "
                                      "of a numeric key)", key, n >= sizeof key ? "..." : "");
         }
     }
@@ -333,6 +340,8 @@ static size_t figure_series(const hy_scene_run *r, hy_scene_fig *st)
             se->label = d->label;
         free(lab);
         int mk = d->marker;
+        if (mk && rs->data == HY_DATA_MEASURED) /* a marker at every measured point: smaller than one mark */
+            se->marker_size = 3;
         if (mk && rs->has_mark) {
             hy_mark *m = &st->marks[nm++];
             m->x = rs->mark_x;
@@ -569,6 +578,12 @@ static void data_rows(const hy_scene_run *r, const char *panel, FILE *out)
         for (size_t j = 0; j < se->n; j++)
             if (!isnan(se->x[j]))
                 fprintf(out, "%s%s%s,%.17g,%.17g\n", panel ? panel : "", panel ? "/" : "", se->name, se->x[j], se->y[j]);
+        /* data = modelled: the measured y and the residual (model - measured) at the same x */
+        for (int k = 0; se->ymeas && k < 2; k++)
+            for (size_t j = 0; j < se->n; j++)
+                if (!isnan(se->x[j]))
+                    fprintf(out, "%s%s%s@%s,%.17g,%.17g\n", panel ? panel : "", panel ? "/" : "", se->name,
+                            k ? "residual" : "measured", se->x[j], k ? se->y[j] - se->ymeas[j] : se->ymeas[j]);
         if (se->has_mark)
             fprintf(out, "%s%s%s@marker,%.17g,%.17g\n", panel ? panel : "", panel ? "/" : "", se->name, se->mark_x,
                     se->mark_y);

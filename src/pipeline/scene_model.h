@@ -92,12 +92,32 @@ int hy_scene_model_has_key(const hy_scene_model *mt, const char *key);
 enum { HY_FIGURE_KINDS(HY__FIG_ID) };
 #undef HY__FIG_ID
 
+/* The Dahl/LuGre/filter model of the decoded [model] as r->model, checked
+ * (HY_EINVAL at the key a message names). */
+int hy_scene_run_build_model(hy_scene_run *r, hy_error *err);
 /* The scene's [input] as r->input (every input hystviz has). */
 int hy_scene_run_build_input(hy_scene_run *r, hy_error *err);
 /* HY_DATA_* of a decoded series' data into *data; -1 when it has none. */
 int hy_scene_series_data(const hy_decl_series *ds, int *data);
 /* The series data names, indexed by HY_DATA_*. */
 const char *hy_scene_data_name(int data);
+
+/* Measured data (scene_data.c): every [data] read once, through the scene's
+ * file policy (build_run, before the model's load); r->input for [input]
+ * kind = data (the driving data's u over t = the sample index; refused for
+ * a model that is not rate-independent); the points of the series data =
+ * measured and modelled (hy_scene_run_compute, after the model's own). */
+int hy_scene_run_read_data(hy_scene_run *r, hy_error *err);
+int hy_scene_run_data_input(hy_scene_run *r, hy_error *err);
+int hy_scene_run_data_series(hy_scene_run *r, hy_error *err);
+/* Before computing: each data = measured or modelled series names a [data]
+ * of the scene (modelled: the one that drives the model). */
+int hy_scene_run_data_check(const hy_scene_run *r, hy_error *err);
+/* A data series' {NAME.area} (the shoelace area of its points against the
+ * measured u, one record only) and {NAME.rms} (modelled: RMS of model -
+ * measured); NaN where it has none.  And its lines of render -v. */
+double hy_scene_data_value(const hy_scene_run *r, const hy_run_series *se, const char *field);
+void hy_scene_data_log(const hy_scene_run *r, FILE *log);
 
 /* r->series from the scene's [series] sections (name, data, gamma, k). */
 int hy_scene_run_series_new(hy_scene_run *r, hy_error *err);

@@ -310,8 +310,8 @@ static int compute_series(hy_scene_run *r, ri_plan *p, hy_run_series *se, hy_err
     int q = quantity_of(r, se->decl), loopfig = r->figure_kind == FIG_LOOP, rc = HY_OK;
     double T = in->period, t0 = now();
     se->err = se->dist = NAN;
-    if (r->numbers_only) /* the sweep's table: loops only (computed in the plan) */
-        return HY_OK;
+    if (r->numbers_only || se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+        return HY_OK; /* the sweep's table: loops only (computed in the plan); data series: scene_data.c */
     if (se->data == HY_DATA_MINOR || se->data == HY_DATA_MAJOR)
         rc = loop_series(r, p, se, q, err);
     else if (se->data == HY_DATA_PSI) {
@@ -369,6 +369,8 @@ static void log_run(const hy_scene_run *r, const ri_plan *p, FILE *log)
         fprintf(log, "  periodic after %d periods (output change <= %g of its range)\n", r->ri_periods, SETTLE_TOL);
     for (size_t i = 0; i < r->nseries; i++) {
         const hy_run_series *se = &r->series[i];
+        if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+            continue; /* their own lines: hy_scene_data_log */
         fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms\n", se->name, hy_scene_data_name(se->data), se->n,
                 1e3 * se->seconds);
     }

@@ -61,7 +61,7 @@ const char *hy_scene_data_name(int data)
     return data >= 0 && data < (int)(sizeof data_names / sizeof *data_names) ? data_names[data] : "?";
 }
 
-static int build_model(hy_scene_run *r, hy_error *err)
+int hy_scene_run_build_model(hy_scene_run *r, hy_error *err)
 {
     static const char *const keys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
     const hy_decl_model *d = &r->doc.model;
@@ -147,7 +147,9 @@ int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
         if (hy_decl_got(h, offsetof(hy_decl_input, points)) < 0)
             return hy_decl_error(h, offsetof(hy_decl_input, kind), err, HY_EINVAL, "a pwl input needs 'points = t0, u0, t1, u1, ...'");
         rc = pwl_input(&r->input, &d->points, err);
-    } else { /* file */
+    } else if (!strcmp(kind, "data")) /* measured u: read at load (scene_data.c) */
+        return hy_scene_run_data_input(r, err);
+    else { /* file */
         if (hy_decl_got(h, offsetof(hy_decl_input, file)) < 0)
             return hy_decl_error(h, offsetof(hy_decl_input, kind), err, HY_EINVAL, "a file input needs 'file = \"PATH\"'");
         if ((rc = file_input(r, err)))
@@ -260,7 +262,11 @@ static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err)
     r->mtype = hy_scene_model_of(&r->doc.model);
     rc = check_quantities(r, err);
     if (!rc)
+        rc = hy_scene_run_read_data(r, err); /* every [data] file, once */
+    if (!rc)
         rc = r->mtype->load(r, err);
+    if (!rc)
+        rc = hy_scene_run_data_check(r, err); /* data = measured, modelled: their [data] */
     if (!rc)
         rc = load_panels(r, err);
     if (!rc)
@@ -297,8 +303,14 @@ void hy_scene_run_free(hy_scene_run *r)
     for (size_t i = 0; i < r->nseries; i++) {
         free(r->series[i].x);
         free(r->series[i].y);
+        free(r->series[i].ymeas);
     }
     free(r->series);
+    for (size_t i = 0; i < r->ndata; i++) {
+        hy_table_free(&r->data[i].tb);
+        free(r->data[i].area);
+    }
+    free(r->data);
     if (r->have_loops)
         hy_loops_free(&r->loops);
     if (r->have_steady)
@@ -365,6 +377,8 @@ unsigned hy_scene_doc_reads(const hy_scene_doc *doc)
         int d = ds->data;
         if (hy_decl_got(&ds->h, offsetof(hy_decl_series, data)) < 0)
             return HY_READS_MODEL | HY_READS_G | HY_READS_INPUT; /* refused later: nothing to hide */
+        if (d == HY_DATA_MEASURED)
+            continue; /* the data alone: no model, no input */
         if (d == HY_DATA_G)
             reads |= HY_READS_G;
         else
@@ -893,6 +907,8 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     se->err_ref = NULL;
     se->dist = NAN;
     se->grid_n = 0;
+    if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+        return HY_OK; /* from the data, after the model's compute (scene_data.c) */
     /* numbers only: u, ψ and g are not sampled; the closed forms are, so that
        their error is measured (issue 11) and the same as with figures */
     if (r->numbers_only && (se->data == HY_DATA_INPUT || se->data == HY_DATA_PSI || se->data == HY_DATA_G))
@@ -1027,7 +1043,9 @@ int hy_scene_check_series_kind(const hy_scene_run *r, const hy_run_series *se, h
     static const char *const kinds[] = {HY_FIGURE_KINDS(FIGURE_NAME)};
 #undef FIGURE_NAME
     int bad = 0;
-    if (r->figure_kind == FIG_LOOP)
+    if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+        bad = r->figure_kind != FIG_LOOP && r->figure_kind != FIG_TIMESERIES;
+    else if (r->figure_kind == FIG_LOOP)
         bad = !ok_loop[se->data];
     else if (r->figure_kind == FIG_G)
         bad = se->data != HY_DATA_G;
@@ -1151,6 +1169,10 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
         rc = hy_scene_run_compute(&r->panels[i], log, err);
     if (!rc)
         rc = r->mtype->compute(r, log, err);
+    if (!rc)
+        rc = hy_scene_run_data_series(r, err); /* data = measured, modelled */
+    if (!rc && log)
+        hy_scene_data_log(r, log);
     for (size_t i = 0; !rc && i < r->nseries; i++) { /* series.yscale, where written */
         hy_run_series *se = &r->series[i];
         double f = se->decl->yscale;
@@ -1158,6 +1180,8 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
             continue;
         for (size_t j = 0; j < se->n; j++)
             se->y[j] *= f;
+        for (size_t j = 0; se->ymeas && j < se->n; j++)
+            se->ymeas[j] *= f;
         se->mark_y *= f;
     }
     return rc;
@@ -1183,6 +1207,8 @@ int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
         fprintf(log, "%s: plan\n%s", r->path, r->plan);
         for (size_t i = 0; i < ns; i++) {
             const hy_run_series *se = &r->series[i];
+            if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+                continue; /* their own lines: hy_scene_data_log */
             fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms", se->name, data_names[se->data], se->n,
                     1e3 * se->seconds);
             if (se->grid_n)
@@ -1233,7 +1259,7 @@ int hy_scene_friction_load(hy_scene_run *r, hy_error *err)
     if (!rc)
         rc = check_friction_series(r, err);
     if (!rc)
-        rc = build_model(r, err);
+        rc = hy_scene_run_build_model(r, err);
     if (!rc)
         rc = hy_scene_run_build_input(r, err);
     return rc;

@@ -25,6 +25,7 @@
 #include "hy_plot.h"
 #include "hy_scene.h"
 #include "hy_scene_decl.h"
+#include "hy_table.h"
 
 #define HY_DATA_ENUM(id, name) HY_DATA_##id,
 enum { HY_SERIES_DATA(HY_DATA_ENUM) HY_DATA_COUNT };
@@ -49,7 +50,23 @@ typedef struct hy_run_series {
     size_t grid_n;            /* figure_only: the points of the grid it would have
                                * sampled when it holds fewer (thinned, or drawn
                                * as its mark only), else 0                       */
+    double *ymeas;            /* data = modelled: the measured y at each point
+                               * (NaN in the gaps), else NULL; hystviz data
+                               * writes it and the residual beside the model's  */
 } hy_run_series;
+
+/* A [data NAME] section, read once at load (scene_data.c): the whole file's
+ * table and the records chosen ([data] record), rows i0 .. i1-1. */
+typedef struct hy_run_data {
+    const hy_decl_data *decl; /* its decoded section (in r->doc)                 */
+    const char *name;
+    hy_table tb;              /* every row and record of the file, scaled       */
+    size_t r0, r1;            /* the records chosen: r0 .. r1-1                 */
+    size_t i0, i1;            /* their rows                                      */
+    double *area;             /* per chosen record: its closed polygon's signed
+                               * area, hy_table_area (∮ u dy, counter-clockwise
+                               * positive)                                       */
+} hy_run_data;
 
 /* figure_only: a series with more points than this on its grid is drawn from
  * fewer (scene_run.c, "Drawn-only series"); none of the gallery's has as many. */
@@ -85,6 +102,10 @@ typedef struct hy_scene_run {
     int have_loops;
     hy_run_series *series;
     size_t nseries;
+    hy_run_data *data;        /* the [data] sections, in file order, read at load */
+    size_t ndata;
+    const hy_run_data *drive; /* the one that drives the model ([input] kind = data), or NULL */
+    int model_marked;         /* hy_scene_run_set_model marked the scene        */
     char plan[2048];          /* the plan, one step a line (render -v)            */
     double budget;            /* work budget (hy_scene_policy, --max-work)        */
     double work;              /* the estimate of the last compute                 */
@@ -157,7 +178,7 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
 
 /* What computing and drawing the scene reads of [model] and [input], as the
  * plan decides from its series: HY_READS_MODEL, the model's dynamics (any
- * series but input, psi and g); HY_READS_G, its g(v) only (Fc, Fs, vs, beta;
+ * series but input, psi, g and measured); HY_READS_G, its g(v) only (Fc, Fs, vs, beta;
  * data = g); HY_READS_INPUT, the input (any series but g).  An annotation's
  * {model.KEY} or {input.KEY} placeholder reads that section too.  hystviz
  * serve shows controls only for what is read.  (The bits: hy_scene.h.) */
@@ -209,6 +230,38 @@ int hy_scene_run_csv(const hy_scene_run *r, char **buf, size_t *len, hy_error *e
 /* Prints every series as CSV: header "series,x,y", values %.17g. */
 int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err);
 
+
+/* ---- measured data (scene_data.c, docs/SCENES.md "[data NAME]") ---- */
+
+/* What hy_scene_run_driving gives: the data that drive the model, read at
+ * load.  Arrays are the run's (valid while it lives): the chosen records one
+ * after another, record j the rows rec[j] - rec[0] .. rec[j+1] - rec[0] - 1. */
+typedef struct hy_data_view {
+    const char *name;       /* the [data NAME]                          */
+    size_t n;               /* measured points                          */
+    const double *u, *y;    /* measured input and output, scaled        */
+    size_t nrec;
+    const size_t *rec;      /* nrec + 1 row offsets into the file's rows */
+} hy_data_view;
+
+/* The measured data that drive r's model ([input] kind = data) into *v:
+ * HY_OK, or HY_EINVAL (with a message) when the scene has none. */
+int hy_scene_run_driving(const hy_scene_run *r, hy_data_view *v, hy_error *err);
+
+/* The fitter's evaluation: r's model (its [model] as decoded, after --set or
+ * hy_scene_run_set_model) at the measured inputs of the data that drive it,
+ * each record from [input] start, into y_model[0 .. v.n) (the caller's array,
+ * v from hy_scene_run_driving); draws nothing, reads no file.  A model that
+ * refuses a move returns its status, y_model then partly written. */
+int hy_scene_run_model_at_data(const hy_scene_run *r, double *y_model, hy_error *err);
+
+/* Sets [model] keys of a loaded run ("model.KEY=4.1", parsed and checked
+ * as --set): each call starts from the scene as loaded (the previous call's
+ * overrides undone, hy_scene_mark), so memory does not grow with calls; the
+ * decoded [model] and the model's parameters change, the data stay as read.
+ * HY_EINVAL for another section's key or model.kind; a value the schema or
+ * the model refuses leaves the run's model as it was. */
+int hy_scene_run_set_model(hy_scene_run *r, char *const *sets, size_t nsets, hy_error *err);
 
 /* Where a scene file goes in the catalogue (gallery page, hystviz serve), from
  * its name: 0 the minor-loops paper's figures (figNN_), 1 the Bouc-Wen

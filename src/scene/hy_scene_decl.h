@@ -97,6 +97,8 @@ typedef struct hy_decl_input {
     double rms;
     long seed;
     double rate;
+    const char *data;
+    int start;
 } hy_decl_input;
 
 typedef struct hy_decl_compute {
@@ -141,7 +143,16 @@ typedef struct hy_decl_series {
     double at;
     int quantity;
     double yscale, floor;
+    const char *of;
 } hy_decl_series;
+
+typedef struct hy_decl_data {
+    hy_decl_head h;
+    const char *file, *u, *y, *t;
+    double u_scale, y_scale, t_scale;
+    const char *split;
+    long record;
+} hy_decl_data;
 
 typedef struct hy_decl_annotation {
     hy_decl_head h;
@@ -194,7 +205,7 @@ typedef struct hy_decl_keyframe {
  * hy_decl_<name>, the named ones as an array `name` of `nname` structs.
  * Decode, free and hy_scene_doc_find are generated from these lists. */
 #define HY_DOC_UNNAMED(X) X(model) X(input) X(compute) X(figure) X(output) X(controls) X(animation)
-#define HY_DOC_NAMED(X) X(series) X(annotation) X(panel) X(param) X(preset) X(keyframe)
+#define HY_DOC_NAMED(X) X(series) X(data) X(annotation) X(panel) X(param) X(preset) X(keyframe)
 
 /* A whole scene: its unnamed sections and, in file order, its named ones. */
 #define HY_DOC_ONE(sec) hy_decl_##sec sec;

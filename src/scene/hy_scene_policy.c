@@ -187,6 +187,12 @@ int hy__policy_include(hy_scene *s, const char *dir, const char *rel, char **pat
 int hy_scene_read_path(const hy_scene *s, const char *section, const char *name, const char *key,
                        char **buf, size_t *len, int *user, hy_error *err)
 {
+    return hy_scene_read_path_max(s, section, name, key, HY_INPUT_MAX_FILE_BYTES, buf, len, user, err);
+}
+
+int hy_scene_read_path_max(const hy_scene *s, const char *section, const char *name, const char *key, size_t max,
+                           char **buf, size_t *len, int *user, hy_error *err)
+{
     const char *path;
     hy_scene_loc loc = {NULL, 0, 0};
     *buf = NULL;
@@ -196,7 +202,7 @@ int hy_scene_read_path(const hy_scene *s, const char *section, const char *name,
     hy_scene_get_loc(s, section, name, key, &loc);
     *user = loc.line == 0; /* --set: the user's own choice */
     char r[200], *real = NULL;
-    int e = hy_file_read(path, HY_INPUT_MAX_FILE_BYTES, buf, len, *user ? NULL : &real, r, sizeof r);
+    int e = hy_file_read(path, max, buf, len, *user ? NULL : &real, r, sizeof r);
     if (e)
         return hy_scene_error_at(s, section, name, key, err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
                                  "%s: cannot open input file: %s", path, r);

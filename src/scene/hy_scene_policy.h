@@ -64,6 +64,11 @@ int hy_scene_parse_buffer_policy(const char *name, const char *text, size_t len,
 int hy_scene_read_path(const hy_scene *s, const char *section, const char *name, const char *key,
                        char **buf, size_t *len, int *user, hy_error *err);
 
+/* As hy_scene_read_path with a cap of max bytes (a measured data file:
+ * HY_TABLE_MAX_BYTES) instead of HY_INPUT_MAX_FILE_BYTES. */
+int hy_scene_read_path_max(const hy_scene *s, const char *section, const char *name, const char *key, size_t max,
+                           char **buf, size_t *len, int *user, hy_error *err);
+
 /* The directory a scene's figures go to: cli_dir if not NULL (the user's
  * -o, unrestricted), else `[output] dir` resolved against the scene's
  * directory; a dir written in a scene must be relative and stay below that

@@ -40,7 +40,8 @@
 #define MODEL_NAME(id, name) name,
 static const char *const model_kinds[] = {HY_MODEL_KINDS(MODEL_NAME) NULL};
 static const char *const input_kinds[] = {"bimodal", "multimodal", "triangle", "sine",
-                                          "pwl", "file", "multisine", "sweep", NULL};
+                                          "pwl", "file", "multisine", "sweep", "data", NULL};
+static const char *const data_starts[] = {"zero", "first", "periodic", NULL};
 static const char *const input_shapes[] = {"linear", "cosine", NULL};
 static const char *const solvers[] = {"exact", "rkf45", "rk8pd", "rk4imp", "bsimp", "msbdf",
                                       "rk2", "rk4", "rkck", "rk1imp", "rk2imp", "msadams",
@@ -133,6 +134,14 @@ static const hy_scene_key_spec input_keys[] = {
       "multisine input: standard deviation (RMS) in N"),
     FQ("seed", NULL, seed, HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "1", "multisine input: seed of the random phases; boucwen: also of the output noise"),
     FQ("r", "Hz/min", rate, HY_KIND_NUMBER, NULL, POS, 0, 0, "10", "sweep input: sweep rate in Hz per minute (the paper's 10)"),
+    F(data, HY_KIND_NAME, NULL, NOLIM, 0, 0, NULL,
+      "data input: the [data NAME] whose measured u drives the model: a rate-independent model its records in "
+      "order, each from 'start' (t is the sample index); Dahl, LuGre or the filter system one record's t and u "
+      "(exact solution at gamma = 1, from x0)"),
+    F(start, HY_KIND_ENUM, data_starts, NOLIM, 0, 0, "zero",
+      "data input: the state each record starts from: zero (the model's initial state, as its [model] keys give "
+      "it, at u = 0, then along a monotone path to the record's first u: a demagnetised magnet follows its initial "
+      "curve), first (that state put at the first u), periodic (the record driven over and over until it repeats)"),
 };
 #undef SECT
 
@@ -232,6 +241,27 @@ static const hy_scene_key_spec series_keys[] = {
       "factor applied to the series' y values (and its marker), e.g. 1/Ms to draw M/Ms or B/B_s normalised to saturation"),
     FQ("floor", "dB", floor, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "data = boucwen, dB quantities: values below it and exact zeros are drawn at this level (default: zeros leave gaps)"),
+    F(of, HY_KIND_NAME, NULL, NOLIM, 0, 0, NULL,
+      "data = measured: the [data NAME] drawn (its records, each a piece); data = modelled: the [data NAME] that "
+      "drives the model ([input] data), the model's output at its measured inputs"),
+};
+#undef SECT
+
+#define SECT hy_decl_data
+static const hy_scene_key_spec data_keys[] = {
+    F(file, HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
+      "measured samples: CSV or whitespace-separated text, # comments, relative to the scene file and below its "
+      "directory (caps: docs/SCENES.md)"),
+    F(u, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"1\"", "the input column: a header name (H_A_per_m) or a 1-based index"),
+    F(y, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"2\"", "the output column: a header name (B_T) or a 1-based index"),
+    F(t, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL, "the time column, if any: a header name or a 1-based index"),
+    F(u_scale, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "factor applied to u as read (a unit: 1e3 for kA/m to A/m); not 0"),
+    F(y_scale, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "factor applied to y as read (1e-3 for mT to T); not 0"),
+    F(t_scale, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "factor applied to t as read; not 0"),
+    F(split, HY_KIND_STRING, NULL, NOLIM, 0, 0, NULL,
+      "a column whose value changes from one record to the next (loop): each run of rows with one value is a "
+      "record, drawn as a separate piece"),
+    F(record, HY_KIND_INTEGER, NULL, NONNEG, 0, 0, "0", "the record read, 1-based in file order (0: every record)"),
 };
 #undef SECT
 
@@ -327,6 +357,8 @@ static hy_scene_section_spec sections[] = {
     S("figure", 0, 0, figure_keys, "the axes: kind, labels, ranges, size, fonts"),
     S("series", 1, 1, series_keys, "one curve per section, drawn in file order"),
     S("annotation", 1, 1, annotation_keys, "one text label per section"),
+    S("data", 1, 1, data_keys, "measured samples read from a file (u, y and optionally t columns): drawn by a "
+      "[series] data = measured, driving the model through [input] kind = data"),
     S("panel", 1, 1, panel_keys, "one panel per section, in file order: a figure of several scenes side by side"),
     S("output", 0, 0, output_keys, "where the figure is written"),
     S("controls", 0, 0, controls_keys, "how hystviz serve presents the scene's parameters"),

@@ -37,7 +37,9 @@
     X(TRANSIENT, "transient")               \
     X(MINOR, "minor")                       \
     X(MAJOR, "major")                       \
-    X(BOUCWEN, "boucwen")
+    X(BOUCWEN, "boucwen")                   \
+    X(MEASURED, "measured")                 \
+    X(MODELLED, "modelled")
 
 /* The figure kinds, one line per kind: X(ID, "name").  The schema's
  * [figure] kind list and the pipeline's FIG_ID values (scene_model.h) are

@@ -225,4 +225,28 @@ with tempfile.TemporaryDirectory() as tmp:
     th.join(10)
     check(len(ticks) > 5, f"a Python thread ran {len(ticks)} times during a long computation")
 
+# read_data: the reader of a scene's [data] (the ferrite's four loops), the same
+# doubles as `hystviz data` prints for the scene's measured series; a bad file
+# raises SceneError with FILE:LINE:COL
+ferrite = os.path.join(scenes, "data", "magnetic", "mnzn_ferrite.csv")
+d = hystviz.read_data(ferrite, u="H_A_per_m", y="B_T", split="loop")
+check(d["u"].shape == (516,) and list(d["records"]) == [0, 129, 258, 387, 516], f"read_data: {d['u'].shape} rows, records {list(d['records'])}")
+rows = [ln.split(",") for ln in cli("data", os.path.join(scenes, "ferrite_measured.scene")).decode().splitlines()[1:]]
+meas = np.array([[float(r[1]), float(r[2])] for r in rows if r[0] == "measured"])
+check(meas.shape == (516, 2) and np.array_equal(meas[:, 0], d["u"]) and np.array_equal(meas[:, 1], d["y"]),
+      "read_data = hystviz data's measured rows, bit for bit")
+check(bool(np.all(d["area"] > 0)) and np.all(np.diff(d["area"]) > 0), f"loop areas grow with amplitude, > 0: {d['area']}")
+d4 = hystviz.read_data(ferrite, u=2, y=3, split=1, y_scale=1e3, record=4)
+check(d4["u"].shape == (129,) and d4["y"][0] == d["y"][387] * 1e3, "record 4, columns by index, y in mT")
+check(hystviz.loop_area([0, 1, 1, 0], [0, 0, 1, 1]) == 1.0, "loop_area: the unit square counter-clockwise is +1")
+with tempfile.TemporaryDirectory() as td:
+    bad = os.path.join(td, "bad.csv")
+    with open(bad, "w") as f:
+        f.write("H,B\n1,2\n3,nan\n")
+    try:
+        hystviz.read_data(bad, u="H", y="B")
+        check(False, "read_data accepted nan")
+    except hystviz.SceneError as e:
+        check(str(e).startswith(bad + ":3:3: column 2 is not a finite number"), f"read_data refusal: {e}")
+
 sys.exit(1 if fails else 0)

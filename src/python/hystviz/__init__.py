@@ -29,7 +29,7 @@ import numpy as np
 from . import _lib
 
 __all__ = ["SceneError", "Model", "Input", "models", "Result", "Figure", "MinorLoop", "run", "render", "steady_loop",
-           "limit", "ygamma", "kcycles", "minor_loops", "schema", "boucwen", "__version__"]
+           "limit", "ygamma", "kcycles", "minor_loops", "schema", "boucwen", "read_data", "loop_area", "__version__"]
 
 __version__ = _lib.version().decode()
 
@@ -404,6 +404,55 @@ def _tuy(text, points, sets=()):
 def _sets_of(model, inp, *more):
     """The string keys of model and inp, and more, as overrides (scene_sets)."""
     return model.scene_sets() + inp.scene_sets() + list(more)
+
+
+def read_data(path, u="1", y="2", t=None, split=None, u_scale=1.0, y_scale=1.0, t_scale=1.0, record=0):
+    """Measured samples of a CSV or whitespace-separated file, read by the same
+    reader as a scene's [data NAME] (hy_table.h; docs/SCENES.md "Measured
+    data"): the columns u, y (and t) chosen by header name or 1-based index,
+    each times its scale, and split into records at the column split.
+    Returns a dict of NumPy arrays: "u", "y" (and "t"), "records" (the row
+    offsets, record j = rows records[j]:records[j+1]) and "area" (each
+    record's shoelace area, counter-clockwise > 0); record=K (1-based) keeps
+    only that record.  A bad file raises SceneError "FILE:LINE:COL: what"."""
+    with open(path, "rb") as f:
+        text = f.read(_lib.table_max_bytes + 1)
+    spec = _lib.TableSpec()
+    for i, c in enumerate((u, y, t, split)):
+        spec.col[i] = None if c is None else str(c).encode()
+    spec.scale[0], spec.scale[1], spec.scale[2] = float(u_scale), float(y_scale), float(t_scale)
+    tb = _lib.Table()
+    err = _lib.Error()
+    _check(_lib.table_parse(text, len(text), os.fsencode(path), ctypes.byref(spec), 1, ctypes.byref(tb),
+                            ctypes.byref(err)), err)
+    try:
+        rec = np.array([tb.rec[j] for j in range(tb.nrec + 1)], dtype=np.int64)
+        if record:
+            if not 1 <= record <= tb.nrec:
+                raise SceneError(1, f"{path}: record {record} does not exist: the file has {tb.nrec} records")
+            a, b = int(rec[record - 1]), int(rec[record])
+            rec = np.array([0, b - a], dtype=np.int64)
+        else:
+            a, b = 0, int(tb.n)
+        out = {"u": _array(ctypes.addressof(tb.u.contents), tb.n)[a:b].copy(),
+               "y": _array(ctypes.addressof(tb.y.contents), tb.n)[a:b].copy(), "records": rec}
+        if t is not None:
+            out["t"] = _array(ctypes.addressof(tb.t.contents), tb.n)[a:b].copy()
+    finally:
+        _lib.table_free(ctypes.byref(tb))
+    out["area"] = np.array([loop_area(out["u"][rec[j]:rec[j + 1]], out["y"][rec[j]:rec[j + 1]])
+                            for j in range(len(rec) - 1)])
+    return out
+
+
+def loop_area(u, y):
+    """The signed area of the closed polygon (u[i], y[i]): (1/2) sum(u_i y_{i+1} - u_{i+1} y_i)
+    = ∮ u dy, positive counter-clockwise (hy_table_area)."""
+    u = np.ascontiguousarray(u, dtype=float)
+    y = np.ascontiguousarray(y, dtype=float)
+    if u.shape != y.shape:
+        raise ValueError("loop_area: u and y differ in length")
+    return _lib.table_area(u.ctypes.data_as(_lib._dp), y.ctypes.data_as(_lib._dp), len(u))
 
 
 def steady_loop(model, input, points=2000):

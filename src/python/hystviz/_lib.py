@@ -56,6 +56,18 @@ class Loops(ctypes.Structure):
                 ("area_period", ctypes.c_double)]
 
 
+class TableSpec(ctypes.Structure):
+    """hy_table_spec of hy_table.h: the columns u, y, t, split by name or 1-based index; scales of u, y, t."""
+    _fields_ = [("col", ctypes.c_char_p * 4), ("scale", ctypes.c_double * 3)]
+
+
+class Table(ctypes.Structure):
+    """hy_table of hy_table.h (rows, records)."""
+    _fields_ = [("n", ctypes.c_size_t), ("u", ctypes.POINTER(ctypes.c_double)), ("y", ctypes.POINTER(ctypes.c_double)),
+                ("t", ctypes.POINTER(ctypes.c_double)), ("nrec", ctypes.c_size_t),
+                ("rec", ctypes.POINTER(ctypes.c_size_t)), ("line", ctypes.POINTER(ctypes.c_size_t))]
+
+
 _dp = ctypes.POINTER(ctypes.c_double)
 _vp = ctypes.c_void_p
 _sz = ctypes.c_size_t
@@ -88,6 +100,11 @@ csv = _sig("hy_result_csv", ctypes.c_int, _vp, ctypes.POINTER(ctypes.c_void_p), 
 write_file = _sig("hy_write_file", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, _sz, _E)
 schema_json = _sig("hy_schema_json", ctypes.c_void_p)
 boucwen_run = _sig("hy_boucwen_run", ctypes.c_int, _dp, _sz, ctypes.c_double, _dp, _E)
+table_parse = _sig("hy_table_parse", ctypes.c_int, ctypes.c_char_p, _sz, ctypes.c_char_p, ctypes.POINTER(TableSpec),
+                   ctypes.c_int, ctypes.POINTER(Table), _E)
+table_free = _sig("hy_table_free", None, ctypes.POINTER(Table))
+table_area = _sig("hy_table_area", ctypes.c_double, _dp, _dp, _sz)
+table_max_bytes = 64 << 20  # HY_TABLE_MAX_BYTES
 libc = ctypes.CDLL(None)
 libc.free.argtypes = [ctypes.c_void_p]
 libc.free.restype = None
