@@ -154,6 +154,30 @@ static void test_langevin(void)
 
 static const double ja86[5] = {1.6e6, 1100, 400, 0.2, 1.6e-3}; /* Ms a k c α, Jiles & Atherton 1986 */
 
+/* Drives j along path[] from M = 0 at path[0] and checks M and ∫ (H + M) dH
+ * after each field against the reference's M[], hb[] (1e-9 relative: the
+ * reference's own accuracy with margin); worst[0], worst[1] get the worst
+ * relative errors. */
+static void check_path(const hy_jiles *j, const double *path, int n, const long double *M, const long double *hb,
+                       hy_jiles_stats *st, double worst[2])
+{
+    hy_error err;
+    hy_jiles_state s;
+    hy_jiles_state_init(j, &s, 0);
+    worst[0] = worst[1] = 0;
+    for (int i = 1; i < n; i++) {
+        int rc = hy_jiles_apply(j, &s, path[i], st, &err);
+        CHECK(!rc, "apply %g: %s", path[i], err.msg);
+        double e = (double)fabsl((s.M - M[i]) / M[i]), ehb = (double)fabsl((s.hb - hb[i]) / hb[i]);
+        worst[0] = fmax(worst[0], e);
+        worst[1] = fmax(worst[1], ehb);
+        CHECK(e <= 1e-9, "%s, H = %g: M = %.15g, reference %.15Lg (rel %.3g)", hy_jiles_variant_names[j->variant],
+              path[i], s.M, M[i], e);
+        CHECK(ehb <= 1e-9, "%s, H = %g: integral of (H+M) dH = %.15g, reference %.15Lg (rel %.3g)",
+              hy_jiles_variant_names[j->variant], path[i], s.hb, hb[i], ehb);
+    }
+}
+
 static void test_against_reference(void)
 {
     hy_error err;
@@ -165,23 +189,12 @@ static void test_against_reference(void)
     long double M[N], hb[N];
     ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], 0};
     ref_path(&r, path, N, 0.5L, M, hb);
-    hy_jiles_state s;
-    hy_jiles_state_init(&j, &s, 0);
     hy_jiles_stats st = {0};
-    double worst = 0, worst_hb = 0;
-    for (int i = 1; i < N; i++) {
-        int rc = hy_jiles_apply(&j, &s, path[i], &st, &err);
-        CHECK(!rc, "apply %g: %s", path[i], err.msg);
-        double e = (double)fabsl((s.M - M[i]) / M[i]), ehb = (double)fabsl((s.hb - hb[i]) / hb[i]);
-        worst = fmax(worst, e);
-        worst_hb = fmax(worst_hb, ehb);
-        CHECK(e <= 1e-9, "H = %g: M = %.15g, reference %.15Lg (rel %.3g)", path[i], s.M, M[i], e);
-        CHECK(ehb <= 1e-9, "H = %g: integral of (H+M) dH = %.15g, reference %.15Lg (rel %.3g)", path[i], s.hb, hb[i],
-              ehb);
-    }
+    double worst[2];
+    check_path(&j, path, N, M, hb, &st, worst);
     printf("against long double RK4 + Richardson: worst relative error M %.3g, int (H+M) dH %.3g "
            "(rk8pd: %lu steps, %lu rejected, %lu evaluations, %lu guard switches)\n",
-           worst, worst_hb, st.steps, st.fails, st.nfev, st.switches);
+           worst[0], worst[1], st.steps, st.fails, st.nfev, st.switches);
     CHECK(st.switches >= 4, "expected a located guard switch after reversals, saw %lu", st.switches);
 }
 
@@ -411,18 +424,9 @@ static void test_jtd1992_loop(void)
     long double M[N], hb[N];
     ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], 1};
     ref_path(&r, path, N, 0.5L, M, hb);
-    hy_jiles_state s;
-    hy_jiles_state_init(&j, &s, 0);
-    double worst = 0;
-    for (int i = 1; i < N; i++) {
-        int rc = hy_jiles_apply(&j, &s, path[i], NULL, &err);
-        CHECK(!rc, "apply %g: %s", path[i], err.msg);
-        double e = (double)fabsl((s.M - M[i]) / M[i]), ehb = (double)fabsl((s.hb - hb[i]) / hb[i]);
-        worst = fmax(worst, fmax(e, ehb));
-        CHECK(e <= 1e-9, "jtd1992, H = %g: M = %.15g, reference %.15Lg (rel %.3g)", path[i], s.M, M[i], e);
-        CHECK(ehb <= 1e-9, "jtd1992, H = %g: integral of (H+M) dH = %.15g, reference %.15Lg (rel %.3g)", path[i],
-              s.hb, hb[i], ehb);
-    }
+    double w[2];
+    check_path(&j, path, N, M, hb, NULL, w);
+    double worst = fmax(w[0], w[1]);
     printf("jtd1992 against long double RK4 + Richardson: worst relative error %.3g\n", worst);
     hy_jiles_loop L92, L86;
     CHECK(!hy_jiles_major_loop(&j, 1e4, &L92, &err), "jtd1992 major loop: %s", err.msg);

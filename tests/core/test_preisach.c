@@ -133,33 +133,11 @@ static double dens(const hy_preisach *p, double al, double be)
 }
 
 /* Relays at the cell centres of [-3, 3]², half weight on the diagonal; all
- * down first, then u[] in order. */
+ * down first, then u[] in order (brute_demag, below, on the half-plane). */
+static void brute_demag(const hy_preisach *p, int N, double hs, int demag, const double *u, size_t n, double *y);
 static void brute(const hy_preisach *p, int N, const double *u, size_t n, double *y)
 {
-    double h = 6.0 / N;
-    double *w = malloc((size_t)N * N * sizeof *w);
-    signed char *g = malloc((size_t)N * N);
-    for (int i = 0; i < N; i++)
-        for (int j = 0; j < N; j++) {
-            double al = -3 + (i + 0.5) * h, be = -3 + (j + 0.5) * h;
-            w[i * N + j] = j > i ? 0 : dens(p, al, be) * h * h * (i == j ? 0.5 : 1.0);
-            g[i * N + j] = -1;
-        }
-    for (size_t k = 0; k < n; k++) {
-        double s = 0;
-        for (int i = 0; i < N; i++)
-            for (int j = 0; j <= i; j++) {
-                double al = -3 + (i + 0.5) * h, be = -3 + (j + 0.5) * h;
-                if (u[k] >= al)
-                    g[i * N + j] = 1;
-                else if (u[k] <= be)
-                    g[i * N + j] = -1;
-                s += w[i * N + j] * g[i * N + j];
-            }
-        y[k] = s;
-    }
-    free(w);
-    free(g);
+    brute_demag(p, N, INFINITY, 0, u, n, y);
 }
 
 static void test_brute_force(void)
