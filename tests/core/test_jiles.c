@@ -437,6 +437,28 @@ static void test_jtd1992_loop(void)
     CHECK(fabsl(L92.mr - M[6]) <= 1e-9L * L92.mr, "jtd1992 Mr %.15g, reference %.15Lg", L92.mr, M[6]);
     /* the documented figures, to the A/m they are quoted with */
     CHECK(fabs(L86.mr - 496470) < 1 && fabs(L92.mr - 587472) < 1, "Mr %.3f, %.3f A/m", L86.mr, L92.mr);
+    /* the widest gap between the two saturated loops, on the descending branch near -Hc
+       (SCENES.md: 0.113 Ms at H = -356.5 A/m, found on a 0.5 A/m grid over both branches);
+       here a 1 A/m grid over [-600, -100] A/m */
+    hy_jiles_state s86, s92;
+    hy_jiles j86 = j, j92 = j;
+    j92.variant = HY_JILES_JTD1992;
+    hy_jiles_state_init(&j86, &s86, 0);
+    hy_jiles_state_init(&j92, &s92, 0);
+    const double cyc[] = {1e4, -1e4, 1e4, -1e4, 1e4};
+    for (int i = 0; i < 5; i++)
+        CHECK(!hy_jiles_apply(&j86, &s86, cyc[i], NULL, &err) && !hy_jiles_apply(&j92, &s92, cyc[i], NULL, &err),
+              "cycling: %s", err.msg);
+    double gap = 0, at = 0;
+    for (double H = -100; H >= -600; H -= 1) {
+        hy_jiles_apply(&j86, &s86, H, NULL, &err);
+        hy_jiles_apply(&j92, &s92, H, NULL, &err);
+        if (fabs(s92.M - s86.M) > gap)
+            gap = fabs(s92.M - s86.M), at = H;
+    }
+    printf("widest gap between the variants' saturated loops: %.5f Ms at H = %g A/m\n", gap / ja86[0], at);
+    CHECK(gap > 0.113 * ja86[0] && gap < 0.114 * ja86[0] && fabs(at + 356.5) <= 1, "gap %.5f Ms at H = %g",
+          gap / ja86[0], at);
 }
 
 /* Inputs beyond what the model integrates: refused with a message that names
