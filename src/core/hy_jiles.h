@@ -16,7 +16,7 @@
  * Trans. Magn. 28 (1992) 27), the one most identification codes fit with:
  *     dM/dH = δ_M (M_an - M) / ((1 + c)(δ k - α (M_an - M))) + c/(1 + c) dM_an/dH_e,
  * δ_M = 1 where (M_an - M) δ > 0, else 0 (the same guard), no mean-field
- * factor on the reversible term.  The two agree only for α = 0 and c = 0.
+ * factor on the reversible term.  The two agree where c = 0 (any α).
  *
  * μ0 is CODATA 2018's 1.25663706212e-6 N/A², not 4π·1e-7 (5.5e-10 relative).
  *
