@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_jiles.c: Jiles-Atherton, dM/dH = χ_e/(1 - α χ_e), χ_e = (M_an - M)/(k δ) + c dM_an/dH_e
- * (irreversible term 0 while (M_an - M) δ < 0), integrated in H by GSL (rk8pd, or
- * the stepper the caller names) with a restart at every reversal and at every
- * switch of that guard. */
+ * (1986), or dM/dH = [(M_an - M)/(δ k - α (M_an - M)) + c dM_an/dH_e]/(1 + c) (Jiles,
+ * Thoelke and Devine 1992) (irreversible term 0 while (M_an - M) δ < 0), integrated
+ * in H by GSL (rk8pd, or the stepper the caller names) with a restart at every
+ * reversal and at every switch of that guard, within a step budget. */
 #include "hy_jiles.h"
 
 #include <gsl/gsl_errno.h>
@@ -17,6 +18,8 @@
 #define LAMBERT_N 18       /* continued-fraction depth: < 1e-20 relative for |x| < 2 */
 #define DEN_MIN 1e-9       /* 1 - α χ_e below this: no physical solution             */
 #define GUARD_TOL 1e-13    /* (M_an - M) δ / Ms beyond which the guard switches back  */
+
+const char *const hy_jiles_variant_names[] = {"jiles1986", "jtd1992", NULL};
 
 /* q = x / L(x) = 3 + x²/(5 + x²/(7 + ...)) for |x| < 2 (Lambert), and dq/dx. */
 static double lambert_q(double x, double *dq)
@@ -50,7 +53,7 @@ double hy_langevin_d(double x)
 
 int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double alpha, hy_error *err)
 {
-    hy_jiles t = {ms, a, k, c, alpha, 0.0, HY_JILES_RTOL, NULL};
+    hy_jiles t = {ms, a, k, c, alpha, 0.0, HY_JILES_RTOL, NULL, HY_JILES_JA1986, 0};
     int rc = hy_jiles_validate(&t, err);
     if (!rc)
         *j = t;
@@ -86,6 +89,30 @@ int hy_jiles_validate(const hy_jiles *j, hy_error *err)
         return hy_error_set(err, HY_EINVAL, "Jiles-Atherton rtol must be in [1e-15, 1e-2] (got %g)", j->rtol);
     if (j->stepper && !hy_ode_stepper_known(j->stepper))
         return hy_error_set(err, HY_EINVAL, "Jiles-Atherton: unknown GSL stepper '%.40s'", j->stepper);
+    if (j->variant != HY_JILES_JA1986 && j->variant != HY_JILES_JTD1992)
+        return hy_error_set(err, HY_EINVAL, "Jiles-Atherton variant %d is unknown (jiles1986 or jtd1992)", j->variant);
+    return HY_OK;
+}
+
+int hy_jiles_input_check(const hy_jiles *j, double hmax, double travel, hy_error *err)
+{
+    double scale = fmax(j->ms, fmax(j->a, j->k)), bound = HY_JILES_HMAX * scale;
+    unsigned long budget = j->max_steps ? j->max_steps : HY_JILES_MAX_STEPS;
+    if (!isfinite(hmax) || !isfinite(travel))
+        return hy_error_set(err, HY_EINVAL, "Jiles-Atherton field H must be finite (got %g)", hmax);
+    if (fabs(hmax) > bound)
+        return hy_error_set(err, HY_EINVAL,
+                            "the input's scale is beyond what Jiles-Atherton integrates: |H| reaches %g A/m, %.3g "
+                            "times the model's largest field scale max(Ms, a, k) = %g A/m (at most %g, i.e. %g A/m, "
+                            "far into saturation: scale the input down)",
+                            fabs(hmax), fabs(hmax) / scale, scale, HY_JILES_HMAX, bound);
+    double need = travel / (HY_JILES_STEP_K * j->k);
+    if (need > (double)budget)
+        return hy_error_set(err, HY_EINVAL,
+                            "the input's scale is beyond what Jiles-Atherton integrates: the field travels %g A/m "
+                            "(|H| up to %g A/m), %.3g times k = %g A/m, which needs at least %.3g steps (one every "
+                            "few k) against a step budget of %lu: lower the input's amplitude or raise k",
+                            travel, fabs(hmax), travel / j->k, j->k, need, budget);
     return HY_OK;
 }
 
@@ -94,6 +121,7 @@ void hy_jiles_state_init(const hy_jiles *j, hy_jiles_state *s, double H0)
     s->H = H0;
     s->M = j->m0;
     s->hb = 0;
+    s->steps = 0;
 }
 
 double hy_jiles_b(const hy_jiles_state *s) { return HY_MU0 * (s->H + s->M); }
@@ -122,19 +150,41 @@ static int ja_rhs(double H, const double y[], double f[], void *params)
     const hy_jiles *j = c->j;
     c->nfev++;
     double x = (H + j->alpha * j->ms * y[0]) / j->a;
-    double chi = j->c * hy_langevin_d(x) / j->a; /* per A/m, in units of Ms */
-    if (!c->guard)
-        chi += (hy_langevin(x) - y[0]) / (j->k * c->delta);
-    double den = 1.0 - j->alpha * j->ms * chi;
+    double rev = j->c * hy_langevin_d(x) / j->a; /* c dM_an/dH_e per A/m, in units of Ms */
+    double den;
+    if (j->variant == HY_JILES_JTD1992) { /* [δ_M (M_an - M)/(δk - α(M_an - M)) + c dM_an/dH_e]/(1 + c) */
+        double irr = 0;
+        den = 1; /* (δk - α(M_an - M)) δ / k: 1 while the irreversible term is off */
+        if (!c->guard) {
+            double d = hy_langevin(x) - y[0];
+            double dk = c->delta * j->k - j->alpha * j->ms * d;
+            den = dk * c->delta / j->k;
+            irr = d / dk;
+        }
+        f[0] = (irr + rev) / (1.0 + j->c);
+    } else { /* χ_e/(1 - α χ_e) */
+        double chi = rev;
+        if (!c->guard)
+            chi += (hy_langevin(x) - y[0]) / (j->k * c->delta);
+        den = 1.0 - j->alpha * j->ms * chi;
+        f[0] = chi / den;
+    }
     if (!(den > DEN_MIN)) {
         c->bad = 1;
         c->bad_h = H;
         c->bad_m = y[0] * j->ms;
         return GSL_FAILURE; /* evolve retries with a smaller step: a trial stage may probe past the trajectory */
     }
-    f[0] = chi / den;
     f[1] = H / j->ms + y[0];
     return GSL_SUCCESS;
+}
+
+double hy_jiles_dmdh(const hy_jiles *j, double H, double M, int delta)
+{
+    ja_ctx c = {j, delta > 0 ? 1.0 : -1.0, 0, 0, 0, 0, 0};
+    double y[2] = {M / j->ms, 0}, f[2];
+    c.guard = !(guard_g(&c, H, y[0]) > 0);
+    return ja_rhs(H, y, f, &c) == GSL_SUCCESS ? f[0] * j->ms : NAN;
 }
 
 /* The Jacobian for the implicit steppers, by forward differences (the 2x2
@@ -166,9 +216,11 @@ static int ja_fail(const ja_ctx *c, int status, double H, hy_error *err)
 {
     if (c->bad)
         return hy_error_set(err, HY_EINVAL,
-                            "Jiles-Atherton alpha = %g is too large for k = %g: the denominator 1 - alpha dM/dHe of the "
+                            "Jiles-Atherton alpha = %g is too large for k = %g: the denominator %s of the "
                             "irreversible law vanishes at H = %g A/m (M = %g A/m)",
-                            c->j->alpha, c->j->k, c->bad_h, c->bad_m);
+                            c->j->alpha, c->j->k,
+                            c->j->variant == HY_JILES_JTD1992 ? "delta k - alpha (Man - M)" : "1 - alpha dM/dHe",
+                            c->bad_h, c->bad_m);
     return hy_error_set(err, HY_ENUM, "Jiles-Atherton: GSL %s failed at H = %g A/m: %s",
                         c->j->stepper ? c->j->stepper : "rk8pd", H, gsl_strerror(status));
 }
@@ -208,7 +260,7 @@ static int solver_alloc(ja_solver *s, const hy_jiles *j, gsl_odeiv2_system *sys,
  * switch by regula falsi (Illinois) on single steps from h0, leaves the state
  * just past it in *x, y. */
 static int locate_switch(ja_solver *s, gsl_odeiv2_system *sys, ja_ctx *c, double x0, const double y0[2],
-                         double h, double *x, double y[2])
+                         double h, double *x, double y[2], unsigned long *tries)
 {
     double lo = 0, hi = h, glo = guard_g(c, x0, y0[0]), ghi = guard_g(c, x0 + h, y[0]);
     double yhi[2] = {y[0], y[1]}, yt[2], ye[2];
@@ -220,6 +272,7 @@ static int locate_switch(ja_solver *s, gsl_odeiv2_system *sys, ja_ctx *c, double
         yt[0] = y0[0];
         yt[1] = y0[1];
         gsl_odeiv2_step_reset(s->step);
+        ++*tries;
         int st = gsl_odeiv2_step_apply(s->step, x0, m, yt, ye, NULL, NULL, sys);
         if (st)
             return st;
@@ -247,7 +300,19 @@ static int locate_switch(ja_solver *s, gsl_odeiv2_system *sys, ja_ctx *c, double
     return GSL_SUCCESS;
 }
 
-/* Integrates one monotone stretch from s->H to H. */
+/* The step budget is spent in the stretch from h0 to H. */
+static int over_budget(const hy_jiles *j, unsigned long budget, double h0, double H, const hy_jiles_state *s,
+                       hy_error *err)
+{
+    return hy_error_set(err, HY_EINVAL,
+                        "Jiles-Atherton step budget: more than %lu steps since the start, the last from H = %g to %g "
+                        "A/m (stopped at H = %g A/m, M = %g A/m): a stretch of %.3g A/m is %.3g times k = %g A/m, "
+                        "too stiff to integrate (lower the input's amplitude, or raise k)",
+                        budget, h0, H, s->H, s->M, fabs(H - h0), fabs(H - h0) / j->k, j->k);
+}
+
+/* Integrates one monotone stretch from s->H to H, while s->steps stays
+ * within j->max_steps (HY_JILES_MAX_STEPS when 0). */
 static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H, hy_jiles_stats *stats,
                    hy_error *err)
 {
@@ -259,8 +324,13 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
     gsl_odeiv2_evolve_reset(sv->ev);
     gsl_odeiv2_step_reset(sv->step);
     int rc = HY_OK;
-    unsigned long steps = 0, fails = 0;
+    unsigned long steps = 0, fails = 0, tries = 0, budget = j->max_steps ? j->max_steps : HY_JILES_MAX_STEPS;
+    double h0 = s->H;
     while (x != H) {
+        if (s->steps + steps + fails + tries + sv->ev->count + sv->ev->failed_steps > budget) {
+            rc = over_budget(j, budget, h0, H, s, err);
+            break;
+        }
         double x0 = x, y0[2] = {y[0], y[1]};
         c.bad = 0;
         int st = gsl_odeiv2_evolve_apply(sv->ev, sv->ctl, sv->step, &sys, &x, H, &h, y);
@@ -270,7 +340,7 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
         }
         double g = guard_g(&c, x, y[0]);
         if ((c.guard && g > 0) || (!c.guard && g < -GUARD_TOL)) {
-            st = locate_switch(sv, &sys, &c, x0, y0, x - x0, &x, y);
+            st = locate_switch(sv, &sys, &c, x0, y0, x - x0, &x, y, &tries);
             if (st) {
                 rc = ja_fail(&c, st, x, err);
                 break;
@@ -286,6 +356,7 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
         s->M = y[0] * j->ms;
     }
     s->hb += y[1] * j->ms;
+    s->steps += steps + fails + tries + sv->ev->count + sv->ev->failed_steps;
     if (stats) {
         stats->steps += steps + sv->ev->count;
         stats->fails += fails + sv->ev->failed_steps;
@@ -297,13 +368,14 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
 
 int hy_jiles_apply(const hy_jiles *j, hy_jiles_state *s, double H, hy_jiles_stats *stats, hy_error *err)
 {
-    if (!isfinite(H))
-        return hy_error_set(err, HY_EINVAL, "Jiles-Atherton field H must be finite (got %g)", H);
+    int rc = hy_jiles_input_check(j, H, 0, err);
+    if (rc)
+        return rc;
     if (H == s->H)
         return HY_OK;
     ja_solver sv = {0};
     gsl_odeiv2_system any = {ja_rhs, ja_jac, 2, NULL}; /* the driver's own; each stretch passes its own */
-    int rc = solver_alloc(&sv, j, &any, err);
+    rc = solver_alloc(&sv, j, &any, err);
     if (!rc)
         rc = stretch(j, &sv, s, H, stats, err);
     solver_free(&sv);
@@ -335,7 +407,7 @@ int hy_jiles_drive(const hy_jiles *j, const hy_input *in, const double *t, size_
     double *m = M ? M : malloc(n * sizeof *m);
     if (!m)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
-    drive_ctx d = {j, {0, 0, 0}, stats};
+    drive_ctx d = {j, {0, 0, 0, 0}, stats};
     hy_jiles_state_init(j, &d.s, hy_input_u(in, 0));
     rc = hy_rateind_drive(in, t, n, feed, &d, m, err);
     if (!rc && B) /* the value fed last at t[i] is u(t[i]) */

@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_preisach.c: the classical Preisach model by its Everett function
  * E(a,b) = K ∫_b^a f_α(α) [G_β(α) - G_β(b)] dα (GSL qag, inner integral in closed
- * form) and the staircase of dominant extrema, y = ∓y_s + 2 Σ_j d_j E(edge j). */
+ * form) and the staircase of dominant extrema, y = ∓y_s + 2 Σ_j d_j E(edge j), on
+ * the half-plane or the triangle -hs <= β <= α <= hs, from saturation or from
+ * the demagnetised state (the staircase α = -β). */
 #include "hy_preisach.h"
 
 #include <gsl/gsl_errno.h>
@@ -139,7 +141,8 @@ int hy_preisach_init(hy_preisach *p, int dist, double ma, double sa, double mb, 
     p->mb = mb;
     p->sb = sb;
     p->ys = ys;
-    p->start = -1;
+    p->start = HY_PREISACH_NEGATIVE;
+    p->hs = INFINITY;
     p->mass = mass;
     p->scale = ys / mass;
     gauss_legendre(HY_PREISACH_GL, p->glx, p->glw);
@@ -149,6 +152,35 @@ int hy_preisach_init(hy_preisach *p, int dist, double ma, double sa, double mb, 
 int hy_preisach_symmetric(hy_preisach *p, int dist, double hc, double sigma, double ys, hy_error *err)
 {
     return hy_preisach_init(p, dist, hc, sigma, -hc, sigma, ys, err);
+}
+
+/* E(a, b) of the unscaled density (declared here, defined with the Everett function) */
+static int everett_unscaled(const hy_preisach *p, double a, double b, double *E, hy_error *err);
+
+int hy_preisach_support(hy_preisach *p, double hs, hy_error *err)
+{
+    if (isnan(hs) || !(hs > 0))
+        return hy_error_set(err, HY_EINVAL, "Preisach saturation field hs must be > 0 (got %g)", hs);
+    if (hs == INFINITY) { /* the half-plane: P(A >= B) in closed form, as hy_preisach_init */
+        int start = p->start, rc = hy_preisach_init(p, p->dist, p->ma, p->sa, p->mb, p->sb, p->ys, err);
+        p->start = start;
+        return rc;
+    }
+    hy_preisach t = *p;
+    t.hs = hs;
+    double mass;
+    int rc = everett_unscaled(&t, hs, -hs, &mass, err);
+    if (rc)
+        return rc;
+    if (!(mass >= 1e-300))
+        return hy_error_set(err, HY_EINVAL,
+                            "Preisach density has no mass on the triangle -hs <= beta <= alpha <= hs (hs = %g): "
+                            "every relay switches beyond the saturation field",
+                            hs);
+    t.mass = mass;
+    t.scale = p->ys / mass;
+    *p = t;
+    return HY_OK;
 }
 
 /* ---- quadrature over [lo, hi] split at the densities' features --------- */
@@ -314,6 +346,14 @@ static double everett_f(double v, double o, const void *ctx)
     return fa * cdf_diff(p, p->dist, c->zb, x, ((o - c->b) + v) / p->sb);
 }
 
+static int everett_unscaled(const hy_preisach *p, double a, double b, double *E, hy_error *err)
+{
+    hy_preisach t = *p;
+    t.scale = 1;
+    t.ys = INFINITY; /* E(+∞, -∞) is never asked here: a and b are finite */
+    return hy_preisach_everett(&t, a, b, E, err);
+}
+
 int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_error *err)
 {
     if (isnan(a) || isnan(b) || a < b || a == -INFINITY || b == INFINITY)
@@ -321,6 +361,14 @@ int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_
     if (isinf(a) && isinf(b)) {
         *E = p->ys;
         return HY_OK;
+    }
+    if (p->hs < INFINITY) { /* the triangle: no relay beyond ±hs */
+        a = fmin(a, p->hs);
+        b = fmax(b, -p->hs);
+        if (!(a > b)) {
+            *E = 0;
+            return HY_OK;
+        }
     }
     ev_ctx c = {p, b, isinf(b) ? 0 : (b - p->mb) / p->sb, isinf(b)};
     quad q = {everett_f, &c, {p->ma, p->mb, 0, 0}, 2};
@@ -351,6 +399,66 @@ int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_
     return HY_OK;
 }
 
+/* ---- the demagnetised state: the staircase α = -β ------------------------- */
+
+typedef struct dm_ctx {
+    const hy_preisach *p;
+    int up;  /* 1: f_α(α) P(-α <= β <= α) over α; 0: f_β(β) P(β <= α <= -β) over β */
+} dm_ctx;
+
+static double demag_f(double v, double o, const void *ctx)
+{
+    const dm_ctx *c = ctx;
+    const hy_preisach *p = c->p;
+    double x = o + v;
+    if (c->up) {
+        double fa = pdf(p->dist, ((o - p->ma) + v) / p->sa) / p->sa;
+        return fa == 0 ? 0 : fa * cdf_diff(p, p->dist, (-x - p->mb) / p->sb, (x - p->mb) / p->sb, 2 * x / p->sb);
+    }
+    double fb = pdf(p->dist, ((o - p->mb) + v) / p->sb) / p->sb;
+    return fb == 0 ? 0 : fb * cdf_diff(p, p->dist, (x - p->ma) / p->sa, (-x - p->ma) / p->sa, -2 * x / p->sa);
+}
+
+/* The mass (scaled) of the relays the input switches moving monotonically
+ * from 0 to u in the demagnetised state: u > 0, {-α < β <= α <= u} (down
+ * relays switched up); u < 0, {u <= β <= α < -β} (up relays switched down);
+ * both clipped to the triangle.  u = ±∞: all of them. */
+static int demag_edge(const hy_preisach *p, double u, double *T, hy_error *err)
+{
+    int up = u > 0;
+    double lim = up ? fmin(u, p->hs) : fmax(u, -p->hs);
+    if (p->dist == HY_PREISACH_GAUSSIAN) /* the density of the integration variable ends at GAUSS_CUT widths */
+        lim = up ? fmin(lim, p->ma + GAUSS_CUT * p->sa) : fmax(lim, p->mb - GAUSS_CUT * p->sb);
+    if (u == 0 || !(up ? lim > 0 : lim < 0)) {
+        *T = 0;
+        return HY_OK;
+    }
+    dm_ctx c = {p, up};
+    quad q = {demag_f, &c, {p->ma, p->mb, 0, 0}, 3};
+    qpt zero = {0, 2, 0}, end = {lim, -1, 0};
+    if (isfinite(lim)) {
+        q.anchor[3] = lim;
+        end = (qpt){lim, 3, 0};
+        q.nanchor = 4;
+    }
+    double r;
+    int rc = integrate(p, &q, up ? zero : end, up ? end : zero, &r, "demagnetised state", err);
+    if (!rc)
+        *T = p->scale * r;
+    return rc;
+}
+
+int hy_preisach_demag_output(const hy_preisach *p, double *y, hy_error *err)
+{
+    double tu, td;
+    int rc = demag_edge(p, INFINITY, &tu, err);
+    if (!rc)
+        rc = demag_edge(p, -INFINITY, &td, err);
+    if (!rc) /* relays up where α + β < 0: those switched down going to -∞, less those switched up going to +∞ */
+        *y = td - tu;
+    return rc;
+}
+
 /* ---- staircase memory ------------------------------------------------------ */
 
 static int sgn(double x) { return (x > 0) - (x < 0); }
@@ -374,18 +482,26 @@ int hy_preisach_mem_init(hy_preisach_mem *m, const hy_preisach *p, double u0, hy
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     }
     m->p = p;
-    int up = p->start >= 0 ? 1 : -1;
-    m->s[0] = up > 0 ? INFINITY : -INFINITY;
-    m->c[0] = up > 0 ? p->ys : -p->ys;
     m->s[1] = u0;
     m->n = 1;
-    int rc = edge_e(p, m->s[0], u0, &m->e_cur, err);
-    if (rc) {
-        hy_preisach_mem_free(m);
-        return rc;
+    int rc;
+    if (p->start == HY_PREISACH_DEMAGNETISED) { /* the line α = -β, from u = 0 to u0 */
+        m->demag = 1;
+        m->s[0] = 0;
+        rc = hy_preisach_demag_output(p, &m->c[0], err);
+        if (!rc)
+            rc = demag_edge(p, u0, &m->e_cur, err);
+        m->y = m->c[0] + 2.0 * sgn(u0) * m->e_cur;
+    } else {
+        int up = p->start == HY_PREISACH_POSITIVE ? 1 : -1;
+        m->s[0] = up > 0 ? INFINITY : -INFINITY;
+        m->c[0] = up > 0 ? p->ys : -p->ys;
+        rc = edge_e(p, m->s[0], u0, &m->e_cur, err);
+        m->y = m->c[0] - 2.0 * up * m->e_cur;
     }
-    m->y = m->c[0] - 2.0 * up * m->e_cur;
-    return HY_OK;
+    if (rc)
+        hy_preisach_mem_free(m);
+    return rc;
 }
 
 int hy_preisach_mem_apply(hy_preisach_mem *m, double u, double *y, hy_error *err)
@@ -415,10 +531,15 @@ int hy_preisach_mem_apply(hy_preisach_mem *m, double u, double *y, hy_error *err
         /* wiping-out: passing s[n-2] erases the last two corners */
         while (n >= 3 && (u - m->s[n - 2]) * d >= 0)
             n -= 2;
+        /* the demagnetised line's corner at level |s[1]| goes when u passes -s[1] */
+        if (m->demag && n == 2 && (u + m->s[1]) * d >= 0)
+            n = 1;
         double e;
-        int rc = edge_e(m->p, m->s[n - 1], u, &e, err);
+        int rc = m->demag && n == 1 ? demag_edge(m->p, u, &e, err) : edge_e(m->p, m->s[n - 1], u, &e, err);
         if (rc)
             return rc;
+        if (m->demag && n == 1)
+            d = sgn(u);
         if (n > m->n)
             m->c[n - 1] = cn;
         m->s[n] = u;
@@ -492,6 +613,12 @@ int hy_preisach_loop_area(const hy_preisach *p, double lo, double hi, double *ar
 {
     if (!isfinite(lo) || !isfinite(hi) || !(lo < hi))
         return hy_error_set(err, HY_EINVAL, "Preisach loop area needs finite lo < hi (got %g, %g)", lo, hi);
+    lo = fmax(lo, -p->hs); /* the triangle: no relay beyond ±hs */
+    hi = fmin(hi, p->hs);
+    if (!(lo < hi)) {
+        *area = 0;
+        return HY_OK;
+    }
     area_ctx c = {p, lo, hi};
     quad q = {area_f, &c, {p->ma, p->mb, lo, hi}, 4};
     double r;

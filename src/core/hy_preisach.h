@@ -42,6 +42,9 @@
 
 enum { HY_PREISACH_GAUSSIAN = 0, HY_PREISACH_LORENTZIAN = 1 };
 
+/* The state before u(0) (hy_preisach.start). */
+enum { HY_PREISACH_NEGATIVE = -1, HY_PREISACH_DEMAGNETISED = 0, HY_PREISACH_POSITIVE = 1 };
+
 #define HY_PREISACH_GL 20 /* Gauss-Legendre nodes for short CDF differences */
 
 typedef struct hy_preisach {
@@ -49,9 +52,15 @@ typedef struct hy_preisach {
     double ma, sa;       /* up-switching fields α: centre and width (> 0)       */
     double mb, sb;       /* down-switching fields β: centre and width (> 0)     */
     double ys;           /* output at positive saturation (> 0)                 */
-    int start;           /* -1: negatively saturated before u(0) (default), +1 */
-    /* filled by hy_preisach_init */
-    double mass;         /* ∫∫_{α≥β} of the unscaled density (a probability)    */
+    int start;           /* HY_PREISACH_NEGATIVE (default, saturated before u(0)),
+                            _POSITIVE, or _DEMAGNETISED: the state an alternating
+                            input of decaying amplitude leaves at u = 0, relays
+                            up exactly where α + β < 0 (the line α = -β is the
+                            staircase), then moved monotonically to u(0)      */
+    double hs;           /* support: +∞ the half-plane α >= β (default), or the
+                            triangle -hs <= β <= α <= hs (hy_preisach_support) */
+    /* filled by hy_preisach_init (and hy_preisach_support) */
+    double mass;         /* ∫∫ of the unscaled density over the support         */
     double scale;        /* K = ys / mass                                       */
     double glx[HY_PREISACH_GL], glw[HY_PREISACH_GL]; /* nodes/weights on [-1,1] */
 } hy_preisach;
@@ -74,21 +83,34 @@ int hy_preisach_init(hy_preisach *p, int dist, double ma, double sa, double mb, 
 /* The usual symmetric density: α around +hc, β around -hc, both of width sigma. */
 int hy_preisach_symmetric(hy_preisach *p, int dist, double hc, double sigma, double ys, hy_error *err);
 
+/* Puts the density on the triangle -hs <= β <= α <= hs (the relays outside
+ * it are removed; the input saturates the model at |u| >= hs) and scales it
+ * to ±ys there; hs = +∞ restores the half-plane.  HY_EINVAL when hs is not
+ * > 0 or the triangle holds less than 1e-300 of the density's mass. */
+int hy_preisach_support(hy_preisach *p, double hs, hy_error *err);
+
 /* Everett function E(a, b) = K ∫∫_{b≤β≤α≤a} of the density, a >= b; a may be
  * +∞ and b -∞ (E(+∞,-∞) = ys).  HY_EINVAL when a < b or either is NaN,
  * HY_ENUM when the quadrature cannot reach 1e-12 relative (message says where). */
 int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_error *err);
 
-/* The staircase memory: s[0] = ∓∞ (initial saturation), s[1..n] alternating
- * dominant extrema ending with the present input s[n]; c[j] is the output with
- * edges 1..j complete.  Owns s and c. */
+/* The staircase memory: s[0] = ∓∞ (initial saturation) or 0 (demagnetised:
+ * the line α = -β, whose corner at level |s[1]| is wiped when the input
+ * passes -s[1]), s[1..n] alternating dominant extrema ending with the
+ * present input s[n]; c[j] is the output with edges 1..j complete.  Owns s
+ * and c. */
 typedef struct hy_preisach_mem {
     const hy_preisach *p;   /* borrowed: must outlive the memory          */
     double *s, *c;
     size_t n, cap;
     double e_cur;           /* E of the present edge (s[n-1], s[n])       */
     double y;               /* output at s[n]                             */
+    int demag;              /* s[0] is the demagnetised line              */
 } hy_preisach_mem;
+
+/* The output of the demagnetised state at u = 0 (0 for a symmetric density,
+ * ma = -mb and sa = sb) into *y. */
+int hy_preisach_demag_output(const hy_preisach *p, double *y, hy_error *err);
 
 /* Saturates (p->start) and then moves the input monotonically to u0.  On error
  * (HY_EINVAL for a non-finite u0, HY_ENOMEM, HY_ENUM) m owns nothing. */
@@ -108,7 +130,8 @@ int hy_preisach_drive(const hy_preisach *p, const hy_input *in, const double *t,
                       hy_error *err);
 
 /* ∮ u dy of the closed loop between reversal values lo < hi (any history: the
- * loops are congruent): 2K ∫_lo^hi P(u ≤ α ≤ hi) P(lo ≤ β ≤ u) du, by
+ * loops are congruent): 2K ∫_lo^hi P(u ≤ α ≤ hi) P(lo ≤ β ≤ u) du (lo and hi
+ * clipped to the triangle's ±hs), by
  * adaptive quadrature to 1e-12 relative.  Energy per cycle when u = H, y = B. */
 int hy_preisach_loop_area(const hy_preisach *p, double lo, double hi, double *area, hy_error *err);
 

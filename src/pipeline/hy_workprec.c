@@ -192,13 +192,15 @@ static int init_boucwen(hy_wp_problem *p, int quick, hy_error *err)
     return bw_solve(p, p->bw_h_ref, p->yref, err);
 }
 
-/* B of the Jiles-Atherton problem at p's grid with stepper at rtol. */
-static int ja_solve(const hy_wp_problem *p, const char *stepper, double rtol, double *y, hy_jiles_stats *st,
-                    hy_error *err)
+/* B of the Jiles-Atherton problem at p's grid with stepper at rtol, within
+ * max_steps steps (0: the model's default budget, HY_JILES_MAX_STEPS). */
+static int ja_solve(const hy_wp_problem *p, const char *stepper, double rtol, unsigned long max_steps, double *y,
+                    hy_jiles_stats *st, hy_error *err)
 {
     hy_jiles j = p->ja;
     j.stepper = stepper;
     j.rtol = rtol;
+    j.max_steps = max_steps;
     return hy_jiles_drive(&j, &p->input, p->t, p->n, NULL, y, st, err);
 }
 
@@ -217,10 +219,10 @@ static int init_jiles(hy_wp_problem *p, int quick, hy_error *err)
     if ((rc = grid_alloc(p, 300, 2 * p->input.period)))
         return hy_error_set(err, rc, "out of memory");
     double rtol = quick ? 1e-11 : 1e-13, d = NAN;
-    if ((rc = ja_solve(p, "rk8pd", rtol, p->yref, NULL, err)))
+    if ((rc = ja_solve(p, "rk8pd", rtol, 0, p->yref, NULL, err)))
         return rc;
     double *y2 = malloc(p->n * sizeof *y2);
-    if (y2 && !ja_solve(p, "rkck", rtol, y2, NULL, err))
+    if (y2 && !ja_solve(p, "rkck", rtol, 0, y2, NULL, err))
         hy_wp_error(y2, p->yref, p->n, &d, NULL);
     free(y2);
     snprintf(p->ref_method, sizeof p->ref_method, "rk8pd rtol %.0e, restarts at reversals and guard switches "
@@ -291,7 +293,7 @@ static int solve_once(const hy_wp_problem *p, hy_wp_run *r, const hy_wp_cfg *cfg
         return bw_solve(p, r->tol, y, err);
     if (p->kind == HY_WP_JILES) { /* always restarted at reversals: the model's own breakpoints */
         hy_jiles_stats st = {0};
-        int rc = ja_solve(p, r->solver, r->tol, y, &st, err);
+        int rc = ja_solve(p, r->solver, r->tol, (unsigned long)cfg->max_steps, y, &st, err); /* the report's cap */
         r->nfev = st.nfev;
         r->steps = st.steps;
         r->fails = st.fails;
@@ -344,7 +346,7 @@ static int cmp_double(const void *a, const void *b)
 /* Records a failed call in r (status from the message: step cap or failure). */
 static void run_failed(hy_wp_run *r, const hy_error *err)
 {
-    r->status = strstr(err->msg, "step cap") ? HY_WP_STEPCAP : HY_WP_FAIL;
+    r->status = strstr(err->msg, "step cap") || strstr(err->msg, "step budget") ? HY_WP_STEPCAP : HY_WP_FAIL;
     snprintf(r->msg, sizeof r->msg, "%.150s", err->msg);
 }
 

@@ -7,7 +7,10 @@
  * otherwise.  On a monotone move of u the output is a constant piece then a
  * line of slope 1, so y and ∫ y du along the path are exact; a loop between
  * reversals lo and hi (hi - lo > 2r) from a dragged branch is the
- * parallelogram of area 2r (hi - lo - 2r).  The model's keys, stages and
+ * parallelogram of area 2r (hi - lo - 2r).  Its loops run counter-clockwise
+ * (y lags u), so the area printed is ∮ u dy = -∮ y du (no HY_RI_AREA_YDU):
+ * the energy the play's elastic-plastic pair dissipates (docs/SCENES.md,
+ * "Loop areas").  The model's keys, stages and
  * table entry are this file; its table line is in src/pipeline/meson.build. */
 #include <stddef.h>
 

@@ -2,17 +2,27 @@
 /* model_preisach.c: the classical Preisach model (numerics in
  * src/core/hy_preisach.c: Everett function, staircase memory) in the model
  * table, with the symmetric factorised density of its [model] keys (rows:
- * hy_scene_model_rows.h). */
+ * hy_scene_model_rows.h), on the half-plane or the triangle up to pr_hs,
+ * from negative or positive saturation or the demagnetised state. */
 #include <stddef.h>
 
 #include "hy_preisach.h"
 #include "hy_scene_model_rows.h"
 
-/* The [model] keys: the density hy_preisach_symmetric builds. */
+/* The [model] keys: the density hy_preisach_symmetric builds, its support
+ * and the state before u(0). */
 typedef struct pr_par {
     int density; /* index in hy_preisach_dist_names: the HY_PREISACH_ value */
     double hc, width, ys;
+    int start;   /* index in start_names */
+    int support; /* index in support_names */
+    double hs;
 } pr_par;
+
+#ifdef HY_MODEL_ROWS_ONLY /* the rows' enums (the stages read the indices) */
+static const char *const start_names[] = {"negative", "positive", "demagnetised", NULL};
+static const char *const support_names[] = {"halfplane", "triangle", NULL};
+#endif
 
 #define PAR pr_par
 HY_MODEL_ROWS(preisach, pr_par,
@@ -22,7 +32,15 @@ HY_MODEL_ROWS(preisach, pr_par,
            "preisach: centre of the up-switching fields alpha (the down-switching beta around -pr_hc), in input units"),
     HY_ROW("w", NULL, pr_width, width, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "0.2",
            "preisach: width of both switching-field distributions, in input units"),
-    HY_ROW("y_s", NULL, pr_ys, ys, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "1", "preisach: output at positive saturation"));
+    HY_ROW("y_s", NULL, pr_ys, ys, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "1", "preisach: output at positive saturation"),
+    HY_ROW(NULL, NULL, pr_start, start, HY_KIND_ENUM, start_names, HY_NOLIM, 0, 0, "negative",
+           "preisach: state before u(0): negative or positive saturation, or demagnetised (the state an alternating "
+           "input of decaying amplitude leaves: relays up where alpha + beta < 0), then moved to u(0)"),
+    HY_ROW(NULL, NULL, pr_support, support, HY_KIND_ENUM, support_names, HY_NOLIM, 0, 0, "halfplane",
+           "preisach: where the density lives, normalised to saturation there: the half-plane alpha >= beta, or the "
+           "triangle -pr_hs <= beta <= alpha <= pr_hs (saturated for |u| >= pr_hs)"),
+    HY_ROW("H_s", NULL, pr_hs, hs, HY_KIND_NUMBER, NULL, HY_POS, 0, 0, "1",
+           "preisach: saturation field of the triangle (pr_support = triangle), in input units"));
 
 #ifndef HY_MODEL_ROWS_ONLY /* the stages (the pipeline's compile of this file) */
 #include <math.h>
@@ -32,7 +50,8 @@ HY_MODEL_ROWS(preisach, pr_par,
 #include "scene_model.h"
 
 /* how hy_preisach.c's messages name each row's key */
-static const char *const core_names[] = {"distribution", "centre must", "width", "ys", NULL};
+static const char *const core_names[] = {"distribution", "centre must", "width", "ys", "Preisach start", "on the triangle",
+                                         "hs", NULL};
 static const char *const quantities[] = {"output", NULL};
 
 static void outputs(const hy_preisach_mem *m, double out[HY_RI_NOUT])
@@ -88,7 +107,11 @@ static const hy_rateind_type pr_type = {"preisach", sizeof(hy_preisach_mem), HY_
 static int pr_read(const hy_decl_model *m, void *par, hy_error *err)
 {
     const pr_par *p = (const void *)m->par;
-    int rc = hy_preisach_symmetric(par, p->density, p->hc, p->width, p->ys, err);
+    hy_preisach *pr = par;
+    int rc = hy_preisach_symmetric(pr, p->density, p->hc, p->width, p->ys, err);
+    if (!rc && p->support == 1)
+        rc = hy_preisach_support(pr, p->hs, err);
+    pr->start = p->start == 2 ? HY_PREISACH_DEMAGNETISED : p->start == 1 ? HY_PREISACH_POSITIVE : HY_PREISACH_NEGATIVE;
     return hy_scene_model_relocate(m, &hy_scene_model_preisach, rc, err);
 }
 

@@ -76,7 +76,8 @@ void hy_scene_probe_name(const hy_scene *s, const char *path, char *buf, size_t 
  * {minorN.yclose}, {nminor}, and for a ygamma/transient series NAME {NAME.gamma},
  * and {NAME.dist} (max |y_γ - y*_u| over its points), and {SECTION.key} (a numeric
  * key, set or by default, e.g. {model.sigma0}) in text by their values (4 significant
- * digits, hy_markup_number); {minorN.turn} is the sign of minorN.area as an arrow: ↻ clockwise, ↺ counter-clockwise. */
+ * digits, hy_markup_number); {minorN.turn} is the loop's orientation in the (u, y) plane as an arrow, ↻
+ * clockwise, ↺ counter-clockwise: the sign of ∮ y du, i.e. of minorN.area times the model's area sign. */
 static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out, size_t size, hy_error *err)
 {
     const char *text = a->text ? a->text : "";
@@ -147,7 +148,8 @@ static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out,
                                      key, L->nminor);
         char num[64];
         if (turn)
-            snprintf(num, sizeof num, "%s", v > 0 ? "\xE2\x86\xBB" : v < 0 ? "\xE2\x86\xBA" : "");   /* ↻ ↺ */
+            snprintf(num, sizeof num, "%s", v * hy_scene_model_area_sign(r->mtype) > 0 ? "\xE2\x86\xBB"
+                                            : v * hy_scene_model_area_sign(r->mtype) < 0 ? "\xE2\x86\xBA" : ""); /* ↻ ↺ */
         else
             hy_markup_number(num, sizeof num, v, 4);
         int w = snprintf(out + o, size - o, "%s", num);

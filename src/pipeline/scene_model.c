@@ -72,6 +72,11 @@ void hy_scene_model_read_numbers(const hy_decl_model *m, const char *const *keys
     }
 }
 
+int hy_scene_model_area_sign(const hy_scene_model *mt)
+{
+    return mt && mt->ri && !(mt->ri->caps & HY_RI_AREA_YDU) ? -1 : 1;
+}
+
 int hy_scene_model_relocate(const hy_decl_model *m, const hy_scene_model *mt, int rc, hy_error *err)
 {
     if (!rc)

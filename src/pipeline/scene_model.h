@@ -147,6 +147,13 @@ int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err);
 /* Reads shared [model] keys (all numbers) into par at the given offsets, with
  * the schema's defaults: keys[i] fills the double at offsets[i]. */
 void hy_scene_model_read_numbers(const hy_decl_model *m, const char *const *keys, const size_t *offsets, void *par);
+/* The sign that turns ∮ y du into the loop area a scene prints (docs/SCENES.md,
+ * "Loop areas"): +1 where the model's loops dissipate ∮ y du (a force against
+ * a displacement: Dahl, LuGre, the Dahl filter, the Bouc-Wen operator:
+ * clockwise loops), -1 where they dissipate ∮ u dy = -∮ y du (a response to
+ * a field: Jiles-Atherton, Preisach, play: counter-clockwise loops). */
+int hy_scene_model_area_sign(const hy_scene_model *mt);
+
 /* Re-raises a core message (err->msg) with status rc at the [model] key it
  * names (the first mt->core_names[i] found in it is hy_scene_model_param(mt,
  * i)), else at [model]; rc 0 returns 0. */

@@ -169,7 +169,7 @@ static int need_steady_state(hy_scene_run *r, ri_plan *p, hy_error *err)
 /* ∮ u dy = -∮ y du (magnetic), or ∮ y du (HY_RI_AREA_YDU): dissipation > 0. */
 static double area_sign(const hy_scene_run *r)
 {
-    return (r->mtype->ri->caps & HY_RI_AREA_YDU) ? 1.0 : -1.0;
+    return hy_scene_model_area_sign(r->mtype);
 }
 
 /* Feeds m the turning points of the input (run ends, exact values) from run

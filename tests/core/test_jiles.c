@@ -3,8 +3,10 @@
  * implementation written apart here: long double, the Langevin function by its
  * Taylor series and coshl/sinhl, classical RK4 on a uniform grid in H with the
  * guard's switch located by bisection, Richardson-extrapolated from two step
- * sizes.  Then the 1986 parameters' major loop (coercive field, remanence),
- * refusals, every input kind and the minor loop of Fig. 2's bimodal input. */
+ * sizes, for both variants (1986, and the 1992 total-M form of Jiles, Thoelke
+ * and Devine).  Then the 1986 parameters' major loop (coercive field,
+ * remanence) in both variants, refusals (the input's scale, the step budget),
+ * every input kind and the minor loop of Fig. 2's bimodal input. */
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -16,6 +18,7 @@
 
 typedef struct ref_ja {
     long double ms, a, k, c, al;
+    int jtd; /* 0: Jiles & Atherton 1986; 1: Jiles, Thoelke & Devine 1992 */
 } ref_ja;
 
 static long double ref_L(long double x)
@@ -45,14 +48,22 @@ static long double ref_g(const ref_ja *j, long double H, long double M, int delt
     return (j->ms * ref_L((H + j->al * M) / j->a) - M) * delta;
 }
 
-/* d/dH of (M, ∫ (H + M) dH) */
+/* d/dH of (M, ∫ (H + M) dH): 1986, χ = δ_M (M_an - M)/(δk) + c dM_an/dH_e,
+ * dM/dH = χ/(1 - αχ); 1992, dM/dH = δ_M (M_an - M)/((1+c)(δk - α(M_an - M)))
+ * + c/(1+c) dM_an/dH_e (δ_M = !guard) */
 static void ref_rhs(const ref_ja *j, long double H, const long double y[2], int delta, int guard, long double f[2])
 {
     long double he = (H + j->al * y[0]) / j->a;
-    long double chi = j->c * j->ms * ref_dL(he) / j->a;
-    if (!guard)
-        chi += (j->ms * ref_L(he) - y[0]) / (j->k * delta);
-    f[0] = chi / (1 - j->al * chi);
+    long double man = j->ms * ref_L(he), dman = j->ms * ref_dL(he) / j->a;
+    if (j->jtd) {
+        long double irr = guard ? 0 : (man - y[0]) / ((1 + j->c) * (delta * j->k - j->al * (man - y[0])));
+        f[0] = irr + j->c / (1 + j->c) * dman;
+    } else {
+        long double chi = j->c * dman;
+        if (!guard)
+            chi += (man - y[0]) / (j->k * delta);
+        f[0] = chi / (1 - j->al * chi);
+    }
     f[1] = H + y[0];
 }
 
@@ -143,6 +154,30 @@ static void test_langevin(void)
 
 static const double ja86[5] = {1.6e6, 1100, 400, 0.2, 1.6e-3}; /* Ms a k c α, Jiles & Atherton 1986 */
 
+/* Drives j along path[] from M = 0 at path[0] and checks M and ∫ (H + M) dH
+ * after each field against the reference's M[], hb[] (1e-9 relative: the
+ * reference's own accuracy with margin); worst[0], worst[1] get the worst
+ * relative errors. */
+static void check_path(const hy_jiles *j, const double *path, int n, const long double *M, const long double *hb,
+                       hy_jiles_stats *st, double worst[2])
+{
+    hy_error err;
+    hy_jiles_state s;
+    hy_jiles_state_init(j, &s, 0);
+    worst[0] = worst[1] = 0;
+    for (int i = 1; i < n; i++) {
+        int rc = hy_jiles_apply(j, &s, path[i], st, &err);
+        CHECK(!rc, "apply %g: %s", path[i], err.msg);
+        double e = (double)fabsl((s.M - M[i]) / M[i]), ehb = (double)fabsl((s.hb - hb[i]) / hb[i]);
+        worst[0] = fmax(worst[0], e);
+        worst[1] = fmax(worst[1], ehb);
+        CHECK(e <= 1e-9, "%s, H = %g: M = %.15g, reference %.15Lg (rel %.3g)", hy_jiles_variant_names[j->variant],
+              path[i], s.M, M[i], e);
+        CHECK(ehb <= 1e-9, "%s, H = %g: integral of (H+M) dH = %.15g, reference %.15Lg (rel %.3g)",
+              hy_jiles_variant_names[j->variant], path[i], s.hb, hb[i], ehb);
+    }
+}
+
 static void test_against_reference(void)
 {
     hy_error err;
@@ -152,25 +187,14 @@ static void test_against_reference(void)
     const double path[] = {0, 6000, -6000, 6000, 1500, -2500, 4000, -700, 300};
     enum { N = sizeof path / sizeof path[0] };
     long double M[N], hb[N];
-    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4]};
+    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], 0};
     ref_path(&r, path, N, 0.5L, M, hb);
-    hy_jiles_state s;
-    hy_jiles_state_init(&j, &s, 0);
     hy_jiles_stats st = {0};
-    double worst = 0, worst_hb = 0;
-    for (int i = 1; i < N; i++) {
-        int rc = hy_jiles_apply(&j, &s, path[i], &st, &err);
-        CHECK(!rc, "apply %g: %s", path[i], err.msg);
-        double e = (double)fabsl((s.M - M[i]) / M[i]), ehb = (double)fabsl((s.hb - hb[i]) / hb[i]);
-        worst = fmax(worst, e);
-        worst_hb = fmax(worst_hb, ehb);
-        CHECK(e <= 1e-9, "H = %g: M = %.15g, reference %.15Lg (rel %.3g)", path[i], s.M, M[i], e);
-        CHECK(ehb <= 1e-9, "H = %g: integral of (H+M) dH = %.15g, reference %.15Lg (rel %.3g)", path[i], s.hb, hb[i],
-              ehb);
-    }
+    double worst[2];
+    check_path(&j, path, N, M, hb, &st, worst);
     printf("against long double RK4 + Richardson: worst relative error M %.3g, int (H+M) dH %.3g "
            "(rk8pd: %lu steps, %lu rejected, %lu evaluations, %lu guard switches)\n",
-           worst, worst_hb, st.steps, st.fails, st.nfev, st.switches);
+           worst[0], worst[1], st.steps, st.fails, st.nfev, st.switches);
     CHECK(st.switches >= 4, "expected a located guard switch after reversals, saw %lu", st.switches);
 }
 
@@ -201,7 +225,7 @@ static void test_1986_loop(void)
     CHECK(fabs(L10.br - HY_MU0 * L10.mr) <= 1e-15 * L10.br, "Br %.17g != mu0 Mr %.17g", L10.br, HY_MU0 * L10.mr);
     CHECK(L10.bmax > L10.br && L10.bmax < HY_MU0 * (10000 + ja86[0]), "Bmax = %g", L10.bmax);
     /* the same features from the reference implementation: Mr at H = 0, then M = 0 */
-    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4]};
+    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], 0};
     const double path[] = {0, 10000, -10000, 10000, -10000, 10000, 0, -L10.hci};
     long double M[8], hb[8];
     ref_path(&r, path, 8, 0.5L, M, hb);
@@ -269,7 +293,7 @@ static void test_inputs_and_minor_loop(void)
     CHECK(fabs(L.y_close - L.y_start) > 1e-3 && fabs(L.y_close - L.y_start) < 0.1, "minor loop gap %g T",
           L.y_close - L.y_start);
     /* the same loop from the reference implementation */
-    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4]};
+    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], 0};
     double path[4 * 12 + 4];
     int n = 0;
     path[n++] = -750;
@@ -331,6 +355,153 @@ static void test_inputs_and_minor_loop(void)
     hy_input_free(&in);
 }
 
+/* dM/dH of both variants at a few (H, M, direction) points against the
+ * equations evaluated here (ref_rhs, long double); the guard δ_M from the
+ * sign of (M_an - M) δ as the library sets it.  Tolerance 1e-13 relative:
+ * one evaluation in double of a few operations and a Langevin function
+ * (worst 4e-16 relative, test_langevin), amplified by 1/(1 - αχ) <= ~30 at
+ * these points. */
+static void test_dmdh_points(void)
+{
+    hy_error err;
+    const double pts[][3] = {{0, 0, 1},        {0, 0, -1},       {500, 2e5, 1},    {500, 2e5, -1},
+                             {-300, 2e5, -1},   {-300, 4e5, 1},   {2000, 1.2e6, 1}, {-1500, -9e5, 1},
+                             {100, -3e5, 1},    {8000, 1.5e6, -1}};
+    for (int v = 0; v < 2; v++) {
+        hy_jiles j;
+        CHECK(!hy_jiles_init(&j, ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], &err), "init: %s", err.msg);
+        j.variant = v ? HY_JILES_JTD1992 : HY_JILES_JA1986;
+        ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], v};
+        double worst = 0;
+        for (size_t i = 0; i < sizeof pts / sizeof pts[0]; i++) {
+            double H = pts[i][0], M = pts[i][1];
+            int delta = pts[i][2] > 0 ? 1 : -1;
+            long double y[2] = {M, 0}, f[2];
+            ref_rhs(&r, H, y, delta, !(ref_g(&r, H, M, delta) > 0), f);
+            double got = hy_jiles_dmdh(&j, H, M, delta), e = (double)fabsl((got - f[0]) / f[0]);
+            worst = fmax(worst, e);
+            CHECK(e <= 1e-13, "%s: dM/dH at H = %g, M = %g, delta %d: %.17g, equations %.17Lg (rel %.3g)",
+                  hy_jiles_variant_names[v], H, M, delta, got, f[0], e);
+        }
+        printf("dM/dH, %s: worst relative difference from the equations %.3g over %zu points\n",
+               hy_jiles_variant_names[v], worst, sizeof pts / sizeof pts[0]);
+    }
+    /* past |M_an - M| = k/alpha-ish the 1986 denominator 1 - alpha chi is negative: no physical slope */
+    hy_jiles n;
+    hy_jiles_init(&n, ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], &err);
+    CHECK(isnan(hy_jiles_dmdh(&n, -300, 4e5, -1)), "dM/dH where 1 - alpha chi < 0: %g", hy_jiles_dmdh(&n, -300, 4e5, -1));
+    /* the two differ (c = 0.2, alpha > 0) at a point where only the reversible term acts */
+    hy_jiles a, b;
+    hy_jiles_init(&a, ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], &err);
+    b = a;
+    b.variant = HY_JILES_JTD1992;
+    CHECK(fabs(hy_jiles_dmdh(&a, 0, 0, 1) / hy_jiles_dmdh(&b, 0, 0, 1) - 1) > 0.1, "variants agree at H = 0: %g, %g",
+          hy_jiles_dmdh(&a, 0, 0, 1), hy_jiles_dmdh(&b, 0, 0, 1));
+    /* and agree when c = 0, whatever alpha: χ/(1 - αχ) with χ = (M_an - M)/(δk) is
+       (M_an - M)/(δk - α(M_an - M)); the two orders of operations differ by a few ulps (1e-14) */
+    hy_jiles_init(&a, ja86[0], ja86[1], ja86[2], 0, ja86[4], &err);
+    b = a;
+    b.variant = HY_JILES_JTD1992;
+    const double agree[][3] = {{300, 1e5, 1}, {-300, 2e5, -1}, {100, -3e5, 1}};
+    for (int i = 0; i < 3; i++) {
+        double da = hy_jiles_dmdh(&a, agree[i][0], agree[i][1], (int)agree[i][2]);
+        double db = hy_jiles_dmdh(&b, agree[i][0], agree[i][1], (int)agree[i][2]);
+        CHECK(isfinite(da) && fabs(da - db) <= 1e-14 * fabs(da), "c = 0, H = %g, M = %g: dM/dH %.17g vs %.17g",
+              agree[i][0], agree[i][1], da, db);
+    }
+    b.variant = 7;
+    CHECK_MSG(hy_jiles_validate(&b, &err), err, HY_EINVAL, "variant 7 is unknown");
+}
+
+/* The 1992 form along initial curve, major loop and minor loops against the
+ * long double RK4 + Richardson reference (hmax 0.5 A/m), as the 1986 form in
+ * test_against_reference: 1e-9 relative, the reference's own accuracy
+ * (its two step sizes agree to about 1e-11 relative) with margin; then the
+ * remanence of both forms' saturated loops (±10 kA/m), the figures the
+ * documentation quotes, and how far the two loops lie apart. */
+static void test_jtd1992_loop(void)
+{
+    hy_error err;
+    hy_jiles j;
+    CHECK(!hy_jiles_init(&j, ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], &err), "init: %s", err.msg);
+    j.variant = HY_JILES_JTD1992;
+    const double path[] = {0, 10000, -10000, 10000, -10000, 10000, 0, 1500, -2500, 4000, -700, 300};
+    enum { N = sizeof path / sizeof path[0] };
+    long double M[N], hb[N];
+    ref_ja r = {ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], 1};
+    ref_path(&r, path, N, 0.5L, M, hb);
+    double w[2];
+    check_path(&j, path, N, M, hb, NULL, w);
+    double worst = fmax(w[0], w[1]);
+    printf("jtd1992 against long double RK4 + Richardson: worst relative error %.3g\n", worst);
+    hy_jiles_loop L92, L86;
+    CHECK(!hy_jiles_major_loop(&j, 1e4, &L92, &err), "jtd1992 major loop: %s", err.msg);
+    j.variant = HY_JILES_JA1986;
+    CHECK(!hy_jiles_major_loop(&j, 1e4, &L86, &err), "jiles1986 major loop: %s", err.msg);
+    printf("remanence at +-10 kA/m: jiles1986 Mr = %.3f A/m, jtd1992 Mr = %.3f A/m (reference %.3Lf); Hc %.4f vs %.4f "
+           "A/m\n", L86.mr, L92.mr, M[6], L86.hc, L92.hc);
+    CHECK(fabsl(L92.mr - M[6]) <= 1e-9L * L92.mr, "jtd1992 Mr %.15g, reference %.15Lg", L92.mr, M[6]);
+    /* the documented figures, to the A/m they are quoted with */
+    CHECK(fabs(L86.mr - 496470) < 1 && fabs(L92.mr - 587472) < 1, "Mr %.3f, %.3f A/m", L86.mr, L92.mr);
+    /* the widest gap between the two saturated loops, on the descending branch near -Hc
+       (SCENES.md: 0.113 Ms at H = -356.5 A/m, found on a 0.5 A/m grid over both branches);
+       here a 1 A/m grid over [-600, -100] A/m */
+    hy_jiles_state s86, s92;
+    hy_jiles j86 = j, j92 = j;
+    j92.variant = HY_JILES_JTD1992;
+    hy_jiles_state_init(&j86, &s86, 0);
+    hy_jiles_state_init(&j92, &s92, 0);
+    const double cyc[] = {1e4, -1e4, 1e4, -1e4, 1e4};
+    for (int i = 0; i < 5; i++)
+        CHECK(!hy_jiles_apply(&j86, &s86, cyc[i], NULL, &err) && !hy_jiles_apply(&j92, &s92, cyc[i], NULL, &err),
+              "cycling: %s", err.msg);
+    double gap = 0, at = 0;
+    for (double H = -100; H >= -600; H -= 1) {
+        hy_jiles_apply(&j86, &s86, H, NULL, &err);
+        hy_jiles_apply(&j92, &s92, H, NULL, &err);
+        if (fabs(s92.M - s86.M) > gap)
+            gap = fabs(s92.M - s86.M), at = H;
+    }
+    printf("widest gap between the variants' saturated loops: %.5f Ms at H = %g A/m\n", gap / ja86[0], at);
+    CHECK(gap > 0.113 * ja86[0] && gap < 0.114 * ja86[0] && fabs(at + 356.5) <= 1, "gap %.5f Ms at H = %g",
+          gap / ja86[0], at);
+}
+
+/* Inputs beyond what the model integrates: refused with a message that names
+ * the input's scale (not alpha and k), or stopped by the step budget; each
+ * returns at once or after at most the budget's steps (a test timeout, not a
+ * timed assertion, bounds it). */
+static void test_input_scale(void)
+{
+    hy_error err;
+    hy_jiles j;
+    hy_jiles_state s;
+    CHECK(!hy_jiles_init(&j, ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], &err), "init: %s", err.msg);
+    hy_jiles_state_init(&j, &s, 0);
+    CHECK_MSG(hy_jiles_apply(&j, &s, 1e300, NULL, &err), err, HY_EINVAL, "the input's scale is beyond");
+    CHECK(!strstr(err.msg, "alpha"), "the refusal of H = 1e300 blames alpha: %s", err.msg);
+    CHECK(s.H == 0 && s.M == 0 && s.steps == 0, "a refused field moved the state");
+    CHECK_MSG(hy_jiles_apply(&j, &s, -1e12, NULL, &err), err, HY_EINVAL, "1e+12 A/m");
+    /* at the bound itself: accepted by the check (the travel is what costs) */
+    CHECK(!hy_jiles_input_check(&j, HY_JILES_HMAX * ja86[0], 0, &err), "|H| at the bound: %s", err.msg);
+    /* a period of +-1e12 travels 4e12 A/m: 2.5e9 steps of 4 k, refused before integrating */
+    CHECK_MSG(hy_jiles_input_check(&j, 1e9, 4e9, &err), err, HY_EINVAL, "travels 4e+09 A/m");
+    CHECK(!hy_jiles_input_check(&j, 1500, 7000, &err), "Fig. 1's input refused: %s", err.msg);
+    /* k = 1e-6, alpha = 2e-3: stiff; the step budget stops the stretch, state at its last good step */
+    CHECK(!hy_jiles_init(&j, ja86[0], ja86[1], 1e-6, ja86[3], 2e-3, &err), "init: %s", err.msg);
+    CHECK_MSG(hy_jiles_input_check(&j, 1500, 6000, &err), err, HY_EINVAL, "k = 1e-06");
+    j.max_steps = 20000;
+    hy_jiles_state_init(&j, &s, 0);
+    CHECK_MSG(hy_jiles_apply(&j, &s, 1500, NULL, &err), err, HY_EINVAL, "Jiles-Atherton step budget: more than 20000");
+    CHECK(s.steps > 20000 && s.steps < 20000 + 400 && s.H > 0 && s.H < 1500 && isfinite(s.M),
+          "after the budget: %lu steps, H = %g, M = %g", s.steps, s.H, s.M);
+    CHECK_MSG(hy_jiles_apply(&j, &s, 0, NULL, &err), err, HY_EINVAL, "step budget");
+    /* the same with the default budget (about a second of work) */
+    j.max_steps = 0;
+    hy_jiles_state_init(&j, &s, 0);
+    CHECK_MSG(hy_jiles_apply(&j, &s, 1500, NULL, &err), err, HY_EINVAL, "more than 1000000 steps");
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -339,5 +510,8 @@ int main(void)
     test_1986_loop();
     test_refusals();
     test_inputs_and_minor_loop();
+    test_dmdh_points();
+    test_jtd1992_loop();
+    test_input_scale();
     return tu_finish("jiles");
 }

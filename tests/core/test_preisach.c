@@ -133,33 +133,11 @@ static double dens(const hy_preisach *p, double al, double be)
 }
 
 /* Relays at the cell centres of [-3, 3]², half weight on the diagonal; all
- * down first, then u[] in order. */
+ * down first, then u[] in order (brute_demag, below, on the half-plane). */
+static void brute_demag(const hy_preisach *p, int N, double hs, int demag, const double *u, size_t n, double *y);
 static void brute(const hy_preisach *p, int N, const double *u, size_t n, double *y)
 {
-    double h = 6.0 / N;
-    double *w = malloc((size_t)N * N * sizeof *w);
-    signed char *g = malloc((size_t)N * N);
-    for (int i = 0; i < N; i++)
-        for (int j = 0; j < N; j++) {
-            double al = -3 + (i + 0.5) * h, be = -3 + (j + 0.5) * h;
-            w[i * N + j] = j > i ? 0 : dens(p, al, be) * h * h * (i == j ? 0.5 : 1.0);
-            g[i * N + j] = -1;
-        }
-    for (size_t k = 0; k < n; k++) {
-        double s = 0;
-        for (int i = 0; i < N; i++)
-            for (int j = 0; j <= i; j++) {
-                double al = -3 + (i + 0.5) * h, be = -3 + (j + 0.5) * h;
-                if (u[k] >= al)
-                    g[i * N + j] = 1;
-                else if (u[k] <= be)
-                    g[i * N + j] = -1;
-                s += w[i * N + j] * g[i * N + j];
-            }
-        y[k] = s;
-    }
-    free(w);
-    free(g);
+    brute_demag(p, N, INFINITY, 0, u, n, y);
 }
 
 static void test_brute_force(void)
@@ -403,6 +381,147 @@ static void test_extreme(void)
     hy_preisach_mem_free(&m);
 }
 
+/* ---- start states and the triangle ------------------------------------------ */
+
+/* f_α = f_β = f (hc = 0) makes every case closed-form: E(a, b) = K (F(a) - F(b))²/2,
+ * the triangle's mass (F(hs) - F(-hs))²/2, and from the demagnetised state
+ * (relays up where α + β < 0) the initial curve y(u) = ±2K (F(u) - 1/2)²
+ * (∫_0^u f (F(α) - F(-α)) dα = (F(u) - 1/2)²).  A Gaussian width much larger
+ * than hs is the uniform density on the triangle: y = (u/hs)² on the initial
+ * curve, -1 + (u + hs)²/(2 hs²) on the ascending major branch, loop area
+ * 4 ys hs/3. */
+static void test_triangle_closed_form(void)
+{
+    hy_error err;
+    hy_preisach p;
+    const double hs = 1.5, w = 0.7;
+    CHECK(!hy_preisach_symmetric(&p, HY_PREISACH_GAUSSIAN, 0, w, 1.0, &err), "init: %s", err.msg);
+    CHECK(!hy_preisach_support(&p, hs, &err), "support: %s", err.msg);
+#define F(u) ref_cdf(HY_PREISACH_GAUSSIAN, (long double)(u) / w)
+    long double mass = (F(hs) - F(-hs)) * (F(hs) - F(-hs)) / 2, K = 1 / mass;
+    /* tolerance 1e-13: the quadrature's 1e-13 relative target (QUAD_RTOL) */
+    CHECK(fabsl(p.mass - mass) <= 1e-13L * mass, "triangle mass %.17g, closed form %.17Lg", p.mass, mass);
+    const double us[] = {-2, -1.5, -0.9, -0.2, 0, 0.3, 1.1, 1.5, 3};
+    double worst = 0;
+    for (int start = -1; start <= 1; start++) {
+        p.start = start;
+        for (size_t i = 0; i < sizeof us / sizeof us[0]; i++) {
+            double u = us[i], y, uc = fmax(-hs, fmin(hs, u));
+            long double want;
+            if (start == HY_PREISACH_NEGATIVE) /* ascending major branch */
+                want = -1 + K * (F(uc) - F(-hs)) * (F(uc) - F(-hs));
+            else if (start == HY_PREISACH_POSITIVE) /* descending */
+                want = 1 - K * (F(hs) - F(uc)) * (F(hs) - F(uc));
+            else /* the initial magnetisation curve */
+                want = (u >= 0 ? 2 : -2) * K * (F(uc) - 0.5L) * (F(uc) - 0.5L);
+            CHECK(!hy_preisach_apply(&p, &u, 1, &y, &err), "apply: %s", err.msg);
+            worst = fmax(worst, (double)fabsl(y - want));
+            CHECK(fabsl(y - want) <= 1e-13L, "start %d, u = %g: y = %.17g, closed form %.17Lg", start, u, y, want);
+        }
+    }
+    printf("triangle, f_alpha = f_beta: worst |y - closed form| %.3g over the three start states\n", worst);
+    /* demagnetised: up to 0.6, down to -0.2 and back (return-point memory), then down to
+       -0.9 wipes the corner at 0.6: the same as going to -0.9 at once */
+    p.start = HY_PREISACH_DEMAGNETISED;
+    const double seq[] = {0, 0.6, -0.2, 0.6, -0.9}, direct[] = {0, -0.9};
+    double y[5], yd[2];
+    CHECK(!hy_preisach_apply(&p, seq, 5, y, &err) && !hy_preisach_apply(&p, direct, 2, yd, &err), "%s", err.msg);
+    CHECK(y[0] == 0, "demagnetised, symmetric density: y(0) = %.17g", y[0]);
+    CHECK(y[3] == y[1], "return to 0.6: %.17g vs %.17g", y[3], y[1]);
+    CHECK(y[4] == yd[1], "-0.9 after 0.6, -0.2: %.17g, directly: %.17g (the corner at 0.6 is wiped)", y[4], yd[1]);
+    /* the uniform limit: the density varies by (hs/w)²/2 = 1.1e-8 over the triangle */
+    CHECK(!hy_preisach_symmetric(&p, HY_PREISACH_GAUSSIAN, 0, 1e4 * hs, 1.0, &err), "init: %s", err.msg);
+    CHECK(!hy_preisach_support(&p, hs, &err), "support: %s", err.msg);
+    double e = 0, area;
+    for (size_t i = 0; i < sizeof us / sizeof us[0]; i++) {
+        double u = us[i], uc = fmax(-hs, fmin(hs, u)), yi, ya;
+        p.start = HY_PREISACH_DEMAGNETISED;
+        hy_preisach_apply(&p, &u, 1, &yi, &err);
+        p.start = HY_PREISACH_NEGATIVE;
+        hy_preisach_apply(&p, &u, 1, &ya, &err);
+        e = fmax(e, fabs(yi - (uc >= 0 ? 1 : -1) * (uc / hs) * (uc / hs)));
+        e = fmax(e, fabs(ya - (-1 + (uc + hs) * (uc + hs) / (2 * hs * hs))));
+    }
+    CHECK(!hy_preisach_loop_area(&p, -3, 3, &area, &err), "area: %s", err.msg);
+    printf("uniform density on the triangle (Gaussian of width 1e4 hs): max |y - closed form| %.3g, major loop area "
+           "%.15g (4 hs/3 = %.15g)\n", e, area, 4 * hs / 3);
+    CHECK(e <= 1e-7, "uniform limit: y off the closed form by %.3g (density flat to 1.1e-8)", e);
+    CHECK(fabs(area - 4 * hs / 3) <= 1e-7, "uniform major loop area %.15g, 4 hs/3 = %.15g", area, 4 * hs / 3);
+    CHECK_MSG(hy_preisach_support(&p, 0, &err), err, HY_EINVAL, "hs must be > 0");
+    CHECK(!hy_preisach_support(&p, INFINITY, &err) && p.hs == INFINITY && fabs(p.mass - 0.5) < 1e-15,
+          "back to the half-plane: hs %g, mass %.17g", p.hs, p.mass);
+#undef F
+}
+
+/* Relays on a grid, demagnetised (up where α + β < 0; the cells on α = -β
+ * count 0) or from negative saturation, optionally only on the triangle
+ * -hs <= β <= α <= hs, against the staircase for a density with different α
+ * and β distributions: the error must fall as h² (rate 2 +- 0.1). */
+static void brute_demag(const hy_preisach *p, int N, double hs, int demag, const double *u, size_t n, double *y)
+{
+    double h = 6.0 / N;
+    double *w = malloc((size_t)N * N * sizeof *w);
+    signed char *g = malloc((size_t)N * N);
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++) {
+            double al = -3 + (i + 0.5) * h, be = -3 + (j + 0.5) * h;
+            int out = j > i || al > hs || be < -hs;
+            w[i * N + j] = out ? 0 : dens(p, al, be) * h * h * (i == j ? 0.5 : 1.0);
+            g[i * N + j] = !demag ? -1 : i + j + 1 == N ? 0 : i + j + 1 < N ? 1 : -1;
+        }
+    for (size_t k = 0; k < n; k++) {
+        double sum = 0;
+        for (int i = 0; i < N; i++)
+            for (int j = 0; j <= i; j++) {
+                double al = -3 + (i + 0.5) * h, be = -3 + (j + 0.5) * h;
+                if (u[k] >= al)
+                    g[i * N + j] = 1;
+                else if (u[k] <= be)
+                    g[i * N + j] = -1;
+                sum += w[i * N + j] * g[i * N + j];
+            }
+        y[k] = sum;
+    }
+    free(w);
+    free(g);
+}
+
+static void test_demag_brute_force(void)
+{
+    hy_error err;
+    hy_preisach p;
+    CHECK(!hy_preisach_init(&p, HY_PREISACH_GAUSSIAN, 0.4, 0.3, -0.6, 0.45, 1.0, &err), "init: %s", err.msg);
+    /* reversals on multiples of 0.375 (cell edges for every N below); the corners at 0.75 and
+       -0.375 are wiped by -1.125, the demagnetised line's corner at 1.125 by -1.5 */
+    const double u[] = {0, 0.75, -0.375, 0.375, -1.125, 1.125, -1.5, 0.375};
+    const size_t n = sizeof u / sizeof u[0];
+    for (int tri = 0; tri < 2; tri++) {
+        double hs = tri ? 1.5 : INFINITY, y[8], yb[8], prev = 0;
+        if (tri)
+            CHECK(!hy_preisach_support(&p, hs, &err), "support: %s", err.msg);
+        p.start = HY_PREISACH_DEMAGNETISED;
+        CHECK(!hy_preisach_apply(&p, u, n, y, &err), "apply: %s", err.msg);
+        if (!tri) { /* not symmetric: the demagnetised state is not 0 */
+            double y0;
+            CHECK(!hy_preisach_demag_output(&p, &y0, &err) && y0 == y[0] && fabs(y0) > 0.01, "y_D = %g", y0);
+        }
+        for (int N = 128; N <= 512; N *= 2) {
+            /* the brute force's mass on [-3, 3]² falls short of the normalised one by < 1e-9 */
+            brute_demag(&p, N, hs, 1, u, n, yb);
+            double e = 0;
+            for (size_t k = 0; k < n; k++)
+                e = fmax(e, fabs(yb[k] - y[k]));
+            double rate = prev > 0 ? log2(prev / e) : 0;
+            printf("demagnetised, %s, N = %3d: max |y_N - y| = %.3e, rate %.3f\n", tri ? "triangle hs = 1.5" : "half-plane",
+                   N, e, rate);
+            if (N >= 256)
+                CHECK(rate > 1.9 && rate < 2.1, "N = %d: brute-force error rate %.3f, expected 2 (h^2)", N, rate);
+            prev = e;
+        }
+        CHECK(prev < 1e-3, "N = 512: brute force still %.3g away", prev);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -412,5 +531,7 @@ int main(void)
     test_inputs();
     test_area();
     test_extreme();
+    test_triangle_closed_form();
+    test_demag_brute_force();
     return tu_finish("preisach");
 }

@@ -49,7 +49,8 @@ static void structure(void)
     for (size_t i = 0; i < ms->nkeys; i++)
         snprintf(keys + strlen(keys), sizeof keys - strlen(keys), "%s%s", i ? ", " : "", ms->keys[i].name);
     const char *known = "kind, sigma0, sigma1, sigma2, fc, fs, vs, beta, rho, x0, tau, m, c, k, alpha, bw_beta, "
-                        "bw_gamma, delta, nu, ja_ms, ja_a, ja_k, ja_c, ja_alpha, ja_m0, pr_density, pr_hc, pr_width, pr_ys";
+                        "bw_gamma, delta, nu, ja_ms, ja_a, ja_k, ja_c, ja_alpha, ja_m0, ja_variant, pr_density, pr_hc, "
+                        "pr_width, pr_ys, pr_start, pr_support, pr_hs";
     CHECK(!strncmp(keys, known, strlen(known)));
     snprintf(want, sizeof want, "t.scene:2:1: unknown key 'zzzzzz' in [model]; valid keys are %s", keys);
     PARSE_FAILS("[model]\nzzzzzz = 6\n", want);
