@@ -171,31 +171,42 @@ typedef struct job {
     double scale;      /* residuals are divided by it (the start's initial RMS) */
     double *cache_u, *cache_r; /* the last successful evaluation (u, scaled r) */
     int cache_ok, last_failed;
+    size_t col_jobs;   /* threads for the Jacobian's columns */
     size_t nevals, nfailed;
     hy_fit_start *rec;
 } job;
 
-/* r(theta(u)) / scale into r; 0, or -1 when the model failed (r then holds
- * FAIL_RESID everywhere, so that a trust-region step there is rejected). */
-static int eval_u(job *jb, const double *u, double *r)
+/* r(theta(u)) / scale into r, theta (p scratch) the point; 0, or -1 when the
+ * model failed (r then holds FAIL_RESID everywhere, so that a trust-region
+ * step there is rejected).  No side effect on jb: columns run in parallel. */
+static int eval_at(const job *jb, const double *u, double *theta, double *r)
 {
     const hy_fit_problem *pb = jb->pb;
     for (size_t j = 0; j < pb->p; j++)
-        jb->theta[j] = hy_fit_theta(&pb->param[j], u[j]);
-    jb->nevals++;
-    int bad = pb->f(jb->theta, r, pb->ctx) != 0;
+        theta[j] = hy_fit_theta(&pb->param[j], u[j]);
+    int bad = pb->f(theta, r, pb->ctx) != 0;
     for (size_t i = 0; !bad && i < pb->n; i++)
         bad = !isfinite(r[i]);
     if (bad) {
-        jb->nfailed++;
         for (size_t i = 0; i < pb->n; i++)
             r[i] = FAIL_RESID;
         return -1;
     }
     for (size_t i = 0; i < pb->n; i++)
         r[i] /= jb->scale;
-    memcpy(jb->cache_u, u, pb->p * sizeof *u);
-    memcpy(jb->cache_r, r, pb->n * sizeof *r);
+    return 0;
+}
+
+/* eval_at, counted, and remembered when it succeeds (gsl_df's r0). */
+static int eval_u(job *jb, const double *u, double *r)
+{
+    jb->nevals++;
+    if (eval_at(jb, u, jb->theta, r)) {
+        jb->nfailed++;
+        return -1;
+    }
+    memcpy(jb->cache_u, u, jb->pb->p * sizeof *u);
+    memcpy(jb->cache_r, r, jb->pb->n * sizeof *r);
     jb->cache_ok = 1;
     return 0;
 }
@@ -207,46 +218,102 @@ static int gsl_f(const gsl_vector *x, void *params, gsl_vector *f)
     return GSL_SUCCESS; /* a failure is a huge residual: the step is rejected */
 }
 
-/* Forward differences in u, h_j = fd_step max(|u_j|, 1); backward where the
- * forward point fails; GSL_EBADFUNC where both do. */
+/* The forward-difference Jacobian's columns, shared by jb->col_jobs threads
+ * (each column is the same arithmetic on any thread: the same bits). */
+typedef struct columns {
+    job *jb;
+    const double *u, *r0;
+    gsl_matrix *J;
+    size_t next, nevals, nfailed;
+    int rc;
+    pthread_mutex_t mu;
+} columns;
+
+/* Column j: h_j = fd_step max(|u_j|, 1) forward, backward where the forward
+ * point fails; -1 where both do. */
+static int column(columns *cw, size_t j, double *u, double *theta, double *r1, size_t *nev, size_t *nfail)
+{
+    size_t n = cw->jb->pb->n;
+    double uj = u[j], h = cw->jb->o->fd_step * fmax(fabs(uj), 1);
+    volatile double up = uj + h; /* the step actually taken */
+    h = up - uj;
+    u[j] = up;
+    int bad = eval_at(cw->jb, u, theta, r1);
+    (*nev)++;
+    if (bad) {
+        (*nfail)++;
+        u[j] = uj - h;
+        h = -h;
+        bad = eval_at(cw->jb, u, theta, r1);
+        (*nev)++;
+        *nfail += bad != 0;
+    }
+    u[j] = uj;
+    for (size_t i = 0; !bad && i < n; i++)
+        gsl_matrix_set(cw->J, i, j, (r1[i] - cw->r0[i]) / h);
+    return bad ? -1 : 0;
+}
+
+static void *column_worker(void *arg)
+{
+    columns *cw = arg;
+    size_t n = cw->jb->pb->n, p = cw->jb->pb->p, nev = 0, nfail = 0;
+    double *u = malloc(p * sizeof *u), *theta = malloc(p * sizeof *theta), *r1 = malloc(n * sizeof *r1);
+    int rc = u && theta && r1 ? GSL_SUCCESS : GSL_ENOMEM;
+    if (u)
+        memcpy(u, cw->u, p * sizeof *u);
+    for (;;) {
+        pthread_mutex_lock(&cw->mu);
+        if (rc && !cw->rc)
+            cw->rc = rc;
+        size_t j = cw->rc ? p : cw->next++;
+        pthread_mutex_unlock(&cw->mu);
+        if (j >= p)
+            break;
+        if (column(cw, j, u, theta, r1, &nev, &nfail))
+            rc = GSL_EBADFUNC;
+    }
+    pthread_mutex_lock(&cw->mu);
+    cw->nevals += nev;
+    cw->nfailed += nfail;
+    pthread_mutex_unlock(&cw->mu);
+    free(u);
+    free(theta);
+    free(r1);
+    return NULL;
+}
+
+/* Forward differences in u (column); GSL_EBADFUNC where a column cannot be
+ * evaluated on either side. */
 static int gsl_df(const gsl_vector *x, void *params, gsl_matrix *J)
 {
     job *jb = params;
     size_t n = jb->pb->n, p = jb->pb->p;
-    double *u = malloc(p * sizeof *u), *r0 = malloc(n * sizeof *r0), *r1 = malloc(n * sizeof *r1);
-    int rc = u && r0 && r1 ? GSL_SUCCESS : GSL_ENOMEM;
-    if (!rc) {
-        memcpy(u, x->data, p * sizeof *u);
-        if (jb->cache_ok && memcmp(jb->cache_u, u, p * sizeof *u) == 0)
-            memcpy(r0, jb->cache_r, n * sizeof *r0);
-        else if (eval_u(jb, u, r0))
-            rc = GSL_EBADFUNC;
+    double *r0 = malloc(n * sizeof *r0);
+    if (!r0)
+        return GSL_ENOMEM;
+    if (jb->cache_ok && memcmp(jb->cache_u, x->data, p * sizeof *x->data) == 0)
+        memcpy(r0, jb->cache_r, n * sizeof *r0);
+    else if (eval_u(jb, x->data, r0)) {
+        free(r0);
+        snprintf(jb->rec->msg, sizeof jb->rec->msg, "the model failed at an accepted point");
+        return GSL_EBADFUNC;
     }
-    for (size_t j = 0; !rc && j < p; j++) {
-        double uj = u[j], h = jb->o->fd_step * fmax(fabs(uj), 1);
-        volatile double up = uj + h; /* the step actually taken */
-        h = up - uj;
-        u[j] = up;
-        if (eval_u(jb, u, r1)) {
-            u[j] = uj - h;
-            h = -h;
-            if (eval_u(jb, u, r1))
-                rc = GSL_EBADFUNC;
-        }
-        u[j] = uj;
-        for (size_t i = 0; !rc && i < n; i++)
-            gsl_matrix_set(J, i, j, (r1[i] - r0[i]) / h);
-    }
-    if (!rc) { /* the cache back at x: GSL evaluates fvv around it next */
-        memcpy(jb->cache_u, u, p * sizeof *u);
-        memcpy(jb->cache_r, r0, n * sizeof *r0);
-    }
-    free(u);
+    columns cw = {jb, x->data, r0, J, 0, 0, 0, GSL_SUCCESS, PTHREAD_MUTEX_INITIALIZER};
+    size_t nt = jb->col_jobs < p ? jb->col_jobs : p, started = 0;
+    pthread_t th[64];
+    for (; started + 1 < nt && started < 64; started++)
+        if (pthread_create(&th[started], NULL, column_worker, &cw))
+            break; /* fewer threads: the same columns */
+    column_worker(&cw);
+    for (size_t t = 0; t < started; t++)
+        pthread_join(th[t], NULL);
+    jb->nevals += cw.nevals;
+    jb->nfailed += cw.nfailed;
     free(r0);
-    free(r1);
-    if (rc == GSL_EBADFUNC)
+    if (cw.rc == GSL_EBADFUNC)
         snprintf(jb->rec->msg, sizeof jb->rec->msg, "the model failed on both sides of a difference step");
-    return rc;
+    return cw.rc;
 }
 
 static double sumsq(const double *r, size_t n)
@@ -271,6 +338,34 @@ static void iter_cb(const size_t iter, void *params, const gsl_multifit_nlinear_
     gsl_vector *f = gsl_multifit_nlinear_residual(w);
     double nrm = gsl_blas_dnrm2(f) * jb->scale;
     report(jb, iter, nrm * nrm, 0, HY_OK);
+}
+
+/* gsl_multifit_nlinear_driver's loop with the relative RSS test added:
+ * iterate (one accepted step each) until GSL's xtol or gtol test passes
+ * (info 1, 2), the RSS fell by less than ftol of itself in the last step
+ * (info 3), no step can be found (GSL_ENOPROG) or max_iter steps were taken
+ * (GSL_EMAXITER).  Returns 0 on the tests, else that status. */
+static int drive(job *jb, gsl_multifit_nlinear_workspace *w, int *info)
+{
+    const hy_fit_opts *o = jb->o;
+    double prev = gsl_blas_dnrm2(gsl_multifit_nlinear_residual(w));
+    iter_cb(0, jb, w);
+    for (size_t it = 0; it < o->max_iter; it++) {
+        int st = gsl_multifit_nlinear_iterate(w);
+        if (st)
+            return st;
+        iter_cb(it + 1, jb, w);
+        double now = gsl_blas_dnrm2(gsl_multifit_nlinear_residual(w));
+        st = gsl_multifit_nlinear_test(o->xtol, o->gtol, 0, info, w);
+        if (st != GSL_CONTINUE)
+            return st;
+        if (o->ftol > 0 && prev * prev - now * now <= o->ftol * now * now) {
+            *info = 3;
+            return GSL_SUCCESS;
+        }
+        prev = now;
+    }
+    return GSL_EMAXITER;
 }
 
 /* The start's scale: its initial residual's RMS, evaluated in theta. */
@@ -333,9 +428,8 @@ static void run_start(job *jb)
                      st ? gsl_strerror(st) : "mapped start");
         goto done;
     }
-    report(jb, 0, sumsq(r, n), 0, HY_OK);
     int info = 0;
-    st = gsl_multifit_nlinear_driver(o->max_iter, o->xtol, o->gtol, o->ftol, iter_cb, jb, &info, w);
+    st = drive(jb, w, &info);
     rec->gsl_status = st;
     rec->info = info;
     rec->iter = gsl_multifit_nlinear_niter(w);
@@ -676,8 +770,11 @@ int hy_fit_run(const hy_fit_problem *pb, const hy_fit_opts *o, hy_fit_result *re
         hy_fit_result_free(res);
         return rc;
     }
+    /* threads left over by the starts difference the Jacobian's columns */
+    size_t col_jobs = (size_t)o->jobs > res->nstarts ? (size_t)o->jobs / res->nstarts : 1;
     for (size_t s = 0; s < res->nstarts; s++)
-        pl.jobs[s] = (job){.pb = pb, .o = o, .index = s, .nstarts = res->nstarts, .rec = &res->start[s]};
+        pl.jobs[s] = (job){.pb = pb, .o = o, .index = s, .nstarts = res->nstarts, .rec = &res->start[s],
+                           .col_jobs = col_jobs};
     run_all(&pl, o->jobs);
     free(pl.jobs);
     size_t best = SIZE_MAX;

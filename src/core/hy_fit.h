@@ -91,9 +91,10 @@ typedef struct hy_fit_opts {
     double fd_step;  /* relative forward-difference step of the iterations'
                         Jacobian in u: h_j = fd_step max(|u_j|, 1)
                         (default sqrt(DBL_EPSILON) = 1.49e-8) */
-    double xtol, gtol, ftol; /* gsl_multifit_nlinear_driver's tests (1e-12,
-                        1e-12, 0: off), on residuals divided by the start's
-                        initial RMS */
+    double xtol, gtol; /* gsl_multifit_nlinear_test's (1e-12, 1e-12), on
+                        residuals divided by the start's initial RMS */
+    double ftol;     /* stop when a step lowers the RSS by less than ftol of
+                        itself (default 0: off) */
     size_t max_iter; /* iterations per start (default 200) */
     int accel;       /* geodesic acceleration (default 1) */
     void (*progress)(const hy_fit_progress *pr, void *ctx); /* NULL: silent;
@@ -106,8 +107,9 @@ typedef struct hy_fit_start {
     double *x0, *x;  /* p values each (owned by the result) */
     int status;      /* HY_OK, or HY_ENUM: evaluation failed at x0 / while
                         differencing (msg says which) */
-    int gsl_status;  /* the driver's: 0, GSL_EMAXITER, GSL_ENOPROG, ... */
-    int info;        /* 1: small step (xtol), 2: small gradient (gtol) */
+    int gsl_status;  /* 0 (a test passed), GSL_EMAXITER, GSL_ENOPROG */
+    int info;        /* 1: small step (xtol), 2: small gradient (gtol),
+                        3: small RSS change (ftol) */
     size_t iter, nevals, nfailed; /* nfailed: failed trial evaluations */
     double rss;      /* at x (NAN if the start failed) */
     char msg[160];
