@@ -230,8 +230,8 @@ static void check_all_eight(const fopts *o, const hy_bwfit_train *tr, const hy_f
         if (r8.unident[j])
             printf("  %-6s unidentifiable (%s)\n", prm[j].name,
                    r8.unident[j] & HY_FIT_NULLDIR ? "a direction the data do not see" : "error wider than its range");
-    printf("  smallest relative singular value %.3g (rank tolerance %g), condition number %.3g\n",
-           r8.sv[n8 - 1] / r8.sv[0], HY_FIT_RANK_TOL, r8.cond);
+    printf("  smallest relative singular value %.3g (rank tolerance %.3g from the Jacobian's estimated error\n"
+           "  %.3g), condition number %.3g\n", r8.sv[n8 - 1] / r8.sv[0], r8.rank_tol, r8.jac_err, r8.cond);
     hy_fit_result_free(&r8);
 }
 

@@ -41,7 +41,10 @@ typedef struct hy_bwfit_opts {
     double noise;         /* output noise RMS, m (8e-6 = 8e-3 mm) */
     int set;              /* HY_BWFIT_ALL or HY_BWFIT_IDENT */
     int fit_nu;           /* 1: nu free; 0: fixed at Table 1's 1 */
-    hy_fit_opts fit;      /* the engine's options (starts, jobs, progress ...) */
+    double newton_tol;    /* the model's Newton stop in the fit (0: the
+                             data's, hy_newmark_opts_default's 1e-12) */
+    hy_fit_opts fit;      /* the engine's options (starts, jobs, progress ...;
+                             ftol 1e-10 here) */
 } hy_bwfit_opts;
 
 typedef struct hy_bwfit_train {

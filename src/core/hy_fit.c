@@ -549,10 +549,10 @@ static int eval_theta(const hy_fit_problem *pb, const double *theta, double *r, 
     return 0;
 }
 
-/* Central differences in theta, h_j = DBL_EPSILON^(1/3) typ_j (typ_j = |theta_j|,
- * or 1e-6 of the range, or 1, for theta_j = 0); one-sided (sqrt(eps) typ_j)
- * where a central point leaves the bounds.  J is n x p, row-major. */
-static int jacobian_theta(const hy_fit_problem *pb, const double *theta, const double *r0, double *J,
+/* Central differences in theta, h_j = step typ_j (typ_j = |theta_j|, or 1e-6
+ * of the range, or 1, for theta_j = 0); one-sided (sqrt(eps) typ_j) where a
+ * central point leaves the bounds.  J is n x p, row-major. */
+static int jacobian_theta(const hy_fit_problem *pb, const double *theta, const double *r0, double step, double *J,
                           size_t *nevals, hy_error *err)
 {
     size_t n = pb->n, p = pb->p;
@@ -564,7 +564,7 @@ static int jacobian_theta(const hy_fit_problem *pb, const double *theta, const d
         const hy_fit_param *q = &pb->param[j];
         double t = theta[j], range = q->hi - q->lo;
         double typ = t != 0 ? fabs(t) : isfinite(range) ? 1e-6 * range : 1;
-        double h = cbrt(DBL_EPSILON) * typ;
+        double h = step * typ;
         int central = t - h >= q->lo && t + h <= q->hi && (q->scale == HY_FIT_LINEAR || t - h > 0);
         if (!central)
             h = sqrt(DBL_EPSILON) * typ * (t + sqrt(DBL_EPSILON) * typ <= q->hi ? 1 : -1);
@@ -613,10 +613,12 @@ static int covariance(const hy_fit_problem *pb, const double *J, hy_fit_result *
     if (!rc) {
         double smax = gsl_vector_get(S, 0), smin = gsl_vector_get(S, p - 1);
         res->cond = smin > 0 ? smax / smin : INFINITY;
+        /* Weyl: an error E moves each singular value by at most ||E||_2 <= ||E||_F */
+        res->rank_tol = fmax(HY_FIT_RANK_TOL, HY_FIT_RANK_ERR * res->jac_err / smax);
         for (size_t k = 0; k < p; k++) {
             double sk = gsl_vector_get(S, k);
             res->sv[k] = sk;
-            if (sk > HY_FIT_RANK_TOL * smax) { /* identified: adds v v^T / s^2 */
+            if (sk > res->rank_tol * smax) { /* identified: adds v v^T / s^2 */
                 for (size_t a = 0; a < p; a++)
                     for (size_t b = 0; b < p; b++)
                         *gsl_matrix_ptr(C, a, b) += gsl_matrix_get(V, a, k) * gsl_matrix_get(V, b, k) / (sk * sk);
@@ -684,10 +686,31 @@ static int statistics(const hy_fit_problem *pb, hy_fit_result *res, hy_error *er
     double *J = malloc(n * p * sizeof *J);
     if (!J)
         return hy_error_set(err, HY_ENOMEM, "fit: out of memory for the Jacobian");
-    int rc = jacobian_theta(pb, res->theta, res->resid, J, &res->nevals, err);
+    /* J at the step eps^(1/3) (truncation and rounding balanced for a smooth
+       model) and at a quarter of it: their difference estimates J's error,
+       which decides the rank tolerance (a model only piecewise smooth in its
+       parameters, as a time-stepped one with |v| and sign(z), has kinks
+       that a difference step straddles now and then) */
+    double *J2 = malloc(n * p * sizeof *J2);
+    int rc = J2 ? HY_OK : hy_error_set(err, HY_ENOMEM, "fit: out of memory for the Jacobian");
+    if (!rc)
+        rc = jacobian_theta(pb, res->theta, res->resid, cbrt(DBL_EPSILON), J, &res->nevals, err);
+    if (!rc)
+        rc = jacobian_theta(pb, res->theta, res->resid, 0.25 * cbrt(DBL_EPSILON), J2, &res->nevals, err);
+    double e2 = 0; /* ||J(h) - J(h/4)||_F with every column scaled to unit norm */
+    for (size_t j = 0; !rc && j < p; j++) {
+        double d = 0, s = 0;
+        for (size_t i = 0; i < n; i++) {
+            d += (J[i * p + j] - J2[i * p + j]) * (J[i * p + j] - J2[i * p + j]);
+            s += J[i * p + j] * J[i * p + j];
+        }
+        e2 += s > 0 ? d / s : 0;
+    }
+    res->jac_err = sqrt(e2);
     if (!rc)
         rc = covariance(pb, J, res, err);
     free(J);
+    free(J2);
     return rc;
 }
 
@@ -829,8 +852,8 @@ void hy_fit_report(FILE *f, const hy_fit_problem *pb, const hy_fit_result *res)
             }
     if (pairs)
         fputc('\n', f);
-    fprintf(f, "condition number %.3g (column-equilibrated Jacobian), %zu residuals, %zu degrees of freedom\n",
-            res->cond, res->n, res->dof);
+    fprintf(f, "condition number %.3g (column-equilibrated Jacobian; its estimated error %.2g, rank tolerance "
+            "%.2g), %zu residuals, %zu degrees of freedom\n", res->cond, res->jac_err, res->rank_tol, res->n, res->dof);
     fprintf(f, "RSS %.6g, RMS %.6g, normalised RMS %.6g, max |error| %.6g, fit index %.4f %%\n", res->rss, res->rms,
             res->nrms, res->max_abs, res->fit_index);
     fprintf(f, "starts %zu (failed %zu, best %zu), iterations %zu, evaluations %zu, %.3f s\n", res->nstarts,

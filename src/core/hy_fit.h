@@ -46,11 +46,19 @@ enum { HY_FIT_LINEAR = 0, HY_FIT_LOG = 1 };
 /* Why a parameter is flagged unidentifiable (hy_fit_result.unident, bits). */
 enum {
     HY_FIT_NULLDIR = 1, /* it carries a direction the Jacobian does not see:
-                           relative singular value < HY_FIT_RANK_TOL with
-                           |v_j| >= HY_FIT_SHARE x the largest |v| of it */
+                           a right singular vector v of the column-
+                           equilibrated Jacobian whose relative singular
+                           value is below rank_tol, with |v_j| >=
+                           HY_FIT_SHARE x the largest |v| of it */
     HY_FIT_WIDE = 2     /* its standard error exceeds its range hi - lo */
 };
-#define HY_FIT_RANK_TOL 1e-8 /* of the column-equilibrated Jacobian */
+/* rank_tol = max(HY_FIT_RANK_TOL, HY_FIT_RANK_ERR x jac_err / s_1): jac_err
+ * is ||J(h) - J(h/4)||_F of the column-equilibrated Jacobian differenced at
+ * the steps h = eps^(1/3) and h/4, s_1 its largest singular value.  A
+ * singular value that the Jacobian's own error could make (Weyl: it moves
+ * them by at most ||E||_2 <= ||E||_F) is not information. */
+#define HY_FIT_RANK_TOL 1e-8
+#define HY_FIT_RANK_ERR 3.0
 #define HY_FIT_SHARE 0.3
 
 /* The residual vector r (n values) at theta (p values, inside the bounds).
@@ -126,6 +134,8 @@ typedef struct hy_fit_result {
     double *sv;       /* p: singular values of the column-equilibrated J, descending */
     double *resid;    /* n: r at theta */
     double rss, s2, rms, nrms, max_abs, fit_index, cond, t975;
+    double jac_err, rank_tol; /* the Jacobian's estimated error and the
+                                 relative rank tolerance it gave (above) */
     size_t best, nstarts, nfailed; /* best start, starts run, starts failed */
     size_t iter, nevals;           /* the best start's iterations; evaluations
                                       of all starts and the statistics */
