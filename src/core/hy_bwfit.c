@@ -62,7 +62,8 @@ int hy_bwfit_make_train(const hy_bwfit_opts *o, const hy_boucwen_params *truth, 
         if (!rc)
             rc = hy_boucwen_synth_periodic(truth, &no, FS, UP, 1, u, n * UP, P + 1, y, err);
         if (!rc)
-            rc = hy_signal_add_noise(y, (P + 1) * n, o->noise, FS / 2, FS, (o->seed + q) ^ NOISE_SALT, err);
+            rc = hy_signal_add_noise(y, (P + 1) * n, o->noise, FS / 2, FS,
+                                     o->noise_seed ? o->noise_seed + q : (o->seed + q) ^ NOISE_SALT, err);
         if (!rc)
             memcpy(tr->y + q * P * n, y + n, P * n * sizeof *y);
     }

@@ -39,6 +39,9 @@ typedef struct hy_bwfit_opts {
     size_t periods;       /* P kept periods per realisation (1) */
     size_t n;             /* samples a period at 750 Hz (8192) */
     double noise;         /* output noise RMS, m (8e-6 = 8e-3 mm) */
+    uint64_t noise_seed;  /* 0: realisation q's noise is seeded (seed + q) ^
+                             0x6e6f697365 as above; else noise_seed + q (the
+                             same inputs under other noise) */
     int set;              /* HY_BWFIT_ALL or HY_BWFIT_IDENT */
     int fit_nu;           /* 1: nu free; 0: fixed at Table 1's 1 */
     double newton_tol;    /* the model's Newton stop in the fit (0: the
