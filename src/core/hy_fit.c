@@ -686,31 +686,51 @@ static int statistics(const hy_fit_problem *pb, hy_fit_result *res, hy_error *er
     double *J = malloc(n * p * sizeof *J);
     if (!J)
         return hy_error_set(err, HY_ENOMEM, "fit: out of memory for the Jacobian");
-    /* J at the step eps^(1/3) (truncation and rounding balanced for a smooth
-       model) and at a quarter of it: their difference estimates J's error,
-       which decides the rank tolerance (a model only piecewise smooth in its
-       parameters, as a time-stepped one with |v| and sign(z), has kinks
-       that a difference step straddles now and then) */
-    double *J2 = malloc(n * p * sizeof *J2);
-    int rc = J2 ? HY_OK : hy_error_set(err, HY_ENOMEM, "fit: out of memory for the Jacobian");
+    /* J at the steps h_k = eps^(1/3) 4^-k, k = 0, 1, ...: the difference of
+       two neighbours estimates their error; the first pair that agrees to
+       HY_FIT_RANK_TOL, else the best of HY_FIT_LEVELS, gives J (the larger
+       step of the pair) and jac_err.  eps^(1/3) balances truncation and
+       rounding for a smooth model (NIST's: the first pair agrees); a model
+       only piecewise smooth in its parameters (a time-stepped one with |v|
+       and sign(z)) has kinks that a step straddles now and then, less often
+       the smaller the step (Bouc-Wen: 2e-3 at eps^(1/3), 1e-6 at 1/64 of it) */
+    double *Jk[HY_FIT_LEVELS] = {J};
+    int rc = HY_OK;
+    size_t best = 0;
+    res->jac_err = INFINITY;
+    for (size_t k = 1; k < HY_FIT_LEVELS && !rc; k++)
+        if (!(Jk[k] = malloc(n * p * sizeof *J)))
+            rc = hy_error_set(err, HY_ENOMEM, "fit: out of memory for the Jacobian");
     if (!rc)
         rc = jacobian_theta(pb, res->theta, res->resid, cbrt(DBL_EPSILON), J, &res->nevals, err);
-    if (!rc)
-        rc = jacobian_theta(pb, res->theta, res->resid, 0.25 * cbrt(DBL_EPSILON), J2, &res->nevals, err);
-    double e2 = 0; /* ||J(h) - J(h/4)||_F with every column scaled to unit norm */
-    for (size_t j = 0; !rc && j < p; j++) {
-        double d = 0, s = 0;
-        for (size_t i = 0; i < n; i++) {
-            d += (J[i * p + j] - J2[i * p + j]) * (J[i * p + j] - J2[i * p + j]);
-            s += J[i * p + j] * J[i * p + j];
+    for (size_t k = 1; k < HY_FIT_LEVELS && !rc; k++) {
+        rc = jacobian_theta(pb, res->theta, res->resid, cbrt(DBL_EPSILON) * pow(0.25, (double)k), Jk[k],
+                            &res->nevals, err);
+        double e2 = 0; /* ||J_k-1 - J_k||_F with every column scaled to unit norm */
+        for (size_t j = 0; !rc && j < p; j++) {
+            double d = 0, s = 0;
+            for (size_t i = 0; i < n; i++) {
+                double a = Jk[k - 1][i * p + j], b = Jk[k][i * p + j];
+                d += (a - b) * (a - b);
+                s += a * a;
+            }
+            e2 += s > 0 ? d / s : 0;
         }
-        e2 += s > 0 ? d / s : 0;
+        if (!rc && sqrt(e2) < res->jac_err) {
+            res->jac_err = sqrt(e2);
+            best = k - 1;
+        }
+        if (res->jac_err <= HY_FIT_RANK_TOL)
+            break;
     }
-    res->jac_err = sqrt(e2);
+    if (!rc && best)
+        memcpy(J, Jk[best], n * p * sizeof *J);
+    res->jac_step = cbrt(DBL_EPSILON) * pow(0.25, (double)best);
+    for (size_t k = 1; k < HY_FIT_LEVELS; k++)
+        free(Jk[k]);
     if (!rc)
         rc = covariance(pb, J, res, err);
     free(J);
-    free(J2);
     return rc;
 }
 

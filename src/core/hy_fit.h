@@ -53,12 +53,15 @@ enum {
     HY_FIT_WIDE = 2     /* its standard error exceeds its range hi - lo */
 };
 /* rank_tol = max(HY_FIT_RANK_TOL, HY_FIT_RANK_ERR x jac_err / s_1): jac_err
- * is ||J(h) - J(h/4)||_F of the column-equilibrated Jacobian differenced at
- * the steps h = eps^(1/3) and h/4, s_1 its largest singular value.  A
- * singular value that the Jacobian's own error could make (Weyl: it moves
+ * is ||J(h) - J(h/4)||_F of the column-equilibrated Jacobian central-
+ * differenced at h and h/4, for the first h = eps^(1/3) 4^-k (k = 0 ..
+ * HY_FIT_LEVELS - 2) where it is below HY_FIT_RANK_TOL, else the k where it
+ * is least (J(h) is the one used); s_1 is J's largest singular value.  A
+ * singular value the Jacobian's own error could make (Weyl: an error E moves
  * them by at most ||E||_2 <= ||E||_F) is not information. */
 #define HY_FIT_RANK_TOL 1e-8
 #define HY_FIT_RANK_ERR 3.0
+#define HY_FIT_LEVELS 5
 #define HY_FIT_SHARE 0.3
 
 /* The residual vector r (n values) at theta (p values, inside the bounds).
@@ -136,6 +139,7 @@ typedef struct hy_fit_result {
     double rss, s2, rms, nrms, max_abs, fit_index, cond, t975;
     double jac_err, rank_tol; /* the Jacobian's estimated error and the
                                  relative rank tolerance it gave (above) */
+    double jac_step;          /* the relative difference step J was taken at */
     size_t best, nstarts, nfailed; /* best start, starts run, starts failed */
     size_t iter, nevals;           /* the best start's iterations; evaluations
                                       of all starts and the statistics */
