@@ -56,7 +56,7 @@ static const char tail[] =
     "\n"
     "Exit status: 0 done, 1 the fit or a test set failed, 2 usage error.\n"
     "\n"
-    "example (about 25 s of CPU):\n"
+    "example (about 30 s of CPU):\n"
     "  hystviz fit --benchmark boucwen\n";
 
 enum { OPT_BENCH = CLI_FIRST, OPT_SEED, OPT_REAL, OPT_PERIODS, OPT_NOISE, OPT_PARAMS, OPT_FIXNU, OPT_STARTS,
