@@ -734,9 +734,22 @@ static int statistics(const hy_fit_problem *pb, hy_fit_result *res, hy_error *er
     return rc;
 }
 
+/* The statistics at res->theta and the wall time since t0; on failure res
+ * is released. */
+static int finish(const hy_fit_problem *pb, hy_fit_result *res, const struct timespec *t0, hy_error *err)
+{
+    struct timespec t1;
+    int rc = statistics(pb, res, err);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    res->seconds = (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
+    if (rc)
+        hy_fit_result_free(res);
+    return rc;
+}
+
 int hy_fit_evaluate(const hy_fit_problem *pb, const double *theta, hy_fit_result *res, hy_error *err)
 {
-    struct timespec t0, t1;
+    struct timespec t0;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     int rc = check_problem(pb, err);
     if (!rc)
@@ -744,12 +757,7 @@ int hy_fit_evaluate(const hy_fit_problem *pb, const double *theta, hy_fit_result
     if (rc)
         return rc;
     memcpy(res->theta, theta, pb->p * sizeof *theta);
-    rc = statistics(pb, res, err);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    res->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-    if (rc)
-        hy_fit_result_free(res);
-    return rc;
+    return finish(pb, res, &t0, err);
 }
 
 /* ---- the fit ------------------------------------------------------------ */
@@ -795,7 +803,7 @@ static int check_opts(const hy_fit_opts *o, hy_error *err)
 
 int hy_fit_run(const hy_fit_problem *pb, const hy_fit_opts *o, hy_fit_result *res, hy_error *err)
 {
-    struct timespec t0, t1;
+    struct timespec t0;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     result_zero(res);
     int rc = check_problem(pb, err);
@@ -840,12 +848,7 @@ int hy_fit_run(const hy_fit_problem *pb, const hy_fit_opts *o, hy_fit_result *re
     res->best = best;
     res->iter = res->start[best].iter;
     memcpy(res->theta, res->start[best].x, pb->p * sizeof *res->theta);
-    rc = statistics(pb, res, err);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    res->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-    if (rc)
-        hy_fit_result_free(res);
-    return rc;
+    return finish(pb, res, &t0, err);
 }
 
 /* ---- the table ---------------------------------------------------------- */

@@ -22,18 +22,28 @@
  * a fit stuck in another minimum or a wrong model is 1e-5 m or worse. */
 #define ERMS_BOUND 2e-6
 
+/* Training data of n samples a period, seed (the rest hy_bwfit_opts_default's)
+ * from Table 1 (truth); 0 or the status (checked). */
+static int train(hy_bwfit_opts *o, size_t n, uint64_t seed, hy_boucwen_params *truth, hy_bwfit_train *tr)
+{
+    hy_bwfit_opts_default(o);
+    o->n = n;
+    o->seed = seed;
+    o->fit.jobs = 2;
+    hy_boucwen_params_default(truth);
+    hy_error err = {0};
+    int rc = hy_bwfit_make_train(o, truth, tr, &err);
+    CHECK(rc == 0, "training data: %s", err.msg);
+    return rc;
+}
+
 static void reduced(void)
 {
     hy_bwfit_opts o;
-    hy_bwfit_opts_default(&o);
-    o.n = 1024;
-    o.fit.jobs = 2;
     hy_boucwen_params truth;
-    hy_boucwen_params_default(&truth);
     hy_bwfit_train tr;
     hy_error err = {0};
-    int rc = hy_bwfit_make_train(&o, &truth, &tr, &err);
-    CHECK(rc == 0, "training data: %s", err.msg);
+    int rc = train(&o, 1024, 1, &truth, &tr);
     if (rc)
         return;
     hy_fit_param prm[8];
@@ -116,14 +126,9 @@ static void reduced(void)
 static void same_as_cli(const char *hv)
 {
     hy_bwfit_opts o;
-    hy_bwfit_opts_default(&o);
-    o.seed = 5;
     hy_boucwen_params truth;
-    hy_boucwen_params_default(&truth);
     hy_bwfit_train tr;
-    hy_error err = {0};
-    int rc = hy_bwfit_make_train(&o, &truth, &tr, &err);
-    CHECK(rc == 0, "training data: %s", err.msg);
+    int rc = train(&o, 8192, 5, &truth, &tr);
     char cmd[4400];
     snprintf(cmd, sizeof cmd, "'%s' boucwen data --signal multisine --seed 5 --periods 2", hv);
     FILE *f = popen(cmd, "r");
