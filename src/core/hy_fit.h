@@ -29,7 +29,9 @@
  * non-zero return or a non-finite residual is a failed evaluation: a failed
  * trial step is rejected (the trust region shrinks), a start whose first
  * evaluation fails is reported and skipped; only when every start fails does
- * hy_fit_run fail.
+ * hy_fit_run fail.  hy_fit_run and hy_fit_evaluate turn GSL's aborting error
+ * handler off (gsl_set_error_handler_off, for the process) and check every
+ * GSL status.
  */
 #ifndef HY_FIT_H
 #define HY_FIT_H
