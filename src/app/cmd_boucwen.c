@@ -296,22 +296,28 @@ static const char *source_data_dir(char *buf, size_t size)
     return NULL;
 }
 
-/* Finds uval_multisine.txt: --data-dir, $HY_BOUCWEN_DATA, the installed
- * copy, the source tree's (a build run before `meson install`). */
-static int validation_path(const opts *o, char *path, size_t size)
+int hy_cmd_boucwen_data_file(const char *data_dir, const char *file, char *path, size_t size)
 {
     char src[4200], inst[4200];
-    const char *cand[] = {o->data_dir, getenv("HY_BOUCWEN_DATA"),
+    const char *cand[] = {data_dir, getenv("HY_BOUCWEN_DATA"),
                           hy_file_installed(HY_INSTALLED_DATA, "boucwen", inst, sizeof inst) ? NULL : inst,
                           source_data_dir(src, sizeof src)};
     for (size_t i = 0; i < sizeof cand / sizeof *cand; i++) {
         struct stat st;
         if (!cand[i])
             continue;
-        snprintf(path, size, "%s/uval_multisine.txt", cand[i]);
-        if (stat(path, &st) == 0 || o->data_dir)
+        snprintf(path, size, "%s/%s", cand[i], file);
+        if (stat(path, &st) == 0 || data_dir)
             return 0;
     }
+    return -1;
+}
+
+/* Finds uval_multisine.txt (hy_cmd_boucwen_data_file). */
+static int validation_path(const opts *o, char *path, size_t size)
+{
+    if (hy_cmd_boucwen_data_file(o->data_dir, "uval_multisine.txt", path, size) == 0)
+        return 0;
     fprintf(stderr, "hystviz boucwen: uval_multisine.txt not found; give --data-dir DIR\n");
     return -1;
 }
