@@ -14,13 +14,15 @@
 #include "cli_util.h"
 #include "hy_file.h"
 #include "hy_forc.h"
+#include "hy_forc_plot.h"
 #include "hy_out.h"
+#include "hy_plot.h"
 
 #define FORC_FILE_MAX (64u << 20) /* bytes of a FORC file read */
 
 static const char forc_usage[] =
     "usage: hystviz forc FILE [--sf N | --sc0 A --sc1 B [--ramp HC]] [--grid SPEC] [--drift]\n"
-    "                    [--no-extend] [-o OUT.csv] [-v]\n"
+    "                    [--no-extend] [-o OUT.csv] [--figure OUT.svg|pdf|png [--levels L,...] [--vmax V]] [-v]\n"
     "       hystviz forc --preisach DIST:HC,SIGMA [--curves N] [--range LO:HI] [--hsat H] ...\n"
     "\n"
     "The FORC distribution rho(H_a, H_b) = -1/2 d2M/dH_a dH_b of a measured FORC\n"
@@ -50,7 +52,7 @@ static const char forc_tail[] =
 
 enum {
     OPT_SF = CLI_FIRST, OPT_SC0, OPT_SC1, OPT_RAMP, OPT_GRID, OPT_DRIFT, OPT_NOEXT, OPT_OUT, OPT_VERB,
-    OPT_PREISACH, OPT_CURVES, OPT_RANGE, OPT_HSAT, OPT_CURVES_OUT
+    OPT_PREISACH, OPT_CURVES, OPT_RANGE, OPT_HSAT, OPT_CURVES_OUT, OPT_FIGURE, OPT_LEVELS, OPT_VMAX
 };
 static const cli_opt forc_opts[] = {
     {"sf", 0, "N", "smoothing factor SF >= 1 (default 3; may be fractional)", OPT_SF, 0, NULL, NULL, NULL},
@@ -70,7 +72,17 @@ static const cli_opt forc_opts[] = {
     {"hsat", 0, "H", "saturating field of the --preisach protocol", OPT_HSAT, 0, NULL, NULL, NULL},
     {"curves-out", 0, "FILE", "also write the curves as CSV 'ha,hb,m' (after drift correction)", OPT_CURVES_OUT, 0,
      NULL, NULL, NULL},
-    {"output", 'o', "FILE", "the CSV of rho (default: standard output)", OPT_OUT, 0, NULL, NULL, NULL},
+    {"output", 'o', "FILE", "the CSV of rho (default: standard output unless --figure)", OPT_OUT, 0, NULL, NULL,
+     NULL},
+    {"figure", 0, "FILE", "also draw the FORC diagram (.svg, .pdf: the map an embedded image,\n"
+     "contours and text vectors; .png): diverging colours centred at 0,\n"
+     "contours, colour bar, axes mu0 H_c and mu0 H_u in mT when the file's units are known",
+     OPT_FIGURE, 0, NULL, NULL, NULL},
+    {"levels", 0, "L,...", "contour levels as fractions of the colour scale\n"
+     "(default 0,+-0.1,+-0.3,+-0.5,+-0.7,+-0.9; 0 is grey)", OPT_LEVELS, 0, NULL, NULL, NULL},
+    {"vmax", 0, "V", "colour scale -V..V in rho's unit (default: the largest |rho| at\n"
+     "H_c >= (SF + 1/2) field steps, beyond the constant extension's reach,\n"
+     "so the reversible ridge at H_c = 0 saturates; every node with --no-extend)", OPT_VMAX, 0, NULL, NULL, NULL},
     {"verbose", 'v', NULL, "print what was read and the time of the read and of the regression", OPT_VERB, 0, NULL,
      NULL, NULL},
     {0},
@@ -78,7 +90,9 @@ static const cli_opt forc_opts[] = {
 static const cli_cmd forc_cli = {"forc", forc_usage, forc_tail, "FILE", forc_opts};
 
 typedef struct forc_args {
-    const char *file, *out, *curves_out, *preisach, *grid, *range;
+    const char *file, *out, *curves_out, *preisach, *grid, *range, *figure;
+    hy_forc_plot_opts po;
+    int format;
     hy_forc_opts o;
     long curves;
     double hsat;
@@ -133,6 +147,25 @@ static int parse_grid(const char *s, hy_forc_grid *g)
     return 0;
 }
 
+/* --levels: 0 or 2 (message printed). */
+static int parse_levels(hy_forc_plot_opts *po, const char *v)
+{
+    po->nlevels = 0;
+    for (const char *s = v;; s++) {
+        char *end;
+        double x = strtod(s, &end);
+        if (end == s || !isfinite(x) || (*end && *end != ',') || po->nlevels == HY_FORC_PLOT_LEVELS) {
+            fprintf(stderr, "hystviz forc: --levels: '%s' is not a list of at most %d numbers\n", v,
+                    HY_FORC_PLOT_LEVELS);
+            return 2;
+        }
+        po->levels[po->nlevels++] = x;
+        if (!*end)
+            return 0;
+        s = end;
+    }
+}
+
 static int take(forc_args *a, int id, const char *s, const char *v)
 {
     switch (id) {
@@ -157,6 +190,22 @@ static int take(forc_args *a, int id, const char *s, const char *v)
     case OPT_RANGE: a->range = v; return 0;
     case OPT_HSAT: a->have_hsat = 1; return cli_num(s, v, &a->hsat) ? 2 : 0;
     case OPT_CURVES_OUT: a->curves_out = v; return 0;
+    case OPT_FIGURE:
+        a->figure = v;
+        if ((a->format = hy_format_from_path(v)) < 0) {
+            fprintf(stderr, "hystviz forc: --figure: '%s' does not end in .svg, .pdf or .png\n", v);
+            return 2;
+        }
+        return 0;
+    case OPT_VMAX:
+        if (cli_num(s, v, &a->po.vmax))
+            return 2;
+        if (!(a->po.vmax > 0)) {
+            fprintf(stderr, "hystviz forc: --vmax must be > 0 (got %s)\n", v);
+            return 2;
+        }
+        return 0;
+    case OPT_LEVELS: return parse_levels(&a->po, v);
     default: return 2;
     }
 }
@@ -166,6 +215,7 @@ static int parse_args(int argc, char **argv, forc_args *a)
 {
     memset(a, 0, sizeof *a);
     a->o = hy_forc_defaults();
+    a->po = hy_forc_plot_defaults();
     a->curves = 100;
     cli_parser p;
     cli_parser_init(&p, &forc_cli, argc, argv, 1);
@@ -298,24 +348,27 @@ static void write_curves(FILE *f, const hy_forc_data *d)
                     d->m[d->curve[i].first + j]);
 }
 
-/* Both outputs or neither; 0 or 1 (message printed). */
-static int write_all(const forc_args *a, const hy_forc_data *d, const hy_forc_grid *g)
+/* Every output or none; 0 or 1 (message printed). */
+static int write_all(const forc_args *a, const hy_forc_data *d, const hy_forc_grid *g, const hy_forc_plot_opts *po)
 {
-    hy_out o[2];
+    hy_out o[3];
     hy_error err = {0};
     int n = 0, rc = 0;
-    const char *path[2] = {a->out ? a->out : "-", a->curves_out};
-    for (; n < 2 && !rc; n++) {
-        if (!path[n])
-            break;
-        if (hy_out_open(&o[n], path[n], HY_OUT_FOLLOW | HY_OUT_HOLD, &err)) {
+    const char *path[3] = {a->out ? a->out : a->figure ? NULL : "-", a->curves_out, a->figure};
+    for (int i = 0; i < 3 && !rc; i++) {
+        if (!path[i])
+            continue;
+        if (hy_out_open(&o[n], path[i], HY_OUT_FOLLOW | HY_OUT_HOLD, &err)) {
             rc = 1;
             break;
         }
-        if (n == 0)
-            write_rho(hy_out_file(&o[n]), g);
+        FILE *f = hy_out_file(&o[n++]);
+        if (i == 0)
+            write_rho(f, g);
+        else if (i == 1)
+            write_curves(f, d);
         else
-            write_curves(hy_out_file(&o[n]), d);
+            rc = hy_forc_plot_write(g, po, f, a->format, &err) ? 1 : 0;
     }
     for (int i = 0; i < n && !rc; i++)
         rc = hy_out_finish(&o[i], &err) ? 1 : 0;
@@ -373,7 +426,22 @@ int hy_cmd_forc(int argc, char **argv)
                 "nodes, %zu fitted)\n", a.preisach ? "protocol" : "read", 1e3 * (t1 - t0), 1e3 * (c1 - c0),
                 1e3 * (t3 - t2), 1e3 * (c3 - c2), g.nc, g.nu, nfit);
     }
-    rc = write_all(&a, &d, &g);
+    hy_forc_plot_opts po = a.po;
+    if (a.figure) {
+        double da, db;
+        hy_forc_steps(&d, &da, &db);
+        double sf = a.o.sc1 > 0 ? a.o.sc0 : a.o.sf;
+        if (!(po.vmax > 0))
+            po.vmax = hy_forc_plot_max(&g, a.o.extend ? (sf + 0.5) * (a.o.db > 0 ? a.o.db : db) : -INFINITY);
+        if (!(po.vmax > 0))
+            po.vmax = hy_forc_plot_max(&g, -INFINITY);
+        po.field_to_mt = isfinite(d.field_to_tesla) ? 1e3 * d.field_to_tesla : 0;
+        po.rho_unit = d.units == HY_FORC_UNITS_HYBRID_SI ? "A m²/T²"
+                      : d.units == HY_FORC_UNITS_CGS     ? "emu/Oe²"
+                      : d.units == HY_FORC_UNITS_SI      ? "A m²/(A/m)²"
+                                                         : "";
+    }
+    rc = write_all(&a, &d, &g, &po);
     hy_forc_data_free(&d);
     hy_forc_grid_free(&g);
     return rc;

@@ -73,5 +73,23 @@ awk -F, 'NR > 1 && $3 != "nan" && $3 > m {m = $3; c = $1; u = $2}
 "$hv" forc "$data" --preisach gaussian:0.3,0.1 2> /dev/null
 [ $? -eq 2 ] && ok || bad "FILE and --preisach together"
 
+# the figure: SVG with the map as one embedded PNG image and vector paths
+# (contours, frame, ticks, glyphs), PDF, PNG at 150 dpi (400 x 320 pt -> 833 x 667)
+"$hv" forc "$data" --figure "$tmp/f.svg" -o "$tmp/rho3.csv" && ok || bad "--figure svg"
+[ "$(grep -c '<image' "$tmp/f.svg")" -eq 1 ] && grep -q 'xlink:href="data:image/png;base64,' "$tmp/f.svg" &&
+    [ "$(grep -c '<path' "$tmp/f.svg")" -ge 50 ] && ok ||
+    bad "svg: $(grep -c '<image' "$tmp/f.svg") images, $(grep -c '<path' "$tmp/f.svg") paths"
+cmp -s "$tmp/rho.csv" "$tmp/rho3.csv" && ok || bad "--figure changed the CSV"
+"$hv" forc "$data" --figure "$tmp/f.pdf" --levels 0,0.5 && [ "$(head -c 5 "$tmp/f.pdf")" = "%PDF-" ] && ok || bad "pdf"
+"$hv" forc --preisach gaussian:0.3,0.1 --curves 40 --figure "$tmp/f.png" && ok || bad "png"
+[ "$(od -An -tx1 -j16 -N8 "$tmp/f.png" | tr -d ' \n')" = "000003410000029b" ] && ok ||
+    bad "png size: $(od -An -tx1 -j16 -N8 "$tmp/f.png")"
+"$hv" forc "$data" --figure "$tmp/f.gif" 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q "does not end in .svg, .pdf or .png" "$tmp/err" && ok || bad "--figure f.gif"
+"$hv" forc "$tmp/cut.forc" --figure "$tmp/g.svg" -o "$tmp/g.csv" 2> /dev/null
+[ $? -eq 2 ] && [ ! -e "$tmp/g.svg" ] && [ ! -e "$tmp/g.csv" ] && ok || bad "refused file wrote a figure"
+"$hv" forc "$data" --levels 0,x 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q -- "--levels" "$tmp/err" && ok || bad "--levels 0,x"
+
 echo "forc_cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
