@@ -316,6 +316,27 @@ static void test_micromag(const char *path)
     printf("micromag: grid %zu x %zu, %zu fitted, peak rho (H_c >= 4 steps) %.4g A m2/T2 at H_c = %.4g T, H_u = %.4g T\n", g.nc,
            g.nu, nfit, best, bc, bu);
     CHECK(best > 0 && fabs(bu) < 0.02, "peak at H_u = %g", bu);
+    /* variable smoothing with sc0 = sc1 = 3 is SF = 3, bit for bit; growing
+     * SF smooths: fewer sign changes along H_c at H_u = 0 than at SF = 3 */
+    hy_forc_opts ov = o;
+    ov.sc0 = ov.sc1 = 3;
+    hy_forc_grid gv = g;
+    gv.rho = NULL;
+    CHECK(!hy_forc_rho(&d, &ov, &gv, NULL, &err) && !memcmp(gv.rho, g.rho, g.nc * g.nu * sizeof *g.rho),
+          "sc0 = sc1 = 3 differs from SF = 3");
+    ov.sc0 = 3, ov.sc1 = 8;
+    CHECK(!hy_forc_rho(&d, &ov, &gv, NULL, &err) && gv.rho[0] == g.rho[0], "variable SF at H_c = 0 is sc0");
+    double tv3 = 0, tv8 = 0; /* total variation along H_c over the upper half of H_c */
+    for (size_t iu = 0; iu < g.nu; iu++)
+        for (size_t ic = g.nc / 2; ic + 1 < g.nc; ic++) {
+            double a3 = g.rho[iu * g.nc + ic], b3 = g.rho[iu * g.nc + ic + 1];
+            double a8 = gv.rho[iu * g.nc + ic], b8 = gv.rho[iu * g.nc + ic + 1];
+            if (isfinite(a3) && isfinite(b3) && isfinite(a8) && isfinite(b8))
+                tv3 += fabs(b3 - a3), tv8 += fabs(b8 - a8);
+        }
+    printf("micromag: total variation along H_c (upper half): SF 3 %.4g, SF 3 -> 8 %.4g\n", tv3, tv8);
+    CHECK(tv8 < 0.6 * tv3, "variable smoothing does not smooth: %g vs %g", tv8, tv3);
+    hy_forc_grid_free(&gv);
     hy_forc_grid_free(&g);
 
     /* drift correction: every curve's M scaled by cal(1)/cal(i) */
