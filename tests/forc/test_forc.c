@@ -428,6 +428,82 @@ static void test_csv(void)
     hy_forc_data_free(&d);
 }
 
+/* The newer layout (section titles, `Key  value` lines, a "Field Moment"
+ * column header and a units line), cgs units, a curve without calibration,
+ * and the line cap. */
+static void test_micromag_variants(void)
+{
+    const char txt[] = "MicroMag 2900/3900 Data File (Series 0016.002)\r\n"
+                       "First-order reversal curves\r\n\r\nINSTRUMENT\r\n"
+                       "Units of measure                cgs\r\n\r\nSETTINGS\r\n"
+                       "HCal                           +5.000000E+03\r\nNCrv                            2\r\n\r\n"
+                       "      Field         Moment\r\n        (Oe)          (emu)\r\n\r\n"
+                       "+5.01E+03,+1.0E-03\r\n\r\n-1.00E+02,-2.0E-04\r\n-5.00E+01,-1.0E-04\r\n\r\n"
+                       "-2.00E+02,-4.0E-04\r\n-1.50E+02,-3.0E-04\r\n-1.00E+02,-2.0E-04\r\n\r\n";
+    hy_forc_data d;
+    hy_error err = {0};
+    int rc = hy_forc_read(&d, txt, sizeof txt - 1, "new.forc", &err);
+    CHECK(!rc, "newer layout: %s", err.msg);
+    if (!rc) {
+        CHECK(d.units == HY_FORC_UNITS_CGS && !strcmp(d.field_unit, "Oe") && !strcmp(d.moment_unit, "emu") &&
+                  d.field_to_tesla == 1e-4,
+              "cgs units %d %s %s", d.units, d.field_unit, d.moment_unit);
+        CHECK(d.ncurves == 2 && d.ncal == 1 && d.curve[0].cal_m == 1e-3 && isnan(d.curve[1].cal_m) &&
+                  d.curve[1].n == 3 && d.curve[1].ha == -200 && d.curve[0].line == 16,
+              "curves %zu cal %zu line %zu", d.ncurves, d.ncal, d.curve[0].line);
+        hy_forc_data_free(&d);
+    }
+    /* without NCrv/NData and without the end line: refused as truncated */
+    const char noend[] = "MicroMag 2900/3900 Data File\n\n1,2\n2,3\n";
+    CHECK_MSG(hy_forc_read(&d, noend, sizeof noend - 1, "n.forc", &err), err, HY_EINVAL, "n.forc:4:");
+    const char end[] = "MicroMag 2900/3900 Data File\n\n1,2\n2,3\nMicroMag 2900/3900 Data File ends\n";
+    CHECK(!hy_forc_read(&d, end, sizeof end - 1, "e.forc", &err) && d.ncurves == 1, "end line: %s", err.msg);
+    hy_forc_data_free(&d);
+    /* a line past the cap */
+    size_t n = HY_FORC_MAX_LINE + 100;
+    char *big = malloc(n + 64);
+    strcpy(big, "MicroMag 2900/3900 Data File\n");
+    size_t k = strlen(big);
+    memset(big + k, ' ', n);
+    strcpy(big + k + n, "\n");
+    CHECK_MSG(hy_forc_read(&d, big, strlen(big), "big.forc", &err), err, HY_EINVAL, "big.forc:2:1: line longer");
+    free(big);
+}
+
+/* The generic protocol: the callback sees H_sat, H_a, then the H_b ascending. */
+typedef struct trace {
+    double u[64];
+    int n;
+} trace;
+
+static int trace_fn(void *ctx, double u, double *y, hy_error *err)
+{
+    (void)err;
+    trace *t = ctx;
+    if (t->n < 64)
+        t->u[t->n] = u;
+    t->n++;
+    *y = 10 * u;
+    return HY_OK;
+}
+
+static void test_protocol(void)
+{
+    trace t = {{0}, 0};
+    hy_forc_protocol pr = {.hsat = 5, .ha_lo = -1, .ha_hi = 1, .hb_max = 1, .ncurves = 3};
+    hy_forc_data d;
+    hy_error err = {0};
+    CHECK(!hy_forc_protocol_run(&d, &pr, trace_fn, &t, &err), "protocol: %s", err.msg);
+    /* curves H_a = 1, 0, -1 with 1, 2, 3 points: 3 x 2 moves + 6 points */
+    const double want[] = {5, 1, 5, 0, 1, 5, -1, 0, 1};
+    CHECK(t.n == 9 && !memcmp(t.u, want, sizeof want), "sequence of %d moves", t.n);
+    CHECK(d.ncurves == 3 && d.npoints == 6 && d.m[5] == 10 && d.curve[2].ha == -1, "data %zu %zu", d.ncurves,
+          d.npoints);
+    hy_forc_data_free(&d);
+    pr.hsat = 0.5; /* below hb_max */
+    CHECK_MSG(hy_forc_protocol_run(&d, &pr, trace_fn, &t, &err), err, HY_EINVAL, "hb_max <= hsat");
+}
+
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
@@ -438,6 +514,8 @@ int main(int argc, char **argv)
     test_closed_form();
     test_quadratic();
     test_csv();
+    test_protocol();
+    test_micromag_variants();
     test_micromag(argv[1]);
     test_convergence();
     return tu_finish("test_forc");
