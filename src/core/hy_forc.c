@@ -497,14 +497,21 @@ static int mm_read(hy_forc_data *d, scan *s, hy_error *err)
     return HY_OK;
 }
 
-int hy_forc_read_micromag(hy_forc_data *d, const char *text, size_t len, const char *name, hy_error *err)
+/* Runs reader over the text; on failure d owns nothing. */
+static int read_with(int (*reader)(hy_forc_data *, scan *, hy_error *), hy_forc_data *d, const char *text,
+                     size_t len, const char *name, hy_error *err)
 {
     data_init(d);
     scan s = {text, text + len, name ? name : "FORC file", 0, text, text};
-    int rc = mm_read(d, &s, err);
+    int rc = reader(d, &s, err);
     if (rc)
         hy_forc_data_free(d);
     return rc;
+}
+
+int hy_forc_read_micromag(hy_forc_data *d, const char *text, size_t len, const char *name, hy_error *err)
+{
+    return read_with(mm_read, d, text, len, name, err);
 }
 
 /* ---- CSV ------------------------------------------------------------------- */
@@ -554,12 +561,7 @@ static int csv_read(hy_forc_data *d, scan *s, hy_error *err)
 
 int hy_forc_read_csv(hy_forc_data *d, const char *text, size_t len, const char *name, hy_error *err)
 {
-    data_init(d);
-    scan s = {text, text + len, name ? name : "FORC file", 0, text, text};
-    int rc = csv_read(d, &s, err);
-    if (rc)
-        hy_forc_data_free(d);
-    return rc;
+    return read_with(csv_read, d, text, len, name, err);
 }
 
 int hy_forc_read(hy_forc_data *d, const char *text, size_t len, const char *name, hy_error *err)
