@@ -9,6 +9,7 @@
 #include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -681,22 +682,43 @@ void hy_forc_grid_auto(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_gri
     double step = db > 0 ? db : 1;
     if (!(humin <= humax))
         humin = humax = 0;
+    /* spacing exactly one step (on a regular grid every node then sees a
+     * neighbourhood of the same shape), coarser when a side would pass 1000 */
+    double nc = floor(hcmax / step + 0.5) + 1, nu = floor((humax - humin) / step + 0.5) + 1;
+    double sc = nc > 1000 || nu > 1000 ? ceil(fmax(nc, nu) / 1000) : 1;
+    g->nc = (size_t)fmax(2, floor((nc - 1) / sc) + 1);
+    g->nu = (size_t)fmax(2, floor((nu - 1) / sc) + 1);
     g->hc0 = 0;
-    g->hc1 = hcmax;
+    g->hc1 = (double)(g->nc - 1) * sc * step;
     g->hu0 = humin;
-    g->hu1 = humax;
-    g->nc = (size_t)fmin(1000, floor(hcmax / step + 0.5) + 1);
-    g->nu = (size_t)fmin(1000, floor((humax - humin) / step + 0.5) + 1);
+    g->hu1 = humin + (double)(g->nu - 1) * sc * step;
     g->rho = NULL;
 }
 
 /* The curves sorted by H_a, and the workspace of one fit. */
+/* The weights of earlier neighbourhoods by their shape: on a regular grid
+ * the nodes' neighbourhoods repeat a few shapes, and ρ at a node is then one
+ * dot product.  Direct-mapped; a slot keeps the points' offsets quantised
+ * to 2^-30 step (key) and the weights computed from the first node of that
+ * shape, so nodes whose offsets differ by rounding share them. */
+enum { WC_SLOTS = 64 };
+typedef struct wc_slot {
+    size_t n, cap;
+    uint64_t hash;
+    int64_t *key;     /* 2n quantised offsets */
+    double *w;        /* n weights            */
+} wc_slot;
+
 typedef struct fit_ws {
     const hy_forc_data *d;
     size_t *ord;      /* curve indices by ascending H_a */
     double *ha;       /* H_a in that order              */
     double *a, *b;    /* design matrix (column-major, cap rows) and right-hand side */
+    double *w;        /* weights of the present fit     */
+    int64_t *key;     /* its shape                      */
     size_t cap;
+    wc_slot slot[WC_SLOTS];
+    size_t hits, misses;  /* past 256 misses with fewer than 1 hit in 16 the cache is bypassed (irregular data) */
 } fit_ws;
 
 static int ws_grow(fit_ws *w, size_t n)
@@ -714,6 +736,14 @@ static int ws_grow(fit_ws *w, size_t n)
     if (!b)
         return HY_ENOMEM;
     w->b = b;
+    double *wt = realloc(w->w, cap * sizeof *wt);
+    if (!wt)
+        return HY_ENOMEM;
+    w->w = wt;
+    int64_t *key = realloc(w->key, 2 * cap * sizeof *key);
+    if (!key)
+        return HY_ENOMEM;
+    w->key = key;
     w->cap = cap;
     return HY_OK;
 }
@@ -776,38 +806,97 @@ static size_t gather(fit_ws *w, double ha0, double hb0, double wa, double wb, do
     return n;
 }
 
-/* Least squares for the x·y coefficient by Householder QR of the n × 6
- * design matrix (columns at a + k·cap); NaN when rank-deficient. */
-static double qr_xy(double *a, size_t cap, double *b, size_t n)
+/* Householder QR of the n × 6 design matrix (columns at a + k·cap, x·y
+ * last), then the weights w of the least-squares x·y coefficient,
+ * c5 = Σ w_i M_i: w = Q e_5 / R_55 (the reflectors applied to e_5 in
+ * reverse order).  Returns -1 when the matrix is rank-deficient. */
+static int qr_weights(double *a, size_t cap, size_t n, double *w)
 {
+    double v0[6], vtv[6];
     for (int k = 0; k < 6; k++) {
-        double *ak = a + (size_t)k * cap, scale = 0;
+        double *ak = a + (size_t)k * cap, scale = 0, full = 0, nrm = 0;
         for (size_t i = (size_t)k; i < n; i++)
             scale = fmax(scale, fabs(ak[i]));
-        if (!(scale > 0))
-            return NAN;
-        double nrm = 0, full = 0;
-        for (size_t i = (size_t)k; i < n; i++)
-            nrm += (ak[i] / scale) * (ak[i] / scale);
         for (size_t i = 0; i < n; i++)
             full = fmax(full, fabs(ak[i]));
+        if (!(scale > 0))
+            return -1;
+        for (size_t i = (size_t)k; i < n; i++)
+            nrm += (ak[i] / scale) * (ak[i] / scale);
         nrm = scale * sqrt(nrm);
         if (nrm <= 1e-9 * full) /* this column is (nearly) a combination of the previous ones */
-            return NAN;
+            return -1;
         double alpha = ak[k] > 0 ? -nrm : nrm;
-        ak[k] -= alpha; /* v = column − alpha e_k; vᵀv = 2 nrm (nrm + |a_kk|) */
-        double vtv = 2 * nrm * (nrm + fabs(ak[k] + alpha));
-        for (int j = k + 1; j <= 6; j++) {
-            double *aj = j < 6 ? a + (size_t)j * cap : b, s = 0;
+        vtv[k] = 2 * nrm * (nrm + fabs(ak[k])); /* v = column − alpha e_k */
+        ak[k] -= alpha;
+        v0[k] = ak[k];
+        for (int j = k + 1; j < 6; j++) {
+            double *aj = a + (size_t)j * cap, t = 0;
             for (size_t i = (size_t)k; i < n; i++)
-                s += ak[i] * aj[i];
-            s = 2 * s / vtv;
+                t += ak[i] * aj[i];
+            t = 2 * t / vtv[k];
             for (size_t i = (size_t)k; i < n; i++)
-                aj[i] -= s * ak[i];
+                aj[i] -= t * ak[i];
         }
         ak[k] = alpha; /* R_kk */
     }
-    return b[5] / a[5 * cap + 5];
+    for (size_t i = 0; i < n; i++)
+        w[i] = i == 5;
+    for (int k = 5; k >= 0; k--) {
+        const double *ak = a + (size_t)k * cap;
+        double t = v0[k] * w[k];
+        for (size_t i = (size_t)k + 1; i < n; i++)
+            t += ak[i] * w[i];
+        t = 2 * t / vtv[k];
+        w[k] -= t * v0[k];
+        for (size_t i = (size_t)k + 1; i < n; i++)
+            w[i] -= t * ak[i];
+    }
+    double r55 = a[5 * cap + 5];
+    for (size_t i = 0; i < n; i++)
+        w[i] /= r55;
+    return 0;
+}
+
+/* The weights for the n gathered points: from the cache when a node of the
+ * same shape came before, else by QR (and kept).  NULL when rank-deficient,
+ * or out of memory (*oom set). */
+static const double *weights(fit_ws *w, size_t n, int *oom)
+{
+    if (w->misses >= 256 && w->hits < w->misses / 16)
+        return qr_weights(w->a, w->cap, n, w->w) ? NULL : w->w;
+    uint64_t h = 1469598103934665603ull ^ n;
+    for (size_t i = 0; i < n; i++) {
+        w->key[2 * i] = llround(w->a[w->cap + i] * 0x1p30);
+        w->key[2 * i + 1] = llround(w->a[2 * w->cap + i] * 0x1p30);
+        h = (h ^ (uint64_t)w->key[2 * i]) * 1099511628211ull;
+        h = (h ^ (uint64_t)w->key[2 * i + 1]) * 1099511628211ull;
+    }
+    wc_slot *sl = &w->slot[(h ^ (h >> 32)) % WC_SLOTS];
+    if (sl->n == n && sl->hash == h && !memcmp(sl->key, w->key, 2 * n * sizeof *w->key)) {
+        w->hits++;
+        return sl->w;
+    }
+    w->misses++;
+    if (qr_weights(w->a, w->cap, n, w->w))
+        return NULL;
+    if (n > sl->cap) {
+        int64_t *k = realloc(sl->key, 2 * n * sizeof *k);
+        if (k)
+            sl->key = k;
+        double *ww = k ? realloc(sl->w, n * sizeof *ww) : NULL;
+        if (!ww) {
+            *oom = 1;
+            return NULL;
+        }
+        sl->w = ww;
+        sl->cap = n;
+    }
+    sl->n = n;
+    sl->hash = h;
+    memcpy(sl->key, w->key, 2 * n * sizeof *w->key);
+    memcpy(sl->w, w->w, n * sizeof *w->w);
+    return w->w;
 }
 
 /* Whether the node lies inside the data: a curve within 0.75 Δ_a of its H_a
@@ -855,6 +944,12 @@ static void ws_free(fit_ws *w)
     free(w->ha);
     free(w->a);
     free(w->b);
+    free(w->w);
+    free(w->key);
+    for (int i = 0; i < WC_SLOTS; i++) {
+        free(w->slot[i].key);
+        free(w->slot[i].w);
+    }
 }
 
 static int check_opts(const hy_forc_data *d, const hy_forc_opts *o, const hy_forc_grid *g, double da, double db,
@@ -895,6 +990,7 @@ int hy_forc_rho(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_grid *g, s
     free(g->rho);
     g->rho = malloc(g->nc * g->nu * sizeof *g->rho);
     fit_ws w;
+    memset(&w, 0, sizeof w);
     if (!g->rho || ws_init(&w, d)) {
         ws_free(&w);
         return hy_error_set(err, HY_ENOMEM, "FORC distribution: out of memory");
@@ -920,12 +1016,22 @@ int hy_forc_rho(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_grid *g, s
             }
             if (n < 9)
                 continue;
-            double c = qr_xy(w.a, w.cap, w.b, n);
-            if (isfinite(c)) {
-                *out = -0.5 * c / (da * db);
-                fitted++;
+            int oom = 0;
+            const double *wt = weights(&w, n, &oom);
+            if (oom) {
+                ws_free(&w);
+                return hy_error_set(err, HY_ENOMEM, "FORC distribution: out of memory");
             }
+            if (!wt)
+                continue;
+            double c = 0;
+            for (size_t i = 0; i < n; i++)
+                c += wt[i] * w.b[i];
+            *out = -0.5 * c / (da * db);
+            fitted++;
         }
+    if (getenv("HY_FORC_DEBUG"))
+        fprintf(stderr, "hy_forc_rho: %zu of %zu fits from the cache\n", w.hits, fitted);
     ws_free(&w);
     if (nfit)
         *nfit = fitted;
