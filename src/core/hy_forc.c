@@ -1030,8 +1030,6 @@ int hy_forc_rho(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_grid *g, s
             *out = -0.5 * c / (da * db);
             fitted++;
         }
-    if (getenv("HY_FORC_DEBUG"))
-        fprintf(stderr, "hy_forc_rho: %zu of %zu fits from the cache\n", w.hits, fitted);
     ws_free(&w);
     if (nfit)
         *nfit = fitted;
