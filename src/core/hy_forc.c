@@ -731,6 +731,10 @@ static int ws_grow(fit_ws *w, size_t n)
     double *a = realloc(w->a, 6 * cap * sizeof *a);
     if (!a)
         return HY_ENOMEM;
+    /* the columns move to their new offsets k·cap (last first: they only
+     * move up), so rows gathered before the growth stay where they belong */
+    for (int k = 5; k > 0 && w->cap; k--)
+        memmove(a + (size_t)k * cap, a + (size_t)k * w->cap, w->cap * sizeof *a);
     w->a = a;
     double *b = realloc(w->b, cap * sizeof *b);
     if (!b)

@@ -206,6 +206,16 @@ static void test_quadratic(void)
         CHECK_CLOSE(g2.rho[3], 0.1, 1e-12, "rho(H_c = 0.4, H_u = 0.3)");
     }
     hy_forc_grid_free(&g2);
+    /* SF = 9: 361 points in the box, more than the workspace's first 256
+     * rows, so it grows in the middle of a gather; (H_c, H_u) = (0.5, 0) is
+     * (H_a, H_b) = (−0.5, 0.5), the box wholly inside: ρ = −H_a = 0.5 */
+    hy_forc_grid g3 = {.hc0 = 0.5, .hc1 = 0.5, .hu0 = 0, .hu1 = 0, .nc = 1, .nu = 1};
+    hy_forc_opts o9 = o;
+    o9.sf = 9;
+    CHECK(!hy_forc_rho(&d, &o9, &g3, NULL, &err), "rho SF 9: %s", err.msg);
+    if (g3.rho)
+        CHECK_CLOSE(g3.rho[0], 0.5, 1e-11, "rho with SF = 9 (workspace grown mid-gather)");
+    hy_forc_grid_free(&g3);
     hy_forc_data_free(&d);
     free(hb2);
     free(m2);
@@ -428,6 +438,66 @@ static void test_csv(void)
     hy_forc_data_free(&d);
 }
 
+/* Untrusted input: random mutations (a byte changed, inserted or deleted,
+ * a cut, a line duplicated) of the measured file and of a CSV are read or
+ * refused with HY_EINVAL and a "name:line:col: " message; what is read holds
+ * finite, ascending curves.  Fixed seed; valgrind/ASan catch what a check
+ * cannot. */
+static void check_read(const char *t, size_t n, int *accepted)
+{
+    hy_forc_data d;
+    hy_error err = {0};
+    int rc = hy_forc_read(&d, t, n, "m.forc", &err);
+    if (rc) {
+        CHECK(rc == HY_EINVAL && !strncmp(err.msg, "m.forc:", 7), "mutation: %d '%s'", rc, err.msg);
+        return;
+    }
+    (*accepted)++;
+    int ok = d.ncurves >= 1;
+    for (size_t i = 0; ok && i < d.ncurves; i++)
+        for (size_t j = 0; ok && j < d.curve[i].n; j++) {
+            size_t q = d.curve[i].first + j;
+            ok = isfinite(d.hb[q]) && isfinite(d.m[q]) && (!j || d.hb[q] > d.hb[q - 1]);
+        }
+    CHECK(ok, "a mutation read into a bad data set");
+    hy_forc_data_free(&d);
+}
+
+static void test_mutations(const char *t, size_t len)
+{
+    char *x = malloc(len + 256);
+    int accepted = 0, total = 0;
+    const char csv[] = "ha,hb,m\n0,0,1\n0,0.1,2\n-0.1,-0.1,0\n-0.1,0,1\n-0.1,0.1,2\n";
+    for (int r = 0; r < 600; r++, total++) {
+        const char *src = r % 3 == 2 ? csv : t;
+        size_t n = r % 3 == 2 ? sizeof csv - 1 : (r % 3 ? 3000 : len); /* the whole file, or its head */
+        memcpy(x, src, n);
+        size_t at = (size_t)(tu_next() % n);
+        static const char bytes[] = "0123456789+-.,eE \t\r\n=:NaIf\x00\xff";
+        char c = bytes[tu_next() % (sizeof bytes - 1)];
+        switch (tu_next() % 5) {
+        case 0: x[at] = c; break;
+        case 1: memmove(x + at + 1, x + at, n - at); x[at] = c; n++; break;
+        case 2: memmove(x + at, x + at + 1, n - at - 1); n--; break;
+        case 3: n = at; break;
+        default: { /* duplicate the line at `at` */
+            size_t b = at, e = at;
+            while (b > 0 && x[b - 1] != '\n') b--;
+            while (e < n && x[e] != '\n') e++;
+            if (e < n && e - b < 200) {
+                memmove(x + e + 1 + (e - b), x + e + 1, n - e - 1);
+                memcpy(x + e + 1, x + b, e - b);
+                x[e + 1 + (e - b)] = '\n';
+                n += e - b + 1;
+            }
+        }
+        }
+        check_read(x, n, &accepted);
+    }
+    printf("mutations: %d of %d read, the rest refused with file:line:col\n", accepted, total);
+    free(x);
+}
+
 /* The newer layout (section titles, `Key  value` lines, a "Field Moment"
  * column header and a units line), cgs units, a curve without calibration,
  * and the line cap. */
@@ -517,6 +587,12 @@ int main(int argc, char **argv)
     test_protocol();
     test_micromag_variants();
     test_micromag(argv[1]);
+    {
+        size_t len;
+        char *t = text_of(argv[1], &len);
+        test_mutations(t, len);
+        free(t);
+    }
     test_convergence();
     return tu_finish("test_forc");
 }
