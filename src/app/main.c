@@ -18,6 +18,7 @@
 #include "cmd_check.h"
 #include "cmd_export.h"
 #include "cmd_fit.h"
+#include "cmd_forc.h"
 #include "cmd_gallery.h"
 #include "cmd_loop.h"
 #include "cmd_render.h"
@@ -42,6 +43,7 @@ static const char usage[] =
     "  loops     print the major and minor loops of an input with their areas\n"
     "  boucwen   the Bouc-Wen benchmark: Table 2, synthetic data sets as CSV\n"
     "  fit       identify parameters by least squares (now: --benchmark boucwen)\n"
+    "  forc      FORC distribution of a measured FORC file or a Preisach model as CSV\n"
     "  report    work-precision of every solver on the paper's problems (CSV, Markdown, plots)\n"
     "  check     stiff and extreme cases: finite, invariants, errors within bounds\n"
     "  serve     live preview in the browser: sliders, reload on save, animation scrubber\n"
@@ -86,6 +88,7 @@ static const command commands[] = {
     {"loops", hy_cmd_loop, 0},
     {"boucwen", hy_cmd_boucwen, 0},
     {"fit", hy_cmd_fit, 0},
+    {"forc", hy_cmd_forc, 0},
     {"report", hy_cmd_report, 0},
     {"check", hy_cmd_check, 0},
     {"watch", hy_cmd_watch, 1},
