@@ -21,6 +21,7 @@
 
 #include "cli_util.h"
 #include "hy_config.h"
+#include "hy_dtoa.h"
 #include "hy_grid.h"
 #include "hy_jobs.h"
 #include "hy_out.h"
@@ -61,9 +62,9 @@ static const char sweep_help[] =
     STR(VERIFY_EVERY) ", or\n"
     "every point (K = 1) with --verify; elsewhere SERIES.err is empty, and with\n"
     "--formats none no curve is sampled there: only the table's scalars are computed.\n"
-    "Empty: not computed by this scene.  Numbers are %.17g.  --include-dir and\n"
-    "--max-work apply to each point as render's; a point over the work budget is an\n"
-    "invalid row.\n"
+    "Empty: not computed by this scene.  Numbers are the shortest decimal that reads\n"
+    "back to the same double, laid out as %.17g.  --include-dir and --max-work apply\n"
+    "to each point as render's; a point over the work budget is an invalid row.\n"
     "\n"
     "\n";
 
@@ -128,7 +129,8 @@ typedef struct study {
     pthread_mutex_t mu;
     pthread_cond_t cv;
     size_t next, written, window;
-    char **slots;
+    struct rowbuf *slots; /* the window's rows, formatted in place, reused     */
+    unsigned char *ready; /* ... and which of them are done                   */
     size_t nok, ninvalid, nfailed;
     int io_error;
 } study;
@@ -294,117 +296,206 @@ static int make_short_keys(study *s)
     return 0;
 }
 
-/* A CSV field: as is, or in double quotes (quotes doubled) if it holds a
- * comma, quote or line break. */
-static void csv_field(FILE *f, const char *t)
+/* A row being formatted: bytes, grown as needed (kept between points, so a
+ * point allocates nothing once the buffer has grown); err once out of memory. */
+typedef struct rowbuf {
+    char *b;
+    size_t len, cap;
+    int err;
+} rowbuf;
+
+/* Room for n more bytes at b + len; NULL (err set) when out of memory. */
+static char *rb_room(rowbuf *r, size_t n)
 {
-    if (!strpbrk(t, ",\"\n\r")) {
-        fputs(t, f);
-        return;
+    if (r->len + n > r->cap && !r->err) {
+        size_t cap = 2 * (r->len + n) + 256;
+        char *b = realloc(r->b, cap);
+        if (b) {
+            r->b = b;
+            r->cap = cap;
+        } else
+            r->err = 1;
     }
-    fputc('"', f);
-    for (; *t; t++) {
-        if (*t == '"')
-            fputc('"', f);
-        fputc(*t, f);
-    }
-    fputc('"', f);
+    return r->err ? NULL : r->b + r->len;
 }
 
-static void csv_num(FILE *f, double v)
+static void rb_add(rowbuf *r, const char *t, size_t n)
 {
-    if (!isnan(v))
-        fprintf(f, ",%.17g", v);
-    else
-        fputc(',', f);
+    char *p = rb_room(r, n);
+    if (p) {
+        memcpy(p, t, n);
+        r->len += n;
+    }
 }
+
+static void rb_chr(rowbuf *r, char c)
+{
+    rb_add(r, &c, 1);
+}
+
+static void rb_str(rowbuf *r, const char *t)
+{
+    rb_add(r, t, strlen(t));
+}
+
+static void rb_size(rowbuf *r, size_t v)
+{
+    char d[24], *w = d + sizeof d;
+    do
+        *--w = (char)('0' + v % 10);
+    while (v /= 10);
+    rb_add(r, w, (size_t)(d + sizeof d - w));
+}
+
+/* v as the shortest decimal that reads back to it (hy_dtoa: %.17g's layout) */
+static void rb_double(rowbuf *r, double v)
+{
+    char *p = rb_room(r, HY_DTOA_MAX);
+    if (p)
+        r->len += hy_dtoa(v, p);
+}
+
+/* A CSV field: as is, or in double quotes (quotes doubled) if it holds a
+ * comma, quote or line break. */
+static void csv_field(rowbuf *f, const char *t)
+{
+    if (!strpbrk(t, ",\"\n\r")) {
+        rb_str(f, t);
+        return;
+    }
+    rb_chr(f, '"');
+    for (; *t; t++) {
+        if (*t == '"')
+            rb_chr(f, '"');
+        rb_chr(f, *t);
+    }
+    rb_chr(f, '"');
+}
+
+/* ",v", or "," for NaN (not computed) */
+static void csv_num(rowbuf *f, double v)
+{
+    rb_chr(f, ',');
+    if (!isnan(v))
+        rb_double(f, v);
+}
+
+/* The result columns after the grid's (and compute_s): their names. */
+#define RESULT_COLUMNS "ysteady_min,ysteady_max,nminor,major_area,minor1_area,minor_areas,energy"
 
 static void write_header(const study *s, FILE *f)
 {
     const hy_grid *g = &s->o->grid;
     fputs("index,status,name", f);
     for (size_t a = 0; a < g->naxes; a++) {
-        fputc(',', f);
-        csv_field(f, g->axes[a].key);
+        rowbuf k = {0};
+        csv_field(&k, g->axes[a].key);
+        fprintf(f, ",%.*s", k.err ? 0 : (int)k.len, k.b ? k.b : "");
+        free(k.b);
     }
     if (s->o->times)
         fputs(",compute_s", f);
-    fputs(",ysteady_min,ysteady_max,nminor,major_area,minor1_area,minor_areas,energy", f);
+    fputs("," RESULT_COLUMNS, f);
     fprintf(f, ",err_measured_1_in_%ld", s->o->verify_every);
-    for (size_t k = 0; k < s->nseries; k++) {
-        fputc(',', f);
-        char col[300];
-        snprintf(col, sizeof col, "%s.err", s->series[k]);
-        csv_field(f, col);
-    }
-    for (size_t k = 0; k < s->nseries; k++)
-        if (s->series_dist[k]) {
-            fputc(',', f);
-            char col[300];
-            snprintf(col, sizeof col, "%s.dist", s->series[k]);
-            csv_field(f, col);
-        }
+    for (int dist = 0; dist < 2; dist++)
+        for (size_t k = 0; k < s->nseries; k++)
+            if (!dist || s->series_dist[k]) {
+                rowbuf col = {0};
+                char name[300];
+                snprintf(name, sizeof name, "%s.%s", s->series[k], dist ? "dist" : "err");
+                csv_field(&col, name);
+                fprintf(f, ",%.*s", col.err ? 0 : (int)col.len, col.b ? col.b : "");
+                free(col.b);
+            }
     fputs(",message\n", f);
 }
 
-static const hy_run_series *find_series(const hy_scene_run *r, const char *name)
+/* Series k of the study in run r (NULL if r has none of that name): r's
+ * series are the scene's, in the same order, so index k is tried first. */
+static const hy_run_series *find_series(const hy_scene_run *r, const study *s, size_t k)
 {
-    for (size_t k = 0; r && k < r->nseries; k++)
-        if (!strcmp(r->series[k].name, name))
-            return &r->series[k];
+    const char *name = s->series[k];
+    if (r && k < r->nseries && !strcmp(r->series[k].name, name))
+        return &r->series[k];
+    for (size_t j = 0; r && j < r->nseries; j++)
+        if (!strcmp(r->series[j].name, name))
+            return &r->series[j];
     return NULL;
+}
+
+/* The scalars of a row: NaN where not computed. */
+typedef struct row_vals {
+    double ymin, ymax, nminor, major, minor1, energy, measured;
+    const hy_loops *L;
+} row_vals;
+
+static void row_values(const study *s, size_t i, const hy_scene_run *r, int ok, row_vals *v)
+{
+    v->ymin = v->ymax = NAN;
+    if (ok && r->have_steady)
+        for (size_t k = 0; k <= r->input.nruns; k++) {
+            double y = r->steady.y_run[k];
+            v->ymin = k && v->ymin <= y ? v->ymin : y;
+            v->ymax = k && v->ymax >= y ? v->ymax : y;
+        }
+    const hy_loops *L = ok && r->have_loops ? &r->loops : NULL;
+    v->L = L;
+    v->nminor = L ? (double)L->nminor : NAN;
+    v->major = L ? L->major.area : NAN;
+    v->minor1 = L && L->nminor ? L->minor[0].area : NAN;
+    v->energy = L ? L->area_period : NAN;
+    v->measured = ok ? (i % (size_t)s->o->verify_every ? 0 : 1) : NAN;
 }
 
 /* The row of point i: r is the computed run (NULL if loading failed),
  * status "ok", "invalid" or "failed", msg the reason or "". */
-static void write_row(const study *s, FILE *f, size_t i, const char *name, const hy_scene_run *r, const char *status,
+static void write_row(const study *s, rowbuf *f, size_t i, const char *name, const hy_scene_run *r, const char *status,
                       const char *msg)
 {
     const hy_grid *g = &s->o->grid;
-    fprintf(f, "%zu,%s,%s", i, status, name);
+    rb_size(f, i);
+    rb_chr(f, ',');
+    rb_str(f, status);
+    rb_chr(f, ',');
+    rb_str(f, name);
     for (size_t a = 0; a < g->naxes; a++) {
-        fputc(',', f);
+        rb_chr(f, ',');
         csv_field(f, hy_grid_value(g, i, a));
     }
-    int ok = !strcmp(status, "ok");
+    int ok = status[0] == 'o';
     if (s->o->times)
         csv_num(f, ok ? r->seconds_compute : NAN);
-    double ymin = NAN, ymax = NAN;
-    if (ok && r->have_steady)
-        for (size_t k = 0; k <= r->input.nruns; k++) {
-            double y = r->steady.y_run[k];
-            ymin = k && ymin <= y ? ymin : y;
-            ymax = k && ymax >= y ? ymax : y;
-        }
-    csv_num(f, ymin);
-    csv_num(f, ymax);
-    const hy_loops *L = ok && r->have_loops ? &r->loops : NULL;
-    if (L)
-        fprintf(f, ",%zu", L->nminor);
-    else
-        fputc(',', f);
-    csv_num(f, L ? L->major.area : NAN);
-    csv_num(f, L && L->nminor ? L->minor[0].area : NAN);
-    fputc(',', f);
-    for (size_t k = 0; L && k < L->nminor; k++)
-        fprintf(f, "%s%.17g", k ? ";" : "", L->minor[k].area);
-    csv_num(f, L ? L->area_period : NAN);
+    row_vals v;
+    row_values(s, i, r, ok, &v);
+    csv_num(f, v.ymin);
+    csv_num(f, v.ymax);
+    rb_chr(f, ',');
+    if (v.L)
+        rb_size(f, v.L->nminor);
+    csv_num(f, v.major);
+    csv_num(f, v.minor1);
+    rb_chr(f, ',');
+    for (size_t k = 0; v.L && k < v.L->nminor; k++) {
+        if (k)
+            rb_chr(f, ';');
+        rb_double(f, v.L->minor[k].area);
+    }
+    csv_num(f, v.energy);
+    rb_chr(f, ',');
     if (ok)
-        fputs(i % (size_t)s->o->verify_every ? ",0" : ",1", f);
-    else
-        fputc(',', f);
+        rb_chr(f, v.measured ? '1' : '0');
     for (size_t k = 0; k < s->nseries; k++) {
-        const hy_run_series *se = ok ? find_series(r, s->series[k]) : NULL;
+        const hy_run_series *se = ok ? find_series(r, s, k) : NULL;
         csv_num(f, se && se->err_ref ? se->err : NAN);
     }
     for (size_t k = 0; k < s->nseries; k++)
         if (s->series_dist[k]) {
-            const hy_run_series *se = ok ? find_series(r, s->series[k]) : NULL;
+            const hy_run_series *se = ok ? find_series(r, s, k) : NULL;
             csv_num(f, se ? se->dist : NAN);
         }
-    fputc(',', f);
+    rb_chr(f, ',');
     csv_field(f, msg);
-    fputc('\n', f);
+    rb_chr(f, '\n');
 }
 
 /* ---- one point -------------------------------------------------------- */
@@ -424,9 +515,6 @@ typedef struct point_buf {
                         * again only the sections its overrides change */
     int have_base;
     hy_error scene_err;
-    FILE *rowf;       /* a memory stream the rows are formatted in, reused */
-    char *rowbuf;
-    size_t rowlen;
 } point_buf;
 
 /* The worker's scene: parsed under the policy, the user's --set applied,
@@ -449,9 +537,9 @@ static void worker_scene(const sweep_opts *o, point_buf *pb)
     }
 }
 
-/* Loads, computes and writes point i; returns its row (malloc'ed) and counts
+/* Loads, computes and writes point i; appends its row to out and counts
  * its status into *kind (0 ok, 1 invalid, 2 failed). */
-static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
+static void run_point(const study *s, point_buf *pb, size_t i, int *kind, rowbuf *out)
 {
     const sweep_opts *o = s->o;
     const hy_grid *g = &o->grid;
@@ -489,18 +577,8 @@ static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
     if (!rc && o->figures)
         rc = hy_scene_run_write(&r, o->out, o->formats, NULL, 0, &err);
     *kind = !rc ? 0 : err.code == HY_EINVAL ? 1 : 2;
-    char *row = NULL;
-    FILE *f = pb->rowf;
-    if (f) { /* formatted in the worker's stream, then copied out */
-        rewind(f);
-        write_row(s, f, i, name, loaded && !rc ? &r : NULL, *kind == 0 ? "ok" : *kind == 1 ? "invalid" : "failed",
-                  rc ? err.msg : "");
-        long n = fflush(f) || ferror(f) ? -1 : ftell(f);
-        if (n >= 0 && (row = malloc((size_t)n + 1))) {
-            memcpy(row, pb->rowbuf, (size_t)n);
-            row[n] = '\0';
-        }
-    }
+    write_row(s, out, i, name, loaded && !rc ? &r : NULL, *kind == 0 ? "ok" : *kind == 1 ? "invalid" : "failed",
+              rc ? err.msg : "");
     if (loaded)
         hy_scene_run_free(&r);
     if (rc && !o->quiet) {
@@ -512,7 +590,6 @@ static char *run_point(const study *s, point_buf *pb, size_t i, int *kind)
                     printed == 10 ? " (further failures: see the table's message column)" : "");
         pthread_mutex_unlock(&print_mu);
     }
-    return row;
 }
 
 /* ---- the pool --------------------------------------------------------- */
@@ -536,8 +613,6 @@ static void *worker(void *arg)
     }
     pb.text = malloc(pb.text_size);
     pb.log = fopen("/dev/null", "w");
-    pb.rowbuf = NULL;
-    pb.rowf = open_memstream(&pb.rowbuf, &pb.rowlen);
     worker_scene(o, &pb);
     pthread_mutex_lock(&s->mu);
     if (!pb.sets || !pb.text)
@@ -551,18 +626,19 @@ static void *worker(void *arg)
         pthread_mutex_unlock(&s->mu);
         size_t i = o->sharded ? (size_t)o->shard_k + j * (size_t)o->shard_n : j;
         int kind;
-        char *row = run_point(s, &pb, i, &kind);
+        rowbuf *row = &s->slots[j % s->window]; /* row j - window is written: the slot is this worker's */
+        row->len = 0;
+        run_point(s, &pb, i, &kind, row);
         pthread_mutex_lock(&s->mu);
-        if (!row)
+        if (row->err)
             s->io_error = 1;
         *(kind == 0 ? &s->nok : kind == 1 ? &s->ninvalid : &s->nfailed) += 1;
-        s->slots[j % s->window] = row;
-        while (!s->io_error && s->written < s->nmine && s->slots[s->written % s->window]) {
-            char **slot = &s->slots[s->written % s->window];
-            if (fputs(*slot, s->table) < 0)
+        s->ready[j % s->window] = 1;
+        while (!s->io_error && s->written < s->nmine && s->ready[s->written % s->window]) {
+            size_t w = s->written % s->window;
+            if (fwrite(s->slots[w].b, 1, s->slots[w].len, s->table) != s->slots[w].len)
                 s->io_error = 1;
-            free(*slot);
-            *slot = NULL;
+            s->ready[w] = 0;
             s->written++;
         }
         pthread_cond_broadcast(&s->cv);
@@ -574,9 +650,6 @@ static void *worker(void *arg)
     if (pb.have_base)
         hy_scene_doc_free(&pb.base);
     hy_scene_free(pb.scene);
-    if (pb.rowf)
-        fclose(pb.rowf);
-    free(pb.rowbuf);
     if (pb.log)
         fclose(pb.log);
     return NULL;
@@ -589,9 +662,12 @@ static int run_pool(study *s)
         nt = 1;
     s->window = 4 * (size_t)nt + 16;
     s->slots = calloc(s->window, sizeof *s->slots);
+    s->ready = calloc(s->window, 1);
     pthread_t *th = calloc((size_t)nt, sizeof *th);
-    if (!s->slots || !th) {
+    if (!s->slots || !s->ready || !th) {
         free(th);
+        free(s->slots);
+        free(s->ready);
         return -1;
     }
     pthread_mutex_init(&s->mu, NULL);
@@ -607,8 +683,9 @@ static int run_pool(study *s)
     pthread_mutex_destroy(&s->mu);
     pthread_cond_destroy(&s->cv);
     for (size_t k = 0; k < s->window; k++)
-        free(s->slots[k]);
+        free(s->slots[k].b);
     free(s->slots);
+    free(s->ready);
     free(th);
     return 0;
 }
