@@ -74,7 +74,7 @@ static const char sweep_tail[] =
     "compute or a file could not be written.\n";
 
 enum { OPT_GRID = CLI_FIRST, OPT_SET, OPT_OUT, OPT_FORMATS, OPT_SHARD, OPT_MERGE, OPT_PLOT, OPT_VERIFY, OPT_TIMES,
-       OPT_QUIET };
+       OPT_QUIET, OPT_TABLE };
 static const cli_opt sweep_opts_table[] = {
     {"grid", 0, "K=SPEC", "a grid axis (repeatable)", OPT_GRID, CLI_SCENE_KEY, NULL, NULL, NULL},
     {"set", 0, "S.K=V", "a fixed override applied to every point before the grid", OPT_SET, CLI_SCENE_KEY, NULL,
@@ -83,6 +83,8 @@ static const cli_opt sweep_opts_table[] = {
     {.group = cli_jobs_opts},
     {"formats", 0, "LIST", "svg,pdf,png (default: the scene's), or none: the table only", OPT_FORMATS, 0, NULL, NULL,
      NULL},
+    {"table", 0, "csv|npy", "the table's format: sweep.csv (default) or sweep.npy, NumPy's\n"
+     "array file (a structured array, a field per column)", OPT_TABLE, 0, NULL, NULL, NULL},
     {"shard", 0, "K/N", "only points with index mod N = K (0 <= K < N); the rows go\n"
      "to DIR/sweep.shard-K-of-N.csv for --merge", OPT_SHARD, 0, NULL, NULL, NULL},
     {"merge", 0, "DIR", "join DIR's N shard manifests into DIR/sweep.csv (refused,\n"
@@ -111,6 +113,7 @@ typedef struct sweep_opts {
     long jobs, shard_k, shard_n;
     long verify_every;     /* errors measured at points i with i mod this = 0 */
     int sharded, times, quiet, figures;
+    int npy;               /* --table npy */
     char *rerun;           /* a shard's re-run text for its manifest (or NULL) */
 } sweep_opts;
 
@@ -123,6 +126,11 @@ typedef struct study {
     int index_width;
     size_t nmine;        /* points of this shard                          */
     hy_out out;          /* the table (sweep.csv or the shard manifest)   */
+    /* --table npy: the record's layout */
+    char *descr;         /* the structured dtype, as the .npy header says  */
+    size_t name_w;       /* bytes of the name field                        */
+    size_t *axis_w;      /* per axis: 0 float64, else bytes of its text    */
+    double **axis_num;   /* per float64 axis: its values                   */
     FILE *table;
     char table_path[4400];
     /* streaming in point order */
@@ -211,6 +219,13 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
             o->verify_every = 1;
         else if (id == OPT_QUIET)
             o->quiet = 1;
+        else if (id == OPT_TABLE) {
+            if (strcmp(v, "csv") && strcmp(v, "npy")) {
+                fprintf(stderr, "hystviz sweep: --table '%s': expected csv or npy\n", v);
+                return 2;
+            }
+            o->npy = !strcmp(v, "npy");
+        }
         else if (id == CLI_ARG && o->scene)
             return cli_unexpected(&p), 2;
         else if (id == CLI_ARG)
@@ -220,6 +235,14 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
     }
     if (o->merge && (o->scene || o->grid.naxes || o->sharded)) {
         fprintf(stderr, "hystviz sweep: --merge DIR takes no scene, --grid or --shard\n");
+        return 2;
+    }
+    if (o->npy && o->plot) {
+        fprintf(stderr, "hystviz sweep: --plot reads a CSV table: give it without --table npy\n");
+        return 2;
+    }
+    if (o->merge && o->npy) {
+        fprintf(stderr, "hystviz sweep: --merge DIR finds the shards' table format itself (no --table)\n");
         return 2;
     }
     if (!o->merge && !o->scene) {
@@ -498,6 +521,174 @@ static void write_row(const study *s, rowbuf *f, size_t i, const char *name, con
     rb_chr(f, '\n');
 }
 
+/* ---- the .npy table ------------------------------------------------- */
+
+/* A structured array, one field per column (docs/STUDIES.md): index <i8,
+ * status |i1 (0 ok, 1 invalid, 2 failed), name |S<longest name>, each grid
+ * axis <f8 when all its values are numbers, else |S<longest value>; every
+ * number <f8 (NaN where the CSV is empty; nminor and err_measured too);
+ * minor_areas <f8 (NPY_MINOR,): the first NPY_MINOR minor loops' areas,
+ * NaN after the last; message |S<NPY_MESSAGE> (cut at a UTF-8 character). */
+#define NPY_MINOR 8
+#define NPY_MESSAGE 256
+
+static void put_u64(rowbuf *r, uint64_t v)
+{
+    char *p = rb_room(r, 8);
+    for (int k = 0; p && k < 8; k++)
+        p[k] = (char)(v >> (8 * k) & 0xff);
+    if (p)
+        r->len += 8;
+}
+
+static void put_f8(rowbuf *r, double v)
+{
+    uint64_t b;
+    memcpy(&b, &v, sizeof b);
+    put_u64(r, b);
+}
+
+/* t in a field of w bytes, NUL-padded; cut at a UTF-8 character boundary. */
+static void put_text(rowbuf *r, const char *t, size_t w)
+{
+    size_t n = strlen(t);
+    if (n > w) {
+        n = w;
+        while (n > 0 && ((unsigned char)t[n] & 0xc0) == 0x80)
+            n--;
+    }
+    char *p = rb_room(r, w);
+    if (p) {
+        memcpy(p, t, n);
+        memset(p + n, 0, w - n);
+        r->len += w;
+    }
+}
+
+/* A field name as a Python string literal. */
+static void descr_field(rowbuf *d, const char *name, const char *type)
+{
+    rb_str(d, d->len > 1 ? ", ('" : "('");
+    for (const char *c = name; *c; c++) {
+        if (*c == '\'' || *c == '\\')
+            rb_chr(d, '\\');
+        rb_chr(d, *c);
+    }
+    rb_str(d, "', ");
+    rb_str(d, type);
+    rb_chr(d, ')');
+}
+
+/* The record layout of the study: fills descr, name_w, axis_w, axis_num;
+ * -1 when out of memory. */
+static int npy_layout(study *s)
+{
+    const hy_grid *g = &s->o->grid;
+    rowbuf d = {0};
+    char ty[64];
+    rb_chr(&d, '[');
+    descr_field(&d, "index", "'<i8'");
+    descr_field(&d, "status", "'|i1'");
+    s->name_w = 1 + (size_t)s->index_width;
+    s->axis_w = calloc(g->naxes + 1, sizeof *s->axis_w);
+    s->axis_num = calloc(g->naxes + 1, sizeof *s->axis_num);
+    if (!s->axis_w || !s->axis_num)
+        return -1;
+    for (size_t a = 0; a < g->naxes; a++) {
+        size_t longest = 1;
+        int numeric = 1;
+        for (size_t v = 0; v < g->axes[a].nvalues; v++) {
+            const char *t = g->axes[a].values[v];
+            char *end;
+            size_t n = strlen(t);
+            longest = n > longest ? n : longest;
+            strtod(t, &end);
+            numeric &= end != t && !*end;
+        }
+        s->name_w += 2 + strlen(s->short_keys[a]) + longest;
+        if (numeric) {
+            if (!(s->axis_num[a] = malloc(g->axes[a].nvalues * sizeof **s->axis_num)))
+                return -1;
+            for (size_t v = 0; v < g->axes[a].nvalues; v++)
+                s->axis_num[a][v] = strtod(g->axes[a].values[v], NULL);
+        } else
+            s->axis_w[a] = longest;
+    }
+    if (s->name_w > 200)
+        s->name_w = 200;
+    snprintf(ty, sizeof ty, "'|S%zu'", s->name_w);
+    descr_field(&d, "name", ty);
+    for (size_t a = 0; a < g->naxes; a++) {
+        snprintf(ty, sizeof ty, "'|S%zu'", s->axis_w[a]);
+        descr_field(&d, g->axes[a].key, s->axis_w[a] ? ty : "'<f8'");
+    }
+    if (s->o->times)
+        descr_field(&d, "compute_s", "'<f8'");
+    static const char *const res[] = {"ysteady_min", "ysteady_max", "nminor", "major_area", "minor1_area"};
+    for (size_t k = 0; k < sizeof res / sizeof *res; k++)
+        descr_field(&d, res[k], "'<f8'");
+    snprintf(ty, sizeof ty, "'<f8', (%d,)", NPY_MINOR);
+    descr_field(&d, "minor_areas", ty);
+    descr_field(&d, "energy", "'<f8'");
+    snprintf(ty, sizeof ty, "err_measured_1_in_%ld", s->o->verify_every);
+    descr_field(&d, ty, "'<f8'");
+    for (int dist = 0; dist < 2; dist++)
+        for (size_t k = 0; k < s->nseries; k++)
+            if (!dist || s->series_dist[k]) {
+                char col[300];
+                snprintf(col, sizeof col, "%s.%s", s->series[k], dist ? "dist" : "err");
+                descr_field(&d, col, "'<f8'");
+            }
+    snprintf(ty, sizeof ty, "'|S%d'", NPY_MESSAGE);
+    descr_field(&d, "message", ty);
+    rb_str(&d, "]");
+    rb_chr(&d, '\0');
+    s->descr = d.b;
+    return d.err ? -1 : 0;
+}
+
+/* The record of point i (as write_row's row). */
+static void write_record(const study *s, rowbuf *f, size_t i, const char *name, const hy_scene_run *r, int kind,
+                         const char *msg)
+{
+    const hy_grid *g = &s->o->grid;
+    put_u64(f, (uint64_t)i);
+    char st = (char)kind;
+    rb_add(f, &st, 1);
+    put_text(f, name, s->name_w);
+    for (size_t a = 0; a < g->naxes; a++) {
+        size_t c = hy_grid_coord(g, i, a);
+        if (s->axis_w[a])
+            put_text(f, g->axes[a].values[c], s->axis_w[a]);
+        else
+            put_f8(f, s->axis_num[a][c]);
+    }
+    int ok = kind == 0;
+    if (s->o->times)
+        put_f8(f, ok ? r->seconds_compute : NAN);
+    row_vals v;
+    row_values(s, i, r, ok, &v);
+    put_f8(f, v.ymin);
+    put_f8(f, v.ymax);
+    put_f8(f, v.nminor);
+    put_f8(f, v.major);
+    put_f8(f, v.minor1);
+    for (size_t k = 0; k < NPY_MINOR; k++)
+        put_f8(f, v.L && k < v.L->nminor ? v.L->minor[k].area : NAN);
+    put_f8(f, v.energy);
+    put_f8(f, v.measured);
+    for (size_t k = 0; k < s->nseries; k++) {
+        const hy_run_series *se = ok ? find_series(r, s, k) : NULL;
+        put_f8(f, se && se->err_ref ? se->err : NAN);
+    }
+    for (size_t k = 0; k < s->nseries; k++)
+        if (s->series_dist[k]) {
+            const hy_run_series *se = ok ? find_series(r, s, k) : NULL;
+            put_f8(f, se ? se->dist : NAN);
+        }
+    put_text(f, msg, NPY_MESSAGE);
+}
+
 /* ---- one point -------------------------------------------------------- */
 
 typedef struct point_buf {
@@ -577,8 +768,11 @@ static void run_point(const study *s, point_buf *pb, size_t i, int *kind, rowbuf
     if (!rc && o->figures)
         rc = hy_scene_run_write(&r, o->out, o->formats, NULL, 0, &err);
     *kind = !rc ? 0 : err.code == HY_EINVAL ? 1 : 2;
-    write_row(s, out, i, name, loaded && !rc ? &r : NULL, *kind == 0 ? "ok" : *kind == 1 ? "invalid" : "failed",
-              rc ? err.msg : "");
+    if (o->npy)
+        write_record(s, out, i, name, loaded && !rc ? &r : NULL, *kind, rc ? err.msg : "");
+    else
+        write_row(s, out, i, name, loaded && !rc ? &r : NULL, *kind == 0 ? "ok" : *kind == 1 ? "invalid" : "failed",
+                  rc ? err.msg : "");
     if (loaded)
         hy_scene_run_free(&r);
     if (rc && !o->quiet) {
@@ -745,6 +939,8 @@ static int check_study(study *s, uint64_t *hash)
     h = fnv(h, num);
     snprintf(num, sizeof num, "%.17g", hy_scene_policy_budget(&o->pol)); /* it decides which points are refused */
     h = fnv(h, num);
+    if (o->npy) /* (the CSV study's hash is as before --table) */
+        h = fnv(h, "table npy");
     int rc = 0;
     for (size_t a = 0; a < g->naxes && !rc; a++) {
         h = fnv(fnv(h, g->axes[a].key), g->axes[a].spec);
@@ -850,6 +1046,11 @@ static void study_free(study *s)
     for (size_t a = 0; s->short_keys && a < s->o->grid.naxes; a++)
         free(s->short_keys[a]);
     free(s->short_keys);
+    for (size_t a = 0; s->axis_num && a < s->o->grid.naxes; a++)
+        free(s->axis_num[a]);
+    free(s->axis_num);
+    free(s->axis_w);
+    free(s->descr);
 }
 
 static int sweep(const sweep_opts *o)
@@ -875,15 +1076,23 @@ static int sweep(const sweep_opts *o)
     char digits[32];
     s.index_width = snprintf(digits, sizeof digits, "%zu", npoints > 1 ? npoints - 1 : 0);
     s.nmine = o->sharded ? hy_shard_count(npoints, o->shard_k, o->shard_n) : npoints;
+    static char npy_head[65536 + 64];
+    size_t npy_hl = 0;
+    if (o->npy && (npy_layout(&s) || !(npy_hl = hy_npy_header(s.descr, s.nmine, npy_head, sizeof npy_head)))) {
+        fprintf(stderr, "hystviz sweep: the .npy header would pass 64 KiB (too many or too long columns), or out of memory\n");
+        study_free(&s);
+        return 2;
+    }
     if (make_dir(o->out)) {
         fprintf(stderr, "hystviz sweep: %s: cannot create the study directory: %s\n", o->out, strerror(errno));
         study_free(&s);
         return 1;
     }
     if (o->sharded)
-        hy_sweep_shard_path(o->out, o->shard_k, o->shard_n, s.table_path, sizeof s.table_path);
+        hy_sweep_shard_path(o->out, o->shard_k, o->shard_n, o->npy ? "npy" : "csv", s.table_path,
+                            sizeof s.table_path);
     else
-        snprintf(s.table_path, sizeof s.table_path, "%s/sweep.csv", o->out);
+        snprintf(s.table_path, sizeof s.table_path, "%s/sweep.%s", o->out, o->npy ? "npy" : "csv");
     hy_out_sweep(o->out); /* temporaries of killed runs (a running shard's are locked: kept) */
     hy_error err = {0};
     if (hy_out_open(&s.out, s.table_path, 0, &err)) {
@@ -894,7 +1103,10 @@ static int sweep(const sweep_opts *o)
     s.table = hy_out_file(&s.out);
     if (o->sharded)
         hy_sweep_shard_head(s.table, o->shard_k, o->shard_n, npoints, hash, o->rerun);
-    write_header(&s, s.table);
+    if (o->npy)
+        fwrite(npy_head, 1, npy_hl, s.table); /* a short write shows in the commit's check */
+    else
+        write_header(&s, s.table);
     double t0 = now();
     tzset(); /* cairo's PDF writer reads the time zone: set it up before the threads */
     if (run_pool(&s))
