@@ -282,17 +282,24 @@ static int parse_opts(int argc, char **argv, sweep_opts *o)
 static void point_name(const study *s, size_t i, char *buf, size_t size)
 {
     const hy_grid *g = &s->o->grid;
-    size_t len = (size_t)snprintf(buf, size, "p%0*zu", s->index_width, i);
-    for (size_t a = 0; a < g->naxes && len + 1 < size; a++) {
-        char part[256];
-        snprintf(part, sizeof part, "_%s-%s", s->short_keys[a], hy_grid_value(g, i, a));
-        for (char *c = part + 1; *c; c++)
-            if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '.' ||
-                  *c == '-'))
-                *c = '_';
-        len += (size_t)snprintf(buf + len, size - len, "%s", part);
+    char *w = buf, *end = buf + (size < 202 ? size : 202) - 1; /* the name is cut at 200 bytes */
+    char digits[24];
+    size_t nd = 0;
+    for (size_t v = i; nd < (size_t)s->index_width || v; v /= 10)
+        digits[nd++] = (char)('0' + v % 10);
+    *w++ = 'p';
+    while (nd && w < end)
+        *w++ = digits[--nd];
+    for (size_t a = 0; a < g->naxes && w < end; a++) {
+        *w++ = '_';
+        for (int part = 0; part < 3; part++)
+            for (const char *c = part == 0 ? s->short_keys[a] : part == 1 ? "-" : hy_grid_value(g, i, a); *c && w < end;
+                 c++)
+                *w++ = (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '.' ||
+                       *c == '-' ? *c : '_';
     }
-    if (len > 200)
+    *w = '\0';
+    if (w - buf > 200)
         buf[200] = '\0';
 }
 
@@ -706,6 +713,9 @@ typedef struct point_buf {
                         * again only the sections its overrides change */
     int have_base;
     hy_error scene_err;
+    int typed;         /* every axis is a typed write into work (typed_axes) */
+    struct typed_axis *ta;
+    hy_scene_doc work; /* base with the typed axes' fields of the last point */
 } point_buf;
 
 /* The worker's scene: parsed under the policy, the user's --set applied,
@@ -728,6 +738,132 @@ static void worker_scene(const sweep_opts *o, point_buf *pb)
     }
 }
 
+/* ---- grid values as typed writes (issue 37) ------------------------- */
+
+/* An axis whose key is a NUMBER or INTEGER of [model], [input] or [compute]:
+ * a point writes its value into the field the decoder fills, and the
+ * override's note (where written), into a copy of the decoded scene, instead
+ * of setting the text and decoding the section again. */
+typedef struct typed_axis {
+    int sec;              /* 0 model, 1 input, 2 compute */
+    size_t field, key;    /* the field's offset in its section, the key's index */
+    int is_long;          /* INTEGER: long, else double */
+    hy_decl_field meta;   /* what decode notes for an override of the key */
+    double *num;          /* the axis' values */
+    char **label;         /* ... and each one's "--set KEY=VALUE", where the
+                           * decoder's note of an override points (messages) */
+} typed_axis;
+
+static char *sec_of(hy_scene_doc *d, int sec, size_t *size)
+{
+    *size = sec == 0 ? sizeof d->model : sec == 1 ? sizeof d->input : sizeof d->compute;
+    return sec == 0 ? (char *)&d->model : sec == 1 ? (char *)&d->input : (char *)&d->compute;
+}
+
+static void typed_write(hy_scene_doc *d, const typed_axis *t, size_t v)
+{
+    size_t size;
+    char *b = sec_of(d, t->sec, &size);
+    if (t->is_long) {
+        long l = (long)t->num[v];
+        memcpy(b + t->field, &l, sizeof l);
+    } else
+        memcpy(b + t->field, &t->num[v], sizeof(double));
+    hy_decl_field *f = &((hy_decl_head *)(void *)b)->at[t->key];
+    *f = t->meta;
+    f->loc.file = t->label[v];
+}
+
+/* Axis a as a typed write, checked: its values are plain numbers, and at
+ * its first, middle and last value the write gives the section the generic
+ * override (hy_scene_set, decode) gives, byte for byte.  0 if it is not one. */
+static int typed_axis_make(const sweep_opts *o, point_buf *pb, size_t a, typed_axis *t)
+{
+    const hy_grid_axis *ax = &o->grid.axes[a];
+    char *sec = NULL, *name = NULL, *key = NULL, buf[4400];
+    const char *val;
+    snprintf(buf, sizeof buf, "%s=0", ax->key);
+    int ok = !hy_scene_set_split(buf, &sec, &name, &key, &val, NULL) && !name && sec && key;
+    t->sec = !ok ? -1 : !strcmp(sec, "model") ? 0 : !strcmp(sec, "input") ? 1 : !strcmp(sec, "compute") ? 2 : -1;
+    ok = ok && t->sec >= 0;
+    const hy_scene_section_spec *spec = ok ? &hy_scene_schema(NULL)[hy_scene_schema_section(sec)] : NULL;
+    size_t k = 0;
+    while (spec && k < spec->nkeys && strcmp(spec->keys[k].name, key))
+        k++;
+    ok = ok && k < spec->nkeys && k < HY_SCENE_KEYS_MAX && spec->keys[k].ctype &&
+         (spec->keys[k].kind == HY_KIND_NUMBER || spec->keys[k].kind == HY_KIND_INTEGER) && strcmp(key, "kind");
+    free(sec);
+    free(name);
+    free(key);
+    if (!ok || !(t->num = malloc(ax->nvalues * sizeof *t->num)) || !(t->label = calloc(ax->nvalues, sizeof *t->label)))
+        return 0;
+    t->key = k;
+    t->field = spec->keys[k].field;
+    t->is_long = spec->keys[k].kind == HY_KIND_INTEGER;
+    for (size_t v = 0; v < ax->nvalues && ok; v++) {
+        const char *x = ax->values[v];
+        char *end;
+        ok = strspn(x, "0123456789.eE+-") == strlen(x);
+        t->num[v] = t->is_long ? (double)strtol(x, &end, 10) : strtod(x, &end);
+        ok = ok && end != x && !*end && (!t->is_long || fabs(t->num[v]) < 0x1p53);
+        size_t n = strlen(ax->key) + strlen(x) + 8;
+        if (ok && (t->label[v] = malloc(n)))
+            snprintf(t->label[v], n, "--set %s=%s", ax->key, x);
+        ok = ok && t->label[v];
+    }
+    size_t checks[3] = {0, ax->nvalues / 2, ax->nvalues - 1};
+    for (int c = 0; c < 3 && ok; c++) {
+        hy_error e = {0};
+        hy_scene_doc d;
+        hy_scene_restore(pb->scene);
+        snprintf(buf, sizeof buf, "%s=%s", ax->key, ax->values[checks[c]]);
+        if (hy_scene_set(pb->scene, buf, &e) || hy_scene_decode_marked(pb->scene, &pb->base, &d, &e)) {
+            ok = 0;
+            break;
+        }
+        size_t size;
+        char *want = sec_of(&d, t->sec, &size);
+        hy_decl_field *wf = &((hy_decl_head *)(void *)want)->at[k];
+        if (c == 0)
+            t->meta = *wf;
+        if (wf->loc.file && !strcmp(wf->loc.file, t->label[checks[c]]))
+            wf->loc.file = t->label[checks[c]]; /* the same text: compared as such */
+        hy_scene_doc mine = pb->base;
+        typed_write(&mine, t, checks[c]);
+        ok = !memcmp(sec_of(&mine, t->sec, &size), want, size);
+        hy_scene_doc_free(&d);
+    }
+    hy_scene_restore(pb->scene);
+    return ok;
+}
+
+/* Whether every axis of the grid can be a typed write (table-only sweeps). */
+static void typed_setup(const sweep_opts *o, point_buf *pb)
+{
+    pb->typed = 0;
+    pb->ta = NULL;
+    if (o->figures || !pb->have_base || !o->grid.naxes || !(pb->ta = calloc(o->grid.naxes, sizeof *pb->ta)))
+        return;
+    int all = 1;
+    for (size_t a = 0; a < o->grid.naxes && all; a++)
+        all = typed_axis_make(o, pb, a, &pb->ta[a]);
+    pb->typed = all;
+    pb->work = pb->base;
+    for (size_t a = 0; a < o->grid.naxes && all; a++)
+        typed_write(&pb->work, &pb->ta[a], 0);
+}
+
+static void typed_free(const sweep_opts *o, point_buf *pb)
+{
+    for (size_t a = 0; pb->ta && a < o->grid.naxes; a++) {
+        for (size_t v = 0; pb->ta[a].label && v < o->grid.axes[a].nvalues; v++)
+            free(pb->ta[a].label[v]);
+        free(pb->ta[a].label);
+        free(pb->ta[a].num);
+    }
+    free(pb->ta);
+}
+
 /* Loads, computes and writes point i; appends its row to out and counts
  * its status into *kind (0 ok, 1 invalid, 2 failed). */
 static void run_point(const study *s, point_buf *pb, size_t i, int *kind, rowbuf *out)
@@ -737,7 +873,7 @@ static void run_point(const study *s, point_buf *pb, size_t i, int *kind, rowbuf
     char name[256];
     point_name(s, i, name, sizeof name);
     size_t used = 0, nsets = 0;
-    for (size_t a = 0; a < g->naxes; a++) {
+    for (size_t a = 0; a < g->naxes && !pb->typed; a++) {
         pb->sets[nsets++] = pb->text + used;
         used += (size_t)snprintf(pb->text + used, pb->text_size - used, "%s=%s", g->axes[a].key, hy_grid_value(g, i, a)) + 1;
     }
@@ -748,12 +884,16 @@ static void run_point(const study *s, point_buf *pb, size_t i, int *kind, rowbuf
     hy_scene_run r;
     hy_error err = pb->scene_err;
     int loaded = 0, rc = pb->scene_rc, measured = i % (size_t)o->verify_every == 0;
-    if (!rc) { /* the parsed scene as the file + the user's --set, then this point's overrides */
+    if (!rc && pb->typed) { /* the decoded scene with this point's values written in */
+        for (size_t a = 0; a < g->naxes; a++)
+            typed_write(&pb->work, &pb->ta[a], hy_grid_coord(g, i, a));
+        rc = hy_scene_run_load_doc(&r, pb->scene, &pb->work, o->scene, hy_scene_policy_budget(&o->pol), &err);
+    } else if (!rc) { /* the parsed scene as the file + the user's --set, then this point's overrides */
         hy_scene_restore(pb->scene);
         for (size_t k = 0; k < nsets && !rc; k++)
             rc = hy_scene_set(pb->scene, pb->sets[k], &err);
     }
-    if (!rc)
+    if (!rc && !pb->typed)
         rc = hy_scene_run_load_marked(&r, pb->scene, pb->have_base ? &pb->base : NULL, o->scene,
                                       hy_scene_policy_budget(&o->pol), &err);
     if (!rc) {
@@ -808,6 +948,7 @@ static void *worker(void *arg)
     pb.text = malloc(pb.text_size);
     pb.log = fopen("/dev/null", "w");
     worker_scene(o, &pb);
+    typed_setup(o, &pb);
     pthread_mutex_lock(&s->mu);
     if (!pb.sets || !pb.text)
         s->io_error = 1;
@@ -841,6 +982,7 @@ static void *worker(void *arg)
     pthread_mutex_unlock(&s->mu);
     free(pb.sets);
     free(pb.text);
+    typed_free(o, &pb);
     if (pb.have_base)
         hy_scene_doc_free(&pb.base);
     hy_scene_free(pb.scene);

@@ -160,6 +160,7 @@ int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
 }
 
 static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err);
+static int build_decoded(hy_scene_run *r, hy_error *err);
 
 int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err)
 {
@@ -192,6 +193,19 @@ int hy_scene_run_load_marked(hy_scene_run *r, hy_scene *scene, const hy_scene_do
     r->scene = scene;
     r->scene_borrowed = 1;
     return build_run(r, base, err);
+}
+
+int hy_scene_run_load_doc(hy_scene_run *r, hy_scene *scene, const hy_scene_doc *doc, const char *path, double budget,
+                          hy_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->path = path;
+    r->budget = budget;
+    r->scene = scene;
+    r->scene_borrowed = 1;
+    r->doc = *doc;
+    r->doc_borrowed = 1;
+    return build_decoded(r, err);
 }
 
 /* A series' quantity, where written, is one the model draws. */
@@ -256,6 +270,13 @@ static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err)
         hy_scene_run_free(r);
         return rc;
     }
+    return build_decoded(r, err);
+}
+
+/* build_run's steps after decoding: model, input, panels, checks. */
+static int build_decoded(hy_scene_run *r, hy_error *err)
+{
+    int rc;
     r->figure_kind = r->doc.figure.kind;
     r->mtype = hy_scene_model_of(&r->doc.model);
     rc = check_quantities(r, err);
@@ -290,7 +311,8 @@ int hy_scene_run_load_text(hy_scene_run *r, const char *path, const char *text, 
 
 void hy_scene_run_free(hy_scene_run *r)
 {
-    hy_scene_doc_free(&r->doc);
+    if (!r->doc_borrowed)
+        hy_scene_doc_free(&r->doc);
     for (size_t i = 0; i < r->npanels; i++)
         hy_scene_run_free(&r->panels[i]);
     free(r->panels);
@@ -878,8 +900,7 @@ static void copy_err(hy_run_series *se, const gamma_solve *g)
 static void not_sampled(hy_run_series *se)
 {
     se->err = NAN;
-    snprintf(se->err_note, sizeof se->err_note, "%s", HY_NOT_SAMPLED);
-    se->err_ref = se->err_note;
+    se->err_ref = HY_NOT_SAMPLED; /* a literal: no formatting at the sweep's every point */
 }
 
 static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error *err)
