@@ -561,21 +561,23 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
             p->t[i] = p->t0 + (p->t1 - p->t0) * (double)i / (double)(p->npts - 1);
     }
     if (need_steady) {
-        double t0 = now();
+        double t0 = p->verbose ? now() : 0; /* timed for the plan only (the sweep's every point: no clock) */
         static const char *const mkeys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
         int rc = hy_steady_init(&r->steady, &r->model, &r->input, err);
         if (rc)
             return located(&r->doc.model.h, mkeys, err); /* at the key the message names, else at [model] */
         r->have_steady = 1;
-        plan_line(p, r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
+        if (p->verbose)
+            plan_line(p, r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
     }
     if (need_loops) {
-        double t0 = now();
+        double t0 = p->verbose ? now() : 0;
         int rc = hy_loops_find(&r->steady, &r->loops, err);
         if (rc)
             return rc;
         r->have_loops = 1;
-        plan_line(p, r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (now() - t0));
+        if (p->verbose)
+            plan_line(p, r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (now() - t0));
     }
     for (size_t i = 0; i < p->nsolves; i++) {
         int rc = hy_scene_run_check_cancel(r, err);
@@ -907,7 +909,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
 {
     size_t per = p->per_period;
     double T = r->input.period;
-    double t0 = now();
+    double t0 = p->verbose ? now() : 0; /* se->seconds is for the plan's log only */
     int rc = HY_OK;
     double mark_at = 0;
     se->err = NAN;
@@ -1037,7 +1039,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         else if (se->grid_n && !se->n) /* its one point measured */
             hy_verify_time(r, se, &at, &se->mark_y, 1);
     }
-    se->seconds = now() - t0;
+    se->seconds = p->verbose ? now() - t0 : 0;
     return rc;
 }
 

@@ -96,6 +96,7 @@ np_label="Fig. 15, table only, 10,000 points, \`-j 1\`, against a NumPy loop (me
 # processes under /usr/bin/time (Python's start and NumPy's import, about
 # 0.1 s, included: what a user pays); PAIR_ROUNDS rounds (default 3; 1 at
 # 1e6 points, where the loop alone takes 15 s or more), medians.
+# BENCH_SWEEP_RAW=FILE appends every run's "KIND POINTS wall user sys maxrss_kB load ..." to FILE.
 kinds="hv-csv hv-npy vec-csv vec-npy loop-csv"
 kind_label() {
     case $1 in
@@ -151,6 +152,7 @@ one() { # one KIND N: a timed run, "KIND N wall user sys rss" into $tmp/pt
     shift 2
     /usr/bin/time -f '%e %U %S %M' -o "$tmp/time" "$@" > /dev/null || fail "$k at $n points failed"
     echo "$k $n $(cat "$tmp/time")" >> "$tmp/pt"
+    [ -z "${BENCH_SWEEP_RAW:-}" ] || echo "$k $n $(cat "$tmp/time") load $(load)" >> "$BENCH_SWEEP_RAW"
 }
 "$hv" sweep "$fig15" --grid model.sigma0=1:100:log200 --grid input.umin2=0.1:0.5:50 --formats none -o "$tmp/hv" -q -j 1 ||
     fail "sweep failed"
@@ -173,8 +175,8 @@ for n in 10000 100000 1000000; do
         awk -v k=$k -v n=$n -v l="$(pair_label $k $n)" "$commas"'
             function med(a, m,  i, j, t) { for (i = 1; i <= m; i++) for (j = i + 1; j <= m; j++) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
                                             return m % 2 ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2 }
-            $1 == k && $2 == n { m++; w[m] = $3; c[m] = $4 + $5; r[m] = $6 }
-            END { W = med(w, m); C = med(c, m); R = med(r, m)
+            $1 == k && $2 == n { m++; aw[m] = $3; ac[m] = $4 + $5; ar[m] = $6 }
+            END { W = med(aw, m); C = med(ac, m); R = med(ar, m)
                   printf "| %s | %.2f s | %s | %s | %.1f MB |\n", l, W, c(n / (W > 0 ? W : 0.005)), c(n / (C > 0 ? C : 0.005)), R / 1024 }' "$tmp/pt"
     done
 done
