@@ -11,15 +11,56 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "hy_grid.h"
 #include "hy_out.h"
 #include "sweep_plot.h"
 
-void hy_sweep_shard_path(const char *dir, long k, long n, char *buf, size_t size)
+void hy_sweep_shard_path(const char *dir, long k, long n, const char *ext, char *buf, size_t size)
 {
-    snprintf(buf, size, "%s/sweep.shard-%ld-of-%ld.csv", dir, k, n);
+    snprintf(buf, size, "%s/sweep.shard-%ld-of-%ld.%s", dir, k, n, ext);
+}
+
+size_t hy_npy_header(const char *descr, size_t nrows, char *buf, size_t size)
+{
+    char dict[HY_NPY_HEAD_MAX];
+    int n = snprintf(dict, sizeof dict, "{'descr': %s, 'fortran_order': False, 'shape': (%zu,), }", descr, nrows);
+    if (n < 0 || (size_t)n + 1 >= sizeof dict)
+        return 0;
+    size_t total = (10 + (size_t)n + 1 + 63) / 64 * 64; /* magic, version, length, dict, '\n': 64-aligned */
+    if (total > size || total - 10 > 65535)
+        return 0;
+    size_t hl = total - 10;
+    memcpy(buf, "\x93NUMPY\x01\x00", 8);
+    buf[8] = (char)(hl & 0xff);
+    buf[9] = (char)(hl >> 8);
+    memcpy(buf + 10, dict, (size_t)n);
+    memset(buf + 10 + n, ' ', total - 11 - (size_t)n);
+    buf[total - 1] = '\n';
+    return total;
+}
+
+/* Reads an .npy v1.0 header from f: its descr text into descr (size bytes)
+ * and its row count; -1 if f holds none. */
+static int npy_read_header(FILE *f, char *descr, size_t size, size_t *nrows)
+{
+    unsigned char pre[10];
+    static char dict[65536];
+    if (fread(pre, 1, 10, f) != 10 || memcmp(pre, "\x93NUMPY\x01\x00", 8))
+        return -1;
+    size_t hl = pre[8] | (size_t)pre[9] << 8;
+    if (fread(dict, 1, hl, f) != hl)
+        return -1;
+    dict[hl] = 0;
+    const char *d = strstr(dict, "{'descr': "), *e = strstr(dict, ", 'fortran_order': False, 'shape': (");
+    if (d != dict || !e || (size_t)(e - d - 10) >= size ||
+        sscanf(e + 36, "%zu,)", nrows) != 1)
+        return -1;
+    memcpy(descr, d + 10, (size_t)(e - d - 10));
+    descr[e - d - 10] = 0;
+    return 0;
 }
 
 void hy_sweep_shard_head(FILE *f, long k, long n, size_t npoints, uint64_t hash, const char *rerun)
@@ -99,10 +140,11 @@ char *hy_sweep_shard_rerun(int argc, char **argv)
 
 /* The re-run text (see sweep_merge.h) of DIR's shard k/n into *cwd and
  * *args (quoted for sh; pointers into buf); 0 if it has none. */
-static int read_rerun(const char *dir, long k, long n, char *buf, size_t size, char **cwd, char **args)
+static int read_rerun(const char *dir, const char *ext, long k, long n, char *buf, size_t size, char **cwd,
+                      char **args)
 {
     char path[4400];
-    hy_sweep_shard_path(dir, k, n, path, sizeof path);
+    hy_sweep_shard_path(dir, k, n, ext, path, sizeof path);
     FILE *f = fopen(path, "r");
     if (!f)
         return 0;
@@ -174,14 +216,14 @@ static void print_reruns(long n, const unsigned char *present, long missing, con
 
 /* When a present shard's manifest tells how it was run, prints the commands
  * that re-run the missing ones, else the general advice. */
-static void rerun_help(const char *dir, long n, const unsigned char *present, long missing)
+static void rerun_help(const char *dir, const char *ext, long n, const unsigned char *present, long missing)
 {
     long any = 0;
     while (any < n && !present[any])
         any++;
     static char line[65536];
     char *cwd, *args;
-    if (any < n && read_rerun(dir, any, n, line, sizeof line, &cwd, &args))
+    if (any < n && read_rerun(dir, ext, any, n, line, sizeof line, &cwd, &args))
         print_reruns(n, present, missing, cwd, args);
     else
         fprintf(stderr, "  (run the same `hystviz sweep ... --shard K/%ld` for each, then merge again)\n", n);
@@ -189,11 +231,13 @@ static void rerun_help(const char *dir, long n, const unsigned char *present, lo
 
 /* The N of DIR's shard manifests, checked complete; 2 with a message when
  * there are none, several splits or missing shards. */
-static int find_shards(const char *dir, long *nshards)
+static int find_shards(const char *dir, const char *ext, long *nshards)
 {
     unsigned char *present = NULL;
     hy_error err = {0};
-    if (hy_shard_find(dir, "sweep.shard-", ".csv", nshards, &present, &err)) {
+    char suffix[8];
+    snprintf(suffix, sizeof suffix, ".%s", ext);
+    if (hy_shard_find(dir, "sweep.shard-", suffix, nshards, &present, &err)) {
         fprintf(stderr, "hystviz sweep --merge: %s\n", err.msg);
         return 2;
     }
@@ -201,7 +245,7 @@ static int find_shards(const char *dir, long *nshards)
     long missing = hy_shard_missing(*nshards, present, list, sizeof list);
     if (missing) {
         fprintf(stderr, "hystviz sweep --merge: %s: %ld of %ld shards missing:%s\n", dir, missing, *nshards, list);
-        rerun_help(dir, *nshards, present, missing);
+        rerun_help(dir, ext, *nshards, present, missing);
     }
     free(present);
     return missing ? 2 : 0;
@@ -212,16 +256,48 @@ typedef struct shard_in {
     char path[4400];
 } shard_in;
 
+/* The table being merged: CSV, or .npy with its descr and record size. */
+typedef struct merge_fmt {
+    const char *ext;      /* "csv" or "npy" */
+    int npy;
+    size_t rec;           /* .npy: bytes a row */
+} merge_fmt;
+
+/* The .npy header of shard k/n of a study of p points: its descr into *line
+ * (the same as shard 0's, *line then being first's copy, is checked by the
+ * caller) and the record size from the file's size; nonzero if damaged. */
+static int npy_shard_header(shard_in *in, long k, long n, size_t p, char **line, size_t *cap, merge_fmt *fm)
+{
+    if (*cap < 60000) {
+        char *nl = realloc(*line, 60000);
+        if (!nl)
+            return -1;
+        *line = nl;
+        *cap = 60000;
+    }
+    size_t rows, mine = hy_shard_count(p, k, n);
+    struct stat st;
+    if (npy_read_header(in[k].f, *line, *cap, &rows) || rows != mine || fstat(fileno(in[k].f), &st))
+        return -1;
+    long here = ftell(in[k].f);
+    size_t data = (size_t)st.st_size - (size_t)here, rec = mine ? data / mine : fm->rec;
+    if (here < 0 || (mine && (data % mine || rec < 9 || (fm->rec && rec != fm->rec))))
+        return -1;
+    if (mine)
+        fm->rec = rec;
+    return 0;
+}
+
 /* Opens every shard and checks its first line and header against shard 0's;
  * *npoints gets the study's point count.  2 with a message on a mismatch. */
-static int open_shards(const char *dir, long n, shard_in *in, char **header, size_t *npoints)
+static int open_shards(const char *dir, long n, shard_in *in, char **header, size_t *npoints, merge_fmt *fm)
 {
     char *line = NULL, *first = NULL;
     size_t cap = 0;
     uint64_t hash0 = 0;
     int rc = 0;
     for (long k = 0; k < n && !rc; k++) {
-        hy_sweep_shard_path(dir, k, n, in[k].path, sizeof in[k].path);
+        hy_sweep_shard_path(dir, k, n, fm->ext, in[k].path, sizeof in[k].path);
         if (!(in[k].f = fopen(in[k].path, "r"))) {
             fprintf(stderr, "hystviz sweep --merge: cannot open '%s': %s%s\n", in[k].path, strerror(errno),
                     errno == EMFILE ? " (raise the limit of open files: ulimit -n)" : "");
@@ -242,7 +318,8 @@ static int open_shards(const char *dir, long n, shard_in *in, char **header, siz
                     "options or version): re-run shard %ld/%ld with the same command\n",
                     in[k].path, n, k, n);
             rc = 2;
-        } else if (getline(&line, &cap, in[k].f) < 0 || (k && strcmp(line, first))) {
+        } else if ((fm->npy ? npy_shard_header(in, k, n, p, &line, &cap, fm) : getline(&line, &cap, in[k].f) < 0) ||
+                   (k && strcmp(line, first))) {
             fprintf(stderr, "hystviz sweep --merge: '%s': its table header is missing or differs from shard 0/%ld\n",
                     in[k].path, n);
             rc = 2;
@@ -290,6 +367,70 @@ static int join_rows(const char *dir, long n, shard_in *in, size_t npoints, FILE
     return rc;
 }
 
+/* .npy: copies record i from shard i mod n into out, checking its index;
+ * counts statuses (the byte after the index). */
+static int join_records(long n, shard_in *in, size_t npoints, size_t rec, FILE *out, size_t count[3])
+{
+    unsigned char *b = malloc(rec ? rec : 1);
+    int rc = b ? 0 : 1;
+    for (size_t i = 0; i < npoints && !rc; i++) {
+        shard_in *s = &in[i % (size_t)n];
+        uint64_t idx = 0;
+        if (fread(b, 1, rec, s->f) == rec)
+            for (int k = 7; k >= 0; k--)
+                idx = idx << 8 | b[k];
+        if (idx != i || b[8] > 2) {
+            fprintf(stderr, "hystviz sweep --merge: '%s' is incomplete or damaged at point %zu: re-run that shard\n",
+                    s->path, i);
+            rc = 2;
+            break;
+        }
+        count[b[8]]++;
+        if (fwrite(b, 1, rec, out) != rec)
+            rc = 1;
+    }
+    for (long k = 0; k < n && !rc; k++)
+        if (fgetc(in[k].f) != EOF) {
+            fprintf(stderr, "hystviz sweep --merge: '%s' has more rows than its share of %zu points\n", in[k].path,
+                    npoints);
+            rc = 2;
+        }
+    free(b);
+    return rc;
+}
+
+/* Whether DIR holds a sweep.npy whose rows are whole and numbered; counts
+ * them and their statuses (may be NULL). */
+static int merged_before_npy(const char *dir, size_t *npoints, size_t count[3])
+{
+    char path[4400], descr[8];
+    snprintf(path, sizeof path, "%s/sweep.npy", dir);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return 0;
+    static char d[65536];
+    size_t rows = 0, c[3] = {0, 0, 0};
+    struct stat st;
+    int ok = !npy_read_header(f, d, sizeof d, &rows) && rows > 0 && !fstat(fileno(f), &st);
+    long here = ok ? ftell(f) : -1;
+    size_t data = here >= 0 ? (size_t)st.st_size - (size_t)here : 0, rec = rows ? data / rows : 0;
+    ok = ok && here >= 0 && data % rows == 0 && rec >= 9;
+    unsigned char head[9];
+    for (size_t i = 0; ok && i < rows; i++) {
+        ok = fseek(f, here + (long)(i * rec), SEEK_SET) == 0 && fread(head, 1, 9, f) == 9 && head[0] == (i & 0xff) &&
+             head[8] <= 2;
+        if (ok)
+            c[head[8]]++;
+    }
+    (void)descr;
+    fclose(f);
+    if (ok && npoints)
+        *npoints = rows;
+    for (int k = 0; ok && count && k < 3; k++)
+        count[k] = c[k];
+    return ok;
+}
+
 /* Whether DIR holds the sweep.csv a merge (or an unsharded run) wrote, its
  * rows well formed; counts them and their statuses (may be NULL). */
 static int merged_before(const char *dir, size_t *npoints, size_t count[3])
@@ -320,14 +461,15 @@ static int merged_before(const char *dir, size_t *npoints, size_t count[3])
     return ok;
 }
 
-/* Whether DIR holds any sweep shard manifest (sweep.shard-*.csv). */
-static int has_shards(const char *dir)
+/* Whether DIR holds any sweep shard manifest of ext (sweep.shard-*.csv, .npy). */
+static int has_shards(const char *dir, const char *ext)
 {
     DIR *d = opendir(dir);
     int found = 0;
     for (struct dirent *de; d && !found && (de = readdir(d));) {
         size_t n = strlen(de->d_name);
-        found = !strncmp(de->d_name, "sweep.shard-", 12) && n > 16 && !strcmp(de->d_name + n - 4, ".csv");
+        found = !strncmp(de->d_name, "sweep.shard-", 12) && n > 16 && de->d_name[n - 4] == '.' &&
+                !strcmp(de->d_name + n - 3, ext);
     }
     if (d)
         closedir(d);
@@ -337,27 +479,35 @@ static int has_shards(const char *dir)
 /* A merge run again after one that joined (and removed) the manifests: the
  * same sweep.csv, summary figure and exit status (issue 20 item 11: it
  * failed with "no shard manifests"). */
-static int merge_again(const char *dir, const char *plot, int quiet)
+static int merge_again(const char *dir, const char *plot, int quiet, int npy)
 {
     size_t npoints = 0, count[3] = {0, 0, 0};
-    merged_before(dir, &npoints, count);
+    if (npy)
+        merged_before_npy(dir, &npoints, count);
+    else
+        merged_before(dir, &npoints, count);
     hy_error perr = {0};
     if (plot && hy_sweep_plot(dir, plot, &perr)) {
         fprintf(stderr, "hystviz sweep --merge: %s\n", perr.msg);
         return perr.code == HY_EINVAL ? 2 : 1;
     }
     if (!quiet)
-        fprintf(stderr, "sweep --merge: already merged, %zu points: %zu ok, %zu invalid, %zu failed; %s/sweep.csv\n",
-                npoints, count[0], count[1], count[2], dir);
+        fprintf(stderr, "sweep --merge: already merged, %zu points: %zu ok, %zu invalid, %zu failed; %s/sweep.%s\n",
+                npoints, count[0], count[1], count[2], dir, npy ? "npy" : "csv");
     return count[1] ? 2 : count[2] ? 1 : 0;
 }
 
 int hy_sweep_merge(const char *dir, const char *plot, int quiet)
 {
     long n = 0;
-    if (!has_shards(dir) && merged_before(dir, NULL, NULL))
-        return merge_again(dir, plot, quiet);
-    int rc = find_shards(dir, &n);
+    merge_fmt fm = {"csv", 0, 0};
+    if (!has_shards(dir, "csv") && has_shards(dir, "npy"))
+        fm = (merge_fmt){"npy", 1, 0};
+    else if (!has_shards(dir, "csv") && merged_before(dir, NULL, NULL))
+        return merge_again(dir, plot, quiet, 0);
+    else if (!has_shards(dir, "csv") && merged_before_npy(dir, NULL, NULL))
+        return merge_again(dir, plot, quiet, 1);
+    int rc = find_shards(dir, fm.ext, &n);
     if (rc)
         return rc;
     struct rlimit rl; /* every shard is open at once: allow that many files */
@@ -372,9 +522,13 @@ int hy_sweep_merge(const char *dir, const char *plot, int quiet)
     }
     char *header = NULL;
     size_t npoints = 0, count[3] = {0, 0, 0};
-    rc = open_shards(dir, n, in, &header, &npoints);
+    rc = open_shards(dir, n, in, &header, &npoints, &fm);
     char path[4400];
-    snprintf(path, sizeof path, "%s/sweep.csv", dir);
+    snprintf(path, sizeof path, "%s/sweep.%s", dir, fm.ext);
+    if (!rc && fm.npy && plot) {
+        fprintf(stderr, "hystviz sweep --merge: --plot reads a CSV table: this study's table is .npy\n");
+        rc = 2;
+    }
     hy_out o;
     hy_error err = {0};
     int opened = 0;
@@ -384,9 +538,15 @@ int hy_sweep_merge(const char *dir, const char *plot, int quiet)
     } else if (!rc)
         opened = 1;
     FILE *out = opened ? hy_out_file(&o) : NULL;
-    if (!rc && fputs(header, out) < 0)
+    if (!rc && fm.npy) {
+        static char head[65536 + 64];
+        size_t hl = hy_npy_header(header, npoints, head, sizeof head);
+        rc = !hl || fwrite(head, 1, hl, out) != hl;
+        if (!rc)
+            rc = join_records(n, in, npoints, fm.rec, out, count);
+    } else if (!rc && fputs(header, out) < 0)
         rc = 1;
-    if (!rc)
+    else if (!rc)
         rc = join_rows(dir, n, in, npoints, out, count);
     if (opened && rc)
         hy_out_abort(&o);

@@ -5,7 +5,10 @@
  * A shard manifest DIR/sweep.shard-K-of-N.csv is the first line
  *     # hystviz sweep shard K/N points P study HASH
  * then the table header and the rows of points K, K + N, K + 2N, ... in that
- * order, exactly as sweep.csv holds them.  It is written whole (temporary
+ * order, exactly as sweep.csv holds them.  With --table npy it is
+ * DIR/sweep.shard-K-of-N.npy: the same first line, then an .npy file of
+ * those rows (its shape the shard's row count); the merge writes sweep.npy
+ * with shape (P,) and the records in point order.  It is written whole (temporary
  * name, renamed when the shard is done), so a killed shard leaves none.
  * The first line may go on with "\tCWD\tsweep ARGS": the shard's working
  * directory and arguments (without -j and --shard), quoted for sh, from
@@ -18,8 +21,16 @@
 #include <stdint.h>
 #include <stdio.h>
 
-/* DIR/sweep.shard-K-of-N.csv into buf. */
-void hy_sweep_shard_path(const char *dir, long k, long n, char *buf, size_t size);
+/* DIR/sweep.shard-K-of-N.EXT into buf (EXT: csv, npy). */
+void hy_sweep_shard_path(const char *dir, long k, long n, const char *ext, char *buf, size_t size);
+
+/* The longest .npy header dictionary (v1.0: its length is 16 bits). */
+#define HY_NPY_HEAD_MAX 65000
+
+/* An .npy v1.0 header (magic, version, length, the dict with descr, not
+ * Fortran order, shape (nrows,), padded with spaces and '\n' to a multiple
+ * of 64 bytes) into buf; its length, 0 if it would not fit size or 64 KiB. */
+size_t hy_npy_header(const char *descr, size_t nrows, char *buf, size_t size);
 
 /* The re-run text of a shard run with argv ("sweep" ARGS...): "\tCWD\tsweep
  * ARGS" quoted for sh, without -j/--jobs N and --shard K/N; NULL when the

@@ -162,6 +162,7 @@ int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
 }
 
 static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err);
+static int build_decoded(hy_scene_run *r, hy_error *err);
 
 int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err)
 {
@@ -194,6 +195,19 @@ int hy_scene_run_load_marked(hy_scene_run *r, hy_scene *scene, const hy_scene_do
     r->scene = scene;
     r->scene_borrowed = 1;
     return build_run(r, base, err);
+}
+
+int hy_scene_run_load_doc(hy_scene_run *r, hy_scene *scene, const hy_scene_doc *doc, const char *path, double budget,
+                          hy_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->path = path;
+    r->budget = budget;
+    r->scene = scene;
+    r->scene_borrowed = 1;
+    r->doc = *doc;
+    r->doc_borrowed = 1;
+    return build_decoded(r, err);
 }
 
 /* A series' quantity, where written, is one the model draws. */
@@ -258,6 +272,13 @@ static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err)
         hy_scene_run_free(r);
         return rc;
     }
+    return build_decoded(r, err);
+}
+
+/* build_run's steps after decoding: model, input, panels, checks. */
+static int build_decoded(hy_scene_run *r, hy_error *err)
+{
+    int rc;
     r->figure_kind = r->doc.figure.kind;
     r->mtype = hy_scene_model_of(&r->doc.model);
     rc = check_quantities(r, err);
@@ -296,7 +317,8 @@ int hy_scene_run_load_text(hy_scene_run *r, const char *path, const char *text, 
 
 void hy_scene_run_free(hy_scene_run *r)
 {
-    hy_scene_doc_free(&r->doc);
+    if (!r->doc_borrowed)
+        hy_scene_doc_free(&r->doc);
     for (size_t i = 0; i < r->npanels; i++)
         hy_scene_run_free(&r->panels[i]);
     free(r->panels);
@@ -553,21 +575,23 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
             p->t[i] = p->t0 + (p->t1 - p->t0) * (double)i / (double)(p->npts - 1);
     }
     if (need_steady) {
-        double t0 = now();
+        double t0 = p->verbose ? now() : 0; /* timed for the plan only (the sweep's every point: no clock) */
         static const char *const mkeys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
         int rc = hy_steady_init(&r->steady, &r->model, &r->input, err);
         if (rc)
             return located(&r->doc.model.h, mkeys, err); /* at the key the message names, else at [model] */
         r->have_steady = 1;
-        plan_line(p, r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
+        if (p->verbose)
+            plan_line(p, r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
     }
     if (need_loops) {
-        double t0 = now();
+        double t0 = p->verbose ? now() : 0;
         int rc = hy_loops_find(&r->steady, &r->loops, err);
         if (rc)
             return rc;
         r->have_loops = 1;
-        plan_line(p, r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (now() - t0));
+        if (p->verbose)
+            plan_line(p, r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (now() - t0));
     }
     for (size_t i = 0; i < p->nsolves; i++) {
         int rc = hy_scene_run_check_cancel(r, err);
@@ -892,15 +916,14 @@ static void copy_err(hy_run_series *se, const gamma_solve *g)
 static void not_sampled(hy_run_series *se)
 {
     se->err = NAN;
-    snprintf(se->err_note, sizeof se->err_note, "%s", HY_NOT_SAMPLED);
-    se->err_ref = se->err_note;
+    se->err_ref = HY_NOT_SAMPLED; /* a literal: no formatting at the sweep's every point */
 }
 
 static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error *err)
 {
     size_t per = p->per_period;
     double T = r->input.period;
-    double t0 = now();
+    double t0 = p->verbose ? now() : 0; /* se->seconds is for the plan's log only */
     int rc = HY_OK;
     double mark_at = 0;
     se->err = NAN;
@@ -1032,7 +1055,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
         else if (se->grid_n && !se->n) /* its one point measured */
             hy_verify_time(r, se, &at, &se->mark_y, 1);
     }
-    se->seconds = now() - t0;
+    se->seconds = p->verbose ? now() - t0 : 0;
     return rc;
 }
 

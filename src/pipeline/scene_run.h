@@ -129,6 +129,7 @@ typedef struct hy_scene_run {
                                * curvature bound needs (HY_THIN_TOL), unless
                                * [figure] full_resolution                       */
     int scene_borrowed;       /* scene belongs to the caller (not freed)          */
+    int doc_borrowed;         /* doc's section arrays belong to the caller        */
     int (*cancelled)(void *); /* set before compute (may be NULL): polled between
                                * the steps of compute and render (each gamma
                                * solve, each series, the Newmark run, before
@@ -156,6 +157,13 @@ int hy_scene_run_load_policy(hy_scene_run *r, const char *path, char *const *set
  * and unchanged); budget as hy_scene_policy_budget gives it.  On error r is
  * freed (not the scene). */
 int hy_scene_run_load_scene(hy_scene_run *r, hy_scene *scene, const char *path, double budget, hy_error *err);
+
+/* As hy_scene_run_load_scene with the scene already decoded by the caller:
+ * doc is what hy_scene_decode gives for scene (hystviz sweep writes its grid
+ * values into a copy of the decoded fields); its section arrays are lent,
+ * never freed nor changed by the run. */
+int hy_scene_run_load_doc(hy_scene_run *r, hy_scene *scene, const hy_scene_doc *doc, const char *path, double budget,
+                          hy_error *err);
 
 /* As hy_scene_run_load_scene on a scene marked (hy_scene_mark) when base was
  * decoded from it and since changed only by overrides: the run's doc is base

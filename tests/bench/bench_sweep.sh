@@ -90,15 +90,34 @@ run "… 1,000,000 points, \`-j 2\`" 1000000 "${fig15:-}" --grid model.sigma0=1:
 # ---- paired with the NumPy loop --------------------------------------------
 # the issue's grid: 200 x 50 = 10,000 points
 np_label="Fig. 15, table only, 10,000 points, \`-j 1\`, against a NumPy loop (median of alternating runs)"
+# ---- issue 37: table only at 1e4, 1e5, 1e6 points, CSV and .npy, paired ----
+# One round is, in turn: hystviz CSV, hystviz .npy, NumPy vectorised CSV
+# (np.savetxt) and .npy (np.save), the Python loop CSV (np_sweep.py), all whole
+# processes under /usr/bin/time (Python's start and NumPy's import, about
+# 0.1 s, included: what a user pays); PAIR_ROUNDS rounds (default 3; 1 at
+# 1e6 points, where the loop alone takes 15 s or more), medians.
+# BENCH_SWEEP_RAW=FILE appends every run's "KIND POINTS wall user sys maxrss_kB load ..." to FILE.
+kinds="hv-csv hv-npy vec-csv vec-npy loop-csv"
+kind_label() {
+    case $1 in
+    hv-csv) echo "CSV: hystviz \`-j 1\`" ;;
+    hv-npy) echo ".npy: hystviz \`--table npy\`, \`-j 1\`" ;;
+    vec-csv) echo "CSV: NumPy vectorised over the grid (\`np.savetxt\` %.17g)" ;;
+    vec-npy) echo ".npy: NumPy vectorised over the grid (\`np.save\`)" ;;
+    loop-csv) echo "CSV: Python loop (\`np_sweep.py\`)" ;;
+    esac
+}
+pair_label() { echo "Fig. 15 table only, $(echo $2 | awk "$commas"'{ print c($1) }') points, $(kind_label $1)"; }
 if [ $labels_only = 1 ]; then
     echo "$np_label"
+    for n in 10000 100000 1000000; do for k in $kinds; do pair_label $k $n; done; done
     exit 0
 fi
 /usr/bin/python3 -c 'import numpy' 2> /dev/null || fail "python3-numpy is missing (apt-get install python3-numpy)"
 grid="--grid model.sigma0=1:100:log200 --grid input.umin2=0.1:0.5:50"
 "$hv" sweep "$fig15" $grid --formats none -o "$tmp/hv" -q -j 1 || fail "the NumPy grid: sweep failed"
-/usr/bin/python3 "$here/np_sweep.py" 1 100 200 0.1 0.5 50 "$tmp/np.csv" "$tmp/hv/sweep.csv" > "$tmp/check" ||
-    fail "np_sweep: $(cat "$tmp/check")"
+/usr/bin/python3 "$here/np_sweep.py" 1 100 200 0.1 0.5 50 "$tmp/np.csv" "$tmp/hv/sweep.csv" > "$tmp/check1" ||
+    fail "np_sweep: $(cat "$tmp/check1")"
 : > "$tmp/pairs"
 r=0
 while [ $r -lt "$rounds" ]; do # alternating: hystviz, NumPy, hystviz, ...
@@ -115,5 +134,53 @@ awk -v l="$np_label" "$commas"'
     { n++; hw[n] = $1; hc[n] = $2 + $3; nw[n] = $4; nc[n] = $5; rw[n] = $1 / $4; rc[n] = ($2 + $3) / $5; ld = ld " " $6 }
     END { w = med(hw, n); cpu = med(hc, n); printf "| %s | %.3f s | %s | %s | (NumPy loop %.3f s wall, %.3f s CPU; ratio hystviz/NumPy %.2f wall, %.2f CPU) |\n",
               l, w, c(10000 / w), c(10000 / cpu), med(nw, n), med(nc, n), med(rw, n), med(rc, n)
-          printf "\n%d alternating pairs; load (1 min) at each: %s\n", n, ld }' "$tmp/pairs"
-cat "$tmp/check"
+          printf "\n%d alternating pairs; load (1 min) at each: %s\n", n, ld > "/dev/stderr" }' "$tmp/pairs" 2> "$tmp/pairs.txt"
+
+one() { # one KIND N: a timed run, "KIND N wall user sys rss" into $tmp/pt
+    ns=$(($2 / 50))
+    g="--grid model.sigma0=1:100:log$ns --grid input.umin2=0.1:0.5:50"
+    rm -rf "$tmp/p"
+    case $1 in
+    hv-csv) set -- "$1" "$2" "$hv" sweep "$fig15" $g --formats none -o "$tmp/p" -q -j 1 ;;
+    hv-npy) set -- "$1" "$2" "$hv" sweep "$fig15" $g --formats none -o "$tmp/p" -q -j 1 --table npy ;;
+    vec-csv) set -- "$1" "$2" /usr/bin/python3 "$here/np_sweep.py" --vector csv 1 100 $ns 0.1 0.5 50 "$tmp/p.out" ;;
+    vec-npy) set -- "$1" "$2" /usr/bin/python3 "$here/np_sweep.py" --vector npy 1 100 $ns 0.1 0.5 50 "$tmp/p.out" ;;
+    loop-csv) set -- "$1" "$2" /usr/bin/python3 "$here/np_sweep.py" 1 100 $ns 0.1 0.5 50 "$tmp/p.out" ;;
+    esac
+    k=$1
+    n=$2
+    shift 2
+    /usr/bin/time -f '%e %U %S %M' -o "$tmp/time" "$@" > /dev/null || fail "$k at $n points failed"
+    echo "$k $n $(cat "$tmp/time")" >> "$tmp/pt"
+    [ -z "${BENCH_SWEEP_RAW:-}" ] || echo "$k $n $(cat "$tmp/time") load $(load)" >> "$BENCH_SWEEP_RAW"
+}
+"$hv" sweep "$fig15" --grid model.sigma0=1:100:log200 --grid input.umin2=0.1:0.5:50 --formats none -o "$tmp/hv" -q -j 1 ||
+    fail "sweep failed"
+/usr/bin/python3 "$here/np_sweep.py" --vector csv 1 100 200 0.1 0.5 50 "$tmp/v.csv" "$tmp/hv/sweep.csv" > "$tmp/check" ||
+    fail "np_sweep --vector: $(cat "$tmp/check")"
+cat "$tmp/check" >> "$tmp/check1"
+: > "$tmp/pt"
+l0=$(load)
+for n in 10000 100000 1000000; do
+    rr=${PAIR_ROUNDS:-3}
+    [ $n -lt 1000000 ] || rr=1
+    r=0
+    while [ $r -lt $rr ]; do
+        for k in $kinds; do one $k $n; done
+        r=$((r + 1))
+    done
+done
+for n in 10000 100000 1000000; do
+    for k in $kinds; do
+        awk -v k=$k -v n=$n -v l="$(pair_label $k $n)" "$commas"'
+            function med(a, m,  i, j, t) { for (i = 1; i <= m; i++) for (j = i + 1; j <= m; j++) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
+                                            return m % 2 ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2 }
+            $1 == k && $2 == n { m++; aw[m] = $3; ac[m] = $4 + $5; ar[m] = $6 }
+            END { W = med(aw, m); C = med(ac, m); R = med(ar, m)
+                  printf "| %s | %.2f s | %s | %s | %.1f MB |\n", l, W, c(n / (W > 0 ? W : 0.005)), c(n / (C > 0 ? C : 0.005)), R / 1024 }' "$tmp/pt"
+    done
+done
+echo
+cat "$tmp/pairs.txt"
+echo "issue 37 rows: ${PAIR_ROUNDS:-3} alternating rounds (1 at 1,000,000 points), medians, whole processes; load (1, 5, 15 min) before: $l0, after: $(load)"
+cat "$tmp/check1"
