@@ -30,6 +30,7 @@
 #include "hy_jobs.h"
 #include "hy_out.h"
 #include "hy_plot.h"
+#include "hy_scene_schema.h"
 #include "scene_run.h"
 
 /* The most points one page holds (a slider per key, every figure inside). */
@@ -227,6 +228,23 @@ static int parse_opts(int argc, char **argv, export_opts *o)
 
 /* ---- the study ---------------------------------------------------------- */
 
+/* The schema's entry of a --grid key (SECTION.KEY or SECTION.NAME.KEY), or
+ * NULL: its symbol and unit label the page's slider as serve's are. */
+static const hy_scene_key_spec *grid_key_spec(const char *full)
+{
+    char sec[64];
+    size_t n = strcspn(full, ".");
+    if (n >= sizeof sec || !full[n])
+        return NULL;
+    memcpy(sec, full, n);
+    sec[n] = 0;
+    int si = hy_scene_schema_section(sec), ki = si < 0 ? -1 : hy_scene_schema_key(si, strrchr(full, '.') + 1);
+    if (ki < 0)
+        return NULL;
+    size_t ns;
+    return &hy_scene_schema(&ns)[si].keys[ki];
+}
+
 /* Checks the scene loads with the user's --set and writes the page's
  * description (JSON) into *meta and the scene's content hash; 2 on bad
  * input (message printed). */
@@ -282,6 +300,12 @@ static int describe(const export_opts *o, char **meta, uint64_t *hash)
         const hy_grid_axis *ax = &o->grid.axes[a];
         fputs(a ? ",{\"key\":" : "{\"key\":", f);
         exp_json_str(f, ax->key, strlen(ax->key));
+        const hy_scene_key_spec *k = grid_key_spec(ax->key);
+        const char *sym = k && k->symbol ? k->symbol : "", *unit = k && k->unit ? k->unit : "";
+        fputs(",\"sym\":", f);
+        exp_json_str(f, sym, strlen(sym));
+        fputs(",\"unit\":", f);
+        exp_json_str(f, unit, strlen(unit));
         fputs(",\"values\":[", f);
         for (size_t v = 0; v < ax->nvalues; v++) {
             fputs(v ? "," : "", f);

@@ -93,7 +93,7 @@ WRAP = r"""(() => {
 
 def viewport(dt, w, h, mobile=False):
     dt.call("Emulation.setDeviceMetricsOverride", width=w, height=h, deviceScaleFactor=1, mobile=mobile)
-    dt.call("Emulation.setTouchEmulationEnabled", enabled=mobile, maxTouchPoints=1 if mobile else 0)
+    dt.call("Emulation.setTouchEmulationEnabled", enabled=mobile, maxTouchPoints=1)
 
 
 def open_clip(dt, base, frag, what):
@@ -114,7 +114,9 @@ def has_gl(hv, tmp):
 
 def test_undecodable(dt, base):
     viewport(dt, 1024, 768)
-    if not check(open_clip(dt, base, CLIP, "the clip"), f"{CLIP} opens on frame 0"):
+    ok = open_clip(dt, base, CLIP, "the clip")
+    check(ok, f"{CLIP} opens on frame 0")
+    if not ok:
         return
     dt.js(WRAP)
     dt.js("document.getElementById('play').click()")
@@ -152,7 +154,9 @@ def test_present_anim(dt, base, shots):
         viewport(dt, w, h, mobile)
         for frag in (CLIP, SCENE_CLIP):
             tag = f"{w}x{h} {frag}"
-            if not check(open_clip(dt, base, frag + "?view=present", tag), f"{tag}: opens in the presentation view"):
+            ok = open_clip(dt, base, frag + "?view=present", tag)
+            check(ok, f"{tag}: opens in the presentation view")
+            if not ok:
                 continue
             dt.wait("document.getElementById('frame').style.width !== ''", 10, "the frame fitted")
             c = rect(dt, "#frame")
@@ -288,8 +292,9 @@ def test_compare(dt, hv, base, scenes, tmp):
     settled(dt, "stopped")
     v0 = float(dt.js("hv.sets['model.sigma0']"))
     press(dt, ".", "Period")
-    check(dt.wait(f"+hv.sets['model.sigma0'] !== {v0} && !hv.inflight", 20, ". steps"),
-          f". steps the slider played last: sigma0 {v0} -> {dt.js('hv.sets[\"model.sigma0\"]')}")
+    ok = dt.wait(f"+hv.sets['model.sigma0'] !== {v0} && !hv.inflight", 20, ". steps")
+    v1 = dt.js("hv.sets['model.sigma0']")
+    check(ok, f". steps the slider played last: sigma0 {v0} -> {v1}")
     settled(dt, "stepped")
     # key 7: this scene has 3 presets
     press(dt, "7", "Digit7")

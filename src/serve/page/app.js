@@ -651,13 +651,14 @@ function holdAxes(on) {
 }
 
 // the limits the server draws with KEY=VALUE (the others as now, the axes free)
-async function limitsAt(key, value) {
+async function limitsAt(key, value, tag) {
   let q = 'scene=' + enc(hv.info.file);
   for (const [k, v] of Object.entries(hv.sets))
     if (k !== key && k !== 'figure.xlim' && k !== 'figure.ylim') q += '&set=' + enc(k + '=' + v);
   q += '&set=' + enc(key + '=' + value);
   try {
-    const r = await fetch('/api/render?' + q + '&fmt=json&page=' + hv.page + 'l&seq=' + (++hv.seq));
+    // a page id of its own each (both render side by side; neither replaces the figure's request)
+    const r = await fetch('/api/render?' + q + '&fmt=json&page=' + hv.page + 'l' + tag + '&seq=' + (hv.limSeq = (hv.limSeq || 0) + 1));
     if (r.status !== 200) return null;
     return (await r.json()).map || null;
   } catch (e) { return null; }
@@ -670,9 +671,10 @@ async function holdForRange(key) {
   if (!c) return;
   hv.holding = true;
   const now = hv.map, file = hv.info.file;
-  const [a, b] = await Promise.all([limitsAt(key, valueAt(c, 0)), limitsAt(key, valueAt(c, 1000))]);
+  const [a, b] = await Promise.all([limitsAt(key, valueAt(c, 0), 0), limitsAt(key, valueAt(c, 1000), 1)]);
   hv.holding = false;
-  if (!hv.info || hv.info.file !== file || hv.axesHeld) return;
+  // still playing that slider (stopped meanwhile: the figure stays as it is)
+  if (!hv.info || hv.info.file !== file || hv.axesHeld || !hv.sliderPlay || hv.sliderPlay.key !== key) return;
   const u = { xlo: now.xlo, xhi: now.xhi, ylo: now.ylo, yhi: now.yhi, xlog: now.xlog, ylog: now.ylog };
   for (const m of [a, b]) if (m && m.xlog === u.xlog && m.ylog === u.ylog) {
     u.xlo = Math.min(u.xlo, m.xlo); u.xhi = Math.max(u.xhi, m.xhi);
