@@ -517,9 +517,35 @@ function curvesOf(svgText) {
   });
 }
 
-// "σ0 = 6, u_min,2 = 0.3": the main controls' values now
-function pinLabel() {
-  return mainControls(hv.info).map(c => ctlName(c) + ' = ' + curOf(c)).join(', ');
+// "σ0 = 6, u_min,2 = 0.3": the main controls' values now (parts: [symbol markup, plain name, value])
+function pinParts() {
+  return mainControls(hv.info).map(c => [c.sym, ctlName(c), curOf(c)]);
+}
+// the label as nodes: each symbol typeset as its slider's label (HTML: sub/sup; SVG: tspans)
+function pinNodes(parts, svg) {
+  const out = [];
+  parts.forEach(([sym, name, v], k) => {
+    if (k) out.push(', ');
+    if (!sym) out.push(name);
+    else if (!svg) out.push(typeset(sym));
+    else {
+      const re = /([_^])(?:\{([^}]*)\}|(.))/gu;
+      let last = 0, m;
+      while ((m = re.exec(sym))) {
+        if (m.index > last) out.push(sym.slice(last, m.index));
+        const t = document.createElementNS('http://www.w3.org/2000/svg', 'tspan');
+        t.setAttribute('baseline-shift', m[1] === '_' ? 'sub' : 'super');
+        t.setAttribute('font-size', '70%');
+        t.setAttribute('font-style', 'normal');
+        t.textContent = m[2] !== undefined ? m[2] : m[3];
+        out.push(t); // baseline-shift is the tspan's own: the text after it is on the baseline
+        last = re.lastIndex;
+      }
+      if (last < sym.length) out.push(sym.slice(last));
+    }
+    out.push(' = ' + v);
+  });
+  return out;
 }
 
 // a colour of the SVG (cairo writes rgb(R%,G%,B%) or #rrggbb) mixed with bg: t of the way
@@ -532,11 +558,18 @@ function lighter(col, bg, t) {
   return 'rgb(' + v.map((x, k) => Math.round(x + (bg[k] - x) * t)).join(',') + ')';
 }
 
+// whether an SVG colour is a colour (not black, grey or white): its channels differ by more than 15 %
+function coloured(col) {
+  const v = lighter(col, [0, 0, 0], 0).match(/\d+/g);
+  return !!v && v.length === 3 && Math.max(...v.map(Number)) - Math.min(...v.map(Number)) > 38;
+}
+
 function addPin() {
   if (!hv.svg || !hv.info) return;
-  const label = pinLabel();
+  const parts = pinParts(), label = parts.map(p => p[1] + ' = ' + p[2]).join(', ');
   if (hv.pins.some(p => p.label === label)) return; // that one is kept already
-  hv.pins.push({ id: ++hv.pinSeq || (hv.pinSeq = 1), label, curves: curvesOf(hv.svg) });
+  hv.pinSeq = (hv.pinSeq || 0) + 1;
+  hv.pins.push({ id: hv.pinSeq, label, parts, curves: curvesOf(hv.svg) });
   pinList();
   redrawPins();
 }
@@ -550,7 +583,7 @@ function removePin(id) {
 function pinList() {
   const box = $('pins');
   if (!box) return;
-  box.replaceChildren(...hv.pins.map(p => el('span', { class: 'pinchip', 'data-pin': p.id }, 'pin: ' + p.label,
+  box.replaceChildren(...hv.pins.map(p => el('span', { class: 'pinchip', 'data-pin': p.id, title: p.label }, 'pin: ', ...pinNodes(p.parts),
     el('button', { type: 'button', class: 'dismiss', 'aria-label': 'remove the pin ' + p.label, title: 'remove this pin',
       onclick: () => removePin(p.id) }, '×'))));
   box.hidden = !hv.pins.length;
@@ -559,7 +592,7 @@ function pinList() {
 function redrawPins() {
   const svg = $('figure').querySelector('svg');
   if (!svg) return;
-  for (const g of svg.querySelectorAll('g.ghost')) g.remove();
+  for (const g of svg.querySelectorAll('g.ghost, text.pinlabel')) g.remove();
   drawGhost();
 }
 
@@ -576,26 +609,35 @@ function drawGhost() {
     g.setAttribute('class', 'ghost');
     g.setAttribute('data-pin', pin.id);
     const t = 0.5 + 0.12 * Math.min(2, hv.pins.length - 1 - k); // older pins fainter
-    let end = null, longest = 0;
+    let end = null, best = -1;
     for (const p of pin.curves) {
       const q = document.importNode(p, true), st = q.getAttribute('style') || '';
       q.setAttribute('style', st.replace(/stroke:([^;]+)/, (_, c) => 'stroke:' + lighter(c.trim(), bg, t)));
       g.append(q);
+      // the label at the end of the longest coloured curve (black, grey and white ones are the references)
       const d = q.getAttribute('d') || '', nums = d.match(/-?[\d.]+(e-?\d+)?/g) || [];
-      if (nums.length >= 2 && d.length > longest) { longest = d.length; end = [+nums[nums.length - 2], +nums[nums.length - 1]]; }
-    }
-    if (end) {
-      const tx = document.createElementNS(NS, 'text');
-      tx.setAttribute('x', end[0] + fs * 0.3);
-      tx.setAttribute('y', end[1] - fs * 0.3);
-      tx.setAttribute('font-size', fs);
-      tx.setAttribute('font-family', 'STIXGeneral, DejaVu Serif, serif');
-      tx.setAttribute('fill', slides ? '#c8ccd4' : '#555');
-      tx.setAttribute('class', 'pinlabel');
-      tx.textContent = pin.label;
-      g.append(tx);
+      const score = d.length + (coloured((/stroke:([^;]+)/.exec(st) || [])[1] || '') ? 1e9 : 0);
+      if (nums.length >= 2 && score > best) { best = score; end = [+nums[nums.length - 2], +nums[nums.length - 1]]; }
     }
     if (first) first.parentNode.insertBefore(g, first); else svg.append(g);
+    if (end) { // on top of the figure, with a halo of the background
+      const tx = document.createElementNS(NS, 'text'), right = vb && vb.width && end[0] > vb.x + 0.6 * vb.width;
+      tx.setAttribute('x', end[0] + (right ? -fs * 0.4 : fs * 0.4)); // inside the figure: to the left of a point on the right
+      tx.setAttribute('y', end[1] + (end[1] < (vb ? vb.y : 0) + 2 * fs ? 1.2 * fs : -fs * 0.4));
+      tx.setAttribute('text-anchor', right ? 'end' : 'start');
+      tx.setAttribute('font-size', fs);
+      tx.setAttribute('font-family', 'STIXGeneral, DejaVu Serif, serif');
+      tx.setAttribute('fill', slides ? '#c8ccd4' : '#444');
+      tx.setAttribute('stroke', slides ? '#1c1f24' : '#fff');
+      tx.setAttribute('stroke-width', fs * 0.25);
+      tx.setAttribute('paint-order', 'stroke');
+      tx.setAttribute('class', 'pinlabel');
+      tx.setAttribute('data-pin', pin.id);
+      tx.setAttribute('font-style', 'italic');
+      tx.setAttribute('aria-label', pin.label);
+      tx.append(...pinNodes(pin.parts, true));
+      svg.append(tx);
+    }
   });
 }
 
