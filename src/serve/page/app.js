@@ -641,9 +641,6 @@ function drawGhost() {
   });
 }
 
-// g: pins the curves shown now (a second g with the same values does nothing)
-function togglePin() { addPin(); }
-
 // ---- hold the axes: figure.xlim and figure.ylim set from the limits drawn ---------
 // Held, the figure is what `hystviz render … --set figure.xlim=… --set
 // figure.ylim=…` writes (the command line shows them).  Played or dragged, a
