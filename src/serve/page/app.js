@@ -2,6 +2,7 @@
 // app.js: the page of `hystviz serve` (no libraries, works offline).
 // State lives in `hv` (also read by tests/serve/browser_test.py).
 'use strict';
+/* @embed typeset.js */
 
 const hv = window.hv = {
   token: document.querySelector('meta[name="hystviz-token"]').content,
@@ -162,23 +163,8 @@ async function openScene(file, keep, st) {
   if (!info.builtin) requestRender();
 }
 
-// The label of a control: the schema's symbol typeset (markup "u_{min,2}",
-// "σ_0", "1/m^ν": sub- and superscripts), the series it belongs to, the unit.
-function typeset(sym) {
-  const span = el('span', { class: 'sym' }), re = /([_^])(?:\{([^}]*)\}|(.))/gu;
-  let last = 0, m;
-  while ((m = re.exec(sym))) {
-    if (m.index > last) span.append(sym.slice(last, m.index));
-    span.append(el(m[1] === '_' ? 'sub' : 'sup', {}, m[2] !== undefined ? m[2] : m[3]));
-    last = re.lastIndex;
-  }
-  span.append(sym.slice(last));
-  return span;
-}
-// the same as plain text, for messages: "u_min,2", "σ0"
-function plain(sym) {
-  return sym.replace(/_\{([^}]*)\}/g, '\u0001$1').replace(/[_^{}]/g, '').replace(/\u0001/g, '_');
-}
+// The label of a control: the schema's symbol typeset (typeset.js), the
+// series it belongs to, the unit.
 function ctlName(c) {
   const parts = c.key.split('.'), series = parts.length > 2 ? ' (' + parts[1] + ')' : '';
   return (c.sym ? plain(c.sym) : parts[parts.length - 1]) + series;
@@ -528,21 +514,7 @@ function pinNodes(parts, svg) {
     if (k) out.push(', ');
     if (!sym) out.push(name);
     else if (!svg) out.push(typeset(sym));
-    else {
-      const re = /([_^])(?:\{([^}]*)\}|(.))/gu;
-      let last = 0, m;
-      while ((m = re.exec(sym))) {
-        if (m.index > last) out.push(sym.slice(last, m.index));
-        const t = document.createElementNS('http://www.w3.org/2000/svg', 'tspan');
-        t.setAttribute('baseline-shift', m[1] === '_' ? 'sub' : 'super');
-        t.setAttribute('font-size', '70%');
-        t.setAttribute('font-style', 'normal');
-        t.textContent = m[2] !== undefined ? m[2] : m[3];
-        out.push(t); // baseline-shift is the tspan's own: the text after it is on the baseline
-        last = re.lastIndex;
-      }
-      if (last < sym.length) out.push(sym.slice(last));
-    }
+    else out.push(...typeset(sym, true));
     out.push(' = ' + v);
   });
   return out;
