@@ -284,6 +284,25 @@ def test_compare(dt, hv, base, scenes, tmp):
     maps = [json.loads(m) for m in dt.js("hv.t.maps")]
     same = all(abs(a - b) <= 1e-9 * max(1.0, abs(b)) for m in maps for a, b in zip(m, maps[0]))
     check(same, f"the axes' limits do not change while the slider plays (to 1e-9): {maps[0]}, {len(maps)} figures")
+    # a mouse drag over sigma0's whole range holds the axes (once its two limits renders are in)
+    dt.key("Space", " ")
+    settled(dt, "stopped")
+    press(dt, "l", "KeyL")  # free again
+    settled(dt, "free")
+    check(not dt.js("hv.axesHeld"), "the axes are free before the drag")
+    dt.js("hv.t.maps = []")
+    bt.drag(dt, "model.sigma0", 0.02, 0.98, steps=40)
+    dt.wait("!hv.holding", 30, "the limits")
+    settled(dt, "the drag")
+    held = dt.js("hv.axesHeld && hv.sets['figure.xlim']")
+    check(bool(held), f"a drag over sigma0's range holds the axes: figure.xlim={held}")
+    dt.js("hv.t.maps = []")
+    bt.drag(dt, "model.sigma0", 0.98, 0.02, steps=40)
+    settled(dt, "the second drag")
+    maps = [json.loads(m) for m in dt.js("hv.t.maps")]
+    same = len(maps) >= 2 and all(abs(a - b) <= 1e-9 * max(1.0, abs(b)) for m in maps for a, b in zip(m, maps[0]))
+    check(same, f"dragged back over the whole range, the axes' limits do not change: {maps[:1]}, {len(maps)} figures")
+    dt.js("document.querySelector('button.playkey[data-key=\"model.sigma0\"]').click()")
     # speed and step of a slider's play
     press(dt, "[", "BracketLeft")
     check(dt.js("hv.speed") == 0.5, "[ halves the speed")

@@ -347,6 +347,8 @@ function buildControls(info) {
       hv.dragging = true;
     });
     range.addEventListener('change', () => { hv.dragging = false; pushUrlNow(); syncSliders(); });
+    // a drag (pointer or touch) holds the axes over the slider's range, as its ▶ does
+    range.addEventListener('pointerdown', () => holdForRange(c.key));
     box.addEventListener('change', () => {
       const t = checkTyped(c, box.value);
       if (t.err) { showNote(c.key, t.err); return; }
@@ -618,7 +620,8 @@ function drawGhost() {
 // figure.ylim=…` writes (the command line shows them).  Played or dragged, a
 // slider holds them over its whole range: the union of the limits the server
 // draws at the slider's two ends and now (two renders, JSON, the map of the
-// first panel).  l (or the button) releases them.
+// first panel; a drag holds them if it still goes on when those two are
+// in).  l (or the button) releases them.
 
 function roundOut(lo, hi) {
   const w = hi - lo;
@@ -684,8 +687,9 @@ async function holdForRange(key) {
   const now = hv.map, file = hv.info.file;
   const [a, b] = await Promise.all([limitsAt(key, valueAt(c, 0), 0), limitsAt(key, valueAt(c, 1000), 1)]);
   hv.holding = false;
-  // still playing that slider (stopped meanwhile: the figure stays as it is)
-  if (!hv.info || hv.info.file !== file || hv.axesHeld || !hv.sliderPlay || hv.sliderPlay.key !== key) return;
+  // still playing or dragging that slider (let go meanwhile: the figure stays as it is)
+  const moving = (hv.sliderPlay && hv.sliderPlay.key === key) || (hv.dragging && hv.frozen && hv.frozen.key === key);
+  if (!hv.info || hv.info.file !== file || hv.axesHeld || !moving) return;
   const u = { xlo: now.xlo, xhi: now.xhi, ylo: now.ylo, yhi: now.yhi, xlog: now.xlog, ylog: now.ylog };
   for (const m of [a, b]) if (m && m.xlog === u.xlog && m.ylog === u.ylog) {
     u.xlo = Math.min(u.xlo, m.xlo); u.xhi = Math.max(u.xhi, m.xhi);
