@@ -286,6 +286,29 @@ def test_anim_browser(dt, hv, scenes, tmp, page):
     check(dt.wait(f"!hv.playing && hv.frame === {meta['frames'] - 1}", 20, "the end"), "loop off: play stops on the last frame")
 
 
+def test_presets(dt, hv, scenes, tmp):
+    """The scene's presets in the page: keys 1-9 as in serve; a preset whose
+    values lie on the grid shows that figure (Fig. 15's: the file's values), one
+    that needs values the export did not compute is a disabled button that says so."""
+    fig15 = os.path.join(scenes, "fig15_minor_loop_ex4.scene")
+    page = os.path.join(tmp, "presets.html")
+    r = export(hv, [fig15, "--grid", "model.sigma0=1,6,20", "--grid", "input.umin2=0.2,0.5", "-o", page, "-q"])
+    check(r.returncode == 0, "export of a grid with the file's values " + r.stderr.strip()[:200])
+    check(open_page(dt, page), "the page with presets decodes")
+    b = dt.js("[...document.querySelectorAll('#presets button')].map(b => [b.innerHTML, b.disabled, b.title])")
+    check(len(b) == 3 and not b[0][1] and b[1][1] and b[2][1] and "did not compute" in b[1][2] and "<sub>min,2</sub>" in b[2][0],
+          f"three preset buttons, typeset; Figs. 16 and 17 need values the export did not compute: {b}")
+    bt.key_focus_body(dt)
+    for kind in ("keyDown", "keyUp"):
+        dt.call("Input.dispatchKeyEvent", type=kind, key="1", code="Digit1", text="1" if kind == "keyDown" else "")
+    st, want = render(hv, fig15, [], tmp)
+    check(dt.js("hv.preset") == "fig15" and dt.js("hv.index") == 1 * 2 + 1 and st == 0 and dt.js("hv.svg") == want.decode(),
+          f"key 1: preset fig15 shows the grid's figure at the file's values == hystviz render {os.path.basename(fig15)} (bytes)")
+    for kind in ("keyDown", "keyUp"):
+        dt.call("Input.dispatchKeyEvent", type=kind, key="2", code="Digit2", text="2" if kind == "keyDown" else "")
+    check(dt.js("hv.preset") == "fig15" and dt.js("hv.index") == 3, "key 2 (not computed) leaves the figure as it is")
+
+
 def test_errors(hv, scenes, tmp):
     fig15 = os.path.join(scenes, "fig15_minor_loop_ex4.scene")
     out = os.path.join(tmp, "e.html")
@@ -466,6 +489,7 @@ def main():
                 dt.call("Page.enable")
                 dt.call("Runtime.enable")
                 test_browser(dt, hv, scenes, tmp, big, small, screenshot)
+                test_presets(dt, hv, scenes, tmp)
                 if anim:
                     test_anim_browser(dt, hv, scenes, tmp, anim)
     finally:

@@ -178,27 +178,6 @@ function labelNode(c) {
   return el('span', { class: 'k' }, ...kids);
 }
 
-// A preset's label ("Fig. 17: σ0 = 1, u_min,2 = 0.2") with each control's
-// symbol typeset as its slider's label is (the schema's symbol: one source)
-function typesetLabel(text, info) {
-  const syms = (info.controls || []).filter(c => c.sym).map(c => [plain(c.sym), c.sym]).sort((a, b) => b[0].length - a[0].length);
-  const out = [];
-  let rest = text;
-  for (;;) {
-    let at = -1, hit = null;
-    for (const [p, sym] of syms) {
-      const k = rest.indexOf(p + ' =');
-      if (k >= 0 && (at < 0 || k < at)) { at = k; hit = [p, sym]; }
-    }
-    if (!hit) break;
-    if (at > 0) out.push(rest.slice(0, at));
-    out.push(typeset(hit[1]));
-    rest = rest.slice(at + hit[0].length);
-  }
-  if (rest) out.push(rest);
-  return out;
-}
-
 // ---- slider domains: valid given the other current values -------------------
 
 function ctlOf(key) { return hv.info && hv.info.controls.find(c => c.key === key); }
@@ -313,7 +292,7 @@ function buildControls(info) {
       el('input', { type: 'checkbox', id: 'slides', onchange: ev => setTheme(ev.target.checked) }), ' slides theme'),
     ...(info.presets || []).map((p, i) => el('button', { type: 'button', class: 'preset' + (hv.preset === p.name ? ' on' : ''),
       'data-preset': p.name, title: (i < 9 ? 'key ' + (i + 1) + ': ' : '') + p.sets.join('; '),
-      onclick: () => applyPreset(i) }, ...typesetLabel(p.label, info)))),
+      onclick: () => applyPreset(i) }, ...typesetLabel(p.label, info.controls.map(c => c.sym))))),
     el('div', { class: 'row pins', id: 'pins' })];
   const mains = mainControls(info);
   for (const c of info.controls) {

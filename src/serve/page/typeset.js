@@ -34,3 +34,24 @@ function typeset(sym, svg) {
 function plain(sym) {
   return sym.replace(/_\{([^}]*)\}/g, '\u0001$1').replace(/[_^{}]/g, '').replace(/\u0001/g, '_');
 }
+
+// A preset's label ("Fig. 17: σ0 = 1, u_min,2 = 0.2") as nodes, each symbol of
+// syms (markup; written plain in the label, followed by " =") typeset
+function typesetLabel(text, syms) {
+  const ps = syms.filter(Boolean).map(sym => [plain(sym), sym]).sort((a, b) => b[0].length - a[0].length);
+  const out = [];
+  let rest = text;
+  for (;;) {
+    let at = -1, hit = null;
+    for (const [p, sym] of ps) {
+      const k = rest.indexOf(p + ' =');
+      if (k >= 0 && (at < 0 || k < at)) { at = k; hit = [p, sym]; }
+    }
+    if (!hit) break;
+    if (at > 0) out.push(rest.slice(0, at));
+    out.push(typeset(hit[1]));
+    rest = rest.slice(at + hit[0].length);
+  }
+  if (rest) out.push(rest);
+  return out;
+}
