@@ -21,7 +21,9 @@ every wait has a deadline):
 - comparisons: two pins labelled with their values ("σ0 = 6"), each
   removable; l holds the axes (figure.xlim/ylim in the command line, the SVG
   == hystviz render --set with them, byte for byte); a slider's ▶ holds the
-  axes over its whole range (the limits drawn do not change while it plays);
+  axes over its whole range (the limits drawn do not change while it plays),
+  and so does a mouse drag of sigma0 over its whole range (dragged back, the
+  limits stay);
   speed ½× and step; key 7 on a scene with 3 presets says so (the help
   lists 1–3, not 7); preset buttons show typeset symbols; the controls' text
   in the presentation view is >= 1/40 of the window height.
