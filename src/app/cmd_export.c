@@ -17,6 +17,7 @@
 
 #include <errno.h>
 #include <inttypes.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +31,7 @@
 #include "hy_jobs.h"
 #include "hy_out.h"
 #include "hy_plot.h"
+#include "hy_scene_schema.h"
 #include "scene_run.h"
 
 /* The most points one page holds (a slider per key, every figure inside). */
@@ -227,6 +229,70 @@ static int parse_opts(int argc, char **argv, export_opts *o)
 
 /* ---- the study ---------------------------------------------------------- */
 
+/* The schema's entry of a --grid key (SECTION.KEY or SECTION.NAME.KEY), or
+ * NULL: its symbol and unit label the page's slider as serve's are. */
+static const hy_scene_key_spec *grid_key_spec(const char *full)
+{
+    char sec[64];
+    size_t n = strcspn(full, ".");
+    if (n >= sizeof sec || !full[n])
+        return NULL;
+    memcpy(sec, full, n);
+    sec[n] = 0;
+    int si = hy_scene_schema_section(sec), ki = si < 0 ? -1 : hy_scene_schema_key(si, strrchr(full, '.') + 1);
+    if (ki < 0)
+        return NULL;
+    size_t ns;
+    return &hy_scene_schema(&ns)[si].keys[ki];
+}
+
+/* The number the scene (with --set) holds for a --grid key, as "%.17g" into
+ * buf, or "null": the page finds a preset's figure among the grid's with it. */
+static void grid_file_value(const hy_scene *s, const char *full, char *buf, size_t n)
+{
+    char sec[64], name[128] = "";
+    const char *dot = strchr(full, '.'), *last = strrchr(full, '.');
+    snprintf(buf, n, "null");
+    if (!dot || (size_t)(dot - full) >= sizeof sec || (size_t)(last - dot) > sizeof name)
+        return;
+    snprintf(sec, sizeof sec, "%.*s", (int)(dot - full), full);
+    if (last > dot)
+        snprintf(name, sizeof name, "%.*s", (int)(last - dot - 1), dot + 1);
+    double v;
+    int st = hy_scene_get_num(s, sec, last > dot ? name : NULL, last + 1, &v);
+    if ((st == HY_SCENE_SET || st == HY_SCENE_DEFAULT) && isfinite(v))
+        snprintf(buf, n, "%.17g", v);
+}
+
+/* The scene's presets as JSON ([{"name","label","sets":[...]}], serve's
+ * form): the page offers those whose values all lie on the grid. */
+static void presets_json(FILE *f, const hy_scene *s, const hy_scene_doc *d)
+{
+    char (*sets)[HY_SCENE_SET_MAX] = malloc(HY_SCENE_PRESET_MAX * sizeof *sets);
+    fputs(",\"presets\":[", f);
+    for (size_t i = 0, first = 1; sets && i < d->npreset; i++) {
+        const hy_decl_preset *p = &d->preset[i];
+        size_t n;
+        hy_error err = {0};
+        if (hy_scene_preset_sets(s, p->h.name, sets, HY_SCENE_PRESET_MAX, &n, &err))
+            continue;
+        const char *label = hy_decl_got(&p->h, offsetof(hy_decl_preset, label)) == HY_SCENE_SET ? p->label : p->h.name;
+        fputs(first ? "{\"name\":" : ",{\"name\":", f);
+        first = 0;
+        exp_json_str(f, p->h.name, strlen(p->h.name));
+        fputs(",\"label\":", f);
+        exp_json_str(f, label, strlen(label));
+        fputs(",\"sets\":[", f);
+        for (size_t j = 0; j < n; j++) {
+            fputs(j ? "," : "", f);
+            exp_json_str(f, sets[j], strlen(sets[j]));
+        }
+        fputs("]}", f);
+    }
+    fputs("]", f);
+    free(sets);
+}
+
 /* Checks the scene loads with the user's --set and writes the page's
  * description (JSON) into *meta and the scene's content hash; 2 on bad
  * input (message printed). */
@@ -282,6 +348,15 @@ static int describe(const export_opts *o, char **meta, uint64_t *hash)
         const hy_grid_axis *ax = &o->grid.axes[a];
         fputs(a ? ",{\"key\":" : "{\"key\":", f);
         exp_json_str(f, ax->key, strlen(ax->key));
+        const hy_scene_key_spec *k = grid_key_spec(ax->key);
+        const char *sym = k && k->symbol ? k->symbol : "", *unit = k && k->unit ? k->unit : "";
+        fputs(",\"sym\":", f);
+        exp_json_str(f, sym, strlen(sym));
+        fputs(",\"unit\":", f);
+        exp_json_str(f, unit, strlen(unit));
+        char file[40];
+        grid_file_value(base, ax->key, file, sizeof file);
+        fprintf(f, ",\"file\":%s", file);
         fputs(",\"values\":[", f);
         for (size_t v = 0; v < ax->nvalues; v++) {
             fputs(v ? "," : "", f);
@@ -289,7 +364,9 @@ static int describe(const export_opts *o, char **meta, uint64_t *hash)
         }
         fputs("]}", f);
     }
-    fputs("]}", f);
+    fputs("]", f);
+    presets_json(f, base, &d);
+    fputs("}", f);
     hy_scene_doc_free(&d);
     hy_scene_free(base);
     return fclose(f) ? 1 : 0;

@@ -272,6 +272,41 @@ def test_anim_browser(dt, hv, scenes, tmp, page):
     check(dt.js("hv.frame") == k and not dt.js("hv.playing") and
           base64.b64decode(dt.js(shown)) == animate_frame(hv, scene, k, tmp),
           f"scrubbed to frame {k} (paused), the page shows animate --frames {k}:{k + 1}, byte for byte")
+    # step, speed, loop
+    bt.key_focus_body(dt)
+    for kind in ("keyDown", "keyUp"):
+        dt.call("Input.dispatchKeyEvent", type=kind, key=".", code="Period", text="." if kind == "keyDown" else "")
+    check(dt.js("hv.frame") == k + 1, f". steps one frame on: {dt.js('hv.frame')}")
+    dt.js("document.getElementById('back').click()")
+    check(dt.js("hv.frame") == k, f"the step-back button steps one frame back: {dt.js('hv.frame')}")
+    dt.js("(() => { const s = document.getElementById('speed'); s.value = '0.5'; s.dispatchEvent(new Event('change')); })()")
+    check(dt.js("hv.speed") == 0.5, "the speed control sets ½×")
+    dt.js("(() => { const l = document.getElementById('loop'); l.checked = false; l.dispatchEvent(new Event('change')); })()")
+    dt.js(f"hv.seek({meta['frames'] - 3}); hv.setSpeed(2); hv.play()")
+    check(dt.wait(f"!hv.playing && hv.frame === {meta['frames'] - 1}", 20, "the end"), "loop off: play stops on the last frame")
+
+
+def test_presets(dt, hv, scenes, tmp):
+    """The scene's presets in the page: keys 1-9 as in serve; a preset whose
+    values lie on the grid shows that figure (Fig. 15's: the file's values), one
+    that needs values the export did not compute is a disabled button that says so."""
+    fig15 = os.path.join(scenes, "fig15_minor_loop_ex4.scene")
+    page = os.path.join(tmp, "presets.html")
+    r = export(hv, [fig15, "--grid", "model.sigma0=1,6,20", "--grid", "input.umin2=0.2,0.5", "-o", page, "-q"])
+    check(r.returncode == 0, "export of a grid with the file's values " + r.stderr.strip()[:200])
+    check(open_page(dt, page), "the page with presets decodes")
+    b = dt.js("[...document.querySelectorAll('#presets button')].map(b => [b.innerHTML, b.disabled, b.title])")
+    check(len(b) == 3 and not b[0][1] and b[1][1] and b[2][1] and "did not compute" in b[1][2] and "<sub>min,2</sub>" in b[2][0],
+          f"three preset buttons, typeset; Figs. 16 and 17 need values the export did not compute: {b}")
+    bt.key_focus_body(dt)
+    for kind in ("keyDown", "keyUp"):
+        dt.call("Input.dispatchKeyEvent", type=kind, key="1", code="Digit1", text="1" if kind == "keyDown" else "")
+    st, want = render(hv, fig15, [], tmp)
+    check(dt.js("hv.preset") == "fig15" and dt.js("hv.index") == 1 * 2 + 1 and st == 0 and dt.js("hv.svg") == want.decode(),
+          f"key 1: preset fig15 shows the grid's figure at the file's values == hystviz render {os.path.basename(fig15)} (bytes)")
+    for kind in ("keyDown", "keyUp"):
+        dt.call("Input.dispatchKeyEvent", type=kind, key="2", code="Digit2", text="2" if kind == "keyDown" else "")
+    check(dt.js("hv.preset") == "fig15" and dt.js("hv.index") == 3, "key 2 (not computed) leaves the figure as it is")
 
 
 def test_errors(hv, scenes, tmp):
@@ -345,7 +380,29 @@ def test_browser(dt, hv, scenes, tmp, big, small, screenshot):
     check(i == 3 * 10 + 6 and st == 0 and shown_svg(dt) == want.decode() and dt.js("hv.svg") == want.decode(),
           f"after moving the sliders (position {i}) the page shows render --set {' '.join(sets_of(meta, i))}, byte for byte")
     shown = dt.js("[...document.querySelectorAll('.ctl .v')].map(e => e.textContent)")
-    check(shown == [meta["axes"][0]["values"][3] + " (4/20)", "0.65 (7/10)"], f"each key's value is shown: {shown}")
+    v3 = meta["axes"][0]["values"][3]
+    short = shown[0].split(" (")[0] if shown else ""
+    check(len(shown) == 2 and abs(float(short) - float(v3)) <= 5e-4 * abs(float(v3)) and len(short) <= 7
+          and shown[0].endswith(" (4/20)") and shown[1] == "0.65 (7/10)",
+          f"each key's value is shown as the live page shows it (4 significant digits of {v3}): {shown}")
+    labels = dt.js("[...document.querySelectorAll('.ctl .k')].map(e => e.innerHTML)")
+    check(len(labels) == 2 and "σ<sub>0</sub>" in labels[0] and "<sub>min,2</sub>" in labels[1],
+          f"the sliders' labels are the schema's symbols, typeset: {labels}")
+    # g pins the figure shown: it stays, fainter, under the next one, with a chip naming its values
+    bt.key_focus_body(dt)
+    dt.key("KeyG", "g")
+    set_slider(dt, 1, 2)
+    pins = dt.js("[document.querySelectorAll('#figure img.pin').length, [...document.querySelectorAll('#pins .pinchip')].map(c => c.textContent)]")
+    check(pins[0] == 1 and len(pins[1]) == 1 and pins[1][0].startswith("pin: σ0 = ") and "u_min,2 = 0.65" in pins[1][0],
+          f"g pins the figure under the next one, labelled: {pins}")
+    dt.js("document.querySelector('#pins .pinchip button').click()")
+    check(dt.js("document.querySelectorAll('#figure img.pin').length") == 0, "its × removes the pin")
+    set_slider(dt, 1, 6)
+    # p: the presentation view, text at least 1/40 of the height
+    dt.key("KeyP", "p")
+    pv = dt.js("[getComputedStyle(document.querySelector('header')).display, parseFloat(getComputedStyle(document.getElementById('controls')).fontSize)]")
+    check(pv[0] == "none" and pv[1] >= 768 / 40, f"p: the presentation view (header {pv[0]}, controls' text {pv[1]} px)")
+    dt.key("KeyP", "p")
     check(dt.js("document.getElementById('cmd').textContent") == "hystviz render " + " ".join(
         [fig15] + [f"--set {s}" for s in sets_of(meta, i)]) + " --format svg", "the page shows the render command")
     if screenshot:
@@ -432,6 +489,7 @@ def main():
                 dt.call("Page.enable")
                 dt.call("Runtime.enable")
                 test_browser(dt, hv, scenes, tmp, big, small, screenshot)
+                test_presets(dt, hv, scenes, tmp)
                 if anim:
                     test_anim_browser(dt, hv, scenes, tmp, anim)
     finally:

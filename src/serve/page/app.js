@@ -2,6 +2,7 @@
 // app.js: the page of `hystviz serve` (no libraries, works offline).
 // State lives in `hv` (also read by tests/serve/browser_test.py).
 'use strict';
+/* @embed typeset.js */
 
 const hv = window.hv = {
   token: document.querySelector('meta[name="hystviz-token"]').content,
@@ -11,7 +12,7 @@ const hv = window.hv = {
   svg: null, cmd: '', renders: 0, changes: 0, error: null, serverMs: NaN, serverCpuMs: NaN, pageMs: NaN,
   hover: null, hoverTimer: 0,
   frame: -1, frameB64: null, frameSeq: 0, frameInflight: false, framePending: -1, playing: false,
-  pinned: null, sliderPlay: null,
+  pins: [], sliderPlay: null, speed: 1, axesHeld: null,
 };
 const $ = id => document.getElementById(id);
 const enc = encodeURIComponent;
@@ -113,6 +114,7 @@ function applyUrl() {
   if (stateHash() === location.hash) return;
   hv.sets = st.sets;
   hv.preset = st.preset;
+  syncHeld();
   setPresent(st.present, true);
   buildControls(hv.info);
   requestRender();
@@ -134,7 +136,8 @@ async function openScene(file, keep, st) {
     hv.preset = st ? st.preset : null;
     hv.lastKey = null; hv.svg = null; $('figure').replaceChildren(); hv.hover = null;
     sliderPlayStop();
-    if (!same) hv.pinned = null; // a ghost belongs to its scene
+    if (!same) { hv.pins = []; pinList(); } // pins belong to their scene
+    syncHeld();
     $('newname').value = '';
     // the new figure where it can be seen (a switch keeps no scroll position)
     if (!same && !hv.present) $('title').scrollIntoView({ block: 'start' });
@@ -149,6 +152,7 @@ async function openScene(file, keep, st) {
   $('text').textContent = info.text;
   markCurrent();
   buildControls(info);
+  keyHelp();
   if (st) setPresent(st.present, true);
   // a built-in animation has frames only: no still figure, no controls
   $('stage').hidden = $('share').hidden = !!info.builtin;
@@ -159,23 +163,8 @@ async function openScene(file, keep, st) {
   if (!info.builtin) requestRender();
 }
 
-// The label of a control: the schema's symbol typeset (markup "u_{min,2}",
-// "σ_0", "1/m^ν": sub- and superscripts), the series it belongs to, the unit.
-function typeset(sym) {
-  const span = el('span', { class: 'sym' }), re = /([_^])(?:\{([^}]*)\}|(.))/gu;
-  let last = 0, m;
-  while ((m = re.exec(sym))) {
-    if (m.index > last) span.append(sym.slice(last, m.index));
-    span.append(el(m[1] === '_' ? 'sub' : 'sup', {}, m[2] !== undefined ? m[2] : m[3]));
-    last = re.lastIndex;
-  }
-  span.append(sym.slice(last));
-  return span;
-}
-// the same as plain text, for messages: "u_min,2", "σ0"
-function plain(sym) {
-  return sym.replace(/_\{([^}]*)\}/g, '\u0001$1').replace(/[_^{}]/g, '').replace(/\u0001/g, '_');
-}
+// The label of a control: the schema's symbol typeset (typeset.js), the
+// series it belongs to, the unit.
 function ctlName(c) {
   const parts = c.key.split('.'), series = parts.length > 2 ? ' (' + parts[1] + ')' : '';
   return (c.sym ? plain(c.sym) : parts[parts.length - 1]) + series;
@@ -287,13 +276,24 @@ function buildControls(info) {
     el('button', { type: 'button', onclick: resetValues, title: 'r' }, 'reset to file'),
     el('button', { type: 'button', onclick: () => setPresent(!hv.present), title: 'p', class: 'presentbtn' },
       'presentation (p)'),
-    el('button', { type: 'button', id: 'pin', onclick: togglePin, title: 'g: keep the curves shown now as a faint ghost under the next ones',
-      class: hv.pinned ? 'on' : '' }, hv.pinned ? 'unpin (g)' : 'pin (g)'),
+    el('button', { type: 'button', class: 'keysbtn', onclick: () => { $('keys').hidden = !$('keys').hidden; }, title: '?: the keys' }, 'keys (?)'),
+    el('button', { type: 'button', id: 'pin', onclick: addPin,
+      title: 'g: keep the curves shown now, labelled with their values, in a lighter tone under the next ones' }, 'pin (g)'),
+    el('button', { type: 'button', id: 'hold', onclick: () => holdAxes(!hv.axesHeld), class: hv.axesHeld ? 'on' : '',
+      'aria-pressed': String(!!hv.axesHeld),
+      title: 'l: hold the axes at the limits shown now (figure.xlim, figure.ylim); a slider played or dragged holds them over its whole range' },
+      hv.axesHeld ? 'axes held (l)' : 'hold axes (l)'),
+    speedSelect('speed'),
+    el('button', { type: 'button', class: 'stepbtn', 'aria-label': 'step the slider back', title: ', (comma): the slider played or moved last, one step back',
+      onclick: () => sliderStep(-1) }, '◀|'),
+    el('button', { type: 'button', class: 'stepbtn', 'aria-label': 'step the slider on', title: '. (full stop): the slider played or moved last, one step on',
+      onclick: () => sliderStep(1) }, '|▶'),
     el('label', { title: 'figure.theme = slides: dark background, thicker lines, larger text (t)' },
       el('input', { type: 'checkbox', id: 'slides', onchange: ev => setTheme(ev.target.checked) }), ' slides theme'),
     ...(info.presets || []).map((p, i) => el('button', { type: 'button', class: 'preset' + (hv.preset === p.name ? ' on' : ''),
       'data-preset': p.name, title: (i < 9 ? 'key ' + (i + 1) + ': ' : '') + p.sets.join('; '),
-      onclick: () => applyPreset(i) }, p.label)))];
+      onclick: () => applyPreset(i) }, ...typesetLabel(p.label, info.controls.map(c => c.sym))))),
+    el('div', { class: 'row pins', id: 'pins' })];
   const mains = mainControls(info);
   for (const c of info.controls) {
     const cur = curOf(c);
@@ -326,6 +326,8 @@ function buildControls(info) {
       hv.dragging = true;
     });
     range.addEventListener('change', () => { hv.dragging = false; pushUrlNow(); syncSliders(); });
+    // a drag (pointer or touch) holds the axes over the slider's range, as its ▶ does
+    range.addEventListener('pointerdown', () => holdForRange(c.key));
     box.addEventListener('change', () => {
       const t = checkTyped(c, box.value);
       if (t.err) { showNote(c.key, t.err); return; }
@@ -338,6 +340,7 @@ function buildControls(info) {
     kids.push(div);
   }
   box.replaceChildren(...kids);
+  pinList();
   $('slides').checked = hv.sets['figure.theme'] === 'slides';
   document.body.classList.toggle('slides', hv.sets['figure.theme'] === 'slides');
 }
@@ -351,6 +354,7 @@ function applyPreset(i) {
   hv.sets = {};
   for (const a of p.sets) { const e = a.indexOf('='); hv.sets[a.slice(0, e).trim()] = a.slice(e + 1).trim(); }
   if (theme) hv.sets['figure.theme'] = theme;
+  syncHeld();
   buildControls(hv.info);
   hv.preset = p.name;
   for (const b of document.querySelectorAll('button.preset')) b.classList.toggle('on', b.dataset.preset === p.name);
@@ -363,6 +367,7 @@ function resetValues() {
   const theme = hv.sets['figure.theme'];
   hv.sets = theme ? { 'figure.theme': theme } : {};
   hv.preset = null;
+  syncHeld();
   buildControls(hv.info);
   pushUrl(false);
   requestRender();
@@ -462,11 +467,14 @@ function showError(msg) {
   document.dispatchEvent(new CustomEvent('hv-error'));
 }
 
-// ---- compare: pin the curves shown now as a ghost under the next ones -----------
+// ---- compare: pins, the curves shown now kept under the next ones ---------------
 // A figure's curves are its unfilled, round-joined strokes (axes, ticks and
-// frames are mitre-joined, text is filled glyphs): copied from the pinned SVG
-// and drawn faintly just before the new figure's first curve, so the new
-// curves lie on top.  The server's SVG (hv.svg) stays as it came.
+// frames are mitre-joined, text is filled glyphs): copied from the SVG pinned,
+// each in a lighter tone of its own colour (mixed with the background), drawn
+// just before the new figure's first curve so the new curves lie on top, and
+// labelled at the end of its longest curve with the values that made it
+// ("σ0 = 6").  Several are kept; each has a chip with × to remove it.  The
+// server's SVG (hv.svg) stays as it came.
 
 function curvesOf(svgText) {
   const doc = new DOMParser().parseFromString(svgText, 'image/svg+xml');
@@ -476,24 +484,199 @@ function curvesOf(svgText) {
   });
 }
 
-function drawGhost() {
-  const svg = $('figure').querySelector('svg');
-  if (!svg || !hv.pinned) return;
-  const g = document.createElementNS('http://www.w3.org/2000/svg', 'g');
-  g.setAttribute('class', 'ghost');
-  g.setAttribute('opacity', '0.28');
-  for (const p of hv.pinned) g.append(document.importNode(p, true));
-  const first = Array.from(svg.querySelectorAll('path')).find(p => /fill:none/.test(p.getAttribute('style') || '')
-    && /stroke-linejoin:round/.test(p.getAttribute('style') || ''));
-  if (first) first.parentNode.insertBefore(g, first); else svg.append(g);
+// "σ0 = 6, u_min,2 = 0.3": the main controls' values now (parts: [symbol markup, plain name, value])
+function pinParts() {
+  return mainControls(hv.info).map(c => [c.sym, ctlName(c), curOf(c)]);
+}
+// the label as nodes: each symbol typeset as its slider's label (HTML: sub/sup; SVG: tspans)
+function pinNodes(parts, svg) {
+  const out = [];
+  parts.forEach(([sym, name, v], k) => {
+    if (k) out.push(', ');
+    if (!sym) out.push(name);
+    else if (!svg) out.push(typeset(sym));
+    else out.push(...typeset(sym, true));
+    out.push(' = ' + v);
+  });
+  return out;
 }
 
-function togglePin() {
-  hv.pinned = hv.pinned || !hv.svg ? null : curvesOf(hv.svg);
+// a colour of the SVG (cairo writes rgb(R%,G%,B%) or #rrggbb) mixed with bg: t of the way
+function lighter(col, bg, t) {
+  let v = null, m;
+  if ((m = /rgb\(\s*([\d.]+)%\s*,\s*([\d.]+)%\s*,\s*([\d.]+)%\s*\)/.exec(col))) v = [m[1], m[2], m[3]].map(x => 2.55 * x);
+  else if ((m = /rgb\(\s*([\d.]+)\s*,\s*([\d.]+)\s*,\s*([\d.]+)\s*\)/.exec(col))) v = [+m[1], +m[2], +m[3]];
+  else if ((m = /^#([0-9a-f]{6})$/i.exec(col))) v = [0, 2, 4].map(k => parseInt(m[1].slice(k, k + 2), 16));
+  if (!v) return col;
+  return 'rgb(' + v.map((x, k) => Math.round(x + (bg[k] - x) * t)).join(',') + ')';
+}
+
+// whether an SVG colour is a colour (not black, grey or white): its channels differ by more than 15 %
+function coloured(col) {
+  const v = lighter(col, [0, 0, 0], 0).match(/\d+/g);
+  return !!v && v.length === 3 && Math.max(...v.map(Number)) - Math.min(...v.map(Number)) > 38;
+}
+
+function addPin() {
+  if (!hv.svg || !hv.info) return;
+  const parts = pinParts(), label = parts.map(p => p[1] + ' = ' + p[2]).join(', ');
+  if (hv.pins.some(p => p.label === label)) return; // that one is kept already
+  hv.pinSeq = (hv.pinSeq || 0) + 1;
+  hv.pins.push({ id: hv.pinSeq, label, parts, curves: curvesOf(hv.svg) });
+  pinList();
+  redrawPins();
+}
+
+function removePin(id) {
+  hv.pins = hv.pins.filter(p => p.id !== id);
+  pinList();
+  redrawPins();
+}
+
+function pinList() {
+  const box = $('pins');
+  if (!box) return;
+  box.replaceChildren(...hv.pins.map(p => el('span', { class: 'pinchip', 'data-pin': p.id, title: p.label }, 'pin: ', ...pinNodes(p.parts),
+    el('button', { type: 'button', class: 'dismiss', 'aria-label': 'remove the pin ' + p.label, title: 'remove this pin',
+      onclick: () => removePin(p.id) }, '×'))));
+  box.hidden = !hv.pins.length;
+}
+
+function redrawPins() {
   const svg = $('figure').querySelector('svg');
-  if (!hv.pinned && svg) for (const g of svg.querySelectorAll('g.ghost')) g.remove();
-  const b = $('pin');
-  if (b) { b.textContent = hv.pinned ? 'unpin (g)' : 'pin (g)'; b.classList.toggle('on', !!hv.pinned); }
+  if (!svg) return;
+  for (const g of svg.querySelectorAll('g.ghost, text.pinlabel')) g.remove();
+  drawGhost();
+}
+
+function drawGhost() {
+  const svg = $('figure').querySelector('svg');
+  if (!svg || !hv.pins.length) return;
+  const slides = hv.sets['figure.theme'] === 'slides', bg = slides ? [28, 31, 36] : [255, 255, 255];
+  const vb = svg.viewBox && svg.viewBox.baseVal, fs = vb && vb.height ? vb.height / 36 : 10;
+  const first = Array.from(svg.querySelectorAll('path')).find(p => /fill:none/.test(p.getAttribute('style') || '')
+    && /stroke-linejoin:round/.test(p.getAttribute('style') || ''));
+  const NS = 'http://www.w3.org/2000/svg';
+  hv.pins.forEach((pin, k) => {
+    const g = document.createElementNS(NS, 'g');
+    g.setAttribute('class', 'ghost');
+    g.setAttribute('data-pin', pin.id);
+    const t = 0.5 + 0.12 * Math.min(2, hv.pins.length - 1 - k); // older pins fainter
+    let end = null, best = -1;
+    for (const p of pin.curves) {
+      const q = document.importNode(p, true), st = q.getAttribute('style') || '';
+      q.setAttribute('style', st.replace(/stroke:([^;]+)/, (_, c) => 'stroke:' + lighter(c.trim(), bg, t)));
+      g.append(q);
+      // the label at the end of the longest coloured curve (black, grey and white ones are the references)
+      const d = q.getAttribute('d') || '', nums = d.match(/-?[\d.]+(e-?\d+)?/g) || [];
+      const score = d.length + (coloured((/stroke:([^;]+)/.exec(st) || [])[1] || '') ? 1e9 : 0);
+      if (nums.length >= 2 && score > best) { best = score; end = [+nums[nums.length - 2], +nums[nums.length - 1]]; }
+    }
+    if (first) first.parentNode.insertBefore(g, first); else svg.append(g);
+    if (end) { // on top of the figure, with a halo of the background
+      const tx = document.createElementNS(NS, 'text'), right = vb && vb.width && end[0] > vb.x + 0.6 * vb.width;
+      tx.setAttribute('x', end[0] + (right ? -fs * 0.4 : fs * 0.4)); // inside the figure: to the left of a point on the right
+      tx.setAttribute('y', end[1] + (end[1] < (vb ? vb.y : 0) + 2 * fs ? 1.2 * fs : -fs * 0.4));
+      tx.setAttribute('text-anchor', right ? 'end' : 'start');
+      tx.setAttribute('font-size', fs);
+      tx.setAttribute('font-family', 'STIXGeneral, DejaVu Serif, serif');
+      tx.setAttribute('fill', slides ? '#c8ccd4' : '#444');
+      tx.setAttribute('stroke', slides ? '#1c1f24' : '#fff');
+      tx.setAttribute('stroke-width', fs * 0.25);
+      tx.setAttribute('paint-order', 'stroke');
+      tx.setAttribute('class', 'pinlabel');
+      tx.setAttribute('data-pin', pin.id);
+      tx.setAttribute('font-style', 'italic');
+      tx.setAttribute('aria-label', pin.label);
+      tx.append(...pinNodes(pin.parts, true));
+      svg.append(tx);
+    }
+  });
+}
+
+// ---- hold the axes: figure.xlim and figure.ylim set from the limits drawn ---------
+// Held, the figure is what `hystviz render … --set figure.xlim=… --set
+// figure.ylim=…` writes (the command line shows them).  Played or dragged, a
+// slider holds them over its whole range: the union of the limits the server
+// draws at the slider's two ends and now (two renders, JSON, the map of the
+// first panel; a drag holds them if it still goes on when those two are
+// in).  l (or the button) releases them.
+
+function roundOut(lo, hi) {
+  const w = hi - lo;
+  if (!(w > 0) || !isFinite(w)) return [lo, hi];
+  const st = Math.pow(10, Math.floor(Math.log10(w)) - 2);
+  const f = x => parseFloat(x.toPrecision(12));
+  return [f(Math.floor(lo / st) * st), f(Math.ceil(hi / st) * st)];
+}
+
+function setLimits(m) {
+  if (!m) return;
+  const x = m.xlog ? [m.xlo, m.xhi] : roundOut(m.xlo, m.xhi), y = m.ylog ? [m.ylo, m.yhi] : roundOut(m.ylo, m.yhi);
+  hv.sets['figure.xlim'] = x[0] + ', ' + x[1];
+  hv.sets['figure.ylim'] = y[0] + ', ' + y[1];
+  hv.axesHeld = { x, y };
+}
+
+// held or not as hv.sets say (a link, back/forward, a preset, reset)
+function syncHeld() {
+  const x = hv.sets['figure.xlim'], y = hv.sets['figure.ylim'];
+  hv.axesHeld = x || y ? { x, y } : null;
+  holdButton();
+}
+
+function holdButton() {
+  const b = $('hold');
+  if (b) {
+    b.textContent = hv.axesHeld ? 'axes held (l)' : 'hold axes (l)';
+    b.classList.toggle('on', !!hv.axesHeld);
+    b.setAttribute('aria-pressed', String(!!hv.axesHeld));
+  }
+}
+
+function holdAxes(on) {
+  if (!hv.info) return;
+  if (on && hv.map) setLimits(hv.map);
+  else { hv.axesHeld = null; delete hv.sets['figure.xlim']; delete hv.sets['figure.ylim']; }
+  holdButton();
+  pushUrl(false);
+  requestRender();
+}
+
+// the limits the server draws with KEY=VALUE (the others as now, the axes free)
+async function limitsAt(key, value, tag) {
+  let q = 'scene=' + enc(hv.info.file);
+  for (const [k, v] of Object.entries(hv.sets))
+    if (k !== key && k !== 'figure.xlim' && k !== 'figure.ylim') q += '&set=' + enc(k + '=' + v);
+  q += '&set=' + enc(key + '=' + value);
+  try {
+    // a page id of its own each (both render side by side; neither replaces the figure's request)
+    const r = await fetch('/api/render?' + q + '&fmt=json&page=' + hv.page + 'l' + tag + '&seq=' + (hv.limSeq = (hv.limSeq || 0) + 1));
+    if (r.status !== 200) return null;
+    return (await r.json()).map || null;
+  } catch (e) { return null; }
+}
+
+// holds the axes over the whole range of slider KEY (unless held already)
+async function holdForRange(key) {
+  if (hv.axesHeld || hv.holding || !hv.map || !hv.info) return;
+  const c = ctlOf(key);
+  if (!c) return;
+  hv.holding = true;
+  const now = hv.map, file = hv.info.file;
+  const [a, b] = await Promise.all([limitsAt(key, valueAt(c, 0), 0), limitsAt(key, valueAt(c, 1000), 1)]);
+  hv.holding = false;
+  // still playing or dragging that slider (let go meanwhile: the figure stays as it is)
+  const moving = (hv.sliderPlay && hv.sliderPlay.key === key) || (hv.dragging && hv.frozen && hv.frozen.key === key);
+  if (!hv.info || hv.info.file !== file || hv.axesHeld || !moving) return;
+  const u = { xlo: now.xlo, xhi: now.xhi, ylo: now.ylo, yhi: now.yhi, xlog: now.xlog, ylog: now.ylog };
+  for (const m of [a, b]) if (m && m.xlog === u.xlog && m.ylog === u.ylog) {
+    u.xlo = Math.min(u.xlo, m.xlo); u.xhi = Math.max(u.xhi, m.xhi);
+    u.ylo = Math.min(u.ylo, m.ylo); u.yhi = Math.max(u.yhi, m.yhi);
+  }
+  setLimits(u);
+  holdButton();
+  requestRender();
 }
 
 // ---- play a slider (Desmos): its value back and forth over its domain -----------
@@ -503,6 +686,28 @@ function togglePin() {
 // space, a preset, reset or another scene.
 
 const PLAY_STEP = 20; // of the slider's 1000 positions
+const PLAY_MS = 50;   // at 1x at most one step each 50 ms (20 a second): 1/speed times that
+
+// the play speed (¼×, ½×, 1×, 2×) of clips and of a slider's ▶: one for both
+const SPEEDS = [0.25, 0.5, 1, 2];
+function speedText(v) { return v === 0.25 ? '¼×' : v === 0.5 ? '½×' : v + '×'; }
+function speedSelect(id) {
+  const s = el('select', { id, class: 'speedsel', 'aria-label': 'play speed', title: '[ and ]: play speed of clips and of a slider\'s ▶',
+    onchange: ev => setSpeed(+ev.target.value) }, ...SPEEDS.map(v => el('option', { value: v }, speedText(v))));
+  s.value = String(hv.speed);
+  return s;
+}
+function setSpeed(v) {
+  if (!SPEEDS.includes(v)) return;
+  hv.speed = v;
+  for (const s of document.querySelectorAll('select.speedsel')) s.value = String(v);
+  if (hv.playing) { anim.due = performance.now(); }
+}
+function speedStep(dir) {
+  const k = SPEEDS.indexOf(hv.speed) + dir;
+  if (k >= 0 && k < SPEEDS.length) setSpeed(SPEEDS[k]);
+  flash('speed ' + speedText(hv.speed));
+}
 
 function toggleSliderPlay(key) {
   const was = hv.sliderPlay && hv.sliderPlay.key;
@@ -510,15 +715,18 @@ function toggleSliderPlay(key) {
   if (was === key) return;
   const c = ctlOf(key), r = $('controls').querySelector('input[type=range][data-key="' + key + '"]');
   if (!c || !r) return;
-  hv.sliderPlay = { key, dir: +r.value >= 1000 ? -1 : 1, pos: +r.value, steps: 0 };
+  hv.sliderPlay = { key, dir: +r.value >= 1000 ? -1 : 1, pos: +r.value, steps: 0, at: 0 };
+  hv.lastKey = key;
   hv.frozen = { key, d: domain(c) };
   hv.dragging = true; // one change in the history, the domain held
   playButtons();
+  holdForRange(key); // the axes hold over the slider's whole range
   if (!hv.inflight) sliderPlayStep();
 }
 
 function sliderPlayStop() {
   if (!hv.sliderPlay) return;
+  clearTimeout(hv.sliderPlay.timer);
   hv.sliderPlay = null;
   hv.dragging = false;
   playButtons();
@@ -537,16 +745,29 @@ function playButtons() {
 function sliderPlayStep() {
   const sp = hv.sliderPlay;
   if (!sp || hv.inflight) return;
+  const wait = sp.at + PLAY_MS / hv.speed - performance.now();
+  if (wait > 1) { clearTimeout(sp.timer); sp.timer = setTimeout(sliderPlayStep, wait); return; }
   const r = $('controls').querySelector('input[type=range][data-key="' + sp.key + '"]');
   if (!r) { sliderPlayStop(); return; }
   let p = sp.pos + sp.dir * PLAY_STEP;
   if (p >= 1000) { p = 1000; sp.dir = -1; } else if (p <= 0) { p = 0; sp.dir = 1; }
   sp.pos = p;
   sp.steps++;
+  sp.at = performance.now();
   r.value = p;
   r.dispatchEvent(new Event('input'));
 }
 
+// one step (1/50 of the travel) of the slider played, else the one moved last,
+// else the first main one; a play stops there
+function sliderStep(dir) {
+  if (!hv.info) return;
+  const key = (hv.sliderPlay && hv.sliderPlay.key) || (hv.lastKey && ctlOf(hv.lastKey) && hv.lastKey)
+    || (mainControls(hv.info)[0] || {}).key;
+  sliderPlayStop();
+  const r = key && $('controls').querySelector('input[type=range][data-key="' + key + '"]');
+  if (r) stepSlider(r, dir);
+}
 
 // ---- values under the cursor -------------------------------------------------
 
@@ -603,8 +824,9 @@ $('figure').addEventListener('mouseleave', () => { $('tip').hidden = true; });
 // frames shown use the new ones.  Paused, frame i comes alone (/api/frame).
 
 const anim = hv.anim = {
-  n: 0, fps: 30, key: '', png: new Map(), bmp: new Map(), decoding: new Set(),
+  n: 0, fps: 30, key: '', png: new Map(), bmp: new Map(), decoding: new Set(), bad: new Map(),
   stream: null, streamEnd: -1, pos: 0, last: 0, shown: 0, stalls: 0, raf: 0, error: null,
+  skipped: 0, viaImg: 0, loop: true,
 };
 const WINDOW_S = 2;     // seconds of frames asked for ahead by one stream
 const DECODE_AHEAD = 8; // frames decoded ahead of the one shown
@@ -630,6 +852,8 @@ function animClear() {
   anim.png.clear();
   anim.bmp.clear();
   anim.decoding.clear();
+  anim.bad.clear();
+  frameWarn('');
   anim.key = animKey();
 }
 
@@ -645,6 +869,7 @@ function setupAnim(info, keep) {
   const sec = $('anim');
   animStop();
   animClear();
+  document.body.classList.toggle('anim', !!info.anim);
   if (!info.anim) { sec.hidden = true; return; }
   sec.hidden = false;
   if (info.anim.error) {
@@ -660,13 +885,56 @@ function setupAnim(info, keep) {
     + (info.builtin ? '' : ' --set …') + ' --frames i:i+1` writes (OpenGL, from a warm hystviz-animate worker); '
     + 'play shows ' + anim.fps + ' frames a second' + (info.builtin ? '.' : ', with the values of the sliders above.');
   requestFrame(+$('scrub').value);
+  fitFrame();
 }
 
 function showBitmap(b) {
   const c = $('frame');
-  if (c.width !== b.width || c.height !== b.height) { c.width = b.width; c.height = b.height; }
+  if (c.width !== b.width || c.height !== b.height) { c.width = b.width; c.height = b.height; fitFrame(); }
   c.getContext('2d').drawImage(b, 0, 0);
 }
+
+// A frame's PNG as something the canvas draws: createImageBitmap, else an
+// <img> from a blob URL (decode()), which some PNGs that createImageBitmap
+// refuses pass (issue 38: an incomplete Huffman code zlib tolerates); its
+// close() frees the URL.  Rejects with the reason where neither decodes.
+async function decodeFrame(buf) {
+  const blob = new Blob([buf], { type: 'image/png' });
+  let first;
+  try { return await createImageBitmap(blob); } catch (e) { first = e; }
+  const url = URL.createObjectURL(blob), img = new Image();
+  try {
+    img.src = url;
+    await img.decode();
+    anim.viaImg++;
+    img.close = () => URL.revokeObjectURL(url);
+    return img;
+  } catch (e) {
+    URL.revokeObjectURL(url);
+    throw new Error('this browser cannot decode its PNG (' + buf.byteLength + ' bytes; ' + (first && first.message || first) + ')');
+  }
+}
+
+// the line under the clip that says which frames were skipped and why (stays until the clip changes)
+function frameWarn(msg) {
+  const w = $('framewarn');
+  if (!w) return;
+  w.textContent = msg;
+  w.hidden = !msg;
+}
+
+// The presentation view: the frame as large as the space left for it allows, its aspect kept
+function fitFrame() {
+  const c = $('frame'), box = $('framebox');
+  if (!c || !box) return;
+  if (!hv.present) { c.style.width = c.style.height = ''; return; }
+  const w = box.clientWidth, h = box.clientHeight, s = Math.min(w / c.width, h / c.height);
+  if (!(s > 0)) return;
+  c.style.width = Math.floor(c.width * s) + 'px';
+  c.style.height = Math.floor(c.height * s) + 'px';
+}
+window.addEventListener('resize', fitFrame);
+if (window.ResizeObserver) new ResizeObserver(fitFrame).observe($('framebox'));
 
 function b64(buf) {
   let s = '';
@@ -688,25 +956,32 @@ async function loadFrame(i) {
   hv.framePending = -1;
   const my = ++hv.frameSeq, key = animKey();
   $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' (rendering…)';
+  let buf = anim.png.get(i);
   try {
-    let buf = anim.png.get(i);
     if (!buf) {
       const r = await fetch('/api/frame?scene=' + enc(hv.info.file) + animSets() + '&frame=' + i + '&page=' + hv.page + 'f&seq=' + my);
       if (r.status === 200) buf = await r.arrayBuffer();
       else if (r.status !== 409) {
-        const j = await r.json();
-        $('frameinfo').textContent = 'frame ' + i + ': ' + j.error;
+        const j = await r.json().catch(() => ({}));
+        $('frameinfo').textContent = 'frame ' + i + ': ' + (j.error || 'HTTP ' + r.status);
       }
     }
-    if (buf && key === animKey() && !hv.playing) {
-      showBitmap(await createImageBitmap(new Blob([buf], { type: 'image/png' })));
-      hv.frameB64 = b64(buf);
-      hv.frame = i;
-      $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n;
-      document.dispatchEvent(new CustomEvent('hv-frame'));
-    }
   } catch (e) {
-    $('frameinfo').textContent = 'frame ' + i + ': the server did not answer';
+    $('frameinfo').textContent = 'frame ' + i + ': the server did not answer (' + e.message + ')';
+  }
+  if (buf && key === animKey() && !hv.playing) {
+    try {
+      const b = await decodeFrame(buf);
+      showBitmap(b);
+      b.close();
+      $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · ' + clipTime(i);
+    } catch (e) { // the server answered: the frame is here, the browser cannot show it
+      $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · ' + clipTime(i);
+      frameWarn('frame ' + i + ' came from the server, but ' + e.message + '; the frame before it stays on screen');
+    }
+    hv.frameB64 = b64(buf);
+    hv.frame = i;
+    document.dispatchEvent(new CustomEvent('hv-frame'));
   }
   hv.frameInflight = false;
   if (hv.framePending >= 0 && !hv.playing) loadFrame(hv.framePending);
@@ -807,11 +1082,15 @@ function decodeAhead() {
     const i = (cur + d) % anim.n, buf = anim.png.get(i), key = anim.key;
     if (!buf || anim.bmp.has(i) || anim.decoding.has(i)) continue;
     if (anim.decoding.size >= DECODE_PAR) break;
+    if (anim.bad.has(i)) continue;
     anim.decoding.add(i);
-    createImageBitmap(new Blob([buf], { type: 'image/png' })).then(b => {
+    decodeFrame(buf).then(b => {
       anim.decoding.delete(i);
       if (key === anim.key) { anim.bmp.set(i, b); decodeAhead(); } else b.close();
-    }, () => anim.decoding.delete(i));
+    }, e => { // neither decoder takes it: skipped when due, with a note (play goes on)
+      anim.decoding.delete(i);
+      if (key === anim.key) anim.bad.set(i, e.message);
+    });
   }
 }
 
@@ -823,20 +1102,26 @@ function decodeAhead() {
 function bufferedAhead() {
   const want = Math.min(BUFFER, anim.n);
   let k = 0;
-  while (k < want && anim.bmp.has((anim.pos + k) % anim.n)) k++;
+  while (k < want && (anim.bmp.has((anim.pos + k) % anim.n) || anim.bad.has((anim.pos + k) % anim.n))) k++;
   return k >= want;
 }
 
 function tick(now) {
   if (!hv.playing) return;
-  const i = anim.pos, period = 1000 / anim.fps;
+  const i = anim.pos, period = 1000 / (anim.fps * hv.speed);
   if (anim.buffering) {
     if (bufferedAhead() || now - anim.bufferSince > 1000) { anim.buffering = false; anim.due = now; }
     else anim.stalls++;
   }
   if (!anim.buffering && now + 2 >= anim.due) { // due (2 ms early is on time: display frames are not exact)
     const b = anim.bmp.get(i);
-    if (b) {
+    if (!b && anim.bad.has(i)) { // undecodable: skipped, said under the clip, and play goes on
+      anim.skipped++;
+      frameWarn('frame ' + i + ' skipped: it came from the server, but ' + anim.bad.get(i)
+        + (anim.skipped > 1 ? ' (' + anim.skipped + ' frames skipped so far)' : ''));
+      anim.pos = (i + 1) % anim.n;
+      anim.due = Math.max(anim.due + period, now - DEBT * period);
+    } else if (b) {
       showBitmap(b);
       if (anim.shown && now - anim.shownAt > anim.maxGap) anim.maxGap = now - anim.shownAt;
       anim.shownAt = now;
@@ -844,14 +1129,15 @@ function tick(now) {
       anim.shown++;
       anim.pos = (i + 1) % anim.n;
       anim.due = Math.max(anim.due + period, now - DEBT * period);
+      if (i === anim.n - 1 && !anim.loop) { animStop(); return; } // the last frame, loop off: stop there
     } else anim.stalls++; // not decoded yet: shown when it is, and the frames after it catch up
   }
   if (now - (anim.textAt || 0) > 250) { // the scrubber and the line below it 4 times a second: no layout per frame
     anim.textAt = now;
     $('scrub').value = hv.frame;
     const rate = anim.shown / Math.max(1e-3, (now - anim.t0) / 1000);
-    $('frameinfo').textContent = 'frame ' + hv.frame + ' / ' + anim.n + ' · ' + rate.toFixed(0) + ' of the clip\'s '
-      + anim.fps + ' frames/s shown';
+    $('frameinfo').textContent = 'frame ' + hv.frame + ' / ' + anim.n + ' · ' + clipTime(hv.frame) + ' · '
+      + rate.toFixed(0) + ' of the ' + +(anim.fps * hv.speed).toFixed(2) + ' frames/s shown';
   }
   decodeAhead();
   animFetch();
@@ -864,6 +1150,8 @@ function animPlay() {
   $('play').textContent = 'pause';
   anim.error = null;
   anim.pos = (+$('scrub').value + 1) % anim.n;
+  if (!anim.loop && +$('scrub').value >= anim.n - 1) anim.pos = 0; // loop off, at the end: from the start
+  anim.skipped = 0;
   anim.last = anim.due = anim.bufferSince = performance.now();
   anim.buffering = true;
   anim.shown = 0;
@@ -872,6 +1160,22 @@ function animPlay() {
   anim.t0 = anim.last;
   animFetch();
   anim.raf = requestAnimationFrame(tick);
+}
+
+// "1.20 s / 6.00 s": the clip time of frame i
+function clipTime(i) {
+  return (Math.max(0, i) / anim.fps).toFixed(2) + ' s / ' + (anim.n / anim.fps).toFixed(2) + ' s';
+}
+
+// one frame back or on (paused there; at the ends it wraps when loop is on)
+function frameStep(dir) {
+  if (!hv.info || !hv.info.anim || !anim.n) return;
+  if (hv.playing) animStop();
+  let i = +$('scrub').value + dir;
+  if (i < 0) i = anim.loop ? anim.n - 1 : 0;
+  if (i >= anim.n) i = anim.loop ? 0 : anim.n - 1;
+  $('scrub').value = i;
+  requestFrame(i);
 }
 
 function animStop() {
@@ -884,13 +1188,18 @@ function animStop() {
   if (was && hv.frame >= 0) $('scrub').value = hv.frame;
   if (was && hv.frame >= 0 && anim.png.has(hv.frame)) { // paused on frame i: its bytes, as the scrubber's
     hv.frameB64 = b64(anim.png.get(hv.frame));
-    $('frameinfo').textContent = 'frame ' + hv.frame + ' / ' + anim.n;
+    $('frameinfo').textContent = 'frame ' + hv.frame + ' / ' + anim.n + ' · ' + clipTime(hv.frame);
     document.dispatchEvent(new CustomEvent('hv-frame'));
   }
 }
 
 $('scrub').addEventListener('input', () => { if (hv.playing) animStop(); requestFrame(+$('scrub').value); });
 $('play').addEventListener('click', () => { if (hv.playing) animStop(); else animPlay(); });
+$('keysbtn').addEventListener('click', () => { $('keys').hidden = !$('keys').hidden; });
+$('stepback').addEventListener('click', () => frameStep(-1));
+$('stepon').addEventListener('click', () => frameStep(1));
+$('loop').addEventListener('change', ev => { anim.loop = ev.target.checked; });
+$('animspeed').replaceWith(speedSelect('animspeed'));
 
 // ---- sharing --------------------------------------------------------------------------
 
@@ -931,6 +1240,7 @@ function listen() {
 function setPresent(on, fromUrl) {
   hv.present = !!on;
   document.body.classList.toggle('present', hv.present);
+  fitFrame();
   if (!fromUrl) pushUrl(false);
   if (hv.present) {
     // arrows step the first main slider at once
@@ -954,6 +1264,42 @@ function stepSlider(range, dir) {
   range.dispatchEvent(new Event('change'));
 }
 
+// A short line over the figure for a key's answer ("no preset 7: this scene has 3")
+function flash(msg) {
+  const f = $('flash');
+  f.textContent = msg;
+  f.hidden = false;
+  clearTimeout(hv.flashTimer);
+  hv.flashTimer = setTimeout(() => { f.hidden = true; }, 2500);
+}
+
+const animOpen = () => !$('anim').hidden && anim.n > 0;
+// The keys: what the help (key ?) lists is this table, so each key it lists does something
+const KEYS = [
+  ['p', 'presentation view on/off', () => setPresent(!hv.present)],
+  ['f', 'full screen', () => { if (document.fullscreenElement) document.exitFullscreen(); else document.documentElement.requestFullscreen().catch(() => flash('full screen refused by the browser')); }],
+  ['r', 'reset to the file\'s values', () => resetValues()],
+  ['t', 'slides theme on/off', () => setTheme(hv.sets['figure.theme'] !== 'slides')],
+  ['g', 'pin the curves shown now (labelled with their values)', () => { addPin(); flash(hv.pins.length ? 'pinned: ' + hv.pins[hv.pins.length - 1].label : 'nothing to pin'); }],
+  ['l', 'hold the axes / release them', () => { holdAxes(!hv.axesHeld); flash(hv.axesHeld ? 'axes held' : 'axes free'); }],
+  ['space', 'play/pause the clip, or stop a slider\'s ▶', null],
+  [',', 'one step back (the clip\'s frame, or the slider played or moved last)', () => animOpen() ? frameStep(-1) : sliderStep(-1)],
+  ['.', 'one step on (the clip\'s frame, or the slider played or moved last)', () => animOpen() ? frameStep(1) : sliderStep(1)],
+  ['[', 'slower (¼×, ½×, 1×, 2×)', () => speedStep(-1)],
+  [']', 'faster', () => speedStep(1)],
+  ['←/→', 'step the focused slider', null],
+  ['1–9', 'the scene\'s presets', null],
+  ['?', 'this list of keys', () => { $('keys').hidden = !$('keys').hidden; }],
+];
+
+// the help: the keys of KEYS; 1–9 says how many presets this scene has
+function keyHelp() {
+  const n = hv.info && hv.info.presets ? hv.info.presets.length : 0;
+  $('keylist').replaceChildren(...KEYS.filter(k => k[0] !== '1–9' || n > 0).map(k => el('li', {},
+    el('kbd', {}, k[0] === '1–9' ? (n > 1 ? '1–' + Math.min(9, n) : '1') : k[0]), ' ',
+    k[0] === '1–9' ? 'the scene\'s presets (' + n + ')' : k[1])));
+}
+
 document.addEventListener('keydown', ev => {
   if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
   const t = ev.target;
@@ -962,16 +1308,17 @@ document.addEventListener('keydown', ev => {
     if (t && t.type === 'range' && t.dataset.key) { ev.preventDefault(); stepSlider(t, ev.key === 'ArrowRight' ? 1 : -1); }
     return;
   }
+  if (ev.key === 'Escape' && !$('keys').hidden) { $('keys').hidden = true; return; }
   if (!hv.info) return;
-  if (ev.key === 'p') setPresent(!hv.present);
-  else if (ev.key === 'f') {
-    if (document.fullscreenElement) document.exitFullscreen(); else document.documentElement.requestFullscreen().catch(() => {});
-  } else if (ev.key === 'r') resetValues();
-  else if (ev.key === 't') setTheme(hv.sets['figure.theme'] !== 'slides');
-  else if (ev.key === 'g') togglePin();
+  const k = KEYS.find(x => x[0] === ev.key && x[2]);
+  if (k) { ev.preventDefault(); k[2](); }
   else if (ev.key === ' ' && hv.sliderPlay) { ev.preventDefault(); sliderPlayStop(); }
   else if (ev.key === ' ' && !$('anim').hidden && !(t && t.tagName === 'BUTTON')) { ev.preventDefault(); $('play').click(); }
-  else if (/^[1-9]$/.test(ev.key)) applyPreset(+ev.key - 1);
+  else if (/^[1-9]$/.test(ev.key)) {
+    const n = hv.info.presets ? hv.info.presets.length : 0;
+    if (+ev.key <= n) applyPreset(+ev.key - 1);
+    else flash(n ? 'no preset ' + ev.key + ': this scene has ' + n + ' (keys 1–' + n + ')' : 'no preset ' + ev.key + ': this scene has none');
+  }
 });
 
 // the frame shown (paused) goes into the URL, so a link opens on it

@@ -1,10 +1,44 @@
 /* SPDX-License-Identifier: MIT */
 /* embed.c: build-time helper: writes a C file defining each input file as a
  * NUL-terminated char array and its length (the page `hystviz serve` sends,
- * and the one `hystviz export` writes).
+ * and the one `hystviz export` writes).  A line that reads exactly
+ * "/" "* @embed PATH *" "/" is replaced by the file PATH (relative to the file
+ * that names it, one level deep): the pages share one copy of a script
+ * (page/typeset.js) this way.
  *   embed OUT.c NAME FILE [NAME FILE]... */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+
+/* Writes the bytes of in to out as array items, counting them in *n; 0, or 1
+ * with a message when a file it embeds cannot be read. */
+static int copy(FILE *out, FILE *in, const char *path, int depth, size_t *n)
+{
+    char line[4096];
+    while (fgets(line, sizeof line, in)) {
+        size_t len = strlen(line);
+        if (depth == 0 && len > 14 && !strncmp(line, "/* @embed ", 10) && !strcmp(line + len - 4, " */\n")) {
+            char full[8192];
+            const char *slash = strrchr(path, '/');
+            snprintf(full, sizeof full, "%.*s%.*s", slash ? (int)(slash - path + 1) : 0, path, (int)(len - 14), line + 10);
+            FILE *sub = fopen(full, "rb");
+            if (!sub) {
+                perror(full);
+                return 1;
+            }
+            int rc = copy(out, sub, full, depth + 1, n);
+            fclose(sub);
+            if (rc)
+                return 1;
+            continue;
+        }
+        for (size_t k = 0; k < len; k++, (*n)++) {
+            int c = (unsigned char)line[k];
+            fprintf(out, "%s%d,", *n % 24 ? "" : "\n", c > 127 ? c - 256 : c); /* char may be signed */
+        }
+    }
+    return 0;
+}
 
 int main(int argc, char **argv)
 {
@@ -28,10 +62,14 @@ int main(int argc, char **argv)
         }
         fprintf(out, "const char %s[] = {", argv[i]);
         size_t n = 0;
-        for (int c; (c = getc(in)) != EOF; n++)
-            fprintf(out, "%s%d,", n % 24 ? "" : "\n", c > 127 ? c - 256 : c); /* char may be signed */
-        fprintf(out, "0};\nconst size_t %s_len = %zu;\n", argv[i], n);
+        int rc = copy(out, in, argv[i + 1], 0, &n);
         fclose(in);
+        if (rc) {
+            fclose(out);
+            remove(argv[1]);
+            return 1;
+        }
+        fprintf(out, "0};\nconst size_t %s_len = %zu;\n", argv[i], n);
     }
     if (fclose(out)) {
         perror(argv[1]);
