@@ -1151,17 +1151,72 @@ static int fixed_legend_box(const panel *p, double b[4]);
  * The gallery's figures look at fewer than 1e5 items. */
 #define PLACE_RANK_VISITS 4000000u
 
+/* One label's search for a spot (place_texts): the box b, from (bx, by) on
+ * rings outwards, inside the frame and off the fixed legend; the first spot
+ * that covers nothing (in pass 0 also with a leader to (lx, ly) that crosses
+ * no curve) goes to *x, *y and 1 is returned; else 0, with the least
+ * covering spot inside the frame in *lx_, *ly_ and its overlap in *least
+ * (INFINITY when no spot of the rings lies inside the frame). */
+typedef struct spot_search {
+    const hy_markup_box *b;
+    double lx, ly;            /* where a leader line would go */
+    int has_point, rank, has_lg;
+    double lg[4];
+    double least, least_x, least_y;
+} spot_search;
+
+static int search_spot(const panel *p, spot_search *s, double bx, double by, double *x, double *y)
+{
+    const hy_markup_box *b = s->b;
+    for (int pass = 0; pass < 2; pass++)
+        for (int ring = 0; ring <= 30; ring++) {
+            double r = ring * 0.5 * p->fs;
+            int dirs = ring ? 24 : 1;
+            for (int k = 0; k < dirs; k++) {
+                double a = 2.0 * M_PI * k / dirs;
+                double cx = bx + r * cos(a), cy = by - r * sin(a);
+                double box[4] = {cx - 1.0, cy - b->ascent - 1.0, b->width + 2.0, b->ascent + b->descent + 2.0};
+                if (box[0] < p->x0 + 2 || box[1] < p->y0 + 2 || box[0] + box[2] > p->x0 + p->w - 2 ||
+                    box[1] + box[3] > p->y0 + p->h - 2)
+                    continue;
+                if (s->has_lg && s->lg[0] < box[0] + box[2] && s->lg[0] + s->lg[2] > box[0] &&
+                    s->lg[1] < box[1] + box[3] && s->lg[1] + s->lg[3] > box[1])
+                    continue;
+                /* avoids the curves and the annotations placed before it */
+                double o = overlap_bounded(p, box[0], box[1], box[2], box[3], s->rank ? s->least : DBL_MIN);
+                if (o < s->least)
+                    s->least = o, s->least_x = cx, s->least_y = cy;
+                if (o != 0.0)
+                    continue;
+                if (pass == 0 && s->has_point) {
+                    double nx, ny;
+                    nearest_on_box(box, s->lx, s->ly, &nx, &ny);
+                    if (leader_crosses(p, nx, ny, s->lx, s->ly))
+                        continue;
+                }
+                *x = cx, *y = cy;
+                return 1;
+            }
+        }
+    return 0;
+}
+
+static double clampd(double v, double lo, double hi) { return v < lo ? lo : v > hi ? hi : v; }
+
 /* Places every annotation: at (x, y) shifted by (dx, dy) when its box covers
  * no curve, marker, inset, fixed legend or earlier annotation; else at the
  * nearest free spot inside the frame on rings around it (with none free, the
  * least covering one, or its own place once PLACE_RANK_VISITS are spent).
- * A label with a point gets a leader line to it, and prefers spots whose
- * leader crosses no curve. */
+ * A label whose rings reach no spot inside the frame (placed in data units
+ * far off the axes' range, as a slider can make it) is searched for again
+ * from the nearest place inside the frame (issue 38 item 3).  A label with a
+ * point gets a leader line to it, and prefers spots whose leader crosses no
+ * curve. */
 static void place_texts(panel *p)
 {
     const hy_axes *ax = p->ax;
-    double lg[4];
-    int has_lg = fixed_legend_box(p, lg);
+    spot_search s;
+    s.has_lg = fixed_legend_box(p, s.lg);
     for (size_t i = 0; i < ax->ntexts; i++)
         p->tplace[i].ok = 0;
     p->grid = ax->ntexts ? pg_build(p) : NULL;
@@ -1173,43 +1228,20 @@ static void place_texts(panel *p)
             continue;
         hy_markup_text(p->cv, t->text, p->fs, 0, 0, 0, 0, hy_palette[0], &b);
         double ax0 = map_x(p, t->x), ay0 = map_y(p, t->y);
-        double bx = ax0 + t->dx - 0.5 * t->anchor * b.width, by = ay0 - t->dy;
-        double best_x = bx, best_y = by, least = INFINITY, least_x = bx, least_y = by;
-        double lx = ax0, ly = ay0;   /* where a leader line would go */
+        double bx = ax0 + t->dx - 0.5 * t->anchor * b.width, by = ay0 - t->dy, best_x = bx, best_y = by;
+        s.b = &b;
+        s.lx = ax0, s.ly = ay0;
+        s.has_point = t->has_point;
         if (t->has_point && usable(t->px, p->xlog) && usable(t->py, p->ylog))
-            lx = map_x(p, t->px), ly = map_y(p, t->py);
-        int found = 0, rank = !p->grid || p->grid->visits < PLACE_RANK_VISITS;
-        for (int pass = 0; pass < 2 && !found; pass++)
-            for (int ring = 0; ring <= 30 && !found; ring++) {
-                double r = ring * 0.5 * p->fs;
-                int dirs = ring ? 24 : 1;
-                for (int k = 0; k < dirs && !found; k++) {
-                    double a = 2.0 * M_PI * k / dirs;
-                    double cx = bx + r * cos(a), cy = by - r * sin(a);
-                    double box[4] = {cx - 1.0, cy - b.ascent - 1.0, b.width + 2.0, b.ascent + b.descent + 2.0};
-                    if (box[0] < p->x0 + 2 || box[1] < p->y0 + 2 || box[0] + box[2] > p->x0 + p->w - 2 ||
-                        box[1] + box[3] > p->y0 + p->h - 2)
-                        continue;
-                    if (has_lg && lg[0] < box[0] + box[2] && lg[0] + lg[2] > box[0] && lg[1] < box[1] + box[3] &&
-                        lg[1] + lg[3] > box[1])
-                        continue;
-                    /* avoids the curves and the annotations placed before it */
-                    double o = overlap_bounded(p, box[0], box[1], box[2], box[3], rank ? least : DBL_MIN);
-                    if (o < least)
-                        least = o, least_x = cx, least_y = cy;
-                    if (o != 0.0)
-                        continue;
-                    if (pass == 0 && t->has_point) {
-                        double nx, ny;
-                        nearest_on_box(box, lx, ly, &nx, &ny);
-                        if (leader_crosses(p, nx, ny, lx, ly))
-                            continue;
-                    }
-                    found = 1, best_x = cx, best_y = cy;
-                }
-            }
-        if (!found && rank)   /* nowhere free: the least covering spot inside the frame */
-            best_x = least_x, best_y = least_y;
+            s.lx = map_x(p, t->px), s.ly = map_y(p, t->py);
+        s.rank = !p->grid || p->grid->visits < PLACE_RANK_VISITS;
+        s.least = INFINITY, s.least_x = bx, s.least_y = by;
+        int found = search_spot(p, &s, bx, by, &best_x, &best_y);
+        if (!found && s.least == INFINITY) /* no ring reached the frame: from the nearest place inside */
+            found = search_spot(p, &s, clampd(bx, p->x0 + 3.0, p->x0 + p->w - 3.0 - b.width),
+                                clampd(by, p->y0 + 3.0 + b.ascent, p->y0 + p->h - 3.0 - b.descent), &best_x, &best_y);
+        if (!found && s.rank)   /* nowhere free: the least covering spot inside the frame */
+            best_x = s.least_x, best_y = s.least_y;
         tp->ax = ax0, tp->ay = ay0;
         tp->ok = 1;
         tp->x = best_x, tp->y = best_y;
@@ -1221,7 +1253,7 @@ static void place_texts(panel *p)
             tp->ax = map_x(p, t->px), tp->ay = map_y(p, t->py), tp->leader = 1;
         /* a label past the ranking budget with no free spot is not avoided by
          * later ones: a pile at one place would make every later query walk it */
-        if (p->grid && (found || rank) && pg_add_text(p->grid, (int)i, tp->box)) {
+        if (p->grid && (found || s.rank) && pg_add_text(p->grid, (int)i, tp->box)) {
             pg_free(p->grid); /* out of memory: the scan from here on */
             p->grid = NULL;
         }

@@ -685,6 +685,9 @@ typedef struct lrec {
     size_t nseg;
     double legend[4];
     int has_legend;
+    const char *want;            /* a text whose first run's box goes to text[] */
+    double text[4];
+    int found;
 } lrec;
 
 static void l_begin(void *c) { lrec *r = c; r->npath = 0; r->inner.ops->begin_path(r->inner.ctx); }
@@ -726,6 +729,12 @@ static void l_marker(void *c, int s, double x, double y, double sz, const hy_pen
 static void l_text(void *c, double x, double y, const char *s, double sz, int it, int v, hy_rgb col)
 {
     lrec *r = c;
+    if (r->want && !r->found && !v && !strncmp(s, r->want, strlen(r->want))) { /* the first run of that text */
+        hy_text_extents e;
+        r->inner.ops->measure(r->inner.ctx, s, sz, it, &e);
+        r->text[0] = x, r->text[1] = y - 0.78 * sz, r->text[2] = e.advance, r->text[3] = 1.02 * sz;
+        r->found = 1;
+    }
     r->inner.ops->text(r->inner.ctx, x, y, s, sz, it, v, col);
 }
 static void l_measure(void *c, const char *s, double sz, int it, hy_text_extents *e)
@@ -815,6 +824,53 @@ static void legend_clear(const char *name)
     hy_scene_run_free(&r);
 }
 
+/* Fig. 15 as a slider moves sigma0 over 1e-2 … 1e3 (50 values, log): the
+ * annotation placed in data units (x = 0.05, y = 1.6) stays inside the plot
+ * area at every value (issue 38 item 3: at sigma0 = 0.094 the data span
+ * ±0.07 and the readout was placed off the axes). */
+static void annotation_inside(void)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/scenes/fig15_minor_loop_ex4.scene", SRC);
+    int outside = 0;
+    for (int k = 0; k < 50; k++) {
+        char set[64];
+        snprintf(set, sizeof set, "model.sigma0=%.6g", pow(10.0, -2.0 + 5.0 * k / 49.0));
+        hy_scene_run r;
+        hy_scene_fig st;
+        if (run_figure(path, set, &r, &st))
+            return;
+        lrec *lr = calloc(1, sizeof *lr);
+        lr->seg = malloc(REC_MAX * sizeof *lr->seg);
+        lr->want = "minor loop area";
+        cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 10, 10);
+        cairo_t *cr = cairo_create(img);
+        hy_cairo_canvas cc;
+        lr->inner = hy_canvas_cairo(&cc, cr, st.fig.font);
+        hy_canvas cv = {&lrec_ops, lr};
+        hy_error err;
+        double f[4];
+        CHECK(hy_figure_draw(&st.fig, &cv, &err) == 0, "%s: draw: %s", set, err.msg);
+        CHECK(hy_figure_frame(&st.fig, &cv, 0, f, &err) == 0, "%s: frame: %s", set, err.msg);
+        CHECK(lr->found, "%s: the annotation was not drawn", set);
+        const double *b = lr->text;
+        if (lr->found && (b[0] < f[0] || b[1] < f[1] || b[0] + b[2] > f[0] + f[2] || b[1] + b[3] > f[1] + f[3])) {
+            printf("  %s: 'minor loop area' at [%.1f, %.1f] x [%.1f, %.1f], the frame [%.1f, %.1f] x [%.1f, %.1f]\n",
+                   set, b[0], b[0] + b[2], b[1], b[1] + b[3], f[0], f[0] + f[2], f[1], f[1] + f[3]);
+            outside++;
+        }
+        cairo_destroy(cr);
+        cairo_surface_destroy(img);
+        free(lr->seg);
+        free(lr);
+        hy_scene_fig_free(&st);
+        hy_scene_run_free(&r);
+    }
+    CHECK(outside == 0, "Fig. 15: the annotation left the plot area at %d of 50 values of sigma0", outside);
+    if (!outside)
+        printf("Fig. 15: the annotation inside the plot area at 50 values of sigma0 in [1e-2, 1e3]\n");
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -839,6 +895,7 @@ int main(int argc, char **argv)
     legend_clear("fig07_ygamma_ex2");
     legend_clear("fig11_ygamma_ex3");
     legend_clear("bw_fig2b_transient_db");
+    annotation_inside();
     data_fig15();
     data_fig11();
     errors();
