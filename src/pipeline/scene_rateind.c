@@ -400,6 +400,7 @@ int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err)
     if (!rc) {
         rc = at_model(r, hy_rateind_alloc(&p.init, r->mtype->ri, r->ri_par, hy_input_u(&r->input, 0), err), err);
         p.have_init = !rc;
+        p.init.cancel = hy_scene_run_cancel_hook(r); /* its clones too: every move inside a series */
     }
     if (!rc && need_steady)
         rc = need_steady_state(r, &p, err);
