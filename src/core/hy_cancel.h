@@ -11,7 +11,7 @@
  *     }
  *
  * The loop keeps its own count and asks the hook once every `every` units,
- * so a unit costs one increment and one compare; choose `every` so that
+ * so a unit costs a call, an increment and a compare; choose `every` so that
  * that many units take well under a millisecond.  The hook itself should be
  * cheap (serve's reads a clock and looks at the connection at most once a
  * millisecond).  A NULL hook, or one that never says stop, changes no
@@ -26,15 +26,9 @@ typedef struct hy_cancel {
     void *ctx;
 } hy_cancel;
 
-/* 1 when c (may be NULL) says stop; asks it once every `every` calls
- * (*tick counts them). */
-static inline int hy_cancel_poll(const hy_cancel *c, unsigned *tick, unsigned every)
-{
-    if (!c || !c->fn || ++*tick < every)
-        return 0;
-    *tick = 0;
-    return c->fn(c->ctx) != 0;
-}
+/* 1 when c (may be NULL: never) says stop; asks it once every `every`
+ * calls (*tick, not NULL, counts them; start it at 0). */
+int hy_cancel_poll(const hy_cancel *c, unsigned *tick, unsigned every);
 
 /* HY_ECANCEL with the message every stopped loop gives. */
 #define hy_cancel_error(err) hy_error_set((err), HY_ECANCEL, "stopped: the work is no longer wanted")

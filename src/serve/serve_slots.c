@@ -15,7 +15,7 @@
 #define QUEUE_MAX 64        /* renders waiting for a slot; more: 503 + Retry-After */
 #define TRIM_IDLE_S 2.0     /* idle seconds before freed memory goes back to the kernel */
 #define LOOK_EVERY_S 1e-3   /* a running render looks at its connection at most this often */
-#define PREEMPT_AGE_S 0.5   /* a client's only render runs this long before another client's may stop it */
+#define PREEMPT_AGE_S 0.25   /* a client's only render runs this long before another client's may stop it */
 
 /* Counts a stopped render and says so on stderr, at most once a second (a
  * flood of abandoned requests must not flood the terminal). */
@@ -144,9 +144,12 @@ static void preempt_one(sv_server *s, int k)
     sv_render_watch *victim = NULL;
     int most = 0;
     double now = sv_now();
+    for (sv_render_watch *w = s->renders; w; w = w->next)
+        if (w->preempted) /* one is stopping: its slot comes next */
+            return;
     for (sv_render_watch *w = s->renders; w; w = w->next) {
         int n = w->client >= 0 ? s->client[w->client].running : 0;
-        if (w->preempted || w->client == k)
+        if (w->client == k)
             continue;
         if (n > most && n > 1) /* newest first in the list: the newest of the busiest client */
             victim = w, most = n;

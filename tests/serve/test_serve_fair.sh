@@ -29,8 +29,8 @@ T=$(mktemp -d)
 srv=
 bg=()
 cleanup() {
-    [ -n "$srv" ] && kill -9 "$srv" 2>/dev/null
-    for p in "${bg[@]}"; do kill -9 "$p" 2>/dev/null; done
+    [ -n "$srv" ] && { kill -9 "$srv" && wait "$srv"; } 2>/dev/null
+    for p in "${bg[@]}"; do { kill -9 "$p" && wait "$p"; } 2>/dev/null; done
     rm -rf "$T"
 }
 trap cleanup EXIT
@@ -132,7 +132,7 @@ if [ ${#pin[@]} -gt 0 ]; then
     esac
     grep -q "preempted render stopped" "$T/serve.err" && ok "serve says it preempted a render" ||
         fail "serve's log names no preempted render"
-    for p in "${bg[@]}"; do kill -9 "$p" 2>/dev/null; done
+    for p in "${bg[@]}"; do { kill -9 "$p" && wait "$p"; } 2>/dev/null; done
 else
     echo "SKIP (preemption): no taskset to pin serve to one CPU"
 fi
@@ -157,7 +157,7 @@ curl -s --max-time 30 -o "$T/body" -w "%{http_code}" \
     "$base/api/render?scene=$F&fmt=png&set=figure.size%3D20in,20in&set=figure.dpi%3D600" >"$T/code"
 ms=$(ms_since "$t0")
 [ "$(cat "$T/code")" = 422 ] && grep -q "memory cap" "$T/body" && ok "a 20 in PNG at 600 dpi: 422 in $ms ms ($(head -c 160 "$T/body"))" ||
-    fail "a 20 in PNG at 600 dpi: HTTP $(cat "$T/code") $(head -c 200 "$T/body")"
+    fail "a 20 in PNG at 600 dpi: HTTP $(cat "$T/code") $(head -c 200 "$T/body" | tr -cd '[:print:]')"
 got=$(curl -s -o /dev/null --max-time 30 -w "%{http_code}" "$base/api/render?scene=$F&fmt=png")
 [ "$got" = 200 ] && ok "the scene's own PNG: 200" || fail "the scene's own PNG: HTTP $got"
 rss=$(awk '/VmHWM/ {print $2}' /proc/$srv/status 2>/dev/null)
