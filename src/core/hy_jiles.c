@@ -50,7 +50,7 @@ double hy_langevin_d(double x)
 
 int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double alpha, hy_error *err)
 {
-    hy_jiles t = {ms, a, k, c, alpha, 0.0, HY_JILES_RTOL, NULL};
+    hy_jiles t = {ms, a, k, c, alpha, 0.0, HY_JILES_RTOL, NULL, NULL};
     int rc = hy_jiles_validate(&t, err);
     if (!rc)
         *j = t;
@@ -260,8 +260,13 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
     gsl_odeiv2_step_reset(sv->step);
     int rc = HY_OK;
     unsigned long steps = 0, fails = 0;
+    unsigned tick = 0;
     while (x != H) {
         double x0 = x, y0[2] = {y[0], y[1]};
+        if (hy_cancel_poll(j->cancel, &tick, 64)) { /* s: the last good step */
+            rc = hy_cancel_error(err);
+            break;
+        }
         c.bad = 0;
         int st = gsl_odeiv2_evolve_apply(sv->ev, sv->ctl, sv->step, &sys, &x, H, &h, y);
         if (st) {

@@ -51,6 +51,8 @@ typedef struct hy_jiles {
     const char *stepper; /* GSL stepper, a name of hy_ode_stepper_names()
                             (NULL: rk8pd, the default; `hystviz report` runs
                             each against rk8pd at 1e-13)                     */
+    const hy_cancel *cancel; /* asked every 64 steps of a stretch (NULL, as
+                            hy_jiles_init sets it: never; hy_cancel.h)     */
 } hy_jiles;
 
 /* Langevin function L(x) = coth x - 1/x, accurate for every x (odd, L(0) = 0). */

@@ -72,6 +72,7 @@ static int ja_read(const hy_decl_model *m, void *par, hy_error *err)
     memcpy(j, m->par, sizeof *j); /* every row: set or its default */
     j->rtol = HY_JILES_RTOL;
     j->stepper = NULL;
+    j->cancel = NULL; /* hy_scene_rateind_compute hands it the run's */
     return hy_scene_model_relocate(m, &hy_scene_model_jiles, hy_jiles_validate(j, err), err);
 }
 

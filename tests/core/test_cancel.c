@@ -7,6 +7,7 @@
 
 #include "hy_boucwen.h"
 #include "hy_cancel.h"
+#include "hy_jiles.h"
 #include "hy_ode.h"
 #include "hy_rateind.h"
 #include "tutil.h"
@@ -125,11 +126,38 @@ static void rateind(void)
     hy_rateind_free(&m);
 }
 
+/* one Jiles-Atherton stretch: thousands of GSL steps between two moves */
+static void jiles(void)
+{
+    hy_jiles j;
+    hy_jiles_state s0, s1;
+    hy_error err;
+    CHECK(!hy_jiles_init(&j, 1.6e6, 1100, 400, 0.2, 1.6e-3, &err) && j.cancel == NULL, "init: %s", err.msg);
+    hy_jiles_state_init(&j, &s0, 0);
+    CHECK(!hy_jiles_apply(&j, &s0, 2e4, NULL, &err), "no hook: %s", err.msg);
+    counter never = {0, 0};
+    hy_cancel c = {hook, &never};
+    j.cancel = &c;
+    hy_jiles_state_init(&j, &s1, 0);
+    CHECK(!hy_jiles_apply(&j, &s1, 2e4, NULL, &err), "never: %s", err.msg);
+    CHECK(s0.H == s1.H && s0.M == s1.M && s0.hb == s1.hb, "a hook that never stops changed M: %.17g vs %.17g", s0.M,
+          s1.M);
+    counter first = {0, 1};
+    c.ctx = &first;
+    hy_jiles_state_init(&j, &s1, 0);
+    if (never.asked > 0) {
+        CHECK_MSG(hy_jiles_apply(&j, &s1, 2e4, NULL, &err), err, HY_ECANCEL, "no longer wanted");
+        CHECK(s1.H > 0 && s1.H < 2e4, "stopped at H = %g (want the last good step, inside the stretch)", s1.H);
+    } else
+        printf("jiles: the stretch took fewer than 64 steps: nothing to stop\n");
+}
+
 int main(void)
 {
     poll_counts();
     ode();
     newmark();
     rateind();
+    jiles();
     return tu_finish("cancel");
 }
