@@ -36,6 +36,8 @@ typedef struct render_job {
     size_t len;
     hy_panel_map map;
     double seconds, cpu;    /* the render's wall and thread CPU time */
+    unsigned stop_st;       /* stopped: 409 superseded, 503 preempted, 0 client gone */
+    const char *stop_msg;
     hy_error err;
 } render_job;
 
@@ -182,11 +184,9 @@ static enum MHD_Result render_failed(render_job *j, int rc)
         hy_scene_run_free(&j->run);
     sv_render_leave(&j->watch, j->anon);
     if (rc == HY_ECANCEL) {
-        const char *msg = NULL;
-        unsigned st = sv_render_stopped(&j->watch, &msg);
-        if (st == 409)
-            return sv_send_error(j->c, 409, msg);
-        if (st == 503)
+        if (j->stop_st == 409)
+            return sv_send_error(j->c, 409, j->stop_msg);
+        if (j->stop_st == 503)
             return sv_send_busy(j->c, SV_SLOT_FULL);
         sv_cancelled_count(j->s); /* nobody to answer: close the connection */
         return MHD_NO;
@@ -368,6 +368,8 @@ enum MHD_Result sv_api_render(sv_server *s, struct MHD_Connection *c, const sv_a
         return sv_send_busy(c, got);
     }
     int rc = render_run(&j, text, tl);
+    if (rc == HY_ECANCEL) /* why, while the page's slot is still this page's */
+        j.stop_st = sv_render_stopped(&j.watch, &j.stop_msg);
     if (slot)
         sv_page_leave(s, slot);
     if (rc)

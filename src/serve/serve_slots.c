@@ -15,7 +15,7 @@
 #define QUEUE_MAX 64        /* renders waiting for a slot; more: 503 + Retry-After */
 #define TRIM_IDLE_S 2.0     /* idle seconds before freed memory goes back to the kernel */
 #define LOOK_EVERY_S 1e-3   /* a running render looks at its connection at most this often */
-#define PREEMPT_AGE_S 0.25   /* a client's only render runs this long before another client's may stop it */
+#define PREEMPT_AGE_S 0.25  /* a client's only render runs this long before another client's may stop it */
 
 /* Counts a stopped render and says so on stderr, at most once a second (a
  * flood of abandoned requests must not flood the terminal). */
@@ -51,18 +51,25 @@ unsigned sv_render_stopped(sv_render_watch *w, const char **msg)
 {
     sv_server *s = w->s;
     unsigned st = 0;
+    unsigned long n = 0;
+    int note = 0;
     pthread_mutex_lock(&s->mu);
+    double t = sv_now();
     if (w->gone || s->stopping)
         st = 0;
-    else if (w->slot && w->slot->latest != w->seq)
-        st = 409, s->nsuperseded++, *msg = "superseded by a newer request of the same page (stopped)";
-    else if (w->preempted)
-        st = 503, s->npreempted++, *msg = "stopped for another client's turn (each client gets one render while "
-                                          "others wait): try again in a second";
+    else if (w->slot && w->slot->latest != w->seq) {
+        st = 409, n = ++s->nsuperseded, *msg = "superseded by a newer request of the same page (stopped)";
+        if ((note = t - s->last_supersede_note >= 1.0))
+            s->last_supersede_note = t;
+    } else if (w->preempted) {
+        st = 503, n = ++s->npreempted, *msg = "stopped for another client's turn: try again in a second";
+        if ((note = t - s->last_preempt_note >= 1.0))
+            s->last_preempt_note = t;
+    }
     pthread_mutex_unlock(&s->mu);
-    if (st)
-        fprintf(stderr, "hystviz serve: %s render stopped (%s)\n", st == 409 ? "a superseded" : "a preempted",
-                st == 409 ? "its page asked again" : "another client waited");
+    if (note) /* at most once a second each, as for clients gone */
+        fprintf(stderr, "hystviz serve: stopped a render %s (%lu so far)\n",
+                st == 409 ? "superseded by a newer request of its page" : "for another client's turn", n);
     return st;
 }
 

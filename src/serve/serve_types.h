@@ -84,6 +84,7 @@ typedef struct sv_server {
     struct sv_render_watch *renders; /* the renders running, newest first (preemption) */
     unsigned long npreempted; /* renders stopped for another client's turn ... */
     unsigned long nsuperseded; /* ... or for a newer request of their page */
+    double last_preempt_note, last_supersede_note; /* their notes on stderr: once a second */
     size_t mem_held;          /* bytes of rasters reserved by running renders */
     unsigned long ncancelled; /* renders stopped because their client went */
     double last_cancel_note;

@@ -111,7 +111,7 @@ if waitfile "$T/h1" 10; then
 else
     fail "the superseded heavy render still runs 10 s after its page asked again"
 fi
-grep -q "superseded render stopped" "$T/serve.err" && ok "serve says it stopped a superseded render" ||
+grep -q "stopped a render superseded by a newer request of its page" "$T/serve.err" && ok "serve says it stopped a superseded render" ||
     fail "serve's log does not name the superseded render: $(tail -3 "$T/serve.err")"
 
 # ---- every slot held by other pages' heavy renders: a page with none gets one --------------
@@ -130,7 +130,7 @@ if [ ${#pin[@]} -gt 0 ]; then
     *503*) ok "a heavy render gave up its slot (HTTP $codes)" ;;
     *) fail "no heavy render was preempted (HTTP '$codes')" ;;
     esac
-    grep -q "preempted render stopped" "$T/serve.err" && ok "serve says it preempted a render" ||
+    grep -q "stopped a render for another client's turn" "$T/serve.err" && ok "serve says it preempted a render" ||
         fail "serve's log names no preempted render"
     for p in "${bg[@]}"; do { kill -9 "$p" && wait "$p"; } 2>/dev/null; done
 else
