@@ -18,6 +18,7 @@
 
 #define SERVE_OUTPUT_MAX (32u << 20) /* bytes of one answer (SVG, PDF, PNG, CSV, JSON) */
 #define FMT_CSV (-2)                 /* the points, as `hystviz data` writes them */
+#define REQUEUE_MAX 2                /* times a preempted render queues again before it answers 503 */
 
 /* A render request from its arguments to its answer. */
 typedef struct render_job {
@@ -133,7 +134,7 @@ static int raster_reserve(render_job *j)
     return HY_OK;
 }
 
-/* Loads text (freed here) with the page's overrides under serve's policy,
+/* Loads text (the caller's) with the page's overrides under serve's policy,
  * computes it and draws or lists it in j's format, timed; HY_OK, or a
  * status with j->err (HY_ECANCEL: the client went).  j->loaded says whether
  * j->run is still to be freed. */
@@ -142,7 +143,6 @@ static int render_run(render_job *j, char *text, size_t tl)
     double t0 = sv_now(), c0 = sv_thread_cpu();
     const sv_args *a = j->a;
     int rc = hy_scene_run_load_text(&j->run, j->path, text, tl, (char *const *)a->sets, a->nsets, &j->s->pol, &j->err);
-    free(text);
     j->loaded = !rc;
     if (!rc && (rc = raster_reserve(j))) {
         hy_scene_run_free(&j->run);
@@ -360,14 +360,27 @@ enum MHD_Result sv_api_render(sv_server *s, struct MHD_Connection *c, const sv_a
         j.watch.slot = slot;
         j.watch.seq = a->seq ? strtoul(a->seq, NULL, 10) : 0;
     }
-    int got = sv_render_enter(&j.watch, j.anon);
+    int got, rc = HY_OK;
+    for (int requeued = 0;; requeued++) {
+        if ((got = sv_render_enter(&j.watch, j.anon)) != SV_SLOT_OK)
+            break;
+        rc = render_run(&j, text, tl);
+        /* preempted for another client's turn: its work is lost, it waits
+           for a slot again (a page's render of 0.3 s on a loaded machine is
+           not an error), a few times before it answers 503 */
+        if (rc != HY_ECANCEL || requeued == REQUEUE_MAX || !sv_render_requeue(&j.watch))
+            break;
+        if (j.loaded)
+            hy_scene_run_free(&j.run);
+        j.loaded = 0;
+        sv_render_leave(&j.watch, j.anon);
+    }
+    free(text);
     if (got != SV_SLOT_OK) {
-        free(text);
         if (slot)
             sv_page_leave(s, slot);
         return sv_send_busy(c, got);
     }
-    int rc = render_run(&j, text, tl);
     if (rc == HY_ECANCEL) /* why, while the page's slot is still this page's */
         j.stop_st = sv_render_stopped(&j.watch, &j.stop_msg);
     if (slot)

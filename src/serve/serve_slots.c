@@ -47,6 +47,32 @@ int sv_render_unwanted(void *ctx)
     return stop;
 }
 
+/* Says on stderr that a render was stopped for another client's turn, at
+ * most once a second (s->mu held: the note is printed under it, rarely). */
+static void note_preempted(sv_server *s, const char *then)
+{
+    double t = sv_now();
+    if (t - s->last_preempt_note < 1.0)
+        return;
+    s->last_preempt_note = t;
+    fprintf(stderr, "hystviz serve: stopped a render for another client's turn, %s (%lu so far)\n", then,
+            s->npreempted);
+}
+
+int sv_render_requeue(sv_render_watch *w)
+{
+    sv_server *s = w->s;
+    pthread_mutex_lock(&s->mu);
+    int again = w->preempted && !w->gone && !s->stopping && !(w->slot && w->slot->latest != w->seq);
+    if (again) {
+        w->preempted = 0, w->next_look = 0;
+        s->npreempted++;
+        note_preempted(s, "queued again");
+    }
+    pthread_mutex_unlock(&s->mu);
+    return again;
+}
+
 unsigned sv_render_stopped(sv_render_watch *w, const char **msg)
 {
     sv_server *s = w->s;
@@ -62,14 +88,13 @@ unsigned sv_render_stopped(sv_render_watch *w, const char **msg)
         if ((note = t - s->last_supersede_note >= 1.0))
             s->last_supersede_note = t;
     } else if (w->preempted) {
-        st = 503, n = ++s->npreempted, *msg = "stopped for another client's turn: try again in a second";
-        if ((note = t - s->last_preempt_note >= 1.0))
-            s->last_preempt_note = t;
+        st = 503, *msg = "stopped for another client's turn: try again in a second";
+        s->npreempted++;
+        note_preempted(s, "answered 503");
     }
     pthread_mutex_unlock(&s->mu);
-    if (note) /* at most once a second each, as for clients gone */
-        fprintf(stderr, "hystviz serve: stopped a render %s (%lu so far)\n",
-                st == 409 ? "superseded by a newer request of its page" : "for another client's turn", n);
+    if (note) /* at most once a second, as for clients gone */
+        fprintf(stderr, "hystviz serve: stopped a render superseded by a newer request of its page (%lu so far)\n", n);
     return st;
 }
 
@@ -142,10 +167,14 @@ static int other_starved(const sv_server *s, int k)
 /* Client k waits with nothing running and every slot is busy (s->mu held):
  * stops one render so that k gets the next slot.  The victim is a render of
  * the client with the most running, the newest of them when that client
- * runs several (at once), else the oldest render once it has run
- * PREEMPT_AGE_S: one heavy scene cannot hold a slot for seconds while a
- * client with nothing running waits.  The render stops within a millisecond
- * (sv_render_unwanted) and answers 503 with Retry-After. */
+ * runs several (at once), else, among the renders that have run
+ * PREEMPT_AGE_S since they got their slot, the one that has held slots
+ * longest in all (a render queued again keeps its count: the shortest work
+ * goes first, a heavy scene is the victim): one heavy scene cannot hold a
+ * slot for seconds while a client with nothing running waits.  The render
+ * stops within a millisecond (sv_render_unwanted) and queues again
+ * (sv_render_requeue), at most REQUEUE_MAX times (serve_render.c) before it
+ * answers 503 with Retry-After. */
 static void preempt_one(sv_server *s, int k)
 {
     sv_render_watch *victim = NULL;
@@ -160,7 +189,8 @@ static void preempt_one(sv_server *s, int k)
             continue;
         if (n > most && n > 1) /* newest first in the list: the newest of the busiest client */
             victim = w, most = n;
-        else if (most <= 1 && now - w->started >= PREEMPT_AGE_S && (!victim || w->started < victim->started))
+        else if (most <= 1 && now - w->started >= PREEMPT_AGE_S &&
+                 (!victim || w->held - w->started > victim->held - victim->started))
             victim = w, most = 1;
     }
     if (victim)
@@ -260,6 +290,7 @@ static void slot_give(sv_server *s, struct MHD_Connection *c, int anon, const ch
         s->mem_held -= w->mem;
         w->mem = 0;
         w->client = -1;
+        w->held += sv_now() - w->started;
     }
     if (s->running == 0) { /* given back to the kernel after TRIM_IDLE_S idle (sv_idle_trim) */
         s->idle_since = sv_now();

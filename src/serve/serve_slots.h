@@ -19,6 +19,12 @@ int sv_render_unwanted(void *ctx);
  * (its client went or serve is stopping: nobody to answer). */
 unsigned sv_render_stopped(sv_render_watch *w, const char **msg);
 
+/* Whether w's render was stopped only for another client's turn (its
+ * client is there, its page asked nothing newer, serve is not stopping):
+ * then it is marked as running again, for the caller to give its slot back
+ * and queue again. */
+int sv_render_requeue(sv_render_watch *w);
+
 /* As sv_slot_take for a render watched by w (w->s, w->c, w->page set):
  * its client is its page id, else its address, and it may be preempted
  * (see serve_slots.c).  SV_SLOT_OK must be given back by sv_render_leave. */

@@ -121,6 +121,7 @@ typedef struct sv_render_watch {
     int client;             /* index in s->client while it holds a slot */
     int preempted;          /* under s->mu: stop, another client's turn */
     double started;         /* when it got its slot (sv_now) */
+    double held;            /* seconds it held slots before, when queued again */
     double next_look;       /* when sv_render_unwanted looks at the connection again */
     int gone;               /* it saw the client gone */
     size_t mem;             /* bytes of s->mem_held it reserved (sv_mem_take) */
