@@ -65,7 +65,7 @@ int sv_render_requeue(sv_render_watch *w)
     pthread_mutex_lock(&s->mu);
     int again = w->preempted && !w->gone && !s->stopping && !(w->slot && w->slot->latest != w->seq);
     if (again) {
-        w->preempted = 0, w->next_look = 0;
+        w->preempted = 0, w->next_look = 0, w->requeued++;
         s->npreempted++;
         note_preempted(s, "queued again");
     }
@@ -174,7 +174,10 @@ static int other_starved(const sv_server *s, int k)
  * slot for seconds while a client with nothing running waits.  The render
  * stops within a millisecond (sv_render_unwanted) and queues again
  * (sv_render_requeue), at most REQUEUE_MAX times (serve_render.c) before it
- * answers 503 with Retry-After. */
+ * answers 503 with Retry-After; queued again, it waits for a free slot
+ * while no request that was never stopped waits (the slot it gave up goes
+ * to the client that stopped it) and stops no other render (heavy renders
+ * would take turns stopping each other). */
 static void preempt_one(sv_server *s, int k)
 {
     sv_render_watch *victim = NULL;
@@ -224,15 +227,17 @@ static int slot_take(sv_server *s, struct MHD_Connection *c, int anon, const cha
         pthread_mutex_unlock(&s->mu);
         return SV_SLOT_FULL;
     }
+    int fresh = !(w && w->requeued); /* a render queued again lets the others go first */
     s->waiting++;
+    s->waiting_fresh += fresh;
     s->addr[a].waiting++;
     s->client[k].waiting++;
     int rc = SV_SLOT_OK;
     while (!s->stopping && (s->running >= s->nslots || (anon && s->running_anon >= cap_anon) ||
                             (s->addr[a].running >= cap_addr && s->waiting > s->addr[a].waiting) ||
-                            (s->client[k].running && other_starved(s, k)))) {
-        if (s->running >= s->nslots && !s->client[k].running)
-            preempt_one(s, k);
+                            (s->client[k].running && other_starved(s, k)) || (!fresh && s->waiting_fresh))) {
+        if (s->running >= s->nslots && !s->client[k].running && !(w && w->requeued))
+            preempt_one(s, k); /* a render queued again waits for a free slot: no churn */
         sv_cond_wait_slice(&s->cond, &s->mu);
         if (c && sv_client_gone(c)) {
             rc = SV_SLOT_GONE;
@@ -240,6 +245,7 @@ static int slot_take(sv_server *s, struct MHD_Connection *c, int anon, const cha
         }
     }
     s->waiting--;
+    s->waiting_fresh -= fresh;
     s->addr[a].waiting--;
     s->client[k].waiting--;
     if (s->stopping)

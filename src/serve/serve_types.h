@@ -71,6 +71,7 @@ typedef struct sv_server {
     sv_page_slot pages[MAX_PAGES];
     int nslots;             /* renders (and hystviz-animate children) at once */
     int running, running_anon, waiting;
+    int waiting_fresh;      /* ... of them not preempted before (they go first) */
     double idle_since;      /* when the last render ended (sv_now) */
     int trim_due;           /* its memory not yet given back (sv_idle_trim) */
     struct {
@@ -122,6 +123,7 @@ typedef struct sv_render_watch {
     int preempted;          /* under s->mu: stop, another client's turn */
     double started;         /* when it got its slot (sv_now) */
     double held;            /* seconds it held slots before, when queued again */
+    int requeued;           /* times it was preempted and queued again */
     double next_look;       /* when sv_render_unwanted looks at the connection again */
     int gone;               /* it saw the client gone */
     size_t mem;             /* bytes of s->mem_held it reserved (sv_mem_take) */
