@@ -539,7 +539,7 @@ static void case_jiles(cctx *cx, const char *what, double a, double k, double c,
     ccase cs;
     case_start(&cs, "jiles-atherton", 1e-8);
     snprintf(cs.params, sizeof cs.params, "%s a=%g k=%g c=%.10g alpha=%g", what, a, k, c, alpha);
-    hy_jiles j = {1.6e6, a, k, c, alpha, 0, 1e-13, NULL, HY_JILES_JA1986, 0}, j2;
+    hy_jiles j = {1.6e6, a, k, c, alpha, 0, 1e-13, NULL, HY_JILES_JA1986, 0, NULL}, j2;
     hy_jiles_loop L1, L2;
     hy_error err = {0};
     int rc = hy_jiles_validate(&j, &err), bad = 0;

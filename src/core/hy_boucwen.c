@@ -121,6 +121,7 @@ void hy_newmark_opts_default(hy_newmark_opts *o)
     o->c = 0.5;
     o->tol = 1e-12;
     o->max_iter = 50;
+    o->cancel = NULL;
 }
 
 int hy_newmark_opts_validate(const hy_newmark_opts *o, hy_error *err)
@@ -276,12 +277,20 @@ static inline __attribute__((always_inline)) int steps_nu(const hy_boucwen_param
 {
     double r[2];
     hy_boucwen_state st = *s; /* a local: in registers, not reloaded after each store to y */
-    for (size_t i = 1, j = 1 % nper; i < n; i++, j = j + 1 == nper ? 0 : j + 1) {
-        if (step_nu(p, nu1, o, h, u[j], &st, r))
-            return step_failed(o, h, &st, r, err);
-        y[i] = st.y;
-        if (z)
-            z[i] = st.z;
+    unsigned tick = 0;
+    for (size_t i = 1, j = 1 % nper; i < n;) { /* blocks of steps, the cancel hook between them */
+        size_t end = n - i > HY_NEWMARK_CANCEL_STEPS ? i + HY_NEWMARK_CANCEL_STEPS : n;
+        for (; i < end; i++, j = j + 1 == nper ? 0 : j + 1) {
+            if (step_nu(p, nu1, o, h, u[j], &st, r))
+                return step_failed(o, h, &st, r, err);
+            y[i] = st.y;
+            if (z)
+                z[i] = st.z;
+        }
+        if (i < n && hy_cancel_poll(o->cancel, &tick, 1)) {
+            *s = st;
+            return hy_cancel_error(err);
+        }
     }
     *s = st;
     return HY_OK;

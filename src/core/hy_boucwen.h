@@ -22,6 +22,7 @@
 #ifndef HY_BOUCWEN_H
 #define HY_BOUCWEN_H
 
+#include "hy_cancel.h"
 #include "hy_status.h"
 
 #include <stddef.h>
@@ -50,7 +51,13 @@ typedef struct hy_newmark_opts {
     double tol;     /* relative size of the last Newton update to stop at
                        (plus a floor of 4 ulps of each equation's terms)   */
     int max_iter;   /* Newton iterations allowed per step                  */
+    const hy_cancel *cancel; /* asked every HY_NEWMARK_CANCEL_STEPS steps;
+                                stop: HY_ECANCEL, the samples so far written
+                                (NULL: never; hy_cancel.h)                 */
 } hy_newmark_opts;
+
+/* Newmark steps between two questions to hy_newmark_opts.cancel. */
+#define HY_NEWMARK_CANCEL_STEPS 8192
 
 /* State at one time instant: displacement, velocity, acceleration, z, ż. */
 typedef struct hy_boucwen_state {

@@ -53,7 +53,7 @@ double hy_langevin_d(double x)
 
 int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double alpha, hy_error *err)
 {
-    hy_jiles t = {ms, a, k, c, alpha, 0.0, HY_JILES_RTOL, NULL, HY_JILES_JA1986, 0};
+    hy_jiles t = {ms, a, k, c, alpha, 0.0, HY_JILES_RTOL, NULL, HY_JILES_JA1986, 0, NULL};
     int rc = hy_jiles_validate(&t, err);
     if (!rc)
         *j = t;
@@ -326,12 +326,17 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
     int rc = HY_OK;
     unsigned long steps = 0, fails = 0, tries = 0, budget = j->max_steps ? j->max_steps : HY_JILES_MAX_STEPS;
     double h0 = s->H;
+    unsigned tick = 0;
     while (x != H) {
         if (s->steps + steps + fails + tries + sv->ev->count + sv->ev->failed_steps > budget) {
             rc = over_budget(j, budget, h0, H, s, err);
             break;
         }
         double x0 = x, y0[2] = {y[0], y[1]};
+        if (hy_cancel_poll(j->cancel, &tick, 64)) { /* s: the last good step */
+            rc = hy_cancel_error(err);
+            break;
+        }
         c.bad = 0;
         int st = gsl_odeiv2_evolve_apply(sv->ev, sv->ctl, sv->step, &sys, &x, H, &h, y);
         if (st) {

@@ -74,6 +74,8 @@ typedef struct hy_jiles {
     unsigned long max_steps; /* steps (accepted, rejected and those locating a
                             guard switch) a state may take from
                             hy_jiles_state_init on; 0: HY_JILES_MAX_STEPS    */
+    const hy_cancel *cancel; /* asked every 64 steps of a stretch (NULL, as
+                            hy_jiles_init sets it: never; hy_cancel.h)     */
 } hy_jiles;
 
 /* Langevin function L(x) = coth x - 1/x, accurate for every x (odd, L(0) = 0). */

@@ -42,7 +42,7 @@ int hy_ode_stepper_known(const char *name) { return hy_ode_step_type(name) != NU
 
 hy_ode_opts hy_ode_defaults(void)
 {
-    hy_ode_opts o = {"rkf45", 1e-8, 1e-10, 0, 1, 10000000UL, 0, NULL, NULL, 0, 1e7};
+    hy_ode_opts o = {"rkf45", 1e-8, 1e-10, 0, 1, 10000000UL, 0, NULL, NULL, 0, 1e7, NULL};
     return o;
 }
 
@@ -314,7 +314,12 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
             if (!rc)
                 serve_at_breakpoint(&c, tc, y, t, n, &j, y_out);
         }
+        unsigned tick = 0;
         while (j < n && rc == HY_OK) {
+            if (hy_cancel_poll(o->cancel, &tick, 256)) {
+                rc = hy_cancel_error(err);
+                break;
+            }
             rc = advance(d, &tc, t[j], y, err);
             if (!rc)
                 y_out[j++] = output(&c, tc, y);
@@ -324,8 +329,14 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
     size_t ip = 0;
     double k = 0; /* time is (period k, piece ip): k T is formed, never summed */
     c.piece = &in->pieces[0];
+    unsigned tick = 0;
     while (o->restart && j < n && rc == HY_OK) {
         const hy_piece *p = &in->pieces[ip];
+        if (hy_cancel_poll(o->cancel, &tick, 8)) { /* a piece: up to a few hundred steps */
+            rc = hy_cancel_error(err);
+            take_stats(d, stats);
+            break;
+        }
         double tb = k * in->period + p->t1, limit = tb - snap_width(tb);
         if (o->dense) {
             double stop = fmin(tb, t[n - 1]);

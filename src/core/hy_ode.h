@@ -21,6 +21,7 @@
 #define HY_ODE_H
 
 #include "hy_input.h"
+#include "hy_cancel.h"
 #include "hy_model.h"
 
 typedef struct hy_ode_opts {
@@ -37,6 +38,8 @@ typedef struct hy_ode_opts {
     size_t trace_cap;         /* room in trace_t, trace_y                      */
     double work_limit;        /* refuse up front (HY_EINVAL, "stiff") when
                                * hy_ode_work_estimate exceeds it; 0: never     */
+    const hy_cancel *cancel;  /* asked between pieces and output times; stop:
+                               * HY_ECANCEL (NULL: never; hy_cancel.h)        */
 } hy_ode_opts;
 
 typedef struct hy_ode_stats {

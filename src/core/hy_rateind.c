@@ -63,6 +63,8 @@ int hy_rateind_alloc(hy_rateind *m, const hy_rateind_type *type, const void *par
 {
     m->type = type;
     m->par = par;
+    m->cancel = NULL;
+    m->tick = 0;
     m->st = calloc(1, type->state_size ? type->state_size : 1);
     if (!m->st)
         return hy_error_set(err, HY_ENOMEM, "out of memory for a %s state", type->name);
@@ -76,6 +78,8 @@ int hy_rateind_alloc(hy_rateind *m, const hy_rateind_type *type, const void *par
 
 int hy_rateind_apply(hy_rateind *m, double u, hy_error *err)
 {
+    if (hy_cancel_poll(m->cancel, &m->tick, HY_RI_CANCEL_MOVES))
+        return hy_cancel_error(err);
     return m->type->apply(m->par, m->st, u, m->out, err);
 }
 

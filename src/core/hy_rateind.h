@@ -16,6 +16,7 @@
 #define HY_RATEIND_H
 
 #include <stddef.h>
+#include "hy_cancel.h"
 #include "hy_input.h"
 
 /* Moves the model held in ctx to input value u (from wherever it is, along a
@@ -101,11 +102,21 @@ typedef struct hy_rateind {
     const void *par;          /* borrowed: must outlive the model  */
     void *st;                 /* type->state_size bytes, owned     */
     double out[HY_RI_NOUT];   /* after the last move               */
+    const hy_cancel *cancel;  /* asked every HY_RI_CANCEL_MOVES moves
+                               * (NULL, as alloc sets it: never); a
+                               * clone shares it                     */
+    unsigned tick;            /* moves since it was last asked       */
 } hy_rateind;
 
-/* Allocates the state and puts the model at input u0.  On error m owns nothing. */
+/* Moves between two questions to hy_rateind.cancel (a Preisach move with
+ * a long history costs tens of microseconds). */
+#define HY_RI_CANCEL_MOVES 16
+
+/* Allocates the state and puts the model at input u0 (cancel NULL).  On
+ * error m owns nothing. */
 int hy_rateind_alloc(hy_rateind *m, const hy_rateind_type *type, const void *par, double u0, hy_error *err);
-/* Moves the input monotonically to u (m->out updated). */
+/* Moves the input monotonically to u (m->out updated); HY_ECANCEL, the
+ * state unchanged, when m->cancel says stop. */
 int hy_rateind_apply(hy_rateind *m, double u, hy_error *err);
 /* dst becomes an independent copy of src (dst uninitialised). */
 int hy_rateind_clone(hy_rateind *dst, const hy_rateind *src, hy_error *err);

@@ -80,6 +80,7 @@ static int ja_read(const hy_decl_model *m, void *par, hy_error *err)
     j->rtol = HY_JILES_RTOL;
     j->stepper = NULL;
     j->max_steps = 0; /* HY_JILES_MAX_STEPS */
+    j->cancel = NULL; /* hy_scene_rateind_compute hands it the run's */
     return hy_scene_model_relocate(m, &hy_scene_model_jiles, hy_jiles_validate(j, err), err);
 }
 

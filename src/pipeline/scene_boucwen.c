@@ -49,6 +49,7 @@ typedef struct bw_setup {
     int need_output;      /* some series needs the simulated y               */
     int need_sinc;        /* bits: 1 the sinc-upsampled force, 2 its output  */
     double work;          /* Newmark steps + series samples (the work budget) */
+    const hy_cancel *cancel; /* asked between blocks of Newmark steps (NULL: never) */
 } bw_setup;
 
 static double now(void)
@@ -373,6 +374,7 @@ static int simulate(const bw_setup *b, const double *u, size_t nu, double *y, hy
 {
     hy_newmark_opts o;
     hy_newmark_opts_default(&o);
+    o.cancel = b->cancel;
     size_t P = (size_t)(b->cycles + b->settle);
     int staged = b->dec == DEC_STAGED;
     if (b->input == IN_SWEEP && b->dec != DEC_NONE)
@@ -664,6 +666,7 @@ int hy_scene_boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
     int rc = read_setup(r, &b, err);
     if (rc)
         return rc;
+    b.cancel = hy_scene_run_cancel_hook(r);
     size_t ns = r->doc.nseries;
     r->series = calloc(ns ? ns : 1, sizeof *r->series);
     if (!r->series)

@@ -613,6 +613,8 @@ int hy_scene_run_render(const hy_scene_run *r, int format, unsigned char **buf, 
     if (rc)
         return rc;
     rc = hy_scene_run_figure(r, &st, err);
+    hy_cancel hook = {r->cancelled, r->cancel_ctx}; /* placing the annotations, one at a time */
+    st.fig.cancel = r->cancelled ? &hook : NULL;
     if (!rc && !(rc = hy_scene_run_check_cancel(r, err)))
         rc = hy_figure_render_mem_mapped(&st.fig, format, buf, len, map, map ? 1 : 0, err);
     hy_scene_fig_free(&st);

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "hy_jiles.h"
 #include "scene_boucwen.h"
 
 #define SETTLE_TOL 1e-12    /* relative change of y per period counted as periodic */
@@ -402,6 +403,9 @@ int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err)
     if (!rc) {
         rc = at_model(r, hy_rateind_alloc(&p.init, r->mtype->ri, r->ri_par, hy_input_u(&r->input, 0), err), err);
         p.have_init = !rc;
+        p.init.cancel = hy_scene_run_cancel_hook(r); /* its clones too: every move inside a series */
+        if (r->mtype == &hy_scene_model_jiles) /* and every 64 GSL steps of one move */
+            ((hy_jiles *)r->ri_par)->cancel = p.init.cancel;
     }
     if (!rc && need_steady)
         rc = need_steady_state(r, &p, err);

@@ -481,6 +481,7 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
     } else {
         hy_ode_opts o;
         solve_opts(r, &o);
+        o.cancel = hy_scene_run_cancel_hook(r);
         rc = hy_ode_solve(&r->model, &r->input, g->gamma, &o, p->t, p->npts, g->y, NULL, err);
         if (!rc && exact_ok && p->verbose && !r->no_verify) { /* the error, measured only when asked */
             double *ye = malloc(p->npts * sizeof *ye);
@@ -1176,6 +1177,13 @@ int hy_scene_run_check_cancel(const hy_scene_run *r, hy_error *err)
     return HY_OK;
 }
 
+const hy_cancel *hy_scene_run_cancel_hook(hy_scene_run *r)
+{
+    r->cancel_hook.fn = r->cancelled;
+    r->cancel_hook.ctx = r->cancel_ctx;
+    return r->cancelled ? &r->cancel_hook : NULL;
+}
+
 int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
     char what[200];
@@ -1188,8 +1196,11 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
         return hy_scene_run_over_budget(&r->doc, r->work, budget, what, err);
     }
     int rc = HY_OK;
-    for (size_t i = 0; !rc && i < r->npanels; i++)
+    for (size_t i = 0; !rc && i < r->npanels; i++) {
+        if (!r->panels[i].cancelled) /* a [panel] stops with its figure */
+            r->panels[i].cancelled = r->cancelled, r->panels[i].cancel_ctx = r->cancel_ctx;
         rc = hy_scene_run_compute(&r->panels[i], log, err);
+    }
     if (!rc)
         rc = r->mtype->compute(r, log, err);
     if (!rc)

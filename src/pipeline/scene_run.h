@@ -136,6 +136,8 @@ typedef struct hy_scene_run {
                                * drawing); nonzero stops the work with
                                * HY_ECANCEL (serve: the client has gone)          */
     void *cancel_ctx;         /* the argument cancelled is called with            */
+    hy_cancel cancel_hook;    /* {cancelled, cancel_ctx} for the core's loops
+                               * (hy_scene_run_cancel_hook)                      */
     double seconds_compute;
 } hy_scene_run;
 
@@ -202,6 +204,11 @@ int hy_scene_run_over_budget(const hy_scene_doc *d, double work, double budget, 
 /* HY_ECANCEL (with a message) if r->cancelled says the work is no longer
  * wanted, else HY_OK. */
 int hy_scene_run_check_cancel(const hy_scene_run *r, hy_error *err);
+
+/* r->cancelled as the hook the core's long loops poll inside a series
+ * (hy_cancel.h: hy_rateind, hy_ode_opts, hy_newmark_opts, hy_figure), or
+ * NULL when r has none. */
+const hy_cancel *hy_scene_run_cancel_hook(hy_scene_run *r);
 
 /* Plans and computes every series (refused at once with HY_EINVAL if the
  * estimate passes r->budget); log (may be NULL) receives the plan and

@@ -126,6 +126,7 @@ typedef struct panel {
     double dense;                        /* lines with more points per point of length are simplified */
     double vtol;                         /* vector output: strokes simplified to this (points), else 0 */
     curves *cache;                       /* the drawn curves (for the current frame) */
+    const hy_cancel *cancel;             /* the figure's: asked between annotations */
 } panel;
 
 static double tr(double v, int log_scale) { return log_scale ? log10(v) : v; }
@@ -1211,17 +1212,23 @@ static double clampd(double v, double lo, double hi) { return v < lo ? lo : v > 
  * far off the axes' range, as a slider can make it) is searched for again
  * from the nearest place inside the frame (issue 38 item 3).  A label with a
  * point gets a leader line to it, and prefers spots whose leader crosses no
- * curve. */
-static void place_texts(panel *p)
+ * curve.  The run's cancel hook is asked before each label. */
+static int place_texts(panel *p, hy_error *err)
 {
     const hy_axes *ax = p->ax;
     spot_search s;
     s.has_lg = fixed_legend_box(p, s.lg);
+    int rc = HY_OK;
+    unsigned tick = 0;
     for (size_t i = 0; i < ax->ntexts; i++)
         p->tplace[i].ok = 0;
     p->grid = ax->ntexts ? pg_build(p) : NULL;
     for (size_t i = 0; i < ax->ntexts; i++) {
         const hy_text *t = &ax->texts[i];
+        if (hy_cancel_poll(p->cancel, &tick, 1)) { /* a label: up to HY_PLACE_SPOTS spots */
+            rc = hy_cancel_error(err);
+            break;
+        }
         text_place *tp = &p->tplace[i];
         hy_markup_box b;
         if (!t->text || !usable(t->x, p->xlog) || !usable(t->y, p->ylog))
@@ -1260,6 +1267,7 @@ static void place_texts(panel *p)
     }
     pg_free(p->grid);
     p->grid = NULL;
+    return rc;
 }
 
 static void draw_texts(const panel *p)
@@ -1717,7 +1725,8 @@ static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
             continue;
         if ((st = place_inset(p, err)))
             break;
-        place_texts(p);
+        if ((st = place_texts(p, err)))
+            break;
         if (legend_free_spot(p, bw, bh, &x, &y))
             continue;
         /* outside only if the frame keeps most of its width; else the least covering spot inside */
@@ -1733,7 +1742,7 @@ static int layout_grid(panel *ps, int rows, int cols, hy_error *err)
     for (int i = 0; !st && i < rows * cols; i++) {
         st = place_inset(&ps[i], err);
         if (!st)
-            place_texts(&ps[i]);
+            st = place_texts(&ps[i], err);
     }
     return st;
 }
@@ -1754,6 +1763,7 @@ static void panels_init(panel *ps, curves *cc, const hy_figure *f, int rows, int
         ps[i].tol = f->full_resolution ? 0.0 : HY_CURVE_TOL_PX * 72.0 / dpi;
         ps[i].dense = HY_CURVE_DENSE_PX * dpi / 72.0;
         ps[i].vtol = vector ? ps[i].tol : 0.0;
+        ps[i].cancel = f->cancel;
     }
 }
 

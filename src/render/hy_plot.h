@@ -24,6 +24,7 @@
 
 #include <stddef.h>
 
+#include "hy_cancel.h"
 #include "hy_canvas.h"
 #include "hy_formats.h"
 #include "hy_status.h"
@@ -133,6 +134,8 @@ typedef struct hy_figure {
     int nrows, ncols;         /* 0 -> 1 */
     int full_resolution;      /* draw every point of every line (see HY_CURVE_TOL_PX) */
     int theme;                /* HY_THEME_*; 0 -> paper */
+    const hy_cancel *cancel;  /* asked between annotations while they are
+                               * placed; stop: HY_ECANCEL (NULL: never) */
 } hy_figure;
 
 /* Lines at the output's resolution (issue 23 item 2).  A line with more

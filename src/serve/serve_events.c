@@ -90,25 +90,31 @@ static void sse_free(void *cls)
     free(cl);
 }
 
-/* Counts a new stream of page id; NULL when over SSE_MAX in all or
- * SSE_PER_PAGE for the page. */
-static sv_sse_page *sse_enter(sv_server *s, const char *id)
+/* Counts a new stream of page id from address addr; NULL when over SSE_MAX
+ * in all, SSE_PER_ADDR for the address (so that one client cannot take
+ * every stream: other addresses keep live reload) or SSE_PER_PAGE for the
+ * page.  Local pages all come from 127.0.0.1 and share its SSE_PER_ADDR. */
+static sv_sse_page *sse_enter(sv_server *s, const char *id, const unsigned char addr[17])
 {
     pthread_mutex_lock(&s->mu);
     sv_sse_page *p = NULL, *free_slot = NULL;
+    int from_addr = 0;
     for (int i = 0; i < SSE_MAX; i++) {
-        if (s->sse[i].n && !strcmp(s->sse[i].id, id))
+        int same = s->sse[i].n && !memcmp(s->sse[i].addr, addr, sizeof s->sse[i].addr);
+        from_addr += same ? s->sse[i].n : 0;
+        if (same && !strcmp(s->sse[i].id, id))
             p = &s->sse[i];
         else if (!s->sse[i].n && !free_slot)
             free_slot = &s->sse[i];
     }
-    if (s->nsse >= SSE_MAX || (p && p->n >= SSE_PER_PAGE) || (!p && !free_slot)) {
+    if (s->nsse >= SSE_MAX || from_addr >= SSE_PER_ADDR || (p && p->n >= SSE_PER_PAGE) || (!p && !free_slot)) {
         pthread_mutex_unlock(&s->mu);
         return NULL;
     }
     if (!p) {
         p = free_slot;
         snprintf(p->id, sizeof p->id, "%s", id);
+        memcpy(p->addr, addr, sizeof p->addr);
     }
     p->n++;
     s->nsse++;
@@ -117,14 +123,17 @@ static sv_sse_page *sse_enter(sv_server *s, const char *id)
 }
 
 /* GET /events?page=P: a stream of "hello", then "change" (the files) at
- * each generation, ": ping" every SSE_PING_S; 503 over the stream limits. */
+ * each generation, ": ping" every SSE_PING_S; 503 over the stream limits
+ * (SSE_MAX in all, SSE_PER_ADDR an address, SSE_PER_PAGE a page). */
 enum MHD_Result sv_api_events(sv_server *s, struct MHD_Connection *c, const sv_args *a, const char *rest)
 {
     (void)rest;
     const char *id = a->page ? a->page : "";
     if (strlen(id) >= sizeof s->sse[0].id)
         return sv_send_text(c, 400, "page: at most 39 characters");
-    sv_sse_page *pg = sse_enter(s, id);
+    unsigned char addr[17];
+    sv_addr_key(c, addr);
+    sv_sse_page *pg = sse_enter(s, id, addr);
     if (!pg)
         return sv_send_busy(c, SV_SLOT_FULL);
     sse_client *cl = calloc(1, sizeof *cl);

@@ -18,6 +18,7 @@
 
 #define SERVE_OUTPUT_MAX (32u << 20) /* bytes of one answer (SVG, PDF, PNG, CSV, JSON) */
 #define FMT_CSV (-2)                 /* the points, as `hystviz data` writes them */
+#define REQUEUE_MAX 2                /* times a preempted render queues again before it answers 503 */
 
 /* A render request from its arguments to its answer. */
 typedef struct render_job {
@@ -36,6 +37,8 @@ typedef struct render_job {
     size_t len;
     hy_panel_map map;
     double seconds, cpu;    /* the render's wall and thread CPU time */
+    unsigned stop_st;       /* stopped: 409 superseded, 503 preempted, 0 client gone */
+    const char *stop_msg;
     hy_error err;
 } render_job;
 
@@ -102,7 +105,36 @@ static int hover(const sv_args *a)
     return a->hover && !strcmp(a->hover, "1");
 }
 
-/* Loads text (freed here) with the page's overrides under serve's policy,
+/* The bytes of the PNG surface j's figure draws on (4 a pixel; 0 for the
+ * vector formats), as hy_figure_check sizes it. */
+static double raster_bytes(const render_job *j)
+{
+    if (j->format != HY_FORMAT_PNG)
+        return 0;
+    const hy_decl_figure *f = &j->run.doc.figure;
+    double w = f->size[0] > 0 ? f->size[0] : 8.0 / 2.54 * 72.0, h = f->size[1] > 0 ? f->size[1] : 6.0 / 2.54 * 72.0;
+    double dpi = f->dpi > 0 ? (double)f->dpi : 150.0;
+    return 4.0 * ceil(w * dpi / 72.0) * ceil(h * dpi / 72.0);
+}
+
+/* Refuses a raster over SV_RASTER_MAX before anything is computed (422),
+ * else reserves its bytes of serve's total (waiting for them); HY_OK, or a
+ * status with j->err (HY_ECANCEL: the client went while waiting). */
+static int raster_reserve(render_job *j)
+{
+    double b = raster_bytes(j);
+    if (b > (double)SV_RASTER_MAX) {
+        const hy_decl_figure *f = &j->run.doc.figure;
+        return hy_error_set(&j->err, HY_EINVAL, "%s: a PNG of %.0f MB (%g dpi) is over serve's memory cap of %zu MB "
+                            "for one raster: lower figure.dpi or figure.size (hystviz render writes it)",
+                            j->path, b / (1 << 20), f->dpi > 0 ? (double)f->dpi : 150.0, SV_RASTER_MAX >> 20);
+    }
+    if (b > 0 && sv_mem_take(&j->watch, (size_t)b) != SV_SLOT_OK)
+        return hy_error_set(&j->err, HY_ECANCEL, "%s: stopped while waiting for memory", j->path);
+    return HY_OK;
+}
+
+/* Loads text (the caller's) with the page's overrides under serve's policy,
  * computes it and draws or lists it in j's format, timed; HY_OK, or a
  * status with j->err (HY_ECANCEL: the client went).  j->loaded says whether
  * j->run is still to be freed. */
@@ -111,8 +143,11 @@ static int render_run(render_job *j, char *text, size_t tl)
     double t0 = sv_now(), c0 = sv_thread_cpu();
     const sv_args *a = j->a;
     int rc = hy_scene_run_load_text(&j->run, j->path, text, tl, (char *const *)a->sets, a->nsets, &j->s->pol, &j->err);
-    free(text);
     j->loaded = !rc;
+    if (!rc && (rc = raster_reserve(j))) {
+        hy_scene_run_free(&j->run);
+        j->loaded = 0;
+    }
     if (!rc) {
         j->run.cancelled = sv_render_unwanted;
         j->run.cancel_ctx = &j->watch;
@@ -140,15 +175,20 @@ static int render_run(render_job *j, char *text, size_t tl)
     return rc;
 }
 
-/* The answer to a render that failed with rc: none for a client gone (the
- * connection closes), else 422 with the CLI's message. */
+/* The answer to a render that failed with rc: 409 for one superseded by
+ * its page, 503 for one preempted, none for a client gone (the connection
+ * closes), else 422 with the CLI's message. */
 static enum MHD_Result render_failed(render_job *j, int rc)
 {
     if (j->loaded)
         hy_scene_run_free(&j->run);
-    sv_slot_give(j->s, j->c, j->anon);
-    if (rc == HY_ECANCEL) { /* nobody to answer: close the connection */
-        sv_cancelled_count(j->s);
+    sv_render_leave(&j->watch, j->anon);
+    if (rc == HY_ECANCEL) {
+        if (j->stop_st == 409)
+            return sv_send_error(j->c, 409, j->stop_msg);
+        if (j->stop_st == 503)
+            return sv_send_busy(j->c, SV_SLOT_FULL);
+        sv_cancelled_count(j->s); /* nobody to answer: close the connection */
         return MHD_NO;
     }
     return sv_send_error(j->c, 422, j->err.msg);
@@ -240,7 +280,7 @@ static enum MHD_Result answer_json(render_job *j)
     sv_puts(&b, "}");
     free(bytes);
     hy_scene_run_free(&j->run);
-    sv_slot_give(j->s, j->c, j->anon);
+    sv_render_leave(&j->watch, j->anon);
     if (b.len > SERVE_OUTPUT_MAX) {
         free(b.s);
         return sv_send_error(j->c, 422, "the figure with its points is over serve's output budget per answer; "
@@ -276,7 +316,7 @@ static enum MHD_Result answer_file(render_job *j)
 {
     char name[256];
     hy_scene_run_name(&j->run, name, sizeof name);
-    sv_slot_give(j->s, j->c, j->anon);
+    sv_render_leave(&j->watch, j->anon);
     char disp[400];
     snprintf(disp, sizeof disp, "%s; filename=\"%s.%s\"",
              j->a->name && !strcmp(j->a->name, "download") ? "attachment" : "inline", name, j->fmt);
@@ -303,7 +343,8 @@ static unsigned render_check(render_job *j, char **text, size_t *tl, char *msg, 
 enum MHD_Result sv_api_render(sv_server *s, struct MHD_Connection *c, const sv_args *a, const char *rest)
 {
     (void)rest;
-    render_job j = {.s = s, .c = c, .a = a, .fmt = a->fmt ? a->fmt : "svg", .anon = !a->page, .watch = {s, c}};
+    render_job j = {.s = s, .c = c, .a = a, .fmt = a->fmt ? a->fmt : "svg", .anon = !a->page,
+                    .watch = {.s = s, .c = c, .page = a->page, .client = -1}};
     char *text = NULL, msg[sizeof j.err.msg + 96];
     size_t tl = 0;
     unsigned bad = render_check(&j, &text, &tl, msg, sizeof msg);
@@ -315,14 +356,33 @@ enum MHD_Result sv_api_render(sv_server *s, struct MHD_Connection *c, const sv_a
         free(text);
         return sv_send_error(c, bad, why);
     }
-    int got = sv_slot_take(s, c, j.anon);
+    if (slot && (void *)slot != (void *)s) { /* a newer request of the page stops this one */
+        j.watch.slot = slot;
+        j.watch.seq = a->seq ? strtoul(a->seq, NULL, 10) : 0;
+    }
+    int got, rc = HY_OK;
+    for (int requeued = 0;; requeued++) {
+        if ((got = sv_render_enter(&j.watch, j.anon)) != SV_SLOT_OK)
+            break;
+        rc = render_run(&j, text, tl);
+        /* preempted for another client's turn: its work is lost, it waits
+           for a slot again (a page's render of 0.3 s on a loaded machine is
+           not an error), a few times before it answers 503 */
+        if (rc != HY_ECANCEL || requeued == REQUEUE_MAX || !sv_render_requeue(&j.watch))
+            break;
+        if (j.loaded)
+            hy_scene_run_free(&j.run);
+        j.loaded = 0;
+        sv_render_leave(&j.watch, j.anon);
+    }
+    free(text);
     if (got != SV_SLOT_OK) {
-        free(text);
         if (slot)
             sv_page_leave(s, slot);
         return sv_send_busy(c, got);
     }
-    int rc = render_run(&j, text, tl);
+    if (rc == HY_ECANCEL) /* why, while the page's slot is still this page's */
+        j.stop_st = sv_render_stopped(&j.watch, &j.stop_msg);
     if (slot)
         sv_page_leave(s, slot);
     if (rc)

@@ -8,16 +8,44 @@
 
 #include "serve_types.h"
 
-/* What a render polls between its steps (hy_scene_run.cancelled): the work
- * stops when its client has gone or the server is stopping (issue 20 item 6:
- * requests sent and closed at once kept computing for nobody). */
-typedef struct {
-    sv_server *s;
-    struct MHD_Connection *c;
-} sv_render_watch;
-
-/* hy_scene_run.cancelled over an sv_render_watch. */
+/* hy_scene_run.cancelled over an sv_render_watch (serve_types.h), polled
+ * inside every series (hy_cancel.h): the work stops when its client has
+ * gone, the server is stopping (issue 20 item 6), a newer request of its
+ * page came (superseded) or another client's turn came (preempted, issue 36
+ * item 2).  Cheap: it looks at the connection at most once a millisecond. */
 int sv_render_unwanted(void *ctx);
+
+/* Why w's render stopped: 409 (superseded), 503 (preempted: retry), or 0
+ * (its client went or serve is stopping: nobody to answer). */
+unsigned sv_render_stopped(sv_render_watch *w, const char **msg);
+
+/* Whether w's render was stopped only for another client's turn (its
+ * client is there, its page asked nothing newer, serve is not stopping):
+ * then it is marked as running again, for the caller to give its slot back
+ * and queue again. */
+int sv_render_requeue(sv_render_watch *w);
+
+/* As sv_slot_take for a render watched by w (w->s, w->c, w->page set):
+ * its client is its page id, else its address, and it may be preempted
+ * (see serve_slots.c).  SV_SLOT_OK must be given back by sv_render_leave. */
+int sv_render_enter(sv_render_watch *w, int anon);
+void sv_render_leave(sv_render_watch *w, int anon);
+
+/* serve's memory for rasters (issue 36 item 1: a PNG at 20 in and 600 dpi
+ * took 573 MB): one render's PNG surface at most SV_RASTER_MAX bytes
+ * (refused before computing, 422), all renders' at most SV_MEM_TOTAL
+ * (a render waits for its share). */
+#define SV_RASTER_MAX ((size_t)64 << 20)
+#define SV_MEM_TOTAL ((size_t)256 << 20)
+
+/* Reserves bytes of serve's memory for rasters (SV_MEM_TOTAL) for w's
+ * render, waiting while other renders hold it: SV_SLOT_OK (given back by
+ * sv_render_leave), or why not. */
+int sv_mem_take(sv_render_watch *w, size_t bytes);
+
+/* The client address of c as a key: its family and the IPv4 address, or
+ * the /64 prefix of an IPv6 address (all zero when unknown). */
+void sv_addr_key(struct MHD_Connection *c, unsigned char key[17]);
 
 /* Counts a stopped render and says so on stderr, at most once a second. */
 void sv_cancelled_count(sv_server *s);

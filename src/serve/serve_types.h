@@ -22,7 +22,9 @@
 #define MAX_ARGS 64         /* query arguments per request */
 #define MAX_PAGES 128       /* pages tracked for render coalescing */
 #define SSE_MAX 32          /* event streams in all ... */
+#define SSE_PER_ADDR 16     /* ... from one client address (issue 36 item 2: one took all 32) */
 #define ADDR_MAX 64         /* client addresses with renders running or waiting */
+#define CLIENT_MAX 128      /* clients (page id, else address) with renders running or waiting */
 #define ANIM_CACHE 64       /* `hystviz-animate --info` answers kept, by scene hash */
 
 typedef struct sv_page_slot {
@@ -34,6 +36,7 @@ typedef struct sv_page_slot {
 
 typedef struct sv_sse_page {
     char id[40];
+    unsigned char addr[17]; /* the client address (sv_addr_key): streams are counted per page and address */
     int n;
 } sv_sse_page;
 
@@ -68,12 +71,22 @@ typedef struct sv_server {
     sv_page_slot pages[MAX_PAGES];
     int nslots;             /* renders (and hystviz-animate children) at once */
     int running, running_anon, waiting;
+    int waiting_fresh;      /* ... of them not preempted before (they go first) */
     double idle_since;      /* when the last render ended (sv_now) */
     int trim_due;           /* its memory not yet given back (sv_idle_trim) */
     struct {
         unsigned char key[17]; /* family, then the IPv4 address or IPv6 /64 */
         int running, waiting;
     } addr[ADDR_MAX];         /* per client address (sv_slot_take's fairness)  */
+    struct {
+        char key[48];          /* "p:" and the page id, else "a:" and the address */
+        int running, waiting;
+    } client[CLIENT_MAX];     /* per client: one render each while another waits */
+    struct sv_render_watch *renders; /* the renders running, newest first (preemption) */
+    unsigned long npreempted; /* renders stopped for another client's turn ... */
+    unsigned long nsuperseded; /* ... or for a newer request of their page */
+    double last_preempt_note, last_supersede_note; /* their notes on stderr: once a second */
+    size_t mem_held;          /* bytes of rasters reserved by running renders */
     unsigned long ncancelled; /* renders stopped because their client went */
     double last_cancel_note;
     sv_sse_page sse[SSE_MAX];  /* event streams by page */
@@ -97,6 +110,25 @@ typedef struct sv_args {
     size_t nsets;
     int bad_nul;
 } sv_args;
+
+/* A running render as serve_slots.c sees it: its client, its page, whether
+ * it is to stop (hy_scene_run.cancelled polls it: sv_render_unwanted). */
+typedef struct sv_render_watch {
+    struct sv_server *s;
+    struct MHD_Connection *c;
+    const char *page;       /* its page id, or NULL */
+    sv_page_slot *slot;     /* that page's slot (NULL: none or not tracked) */
+    unsigned long seq;      /* its sequence number in the page */
+    int client;             /* index in s->client while it holds a slot */
+    int preempted;          /* under s->mu: stop, another client's turn */
+    double started;         /* when it got its slot (sv_now) */
+    double held;            /* seconds it held slots before, when queued again */
+    int requeued;           /* times it was preempted and queued again */
+    double next_look;       /* when sv_render_unwanted looks at the connection again */
+    int gone;               /* it saw the client gone */
+    size_t mem;             /* bytes of s->mem_held it reserved (sv_mem_take) */
+    struct sv_render_watch *next;
+} sv_render_watch;
 
 /* Why a request got no render slot (serve_slots.h), or SV_SLOT_OK. */
 enum { SV_SLOT_OK, SV_SLOT_GONE, SV_SLOT_FULL, SV_SLOT_STOP };

@@ -24,7 +24,7 @@ static void bad_param(const char *name, double v, const char *needle)
     CHECK(hy_boucwen_params_set(&p, name, v, &e) == HY_OK, "%s", e.msg);
     expect(hy_boucwen_params_validate(&p, &e), HY_EINVAL, &e, needle);
     double u[2] = {0, 0}, y[2];
-    expect(hy_boucwen_simulate(&p, &(hy_newmark_opts){0.5, 0.25, 0.5, 1e-12, 50},
+    expect(hy_boucwen_simulate(&p, &(hy_newmark_opts){0.5, 0.25, 0.5, 1e-12, 50, NULL},
                                1e-4, u, 2, NULL, y, NULL, &e),
            HY_EINVAL, &e, needle);
 }

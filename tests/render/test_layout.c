@@ -96,6 +96,18 @@ static void r_unclip(void *c)
 static const hy_canvas_ops rec_ops = {"recorder", r_begin, r_move, r_line, r_stroke, r_rect,
                                       r_marker, r_text, r_measure, r_clip, r_unclip};
 
+/* A cancel hook (hy_cancel.h) that says stop from its stop_at-th question on
+ * (0: never), counting them. */
+typedef struct {
+    int asked, stop_at;
+} asker;
+
+static int ask(void *ctx)
+{
+    asker *a = ctx;
+    return ++a->asked >= a->stop_at && a->stop_at;
+}
+
 static int draw(const hy_figure *fig, rec *r)
 {
     cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 10, 10);
@@ -243,6 +255,33 @@ int main(void)
         cairo_destroy(cra);
         cairo_destroy(crb);
         cairo_surface_destroy(img);
+    }
+
+    /* Cancellation (issue 36 item 2): the layout asks the figure's hook
+       before each annotation it places; a hook that never stops changes
+       nothing drawn, one that stops ends the drawing with HY_ECANCEL. */
+    {
+        enum { NT = 300 };
+        static hy_text t[NT];
+        static double sx[2] = {0, 1};
+        for (int i = 0; i < NT; i++)
+            t[i] = (hy_text){.x = 0.5, .y = 0.5, .text = "a label asking for one place"};
+        hy_series seg = {.x = sx, .y = sx, .n = 2};
+        hy_axes ta = {.series = &seg, .nseries = 1, .texts = t, .ntexts = NT};
+        hy_figure tf = {.width = 300, .height = 200, .axes = &ta, .nrows = 1, .ncols = 1};
+        rec a, b;
+        CHECK(draw(&tf, &a) == 0, "300 labels failed");
+        asker never = {0, 0};
+        hy_cancel c = {ask, &never};
+        tf.cancel = &c;
+        CHECK(draw(&tf, &b) == 0, "300 labels with a hook that never stops failed");
+        CHECK(never.asked == NT, "the hook was asked %d times for %d labels", never.asked, NT);
+        CHECK(a.texts == b.texts && a.lines == b.lines && a.minx == b.minx && a.maxy == b.maxy,
+              "a hook that never stops changed the drawing");
+        asker third = {0, 3};
+        c.ctx = &third;
+        CHECK(draw(&tf, &b) == HY_ECANCEL && third.asked == 3, "stopped with asked %d (want HY_ECANCEL at 3)",
+              third.asked);
     }
 
     cairo_debug_reset_static_data();
