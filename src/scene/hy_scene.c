@@ -657,7 +657,7 @@ static int apply_override(hy_scene *s, const char *a, int sec, const char *name,
     if (rc)
         return hy_error_set(err, rc, "--set %s: %s", a, msg);
     if (name && !strcmp(ss->name, "param") && !strcmp(ss->keys[k].name, "value") &&
-        (rc = hy__param_propagate(s, name, v.num, a, s->marked, err))) {
+        (rc = s->propagate(s, name, v.num, a, s->marked, err))) {
         hy__value_clear(&v);
         return rc;
     }
