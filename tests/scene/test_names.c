@@ -136,7 +136,5 @@ int main(void)
     test_figure_names();
     test_inputs_formats();
     test_solvers();
-    if (st_failures)
-        fprintf(stderr, "test_names: %d check(s) failed\n", st_failures);
-    return st_failures ? 1 : 0;
+    return st_done("test_names");
 }
