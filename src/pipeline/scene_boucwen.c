@@ -297,10 +297,7 @@ static int refuse_boucwen_parts(const hy_scene_doc *d, hy_error *err)
 {
     const char *kind = ENUM_TEXT(&d->input, hy_decl_input, kind);
     const char *model = ENUM_TEXT(&d->model, hy_decl_model, kind);
-#define INPUT_TAKERS(id, name, takers) takers,
-    static const int takers[] = {HY_INPUT_KINDS(INPUT_TAKERS)};
-#undef INPUT_TAKERS
-    if (takers[d->input.kind] == HY_INPUT_BOUCWEN)
+    if (hy_input_kind_takers(d->input.kind) == HY_INPUT_BOUCWEN)
         return hy_decl_error(&d->input.h, IN(kind), err, HY_EINVAL,
                              "input kind %s is a force for [model] kind = boucwen, not for %s", kind, model);
     for (size_t i = 0; i < d->nseries; i++)

@@ -90,6 +90,16 @@
 enum { HY_INPUT_KINDS(HY__INPUT_ID) HY_INPUT_KIND_COUNT };
 #undef HY__INPUT_ID
 
+/* Which models take input kind (an HY_INPUT_* value): HY_INPUT_OTHERS, _ALL
+ * or _BOUCWEN; 0 for a value that is no kind. */
+static inline int hy_input_kind_takers(int kind)
+{
+#define HY__INPUT_TAKERS(id, name, takers) takers,
+    static const int takers[] = {HY_INPUT_KINDS(HY__INPUT_TAKERS)};
+#undef HY__INPUT_TAKERS
+    return kind >= 0 && kind < HY_INPUT_KIND_COUNT ? takers[kind] : 0;
+}
+
 /* hy_scene_kind, the key flags, hy_scene_key_spec and hy_scene_section_spec:
  * hy_scene_types.h (the bottom of src/scene: the decoded structs use them). */
 

@@ -95,6 +95,10 @@ static void test_inputs_formats(void)
     static const char *const inputs[] = {HY_INPUT_KINDS(AT_INPUT)};
     check_list("input", "kind", inputs, N(inputs));
     CHECK_STR(inputs[HY_INPUT_SWEEP], "sweep");
+    CHECK(hy_input_kind_takers(HY_INPUT_SINE) == HY_INPUT_ALL);
+    CHECK(hy_input_kind_takers(HY_INPUT_SWEEP) == HY_INPUT_BOUCWEN);
+    CHECK(hy_input_kind_takers(HY_INPUT_BIMODAL) == HY_INPUT_OTHERS);
+    CHECK(hy_input_kind_takers(HY_INPUT_KIND_COUNT) == 0 && hy_input_kind_takers(-1) == 0);
 #define AT_FORMAT(id, ext, mime) [HY_FORMAT_##id] = ext,
     static const char *const formats[] = {HY_FIGURE_FORMATS(AT_FORMAT)};
     check_list("output", "formats", formats, N(formats));
