@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_scene.c: the scene object: schema defaults, typed getters, --set overrides, content hash. */
 #include "hy_scene_internal.h"
+#include "hy_scene.h"
 
 #include <stdarg.h>
 #include <stdio.h>

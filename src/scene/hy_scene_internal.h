@@ -5,9 +5,12 @@
 
 #include <ctype.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 
-#include "hy_scene.h"
+#include "hy_scene_schema.h"
+#include "hy_scene_types.h"
+#include "hy_status.h"
 #include "hy_file.h"
 
 /* A character of a [param NAME] reference's NAME: letters, digits, _ - . */

@@ -4,6 +4,7 @@
  * The `$NAME` reference itself is read by hy_scene_ref.c, below both the parser and
  * hy_scene.c's overrides, so that they do not call into this file. */
 #include "hy_scene_internal.h"
+#include "hy_scene.h"
 
 #include <ctype.h>
 #include <stdio.h>

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_scene_parse.c: the scene file parser: lines, [section] headers, keys, includes and their precedence. */
 #include "hy_scene_internal.h"
+#include "hy_scene.h"
 
 #include "hy_file.h"
 #include "hy_scene_policy.h"
