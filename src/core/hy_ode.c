@@ -11,31 +11,36 @@
 #include "hy_gamma.h"
 #include "hy_ode_steppers.h"
 
-/* The steppers, by name, in the order every list shows them (one line
- * each: the table and the name list are generated from it). */
-#define HY_ODE_STEPPERS(X) \
-    X(rk2) X(rk4) X(rkf45) X(rkck) X(rk8pd) X(rk1imp) X(rk2imp) X(rk4imp) X(bsimp) X(msadams) X(msbdf)
-
+/* The steppers, by name, in the order every list shows them (HY_ODE_STEPPERS,
+ * hy_ode.h: the table and the name list are generated from it). */
 typedef struct stepper_entry {
     const char *name;
     const gsl_odeiv2_step_type *const *type;
+    int kind, order; /* HY_ODE_EXPLICIT/IMPLICIT; a one-step implicit one's order */
 } stepper_entry;
 
-#define STEPPER_ENTRY(n) {#n, &gsl_odeiv2_step_##n},
+#define STEPPER_ENTRY(n, kind, order, place) {#n, &gsl_odeiv2_step_##n, kind, order},
 static const stepper_entry steppers[] = {HY_ODE_STEPPERS(STEPPER_ENTRY)};
 #define NSTEPPERS (sizeof steppers / sizeof steppers[0])
 
-#define STEPPER_NAME(n) #n,
+#define STEPPER_NAME(n, kind, order, place) #n,
 static const char *const stepper_names[NSTEPPERS + 1] = {HY_ODE_STEPPERS(STEPPER_NAME) NULL};
 
 const char *const *hy_ode_stepper_names(void) { return stepper_names; }
 
-const gsl_odeiv2_step_type *hy_ode_step_type(const char *name)
+/* The table entry of the stepper called name, or NULL. */
+static const stepper_entry *stepper_find(const char *name)
 {
     for (size_t i = 0; name && i < NSTEPPERS; i++)
         if (strcmp(steppers[i].name, name) == 0)
-            return *steppers[i].type;
+            return &steppers[i];
     return NULL;
+}
+
+const gsl_odeiv2_step_type *hy_ode_step_type(const char *name)
+{
+    const stepper_entry *e = stepper_find(name);
+    return e ? *e->type : NULL;
 }
 
 int hy_ode_stepper_known(const char *name) { return hy_ode_step_type(name) != NULL; }
@@ -226,14 +231,13 @@ static void serve_at_breakpoint(const ctx *c, double tb, const double y[], const
 double hy_ode_work_estimate(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                             double t_end, double *stiff)
 {
-    static const char *const explicit_names[] = {"rk2", "rk4", "rkf45", "rkck", "rk8pd", "msadams"};
+    const stepper_entry *e = stepper_find(o->stepper);
     int kind = 0, order = 0; /* 1: explicit; 2: one-step implicit of this order */
-    for (size_t i = 0; i < sizeof explicit_names / sizeof *explicit_names; i++)
-        if (!strcmp(o->stepper, explicit_names[i]))
-            kind = 1;
-    if (!strcmp(o->stepper, "rk1imp") || !strcmp(o->stepper, "rk2imp") || !strcmp(o->stepper, "rk4imp")) {
+    if (e && e->kind == HY_ODE_EXPLICIT)
+        kind = 1;
+    else if (e && e->order > 0) {
         kind = 2;
-        order = o->stepper[2] - '0';
+        order = e->order;
     }
     double cycles = ceil(t_end / in->period), per_period = 0, ratio = 0;
     double gmax = fmax(hy_model_g0(m), m->fc); /* g ∈ [Fc, Fs]: a lower bound on λ on smooth pieces */

@@ -51,6 +51,34 @@ typedef struct hy_ode_stats {
  * work limit 1e7 evaluations of f (about a second). */
 hy_ode_opts hy_ode_defaults(void);
 
+/* The GSL odeiv2 steppers, one table: HY_ODE_STEPPERS(X) calls
+ * X(name, kind, order, place) once per stepper, in the order
+ * hy_ode_stepper_names() lists them (`report --solvers`):
+ *   kind   HY_ODE_EXPLICIT or HY_ODE_IMPLICIT (hy_ode_work_estimate's bound);
+ *   order  the order of a one-step implicit Runge-Kutta stepper, whose
+ *          transients the estimate counts; 0: none counted (explicit ones,
+ *          bsimp's extrapolation, msbdf's multistep);
+ *   place  its place in the scene schema's [gamma] solver values, after
+ *          "exact" (0) (hy_scene_schema.c: the documented order).
+ * The stepper table of hy_ode.c, the name list and the schema's values are
+ * generated from it; a stepper is one line here. */
+#define HY_ODE_EXPLICIT 1
+#define HY_ODE_IMPLICIT 2
+#define HY_ODE_STEPPERS(X)                 \
+    X(rk2, HY_ODE_EXPLICIT, 0, 6)          \
+    X(rk4, HY_ODE_EXPLICIT, 0, 7)          \
+    X(rkf45, HY_ODE_EXPLICIT, 0, 1)        \
+    X(rkck, HY_ODE_EXPLICIT, 0, 8)         \
+    X(rk8pd, HY_ODE_EXPLICIT, 0, 2)        \
+    X(rk1imp, HY_ODE_IMPLICIT, 1, 9)       \
+    X(rk2imp, HY_ODE_IMPLICIT, 2, 10)      \
+    X(rk4imp, HY_ODE_IMPLICIT, 4, 3)       \
+    X(bsimp, HY_ODE_IMPLICIT, 0, 4)        \
+    X(msadams, HY_ODE_EXPLICIT, 0, 11)     \
+    X(msbdf, HY_ODE_IMPLICIT, 0, 5)
+/* An X that counts: (0 HY_ODE_STEPPERS(HY_ODE_COUNT_OF)) steppers. */
+#define HY_ODE_COUNT_OF(name, kind, order, place) +1
+
 /* Names of every stepper, NULL-terminated. */
 const char *const *hy_ode_stepper_names(void);
 /* Nonzero when name is a stepper. */

@@ -510,7 +510,7 @@ int hy_out_is_tmp_name(const char *name)
 /* "NAME.EXT.tmp.XXXXXX" of hystviz versions before hy_out. */
 static int is_legacy_tmp(const char *name)
 {
-#define DOT_EXT(id, e) "." e,
+#define DOT_EXT(id, e, mime) "." e,
     static const char *const ext[] = {HY_FIGURE_FORMATS(DOT_EXT) ".csv", ".html", ".manifest"};
 #undef DOT_EXT
     size_t n = strlen(name);

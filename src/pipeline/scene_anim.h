@@ -27,6 +27,7 @@
 
 #include "hy_scene.h"
 #include "hy_scene_decl.h"
+#include "hy_scene_policy.h"
 #include "hy_status.h"
 
 /* One [keyframe NAME]: the key it drives and its keys. */

@@ -194,13 +194,13 @@ static int read_signal(const hy_scene_doc *d, bw_setup *b, hy_error *err)
     b->noise = 1e-3 * co->noise;
     b->seed = (uint64_t)in->seed;
     int rc;
-    if (!strcmp(kind, "sine")) {
+    if (in->kind == HY_INPUT_SINE) {
         b->input = IN_SINE;
         rc = read_sine(in, b, err);
-    } else if (!strcmp(kind, "multisine")) {
+    } else if (in->kind == HY_INPUT_MULTISINE) {
         b->input = IN_MULTISINE;
         rc = read_multisine(in, b, err);
-    } else if (!strcmp(kind, "sweep")) {
+    } else if (in->kind == HY_INPUT_SWEEP) {
         b->input = IN_SWEEP;
         rc = read_sweep(in, co, b, err);
     } else
@@ -298,7 +298,7 @@ static int refuse_boucwen_parts(const hy_scene_doc *d, hy_error *err)
 {
     const char *kind = ENUM_TEXT(&d->input, hy_decl_input, kind);
     const char *model = ENUM_TEXT(&d->model, hy_decl_model, kind);
-    if (!strcmp(kind, "multisine") || !strcmp(kind, "sweep"))
+    if (hy_input_kind_takers(d->input.kind) == HY_INPUT_BOUCWEN)
         return hy_decl_error(&d->input.h, IN(kind), err, HY_EINVAL,
                              "input kind %s is a force for [model] kind = boucwen, not for %s", kind, model);
     for (size_t i = 0; i < d->nseries; i++)

@@ -20,7 +20,7 @@
 
 #include <stdio.h>
 
-#include "scene_run.h"
+#include "scene_run_types.h"
 
 /* True if the scene's [model] kind is boucwen. */
 int hy_scene_is_boucwen(const hy_scene_doc *d);

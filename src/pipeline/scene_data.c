@@ -5,6 +5,7 @@
  * output at the measured inputs is a series too (data = modelled), and the
  * fitter's evaluation (hy_scene_run_model_at_data). */
 #include "scene_model.h"
+#include "scene_run.h"
 
 #include <math.h>
 #include <stdlib.h>

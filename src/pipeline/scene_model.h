@@ -28,7 +28,7 @@
 
 #include "hy_rateind.h"
 #include "hy_scene_schema.h"
-#include "scene_run.h"
+#include "scene_run_types.h"
 
 enum {
     HY_CAP_STEADY = 1u << 0,          /* steady periodic state y° and its loops            */

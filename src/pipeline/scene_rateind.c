@@ -14,6 +14,7 @@
  * integral ∫ y du the model tracks (HY_RI_PATH_AREA), else from its
  * closed-form loop area where minor loops close (HY_RI_RETURN_POINT). */
 #include "scene_model.h"
+#include "scene_run.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -120,15 +120,14 @@ int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
                                        "offset", "points", "file", NULL};
     const hy_decl_input *d = &r->doc.input;
     const hy_decl_head *h = &d->h;
-    const char *kind = hy_decl_enum_text(h, offsetof(hy_decl_input, kind), d->kind);
     const char *shape_s = hy_decl_enum_text(h, offsetof(hy_decl_input, shape), d->shape);
     int shape = strcmp(shape_s, "cosine") ? HY_SHAPE_LINEAR : HY_SHAPE_COSINE, rc;
-    if (!strcmp(kind, "bimodal")) {
+    if (d->kind == HY_INPUT_BIMODAL) {
         int have_t = hy_decl_got(h, offsetof(hy_decl_input, t)) >= 0 && d->t.n == 4;
         rc = hy_input_bimodal(&r->input, d->umin1, d->umin2, d->umax1, d->umax2, have_t ? d->t.v : NULL, shape, err);
         if (rc && strstr(err->msg, "t1 < t2"))
             return hy_decl_error(h, offsetof(hy_decl_input, t), err, rc, "%s", err->msg);
-    } else if (!strcmp(kind, "multimodal")) {
+    } else if (d->kind == HY_INPUT_MULTIMODAL) {
         if (hy_decl_got(h, offsetof(hy_decl_input, extrema)) < 0)
             return hy_decl_error(h, offsetof(hy_decl_input, kind), err, HY_EINVAL, "a multimodal input needs 'extrema'");
         int have_tm = hy_decl_got(h, offsetof(hy_decl_input, times)) >= 0;
@@ -137,17 +136,17 @@ int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
                                  "'times' needs %zu values (0, then the time of each extremum after the first, then the period), got %zu",
                                  d->extrema.n + 1, d->times.n);
         rc = hy_input_multimodal(&r->input, d->extrema.v, d->extrema.n, have_tm ? d->times.v : NULL, shape, err);
-    } else if (!strcmp(kind, "triangle")) {
+    } else if (d->kind == HY_INPUT_TRIANGLE) {
         double lo = hy_decl_got(h, offsetof(hy_decl_input, min)) >= 0 ? d->min : d->offset - d->amp;
         double hi = hy_decl_got(h, offsetof(hy_decl_input, max)) >= 0 ? d->max : d->offset + d->amp;
         rc = hy_input_triangle(&r->input, lo, hi, d->period, err);
-    } else if (!strcmp(kind, "sine"))
+    } else if (d->kind == HY_INPUT_SINE)
         rc = hy_input_sine(&r->input, d->amp, d->period, d->offset, err);
-    else if (!strcmp(kind, "pwl")) {
+    else if (d->kind == HY_INPUT_PWL) {
         if (hy_decl_got(h, offsetof(hy_decl_input, points)) < 0)
             return hy_decl_error(h, offsetof(hy_decl_input, kind), err, HY_EINVAL, "a pwl input needs 'points = t0, u0, t1, u1, ...'");
         rc = pwl_input(&r->input, &d->points, err);
-    } else if (!strcmp(kind, "data")) /* measured u: read at load (scene_data.c) */
+    } else if (d->kind == HY_INPUT_DATA) /* measured u: read at load (scene_data.c) */
         return hy_scene_run_data_input(r, err);
     else { /* file */
         if (hy_decl_got(h, offsetof(hy_decl_input, file)) < 0)
@@ -1168,20 +1167,6 @@ int hy_scene_run_over_budget(const hy_scene_doc *d, double work, double budget, 
     hy_error_set(err, HY_EINVAL, fmt, work, what, budget);
     hy_error_prefix(err, "%s:1:1", d->source);
     return HY_EINVAL;
-}
-
-int hy_scene_run_check_cancel(const hy_scene_run *r, hy_error *err)
-{
-    if (r->cancelled && r->cancelled(r->cancel_ctx))
-        return hy_error_set(err, HY_ECANCEL, "%s: stopped: the work is no longer wanted", r->path);
-    return HY_OK;
-}
-
-const hy_cancel *hy_scene_run_cancel_hook(hy_scene_run *r)
-{
-    r->cancel_hook.fn = r->cancelled;
-    r->cancel_hook.ctx = r->cancel_ctx;
-    return r->cancelled ? &r->cancel_hook : NULL;
 }
 
 int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)

@@ -13,7 +13,7 @@
 #ifndef HY_SCENE_VERIFY_H
 #define HY_SCENE_VERIFY_H
 
-#include "scene_run.h"
+#include "scene_run_types.h"
 
 enum { HY_VERIFY_POINTS = 4096 };
 

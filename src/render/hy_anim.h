@@ -25,13 +25,17 @@
 #include <stdio.h>
 
 #include "hy_canvas.h"
+#include "hy_figure_names.h"
 #include "hy_frame.h"
 #include "hy_gl.h"
 #include "hy_status.h"
 
 /* ---- timeline ---- */
 
-enum { HY_EASE_LINEAR = 0, HY_EASE_SMOOTH };
+/* HY_EASE_LINEAR = 0, HY_EASE_SMOOTH: HY_EASINGS (hy_figure_names.h). */
+#define HY__EASE_ID(id, name) HY_EASE_##id,
+enum { HY_EASINGS(HY__EASE_ID) HY_EASE_COUNT };
+#undef HY__EASE_ID
 
 /* Eased progress for x in [0, 1] (clamped): linear, or smoothstep 3x² - 2x³. */
 double hy_ease(int ease, double x);

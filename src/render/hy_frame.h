@@ -23,6 +23,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "hy_pixels.h" /* hy_little_endian */
 #include "hy_status.h"
 
 /* Composites the overlay (may be NULL) over the GL layer into rgb (w*h*3). */
@@ -41,17 +42,6 @@ typedef struct hy_png_opts {
 } hy_png_opts;
 enum { HY_PNG_ZLIB = 0, HY_PNG_LIBDEFLATE = 1, HY_PNG_FAST = 2 };
 enum { HY_PNG_FILTER_NONE = 0, HY_PNG_FILTER_SUB, HY_PNG_FILTER_UP, HY_PNG_FILTER_PAETH, HY_PNG_FILTER_ALL };
-
-/* Whether the host stores a uint32 low byte first: a cairo RGB24 pixel is
- * then the bytes B, G, R, x (else x, R, G, B).  Frames are kept in that
- * layout from OpenGL (hy_gl_finish) through libpng and ffmpeg. */
-static inline int hy_little_endian(void)
-{
-    const uint32_t probe = 1;
-    unsigned char first;
-    memcpy(&first, &probe, 1);
-    return first;
-}
 
 /* The PNG modes of animation frames (`hystviz animate --png MODE`), one
  * table: X(name, level, engine, description); the first is the default.

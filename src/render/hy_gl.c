@@ -419,6 +419,27 @@ void hy_gl_free(hy_gl *g)
 
 const char *hy_gl_describe(const hy_gl *g) { return g->desc; }
 
+int hy_gl_info(FILE *f, hy_error *err)
+{
+    const hy_gl_backend *b = hy_gl_backend_current(err);
+    fprintf(f, "backends built: %s\n", *hy_gl_backends() ? hy_gl_backends() : "none");
+    if (!b) {
+        fprintf(f, "backend: none (%s)\n", err->msg);
+        return err->code;
+    }
+    fprintf(f, "backend: %s (%s)\n", b->name, hy_gl_backend_origin());
+    b->info(f);
+    hy_gl *g;
+    int st = hy_gl_create(&g, 64, 64, err);
+    if (st) {
+        fprintf(f, "renderer: none (%s)\n", err->msg);
+        return st;
+    }
+    fprintf(f, "renderer: %s\n", hy_gl_describe(g));
+    hy_gl_free(g);
+    return HY_OK;
+}
+
 /* A new frame: nothing reaches GL until its first GL work (acquire), which
  * sends the clear first. */
 void hy_gl_begin(hy_gl *g, hy_rgb c)

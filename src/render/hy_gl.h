@@ -31,6 +31,7 @@
 #include <stdio.h>
 
 #include "hy_canvas.h"
+#include "hy_gl_pick.h"
 #include "hy_status.h"
 
 typedef struct hy_gl hy_gl;
@@ -48,20 +49,8 @@ typedef struct hy_gl_effect {
     double fade;              /* alpha at the oldest end, in [0, 1]; 1: no fade */
 } hy_gl_effect;
 
-/* The backends built, as "osmesa egl" ("" for none). */
-const char *hy_gl_backends(void);
-/* Picks the backend of the contexts created from now on: "osmesa" or "egl";
- * NULL goes back to $HYSTVIZ_GL, else OSMesa where built, else EGL.
- * HY_EINVAL for an unknown name, HY_EUNSUP for one not built (the choice is
- * then unchanged).  Call it before any thread creates contexts. */
-int hy_gl_select(const char *name, hy_error *err);
-/* The name of the backend hy_gl_create would use now; NULL (and err:
- * HY_EINVAL, HY_EUNSUP as hy_gl_select) when $HYSTVIZ_GL names a bad one. */
-const char *hy_gl_backend_name(hy_error *err);
-/* Checks, without making a context, that the backend hy_gl_create would use
- * can be used (a valid $HYSTVIZ_GL; EGL: a device, a valid
- * HYSTVIZ_EGL_DEVICE): HY_OK, HY_EINVAL (a bad choice) or HY_EUNSUP. */
-int hy_gl_check(hy_error *err);
+/* hy_gl_backends, hy_gl_select, hy_gl_backend_name, hy_gl_check: the
+ * backend's choice (hy_gl_pick.h, included above). */
 /* Writes the backends built, the one in use and why, its devices (EGL:
  * HYSTVIZ_EGL_DEVICE) and the renderer of a test context to f; HY_OK, or
  * the error of making that context. */

@@ -59,5 +59,8 @@ extern const hy_gl_backend hy_gl_egl_backend;
 /* The backend that hy_gl_create uses now (hy_gl_select's choice, else
  * HYSTVIZ_GL, else OSMesa where built, else EGL); NULL and err if the choice is bad. */
 const hy_gl_backend *hy_gl_backend_current(hy_error *err);
+/* Where the current choice comes from: "--gl" (hy_gl_select), "HYSTVIZ_GL"
+ * or "default". */
+const char *hy_gl_backend_origin(void);
 
 #endif

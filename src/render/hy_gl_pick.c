@@ -2,7 +2,7 @@
 /* hy_gl_pick.c: which GL backend a context is made with, in one place:
  * hy_gl_select's name (animate --gl), else $HYSTVIZ_GL, else OSMesa where it
  * is built (the stated default), else EGL. */
-#include "hy_gl.h"
+#include "hy_gl_pick.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -86,26 +86,9 @@ int hy_gl_check(hy_error *err)
     return b ? b->check(err) : err->code;
 }
 
-int hy_gl_info(FILE *f, hy_error *err)
+const char *hy_gl_backend_origin(void)
 {
-    const hy_gl_backend *b = hy_gl_backend_current(err);
-    fprintf(f, "backends built: %s\n", built[0] ? hy_gl_backends() : "none");
-    if (!b) {
-        fprintf(f, "backend: none (%s)\n", err->msg);
-        return err->code;
-    }
-    fprintf(f, "backend: %s (%s)\n", b->name,
-            chosen ? "--gl" : getenv("HYSTVIZ_GL") && *getenv("HYSTVIZ_GL") ? "HYSTVIZ_GL" : "default");
-    b->info(f);
-    hy_gl *g;
-    int st = hy_gl_create(&g, 64, 64, err);
-    if (st) {
-        fprintf(f, "renderer: none (%s)\n", err->msg);
-        return st;
-    }
-    fprintf(f, "renderer: %s\n", hy_gl_describe(g));
-    hy_gl_free(g);
-    return HY_OK;
+    return chosen ? "--gl" : getenv("HYSTVIZ_GL") && *getenv("HYSTVIZ_GL") ? "HYSTVIZ_GL" : "default";
 }
 
 const char *hy_gl_fns_load(hy_gl_fns *f, hy_gl_lookup lookup)

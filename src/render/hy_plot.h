@@ -26,21 +26,30 @@
 
 #include "hy_cancel.h"
 #include "hy_canvas.h"
+#include "hy_figure_names.h"
 #include "hy_formats.h"
 #include "hy_status.h"
 
-enum { HY_LINE_SOLID = 0, HY_LINE_DASHED, HY_LINE_DOTTED, HY_LINE_DASHDOT, HY_LINE_NONE };
-enum { HY_MARKER_NONE = 0, HY_MARKER_CIRCLE, HY_MARKER_SQUARE };
-enum { HY_LEGEND_NONE = 0, HY_LEGEND_BEST, HY_LEGEND_TOP_LEFT, HY_LEGEND_TOP_RIGHT,
-       HY_LEGEND_BOTTOM_LEFT, HY_LEGEND_BOTTOM_RIGHT };
+/* HY_LINE_SOLID = 0, ..., HY_MARKER_*, HY_LEGEND_* and HY_THEME_* in the
+ * order of their tables in hy_figure_names.h (the scene's names); *_COUNT of
+ * each. */
+#define HY__LINE_ID(id, name) HY_LINE_##id,
+#define HY__MARKER_ID(id, name) HY_MARKER_##id,
+#define HY__LEGEND_ID(id, name) HY_LEGEND_##id,
+#define HY__THEME_ID(id, name) HY_THEME_##id,
+enum { HY_LINE_STYLES(HY__LINE_ID) HY_LINE_COUNT };
+enum { HY_MARKERS(HY__MARKER_ID) HY_MARKER_COUNT };
+enum { HY_LEGEND_PLACES(HY__LEGEND_ID) HY_LEGEND_COUNT };
+enum { HY_THEMES(HY__THEME_ID) HY_THEME_COUNT };
+#undef HY__LINE_ID
+#undef HY__MARKER_ID
+#undef HY__LEGEND_ID
+#undef HY__THEME_ID
 /* HY_FORMAT_SVG = 0, _PDF, _PNG, ... in the order of HY_FIGURE_FORMATS
  * (hy_formats.h); HY_FORMAT_COUNT of them. */
-#define HY__FORMAT_ID(id, ext) HY_FORMAT_##id,
+#define HY__FORMAT_ID(id, ext, mime) HY_FORMAT_##id,
 enum { HY_FIGURE_FORMATS(HY__FORMAT_ID) HY_FORMAT_COUNT };
 #undef HY__FORMAT_ID
-/* The look of a figure: paper (black on white) or slides (light on dark,
- * lines twice as thick, text 1.4 times as large; for a projector). */
-enum { HY_THEME_PAPER = 0, HY_THEME_SLIDES };
 /* Text anchor for hy_text: which point of the label sits at (x, y). */
 enum { HY_ANCHOR_LEFT = 0, HY_ANCHOR_CENTER, HY_ANCHOR_RIGHT };
 

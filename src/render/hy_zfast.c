@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "hy_config.h"
-#include "hy_frame.h"
+#include "hy_pixels.h"
 #if HY_HAVE_LIBDEFLATE
 #include <libdeflate.h>
 #else

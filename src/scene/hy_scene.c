@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_scene.c: the scene object: schema defaults, typed getters, --set overrides, content hash. */
 #include "hy_scene_internal.h"
+#include "hy_scene.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -657,7 +658,7 @@ static int apply_override(hy_scene *s, const char *a, int sec, const char *name,
     if (rc)
         return hy_error_set(err, rc, "--set %s: %s", a, msg);
     if (name && !strcmp(ss->name, "param") && !strcmp(ss->keys[k].name, "value") &&
-        (rc = hy__param_propagate(s, name, v.num, a, s->marked, err))) {
+        (rc = s->propagate(s, name, v.num, a, s->marked, err))) {
         hy__value_clear(&v);
         return rc;
     }

@@ -31,30 +31,7 @@
 #include "hy_scene_schema.h"
 #include "hy_status.h"
 
-typedef struct hy_scene hy_scene;
-
-/* Where a value was written: file (as opened, or "--set ..."), 1-based line
- * and column (line 0 for an override).  file lives as long as the scene. */
-typedef struct hy_scene_loc {
-    const char *file;
-    int line;
-    int col;
-} hy_scene_loc;
-
-/* A colour: components in [0, 1]; index is the Okabe-Ito index 1-8, or 0
- * for a #rrggbb colour. */
-typedef struct hy_scene_color {
-    double r, g, b;
-    int index;
-} hy_scene_color;
-
-/* What a getter found. */
-enum {
-    HY_SCENE_SET = 1,      /* the scene (or an override) set the key        */
-    HY_SCENE_DEFAULT = 0,  /* not set: *out holds the schema default        */
-    HY_SCENE_ABSENT = -1,  /* not set and no default: *out untouched        */
-    HY_SCENE_BADKEY = -2   /* no such section/key, or a getter of another kind */
-};
+#include "hy_scene_types.h" /* hy_scene, hy_scene_loc, hy_scene_color, HY_SCENE_SET ... */
 
 /* Parses the scene file at path and the files it includes into *out.
  * On error returns a status, leaves *out NULL and writes err. Caller frees. */
@@ -221,7 +198,5 @@ int hy_scene_expand(const hy_scene *s, const char *text, char **out, hy_error *e
 
 /* The path or display name the scene was parsed from (owned by the scene). */
 const char *hy_scene_source(const hy_scene *s);
-
-#include "hy_scene_policy.h"
 
 #endif

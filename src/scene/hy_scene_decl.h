@@ -24,7 +24,8 @@
 
 #include <stddef.h>
 
-#include "hy_scene.h"
+#include "hy_scene_types.h"
+#include "hy_status.h"
 
 /* The largest parameter struct a model's own rows may fill (hy_decl_model.par). */
 #define HY_MODEL_PAR_MAX 256

@@ -3,6 +3,7 @@
  * schema's field table (offset and C type per key), and the checks that span keys and sections. */
 #include "hy_scene_decl.h"
 #include "hy_scene_internal.h"
+#include "hy_scene.h"
 
 #include <stdarg.h>
 #include <stdlib.h>

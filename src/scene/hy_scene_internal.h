@@ -3,12 +3,21 @@
 #ifndef HY_SCENE_INTERNAL_H
 #define HY_SCENE_INTERNAL_H
 
+#include <ctype.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 
-#include "hy_scene.h"
-#include "hy_scene_policy.h"
+#include "hy_scene_schema.h"
+#include "hy_scene_types.h"
+#include "hy_status.h"
 #include "hy_file.h"
+
+/* A character of a [param NAME] reference's NAME: letters, digits, _ - . */
+static inline int hy__name_char(int ch)
+{
+    return isalnum(ch) || ch == '_' || ch == '-' || ch == '.';
+}
 
 enum { HY__UNIT_PT, HY__UNIT_CM, HY__UNIT_MM, HY__UNIT_IN, HY__UNIT_PX };
 
@@ -82,6 +91,10 @@ struct hy_scene {
     size_t nundo, capundo;
     char **refs; /* the parameter names that values reference ($NAME), owned, never removed */
     size_t nrefs, caprefs;
+    /* hy__param_propagate, set by the parser (hy_scene_parse.c): hy_scene_set
+     * calls it after a [param NAME] value override, so hy_scene.c calls
+     * nothing of hy_scene_param.c (which reads the scene through hy_scene.c) */
+    int (*propagate)(hy_scene *s, const char *name, double x, const char *a, int record, hy_error *err);
 };
 
 /* Writes the value of key spec parsed from text[0..len) (the text after '=',

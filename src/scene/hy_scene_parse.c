@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_scene_parse.c: the scene file parser: lines, [section] headers, keys, includes and their precedence. */
 #include "hy_scene_internal.h"
+#include "hy_scene.h"
 
 #include "hy_file.h"
 #include "hy_scene_policy.h"
@@ -494,6 +495,7 @@ static int parse_top(const char *name, const char *text, size_t len, const hy_sc
     hy_scene *s = hy__scene_new(err);
     if (!s)
         return err ? err->code : HY_ENOMEM;
+    s->propagate = hy__param_propagate;
     pctx c = {.s = s, .err = err, .depth = 1};
     c.stack[0].inst = hy__scene_add_file(s, name);
     c.stack[0].dir = dir_of(name);

@@ -13,6 +13,7 @@
 
 #include "hy_file.h"
 #include "hy_scene_internal.h"
+#include "hy_scene.h"
 
 hy_scene_policy hy_scene_policy_default(void)
 {

@@ -5,7 +5,9 @@
 #include "hy_scene_decl.h"
 #include "hy_scene_model_rows.h"
 
+#include "hy_figure_names.h"
 #include "hy_formats.h"
+#include "hy_ode.h"
 #include "hy_quality.h"
 
 #include <pthread.h>
@@ -39,29 +41,28 @@
 
 #define MODEL_NAME(id, name) name,
 static const char *const model_kinds[] = {HY_MODEL_KINDS(MODEL_NAME) NULL};
-static const char *const input_kinds[] = {"bimodal", "multimodal", "triangle", "sine",
-                                          "pwl", "file", "multisine", "sweep", "data", NULL};
+#define INPUT_NAME(id, name, takers) name,
+static const char *const input_kinds[] = {HY_INPUT_KINDS(INPUT_NAME) NULL};
 static const char *const data_starts[] = {"zero", "first", "periodic", NULL};
 static const char *const input_shapes[] = {"linear", "cosine", NULL};
-static const char *const solvers[] = {"exact", "rkf45", "rk8pd", "rk4imp", "bsimp", "msbdf",
-                                      "rk2", "rk4", "rkck", "rk1imp", "rk2imp", "msadams",
-                                      NULL};
+/* "exact", then the GSL steppers at their documented places (hy_ode.h) */
+#define SOLVER_AT(name, kind, order, place) [place] = #name,
+#define NSOLVERS (1 HY_ODE_STEPPERS(HY_ODE_COUNT_OF))
+static const char *const solvers[NSOLVERS + 1] = {[0] = "exact", HY_ODE_STEPPERS(SOLVER_AT)[NSOLVERS] = NULL};
 #define FIGURE_NAME(id, name) name,
 static const char *const figure_kinds[] = {HY_FIGURE_KINDS(FIGURE_NAME) NULL};
-static const char *const legends[] = {"none", "best", "top-left", "top-right",
-                                      "bottom-left", "bottom-right", NULL};
+static const char *const legends[] = {HY_LEGEND_PLACES(HY_NAME_OF) NULL};
 #define DATA_NAME(id, name) name,
 static const char *const series_data[] = {HY_SERIES_DATA(DATA_NAME) NULL};
-static const char *const line_styles[] = {"solid", "dashed", "dotted", "dashdot", "none",
-                                          NULL};
+static const char *const line_styles[] = {HY_LINE_STYLES(HY_NAME_OF) NULL};
 #define QUANTITY_NAME(id, name, bw) name,
 static const char *const bw_quantities[] = {HY_SERIES_QUANTITIES(QUANTITY_NAME) NULL};
 static const char *const decimations[] = {"staged", "single", "none", NULL};
-static const char *const markers[] = {"none", "circle", "square", NULL};
+static const char *const markers[] = {HY_MARKERS(HY_NAME_OF) NULL};
 static const char *const formats[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
-static const char *const themes[] = {"paper", "slides", NULL};
+static const char *const themes[] = {HY_THEMES(HY_NAME_OF) NULL};
 static const char *const zoom_follows[] = {"none", "minor", NULL};
-static const char *const easings[] = {"linear", "smooth", NULL};
+static const char *const easings[] = {HY_EASINGS(HY_NAME_OF) NULL};
 #define QUALITY_NAME(name, w, h, fps) name,
 static const char *const qualities[] = {HY_QUALITY_PRESETS(QUALITY_NAME) NULL};
 

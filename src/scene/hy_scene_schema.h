@@ -22,6 +22,7 @@
  * which expects a `hy_scene_model_<id>` from each model's own file) are both
  * generated from it, so a model is added there, once. */
 #include "hy_models.h"
+#include "hy_scene_types.h"
 
 /* What a [series] draws, one line per kind: X(ID, "name").  The schema's
  * data list and the pipeline's HY_DATA_ID values (scene_run.h) are both
@@ -66,75 +67,41 @@
     X(SINC_OUTPUT, "sinc-output-error", 1)       \
     X(MAGNETISATION, "magnetisation", 0)
 
-/* What a value must look like. */
-typedef enum hy_scene_kind {
-    HY_KIND_NUMBER,       /* finite decimal number: 1, -2.5, 3e-4               */
-    HY_KIND_INTEGER,      /* decimal integer: 12, -3                            */
-    HY_KIND_BOOL,         /* true | false                                       */
-    HY_KIND_ENUM,         /* one identifier from the key's list                 */
-    HY_KIND_STRING,       /* "quoted text" (or one bare word)                   */
-    HY_KIND_NAME,         /* identifier-like text: letters, digits, _ - .      */
-    HY_KIND_PATH,         /* file path, resolved relative to the defining file  */
-    HY_KIND_NUMBER_LIST,  /* 1, 10, 100                                         */
-    HY_KIND_INTEGER_LIST, /* 0, 1, 2                                            */
-    HY_KIND_ENUM_LIST,    /* svg, pdf                                           */
-    HY_KIND_LENGTH,       /* 9pt, 0.4cm, 1in, 12px (bare number = pt)           */
-    HY_KIND_LENGTH_PAIR,  /* 12cm, 9cm                                          */
-    HY_KIND_COLOR,        /* Okabe-Ito index 1-8, its name, or #rrggbb          */
-    HY_KIND_PAIR,         /* two numbers, first < second: 0, 4.6                */
-    HY_KIND_LIMITS        /* a pair as above, or auto                           */
-} hy_scene_kind;
+/* The [input] kinds, one line per kind: X(ID, "name", takers), takers the
+ * models that take it: HY_INPUT_OTHERS every model but the Bouc-Wen
+ * oscillator, HY_INPUT_ALL every model, HY_INPUT_BOUCWEN the Bouc-Wen
+ * oscillator alone (a force).  The schema's [input] kind list, the
+ * HY_INPUT_<ID> values (the index decode gives) and the pipeline's dispatch
+ * on them (scene_run.c, scene_boucwen.c) are generated from it. */
+#define HY_INPUT_OTHERS 1
+#define HY_INPUT_ALL 3
+#define HY_INPUT_BOUCWEN 2
+#define HY_INPUT_KINDS(X)                         \
+    X(BIMODAL, "bimodal", HY_INPUT_OTHERS)        \
+    X(MULTIMODAL, "multimodal", HY_INPUT_OTHERS)  \
+    X(TRIANGLE, "triangle", HY_INPUT_OTHERS)      \
+    X(SINE, "sine", HY_INPUT_ALL)                 \
+    X(PWL, "pwl", HY_INPUT_OTHERS)                \
+    X(FILE, "file", HY_INPUT_OTHERS)              \
+    X(MULTISINE, "multisine", HY_INPUT_BOUCWEN)   \
+    X(SWEEP, "sweep", HY_INPUT_BOUCWEN)           \
+    X(DATA, "data", HY_INPUT_OTHERS)
+#define HY__INPUT_ID(id, name, takers) HY_INPUT_##id,
+enum { HY_INPUT_KINDS(HY__INPUT_ID) HY_INPUT_KIND_COUNT };
+#undef HY__INPUT_ID
 
-/* Every number in a scene is 0 or at least this in magnitude (DBL_MIN, the
- * smallest normal double): subnormal numbers such as 4.9e-324 are refused. */
-#define HY_SCENE_NUM_MIN 2.2250738585072014e-308
+/* Which models take input kind (an HY_INPUT_* value): HY_INPUT_OTHERS, _ALL
+ * or _BOUCWEN; 0 for a value that is no kind. */
+static inline int hy_input_kind_takers(int kind)
+{
+#define HY__INPUT_TAKERS(id, name, takers) takers,
+    static const int takers[] = {HY_INPUT_KINDS(HY__INPUT_TAKERS)};
+#undef HY__INPUT_TAKERS
+    return kind >= 0 && kind < HY_INPUT_KIND_COUNT ? takers[kind] : 0;
+}
 
-/* Flags of a key spec: which bounds apply and whether they are strict. */
-enum {
-    HY_SPEC_MIN = 1u << 0,      /* value >= min (or > min with MIN_EXCL)   */
-    HY_SPEC_MAX = 1u << 1,      /* value <= max (or < max with MAX_EXCL)   */
-    HY_SPEC_MIN_EXCL = 1u << 2,
-    HY_SPEC_MAX_EXCL = 1u << 3,
-    HY_SPEC_EVEN = 1u << 4      /* a list must hold an even count (pairs)  */
-};
-
-/* One key: its name, kind, allowed identifiers (NULL-terminated, for ENUM and
- * ENUM_LIST), bounds (for numbers, integers, list elements and lengths, whose
- * bound applies to the number before the unit), list length limits (0 = no
- * limit), default written as scene text (NULL = none), a one-line doc, and
- * for a quantity its symbol as the papers print it (markup: "u_{min,2}",
- * "σ_0"; NULL = none) and its unit ("Hz", "N s/m"; NULL = none or
- * dimensionless), which serve's controls show; for a key that hy_scene_decode
- * reads (hy_scene_decl.h), the offset of the field it fills in its section's
- * struct and that field's C type (HY_CTYPE_*; 0: the key is not decoded);
- * for a [model] key that one model declares in its own file
- * (hy_scene_model_rows.h), that model's kind (NULL: any kind's key). */
-typedef struct hy_scene_key_spec {
-    const char *name;
-    hy_scene_kind kind;
-    const char *const *enums;
-    unsigned flags;
-    double min, max;
-    unsigned min_len, max_len;
-    const char *def;
-    const char *doc;
-    const char *symbol;
-    const char *unit;
-    size_t field;
-    int ctype;
-    const char *model;
-} hy_scene_key_spec;
-
-/* One section: [name] or, when takes_name, [name LABEL]; repeatable sections
- * may occur once per distinct label. */
-typedef struct hy_scene_section_spec {
-    const char *name;
-    int takes_name;
-    int repeatable;
-    const hy_scene_key_spec *keys;
-    size_t nkeys;
-    const char *doc;
-} hy_scene_section_spec;
+/* hy_scene_kind, the key flags, hy_scene_key_spec and hy_scene_section_spec:
+ * hy_scene_types.h (the bottom of src/scene: the decoded structs use them). */
 
 /* Returns the static table of sections and stores its length in *n. */
 const hy_scene_section_spec *hy_scene_schema(size_t *n);

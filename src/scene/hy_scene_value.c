@@ -186,6 +186,18 @@ static int lex_value(vctx *c, const char *text, size_t len, int col0, lexed *l)
     }
 }
 
+/* p past an optional sign and one or more digits; NULL when no digit follows. */
+static const char *signed_digits(const char *p)
+{
+    if (*p == '+' || *p == '-')
+        p++;
+    if (!isdigit((unsigned char)*p))
+        return NULL;
+    while (isdigit((unsigned char)*p))
+        p++;
+    return p;
+}
+
 /* Strict decimal number: [+-]digits[.digits][e[+-]digits]; no nan, inf or hex.
  * Returns 0 on success, 1 on bad syntax, 2 if it does not fit a double. */
 static int strict_number(const char *s, double *out)
@@ -203,15 +215,8 @@ static int strict_number(const char *s, double *out)
     }
     if (!digits)
         return 1;
-    if (*p == 'e' || *p == 'E') {
-        p++;
-        if (*p == '+' || *p == '-')
-            p++;
-        if (!isdigit((unsigned char)*p))
-            return 1;
-        while (isdigit((unsigned char)*p))
-            p++;
-    }
+    if ((*p == 'e' || *p == 'E') && !(p = signed_digits(p + 1)))
+        return 1;
     if (*p)
         return 1;
     errno = 0;
@@ -238,14 +243,8 @@ static int magnitude_fail(vctx *c, const item *it)
 
 static int strict_integer(const char *s, long *out)
 {
-    const char *p = s;
-    if (*p == '+' || *p == '-')
-        p++;
-    if (!isdigit((unsigned char)*p))
-        return 1;
-    while (isdigit((unsigned char)*p))
-        p++;
-    if (*p)
+    const char *p = signed_digits(s);
+    if (!p || *p)
         return 1;
     errno = 0;
     long v = strtol(s, NULL, 10);

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_scene_write.c: writes the effective scene (merged files, overrides, optional defaults) back as scene text. */
 #include "hy_scene_internal.h"
+#include "hy_scene.h"
 
 static void write_section(const hy_scene *s, const hy__section *x, int sec, int defaults, FILE *f)
 {

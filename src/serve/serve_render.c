@@ -292,7 +292,7 @@ static enum MHD_Result answer_json(render_job *j)
 /* svg, pdf, png: the bytes render writes, with the render's time. */
 static enum MHD_Result answer_figure(render_job *j, const char *disp)
 {
-    static const char *const types[] = {"image/svg+xml", "application/pdf", "image/png"};
+    static const char *const types[] = {HY_FIGURE_FORMATS(HY_FORMAT_MIME)};
     char hdr[64];
     snprintf(hdr, sizeof hdr, "%.6f", j->seconds);
     struct MHD_Response *r = MHD_create_response_from_buffer(j->len, j->bytes, MHD_RESPMEM_MUST_FREE);

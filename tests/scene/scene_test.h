@@ -41,6 +41,14 @@ static int st_failures;
         }                                                                        \
     } while (0)
 
+/* The test's exit status: 0, or 1 after saying on stderr how many checks failed. */
+static inline int st_done(const char *test)
+{
+    if (st_failures)
+        fprintf(stderr, "%s: %d check(s) failed\n", test, st_failures);
+    return st_failures ? 1 : 0;
+}
+
 /* Parses text named name; returns the scene or NULL, printing an unexpected error. */
 static inline hy_scene *st_parse_ok(const char *name, const char *text, int line)
 {

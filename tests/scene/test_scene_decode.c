@@ -231,7 +231,5 @@ int main(void)
     own_rows();
     cross();
     marked();
-    if (st_failures)
-        fprintf(stderr, "test_scene_decode: %d check(s) failed\n", st_failures);
-    return st_failures ? 1 : 0;
+    return st_done("test_scene_decode");
 }

@@ -155,7 +155,5 @@ int main(void)
     values();
     write_back();
     errors();
-    if (st_failures)
-        fprintf(stderr, "%d check(s) failed\n", st_failures);
-    return st_failures ? 1 : 0;
+    return st_done("test_scene_param");
 }

@@ -18,6 +18,7 @@
 #include "../core/tutil.h"
 #include "../tmpdir.h"
 #include "scene_model.h"
+#include "scene_run.h"
 
 /* Writes text to the file name in the test's directory; its path into buf. */
 static const char *put(const char *name, const char *text, char *buf, size_t size)

@@ -23,6 +23,7 @@
 #include "hy_jiles.h"
 #include "hy_preisach.h"
 #include "scene_model.h"
+#include "scene_run.h"
 
 static const char *SRC;
 
