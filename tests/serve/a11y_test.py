@@ -438,9 +438,15 @@ def test_anim(dt, base, hv, tmp):
     dt.js("setTheme(false); frameWarn('')")
 
 
-def test_keyboard(dt, base):
+def test_keyboard(dt, base, shots):
     viewport(dt, 1024, 768)
     check(open_scene(dt, base, F15 + ".scene", "Fig. 15"), "Fig. 15 opens")
+    if shots:  # the skip link and the figure as the keyboard shows them
+        from_top(dt)
+        tab(dt)
+        shot(dt, shots, "a11y-1024x768-skip")
+        dt.js("document.getElementById('figure').focus()")
+        shot(dt, shots, "a11y-1024x768-figure")
     keyboard(dt, "Fig. 15 at 1024x768")
     dt.js("setTheme(true)")
     dt.wait("document.body.classList.contains('slides') && !hv.inflight && !hv.pending", 20, "slides")
@@ -544,7 +550,7 @@ def main():
         dt.call("DOM.enable")
         dt.call("Accessibility.enable")
         test_names(dt, base)
-        test_keyboard(dt, base)
+        test_keyboard(dt, base, shots)
         test_contrast(dt, base, shots)
         test_anim(dt, base, hv, tmp)
         test_export(dt, hv, scenes, tmp, shots)
