@@ -358,6 +358,15 @@ def test_names(dt, base):
     x = dt.js("Array.from(document.querySelectorAll('.pinchip button')).map(b => b.getAttribute('aria-label'))")
     check(len(x) == 2 and x[0].startswith("remove pin σ0 = 6") and x[1].startswith("remove pin σ0 = "),
           f"the pins' × buttons are named: {x}")
+    # a figure whose parameters have units (Bouc-Wen: N, mm, s): each slider says its unit
+    BW = "bw_fig1a_quasistatic_loop"
+    check(open_scene(dt, base, BW + ".scene", BW), f"{BW} opens")
+    u = dt.js("""hv.info.controls.filter(c => c.unit).map(c => {
+        const r = document.querySelector('input[type=range][data-key="' + c.key + '"]');
+        return [c.key, c.unit, r.getAttribute('aria-label'), r.getAttribute('aria-valuetext')]; })""")
+    bad = [x for x in u if not (x[2].endswith(")") and "(" in x[2] and x[3].split(" ", 1)[-1] == x[2][x[2].rindex("(") + 1:-1])]
+    check(u and not bad, f"{BW}: {len(u)} sliders with a unit, each named with it and saying it with the value "
+          f"(e.g. {u[0][2:] if u else None})" + (f"; not: {bad[:3]}" if bad else ""))
 
 
 def set_sigma1(dt, v):
