@@ -430,6 +430,7 @@ async function doRender() {
 function show(j, q, t0) {
   const fig = $('figure');
   fig.innerHTML = j.svg;
+  delete fig.dataset.title; // this figure's own <title>, if it has one (labelFigure)
   drawGhost();
   fig.classList.remove('stale');
   hv.svg = j.svg;
@@ -1276,11 +1277,15 @@ function say(msg, urgent) {
 // The figure's accessible name and description (#figure is role="img", focusable; the
 // SVG inside it is presentational): the name is the SVG's own <title>, else the
 // caption, else the scene's title, followed by the pins kept for comparison; the
-// description is the SVG's <desc> where it has one.
+// description is the SVG's <desc> where it has one.  The <title> is taken out of the
+// page's copy of the SVG once read (hv.svg keeps the server's bytes): inline, it would
+// be a browser tooltip over the whole figure, on top of the page's own (#tip).
 function labelFigure() {
   const fig = $('figure'), svg = fig.querySelector('svg');
   const t = svg && svg.querySelector(':scope > title'), d = svg && svg.querySelector(':scope > desc');
-  let name = (t && t.textContent.trim()) || $('caption').textContent.trim() || $('title').textContent.trim();
+  if (t) { fig.dataset.title = t.textContent.trim(); t.remove(); } // read once: the name says it (no browser tooltip over the figure)
+  else if (!svg) delete fig.dataset.title;
+  let name = fig.dataset.title || $('caption').textContent.trim() || $('title').textContent.trim();
   if (!svg) name = (name ? name + ': ' : '') + (hv.error ? 'no figure: ' + hv.error : 'the figure is being drawn');
   else if (hv.error) name += ' (the figure before the refused value: ' + hv.error + ')';
   if (svg && hv.pins.length) name += '; pinned for comparison: ' + hv.pins.map(p => p.label).join('; ');
