@@ -347,6 +347,12 @@ def test_names(dt, base):
     check(got[0].startswith("A test title;") and got[1] == "A test description: three series" and not got[2],
           f"with an SVG <title> and <desc>, the figure is named by the title (taken out of the inline copy: no "
           f"tooltip) and described by the desc: {got}")
+    got = dt.js("""(() => { const f = document.getElementById('figure'), NS = 'http://www.w3.org/2000/svg';
+        const svg = f.querySelector('svg'), d = svg.querySelector('desc'), desc = d.textContent;
+        d.remove(); labelFigure(); const r = f.getAttribute('aria-describedby');
+        const e = document.createElementNS(NS, 'desc'); e.textContent = desc; svg.prepend(e); labelFigure();
+        return r; })()""")
+    check(got == "caption", f"named by its <title> with no <desc>, the figure is described by the caption: {got}")
     by_dom, _ = ax_tree(dt, "Fig. 15, its SVG given a <title> and <desc>")
     name, desc = figure_node(dt, by_dom, "#figure", "Fig. 15 with <title>")
     check(name.startswith("A test title") and desc == "A test description: three series",

@@ -1277,7 +1277,7 @@ function say(msg, urgent) {
 // The figure's accessible name and description (#figure is role="img", focusable; the
 // SVG inside it is presentational): the name is the SVG's own <title>, else the
 // caption, else the scene's title, followed by the pins kept for comparison; the
-// description is the SVG's <desc> where it has one.  The <title> is taken out of the
+// description is the SVG's <desc> where it has one (else the caption, if the title named it).  The <title> is taken out of the
 // page's copy of the SVG once read (hv.svg keeps the server's bytes): inline, it would
 // be a browser tooltip over the whole figure, on top of the page's own (#tip).
 function labelFigure() {
@@ -1291,6 +1291,7 @@ function labelFigure() {
   if (svg && hv.pins.length) name += '; pinned for comparison: ' + hv.pins.map(p => p.label).join('; ');
   fig.setAttribute('aria-label', name || 'the figure');
   if (d && d.textContent.trim()) { d.id = 'figdesc'; fig.setAttribute('aria-describedby', 'figdesc'); }
+  else if (fig.dataset.title && $('caption').textContent.trim()) fig.setAttribute('aria-describedby', 'caption'); // named by its title
   else fig.removeAttribute('aria-describedby');
 }
 
