@@ -43,7 +43,8 @@ async function loadCatalogue() {
   for (const s of j.scenes) {
     if (s.part !== part) { part = s.part; kids.push(el('h4', {}, parts[part] || '')); }
     kids.push(el('a', { href: '#' + s.file, class: s.error ? 'bad' : '', title: s.error || s.caption, 'data-file': s.file },
-      (s.label ? s.label + ' · ' : '') + s.name + (s.anim ? ' ▶' : ''), el('small', {}, s.error ? s.error : s.caption)));
+      (s.label ? s.label + ' · ' : '') + s.name, ...(s.anim ? [el('span', { 'aria-hidden': 'true' }, ' ▶'),
+        el('span', { class: 'sr' }, ' (animation)')] : []), el('small', {}, s.error ? s.error : s.caption)));
   }
   nav.replaceChildren(...kids);
   markCurrent();
@@ -150,6 +151,7 @@ async function openScene(file, keep, st) {
   $('title').textContent = (entry && entry.label ? entry.label + ' · ' : '') + (info.name || file);
   $('caption').textContent = info.caption;
   $('text').textContent = info.text;
+  labelFigure();
   markCurrent();
   buildControls(info);
   keyHelp();
@@ -169,6 +171,14 @@ function ctlName(c) {
   const parts = c.key.split('.'), series = parts.length > 2 ? ' (' + parts[1] + ')' : '';
   return (c.sym ? plain(c.sym) : parts[parts.length - 1]) + series;
 }
+// a unit as a screen reader reads it: "J/m³", "A/m" (the markup's ^2, ^3 as superscript digits)
+function unitText(u) {
+  const sup = { '-': '⁻', 0: '⁰', 1: '¹', 2: '²', 3: '³', 4: '⁴', 5: '⁵', 6: '⁶', 7: '⁷', 8: '⁸', 9: '⁹' };
+  return plain(u.replace(/\^\{?(-?\d+)\}?/g, (_, d) => Array.from(d, x => sup[x]).join('')));
+}
+// a slider's accessible name: "σ0 (T)", "γ g20"; its value as text: "6 T"
+function sliderName(c) { return ctlName(c) + (c.unit ? ' (' + unitText(c.unit) + ')' : ''); }
+function valueText(c) { return curOf(c) + (c.unit ? ' ' + unitText(c.unit) : ''); }
 function labelNode(c) {
   const parts = c.key.split('.');
   const name = c.sym ? typeset(c.sym) : el('span', { class: 'sym' }, parts[parts.length - 1]);
@@ -260,7 +270,7 @@ function checkTyped(c, text) {
 function syncSliders() {
   for (const r of $('controls').querySelectorAll('input[type=range][data-key]')) {
     const c = ctlOf(r.dataset.key);
-    if (c) r.value = toPos(c, parseFloat(curOf(c)));
+    if (c) { r.value = toPos(c, parseFloat(curOf(c))); r.setAttribute('aria-valuetext', valueText(c)); }
   }
 }
 
@@ -276,8 +286,9 @@ function buildControls(info) {
     el('button', { type: 'button', onclick: resetValues, title: 'r' }, 'reset to file'),
     el('button', { type: 'button', onclick: () => setPresent(!hv.present), title: 'p', class: 'presentbtn' },
       'presentation (p)'),
-    el('button', { type: 'button', class: 'keysbtn', onclick: () => { $('keys').hidden = !$('keys').hidden; }, title: '?: the keys' }, 'keys (?)'),
-    el('button', { type: 'button', id: 'pin', onclick: addPin,
+    el('button', { type: 'button', class: 'keysbtn', onclick: toggleKeys, title: '?: the keys', 'aria-controls': 'keys',
+      'aria-expanded': String(!$('keys').hidden) }, 'keys (?)'),
+    el('button', { type: 'button', id: 'pin', onclick: () => { addPin(); say(hv.pins.length ? 'pinned: ' + hv.pins[hv.pins.length - 1].label : 'nothing to pin'); },
       title: 'g: keep the curves shown now, labelled with their values, in a lighter tone under the next ones' }, 'pin (g)'),
     el('button', { type: 'button', id: 'hold', onclick: () => holdAxes(!hv.axesHeld), class: hv.axesHeld ? 'on' : '',
       'aria-pressed': String(!!hv.axesHeld),
@@ -298,12 +309,13 @@ function buildControls(info) {
   for (const c of info.controls) {
     const cur = curOf(c);
     const title = c.key + ': ' + c.doc + (c.range ? ' (' + c.range + ')' : '');
-    const range = el('input', { type: 'range', min: 0, max: 1000, step: 1, 'data-key': c.key, 'aria-label': ctlName(c), title });
-    const box = el('input', { type: 'text', value: cur, 'data-key': c.key, 'aria-label': ctlName(c) + ' value',
+    const range = el('input', { type: 'range', min: 0, max: 1000, step: 1, 'data-key': c.key, 'aria-label': sliderName(c), title,
+      'aria-valuetext': valueText(c) });
+    const box = el('input', { type: 'text', value: cur, 'data-key': c.key, 'aria-label': sliderName(c) + ', exact value',
       inputmode: 'decimal' });
     const err = el('div', { class: 'err', 'data-key': c.key });
     const play = el('button', { type: 'button', class: 'playkey' + (hv.sliderPlay && hv.sliderPlay.key === c.key ? ' on' : ''),
-      'data-key': c.key, 'aria-label': 'play ' + ctlName(c), title: 'play: move ' + ctlName(c) + ' back and forth over its range (space stops)',
+      'data-key': c.key, 'aria-label': 'play ' + ctlName(c), 'aria-pressed': String(!!(hv.sliderPlay && hv.sliderPlay.key === c.key)), title: 'play: move ' + ctlName(c) + ' back and forth over its range (space stops)',
       onclick: () => toggleSliderPlay(c.key) }, hv.sliderPlay && hv.sliderPlay.key === c.key ? '■' : '▶');
     const div = el('div', { class: 'ctl' + (hv.sets[c.key] !== undefined ? ' changed' : '') + (mains.includes(c) ? ' main' : ''),
       'data-key': c.key },
@@ -313,6 +325,7 @@ function buildControls(info) {
     const apply = (v) => {
       if (v === c.value) delete hv.sets[c.key]; else hv.sets[c.key] = v;
       div.classList.toggle('changed', hv.sets[c.key] !== undefined);
+      range.setAttribute('aria-valuetext', valueText(c));
       hv.lastKey = c.key;
       hv.preset = null;
       requestRender();
@@ -417,6 +430,7 @@ async function doRender() {
 function show(j, q, t0) {
   const fig = $('figure');
   fig.innerHTML = j.svg;
+  delete fig.dataset.title; // this figure's own <title>, if it has one (labelFigure)
   drawGhost();
   fig.classList.remove('stale');
   hv.svg = j.svg;
@@ -431,6 +445,7 @@ function show(j, q, t0) {
   hv.renders++;
   $('cmd').textContent = j.cmd;
   if (typeof j.caption === 'string') $('caption').textContent = j.caption; // its placeholders say the values drawn
+  labelFigure();
   $('message').hidden = true;
   for (const e of document.querySelectorAll('.ctl .err')) e.textContent = '';
   $('status').textContent = 'live · render ' + hv.serverMs.toFixed(1) + ' ms on the server, ' + hv.pageMs.toFixed(1) + ' ms in the page';
@@ -439,7 +454,8 @@ function show(j, q, t0) {
     : 'no exact answer to compare with';
   const dl = $('downloads');
   dl.replaceChildren('download:', ...['svg', 'pdf', 'png', 'csv'].map(f =>
-    el('a', { href: '/api/render?' + q + '&fmt=' + f + '&name=download', download: '' }, f.toUpperCase())));
+    el('a', { href: '/api/render?' + q + '&fmt=' + f + '&name=download', download: '', 'aria-label': 'download ' + f.toUpperCase() },
+      f.toUpperCase())));
   hv.hover = null;
   clearTimeout(hv.hoverTimer);
   hv.hoverTimer = setTimeout(() => loadHover(q), 300);
@@ -458,7 +474,9 @@ function showError(msg) {
   hv.error = msg;
   $('message').textContent = msg;
   $('message').hidden = false;
+  say(msg, true);
   $('figure').classList.add('stale');
+  labelFigure();
   // next to the control the message names, else the one moved last
   let key = null;
   if (hv.info) for (const c of hv.info.controls) if (msg.includes(c.key + '=')) key = c.key;
@@ -537,9 +555,10 @@ function pinList() {
   const box = $('pins');
   if (!box) return;
   box.replaceChildren(...hv.pins.map(p => el('span', { class: 'pinchip', 'data-pin': p.id, title: p.label }, 'pin: ', ...pinNodes(p.parts),
-    el('button', { type: 'button', class: 'dismiss', 'aria-label': 'remove the pin ' + p.label, title: 'remove this pin',
+    el('button', { type: 'button', class: 'dismiss', 'aria-label': 'remove pin ' + p.label, title: 'remove this pin',
       onclick: () => removePin(p.id) }, '×'))));
   box.hidden = !hv.pins.length;
+  labelFigure();
 }
 
 function redrawPins() {
@@ -739,6 +758,7 @@ function playButtons() {
     const on = !!hv.sliderPlay && hv.sliderPlay.key === b.dataset.key;
     b.textContent = on ? '■' : '▶';
     b.classList.toggle('on', on);
+    b.setAttribute('aria-pressed', String(on));
   }
 }
 
@@ -921,6 +941,7 @@ function frameWarn(msg) {
   if (!w) return;
   w.textContent = msg;
   w.hidden = !msg;
+  if (msg) say(msg);
 }
 
 // The presentation view: the frame as large as the space left for it allows, its aspect kept
@@ -975,6 +996,7 @@ async function loadFrame(i) {
       showBitmap(b);
       b.close();
       $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · ' + clipTime(i);
+      labelFrame(i);
     } catch (e) { // the server answered: the frame is here, the browser cannot show it
       $('frameinfo').textContent = 'frame ' + i + ' / ' + anim.n + ' · ' + clipTime(i);
       frameWarn('frame ' + i + ' came from the server, but ' + e.message + '; the frame before it stays on screen');
@@ -1068,6 +1090,7 @@ async function readStream(url, ctl, key) {
 function animFail(msg) {
   anim.error = msg;
   $('frameinfo').textContent = 'frame ' + anim.pos + ': ' + msg;
+  say('frame ' + anim.pos + ': ' + msg, true);
   animStop();
 }
 
@@ -1138,6 +1161,7 @@ function tick(now) {
     const rate = anim.shown / Math.max(1e-3, (now - anim.t0) / 1000);
     $('frameinfo').textContent = 'frame ' + hv.frame + ' / ' + anim.n + ' · ' + clipTime(hv.frame) + ' · '
       + rate.toFixed(0) + ' of the ' + +(anim.fps * hv.speed).toFixed(2) + ' frames/s shown';
+    labelFrame(hv.frame);
   }
   decodeAhead();
   animFetch();
@@ -1191,11 +1215,12 @@ function animStop() {
     $('frameinfo').textContent = 'frame ' + hv.frame + ' / ' + anim.n + ' · ' + clipTime(hv.frame);
     document.dispatchEvent(new CustomEvent('hv-frame'));
   }
+  if (hv.frame >= 0) labelFrame(hv.frame);
 }
 
 $('scrub').addEventListener('input', () => { if (hv.playing) animStop(); requestFrame(+$('scrub').value); });
 $('play').addEventListener('click', () => { if (hv.playing) animStop(); else animPlay(); });
-$('keysbtn').addEventListener('click', () => { $('keys').hidden = !$('keys').hidden; });
+$('keysbtn').addEventListener('click', toggleKeys);
 $('stepback').addEventListener('click', () => frameStep(-1));
 $('stepon').addEventListener('click', () => frameStep(1));
 $('loop').addEventListener('change', ev => { anim.loop = ev.target.checked; });
@@ -1232,8 +1257,67 @@ function listen() {
     await loadCatalogue();
     if (hv.info) await openScene(hv.info.file, true);
   });
-  es.onerror = () => { $('status').textContent = 'connection lost, retrying…'; };
+  es.onerror = () => {
+    if ($('status').textContent !== 'connection lost, retrying…') say('connection to the server lost, retrying');
+    $('status').textContent = 'connection lost, retrying…';
+  };
 }
+
+// ---- screen readers and the keyboard (issue 38 item 6) ---------------------------------
+
+// A message said by a screen reader: into a live region that is always in the page
+// (#alert, assertive, for errors; #say, polite, for notes and the keys' answers); the
+// same text twice in a row is said again.
+function say(msg, urgent) {
+  const r = $(urgent ? 'alert' : 'say');
+  if (!r || !msg) return;
+  r.textContent = r.textContent === msg ? msg + '\u00a0' : msg;
+}
+
+// The figure's accessible name and description (#figure is role="img", focusable; the
+// SVG inside it is presentational): the name is the SVG's own <title>, else the
+// caption, else the scene's title, followed by the pins kept for comparison; the
+// description is the SVG's <desc> where it has one (else the caption, if the title named it).  The <title> is taken out of the
+// page's copy of the SVG once read (hv.svg keeps the server's bytes): inline, it would
+// be a browser tooltip over the whole figure, on top of the page's own (#tip).
+function labelFigure() {
+  const fig = $('figure'), svg = fig.querySelector('svg');
+  const t = svg && svg.querySelector(':scope > title'), d = svg && svg.querySelector(':scope > desc');
+  if (t) { fig.dataset.title = t.textContent.trim(); t.remove(); } // read once: the name says it (no browser tooltip over the figure)
+  else if (!svg) delete fig.dataset.title;
+  let name = fig.dataset.title || $('caption').textContent.trim() || $('title').textContent.trim();
+  if (!svg) name = (name ? name + ': ' : '') + (hv.error ? 'no figure: ' + hv.error : 'the figure is being drawn');
+  else if (hv.error) name += ' (the figure before the refused value: ' + hv.error + ')';
+  if (svg && hv.pins.length) name += '; pinned for comparison: ' + hv.pins.map(p => p.label).join('; ');
+  fig.setAttribute('aria-label', name || 'the figure');
+  if (d && d.textContent.trim()) { d.id = 'figdesc'; fig.setAttribute('aria-describedby', 'figdesc'); }
+  else if (fig.dataset.title && $('caption').textContent.trim()) fig.setAttribute('aria-describedby', 'caption'); // named by its title
+  else fig.removeAttribute('aria-describedby');
+}
+
+// the frame shown, said by the canvas (role="img") and the scrubber
+function labelFrame(i) {
+  if (!hv.info || !anim.n) return;
+  const where = 'frame ' + i + ' of ' + anim.n + ', ' + clipTime(i);
+  $('scrub').setAttribute('aria-valuetext', where);
+  $('frame').setAttribute('aria-label', 'animation ' + (hv.info.name || hv.info.file) + ', ' + (hv.playing ? 'playing' : where));
+}
+
+function toggleKeys(show) {
+  const k = $('keys'), on = show === undefined ? k.hidden : show;
+  k.hidden = !on;
+  for (const b of document.querySelectorAll('#keysbtn, .keysbtn')) b.setAttribute('aria-expanded', String(on));
+}
+
+// The skip link (the page's first focusable element) takes the focus to the controls:
+// those of the figure, or a built-in clip's player (no figure, no sliders).  The page's
+// URL is its state (#SCENE?...), so the link never changes it.
+$('skip').addEventListener('click', ev => {
+  ev.preventDefault();
+  const t = $('stage').hidden ? $('anim') : $('controls');
+  t.focus({ preventScroll: true });
+  t.scrollIntoView({ block: 'nearest' });
+});
 
 // ---- presentation view: the figure and the main controls, nothing else ------------
 
@@ -1269,6 +1353,7 @@ function flash(msg) {
   const f = $('flash');
   f.textContent = msg;
   f.hidden = false;
+  say(msg);
   clearTimeout(hv.flashTimer);
   hv.flashTimer = setTimeout(() => { f.hidden = true; }, 2500);
 }
@@ -1289,7 +1374,7 @@ const KEYS = [
   [']', 'faster', () => speedStep(1)],
   ['←/→', 'step the focused slider', null],
   ['1–9', 'the scene\'s presets', null],
-  ['?', 'this list of keys', () => { $('keys').hidden = !$('keys').hidden; }],
+  ['?', 'this list of keys', () => toggleKeys()],
 ];
 
 // the help: the keys of KEYS; 1–9 says how many presets this scene has
@@ -1308,7 +1393,7 @@ document.addEventListener('keydown', ev => {
     if (t && t.type === 'range' && t.dataset.key) { ev.preventDefault(); stepSlider(t, ev.key === 'ArrowRight' ? 1 : -1); }
     return;
   }
-  if (ev.key === 'Escape' && !$('keys').hidden) { $('keys').hidden = true; return; }
+  if (ev.key === 'Escape' && !$('keys').hidden) { toggleKeys(false); return; }
   if (!hv.info) return;
   const k = KEYS.find(x => x[0] === ev.key && x[2]);
   if (k) { ev.preventDefault(); k[2](); }
