@@ -133,6 +133,9 @@ typedef struct hy_figure {
     int nrows, ncols;         /* 0 -> 1 */
     int full_resolution;      /* draw every point of every line (see HY_CURVE_TOL_PX) */
     int theme;                /* HY_THEME_*; 0 -> paper */
+    /* Plain text an SVG carries as its <title> and <desc> (NULL: none), for
+     * screen readers and search: cairo draws the glyphs as paths. */
+    const char *svg_title, *svg_desc;
 } hy_figure;
 
 /* Lines at the output's resolution (issue 23 item 2).  A line with more
