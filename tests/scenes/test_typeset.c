@@ -23,7 +23,9 @@
  *    closest pair of Fig. 8 (bluish green and blue, 17.0 under tritanopia)
  *    and below the Okabe-Ito pairs that stay distinct under every
  *    simulation (sky blue and blue, 24.8).  Series drawn exactly alike
- *    (one family in pieces, as Fig. 4's unlabelled loops) are not pairs. */
+ *    (one family in pieces, as Fig. 4's unlabelled loops) are not pairs;
+ *  - every SVG carries a <title> (the root's first child) and a <desc>
+ *    naming the axes and holding every number the annotations print. */
 #include <cairo.h>
 #include <dirent.h>
 #include <math.h>
@@ -228,6 +230,50 @@ static void check_hits(const char *name, const hy_figure *fig)
     cairo_surface_destroy(sf);
 }
 
+/* The SVG as written: a <title> and a <desc> first in the root element,
+ * non-empty, the desc naming every panel's axes and every printed note. */
+static void check_svg(const char *name, const hy_scene_run *r, const hy_scene_fig *st)
+{
+    unsigned char *buf = NULL;
+    size_t len = 0;
+    hy_error err;
+    int rc = hy_scene_run_render(r, HY_FORMAT_SVG, &buf, &len, NULL, &err);
+    CHECK(rc == 0, "%s: SVG: %s", name, err.msg);
+    if (rc)
+        return;
+    char *text = malloc(len + 1);
+    memcpy(text, buf, len);
+    text[len] = '\0';
+    free(buf);
+    const char *root = strstr(text, "<svg"), *t = strstr(text, "<title>"), *d = strstr(text, "<desc>");
+    const char *first = root ? strchr(root, '<' ) : NULL;
+    first = first ? strchr(first + 1, '<') : NULL;   /* the root's first child */
+    CHECK(t && first == t && strstr(t, "</title>") > t + 7, "%s.svg: no <title> as the root's first child", name);
+    CHECK(d && strstr(d, "</desc>") > d + 6, "%s.svg: no <desc>", name);
+    if (d) {
+        int n = (st->fig.nrows > 0 ? st->fig.nrows : 1) * (st->fig.ncols > 0 ? st->fig.ncols : 1);
+        char *end = strstr(d, "</desc>");
+        if (end)
+            *end = '\0';
+        for (int i = 0; i < n; i++) {
+            const hy_axes *ax = &st->fig.axes[i];
+            CHECK(strstr(d, "x axis") && strstr(d, "y axis"), "%s.svg: the desc names no axes", name);
+            for (size_t k = 0; k < ax->ntexts; k++) {
+                flat f;   /* the note's numbers as the figure prints them: its first digits */
+                if (flatten(ax->texts[k].text, &f))
+                    continue;
+                const char *dig = strpbrk(f.text, "0123456789");
+                char num[8] = "";
+                if (dig)
+                    snprintf(num, sizeof num, "%.*s", (int)strspn(dig, "0123456789."), dig);
+                CHECK(!*num || strstr(d, num), "%s.svg: the desc lacks the number %s of \"%s\"", name, num,
+                      ax->texts[k].text);
+            }
+        }
+    }
+    free(text);
+}
+
 static int is_figure_scene(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -265,6 +311,8 @@ static void one_scene(const char *file)
             check_axes(file, i, &st.fig.axes[i]);
         check_hits(file, &st.fig);
     }
+    if (!rc)
+        check_svg(file, &r, &st);
     hy_scene_fig_free(&st);
     hy_scene_run_free(&r);
 }
