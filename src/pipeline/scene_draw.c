@@ -7,6 +7,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include <cairo.h>
+
+#include "hy_cairo.h"
 #include "hy_out.h"
 #include "hy_plot.h"
 #include "hy_markup.h"
@@ -638,6 +641,33 @@ static int write_all(const hy_figure *fig, char paths[][4400], const int *fmt, s
     return rc;
 }
 
+/* A note line for each annotation the layout found no free spot for (it
+ * then sits where it covers the least: over a curve, or at the frame's
+ * edge), appended to out; what `render -v` prints, as for a left-out inset. */
+static void note_covering(const hy_figure *f, char *out, size_t size)
+{
+    cairo_surface_t *sf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
+    cairo_t *cr = cairo_create(sf);
+    hy_cairo_canvas cc;
+    hy_canvas cv = hy_canvas_cairo(&cc, cr, f->font && f->font[0] ? f->font : NULL); /* as hy_figure_write */
+    int n = (f->nrows > 0 ? f->nrows : 1) * (f->ncols > 0 ? f->ncols : 1);
+    for (int i = 0; i < n; i++) {
+        double hits[32];
+        size_t nt = f->axes[i].ntexts < 32 ? f->axes[i].ntexts : 32;
+        if (!nt || hy_figure_text_hits(f, &cv, i, hits, nt, NULL))
+            continue;
+        for (size_t t = 0; t < nt; t++)
+            if (hits[t] > 0) {
+                size_t len = strlen(out);
+                snprintf(out + len, size - len, "note: panel %d: the annotation \"%s\" found no free spot: it covers %s "
+                         "(move its x, y or widen the axes)\n", i + 1, f->axes[i].texts[t].text,
+                         isinf(hits[t]) ? "the frame's edge" : "drawn data");
+            }
+    }
+    cairo_destroy(cr);
+    cairo_surface_destroy(sf);
+}
+
 int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *formats, char *written, size_t written_size,
                        hy_error *err)
 {
@@ -668,6 +698,7 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     if (!rc && written) {
         size_t len = strlen(written);
         snprintf(written + len, written_size - len, "%s", st.note);
+        note_covering(&st.fig, written, written_size);
     }
     for (size_t i = 0; i < nf && !rc && written; i++) {
         size_t len = strlen(written);
