@@ -274,6 +274,19 @@ static void check_svg(const char *name, const hy_scene_run *r, const hy_scene_fi
     free(text);
 }
 
+/* What the one annotation of a one-panel figure covers. */
+static void check_hits_one(const hy_figure *fig, double *hit)
+{
+    cairo_surface_t *sf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 4, 4);
+    cairo_t *cr = cairo_create(sf);
+    hy_cairo_canvas cc;
+    hy_canvas cv = hy_canvas_cairo(&cc, cr, NULL);
+    hy_error err;
+    CHECK(hy_figure_text_hits(fig, &cv, 0, hit, 1, &err) == 0, "self-test: %s", err.msg);
+    cairo_destroy(cr);
+    cairo_surface_destroy(sf);
+}
+
 static int is_figure_scene(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -317,6 +330,8 @@ static void one_scene(const char *file)
     hy_scene_run_free(&r);
 }
 
+static void check_hits_one(const hy_figure *fig, double *hit);
+
 /* The detector itself on labels known to be wrong and right. */
 static void self_test(void)
 {
@@ -337,6 +352,23 @@ static void self_test(void)
     s[1].style = HY_LINE_DOTTED;
     hy_axes ax = {.series = s, .nseries = 2};
     check_colours("self-test", &ax);   /* a second cue: passes */
+
+    /* the collision measure: a dense zig-zag fills the frame, so a note finds
+     * no free spot and must be reported; one over empty axes is free */
+    enum { NZ = 64 };
+    double zx[NZ], zy[NZ];
+    for (int i = 0; i < NZ; i++)
+        zx[i] = i / (NZ - 1.0), zy[i] = i % 2;
+    hy_series z = {.x = zx, .y = zy, .n = NZ, .style = HY_LINE_SOLID, .width = 1};
+    hy_text note = {.x = 0.1, .y = 0.5, .text = "a note with nowhere to go"};
+    hy_axes za = {.series = &z, .nseries = 1, .texts = &note, .ntexts = 1, .x = {0, 1, 0, 0}, .y = {0, 1, 0, 0}};
+    hy_figure zf = {.width = 200, .height = 150, .axes = &za, .nrows = 1, .ncols = 1};
+    double hit = -1;
+    check_hits_one(&zf, &hit);
+    CHECK(hit > 0, "a note over a frame full of curve: covers %g pt, want > 0", hit);
+    za.nseries = 0;
+    check_hits_one(&zf, &hit);
+    CHECK(hit == 0.0, "a note over empty axes: covers %g pt, want 0", hit);
 }
 
 int main(int argc, char **argv)
