@@ -959,6 +959,26 @@ static const char index_css[] =
     "pre{font-size:.8em;background:#f6f6f6;padding:.5em;overflow-x:auto}\n"
     "table{border-collapse:collapse}td,th{padding:.15em .8em;text-align:left}td.t{text-align:right}\n";
 
+/* The <desc> of the entry's SVG (as written: XML-escaped), or NULL: the
+ * thumbnail's alt text is the figure's description, not its file name. */
+static char *svg_desc(const char *dir, const entry *e)
+{
+    char *desc = NULL;
+    for (size_t i = 0; i < e->nout && !desc; i++) {
+        const char *t = e->outputs[i];
+        size_t n = strlen(t), len = 0;
+        if (n < 5 || strcmp(t + n - 4, ".svg"))
+            continue;
+        char *p = join(dir, t), *text = p ? read_text(p, &len) : NULL;
+        const char *a = text ? strstr(text, "<desc>") : NULL, *b = a ? strstr(a, "</desc>") : NULL;
+        if (b && (desc = malloc((size_t)(b - a))))
+            snprintf(desc, (size_t)(b - a), "%.*s", (int)(b - a - 6), a + 6);
+        free(text);
+        free(p);
+    }
+    return desc;
+}
+
 /* The thumbnail: the PNG if there is one, else the SVG, with its size scaled to 400 px wide. */
 static void index_thumb(FILE *f, const char *dir, const entry *e)
 {
@@ -980,7 +1000,12 @@ static void index_thumb(FILE *f, const char *dir, const entry *e)
         fputs("\"><img src=\"", f);
         url(f, img);
         fprintf(f, "\" width=\"%u\" height=\"%u\" alt=\"", tw, th ? th : 1);
-        htmls(f, img);
+        char *desc = svg_desc(dir, e);
+        if (desc)
+            fputs(desc, f);   /* XML-escaped already: &lt; &gt; &amp; &quot; &apos; are HTML too */
+        else
+            htmls(f, img);
+        free(desc);
         fputs("\" /></a>\n", f);
     }
     free(p);
@@ -1145,8 +1170,8 @@ static void index_builtin(FILE *f, const opts *o, const builtin *b)
     snprintf(img, sizeof img, "builtin_%.63s.png", b->name);
     if (b->have && (p = join(o->out, img)) && image_size(p, 0, &w, &h) && w) {
         unsigned th = (unsigned)lround(400.0 * h / w);
-        fprintf(f, "<a href=\"%s\"><img src=\"%s\" width=\"400\" height=\"%u\" alt=\"%s\" /></a>\n", img, img,
-                th ? th : 1, img);
+        fprintf(f, "<a href=\"%s\"><img src=\"%s\" width=\"400\" height=\"%u\" alt=\"Frame %ld of the built-in "
+                   "animation %s\" /></a>\n", img, img, th ? th : 1, b->frame, b->name);
     } else
         fputs("<p class=\"failed\">no poster: this hystviz cannot render OpenGL frames</p>\n", f);
     free(p);

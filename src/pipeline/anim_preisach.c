@@ -13,6 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hy_cairo.h"
+#include "hy_markup.h"
 #include "hy_plot.h"
 
 #define NTRACE 1601           /* samples of the loop over the two periods */
@@ -22,6 +24,7 @@
 /* The panel's ranges (both axes): the input's range [0, 1.5] with a margin,
  * where the density below leaves ~2e-4 of its mass outside (3.5 widths). */
 static const double LO = -0.1, HI = 1.6;
+#define POSTER_FONT "STIXGeneral"
 static const hy_rgb UP = {0.835, 0.369, 0.0}, DOWN = {0.0, 0.447, 0.698}; /* vermillion, blue (Okabe-Ito) */
 
 typedef struct pplane {
@@ -143,23 +146,87 @@ static void build(frame_fig *ff, const hy_anim_frame *f, const double *u, const 
     memset(ff, 0, sizeof *ff);
     ff->sr[0] = (hy_series){.x = u, .y = y, .n = n, .colour = {.palette = 0}, .width = 1.6, .label = NULL};
     ff->mk[0] = (hy_mark){un, yn, HY_MARKER_CIRCLE, 7, 1, {.palette = 6}};
-    snprintf(ff->title, sizeof ff->title, "t = %.2f T   u = %.3f   y = %+.3f", periods, un, yn);
+    snprintf(ff->title, sizeof ff->title, "t / T = %.2f   u = %.3f   y = %+.3f", periods, un, yn);
     ff->ax[0] = (hy_axes){.xlabel = "\\beta", .ylabel = "\\alpha",
-                          .title = "relays up (vermillion), down (blue)",
+                          .title = "Preisach plane: relays up, down",
                           .x = {LO, HI, 0, 0}, .y = {LO, HI, 0, 0}, .legend = HY_LEGEND_NONE};
     ff->ax[1] = (hy_axes){.series = ff->sr, .nseries = 1, .marks = ff->mk, .nmarks = 1, .xlabel = "u",
                           .ylabel = "y", .title = ff->title, .x = {LO, HI, 0, 0}, .y = {-1.15, 1.15, 0, 0},
                           .legend = HY_LEGEND_NONE, .grid = 1};
-    ff->fig = (hy_figure){.width = f->width / f->scale, .height = f->height / f->scale, .dpi = 72 * f->scale,
-                          .font_size = 10.0, .axes = ff->ax, .nrows = 1, .ncols = 2};
+    /* the gallery's look (scenes/style.scene): STIX at 9 pt on a 12 cm
+     * figure, so the text takes the same share of the width on the index page */
+    double W = f->width / f->scale;
+    ff->fig = (hy_figure){.width = W, .height = f->height / f->scale, .dpi = 72 * f->scale,
+                          .font = POSTER_FONT, .font_size = fmax(9.0, 9.0 * W / hy_cm(12.0)), .axes = ff->ax,
+                          .nrows = 1, .ncols = 2};
+}
+
+/* The frame's overlay canvas set in the gallery's font: the overlay is cairo
+ * (hy_anim.h), made with the default font; a copy of its state names STIX. */
+static hy_canvas stix_overlay(const hy_anim_frame *f, hy_cairo_canvas *keep)
+{
+    if (!f->overlay.ops || strcmp(f->overlay.ops->name, "cairo"))
+        return f->overlay;
+    *keep = *(const hy_cairo_canvas *)f->overlay.ctx;
+    keep->font = POSTER_FONT;
+    return (hy_canvas){f->overlay.ops, keep};
+}
+
+/* The key to the plane's shading, in its empty lower-right triangle (alpha <
+ * beta holds no relay): for relays up and down, a bar of the 33 shades
+ * plane.frag draws (white mixed with the colour by 0.12 + 0.88 w, w the
+ * density mu(alpha, beta) over its peak, in steps of 1/32), 0 to 1. */
+static void draw_key(const hy_canvas *cv, const double rect[4], double fs)
+{
+    double kw = 0.4 * rect[2], bh = 0.75 * fs, gap = 0.5 * fs;
+    double x0 = rect[0] + rect[2] - kw - 0.03 * rect[2], y1 = rect[1] + rect[3] - 0.03 * rect[3];
+    double lw = 0.0;
+    hy_markup_box b;
+    const char *name[2] = {"up", "down"};
+    for (int i = 0; i < 2; i++) {
+        hy_markup_text(cv, name[i], fs, 0, 0, 0, 0, hy_palette[0], &b);
+        lw = fmax(lw, b.width);
+    }
+    double bx = x0 + lw + gap, bw = kw - lw - gap;
+    /* from the bottom: the tick labels, two bars, the heading */
+    double yt = y1, yb = yt - 1.1 * fs - bh, ya = yb - gap - bh, yh = ya - 0.45 * fs;
+    hy_rgb c[2] = {UP, DOWN};
+    for (int i = 0; i < 2; i++) {
+        double y = i ? yb : ya;
+        for (int k = 0; k <= 32; k++) {
+            double w = k / 32.0, m = 0.12 + 0.88 * w;
+            hy_rgb s = {1 + (c[i].r - 1) * m, 1 + (c[i].g - 1) * m, 1 + (c[i].b - 1) * m};
+            cv->ops->fill_rect(cv->ctx, bx + bw * k / 33.0, y, bw / 33.0 + 0.3, bh, s, 1.0);
+        }
+        hy_markup_text(cv, name[i], fs, 1, 0, x0, y + 0.8 * bh, hy_palette[0], NULL);
+    }
+    hy_pen frame = {{0.3, 0.3, 0.3}, 1, 0.5, NULL, 0, 0, 0};
+    for (int i = 0; i < 2; i++) {
+        double y = i ? yb : ya;
+        cv->ops->begin_path(cv->ctx);
+        cv->ops->move_to(cv->ctx, bx, y);
+        cv->ops->line_to(cv->ctx, bx + bw, y);
+        cv->ops->line_to(cv->ctx, bx + bw, y + bh);
+        cv->ops->line_to(cv->ctx, bx, y + bh);
+        cv->ops->line_to(cv->ctx, bx, y);
+        cv->ops->stroke(cv->ctx, &frame);
+    }
+    hy_markup_text(cv, "0", fs, 1, 0, bx, yt, hy_palette[0], NULL);
+    hy_markup_text(cv, "1", fs, 0, 0, 0, 0, hy_palette[0], &b);
+    hy_markup_text(cv, "1", fs, 1, 0, bx + bw - b.width, yt, hy_palette[0], NULL);
+    const char *head = "density \\mu / \\mu_{max}";
+    hy_markup_text(cv, head, fs, 0, 0, 0, 0, hy_palette[0], &b);
+    hy_markup_text(cv, head, fs, 1, 0, x0 + kw - b.width, yh, hy_palette[0], NULL);
 }
 
 int pplane_panel(const void *state, const hy_anim_frame *f, double rect[4], double lim[4], hy_error *err)
 {
     (void)state;
     frame_fig ff;
+    hy_cairo_canvas keep;
+    hy_canvas ov = stix_overlay(f, &keep);
     build(&ff, f, NULL, NULL, 0, 0, 0, 0);
-    int rc = hy_figure_frame(&ff.fig, &f->overlay, 0, rect, err);
+    int rc = hy_figure_frame(&ff.fig, &ov, 0, rect, err);
     for (int i = 0; i < 4; i++)
         rect[i] *= f->scale;
     lim[0] = LO, lim[1] = HI, lim[2] = LO, lim[3] = HI;
@@ -190,11 +257,15 @@ int pplane_draw(void *state, const hy_anim_frame *f, hy_error *err)
     memcpy(u, s->u, n * sizeof *u), memcpy(y, s->y, n * sizeof *y);
     u[n] = un, y[n] = yn; /* the trace ends at the present point exactly */
     frame_fig ff;
+    hy_cairo_canvas keep;
+    hy_canvas ov = stix_overlay(f, &keep);
     build(&ff, f, u, y, n + 1, un, yn, tin / s->in.period);
     double rect[4];
-    rc = hy_figure_draw_layers(&ff.fig, &f->data, &f->overlay, err);
+    rc = hy_figure_draw_layers(&ff.fig, &f->data, &ov, err);
     if (!rc)
-        rc = hy_figure_frame(&ff.fig, &f->overlay, 0, rect, err);
+        rc = hy_figure_frame(&ff.fig, &ov, 0, rect, err);
+    if (!rc)
+        draw_key(&ov, rect, ff.fig.font_size);
     if (!rc) {
         double k = f->scale;
         hy_gl_plane pl = {rect[0] * k, rect[1] * k, rect[2] * k, rect[3] * k, LO, HI, LO, HI,

@@ -7,6 +7,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include <cairo.h>
+
+#include "hy_cairo.h"
 #include "hy_out.h"
 #include "hy_plot.h"
 #include "hy_markup.h"
@@ -193,6 +196,8 @@ void hy_scene_fig_free(hy_scene_fig *st)
     free(st->texts);
     free(st->textbuf);
     free(st->labelbuf);
+    free(st->title);
+    free(st->desc);
 }
 
 /* Whether key names a placeholder this scene could fill, before computing
@@ -384,6 +389,111 @@ static void figure_zoom(const hy_scene_run *r, hy_scene_fig *st)
     }
 }
 
+/* ---- the figure's text description (issue 38 item 6) --------------------- */
+
+typedef struct dbuf {
+    char *b;
+    size_t len, cap;
+} dbuf;
+
+/* Appends text (at most cap - 1 bytes in all; the rest is cut). */
+static void dput(dbuf *d, const char *text)
+{
+    size_t n = strlen(text);
+    if (d->len + n >= d->cap)
+        n = d->cap - 1 - d->len;
+    memcpy(d->b + d->len, text, n);
+    d->len += n;
+    d->b[d->len] = '\0';
+}
+
+/* A label's markup as plain text a screen reader can speak: scripts as
+ * "_x" and "^x" (braced when longer), the symbols as their characters. */
+static void dput_markup(dbuf *d, const char *src)
+{
+    hy_mrun runs[HY_MARKUP_MAX];
+    size_t n = 0;
+    if (hy_markup_parse(src, runs, HY_MARKUP_MAX, &n, NULL)) {
+        dput(d, src);
+        return;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const hy_mrun *m = &runs[i];
+        int longer = strlen(m->text) > 1 && (unsigned char)m->text[0] < 0x80;
+        if (m->script != HY_SCRIPT_BASE)
+            dput(d, m->script == HY_SCRIPT_SUP ? (longer ? "^(" : "^") : (longer ? "_(" : "_"));
+        dput(d, !strcmp(m->text, "\xE2\x80\x89") ? " " : m->text);
+        if (m->script != HY_SCRIPT_BASE && longer)
+            dput(d, ")");
+    }
+}
+
+/* One panel: its title, axes, series and the notes it prints (their numbers filled in). */
+static void describe_axes(dbuf *d, const hy_axes *ax)
+{
+    if (ax->title) {
+        dput_markup(d, ax->title);
+        dput(d, ": ");
+    }
+    dput(d, "x axis ");
+    dput_markup(d, ax->xlabel ? ax->xlabel : "x");
+    dput(d, ", y axis ");
+    dput_markup(d, ax->ylabel ? ax->ylabel : "y");
+    int any = 0;
+    for (size_t i = 0; i < ax->nseries; i++)
+        if (ax->series[i].label && ax->series[i].n) {
+            dput(d, any++ ? ", " : "; curves: ");
+            dput_markup(d, ax->series[i].label);
+        }
+    for (size_t i = 0; i < ax->ntexts; i++) {
+        dput(d, i ? "; " : "; printed: ");
+        dput_markup(d, ax->texts[i].text);
+    }
+    dput(d, ". ");
+}
+
+/* st->title (the caption's first clause, else the [figure] title, else the
+ * output name) and st->desc (the caption, then each panel), for the SVG. */
+static int describe(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
+{
+    const hy_decl_figure *df = &r->doc.figure;
+    const char *cap = df->caption && df->caption[0] ? df->caption : NULL;
+    st->title = calloc(1, 256);
+    dbuf d = {calloc(1, 8192), 0, 8192};
+    if (!st->title || !d.b) {
+        free(d.b);
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    }
+    st->desc = d.b;
+    if (cap) {
+        size_t n = strcspn(cap, ";(");   /* the first clause, "Fig. 1: B-H loop of a magnetic system" */
+        while (n > 0 && (cap[n - 1] == ' ' || cap[n - 1] == ',' || cap[n - 1] == ':'))
+            n--;
+        snprintf(st->title, 256, "%.*s", (int)(n < 255 ? n : 255), cap);
+        dput(&d, cap);
+        dput(&d, " ");
+    } else if (df->title && df->title[0]) {
+        dbuf t = {st->title, 0, 256};
+        dput_markup(&t, df->title);
+    } else {
+        hy_scene_run_name(r, st->title, 256);
+    }
+    if (st->npanels)
+        for (size_t i = 0; i < st->npanels; i++) {
+            char head[40];
+            snprintf(head, sizeof head, "Panel %zu: ", i + 1);
+            dput(&d, head);
+            describe_axes(&d, &st->axes[i]);
+        }
+    else
+        describe_axes(&d, &st->ax);
+    while (d.len && d.b[d.len - 1] == ' ')
+        d.b[--d.len] = '\0';
+    st->fig.svg_title = st->title;
+    st->fig.svg_desc = st->desc;
+    return HY_OK;
+}
+
 int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
 {
     const hy_scene_doc *d = &r->doc;
@@ -434,9 +544,8 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
     f->theme = df->theme;
     f->axes = ax;
     f->nrows = f->ncols = 1;
-    if (r->npanels)
-        return panel_figure(r, st, err);
-    return HY_OK;
+    int rc = r->npanels ? panel_figure(r, st, err) : HY_OK;
+    return rc ? rc : describe(r, st, err);
 }
 
 static int mkdir_p(const char *dir, hy_error *err)
@@ -532,6 +641,33 @@ static int write_all(const hy_figure *fig, char paths[][4400], const int *fmt, s
     return rc;
 }
 
+/* A note line for each annotation the layout found no free spot for (it
+ * then sits where it covers the least: over a curve, or at the frame's
+ * edge), appended to out; what `render -v` prints, as for a left-out inset. */
+static void note_covering(const hy_figure *f, char *out, size_t size)
+{
+    cairo_surface_t *sf = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
+    cairo_t *cr = cairo_create(sf);
+    hy_cairo_canvas cc;
+    hy_canvas cv = hy_canvas_cairo(&cc, cr, f->font && f->font[0] ? f->font : NULL); /* as hy_figure_write */
+    int n = (f->nrows > 0 ? f->nrows : 1) * (f->ncols > 0 ? f->ncols : 1);
+    for (int i = 0; i < n; i++) {
+        double hits[32];
+        size_t nt = f->axes[i].ntexts < 32 ? f->axes[i].ntexts : 32;
+        if (!nt || hy_figure_text_hits(f, &cv, i, hits, nt, NULL))
+            continue;
+        for (size_t t = 0; t < nt; t++)
+            if (hits[t] > 0) {
+                size_t len = strlen(out);
+                snprintf(out + len, size - len, "note: panel %d: the annotation \"%s\" found no free spot: it covers %s "
+                         "(move its x, y or widen the axes)\n", i + 1, f->axes[i].texts[t].text,
+                         isinf(hits[t]) ? "the frame's edge" : "drawn data");
+            }
+    }
+    cairo_destroy(cr);
+    cairo_surface_destroy(sf);
+}
+
 int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *formats, char *written, size_t written_size,
                        hy_error *err)
 {
@@ -562,6 +698,7 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     if (!rc && written) {
         size_t len = strlen(written);
         snprintf(written + len, written_size - len, "%s", st.note);
+        note_covering(&st.fig, written, written_size);
     }
     for (size_t i = 0; i < nf && !rc && written; i++) {
         size_t len = strlen(written);

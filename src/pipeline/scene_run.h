@@ -183,6 +183,7 @@ typedef struct hy_scene_fig {
     hy_axes ax;
     hy_figure fig;
     char note[200];           /* a line for render -v (an inset left out), or "" */
+    char *title, *desc;       /* the SVG's <title> and <desc> (fig.svg_title, fig.svg_desc) */
 } hy_scene_fig;
 
 /* Builds the scene's figure (styles, markers, labels, annotations with their

@@ -1878,8 +1878,10 @@ static void free_box(const panel *p, const double lg[4], double bw, double bh, d
 /* The layout of f on cv: panel index's frame into rect; with legend its
  * legend box (x, y, w, h; w = 0 without one) into legend; with box (w, h
  * given in box[2], box[3]) the free spot for such a box into box. */
+static void text_hits(const panel *p, const double lg[4], double *hits, size_t n);
+
 static int figure_layout(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], double legend[4],
-                         double box[4], hy_error *err)
+                         double box[4], double *hits, size_t nhits, hy_error *err)
 {
     double W, H, dpi;
     hy__figure_size(f, &W, &H, &dpi);
@@ -1922,6 +1924,8 @@ static int figure_layout(const hy_figure *f, const hy_canvas *cv, int index, dou
     }
     if (!st && box)
         free_box(&ps[index], legend, box[2], box[3], &box[0], &box[1]);
+    if (!st && hits)
+        text_hits(&ps[index], legend, hits, nhits);
     panels_free(ps, cc, rows * cols);
     free(tp);
     return st;
@@ -1929,11 +1933,36 @@ static int figure_layout(const hy_figure *f, const hy_canvas *cv, int index, dou
 
 int hy_figure_frame(const hy_figure *f, const hy_canvas *cv, int index, double rect[4], hy_error *err)
 {
-    return figure_layout(f, cv, index, rect, NULL, NULL, err);
+    return figure_layout(f, cv, index, rect, NULL, NULL, NULL, 0, err);
 }
 
 int hy_figure_free_box(const hy_figure *f, const hy_canvas *cv, int index, double box[4], hy_error *err)
 {
     double rect[4], legend[4];
-    return figure_layout(f, cv, index, rect, legend, box, err);
+    return figure_layout(f, cv, index, rect, legend, box, NULL, 0, err);
+}
+
+/* What each placed annotation of p covers (see hy_figure_text_hits). */
+static void text_hits(const panel *p, const double lg[4], double *hits, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        const text_place *tp = &p->tplace[i];
+        const double *b = tp->box;
+        if (i >= p->ax->ntexts || !tp->ok) {
+            hits[i] = NAN;
+            continue;
+        }
+        /* overlap() counts the box itself among the annotations: take it off */
+        hits[i] = overlap(p, b[0], b[1], b[2], b[3]) - b[2];
+        if (lg[2] > 0 && lg[0] < b[0] + b[2] && lg[0] + lg[2] > b[0] && lg[1] < b[1] + b[3] && lg[1] + lg[3] > b[1])
+            hits[i] += b[2];
+        if (b[0] < p->x0 || b[1] < p->y0 || b[0] + b[2] > p->x0 + p->w || b[1] + b[3] > p->y0 + p->h)
+            hits[i] = INFINITY;
+    }
+}
+
+int hy_figure_text_hits(const hy_figure *f, const hy_canvas *cv, int index, double *hits, size_t n, hy_error *err)
+{
+    double rect[4], legend[4];
+    return figure_layout(f, cv, index, rect, legend, NULL, hits, n, err);
 }

@@ -28,6 +28,7 @@ static const sym syms[] = {
     {"rightarrow", "\xE2\x86\x92"}, {"partial", "\xE2\x88\x82"}, {"dots", "\xE2\x80\xA6"},
     {"ldots", "\xE2\x80\xA6"}, {"in", "\xE2\x88\x88"}, {"quad", "\xE2\x80\x83"},
     {"prime", "\xE2\x80\xB2"}, {"sim", "\xE2\x88\xBC"}, {"neq", "\xE2\x89\xA0"},
+    {"int", "\xE2\x88\xAB"}, {"oint", "\xE2\x88\xAE"},
 };
 
 typedef struct parser {
@@ -35,6 +36,7 @@ typedef struct parser {
     hy_mrun *runs;
     size_t cap, n;
     int upright;          /* inside \mathrm{...} */
+    int integral;         /* an integral sign was set: a "dx" after it is a differential */
     int ngroups;
     int last_group, last_script;  /* the script group just closed, for stacking */
     hy_error *err;
@@ -78,6 +80,9 @@ static int emit(parser *ps, const char *s, size_t len, int script, int italic, i
 }
 
 static int parse_seq(parser *ps, int script, int group, int in_brace);
+static int parse_char(parser *ps, int script, int group);
+static int is_integral(const char *s);
+static int integral_space(parser *ps, int script, int group);
 
 /* A backslash command at ps->p (pointing after the backslash). */
 static int parse_command(parser *ps, int script, int group)
@@ -119,11 +124,176 @@ static int parse_command(parser *ps, int script, int group)
         if (strlen(ops[i]) == len && !strncmp(ops[i], p, len))
             return emit(ps, p, len, script, 0, group);   /* operator names: upright */
     for (size_t i = 0; i < sizeof syms / sizeof syms[0]; i++)
-        if (strlen(syms[i].name) == len && !strncmp(syms[i].name, p, len))
+        if (strlen(syms[i].name) == len && !strncmp(syms[i].name, p, len) && is_integral(syms[i].utf8)) {
+            ps->p = syms[i].utf8;   /* \oint, \int: as the sign itself */
+            const char *rest = p + len;
+            int st = parse_char(ps, script, group);
+            ps->p = rest;
+            return st ? st : integral_space(ps, script, group);
+        } else if (strlen(syms[i].name) == len && !strncmp(syms[i].name, p, len))
             return emit(ps, syms[i].utf8, strlen(syms[i].utf8), script,
                         !ps->upright && is_lower_greek(syms[i].utf8), group);
     return hy_error_set(ps->err, HY_EINVAL, "label \"%s\": unknown command '\\%.*s'", ps->src,
                         (int)len, p);
+}
+
+/* ---- units and differentials: one rule for every label ----------------
+ * SI (and CGS) units are set upright, as ISO 80000-1 and the journals ask,
+ * whatever way a scene writes them: a compound unit (letters joined by '/'
+ * or '·', powers '²' '³') every part of which is a unit below is upright
+ * anywhere ("A/m", "J/m³", "kA/m"); a lone unit ("T", "N", "s") is upright
+ * in a unit's place only, after a number ("1.5 T", "10^{-4} T") or alone
+ * in parentheses ("B (T)"), so a variable T or s elsewhere stays italic.
+ * Multi-letter words ("mm", "Hz") are upright by the word rule anyway. */
+static const char *const units[] = {"A", "T", "N", "J", "W", "V", "C", "Pa", "Hz", "s", "m", "g",
+                                    "K", "Wb", "Oe", "G", "rad", "dB", "h", "min"};
+
+/* Whether the len bytes at s spell a unit of the list, with an SI prefix
+ * and a trailing power '²' or '³' allowed. */
+static int is_unit(const char *s, size_t len)
+{
+    if (len >= 2 && (unsigned char)s[len - 2] == 0xC2 &&
+        ((unsigned char)s[len - 1] == 0xB2 || (unsigned char)s[len - 1] == 0xB3))
+        len -= 2;
+    for (int pre = 0; pre < 2; pre++) {
+        const char *u = s;
+        size_t n = len;
+        if (pre) {   /* k, M, m, c, n, G prefixes, and μ (U+03BC) */
+            if (n > 2 && (unsigned char)s[0] == 0xCE && (unsigned char)s[1] == 0xBC)
+                u += 2, n -= 2;
+            else if (n > 1 && strchr("kMmcnG", s[0]))
+                u++, n--;
+            else
+                continue;
+        }
+        for (size_t i = 0; i < sizeof units / sizeof units[0]; i++)
+            if (strlen(units[i]) == n && !strncmp(units[i], u, n))
+                return 1;
+    }
+    return 0;
+}
+
+/* Length of the unit-like word at p: letters (μ included), '/', '·', '²', '³'. */
+static size_t unit_word(const char *p, int *compound)
+{
+    size_t k = 0;
+    *compound = 0;
+    for (;;) {
+        unsigned char a = (unsigned char)p[k], b = a ? (unsigned char)p[k + 1] : 0;
+        if (is_alpha((char)a))
+            k++;
+        else if (a == '/')
+            k++, *compound = 1;
+        else if (a == 0xC2 && b == 0xB7)
+            k += 2, *compound = 1;
+        else if (a == 0xC2 && (b == 0xB2 || b == 0xB3))
+            k += 2;
+        else if (a == 0xCE && b == 0xBC)
+            k += 2;
+        else
+            break;
+    }
+    return k;
+}
+
+/* Whether the k bytes at p are a compound unit: every part between '/' and
+ * '·' a unit, none empty. */
+static int compound_unit(const char *p, size_t k)
+{
+    size_t i = 0;
+    while (i < k) {
+        size_t j = i;
+        while (j < k && p[j] != '/' && !((unsigned char)p[j] == 0xC2 && (unsigned char)p[j + 1] == 0xB7))
+            j++;
+        if (j == i || !is_unit(p + i, j - i))
+            return 0;
+        i = j + (j < k ? (p[j] == '/' ? 1 : 2) : 0);
+        if (j < k && i >= k)
+            return 0;   /* a trailing '/' */
+    }
+    return 1;
+}
+
+/* Whether the word of k bytes at p stands where a unit stands: after a
+ * number and a space, or alone in parentheses. */
+static int unit_place(const parser *ps, const char *p, size_t k)
+{
+    if (p > ps->src && p[-1] == '(' && p[k] == ')')
+        return 1;
+    const char *q = p;
+    while (q > ps->src && q[-1] == ' ')
+        q--;
+    return q < p && q > ps->src && ((q[-1] >= '0' && q[-1] <= '9') || q[-1] == '}');
+}
+
+/* Emits the unit word of k bytes at ps->p upright when it is a unit in a
+ * unit's place (*done = 1), else leaves it to the character rules. */
+static int parse_unit(parser *ps, int script, int group, int *done)
+{
+    const char *p = ps->p;
+    int compound;
+    size_t k = unit_word(p, &compound);
+    *done = 0;
+    if (!k || (p > ps->src && is_alpha(p[-1])) || ps->upright)
+        return HY_OK;
+    if (compound ? !compound_unit(p, k) : !(is_unit(p, k) && unit_place(ps, p, k)))
+        return HY_OK;
+    *done = 1;
+    ps->p = p + k;
+    return emit(ps, p, k, script, 0, group);
+}
+
+/* Replaces a space just emitted by a thin space (U+2009), or adds one. */
+static int thin_space(parser *ps, int script, int group)
+{
+    hy_mrun *r = ps->n ? &ps->runs[ps->n - 1] : NULL;
+    size_t m = r ? strlen(r->text) : 0;
+    if (r && m && r->text[m - 1] == ' ')
+        r->text[m - 1] = '\0';
+    else if (r && m >= 3 && !strcmp(r->text + m - 3, "\xE2\x80\x89"))
+        return HY_OK;   /* a "\," already written */
+    return emit(ps, "\xE2\x80\x89", 3, script, 0, group);
+}
+
+/* Whether s starts with an integral sign: ∫ (U+222B), ∬, ∭ or ∮ (U+222E). */
+static int is_integral(const char *s)
+{
+    return (unsigned char)s[0] == 0xE2 && (unsigned char)s[1] == 0x88 &&
+           ((unsigned char)s[2] >= 0xAB && (unsigned char)s[2] <= 0xAE);
+}
+
+/* After an integral sign: the spaces (and a "\,") written after it become
+ * one thin space, so the sign never touches the integrand nor floats off. */
+static int integral_space(parser *ps, int script, int group)
+{
+    for (;;) {
+        if (*ps->p == ' ')
+            ps->p++;
+        else if (ps->p[0] == '\\' && ps->p[1] == ',')
+            ps->p += 2;
+        else
+            break;
+    }
+    if (!*ps->p || *ps->p == '}' || *ps->p == '_' || *ps->p == '^')
+        return HY_OK;   /* limits go on the sign itself */
+    return emit(ps, "\xE2\x80\x89", 3, script, 0, group);
+}
+
+/* After an integral sign: the differential d of "dB", "du", "dH" (a word
+ * of 'd' and one letter) is set upright with a thin space before it, the
+ * variable italic, so "∮ H dB" reads ∮ H d B and not decibels. */
+static int parse_differential(parser *ps, int script, int group, int *done)
+{
+    const char *p = ps->p;
+    *done = 0;
+    if (!ps->integral || p[0] != 'd' || (p > ps->src && is_alpha(p[-1])) || !is_alpha(p[1]) || is_alpha(p[2]))
+        return HY_OK;
+    *done = 1;
+    ps->p = p + 2;
+    int st = thin_space(ps, script, group);
+    if (!st)
+        st = emit(ps, "d", 1, script, 0, group);
+    return st ? st : emit(ps, p + 1, 1, script, !ps->upright, group);
 }
 
 /* One ordinary character (UTF-8 sequence) at ps->p. */
@@ -131,6 +301,17 @@ static int parse_char(parser *ps, int script, int group)
 {
     const char *p = ps->p;
     unsigned char c = (unsigned char)*p;
+    int done = 0, st = parse_unit(ps, script, group, &done);
+    if (!done && !st)
+        st = parse_differential(ps, script, group, &done);
+    if (done || st)
+        return st;
+    if (is_integral(p)) {   /* the sign, then a thin space in place of any spaces */
+        ps->p = p + 3;
+        ps->integral = 1;
+        st = emit(ps, p, 3, script, 0, group);
+        return st ? st : integral_space(ps, script, group);
+    }
     size_t len = c < 0x80 ? 1 : c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC0 ? 2 : 1;
     for (size_t i = 1; i < len; i++)
         if (!p[i]) {

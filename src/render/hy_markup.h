@@ -8,6 +8,11 @@
  * sub/superscripts _x ^x _{...} ^{...} (one level of nesting is kept: a
  * script inside a script is drawn at the script level).  A '-' between
  * non-letters becomes a minus sign; isolated Latin letters are set in italic.
+ * Units are upright by one rule: a compound unit ("A/m", "J/m³", "kA/m")
+ * anywhere, a lone one ("T", "N", "s") after a number or alone in
+ * parentheses ("B (T)").  After an integral sign (∮, ∫, \oint, \int) the
+ * spaces become a thin space and a word "dB" is the differential d B (d
+ * upright, thin space before it): "∮ H dB" is set ∮ H d B.
  * '$' signs are ignored, so "$\sigma_0$" and "\sigma_0" are the same.
  *
  *     hy_mrun runs[HY_MARKUP_MAX]; size_t n; hy_error err;

@@ -59,12 +59,52 @@ static cairo_status_t sink_write(void *closure, const unsigned char *data, unsig
 
 /* cairo numbers SVG surfaces ("surface123") with a process-wide counter;
  * renumber them by first appearance so the bytes depend only on the figure. */
-static int svg_flush_renumbered(sink *s)
+/* Writes text with XML's five special characters escaped (0 or an errno). */
+static int svg_escaped(FILE *fp, const char *text)
+{
+    for (const char *c = text; *c; c++) {
+        const char *e = *c == '<' ? "&lt;" : *c == '>' ? "&gt;" : *c == '&' ? "&amp;" : *c == '"' ? "&quot;"
+                      : *c == '\'' ? "&apos;" : NULL;
+        if (e ? fputs(e, fp) < 0 : fputc(*c, fp) == EOF)
+            return errno ? errno : EIO;
+    }
+    return 0;
+}
+
+/* The root element's start tag as cairo wrote it, then the figure's <title>
+ * and <desc> (its first children, where SVG 1.1 section 5.4 and screen
+ * readers look); returns the offset after the tag, 0 when there is none. */
+static size_t svg_head(sink *s, const hy_figure *f, int *rc)
+{
+    const unsigned char *root = NULL;
+    for (size_t i = 0; !root && i + 4 <= s->len; i++)
+        if (!memcmp(s->buf + i, "<svg", 4))
+            root = s->buf + i;
+    const unsigned char *gt = root ? memchr(root, '>', s->len - (size_t)(root - s->buf)) : NULL;
+    *rc = 0;
+    if (!gt || (!f->svg_title && !f->svg_desc))
+        return 0;
+    size_t n = (size_t)(gt + 1 - s->buf);
+    if (fwrite(s->buf, 1, n, s->fp) != n)
+        return *rc = errno ? errno : EIO, n;
+    const char *tag[2] = {"title", "desc"}, *text[2] = {f->svg_title, f->svg_desc};
+    for (int i = 0; i < 2 && !*rc; i++)
+        if (text[i]) {
+            if (fprintf(s->fp, "\n<%s>", tag[i]) < 0 || (*rc = svg_escaped(s->fp, text[i])) ||
+                fprintf(s->fp, "</%s>", tag[i]) < 0)
+                *rc = *rc ? *rc : errno ? errno : EIO;
+        }
+    return n;
+}
+
+static int svg_flush_renumbered(sink *s, const hy_figure *f)
 {
     static const char key[] = "surface";
     long seen[64];
-    int nseen = 0;
-    size_t i = 0, k = sizeof key - 1;
+    int nseen = 0, rc;
+    size_t i = svg_head(s, f, &rc), k = sizeof key - 1;
+    if (rc)
+        return rc;
     while (i < s->len) {
         if (i + k < s->len && !memcmp(s->buf + i, key, k) && s->buf[i + k] >= '0' && s->buf[i + k] <= '9') {
             size_t j = i + k;
@@ -145,7 +185,7 @@ static int write_vector(const hy_figure *f, int format, sink *sk, hy_panel_map *
     cairo_status_t cs = cairo_surface_status(surf);
     cairo_surface_destroy(surf);
     if (!st && !sk->err && cs == CAIRO_STATUS_SUCCESS && sk->buffered)
-        sk->err = svg_flush_renumbered(sk);
+        sk->err = svg_flush_renumbered(sk, f);
     free(sk->buf);
     sk->buf = NULL;
     if (!st && (cs != CAIRO_STATUS_SUCCESS || sk->err))

@@ -145,6 +145,9 @@ typedef struct hy_figure {
     int theme;                /* HY_THEME_*; 0 -> paper */
     const hy_cancel *cancel;  /* asked between annotations while they are
                                * placed; stop: HY_ECANCEL (NULL: never) */
+    /* Plain text an SVG carries as its <title> and <desc> (NULL: none), for
+     * screen readers and search: cairo draws the glyphs as paths. */
+    const char *svg_title, *svg_desc;
 } hy_figure;
 
 /* Lines at the output's resolution (issue 23 item 2).  A line with more
@@ -189,6 +192,14 @@ int hy_axes_zoom_shows_data(const hy_axes *ax);
  * panel index's frame: the spot, among the legend's candidates, that covers
  * the least data and not the legend; its top-left corner into box[0], box[1]. */
 int hy_figure_free_box(const hy_figure *f, const hy_canvas *cv, int index, double box[4], hy_error *err);
+
+/* How much each annotation of panel index covers where hy_figure_draw
+ * places it on cv (the test of "annotations off the curves"): into hits[i]
+ * for the first n, the length in points of curve inside its box (grown by
+ * the pen), plus marks, the inset, the legend and other annotations as
+ * overlap() counts them; 0 when it covers nothing, +inf when the box leaves
+ * the frame, NaN for an annotation not drawn.  HY_EINVAL for a bad index. */
+int hy_figure_text_hits(const hy_figure *f, const hy_canvas *cv, int index, double *hits, size_t n, hy_error *err);
 
 /* Largest PNG hystviz renders: cairo's image limit a side, and 2^28 pixels
  * (1 GiB of ARGB32) in all. */
