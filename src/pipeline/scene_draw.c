@@ -458,10 +458,15 @@ static int describe(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
 {
     const hy_decl_figure *df = &r->doc.figure;
     const char *cap = df->caption && df->caption[0] ? df->caption : NULL;
+    char *capx = NULL; /* the caption with its {section.key} filled in, as the gallery's index shows it */
+    hy_error e = {0};
+    if (cap && strchr(cap, '{') && !hy_scene_expand(r->scene, cap, &capx, &e))
+        cap = capx;
     st->title = calloc(1, 256);
     dbuf d = {calloc(1, 8192), 0, 8192};
     if (!st->title || !d.b) {
         free(d.b);
+        free(capx);
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     }
     st->desc = d.b;
@@ -472,6 +477,7 @@ static int describe(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
         snprintf(st->title, 256, "%.*s", (int)(n < 255 ? n : 255), cap);
         dput(&d, cap);
         dput(&d, " ");
+        free(capx);
     } else if (df->title && df->title[0]) {
         dbuf t = {st->title, 0, 256};
         dput_markup(&t, df->title);
