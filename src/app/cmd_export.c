@@ -248,7 +248,7 @@ static const hy_scene_key_spec *grid_key_spec(const char *full)
 
 /* The number the scene (with --set) holds for a --grid key, as "%.17g" into
  * buf, or "null": the page finds a preset's figure among the grid's with it. */
-static void grid_file_value(const hy_scene *s, const char *full, char *buf, size_t n)
+static void grid_file_value(const hy_scene_doc *d, const char *full, char *buf, size_t n)
 {
     char sec[64], name[128] = "";
     const char *dot = strchr(full, '.'), *last = strrchr(full, '.');
@@ -259,7 +259,8 @@ static void grid_file_value(const hy_scene *s, const char *full, char *buf, size
     if (last > dot)
         snprintf(name, sizeof name, "%.*s", (int)(last - dot - 1), dot + 1);
     double v;
-    int st = hy_scene_get_num(s, sec, last > dot ? name : NULL, last + 1, &v);
+    const hy_decl_head *h = hy_scene_doc_find(d, sec, last > dot ? name : NULL);
+    int st = h ? hy_decl_num(h, last + 1, &v) : -1;
     if ((st == HY_SCENE_SET || st == HY_SCENE_DEFAULT) && isfinite(v))
         snprintf(buf, n, "%.17g", v);
 }
@@ -355,7 +356,7 @@ static int describe(const export_opts *o, char **meta, uint64_t *hash)
         fputs(",\"unit\":", f);
         exp_json_str(f, unit, strlen(unit));
         char file[40];
-        grid_file_value(base, ax->key, file, sizeof file);
+        grid_file_value(&d, ax->key, file, sizeof file);
         fprintf(f, ",\"file\":%s", file);
         fputs(",\"values\":[", f);
         for (size_t v = 0; v < ax->nvalues; v++) {
