@@ -206,30 +206,39 @@ static int put(char **t, size_t *n, size_t *cap, const char *s, size_t len)
 /* The scene's text with each free key's estimate written in: on the key's
  * own line when the file writes it there, else after the [model] header,
  * else in a [model] section added at the end; a header comment says so. */
-static int fitted_text(hy_scene_fit *f, const hy_scene_run *r, const char *path, hy_error *err)
+static int fitted_text(hy_scene_fit *f, const char *path, hy_error *err)
 {
     char *src = NULL, why[200];
     size_t len;
     if (hy_file_read(path, TEXT_MAX, &src, &len, NULL, why, sizeof why))
         return hy_error_set(err, HY_EIO, "cannot read %s: %s", path, why);
-    const hy_decl_head *h = &r->doc.model.h;
-    int hline = h->loc.line > 0 && !strcmp(h->loc.file, r->doc.model.h.loc.file) ? h->loc.line : 0;
+    hy_scene *sc = NULL; /* the file as written (the runs' scenes carry the last evaluation's overrides) */
+    if (hy_scene_parse_buffer(path, src, len, &sc, err)) {
+        free(src);
+        return err->code;
+    }
+    hy_scene_loc hl;
+    int hline = hy_scene_get_loc(sc, "model", NULL, NULL, &hl) && hl.line > 0 && hl.file && !strcmp(hl.file, path)
+                    ? hl.line : 0;
     size_t p = f->pb.p, n = 0, cap = 0;
     int *kline = calloc(p, sizeof *kline);
     char (*kv)[120] = calloc(p, sizeof *kv), line[200];
     int rc = kline && kv ? HY_OK : HY_ENOMEM;
-    const char *hfile = h->loc.file;
     for (size_t j = 0; !rc && j < p; j++) {
-        hy_scene_loc kl = hy_decl_loc(h, hy_decl_offset(h, f->prm[j].name));
-        kline[j] = kl.line > 0 && hfile && kl.file && !strcmp(kl.file, hfile) ? kl.line : 0;
-        snprintf(kv[j], sizeof kv[j], "%s = %.10g", f->prm[j].name, f->res.theta[j]);
+        hy_scene_loc kl;
+        int got = hy_scene_get_loc(sc, "model", NULL, f->prm[j].name, &kl);
+        kline[j] = hline && got && kl.line > 0 && kl.file && !strcmp(kl.file, path) ? kl.line : 0;
+        snprintf(kv[j], sizeof kv[j], "%s = %.17g", f->prm[j].name, f->res.theta[j]); /* round-trips */
     }
-    if (!hfile || strcmp(hfile, path)) /* [model] in an include (or nowhere): a new section here */
-        hline = 0, memset(kline, 0, p * sizeof *kline);
-    snprintf(line, sizeof line, "# fitted by hystviz fit (RMS %.6g over %zu points; docs/FIT.md): the [model] values\n",
+    /* hline 0: [model] in an include (or nowhere): a new [model] section at the end */
+    snprintf(line, sizeof line, "# fitted by hystviz fit (docs/FIT.md): RMS %.17g over %zu points; standard errors:\n",
              f->res.rms, f->pb.n);
     if (!rc)
         rc = put(&f->text, &n, &cap, line, strlen(line));
+    for (size_t j = 0; !rc && j < p; j++) {
+        snprintf(line, sizeof line, "#   %s %.17g\n", f->prm[j].name, f->res.se[j]);
+        rc = put(&f->text, &n, &cap, line, strlen(line));
+    }
     int ln = 1;
     for (const char *s = src; !rc && *s; ln++) {
         const char *nl = strchr(s, '\n');
@@ -254,6 +263,7 @@ static int fitted_text(hy_scene_fit *f, const hy_scene_run *r, const char *path,
                 rc = put(&f->text, &n, &cap, kv[j], strlen(kv[j])) || put(&f->text, &n, &cap, "\n", 1);
     }
     free(src);
+    hy_scene_free(sc);
     free(kline);
     free(kv);
     return rc ? hy_error_set(err, HY_ENOMEM, "out of memory") : HY_OK;
@@ -301,7 +311,7 @@ int hy_scene_fit_run(const char *path, const hy_scene_fit_opts *o, hy_scene_fit 
     if (!rc) { /* the model at the estimate (the residual plus the data) */
         for (size_t i = 0; i < f->pb.n; i++)
             f->ymodel[i] = f->res.resid[i] + f->y[i];
-        rc = fitted_text(f, &slot[0].run[0], path, err);
+        rc = fitted_text(f, path, err);
     }
     f->pb.ctx = NULL; /* c goes with this call */
     free_slots(slot, nslot, f->ndata);

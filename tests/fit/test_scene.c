@@ -13,7 +13,8 @@
  *    computed exactly or to an ODE tolerance of 1e-13, so the minimum is the
  *    truth to far better than 1e-8; the solver's xtol is 1e-12);
  *  - LuGre's sigma1 under a quasi-static input (its term sigma1 dz/dt is
- *    1e-6 of the force): flagged unidentifiable.
+ *    1e-7 of the force, the noise 5e-3): flagged unidentifiable, sigma0
+ *    and Fc not.
  * The CLI's refusals (bad keys, bad data: one line, exit 2, nothing
  * written) are tests/fit/test_scene_cli.sh. */
 #include <gsl/gsl_errno.h>
@@ -38,21 +39,22 @@ typedef struct fcase {
     double sigma;                   /* noise added to y */
     int timed;                      /* Dahl, LuGre: one record, a t column (1 s a sample) */
     double period;                  /* timed: the sine's period in samples */
+    double t_scale;                 /* timed: seconds a sample ([data] t_scale; 0: 1) */
 } fcase;
 
 static const fcase cases[] = {
     {"ja1986", "kind = jiles-atherton\nja_variant = jiles1986\n", {"ja_ms", "ja_a", "ja_k", "ja_c", "ja_alpha", NULL},
-     {1.6e6, 1100, 400, 0.2, 1.6e-3}, {1.3e6, 1400, 300, 0.26, 1.3e-3}, {4000, 1500, 0}, 60, 5e-3, 0, 0},
+     {1.6e6, 1100, 400, 0.2, 1.6e-3}, {1.3e6, 1400, 300, 0.26, 1.3e-3}, {4000, 1500, 0}, 60, 5e-3, 0, 0, 0},
     {"jtd1992", "kind = jiles-atherton\nja_variant = jtd1992\n", {"ja_ms", "ja_a", "ja_k", "ja_c", "ja_alpha", NULL},
-     {1.6e6, 1100, 400, 0.5, 1.6e-3}, {1.3e6, 1400, 300, 0.65, 1.3e-3}, {4000, 1500, 0}, 60, 5e-3, 0, 0},
+     {1.6e6, 1100, 400, 0.5, 1.6e-3}, {1.3e6, 1400, 300, 0.65, 1.3e-3}, {4000, 1500, 0}, 60, 5e-3, 0, 0, 0},
     {"preisach", "kind = preisach\n", {"pr_hc", "pr_width", "pr_ys", NULL}, {0.5, 0.2, 1}, {0.6, 0.25, 0.8},
-     {1.2, 0.6, 0}, 60, 5e-3, 0, 0},
-    {"play", "kind = play\n", {"play_r", NULL}, {0.3}, {0.22}, {1, 0.5, 0}, 40, 1e-2, 0, 0},
+     {1.2, 0.6, 0}, 60, 5e-3, 0, 0, 0},
+    {"play", "kind = play\n", {"play_r", NULL}, {0.3}, {0.22}, {1, 0.5, 0}, 40, 1e-2, 0, 0, 0},
     {"boucwen-operator", "kind = boucwen-operator\nbw_beta = 1\nnu = 1\n", {"alpha", "bw_gamma", "delta", NULL},
-     {1, 0.6, 0.4}, {1.25, 0.75, 0.3}, {3, 1.5, 0}, 60, 5e-3, 0, 0},
-    {"dahl", "kind = dahl\n", {"rho", "fc", NULL}, {2, 1}, {2.5, 0.8}, {3}, 200, 5e-3, 1, 100},
+     {1, 0.6, 0.4}, {1.25, 0.75, 0.3}, {3, 1.5, 0}, 60, 5e-3, 0, 0, 0},
+    {"dahl", "kind = dahl\n", {"rho", "fc", NULL}, {2, 1}, {2.5, 0.8}, {3}, 200, 5e-3, 1, 100, 0},
     {"lugre", "kind = lugre\nsigma1 = 1\nsigma2 = 0.1\nbeta = 2\n", {"sigma0", "fc", "fs", "vs", NULL},
-     {6, 1, 2, 0.05}, {7.5, 0.8, 2.4, 0.06}, {3}, 200, 5e-3, 1, 100},
+     {6, 1, 2, 0.05}, {7.5, 0.8, 2.4, 0.06}, {3}, 200, 5e-3, 1, 100, 0},
 };
 
 /* A fixed-seed Gaussian (xorshift64* and Box-Muller): the same noise on every machine. */
@@ -104,9 +106,10 @@ static void write_case(const fcase *c, const double *y, const double *vals, cons
     fprintf(f, "[model]\n%s", c->model);
     for (size_t j = 0; c->keys[j]; j++)
         fprintf(f, "%s = %.17g\n", c->keys[j], vals[j]);
-    fprintf(f, "[data d]\nfile = \"%s_%s.csv\"\nu = u\ny = y\n%s\n[input]\nkind = data\ndata = d\n"
+    fprintf(f, "[data d]\nfile = \"%s_%s.csv\"\nu = u\ny = y\n%s\nt_scale = %.17g\n[input]\nkind = data\ndata = d\n"
                "[figure]\nkind = %s\n[series m]\ndata = modelled\nof = d\n",
-            c->name, tag, c->timed ? "t = t" : "split = rec", c->timed ? "timeseries" : "loop");
+            c->name, tag, c->timed ? "t = t" : "split = rec", c->t_scale > 0 ? c->t_scale : 1.0,
+            c->timed ? "timeseries" : "loop");
     fclose(f);
 }
 
@@ -179,15 +182,20 @@ static void fit_case(const fcase *c, const double *y0, size_t n, uint64_t seed)
 static void lugre_sigma1(void)
 {
     fcase c = cases[6];
-    c.model = "kind = lugre\nsigma2 = 0.1\nbeta = 2\n";
-    c.keys[0] = "sigma0", c.keys[1] = "sigma1", c.keys[2] = "fc", c.keys[3] = NULL;
-    c.truth[0] = 6, c.truth[1] = 1, c.truth[2] = 1;
-    c.start[0] = 7, c.start[1] = 1.2, c.start[2] = 0.9;
-    c.period = 1e6; /* dz/dt ~ 1e-5: sigma1 dz/dt is lost under the noise */
+    c.model = "kind = lugre\nsigma2 = 0.1\nbeta = 2\nfc = 1\nvs = 0.05\n";
+    /* Fs, not Fc: at |v| <= 2e-7 << vs the sliding force g(v) is Fs, Fc is not seen either */
+    c.keys[0] = "sigma0", c.keys[1] = "sigma1", c.keys[2] = "fs", c.keys[3] = NULL;
+    c.truth[0] = 6, c.truth[1] = 1, c.truth[2] = 2;
+    c.start[0] = 7, c.start[1] = 1.2, c.start[2] = 1.8;
+    c.t_scale = 1e6; /* a sample a million seconds: |dz/dt| <= |du/dt| ~ 2e-7, so sigma1 dz/dt
+                        (1e-7 of the force) is lost under the noise of 5e-3 */
     size_t n = 0;
     double *y0 = truth_output(&c, &n);
     if (!y0)
         return;
+    uint64_t s = 7;
+    for (size_t i = 0; i < n; i++)
+        y0[i] += c.sigma * gauss(&s);
     char scene[4200];
     write_case(&c, y0, c.start, "s1", scene, sizeof scene);
     free(y0);
@@ -202,7 +210,7 @@ static void lugre_sigma1(void)
     if (rc)
         return;
     CHECK(f.res.unident[1] != 0, "lugre quasi-static: sigma1 not flagged (SE %g, flags %d)", f.res.se[1], f.res.unident[1]);
-    CHECK(!f.res.unident[0] && !f.res.unident[2], "lugre quasi-static: sigma0 %d, fc %d flagged", f.res.unident[0],
+    CHECK(!f.res.unident[0] && !f.res.unident[2], "lugre quasi-static: sigma0 %d, Fs %d flagged", f.res.unident[0],
           f.res.unident[2]);
     printf("lugre quasi-static: sigma1 flagged %d (relative singular value %.3g, rank tolerance %.3g)\n", f.res.unident[1],
            f.res.sv[2] / f.res.sv[0], f.res.rank_tol);
