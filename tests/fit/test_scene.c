@@ -15,7 +15,7 @@
  *  - LuGre's sigma1 under a quasi-static input (its term sigma1 dz/dt is
  *    1e-7 of the force, the noise 5e-3): flagged unidentifiable, sigma0
  *    and Fc not.
- * The CLI's refusals (bad keys, bad data: one line, exit 2, nothing
+ * And a legend label's {SERIES.rms}.  The CLI's refusals (bad keys, bad data: one line, exit 2, nothing
  * written) are tests/fit/test_scene_cli.sh. */
 #include <gsl/gsl_errno.h>
 #include <math.h>
@@ -217,6 +217,49 @@ static void lugre_sigma1(void)
     hy_scene_fit_free(&f);
 }
 
+/* A legend label's {SERIES.rms} is the run's RMS of that modelled series
+ * (expanded by the annotations' placeholder code), a {section.key} beside it
+ * still the key's value. */
+static void label_rms(void)
+{
+    const fcase *c = &cases[3]; /* play */
+    size_t n = 0;
+    double *y0 = truth_output(c, &n);
+    if (!y0)
+        return;
+    for (size_t i = 0; i < n; i++)
+        y0[i] += 0.01 * sin(7.0 * (double)i); /* a residual of known RMS */
+    char scene[4200];
+    write_case(c, y0, c->truth, "lab", scene, sizeof scene);
+    FILE *f = fopen(scene, "a");
+    fprintf(f, "label = \"r = {model.play_r}, RMS {m.rms}\"\n");
+    fclose(f);
+    hy_scene_run r;
+    hy_error err = {0};
+    int rc = hy_scene_run_load(&r, scene, NULL, 0, &err);
+    if (!rc && (rc = hy_scene_run_compute(&r, NULL, &err)))
+        hy_scene_run_free(&r);
+    CHECK(rc == 0, "label scene: %s", err.msg);
+    if (rc) {
+        free(y0);
+        return;
+    }
+    double ss = 0;
+    for (size_t i = 0; i < n; i++)
+        ss += 0.01 * sin(7.0 * (double)i) * 0.01 * sin(7.0 * (double)i);
+    hy_scene_fig st;
+    memset(&st, 0, sizeof st);
+    rc = hy_scene_run_figure(&r, &st, &err);
+    const char *lab = rc ? NULL : st.series[0].label;
+    double rms = NAN;
+    CHECK(lab && sscanf(lab, "r = 0.3, RMS %lf", &rms) == 1 && !strchr(lab, '{') &&
+              fabs(rms / sqrt(ss / (double)n) - 1) < 5e-4, /* 4 significant digits printed */
+          "label '%s': RMS %g, want %g", lab ? lab : "(none)", rms, sqrt(ss / (double)n));
+    hy_scene_fig_free(&st);
+    hy_scene_run_free(&r);
+    free(y0);
+}
+
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
@@ -236,5 +279,7 @@ int main(int argc, char **argv)
     }
     if (!only || !strcmp(only, "lugre-sigma1"))
         lugre_sigma1();
+    if (!only || !strcmp(only, "label"))
+        label_rms();
     return tu_finish("fit-scene");
 }
