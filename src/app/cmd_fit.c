@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* cmd_fit.c: `hystviz fit --benchmark boucwen`: the Bouc-Wen benchmark as an
- * identification task (seeds/001, Sections 4-5; issue 32 item 4): training
- * data as Section 4 prescribes, a grey-box fit of Table 1 (src/core/hy_bwfit.c
- * over the least-squares engine hy_fit.c), then e_RMS (Eq. 6) on the two test
- * sets, touched only after the fit.  Scene fitting (`hystviz fit SCENE --free
- * ...`) arrives with measured-data series; until then this says so. */
+/* cmd_fit.c: `hystviz fit`: a scene's [model] keys fitted to its measured
+ * data (`hystviz fit SCENE --free KEY,...`, src/pipeline/scene_fit.c; issue
+ * 32 item 2, docs/FIT.md "Fitting a scene"), and the Bouc-Wen benchmark as an
+ * identification task (`--benchmark boucwen`: seeds/001, Sections 4-5; issue
+ * 32 item 4): training data as Section 4 prescribes, a grey-box fit of
+ * Table 1 (src/core/hy_bwfit.c over the least-squares engine hy_fit.c), then
+ * e_RMS (Eq. 6) on the two test sets, touched only after the fit. */
 #include "cmd_fit.h"
 
 #include "cli_opt.h"

@@ -206,14 +206,14 @@ static int put(char **t, size_t *n, size_t *cap, const char *s, size_t len)
 /* The scene's text with each free key's estimate written in: on the key's
  * own line when the file writes it there, else after the [model] header,
  * else in a [model] section added at the end; a header comment says so. */
-static int fitted_text(hy_scene_fit *f, const char *path, hy_error *err)
+static int fitted_text(hy_scene_fit *f, const char *path, const hy_scene_policy *pol, hy_error *err)
 {
     char *src = NULL, why[200];
     size_t len;
     if (hy_file_read(path, TEXT_MAX, &src, &len, NULL, why, sizeof why))
         return hy_error_set(err, HY_EIO, "cannot read %s: %s", path, why);
     hy_scene *sc = NULL; /* the file as written (the runs' scenes carry the last evaluation's overrides) */
-    if (hy_scene_parse_buffer(path, src, len, &sc, err)) {
+    if (pol ? hy_scene_parse_buffer_policy(path, src, len, pol, &sc, err) : hy_scene_parse_buffer(path, src, len, &sc, err)) {
         free(src);
         return err->code;
     }
@@ -311,7 +311,7 @@ int hy_scene_fit_run(const char *path, const hy_scene_fit_opts *o, hy_scene_fit 
     if (!rc) { /* the model at the estimate (the residual plus the data) */
         for (size_t i = 0; i < f->pb.n; i++)
             f->ymodel[i] = f->res.resid[i] + f->y[i];
-        rc = fitted_text(f, path, err);
+        rc = fitted_text(f, path, o->pol, err);
     }
     f->pb.ctx = NULL; /* c goes with this call */
     free_slots(slot, nslot, f->ndata);
