@@ -36,8 +36,8 @@ static const char usage[] =
     "correlations and unidentifiable parameters from the Jacobian at the\n"
     "optimum; docs/FIT.md).\n"
     "\n"
-    "SCENE --free KEY,...: fits the scene's [model] number keys KEY (ja_a or\n"
-    "model.ja_a) to its measured data: the model driven by the measured\n"
+    "SCENE --free KEY,...: fits the scene's [model] number keys KEY (KEY or\n"
+    "model.KEY) to its measured data: the model driven by the measured\n"
     "inputs of the [data] that [input] names (or of each --data NAME in turn,\n"
     "all at once), each record from [input] start, against the measured\n"
     "outputs.  Each key is kept in the range a page's slider gives it (the\n"
@@ -74,8 +74,7 @@ static const char tail[] =
     "bad key, a bad data file: nothing written).\n"
     "\n"
     "examples:\n"
-    "  hystviz fit scenes/ferrite_measured.scene --free ja_a,ja_k,ja_c,ja_ms,ja_alpha \\\n"
-    "      --data loops -o fitted.scene --residuals resid.svg\n"
+    "  hystviz fit friction.scene --free sigma0,fc,fs,vs -o fitted.scene --residuals resid.svg\n"
     "  hystviz fit --benchmark boucwen          (about 30 s of CPU)\n";
 
 enum { OPT_BENCH = CLI_FIRST, OPT_SEED, OPT_REAL, OPT_PERIODS, OPT_NOISE, OPT_PARAMS, OPT_FIXNU, OPT_STARTS,

@@ -149,7 +149,7 @@ int hy_boucwen_run(const double *u, size_t n, double fs, double *y, hy_error *er
  * --free KEY,...` as a call, the same numbers bit for bit. */
 typedef struct hy_scene_fitted hy_scene_fitted;
 
-/* Fits the nfree [model] number keys free_keys ("ja_a" or "model.ja_a") of
+/* Fits the nfree [model] number keys free_keys ("sigma0" or "model.sigma0") of
  * the scene file path to the measured data that drive its model (data NULL
  * or ndata 0), or to each [data] name in data[0 .. ndata) in turn, all at
  * once; start 0 is the scene's values, starts more from the Latin

@@ -118,7 +118,7 @@ static int free_key(const hy_scene_run *r, const char *key, hy_fit_param *q, dou
     if ((k->flags & HY_SPEC_MIN) && (k->flags & HY_SPEC_MAX) && !(k->max > k->min))
         return hy_error_set(err, HY_EINVAL, "--free %s: the schema fixes it at %g", key, k->min);
     double v;
-    if (hy_scene_get_num(r->scene, "model", NULL, key, &v) < 0)
+    if (hy_scene_doc_num(&r->doc, "model", key, &v))
         return hy_error_set(err, HY_EINVAL, "--free %s: it has no value to start from (set it in [model])", key);
     int lg;
     hy_scene_fit_range(k, v, &q->lo, &q->hi, &lg);
@@ -217,17 +217,21 @@ static int fitted_text(hy_scene_fit *f, const char *path, const hy_scene_policy 
         free(src);
         return err->code;
     }
-    hy_scene_loc hl;
-    int hline = hy_scene_get_loc(sc, "model", NULL, NULL, &hl) && hl.line > 0 && hl.file && !strcmp(hl.file, path)
-                    ? hl.line : 0;
+    hy_scene_doc d;
+    if (hy_scene_decode(sc, &d, err)) {
+        hy_scene_free(sc);
+        free(src);
+        return err->code;
+    }
+    const hy_decl_head *h = &d.model.h;
+    int hline = h->loc.line > 0 && h->loc.file && !strcmp(h->loc.file, path) ? h->loc.line : 0;
     size_t p = f->pb.p, n = 0, cap = 0;
     int *kline = calloc(p, sizeof *kline);
     char (*kv)[120] = calloc(p, sizeof *kv), line[200];
     int rc = kline && kv ? HY_OK : HY_ENOMEM;
     for (size_t j = 0; !rc && j < p; j++) {
-        hy_scene_loc kl;
-        int got = hy_scene_get_loc(sc, "model", NULL, f->prm[j].name, &kl);
-        kline[j] = hline && got && kl.line > 0 && kl.file && !strcmp(kl.file, path) ? kl.line : 0;
+        hy_scene_loc kl = hy_decl_loc(h, hy_decl_offset(h, f->prm[j].name));
+        kline[j] = hline && kl.line > 0 && kl.file && !strcmp(kl.file, path) ? kl.line : 0;
         snprintf(kv[j], sizeof kv[j], "%s = %.17g", f->prm[j].name, f->res.theta[j]); /* round-trips */
     }
     /* hline 0: [model] in an include (or nowhere): a new [model] section at the end */
@@ -263,6 +267,7 @@ static int fitted_text(hy_scene_fit *f, const char *path, const hy_scene_policy 
                 rc = put(&f->text, &n, &cap, kv[j], strlen(kv[j])) || put(&f->text, &n, &cap, "\n", 1);
     }
     free(src);
+    hy_scene_doc_free(&d);
     hy_scene_free(sc);
     free(kline);
     free(kv);

@@ -6,12 +6,12 @@
  * (hy_scene_run_set_model, hy_scene_run_model_at_data): every model of the
  * table is fitted the same way, with nothing fit-specific in its file.
  *
- *     const char *freek[] = {"ja_a", "ja_k"};
+ *     const char *freek[] = {"sigma0", "fc"};
  *     hy_scene_fit_opts o;
  *     hy_scene_fit_opts_default(&o);
  *     o.free_keys = freek; o.nfree = 2;
  *     hy_scene_fit f;
- *     if (hy_scene_fit_run("ferrite.scene", &o, &f, &err)) ... err.msg ...
+ *     if (hy_scene_fit_run("friction.scene", &o, &f, &err)) ... err.msg ...
  *     hy_fit_report(stdout, &f.pb, &f.res);  puts(f.text);
  *     hy_scene_fit_free(&f);
  */
@@ -25,7 +25,7 @@
 #include "hy_status.h"
 
 typedef struct hy_scene_fit_opts {
-    const char *const *free_keys; /* nfree [model] keys, "ja_a" or "model.ja_a" */
+    const char *const *free_keys; /* nfree [model] keys, "sigma0" or "model.sigma0" */
     size_t nfree;
     const char *const *data;      /* ndata [data] names to fit at once, each driving
                                      the model in turn ([input] data = NAME); 0: the
