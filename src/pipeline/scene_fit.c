@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "hy_file.h"
+#include "hy_scene_policy.h"
 #include "scene_model.h"
 #include "scene_run.h"
 
@@ -128,21 +129,48 @@ static int free_key(const hy_scene_run *r, const char *key, hy_fit_param *q, dou
     return HY_OK;
 }
 
-/* Loads one run per data set (the scene's own [input] data when none are named). */
+/* Loads one run per data set (the scene's own [input] data when none are
+ * named): with --data NAME the model is driven by NAME (input.data=NAME) and
+ * every modelled series follows it (series.S.of=NAME), so that the scene
+ * loads whatever data its figure draws. */
 static int load_runs(const char *path, const hy_scene_fit_opts *o, size_t ndata, hy_scene_run *run, hy_error *err)
 {
-    for (size_t d = 0; d < ndata; d++) {
-        char set[200], *sets[1] = {set};
-        if (o->ndata)
-            snprintf(set, sizeof set, "input.data=%s", o->data[d]);
-        int rc = hy_scene_run_load_policy(&run[d], path, sets, o->ndata ? 1 : 0, o->pol, err);
-        if (rc) {
-            for (size_t e = 0; e < d; e++)
-                hy_scene_run_free(&run[e]);
-            return rc;
+    hy_scene *sc = NULL;
+    hy_scene_doc d;
+    memset(&d, 0, sizeof d);
+    int rc = o->ndata ? hy_scene_parse_file_policy(path, o->pol, &sc, err) : HY_OK;
+    if (!rc && sc && (rc = hy_scene_decode(sc, &d, err)))
+        memset(&d, 0, sizeof d);
+    size_t ns = 0, nm = 0;
+    for (size_t i = 0; i < d.nseries; i++)
+        nm += d.series[i].data == HY_DATA_MODELLED;
+    char (*set)[200] = calloc(nm + 1, sizeof *set), **sets = calloc(nm + 1, sizeof *sets);
+    if (!rc && (!set || !sets))
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory");
+    size_t d_ok = 0;
+    for (; !rc && d_ok < ndata; d_ok++) {
+        ns = 0;
+        if (o->ndata) {
+            snprintf(set[ns], sizeof set[ns], "input.data=%s", o->data[d_ok]);
+            sets[ns] = set[ns], ns++;
+            for (size_t i = 0; i < d.nseries; i++)
+                if (d.series[i].data == HY_DATA_MODELLED) {
+                    snprintf(set[ns], sizeof set[ns], "series.%s.of=%s", d.series[i].h.name, o->data[d_ok]);
+                    sets[ns] = set[ns], ns++;
+                }
         }
+        rc = hy_scene_run_load_policy(&run[d_ok], path, sets, ns, o->pol, err);
     }
-    return HY_OK;
+    if (rc)
+        for (size_t e = 0; e + 1 < d_ok; e++)
+            hy_scene_run_free(&run[e]);
+    free(set);
+    free(sets);
+    if (sc) {
+        hy_scene_doc_free(&d);
+        hy_scene_free(sc);
+    }
+    return rc;
 }
 
 static void free_slots(fit_slot *s, size_t nslot, size_t ndata)
@@ -283,8 +311,9 @@ int hy_scene_fit_run(const char *path, const hy_scene_fit_opts *o, hy_scene_fit 
     size_t nslot = o->fit.jobs > 1 ? (size_t)o->fit.jobs : 1;
     fit_slot *slot = calloc(nslot, sizeof *slot);
     int rc = slot ? HY_OK : hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t i = 0; !rc && i < nslot; i++)
+        pthread_mutex_init(&slot[i].mu, NULL); /* all of them: free_slots destroys each */
     for (size_t i = 0; !rc && i < nslot; i++) {
-        pthread_mutex_init(&slot[i].mu, NULL);
         slot[i].run = calloc(f->ndata, sizeof *slot[i].run);
         rc = slot[i].run ? load_runs(path, o, f->ndata, slot[i].run, err) : hy_error_set(err, HY_ENOMEM, "out of memory");
         if (rc) {

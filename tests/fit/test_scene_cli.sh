@@ -36,6 +36,13 @@ grep -q '<svg' "$s/resid.svg" && ok || bad "no residual figure"
 # (the label's {f.rms} is checked as text in tests/fit/test_scene.c: cairo's SVG draws glyphs)
 "$hv" render "$s/fitted.scene" -o "$s/out" > /dev/null 2> "$tmp/e" && grep -q '<svg' "$s/out/fitted.svg" && ok ||
     bad "the fitted scene does not render: $(cat "$tmp/e")"
+# two data sets at once (--data d,e): one residual vector of 2 x 61 points, the
+# modelled series following each set in turn
+cp "$s/play.csv" "$s/play2.csv"
+{ cat "$s/play.scene"; printf '[data e]\nfile = "play2.csv"\nu = u\ny = y\n'; } > "$s/two.scene"
+"$hv" fit "$s/two.scene" --free play_r --data d --data e -q > "$tmp/o" 2> "$tmp/e"
+grep -q '122 measured points in \[data d\] (1 record), \[data e\] (1 record)' "$tmp/o" && ok ||
+    bad "--data d --data e: $(cat "$tmp/e") $(head -1 "$tmp/o")"
 rm -f "$s/fitted.scene" "$s/resid.svg"
 # refused ARGS... : one line on standard error, exit 2, nothing written
 refused() {
