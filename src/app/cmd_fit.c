@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* cmd_fit.c: `hystviz fit --benchmark boucwen`: the Bouc-Wen benchmark as an
- * identification task (seeds/001, Sections 4-5; issue 32 item 4): training
- * data as Section 4 prescribes, a grey-box fit of Table 1 (src/core/hy_bwfit.c
- * over the least-squares engine hy_fit.c), then e_RMS (Eq. 6) on the two test
- * sets, touched only after the fit.  Scene fitting (`hystviz fit SCENE --free
- * ...`) arrives with measured-data series; until then this says so. */
+/* cmd_fit.c: `hystviz fit`: a scene's [model] keys fitted to its measured
+ * data (`hystviz fit SCENE --free KEY,...`, src/pipeline/scene_fit.c; issue
+ * 32 item 2, docs/FIT.md "Fitting a scene"), and the Bouc-Wen benchmark as an
+ * identification task (`--benchmark boucwen`: seeds/001, Sections 4-5; issue
+ * 32 item 4): training data as Section 4 prescribes, a grey-box fit of
+ * Table 1 (src/core/hy_bwfit.c over the least-squares engine hy_fit.c), then
+ * e_RMS (Eq. 6) on the two test sets, touched only after the fit. */
 #include "cmd_fit.h"
 
 #include "cli_opt.h"
@@ -12,7 +13,11 @@
 #include "cmd_boucwen.h"
 #include "hy_bwfit.h"
 #include "hy_jobs.h"
+#include "hy_out.h"
+#include "hy_plot.h"
 #include "hy_signal.h"
+#include "scene_fit.h"
+#include "scene_run.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -22,13 +27,28 @@
 #include <time.h>
 
 static const char usage[] =
-    "usage: hystviz fit --benchmark boucwen [options]\n"
+    "usage: hystviz fit SCENE --free KEY[,KEY...] [options]\n"
+    "       hystviz fit --benchmark boucwen [options]\n"
     "\n"
     "Identifies a model's parameters from data by nonlinear least squares\n"
     "(GSL multifit_nlinear: Levenberg-Marquardt with geodesic acceleration;\n"
     "bounds kept by a smooth map; standard errors, 95 % intervals,\n"
     "correlations and unidentifiable parameters from the Jacobian at the\n"
     "optimum; docs/FIT.md).\n"
+    "\n"
+    "SCENE --free KEY,...: fits the scene's [model] number keys KEY (KEY or\n"
+    "model.KEY) to its measured data: the model driven by the measured\n"
+    "inputs of the [data] that [input] names (or of each --data NAME in turn,\n"
+    "all at once), each record from [input] start, against the measured\n"
+    "outputs.  Each key is kept in the range a page's slider gives it (the\n"
+    "schema's bounds; an open one 1/100 to 100 times the scene's value),\n"
+    "logarithmic when that spans a factor 50 or more.  Start 0 is the\n"
+    "scene's values; --starts N more come from a Latin hypercube over the\n"
+    "ranges (--seed).  A start the model refuses is reported and skipped.\n"
+    "Prints the estimates, standard errors, 95 % intervals, correlations,\n"
+    "condition number, unidentifiable keys and fit statistics; -o writes the\n"
+    "scene with the estimates written in (hystviz render draws data and\n"
+    "fit), --residuals a figure of the residuals against the measured input.\n"
     "\n"
     "--benchmark boucwen: the Bouc-Wen benchmark (Noel & Schoukens) as the\n"
     "identification task it was made for.  Training data: R realisations of\n"
@@ -50,20 +70,24 @@ static const char usage[] =
     "\n";
 
 static const char tail[] =
-    "Without --benchmark: fitting a scene to measured data (hystviz fit SCENE\n"
-    "--free KEY,...) arrives with measured-data series (issue 32 item 1); this\n"
-    "hystviz says so and exits 2.\n"
+    "Exit status: 0 done, 1 the fit or a test set failed, 2 usage error (a\n"
+    "bad key, a bad data file: nothing written).\n"
     "\n"
-    "Exit status: 0 done, 1 the fit or a test set failed, 2 usage error.\n"
-    "\n"
-    "example (about 30 s of CPU):\n"
-    "  hystviz fit --benchmark boucwen\n";
+    "examples:\n"
+    "  hystviz fit friction.scene --free sigma0,fc,fs,vs -o fitted.scene --residuals resid.svg\n"
+    "  hystviz fit --benchmark boucwen          (about 30 s of CPU)\n";
 
 enum { OPT_BENCH = CLI_FIRST, OPT_SEED, OPT_REAL, OPT_PERIODS, OPT_NOISE, OPT_PARAMS, OPT_FIXNU, OPT_STARTS,
-       OPT_DATA_DIR, OPT_QUIET };
+       OPT_DATA_DIR, OPT_QUIET, OPT_FREE, OPT_DATA, OPT_OUT, OPT_RESID };
 static const cli_opt fit_opts[] = {
+    {"free", 0, "KEY,...", "the [model] keys to fit (repeatable)", OPT_FREE, 0, NULL, NULL, NULL},
+    {"data", 0, "NAME,...", "the [data] sets fitted at once, each driving the\n"
+     "model in turn (default: [input] data; repeatable)", OPT_DATA, 0, NULL, NULL, NULL},
+    {"output", 'o', "FILE", "the fitted scene: SCENE with the estimates written in", OPT_OUT, 0, NULL, NULL, NULL},
+    {"residuals", 0, "FIG", "a figure (.svg, .png, .pdf) of the residuals", OPT_RESID, 0, NULL, NULL, NULL},
     {"benchmark", 0, "NAME", "the identification benchmark to run: boucwen", OPT_BENCH, 0, NULL, NULL, NULL},
-    {"seed", 0, "S", "seed of the training data (1)", OPT_SEED, 0, NULL, NULL, NULL},
+    {"seed", 0, "S", "seed of the design of starts; --benchmark: of the\n"
+     "training data (1)", OPT_SEED, 0, NULL, NULL, NULL},
     {"realisations", 0, "R", "multisine realisations in the training data (1)", OPT_REAL, 0, NULL, NULL, NULL},
     {"periods", 0, "P", "steady-state periods kept per realisation (1)", OPT_PERIODS, 0, NULL, NULL, NULL},
     {"noise", 0, "RMS", "output noise RMS in metres (8e-6 = 8e-3 mm)", OPT_NOISE, 0, NULL, NULL, NULL},
@@ -72,19 +96,26 @@ static const cli_opt fit_opts[] = {
      "delta come out unidentifiable)", OPT_PARAMS, 0, NULL, NULL, NULL},
     {"fix-nu", 0, NULL, "keep nu at Table 1's 1 instead of fitting it", OPT_FIXNU, 0, NULL, NULL, NULL},
     {"starts", 0, "N", "Latin-hypercube starts over the bounds besides the\n"
-     "documented one (0)", OPT_STARTS, 0, NULL, NULL, NULL},
+     "scene's values or the documented one (0)", OPT_STARTS, 0, NULL, NULL, NULL},
     {"data-dir", 0, "DIR", "folder of uval_multisine.txt and yval_multisine.txt\n"
      "(default $HY_BOUCWEN_DATA, the installed copy, the source tree's)", OPT_DATA_DIR, 0, NULL, NULL, NULL},
     {"quiet", 'q', NULL, "no progress on standard error", OPT_QUIET, 0, NULL, NULL, NULL},
+    {.group = cli_policy_opts},
     {.group = cli_jobs_opts}, /* the starts in parallel, spare threads difference the Jacobian */
     {0},
 };
 static const cli_cmd fit_cli = {"fit", usage, tail, "SCENE", fit_opts};
 
+enum { MAX_KEYS = 16, MAX_DATA = 16 };
+
 typedef struct fopts {
-    const char *bench, *data_dir, *scene;
+    const char *bench, *data_dir, *scene, *out, *resid;
+    char keys[MAX_KEYS][64], data[MAX_DATA][64];
+    size_t nkeys, ndata;
     hy_bwfit_opts bw;
-    int all, quiet;
+    int all, quiet, seed_set;
+    hy_scene_policy pol; /* --include-dir, --max-work */
+    const char **dirs;
 } fopts;
 
 static double now(void)
@@ -97,6 +128,7 @@ static double now(void)
 typedef struct prog {
     double t0;
     pthread_mutex_t mu;
+    const char *unit; /* of the RSS: " m^2" (the benchmark), "" (a scene: the data's units squared) */
 } prog;
 
 static void progress(const hy_fit_progress *pr, void *ctx)
@@ -104,12 +136,12 @@ static void progress(const hy_fit_progress *pr, void *ctx)
     prog *pg = ctx;
     pthread_mutex_lock(&pg->mu);
     if (pr->done)
-        fprintf(stderr, "hystviz fit: start %zu/%zu %s after %zu iterations, RSS %.6g m^2 (%zu evaluations, %.1f s)\n",
-                pr->start + 1, pr->nstarts, pr->status ? "failed" : "ended", pr->iter, pr->rss, pr->nevals,
+        fprintf(stderr, "hystviz fit: start %zu/%zu %s after %zu iterations, RSS %.6g%s (%zu evaluations, %.1f s)\n",
+                pr->start + 1, pr->nstarts, pr->status ? "failed" : "ended", pr->iter, pr->rss, pg->unit, pr->nevals,
                 now() - pg->t0);
     else
-        fprintf(stderr, "hystviz fit: start %zu/%zu iteration %zu: RSS %.6g m^2 (%zu evaluations, %.1f s)\n",
-                pr->start + 1, pr->nstarts, pr->iter, pr->rss, pr->nevals, now() - pg->t0);
+        fprintf(stderr, "hystviz fit: start %zu/%zu iteration %zu: RSS %.6g%s (%zu evaluations, %.1f s)\n",
+                pr->start + 1, pr->nstarts, pr->iter, pr->rss, pg->unit, pr->nevals, now() - pg->t0);
     pthread_mutex_unlock(&pg->mu);
 }
 
@@ -119,6 +151,23 @@ static int bad(const char *fmt, const char *v)
     fprintf(stderr, fmt, v);
     fprintf(stderr, " (see hystviz fit --help)\n");
     return CLI_USAGE;
+}
+
+/* A comma-separated list appended to list[*n] (at most max); 0 or 2. */
+static int split_list(const char *opt, const char *v, char (*list)[64], size_t *n, size_t max)
+{
+    for (const char *p = v;;) {
+        size_t l = strcspn(p, ",");
+        if (!l || l >= 64 || *n >= max) {
+            fprintf(stderr, "hystviz fit: %s '%s': %s (see hystviz fit --help)\n", opt, v,
+                    !l ? "an empty name" : l >= 64 ? "a name longer than 63 characters" : "too many names (16)");
+            return CLI_USAGE;
+        }
+        snprintf(list[(*n)++], 64, "%.*s", (int)l, p);
+        if (!p[l])
+            return 0;
+        p += l + 1;
+    }
 }
 
 /* One option; 0 or 2 (message printed). */
@@ -131,6 +180,10 @@ static int take(fopts *o, int id, const char *v)
     case OPT_QUIET: o->quiet = 1; return 0;
     case OPT_FIXNU: o->bw.fit_nu = 0; return 0;
     case CLI_ARG: o->scene = v; return 0;
+    case OPT_OUT: o->out = v; return 0;
+    case OPT_RESID: o->resid = v; return 0;
+    case OPT_FREE: return split_list("--free", v, o->keys, &o->nkeys, MAX_KEYS);
+    case OPT_DATA: return split_list("--data", v, o->data, &o->ndata, MAX_DATA);
     case OPT_PARAMS:
         if (strcmp(v, "all") && strcmp(v, "identifiable"))
             return bad("--params '%s' must be identifiable or all", v);
@@ -144,6 +197,7 @@ static int take(fopts *o, int id, const char *v)
         if (cli_long("--seed", v, 0, 1L << 40, &l))
             return CLI_USAGE;
         o->bw.seed = (uint64_t)l;
+        o->seed_set = 1;
         return 0;
     case OPT_REAL:
     case OPT_PERIODS:
@@ -162,7 +216,8 @@ static int take(fopts *o, int id, const char *v)
             o->bw.fit.jobs = (int)l;
         return 0;
     }
-    return CLI_USAGE;
+    int pt = cli_policy_take(&o->pol, o->dirs, "fit", id, v);
+    return pt > 0 ? 0 : CLI_USAGE;
 }
 
 /* Reads the file `name` of the benchmark's data folder (n values). */
@@ -249,7 +304,7 @@ static int boucwen(fopts *o)
     }
     if (o->all)
         o->bw.set = HY_BWFIT_ALL;
-    prog pg = {t0, PTHREAD_MUTEX_INITIALIZER};
+    prog pg = {t0, PTHREAD_MUTEX_INITIALIZER, " m^2"};
     if (!o->quiet) {
         o->bw.fit.progress = progress;
         o->bw.fit.progress_ctx = &pg;
@@ -312,31 +367,168 @@ static int boucwen(fopts *o)
     return rc ? CLI_FAILED : CLI_OK;
 }
 
+/* ---- hystviz fit SCENE --free KEY,... (src/pipeline/scene_fit.c) ---- */
+
+/* The residual figure: residual against the measured input, one series per
+ * data set, markers. */
+static int write_residuals(const hy_scene_fit *f, const char *path, hy_error *err)
+{
+    int fmt = hy_format_from_path(path);
+    if (fmt < 0)
+        return hy_error_set(err, HY_EINVAL, "--residuals %s: the name must end in .svg, .png or .pdf", path);
+    hy_series *se = calloc(f->ndata, sizeof *se);
+    char (*lab)[128] = calloc(f->ndata, sizeof *lab);
+    if (!se || !lab) {
+        free(se);
+        free(lab);
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    }
+    for (size_t d = 0; d < f->ndata; d++) {
+        size_t a = f->off[d];
+        snprintf(lab[d], sizeof lab[d], "%s: model - measured", f->dname[d]);
+        se[d] = (hy_series){f->u + a, f->res.resid + a, f->off[d + 1] - a, HY_LINE_NONE, {(int)d + 1, {0, 0, 0}},
+                            0, HY_MARKER_CIRCLE, 2.5, 1, lab[d]};
+    }
+    hy_axes ax = {0};
+    ax.series = se;
+    ax.nseries = f->ndata;
+    ax.xlabel = "measured input";
+    ax.ylabel = "residual";
+    ax.title = "hystviz fit: residuals at the estimate";
+    ax.legend = HY_LEGEND_TOP_RIGHT;
+    ax.grid = 1;
+    hy_figure fig = {0};
+    fig.axes = &ax;
+    hy_out out;
+    int rc = hy_out_open(&out, path, HY_OUT_FOLLOW, err);
+    if (!rc) {
+        rc = hy_figure_write_out(&fig, &out, fmt, err); /* finished, or aborted */
+        if (!rc)
+            rc = hy_out_publish(&out, err);
+    }
+    free(se);
+    free(lab);
+    return rc;
+}
+
+/* The fitted scene through the one writer; it must parse and load where it
+ * goes (its relative paths: next to the scene, or where they still resolve). */
+static int write_fitted(const hy_scene_fit *f, const char *path, const hy_scene_policy *pol, hy_error *err)
+{
+    hy_scene_run chk;
+    int rc = hy_scene_run_load_text(&chk, path, f->text, strlen(f->text), NULL, 0, pol, err);
+    if (rc)
+        return hy_error_set(err, HY_EINVAL, "-o %s: the fitted scene would not load there (%s); write it next to the "
+                            "scene, whose relative paths it keeps", path, err->msg);
+    hy_scene_run_free(&chk);
+    hy_out out;
+    if ((rc = hy_out_open(&out, path, HY_OUT_FOLLOW, err)))
+        return rc;
+    fputs(f->text, hy_out_file(&out));
+    return hy_out_commit(&out, err);
+}
+
+static void print_fit(const fopts *o, const hy_scene_fit *f, double secs)
+{
+    printf("hystviz fit %s: %zu free key(s), %zu measured points in", o->scene, f->pb.p, f->pb.n);
+    for (size_t d = 0; d < f->ndata; d++)
+        printf("%s [data %s] (%zu record%s)", d ? "," : "", f->dname[d], f->nrec[d], f->nrec[d] == 1 ? "" : "s");
+    printf("\n%-12s %13s %13s %13s %s\n", "key", "start", "lower bound", "upper bound", "scale");
+    for (size_t j = 0; j < f->pb.p; j++)
+        printf("%-12s %13.6g %13.6g %13.6g %s\n", f->prm[j].name, f->x0[j], f->prm[j].lo, f->prm[j].hi,
+               f->prm[j].scale == HY_FIT_LOG ? "log" : "linear");
+    printf("starts: the scene's values and %zu from the design (seed %llu); %zu failed\n\n", f->res.nstarts - 1,
+           (unsigned long long)o->bw.fit.seed, f->res.nfailed);
+    for (size_t s = 0; s < f->res.nstarts; s++)
+        if (f->res.start[s].status)
+            printf("start %zu skipped: %s\n", s + 1, f->res.start[s].msg);
+    hy_fit_report(stdout, &f->pb, &f->res);
+    printf("time: %.2f s for the fit (-j %d), %.2f s in all\n", f->res.seconds, o->bw.fit.jobs, secs);
+}
+
+static int hy_cmd_fit_scene(fopts *o)
+{
+    if (!o->scene)
+        return bad("%sgive a SCENE and --free KEY,... (or --benchmark boucwen)", "");
+    if (!o->nkeys)
+        return bad("%s: --free KEY,... names the [model] keys to fit", o->scene);
+    if (o->resid && hy_format_from_path(o->resid) < 0)
+        return bad("--residuals '%s': the name must end in .svg, .png or .pdf", o->resid);
+    double t0 = now();
+    hy_scene_fit_opts so;
+    hy_scene_fit_opts_default(&so);
+    const char *keys[MAX_KEYS], *data[MAX_DATA];
+    for (size_t j = 0; j < o->nkeys; j++)
+        keys[j] = o->keys[j];
+    for (size_t d = 0; d < o->ndata; d++)
+        data[d] = o->data[d];
+    so.pol = &o->pol;
+    so.free_keys = keys, so.nfree = o->nkeys, so.data = data, so.ndata = o->ndata;
+    so.fit.starts = o->bw.fit.starts;
+    so.fit.jobs = o->bw.fit.jobs;
+    so.fit.seed = o->seed_set ? o->bw.seed : 1;
+    o->bw.fit.seed = so.fit.seed;
+    prog pg = {t0, PTHREAD_MUTEX_INITIALIZER, ""};
+    if (!o->quiet) {
+        so.fit.progress = progress;
+        so.fit.progress_ctx = &pg;
+    }
+    hy_scene_fit f;
+    hy_error err = {0};
+    int rc = hy_scene_fit_run(o->scene, &so, &f, &err);
+    if (rc) {
+        fprintf(stderr, "hystviz fit: %s\n", err.msg);
+        return rc == HY_ENUM ? CLI_FAILED : cli_exit_status(rc);
+    }
+    print_fit(o, &f, now() - t0);
+    rc = o->out ? write_fitted(&f, o->out, &o->pol, &err) : HY_OK;
+    if (!rc && o->resid)
+        rc = write_residuals(&f, o->resid, &err);
+    if (rc)
+        fprintf(stderr, "hystviz fit: %s\n", err.msg);
+    else if (o->out || o->resid)
+        printf("wrote%s%s%s%s\n", o->out ? " " : "", o->out ? o->out : "", o->resid ? " " : "",
+               o->resid ? o->resid : "");
+    hy_scene_fit_free(&f);
+    return rc ? cli_exit_status(rc) : CLI_OK;
+}
+
+
+/* The command once its options are read: a scene fit or the benchmark. */
+static int fit_main(fopts *o)
+{
+    if (!o->bench)
+        return hy_cmd_fit_scene(o);
+    if (strcmp(o->bench, "boucwen"))
+        return bad("unknown benchmark '%s' (boucwen)", o->bench);
+    if (o->scene)
+        return bad("--benchmark takes no scene ('%s')", o->scene);
+    return boucwen(o);
+}
+
 int hy_cmd_fit(int argc, char **argv)
 {
     fopts o = {0};
+    o.pol = hy_scene_policy_default();
+    o.dirs = calloc((size_t)argc + 1, sizeof *o.dirs); /* --include-dir: one per argument at most */
+    if (!o.dirs) {
+        fprintf(stderr, "hystviz fit: out of memory\n");
+        return CLI_FAILED;
+    }
     hy_bwfit_opts_default(&o.bw);
     long j = hy_jobs_default();
     o.bw.fit.jobs = (int)(j > 64 ? 64 : j);
     cli_parser p;
     cli_parser_init(&p, &fit_cli, argc, argv, 1);
-    for (int id; (id = cli_next(&p)) != CLI_END;) {
-        if (id == CLI_STOP)
-            return CLI_OK;
-        if (id == CLI_ERROR)
-            return CLI_USAGE;
-        int rc = take(&o, id, p.val);
-        if (rc)
-            return rc;
+    int rc = -1;
+    for (int id; rc < 0 && (id = cli_next(&p)) != CLI_END;) {
+        if (id == CLI_STOP || id == CLI_ERROR)
+            rc = id == CLI_STOP ? CLI_OK : CLI_USAGE;
+        else if (take(&o, id, p.val))
+            rc = CLI_USAGE;
     }
-    if (!o.bench) {
-        fprintf(stderr, "hystviz fit: fitting a scene to measured data (hystviz fit SCENE --free KEY,...) arrives "
-                        "with measured-data series; for now only --benchmark boucwen (see hystviz fit --help)\n");
-        return CLI_USAGE;
-    }
-    if (strcmp(o.bench, "boucwen"))
-        return bad("unknown benchmark '%s' (boucwen)", o.bench);
-    if (o.scene)
-        return bad("--benchmark takes no scene ('%s')", o.scene);
-    return boucwen(&o);
+    if (rc < 0)
+        rc = fit_main(&o);
+    free(o.dirs);
+    return rc;
 }

@@ -68,10 +68,10 @@ int hy_jiles_validate(const hy_jiles *j, hy_error *err)
         if (!isfinite(v[i]) || !(v[i] > 0))
             return hy_error_set(err, HY_EINVAL, "Jiles-Atherton %s must be finite and > 0 A/m (got %g)", names[i],
                                 v[i]);
-    if (!isfinite(j->c) || !(j->c >= 0 && j->c < 1))
+    if (!isfinite(j->c) || !(j->c >= 0) || (j->variant != HY_JILES_JTD1992 && !(j->c < 1)))
         return hy_error_set(err, HY_EINVAL,
-                            "Jiles-Atherton c (reversibility) must be in [0, 1) (got %g; c = 1 leaves no "
-                            "irreversible magnetisation)",
+                            "Jiles-Atherton c (reversibility) must be in [0, 1) for jiles1986, finite and >= 0 for "
+                            "jtd1992 (got %g; c = 1 leaves jiles1986 no irreversible magnetisation)",
                             j->c);
     if (!isfinite(j->alpha) || !(j->alpha >= 0))
         return hy_error_set(err, HY_EINVAL, "Jiles-Atherton alpha (mean-field coupling) must be finite and >= 0 (got %g)",

@@ -15,6 +15,7 @@
 #include "hy_plot.h"
 #include "hy_scene.h"
 #include "hy_scene_schema.h"
+#include "scene_fit.h"
 #include "scene_model.h"
 #include "scene_run.h"
 
@@ -367,4 +368,119 @@ char *hy_schema_json(void)
         return NULL;
     }
     return buf;
+}
+
+/* ---- hy_fit_scene (scene_fit.c) ---- */
+
+struct hy_scene_fitted {
+    hy_scene_fit f;
+    double *unident, *offsets, *lo, *hi; /* the int and size_t arrays as doubles */
+};
+
+int hy_fit_scene(const char *path, const char *const *free_keys, size_t nfree, const char *const *data, size_t ndata,
+                 size_t starts, unsigned long long seed, int jobs, hy_scene_fitted **out, hy_error *err)
+{
+    if (out)
+        *out = NULL;
+    if (!out)
+        return hy_error_set(err, HY_EINVAL, "hy_fit_scene: out must not be NULL");
+    if (!path || !free_keys || nfree < 1 || nfree > 16)
+        return hy_error_set(err, HY_EINVAL, "hy_fit_scene: a scene path and 1 to 16 free keys");
+    for (size_t j = 0; j < nfree; j++)
+        if (!free_keys[j])
+            return hy_error_set(err, HY_EINVAL, "hy_fit_scene: free_keys[%zu] is NULL", j);
+    for (size_t d = 0; data && d < ndata; d++)
+        if (!data[d])
+            return hy_error_set(err, HY_EINVAL, "hy_fit_scene: data[%zu] is NULL", d);
+    if (jobs < 1 || jobs > 64)
+        return hy_error_set(err, HY_EINVAL, "hy_fit_scene: jobs must be 1 to 64 (got %d)", jobs);
+    hy_scene_fit_opts o;
+    hy_scene_fit_opts_default(&o);
+    o.free_keys = free_keys, o.nfree = nfree;
+    o.data = data, o.ndata = data ? ndata : 0;
+    o.fit.starts = starts, o.fit.seed = seed, o.fit.jobs = jobs;
+    hy_scene_fitted *r = calloc(1, sizeof *r);
+    if (!r)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    hy_error e = {0};
+    int rc = hy_scene_fit_run(path, &o, &r->f, err ? err : &e);
+    size_t p = rc ? 0 : r->f.pb.p, nd = rc ? 0 : r->f.ndata;
+    if (!rc && (!(r->unident = malloc(p * sizeof *r->unident)) || !(r->lo = malloc(p * sizeof *r->lo)) ||
+                !(r->hi = malloc(p * sizeof *r->hi)) || !(r->offsets = malloc((nd + 1) * sizeof *r->offsets))))
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t j = 0; !rc && j < p; j++)
+        r->unident[j] = r->f.res.unident[j], r->lo[j] = r->f.prm[j].lo, r->hi[j] = r->f.prm[j].hi;
+    for (size_t d = 0; !rc && d <= nd; d++)
+        r->offsets[d] = (double)r->f.off[d];
+    if (rc) {
+        hy_scene_fitted_free(r);
+        return rc;
+    }
+    *out = r;
+    return HY_OK;
+}
+
+void hy_scene_fitted_free(hy_scene_fitted *f)
+{
+    if (!f)
+        return;
+    hy_scene_fit_free(&f->f);
+    free(f->unident);
+    free(f->offsets);
+    free(f->lo);
+    free(f->hi);
+    free(f);
+}
+
+const double *hy_scene_fitted_array(const hy_scene_fitted *f, const char *what, size_t *len)
+{
+    if (len)
+        *len = 0;
+    if (!f || !what)
+        return NULL;
+    const hy_fit_result *r = &f->f.res;
+    size_t p = f->f.pb.p, n = f->f.pb.n;
+    const struct { const char *name; const double *a; size_t n; } t[] = {
+        {"theta", r->theta, p}, {"se", r->se, p}, {"ci_lo", r->ci_lo, p}, {"ci_hi", r->ci_hi, p},
+        {"start", f->f.x0, p}, {"lo", f->lo, p}, {"hi", f->hi, p}, {"unident", f->unident, p},
+        {"corr", r->corr, p * p}, {"u", f->f.u, n}, {"y", f->f.y, n}, {"model", f->f.ymodel, n},
+        {"resid", r->resid, n}, {"offsets", f->offsets, f->f.ndata + 1}};
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++)
+        if (!strcmp(what, t[i].name)) {
+            if (len)
+                *len = t[i].n;
+            return t[i].a;
+        }
+    return NULL;
+}
+
+double hy_scene_fitted_stat(const hy_scene_fitted *f, const char *what)
+{
+    if (!f || !what)
+        return NAN;
+    const hy_fit_result *r = &f->f.res;
+    const struct { const char *name; double v; } t[] = {
+        {"rss", r->rss}, {"rms", r->rms}, {"nrms", r->nrms}, {"max_abs", r->max_abs}, {"fit_index", r->fit_index},
+        {"cond", r->cond}, {"dof", (double)r->dof}, {"iterations", (double)r->iter},
+        {"evaluations", (double)r->nevals}, {"seconds", r->seconds}, {"starts", (double)r->nstarts},
+        {"failed", (double)r->nfailed}};
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++)
+        if (!strcmp(what, t[i].name))
+            return t[i].v;
+    return NAN;
+}
+
+const char *hy_scene_fitted_key(const hy_scene_fitted *f, size_t j)
+{
+    return f && j < f->f.pb.p ? f->f.prm[j].name : NULL;
+}
+
+const char *hy_scene_fitted_data(const hy_scene_fitted *f, size_t j)
+{
+    return f && j < f->f.ndata ? f->f.dname[j] : NULL;
+}
+
+const char *hy_scene_fitted_text(const hy_scene_fitted *f)
+{
+    return f ? f->f.text : NULL;
 }

@@ -143,4 +143,45 @@ char *hy_schema_json(void);
  * fs finite and > 0 (HY_EINVAL otherwise). */
 int hy_boucwen_run(const double *u, size_t n, double fs, double *y, hy_error *err);
 
+/* ---- fitting a scene to its measured data (docs/FIT.md "Fitting a scene") ---- */
+
+/* A scene's [model] keys fitted to its measured data: `hystviz fit SCENE
+ * --free KEY,...` as a call, the same numbers bit for bit. */
+typedef struct hy_scene_fitted hy_scene_fitted;
+
+/* Fits the nfree [model] number keys free_keys ("sigma0" or "model.sigma0") of
+ * the scene file path to the measured data that drive its model (data NULL
+ * or ndata 0), or to each [data] name in data[0 .. ndata) in turn, all at
+ * once; start 0 is the scene's values, starts more from the Latin
+ * hypercube of seed; jobs threads (the result does not depend on them).
+ * path, free_keys (1 to 16 non-NULL keys) and out must not be NULL
+ * (HY_EINVAL); HY_EINVAL with one line for a bad key or data file, HY_ENUM
+ * when every start failed; *out is NULL on error. */
+int hy_fit_scene(const char *path, const char *const *free_keys, size_t nfree, const char *const *data, size_t ndata,
+                 size_t starts, unsigned long long seed, int jobs, hy_scene_fitted **out, hy_error *err);
+
+/* Frees f (NULL is allowed). */
+void hy_scene_fitted_free(hy_scene_fitted *f);
+
+/* The fit's array `what` and its length into *len (may be NULL), or NULL (len
+ * 0) for an unknown name or f NULL: per parameter "theta", "se", "ci_lo",
+ * "ci_hi", "start", "lo", "hi", "unident" (0, or the HY_FIT_NULLDIR 1 |
+ * HY_FIT_WIDE 2 bits as numbers); "corr" (p x p, row-major); per measured
+ * point "u", "y" (measured), "model" (at the estimate), "resid" (model -
+ * measured); "offsets" (one more than the data sets: where each begins). */
+const double *hy_scene_fitted_array(const hy_scene_fitted *f, const char *what, size_t *len);
+
+/* A number of the fit: "rss", "rms", "nrms", "max_abs", "fit_index", "cond",
+ * "dof", "iterations", "evaluations", "seconds", "starts", "failed"; NaN for
+ * an unknown name or f NULL. */
+double hy_scene_fitted_stat(const hy_scene_fitted *f, const char *what);
+
+/* Parameter j's key, data set j's name (NULL out of range or f NULL). */
+const char *hy_scene_fitted_key(const hy_scene_fitted *f, size_t j);
+const char *hy_scene_fitted_data(const hy_scene_fitted *f, size_t j);
+
+/* The fitted scene's text (the scene with the estimates written in, what
+ * hystviz fit -o writes), owned by f; NULL for f NULL. */
+const char *hy_scene_fitted_text(const hy_scene_fitted *f);
+
 #endif

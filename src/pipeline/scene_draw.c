@@ -81,9 +81,20 @@ void hy_scene_probe_name(const hy_scene *s, const char *path, char *buf, size_t 
  * key, set or by default, e.g. {model.sigma0}) in text by their values (4 significant
  * digits, hy_markup_number); {minorN.turn} is the loop's orientation in the (u, y) plane as an arrow, ↻
  * clockwise, ↺ counter-clockwise: the sign of ∮ y du, i.e. of minorN.area times the model's area sign. */
+static int expand_text(const hy_scene_run *r, const char *text, const hy_decl_head *h, size_t off, int series_only,
+                       char *out, size_t size, hy_error *err);
+
 static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out, size_t size, hy_error *err)
 {
-    const char *text = a->text ? a->text : "";
+    return expand_text(r, a->text ? a->text : "", &a->h, offsetof(hy_decl_annotation, text), 0, out, size, err);
+}
+
+/* expand's work on text (errors at field off of h).  series_only (a legend
+ * label): only the SERIES.* placeholders are filled, every other brace kept
+ * as written for hy_scene_expand's {section.key}. */
+static int expand_text(const hy_scene_run *r, const char *text, const hy_decl_head *h, size_t off, int series_only,
+                       char *out, size_t size, hy_error *err)
+{
     size_t o = 0;
     for (const char *c = text; *c && o + 1 < size;) {
         if (*c != '{') {
@@ -92,7 +103,7 @@ static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out,
         }
         const char *e = strchr(c, '}');
         if (!e)
-            return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
+            return hy_decl_error(h, off, err, HY_EINVAL,
                                  "unterminated '{' in annotation text (no '}' after it)");
         char key[48];
         size_t klen = (size_t)(e - c - 1);
@@ -100,8 +111,16 @@ static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out,
         /* a group of any length is markup; a placeholder name is short */
         int ph = klen < sizeof key ? hy_scene_is_placeholder(key) : memchr(c + 1, '.', klen) != NULL;
         if (ph && klen >= sizeof key)
-            return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
+            return hy_decl_error(h, off, err, HY_EINVAL,
                                  "unknown placeholder {%.40s...}: longer than any placeholder name", key);
+        if (ph && series_only) { /* a legend label: SERIES.* here, the rest by hy_scene_expand */
+            const char *dt = strrchr(key, '.');
+            int found = 0;
+            for (size_t i = 0; dt && i < r->nseries; i++)
+                found |= strlen(r->series[i].name) == (size_t)(dt - key) &&
+                         !strncmp(r->series[i].name, key, (size_t)(dt - key));
+            ph = found;
+        }
         if (!ph) { /* a markup group such as u_{min,2}: kept */
             size_t n = (size_t)(e - c + 1);
             if (o + n >= size)
@@ -146,7 +165,7 @@ static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out,
             }
         }
         if (isnan(v))
-            return hy_decl_error(&a->h, offsetof(hy_decl_annotation, text), err, HY_EINVAL,
+            return hy_decl_error(h, off, err, HY_EINVAL,
                                  "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SERIES.area of a measured or modelled series of one record, SERIES.rms of a modelled one; SECTION.key of a numeric key)",
                                      key, L->nminor);
         char num[64];
@@ -338,10 +357,14 @@ static size_t figure_series(const hy_scene_run *r, hy_scene_fig *st)
         else
             se->colour = (hy_colour){(int)(i % HY_PALETTE_SIZE), {0, 0, 0}};
         se->width = d->width;
-        char *lab = NULL;
+        char *lab = NULL, own[256];
         hy_error e = {0};
-        if (d->label && strchr(d->label, '{') && !hy_scene_expand(r->scene, d->label, &lab, &e)) {
-            snprintf(st->labelbuf[i], sizeof st->labelbuf[i], "%s", lab); /* "\\gamma = {param.g20.value}" */
+        /* {SERIES.rms} and the other run values as in annotations (expand_text),
+           then {section.key} ("\\gamma = {param.g20.value}") */
+        if (d->label && strchr(d->label, '{') &&
+            !expand_text(r, d->label, &d->h, offsetof(hy_decl_series, label), 1, own, sizeof own, &e) &&
+            !hy_scene_expand(r->scene, own, &lab, &e)) {
+            snprintf(st->labelbuf[i], sizeof st->labelbuf[i], "%s", lab);
             se->label = st->labelbuf[i];
         } else if (d->label && d->label[0])
             se->label = d->label;

@@ -233,7 +233,10 @@ static int check_quantities(const hy_scene_run *r, hy_error *err)
 }
 
 /* The [panel NAME] scenes, each loaded as its own run (one level: a panel
- * scene has no panels), read through the scene's path policy. */
+ * scene has no panels), read through the scene's path policy; a panel file
+ * the scene names (not --set) reads, besides what lies below its own
+ * directory, what lies below the scene's (its include dir): a panel in
+ * scenes/ferrite/ includes "../style.scene" and reads "../data/...". */
 static int load_panels(hy_scene_run *r, hy_error *err)
 {
     size_t n = r->doc.npanel;
@@ -249,7 +252,16 @@ static int load_panels(hy_scene_run *r, hy_error *err)
         int user, rc = hy_scene_read_path(r->scene, "panel", name, "scene", &text, &len, &user, err);
         if (rc)
             return rc;
-        rc = hy_scene_run_load_text(&r->panels[i], path, text, len, NULL, 0, NULL, err);
+        char dir[4200];
+        const char *slash = r->path ? strrchr(r->path, '/') : NULL, *dirs[1] = {dir};
+        if (slash == r->path) /* "/x.scene": the root */
+            snprintf(dir, sizeof dir, "/");
+        else
+            snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - r->path) : 1, slash ? r->path : ".");
+        hy_scene_policy pol = hy_scene_policy_default();
+        if (!user)
+            pol.include_dirs = dirs, pol.ninclude_dirs = 1;
+        rc = hy_scene_run_load_text(&r->panels[i], path, text, len, NULL, 0, &pol, err);
         free(text);
         if (rc)
             return rc;

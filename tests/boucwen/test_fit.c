@@ -153,7 +153,7 @@ static void same_as_cli(const char *hv)
     hy_bwfit_train_free(&tr);
 }
 
-/* Without --benchmark the command says what is missing and exits 2. */
+/* Without --benchmark and without a scene the command says what is missing and exits 2. */
 static void no_benchmark(const char *hv)
 {
     char cmd[4400], line[512] = "";
@@ -162,7 +162,7 @@ static void no_benchmark(const char *hv)
     if (!f || !fgets(line, sizeof line, f))
         line[0] = 0;
     int st = f ? pclose(f) : -1;
-    CHECK(WIFEXITED(st) && WEXITSTATUS(st) == 2 && strstr(line, "arrives with measured-data series"),
+    CHECK(WIFEXITED(st) && WEXITSTATUS(st) == 2 && strstr(line, "give a SCENE and --free KEY,..."),
           "hystviz fit: status %d, '%s'", st, line);
 }
 

@@ -151,6 +151,60 @@ static void writer(void)
     CHECK(rmdir(dir) == 0, "nothing else left in %s (no temporary): %s", dir, strerror(errno));
 }
 
+/* hy_fit_scene and its readers: NULLs refused or answered as the header says;
+ * one real fit (a play operator, 3 points of known r) read through them. */
+static void fitter(void)
+{
+    hy_error err;
+    hy_scene_fitted *f = (hy_scene_fitted *)&f; /* not NULL: must be set to NULL on error */
+    const char *keys[] = {"play_r"}, *nulls[] = {NULL};
+    REFUSED(hy_fit_scene("x.scene", keys, 1, NULL, 0, 0, 1, 1, NULL, &err), err, "out must not be NULL");
+    CHECK(hy_fit_scene("x.scene", keys, 1, NULL, 0, 0, 1, 1, NULL, NULL) == HY_EINVAL, "fit: out NULL, err NULL");
+    REFUSED(hy_fit_scene(NULL, keys, 1, NULL, 0, 0, 1, 1, &f, &err), err, "a scene path and 1 to 16 free keys");
+    CHECK(f == NULL, "fit: *out NULL after an error");
+    REFUSED(hy_fit_scene("x.scene", NULL, 1, NULL, 0, 0, 1, 1, &f, &err), err, "1 to 16 free keys");
+    REFUSED(hy_fit_scene("x.scene", keys, 0, NULL, 0, 0, 1, 1, &f, &err), err, "1 to 16 free keys");
+    REFUSED(hy_fit_scene("x.scene", keys, 17, NULL, 0, 0, 1, 1, &f, &err), err, "1 to 16 free keys");
+    REFUSED(hy_fit_scene("x.scene", nulls, 1, NULL, 0, 0, 1, 1, &f, &err), err, "free_keys[0] is NULL");
+    REFUSED(hy_fit_scene("x.scene", keys, 1, nulls, 1, 0, 1, 1, &f, &err), err, "data[0] is NULL");
+    REFUSED(hy_fit_scene("x.scene", keys, 1, NULL, 0, 0, 1, 0, &f, &err), err, "jobs must be 1 to 64");
+    REFUSED(hy_fit_scene("x.scene", keys, 1, NULL, 0, 0, 1, 65, &f, &err), err, "jobs must be 1 to 64");
+    size_t len = 7;
+    CHECK(hy_scene_fitted_array(NULL, "theta", &len) == NULL && len == 0, "fitted_array(NULL)");
+    CHECK(isnan(hy_scene_fitted_stat(NULL, "rms")) && !hy_scene_fitted_key(NULL, 0) && !hy_scene_fitted_data(NULL, 0) &&
+              !hy_scene_fitted_text(NULL), "fitted readers of NULL");
+    hy_scene_fitted_free(NULL);
+    char dir[4200], csv[4300], sc[4300];
+    test_tmppath(dir, sizeof dir, "");
+    snprintf(csv, sizeof csv, "%s/p.csv", dir);
+    snprintf(sc, sizeof sc, "%s/p.scene", dir);
+    FILE *fp = fopen(csv, "w");
+    fputs("u,y\n0,0\n1,0.7\n-1,-0.7\n0.5,0.2\n", fp); /* play r = 0.3 from y0 = 0 */
+    fclose(fp);
+    fp = fopen(sc, "w");
+    fputs("[model]\nkind = play\nplay_r = 0.25\n[data d]\nfile = \"p.csv\"\nu = u\ny = y\n[input]\nkind = data\n"
+          "data = d\n[figure]\nkind = loop\n[series m]\ndata = modelled\nof = d\n", fp);
+    fclose(fp);
+    int rc = hy_fit_scene(sc, keys, 1, NULL, 0, 0, 1, 1, &f, &err);
+    CHECK(rc == 0 && f, "fit of play: %s", rc ? err.msg : "");
+    if (!rc) {
+        const double *th = hy_scene_fitted_array(f, "theta", &len);
+        CHECK(th && len == 1 && fabs(th[0] - 0.3) < 1e-9, "play_r %g", th ? th[0] : NAN);
+        CHECK(hy_scene_fitted_array(f, "resid", &len) && len == 4, "resid: %zu", len);
+        CHECK(hy_scene_fitted_array(f, "corr", &len) && len == 1, "corr: %zu", len);
+        CHECK(hy_scene_fitted_array(f, "nosuch", &len) == NULL && len == 0, "unknown array");
+        CHECK(hy_scene_fitted_array(f, NULL, NULL) == NULL && hy_scene_fitted_array(f, "u", NULL) != NULL, "len NULL");
+        CHECK(isnan(hy_scene_fitted_stat(f, "nosuch")) && isnan(hy_scene_fitted_stat(f, NULL)) &&
+                  hy_scene_fitted_stat(f, "rms") < 1e-9, "stats");
+        CHECK(!strcmp(hy_scene_fitted_key(f, 0), "play_r") && !hy_scene_fitted_key(f, 1) &&
+                  !strcmp(hy_scene_fitted_data(f, 0), "d") && !hy_scene_fitted_data(f, 1), "key and data names");
+        CHECK(strstr(hy_scene_fitted_text(f), "play_r = 0.3") != NULL, "fitted text: %s", hy_scene_fitted_text(f));
+    }
+    hy_scene_fitted_free(f);
+    unlink(csv);
+    unlink(sc);
+}
+
 int main(void)
 {
     makers();
@@ -161,5 +215,6 @@ int main(void)
     }
     hy_result_free(r);
     writer();
+    fitter();
     return tu_finish("contracts");
 }

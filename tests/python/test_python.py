@@ -249,4 +249,42 @@ with tempfile.TemporaryDirectory() as td:
     except hystviz.SceneError as e:
         check(str(e).startswith(bad + ":3:3: column 2 is not a finite number"), f"read_data refusal: {e}")
 
+# fit: hystviz.fit against `hystviz fit -o` (issue 32 item 6): the same estimates,
+# standard errors and RMS bit for bit (the fitted scene writes them %.17g), the
+# same fitted scene text; the residuals are model - measured; a bad key raises
+with tempfile.TemporaryDirectory() as td:
+    with open(os.path.join(td, "p.csv"), "w") as f:
+        f.write("u,y\n")
+        y = 0.0
+        for i in range(61):
+            x = i / 60 * 4
+            u = x if x < 1 else 2 - x if x < 3 else x - 4
+            y = u - 0.3 if u - y > 0.3 else u + 0.3 if y - u > 0.3 else y
+            f.write(f"{u!r},{y + 0.01 * math.sin(7 * i)!r}\n")
+    sc = os.path.join(td, "p.scene")
+    with open(sc, "w") as f:
+        f.write("[model]\nkind = play\nplay_r = 0.2\nplay_y0 = 0.1\n[data d]\nfile = \"p.csv\"\nu = u\ny = y\n"
+                "[input]\nkind = data\ndata = d\n[figure]\nkind = loop\n[series m]\ndata = modelled\nof = d\n")
+    out = os.path.join(td, "fitted.scene")
+    cli("fit", sc, "--free", "play_r,play_y0", "--starts", "3", "--seed", "5", "-j", "1", "-q", "-o", out)
+    with open(out) as f:
+        text = f.read()
+    fr = hystviz.fit(sc, free=["play_r", "play_y0"], starts=3, seed=5)
+    vals = {ln.split(" = ")[0]: float(ln.split(" = ")[1]) for ln in text.splitlines() if " = " in ln and
+            ln.startswith("play_")}
+    ses = {ln.split()[1]: float(ln.split()[2]) for ln in text.splitlines() if ln.startswith("#   play_")}
+    rms = float(text.splitlines()[0].split("RMS ")[1].split()[0])
+    check(fr.keys == ["play_r", "play_y0"], f"fit keys {fr.keys}")
+    check([vals[k] for k in fr.keys] == list(fr.estimates), f"fit estimates = hystviz fit's bit for bit: {fr.estimates}")
+    check([ses[k] for k in fr.keys] == list(fr.std_errors), f"fit standard errors bit for bit: {fr.std_errors}")
+    check(rms == fr.rms and fr.scene_text == text, f"fit RMS {fr.rms} and the fitted scene's text = the CLI's")
+    check(abs(fr.estimates[0] - 0.3) < 3 * fr.std_errors[0], f"play_r {fr.estimates[0]} within 3 SE of 0.3")
+    check(np.array_equal(fr.residuals, fr.model - fr.measured) and fr.u.shape == (61,) and fr.correlation.shape == (2, 2)
+          and list(fr.offsets) == [0, 61] and fr.data == ["d"], "fit residuals = model - measured; shapes")
+    try:
+        hystviz.fit(sc, free="nosuch")
+        check(False, "fit accepted an unknown key")
+    except hystviz.SceneError as e:
+        check("[model] has no key 'nosuch'" in str(e), f"fit refusal: {e}")
+
 sys.exit(1 if fails else 0)

@@ -389,7 +389,7 @@ static void refusals(void)
     if (!rc)
         hy_scene_run_free(&r);
     refused("[model]\nkind = jiles-atherton\nja_c = 1\n[series a]\ndata = input\n", 1,
-            "bad.scene:3:8: 'ja_c' in [model] must be in [0, 1)");
+            "bad.scene:3:1: ja_c: Jiles-Atherton c (reversibility) must be in [0, 1) for jiles1986");
     refused("[model]\nkind = jiles-atherton\nja_alpha = 0.01\n[series a]\ndata = input\n", 1,
             "bad.scene:3:1: ja_alpha: Jiles-Atherton alpha = 0.01 is too large");
     refused("[model]\nkind = jiles-atherton\nja_m0 = 2e6\n[series a]\ndata = input\n", 1,

@@ -29,7 +29,8 @@ import numpy as np
 from . import _lib
 
 __all__ = ["SceneError", "Model", "Input", "models", "Result", "Figure", "MinorLoop", "run", "render", "steady_loop",
-           "limit", "ygamma", "kcycles", "minor_loops", "schema", "boucwen", "read_data", "loop_area", "__version__"]
+           "limit", "ygamma", "kcycles", "minor_loops", "schema", "boucwen", "read_data", "loop_area", "fit", "FitResult",
+           "__version__"]
 
 __version__ = _lib.version().decode()
 
@@ -486,3 +487,70 @@ def minor_loops(model, input):
 
 
 from . import boucwen  # noqa: E402  (uses the names above)
+
+
+class FitResult:
+    """What fit() returns: the numbers `hystviz fit` prints, bit for bit.
+
+    keys: the free [model] keys; estimates, std_errors, ci_low, ci_high,
+    start, lower, upper (per key, numpy arrays); unidentifiable (per key: 0,
+    or 1 a direction the data do not see | 2 an error wider than the range);
+    correlation (p x p); u, measured, model, residuals (per measured point,
+    the data sets one after another; residual = model - measured); data (the
+    [data] names) and offsets (where each begins in those arrays); rss, rms,
+    nrms, max_abs, fit_index, cond, dof, iterations, evaluations, seconds,
+    starts, failed; scene_text (the scene with the estimates written in).
+    """
+
+    _arrays = {"estimates": "theta", "std_errors": "se", "ci_low": "ci_lo", "ci_high": "ci_hi", "start": "start",
+               "lower": "lo", "upper": "hi", "unidentifiable": "unident", "u": "u", "measured": "y",
+               "model": "model", "residuals": "resid"}
+    _stats = ("rss", "rms", "nrms", "max_abs", "fit_index", "cond", "dof", "iterations", "evaluations", "seconds",
+              "starts", "failed")
+
+    def __init__(self, h):
+        def arr(name):
+            n = ctypes.c_size_t()
+            p = _lib.fitted_array(h, name.encode(), ctypes.byref(n))
+            return _array(p, n.value) if n.value else np.empty(0)
+
+        for attr, name in self._arrays.items():
+            setattr(self, attr, arr(name))
+        self.unidentifiable = self.unidentifiable.astype(int)
+        p = len(self.estimates)
+        self.correlation = arr("corr").reshape(p, p)
+        self.offsets = arr("offsets").astype(int)
+        for s in self._stats:
+            v = _lib.fitted_stat(h, s.encode())
+            setattr(self, s, int(v) if s in ("dof", "iterations", "evaluations", "starts", "failed") else v)
+        self.keys = [_lib.fitted_key(h, j).decode() for j in range(p)]
+        self.data = [_lib.fitted_data(h, j).decode() for j in range(len(self.offsets) - 1)]
+        self.scene_text = _lib.fitted_text(h).decode()
+
+    def __repr__(self):
+        est = ", ".join(f"{k}={v:.6g}\u00b1{s:.2g}" for k, v, s in zip(self.keys, self.estimates, self.std_errors))
+        return f"<hystviz.FitResult {est}; RMS {self.rms:.4g}>"
+
+
+def fit(scene, free, data=None, starts=0, seed=1, jobs=1):
+    """Fits the [model] keys free (a list, or "a,b") of the scene file to its
+    measured data: `hystviz fit SCENE --free ... [--data ...] --starts N
+    --seed S -j J` as a call (docs/FIT.md).  data: the [data] names fitted at
+    once (default: the one [input] names).  Returns a FitResult; a bad key
+    or data file raises SceneError with the command's message."""
+    keys = free.split(",") if isinstance(free, str) else list(free)
+    names = [] if data is None else (data.split(",") if isinstance(data, str) else list(data))
+    ek = [_text_param("free key", k).encode() for k in keys]
+    ed = [_text_param("data name", d).encode() for d in names]
+    path = os.fsencode(scene)
+    if b"\0" in path:
+        raise ValueError(f"hystviz: a NUL byte is not allowed in a scene path (got {scene!r})")
+    h = ctypes.c_void_p()
+    err = _lib.Error()
+    rc = _lib.fit_scene(path, _carray(ek), len(ek), _carray(ed) if ed else None, len(ed), int(starts), int(seed),
+                        int(jobs), ctypes.byref(h), ctypes.byref(err))
+    _check(rc, err)
+    try:
+        return FitResult(h.value)
+    finally:
+        _lib.fitted_free(h.value)

@@ -100,6 +100,15 @@ csv = _sig("hy_result_csv", ctypes.c_int, _vp, ctypes.POINTER(ctypes.c_void_p), 
 write_file = _sig("hy_write_file", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, _sz, _E)
 schema_json = _sig("hy_schema_json", ctypes.c_void_p)
 boucwen_run = _sig("hy_boucwen_run", ctypes.c_int, _dp, _sz, ctypes.c_double, _dp, _E)
+fit_scene = _sig("hy_fit_scene", ctypes.c_int, ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p), _sz,
+                 ctypes.POINTER(ctypes.c_char_p), _sz, _sz, ctypes.c_ulonglong, ctypes.c_int,
+                 ctypes.POINTER(ctypes.c_void_p), _E)
+fitted_free = _sig("hy_scene_fitted_free", None, _vp)
+fitted_array = _sig("hy_scene_fitted_array", _dp, _vp, ctypes.c_char_p, ctypes.POINTER(_sz))
+fitted_stat = _sig("hy_scene_fitted_stat", ctypes.c_double, _vp, ctypes.c_char_p)
+fitted_key = _sig("hy_scene_fitted_key", ctypes.c_char_p, _vp, _sz)
+fitted_data = _sig("hy_scene_fitted_data", ctypes.c_char_p, _vp, _sz)
+fitted_text = _sig("hy_scene_fitted_text", ctypes.c_char_p, _vp)
 table_parse = _sig("hy_table_parse", ctypes.c_int, ctypes.c_char_p, _sz, ctypes.c_char_p, ctypes.POINTER(TableSpec),
                    ctypes.c_int, ctypes.POINTER(Table), _E)
 table_free = _sig("hy_table_free", None, ctypes.POINTER(Table))
