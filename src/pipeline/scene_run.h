@@ -136,6 +136,7 @@ typedef struct hy_scene_run {
                                * HY_ECANCEL (serve: the client has gone)          */
     void *cancel_ctx;         /* the argument cancelled is called with            */
     double seconds_compute;
+    struct hy_scene_forc *forc; /* [figure] kind = forc: its data and grid (scene_forc.h) */
 } hy_scene_run;
 
 /* Parses the scene, applies the overrides ("section.key=value") and builds the

@@ -1,0 +1,323 @@
+/* SPDX-License-Identifier: MIT */
+/* scene_forc.c: [figure] kind = forc: the FORC protocol (docs/FORC.md, "The
+ * protocol on a model") on any rate-independent model of the model table (its
+ * hy_rateind_type) or on the γ → ∞ limit y*_u of Dahl/LuGre/the filter system
+ * (seed 000, Theorem 2: y*_u depends only on the input's values, one
+ * hy_limit_step per monotone move), or a measured FORC file ([forc] file);
+ * then ρ by hy_forc_rho and the heat map by hy_forc_plot.  Generic through
+ * the table: no model is named here. */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "hy_forc.h"
+#include "hy_forc_plot.h"
+#include "hy_limit.h"
+#include "hy_out.h"
+#include "hy_scene_policy.h"
+#include "scene_forc.h"
+#include "scene_model.h"
+
+#define FORC_FILE_MAX ((size_t)64 << 20) /* bytes of a FORC file read (as hystviz forc) */
+
+struct hy_scene_forc {
+    hy_forc_data d;
+    hy_forc_grid g;
+    hy_forc_opts o;
+    int have_d, have_g;
+    double seconds_data, seconds_rho;
+    size_t nfit;
+};
+
+/* The y*_u limit as a rate-independent model: y after each monotone move. */
+typedef struct ystar_ctx {
+    double a, g0, u, y;
+} ystar_ctx;
+
+static int ystar_fn(void *ctx, double u, double *y, hy_error *err)
+{
+    (void)err;
+    ystar_ctx *c = ctx;
+    if (u != c->u)
+        c->y = hy_limit_step(c->a, c->g0, c->y, u > c->u ? 1 : -1, fabs(u - c->u));
+    c->u = u;
+    *y = c->y;
+    return HY_OK;
+}
+
+static int ri_fn(void *ctx, double u, double *y, hy_error *err)
+{
+    hy_rateind *m = ctx;
+    int rc = hy_rateind_apply(m, u, err);
+    *y = m->out[0];
+    return rc;
+}
+
+static const hy_decl_forc *decl(const hy_scene_run *r) { return &r->doc.forc; }
+
+#define AT(field) offsetof(hy_decl_forc, field)
+
+static int has_file(const hy_scene_run *r) { return hy_decl_got(&decl(r)->h, AT(file)) >= 0; }
+
+/* The protocol of [forc] (defaults filled in), checked at its keys. */
+static int protocol(const hy_scene_run *r, hy_forc_protocol *pr, hy_error *err)
+{
+    const hy_decl_forc *f = decl(r);
+    double lo = f->range.v[0], hi = f->range.v[1];
+    pr->ha_lo = lo;
+    pr->ha_hi = hi;
+    pr->hb_max = hy_decl_got(&f->h, AT(hb_max)) >= 0 ? f->hb_max : hi;
+    pr->hsat = hy_decl_got(&f->h, AT(hsat)) >= 0 ? f->hsat : hi + (hi - lo);
+    pr->ncurves = (size_t)f->curves;
+    if (!(pr->hb_max >= hi))
+        return hy_decl_error(&f->h, AT(hb_max), err, HY_EINVAL, "hb_max = %g is below the range's upper end %g",
+                             pr->hb_max, hi);
+    if (!(pr->hsat >= pr->hb_max))
+        return hy_decl_error(&f->h, AT(hsat), err, HY_EINVAL, "hsat = %g is below hb_max = %g: no saturation",
+                             pr->hsat, pr->hb_max);
+    return HY_OK;
+}
+
+/* The measured file of [forc] file, read under the scene's file policy. */
+static int read_file(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
+{
+    const hy_decl_forc *f = decl(r);
+    char *text;
+    size_t len;
+    int user, rc = hy_scene_read_path_max(r->scene, "forc", NULL, "file", FORC_FILE_MAX, &text, &len, &user, err);
+    if (rc)
+        return rc;
+    rc = hy_forc_read(&F->d, text, len, f->file, err); /* file:line:col of the FORC file */
+    free(text);
+    if (rc)
+        return rc;
+    F->have_d = 1;
+    if (f->drift && (rc = hy_forc_drift(&F->d, err)))
+        return hy_decl_error(&f->h, AT(drift), err, rc, "%s: %s", f->file, err->msg);
+    return HY_OK;
+}
+
+int hy_scene_forc_load(hy_scene_run *r, hy_error *err)
+{
+    const hy_decl_forc *f = decl(r);
+    if (r->doc.nseries)
+        return hy_decl_error(&r->doc.series[0].h, HY_DECL_HEAD, err, HY_EINVAL,
+                             "a [figure] kind = forc draws the FORC diagram of [forc], not [series]");
+    if (r->doc.nannotation || r->doc.npanel)
+        return hy_decl_error(r->doc.nannotation ? &r->doc.annotation[0].h : &r->doc.panel[0].h, HY_DECL_HEAD, err,
+                             HY_EINVAL, "a [figure] kind = forc draws its FORC diagram alone: no [%s] (not drawn)",
+                             r->doc.nannotation ? "annotation" : "panel");
+    if (!(r->forc = calloc(1, sizeof *r->forc)))
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    hy_scene_forc *F = r->forc;
+    F->o = hy_forc_defaults();
+    F->o.sf = f->sf;
+    F->o.extend = f->extend;
+    if (f->sc1 > 0) {
+        if (!(f->sc1 >= 1))
+            return hy_decl_error(&f->h, AT(sc1), err, HY_EINVAL, "sc1 = %g: 0 (off) or at least 1", f->sc1);
+        F->o.sc0 = f->sc0;
+        F->o.sc1 = f->sc1;
+    }
+    if (has_file(r))
+        return read_file(r, F, err);
+    hy_forc_protocol pr;
+    int rc = protocol(r, &pr, err);
+    if (rc)
+        return rc;
+    const hy_scene_model *mt = r->mtype;
+    if (mt->ri) {
+        if (!(r->ri_par = calloc(1, mt->ri_par_size)))
+            return hy_error_set(err, HY_ENOMEM, "out of memory");
+        return mt->read(&r->doc.model, r->ri_par, err);
+    }
+    if (mt->caps & HY_CAP_YSTAR) /* Dahl, LuGre, the filter system: their limit y*_u */
+        return hy_scene_run_build_model(r, err);
+    return hy_decl_error(&r->doc.model.h, offsetof(hy_decl_model, kind), err, HY_EINVAL,
+                         "a FORC diagram needs a rate-independent model or one with the limit y*_u; %s has neither",
+                         mt->name);
+}
+
+int hy_scene_forc_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
+{
+    (void)err;
+    const hy_decl_forc *f = decl(r);
+    double n = has_file(r) ? (double)r->forc->d.npoints : 0.5 * (double)f->curves * (double)f->curves;
+    double sf = f->sc1 > 0 ? fmax(f->sc0, f->sc1) : f->sf;
+    *work = n * (1 + 0.01 * (2 * sf + 1) * (2 * sf + 1)); /* the moves, and the regression's dot products */
+    if (what && size)
+        snprintf(what, size, "%.0f FORC points, SF %g", n, sf);
+    return HY_OK;
+}
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* The protocol on the model into F->d. */
+static int run_protocol(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
+{
+    hy_forc_protocol pr;
+    int rc = protocol(r, &pr, err);
+    if (rc)
+        return rc;
+    if (r->mtype->ri) {
+        hy_rateind m;
+        if ((rc = hy_rateind_alloc(&m, r->mtype->ri, r->ri_par, pr.hsat, err)))
+            return hy_scene_model_relocate(&r->doc.model, r->mtype, rc, err);
+        rc = hy_forc_protocol_run(&F->d, &pr, ri_fn, &m, err);
+        hy_rateind_free(&m);
+    } else {
+        double g0 = hy_model_g0(&r->model), a = hy_model_a(&r->model);
+        if ((rc = hy_model_validate(&r->model, err)))
+            return hy_decl_error(&r->doc.model.h, HY_DECL_HEAD, err, rc, "%s", err->msg);
+        if (!(isfinite(a) && a > 0 && isfinite(g0) && g0 > 0))
+            return hy_decl_error(&r->doc.model.h, HY_DECL_HEAD, err, HY_EINVAL,
+                                 "sigma0/g(0) = %g/%g is not a finite positive number", r->model.sigma0, g0);
+        ystar_ctx c = {a, g0, pr.hsat, g0}; /* positive saturation at hsat */
+        rc = hy_forc_protocol_run(&F->d, &pr, ystar_fn, &c, err);
+    }
+    if (rc)
+        return hy_decl_error(&decl(r)->h, HY_DECL_HEAD, err, rc, "%s", err->msg);
+    F->have_d = 1;
+    return HY_OK;
+}
+
+int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
+{
+    hy_scene_forc *F = r->forc;
+    double t0 = now();
+    int rc = HY_OK;
+    if (!F->have_d)
+        rc = run_protocol(r, F, err);
+    double t1 = now();
+    if (!rc) {
+        hy_forc_grid_auto(&F->d, &F->o, &F->g);
+        F->have_g = 1;
+        if ((rc = hy_forc_rho(&F->d, &F->o, &F->g, &F->nfit, err)))
+            rc = hy_decl_error(&decl(r)->h, HY_DECL_HEAD, err, rc, "%s", err->msg);
+    }
+    F->seconds_data = t1 - t0;
+    F->seconds_rho = now() - t1;
+    r->seconds_compute = F->seconds_data + F->seconds_rho;
+    if (!rc && log) {
+        double da, db;
+        hy_forc_steps(&F->d, &da, &db);
+        fprintf(log, "%s: FORC %s: %zu curves, %zu points, steps %.6g / %.6g, %s %.3f ms; rho on %zu x %zu nodes "
+                "(%zu fitted) %.3f ms\n", r->path, has_file(r) ? decl(r)->file : r->mtype->name, F->d.ncurves,
+                F->d.npoints, da, db, has_file(r) ? "read" : "protocol", 1e3 * F->seconds_data, F->g.nc, F->g.nu,
+                F->nfit, 1e3 * F->seconds_rho);
+    }
+    return rc;
+}
+
+/* The plot's options: [forc] scale and units, [figure] size and dpi. */
+static hy_forc_plot_opts plot_opts(const hy_scene_run *r)
+{
+    const hy_decl_forc *f = decl(r);
+    const hy_scene_forc *F = r->forc;
+    hy_forc_plot_opts po = hy_forc_plot_defaults();
+    po.width = r->doc.figure.size[0];
+    po.height = r->doc.figure.size[1];
+    po.dpi = (double)r->doc.figure.dpi;
+    po.vmax = f->vmax;
+    if (!(po.vmax > 0)) {
+        double da, db, sf = F->o.sc1 > 0 ? F->o.sc0 : F->o.sf;
+        hy_forc_steps(&F->d, &da, &db);
+        po.vmax = hy_forc_plot_max(&F->g, F->o.extend ? (sf + 0.5) * db : -INFINITY);
+        if (!(po.vmax > 0))
+            po.vmax = hy_forc_plot_max(&F->g, -INFINITY);
+    }
+    if (has_file(r)) {
+        po.field_to_mt = isfinite(F->d.field_to_tesla) ? 1e3 * F->d.field_to_tesla : 0;
+        po.rho_unit = F->d.units == HY_FORC_UNITS_HYBRID_SI ? "A m²/T²"
+                      : F->d.units == HY_FORC_UNITS_CGS     ? "emu/Oe²"
+                      : F->d.units == HY_FORC_UNITS_SI      ? "A m²/(A/m)²"
+                                                            : "";
+    } else {
+        po.field_to_mt = 1e3 * f->field_to_tesla;
+        po.rho_unit = f->rho_unit;
+    }
+    return po;
+}
+
+int hy_scene_forc_draw(const hy_scene_run *r, FILE *fp, int format, hy_error *err)
+{
+    if (!r->forc || !r->forc->have_g || !r->forc->g.rho)
+        return hy_error_set(err, HY_EINVAL, "%s: the FORC diagram is not computed", r->path);
+    hy_forc_plot_opts po = plot_opts(r);
+    return hy_forc_plot_write(&r->forc->g, &po, fp, format, err);
+}
+
+int hy_scene_forc_render(const hy_scene_run *r, int format, unsigned char **buf, size_t *len, hy_error *err)
+{
+    char *b = NULL;
+    size_t n = 0;
+    FILE *fp = open_memstream(&b, &n);
+    if (!fp)
+        return hy_error_set(err, HY_ENOMEM, "out of memory for the figure");
+    int rc = hy_scene_forc_draw(r, fp, format, err);
+    if (fclose(fp) && !rc)
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory for the figure");
+    if (rc) {
+        free(b);
+        return rc;
+    }
+    *buf = (unsigned char *)b;
+    *len = n;
+    return HY_OK;
+}
+
+int hy_scene_forc_write_all(const hy_scene_run *r, char (*paths)[4400], const int *fmt, size_t nf, hy_error *err)
+{
+    hy_out out[HY_FORMAT_COUNT];
+    size_t opened = 0;
+    int rc = HY_OK;
+    for (size_t i = 0; i < nf && !rc; i++)
+        if (!(rc = hy_out_open(&out[i], paths[i], HY_OUT_HOLD, err))) {
+            opened++;
+            if (!(rc = hy_scene_forc_draw(r, hy_out_file(&out[i]), fmt[i], err)))
+                rc = hy_out_finish(&out[i], err);
+        }
+    for (size_t i = 0; i < opened && !rc; i++)
+        if ((rc = hy_out_publish(&out[i], err)) && i)
+            hy_error_prefix(err, "only %zu of the %zu files were replaced", i, nf);
+    for (size_t i = 0; i < opened; i++)
+        hy_out_abort(&out[i]); /* no-op once published */
+    return rc;
+}
+
+void hy_scene_forc_data(const hy_scene_run *r, FILE *out)
+{
+    const hy_forc_grid *g = &r->forc->g;
+    fprintf(out, "hc,hu,rho\n"); /* as hystviz forc -o writes it */
+    double dc = g->nc > 1 ? (g->hc1 - g->hc0) / (double)(g->nc - 1) : 0;
+    double du = g->nu > 1 ? (g->hu1 - g->hu0) / (double)(g->nu - 1) : 0;
+    for (size_t iu = 0; g->rho && iu < g->nu; iu++)
+        for (size_t ic = 0; ic < g->nc; ic++) {
+            double v = g->rho[iu * g->nc + ic];
+            fprintf(out, "%.10g,%.10g,", g->hc0 + (double)ic * dc, g->hu0 + (double)iu * du);
+            if (isfinite(v))
+                fprintf(out, "%.17g\n", v);
+            else
+                fputs("nan\n", out);
+        }
+}
+
+void hy_scene_forc_free(hy_scene_run *r)
+{
+    hy_scene_forc *F = r->forc;
+    if (!F)
+        return;
+    if (F->have_d)
+        hy_forc_data_free(&F->d);
+    if (F->have_g)
+        hy_forc_grid_free(&F->g);
+    free(F);
+    r->forc = NULL;
+}
