@@ -16,6 +16,7 @@
 #include "hy_forc_plot.h"
 #include "hy_limit.h"
 #include "hy_out.h"
+#include "hy_preisach_table.h"
 #include "hy_scene_policy.h"
 #include "scene_forc.h"
 #include "scene_model.h"
@@ -29,6 +30,10 @@ struct hy_scene_forc {
     int have_d, have_g;
     double seconds_data, seconds_rho;
     size_t nfit;
+    double *m_model;          /* reproduce: the tabulated Preisach model's M at the data's points */
+    double rms, offset;
+    size_t ntable, nclipped;
+    char legend[2][160];      /* draw = curves: the two labels */
 };
 
 /* The y*_u limit as a rate-independent model: y after each monotone move. */
@@ -80,17 +85,26 @@ static int protocol(const hy_scene_run *r, hy_forc_protocol *pr, hy_error *err)
     return HY_OK;
 }
 
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
 /* The measured file of [forc] file, read under the scene's file policy. */
 static int read_file(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
 {
     const hy_decl_forc *f = decl(r);
     char *text;
     size_t len;
+    double t0 = now();
     int user, rc = hy_scene_read_path_max(r->scene, "forc", NULL, "file", FORC_FILE_MAX, &text, &len, &user, err);
     if (rc)
         return rc;
     rc = hy_forc_read(&F->d, text, len, f->file, err); /* file:line:col of the FORC file */
     free(text);
+    F->seconds_data = now() - t0;
     if (rc)
         return rc;
     F->have_d = 1;
@@ -152,12 +166,6 @@ int hy_scene_forc_estimate(const hy_scene_run *r, double *work, char *what, size
     return HY_OK;
 }
 
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* The protocol on the model into F->d. */
 static int run_protocol(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
@@ -188,12 +196,38 @@ static int run_protocol(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
     return HY_OK;
 }
 
+/* max M − min M of the data (1 when flat). */
+static double m_range(const hy_forc_data *d)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t k = 0; k < d->npoints; k++)
+        lo = fmin(lo, d->m[k]), hi = fmax(hi, d->m[k]);
+    return hi > lo ? hi - lo : 1;
+}
+
+/* [forc] reproduce: ρ clipped as a tabulated Preisach density, its FORCs. */
+static int reproduce(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
+{
+    hy_preisach_table t;
+    int rc = hy_preisach_table_from_grid(&t, &F->g, err);
+    if (!rc && !(F->m_model = malloc(F->d.npoints * sizeof *F->m_model)))
+        rc = hy_error_set(err, HY_ENOMEM, "out of memory");
+    if (!rc)
+        rc = hy_preisach_table_forc(&t, &F->d, F->m_model, &F->rms, &F->offset, err);
+    F->ntable = t.n;
+    F->nclipped = t.nclipped;
+    hy_preisach_table_free(&t);
+    if (rc)
+        return hy_decl_error(&decl(r)->h, AT(reproduce), err, rc, "%s", err->msg);
+    return HY_OK;
+}
+
 int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
     hy_scene_forc *F = r->forc;
     double t0 = now();
-    int rc = HY_OK;
-    if (!F->have_d)
+    int rc = HY_OK, read = F->have_d;
+    if (!read)
         rc = run_protocol(r, F, err);
     double t1 = now();
     if (!rc) {
@@ -202,7 +236,13 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
         if ((rc = hy_forc_rho(&F->d, &F->o, &F->g, &F->nfit, err)))
             rc = hy_decl_error(&decl(r)->h, HY_DECL_HEAD, err, rc, "%s", err->msg);
     }
-    F->seconds_data = t1 - t0;
+    if (!rc && decl(r)->reproduce)
+        rc = reproduce(r, F, err);
+    snprintf(F->legend[0], sizeof F->legend[0], "%s", has_file(r) ? "measured" : r->mtype->name);
+    if (!rc && F->m_model)
+        snprintf(F->legend[1], sizeof F->legend[1], "Preisach, density ρ ≥ 0: RMS of M %.2g %% of its range", 100 * F->rms / m_range(&F->d));
+    if (!read)
+        F->seconds_data = t1 - t0;
     F->seconds_rho = now() - t1;
     r->seconds_compute = F->seconds_data + F->seconds_rho;
     if (!rc && log) {
@@ -212,6 +252,10 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
                 "(%zu fitted) %.3f ms\n", r->path, has_file(r) ? decl(r)->file : r->mtype->name, F->d.ncurves,
                 F->d.npoints, da, db, has_file(r) ? "read" : "protocol", 1e3 * F->seconds_data, F->g.nc, F->g.nu,
                 F->nfit, 1e3 * F->seconds_rho);
+        if (F->m_model)
+            fprintf(log, "%s: FORC Preisach density from rho (%zu nodes > 0, %zu negative clipped to 0): RMS of M over "
+                    "all %zu points %.6g (%.3g %% of the range of M), saturation output %.6g\n", r->path, F->ntable,
+                    F->nclipped, F->d.npoints, F->rms, 100 * F->rms / m_range(&F->d), F->offset);
     }
     return rc;
 }
@@ -246,10 +290,80 @@ static hy_forc_plot_opts plot_opts(const hy_scene_run *r)
     return po;
 }
 
+/* draw = curves: M(H_b) of every curve (NaN between curves), measured and,
+ * with reproduce, the tabulated Preisach model's; *fig points into st. */
+typedef struct curves_fig {
+    double *x, *y, *ym;
+    hy_series s[2];
+    hy_axes ax;
+    hy_figure fig;
+    char xlabel[64];
+} curves_fig;
+
+static int curves_figure(const hy_scene_run *r, curves_fig *c, hy_error *err)
+{
+    const hy_scene_forc *F = r->forc;
+    const hy_forc_data *d = &F->d;
+    const hy_decl_figure *df = &r->doc.figure;
+    memset(c, 0, sizeof *c);
+    size_t n = d->npoints + d->ncurves;
+    c->x = malloc(n * sizeof *c->x);
+    c->y = malloc(n * sizeof *c->y);
+    c->ym = malloc(n * sizeof *c->ym);
+    if (!c->x || !c->y || !c->ym)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    hy_forc_plot_opts po = plot_opts(r);
+    double f = po.field_to_mt > 0 ? po.field_to_mt : 1;
+    size_t k = 0;
+    for (size_t i = 0; i < d->ncurves; i++) {
+        const hy_forc_curve *cv = &d->curve[i];
+        for (size_t j = cv->first; j < cv->first + cv->n; j++, k++) {
+            c->x[k] = f * d->hb[j];
+            c->y[k] = d->m[j];
+            c->ym[k] = F->m_model ? F->m_model[j] : NAN;
+        }
+        c->x[k] = c->y[k] = c->ym[k] = NAN;
+        k++;
+    }
+    snprintf(c->xlabel, sizeof c->xlabel, "%s", po.field_to_mt > 0 ? "μ_0H_b (mT)" : "H_b");
+    c->s[0] = (hy_series){c->x, c->y, n, HY_LINE_SOLID, {0, {0, 0, 0}}, 0.5, 0, 0, 0, F->legend[0]};
+    c->s[1] = (hy_series){c->x, c->ym, n, HY_LINE_DASHED, {6, {0, 0, 0}}, 0.7, 0, 0, 0, F->legend[1]};
+    c->ax.series = c->s;
+    c->ax.nseries = F->m_model ? 2 : 1;
+    c->ax.xlabel = df->xlabel ? df->xlabel : c->xlabel;
+    c->ax.ylabel = df->ylabel ? df->ylabel : *d->moment_unit ? "M" : "M";
+    c->ax.title = df->title && df->title[0] ? df->title : NULL;
+    c->ax.legend = df->legend;
+    c->ax.grid = df->grid;
+    c->fig = (hy_figure){df->size[0], df->size[1], (double)df->dpi, df->font, df->fontsize, &c->ax, 1, 1,
+                         df->full_resolution, df->theme};
+    return HY_OK;
+}
+
+static void curves_free(curves_fig *c)
+{
+    free(c->x);
+    free(c->y);
+    free(c->ym);
+}
+
 int hy_scene_forc_draw(const hy_scene_run *r, FILE *fp, int format, hy_error *err)
 {
     if (!r->forc || !r->forc->have_g || !r->forc->g.rho)
         return hy_error_set(err, HY_EINVAL, "%s: the FORC diagram is not computed", r->path);
+    if (decl(r)->draw == 1) {
+        curves_fig c;
+        unsigned char *buf = NULL;
+        size_t len = 0;
+        int rc = curves_figure(r, &c, err);
+        if (!rc)
+            rc = hy_figure_render_mem(&c.fig, format, &buf, &len, err);
+        if (!rc && fwrite(buf, 1, len, fp) != len)
+            rc = hy_error_set(err, HY_EIO, "%s: writing the figure: %s", r->path, strerror(errno));
+        free(buf);
+        curves_free(&c);
+        return rc;
+    }
     hy_forc_plot_opts po = plot_opts(r);
     return hy_forc_plot_write(&r->forc->g, &po, fp, format, err);
 }
@@ -318,6 +432,7 @@ void hy_scene_forc_free(hy_scene_run *r)
         hy_forc_data_free(&F->d);
     if (F->have_g)
         hy_forc_grid_free(&F->g);
+    free(F->m_model);
     free(F);
     r->forc = NULL;
 }

@@ -59,6 +59,7 @@ static const char *const bw_quantities[] = {HY_SERIES_QUANTITIES(QUANTITY_NAME) 
 static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {"none", "circle", "square", NULL};
 static const char *const formats[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
+static const char *const forc_draws[] = {"diagram", "curves", NULL};
 static const char *const themes[] = {"paper", "slides", NULL};
 static const char *const zoom_follows[] = {"none", "minor", NULL};
 static const char *const easings[] = {"linear", "smooth", NULL};
@@ -243,6 +244,12 @@ static const hy_scene_key_spec forc_keys[] = {
       "model: mu0 H in T per input unit (1.25663706212e-6 for A/m; 0: the axes in input units, no unit); "
       "a file's own units are used otherwise"),
     F(rho_unit, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"", "model: the unit of rho on the colour bar (a file: from its units)"),
+    F(reproduce, HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false",
+      "take rho, clipped to rho >= 0, as a tabulated Preisach density and compute that model's FORCs at the data's "
+      "points (its saturation output by least squares): render -v prints the RMS of M over all points"),
+    F(draw, HY_KIND_ENUM, forc_draws, NOLIM, 0, 0, "diagram",
+      "diagram: the heat map of rho; curves: the FORCs M(H_b), one line per curve (with reproduce, the tabulated "
+      "Preisach model's dashed over them, its RMS in the legend)"),
 };
 #undef SECT
 
