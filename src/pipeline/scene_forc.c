@@ -408,19 +408,7 @@ int hy_scene_forc_write_all(const hy_scene_run *r, char (*paths)[4400], const in
 
 void hy_scene_forc_data(const hy_scene_run *r, FILE *out)
 {
-    const hy_forc_grid *g = &r->forc->g;
-    fprintf(out, "hc,hu,rho\n"); /* as hystviz forc -o writes it */
-    double dc = g->nc > 1 ? (g->hc1 - g->hc0) / (double)(g->nc - 1) : 0;
-    double du = g->nu > 1 ? (g->hu1 - g->hu0) / (double)(g->nu - 1) : 0;
-    for (size_t iu = 0; g->rho && iu < g->nu; iu++)
-        for (size_t ic = 0; ic < g->nc; ic++) {
-            double v = g->rho[iu * g->nc + ic];
-            fprintf(out, "%.10g,%.10g,", g->hc0 + (double)ic * dc, g->hu0 + (double)iu * du);
-            if (isfinite(v))
-                fprintf(out, "%.17g\n", v);
-            else
-                fputs("nan\n", out);
-        }
+    hy_forc_write_csv(&r->forc->g, out); /* as hystviz forc -o writes it */
 }
 
 void hy_scene_forc_free(hy_scene_run *r)

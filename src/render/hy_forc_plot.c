@@ -376,3 +376,19 @@ int hy_forc_plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *
         return hy_error_set(err, rc, "FORC figure: cannot draw (size or memory)");
     return HY_OK;
 }
+
+void hy_forc_write_csv(const hy_forc_grid *g, FILE *f)
+{
+    fprintf(f, "hc,hu,rho\n");
+    double dc = g->nc > 1 ? (g->hc1 - g->hc0) / (double)(g->nc - 1) : 0;
+    double du = g->nu > 1 ? (g->hu1 - g->hu0) / (double)(g->nu - 1) : 0;
+    for (size_t iu = 0; g->rho && iu < g->nu; iu++)
+        for (size_t ic = 0; ic < g->nc; ic++) {
+            double r = g->rho[iu * g->nc + ic];
+            fprintf(f, "%.10g,%.10g,", g->hc0 + (double)ic * dc, g->hu0 + (double)iu * du);
+            if (isfinite(r))
+                fprintf(f, "%.17g\n", r);
+            else
+                fputs("nan\n", f);
+        }
+}

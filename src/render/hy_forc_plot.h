@@ -42,4 +42,9 @@ double hy_forc_plot_max(const hy_forc_grid *g, double hc_min);
  * writing fails, HY_ENOMEM. */
 int hy_forc_plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *fp, int format, hy_error *err);
 
+/* The grid as CSV "hc,hu,rho" (H_u slowest; %.10g fields, %.17g rho, "nan"
+ * outside the data): what `hystviz forc -o` and `hystviz data` of a forc
+ * scene write. */
+void hy_forc_write_csv(const hy_forc_grid *g, FILE *f);
+
 #endif
