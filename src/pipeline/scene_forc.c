@@ -297,7 +297,7 @@ typedef struct curves_fig {
     hy_series s[2];
     hy_axes ax;
     hy_figure fig;
-    char xlabel[64];
+    char xlabel[64], ylabel[64];
 } curves_fig;
 
 static int curves_figure(const hy_scene_run *r, curves_fig *c, hy_error *err)
@@ -331,7 +331,9 @@ static int curves_figure(const hy_scene_run *r, curves_fig *c, hy_error *err)
     c->ax.series = c->s;
     c->ax.nseries = F->m_model ? 2 : 1;
     c->ax.xlabel = df->xlabel ? df->xlabel : c->xlabel;
-    c->ax.ylabel = df->ylabel ? df->ylabel : *d->moment_unit ? "M" : "M";
+    const char *mu = !strcmp(d->moment_unit, "A m2") ? "A m²" : d->moment_unit; /* the file's, upright */
+    snprintf(c->ylabel, sizeof c->ylabel, *mu ? "M (%s)" : "M", mu);
+    c->ax.ylabel = df->ylabel ? df->ylabel : c->ylabel;
     c->ax.title = df->title && df->title[0] ? df->title : NULL;
     c->ax.legend = df->legend;
     c->ax.grid = df->grid;

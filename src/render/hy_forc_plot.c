@@ -336,7 +336,65 @@ static cairo_status_t to_file(void *closure, const unsigned char *data, unsigned
     return fwrite(data, 1, len, closure) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
 }
 
+/* cairo numbers SVG surfaces and images ("surface123", "image456") with
+ * process-wide counters: renumber each kind by first appearance (after '"'
+ * or '#': ids and references, never base64 text) so that the bytes depend
+ * only on the figure, not on what the process drew before (the gallery). */
+static int svg_renumbered(const char *b, size_t len, FILE *fp)
+{
+    static const char *const keys[] = {"surface", "image"};
+    long seen[2][64];
+    int nseen[2] = {0, 0};
+    size_t i = 0;
+    while (i < len) {
+        int k = -1;
+        for (int q = 0; q < 2 && i > 0 && (b[i - 1] == '"' || b[i - 1] == '#'); q++) {
+            size_t n = strlen(keys[q]);
+            if (i + n < len && !memcmp(b + i, keys[q], n) && b[i + n] >= '0' && b[i + n] <= '9')
+                k = q;
+        }
+        if (k < 0) {
+            if (fputc(b[i++], fp) == EOF)
+                return HY_EIO;
+            continue;
+        }
+        size_t j = i + strlen(keys[k]);
+        long v = 0;
+        while (j < len && b[j] >= '0' && b[j] <= '9' && v < 100000000L)
+            v = v * 10 + (b[j++] - '0');
+        int id = 0;
+        while (id < nseen[k] && seen[k][id] != v)
+            id++;
+        if (id == nseen[k] && nseen[k] < 64)
+            seen[k][nseen[k]++] = v;
+        if (fprintf(fp, "%s%d", keys[k], id + 1) < 0)
+            return HY_EIO;
+        i = j;
+    }
+    return HY_OK;
+}
+
+static int plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *fp, int format, hy_error *err);
+
 int hy_forc_plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *fp, int format, hy_error *err)
+{
+    if (format != HY_FORMAT_SVG)
+        return plot_write(g, o, fp, format, err);
+    char *b = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&b, &len);
+    if (!mem)
+        return hy_error_set(err, HY_ENOMEM, "FORC figure: out of memory");
+    int rc = plot_write(g, o, mem, format, err);
+    if (fclose(mem) && !rc)
+        rc = hy_error_set(err, HY_ENOMEM, "FORC figure: out of memory");
+    if (!rc && svg_renumbered(b, len, fp))
+        rc = hy_error_set(err, HY_EIO, "FORC figure: cannot write: %s", strerror(errno ? errno : EIO));
+    free(b);
+    return rc;
+}
+
+static int plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *fp, int format, hy_error *err)
 {
     if (!g->rho || g->nc < 2 || g->nu < 2 || g->nc > 100000 || g->nu > 100000 || !(g->hc1 > g->hc0) ||
         !(g->hu1 > g->hu0))
