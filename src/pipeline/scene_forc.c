@@ -30,7 +30,9 @@ struct hy_scene_forc {
     int have_d, have_g;
     double seconds_data, seconds_rho;
     size_t nfit;
-    double *m_model;          /* reproduce: the tabulated Preisach model's M at the data's points */
+    double *m_model;          /* reproduce: the tabulated Preisach model's M at the data's points;
+                               * protocol = file (without reproduce): the measured M */
+    double rms_meas;          /* protocol = file: RMS of the model's M against the measured (NaN: none) */
     double rms, offset;
     size_t ntable, nclipped;
     char legend[2][160];      /* draw = curves: the two labels */
@@ -135,11 +137,14 @@ int hy_scene_forc_load(hy_scene_run *r, hy_error *err)
         F->o.sc0 = f->sc0;
         F->o.sc1 = f->sc1;
     }
-    if (has_file(r))
-        return read_file(r, F, err);
+    F->rms_meas = NAN;
+    int rc;
+    if (f->protocol == 1 && !has_file(r))
+        return hy_decl_error(&f->h, AT(protocol), err, HY_EINVAL, "protocol = file needs [forc] file");
+    if (has_file(r) && ((rc = read_file(r, F, err)) || f->protocol == 0))
+        return rc;
     hy_forc_protocol pr;
-    int rc = protocol(r, &pr, err);
-    if (rc)
+    if (!has_file(r) && (rc = protocol(r, &pr, err)))
         return rc;
     const hy_scene_model *mt = r->mtype;
     if (mt->ri) {
@@ -167,18 +172,62 @@ int hy_scene_forc_estimate(const hy_scene_run *r, double *work, char *what, size
 }
 
 
+/* The model behind fn at the measured file's fields (protocol = file): each
+ * curve from hsat to its H_a, then through its H_b; F->d becomes the model's
+ * data, the measured M kept in F->m_model (for the curves figure) and the
+ * RMS of the difference in F->rms_meas. */
+static int on_fields(hy_scene_run *r, hy_scene_forc *F, hy_rateind_fn fn, void *ctx, hy_error *err)
+{
+    hy_forc_data *d = &F->d, md;
+    const hy_decl_forc *f = decl(r);
+    double hsat = hy_decl_got(&f->h, AT(hsat)) >= 0 ? f->hsat : d->hsat, ss = 0;
+    for (size_t k = 0; !isfinite(hsat) && k < d->npoints; k++)
+        hsat = fabs(d->hb[k]); /* no HSat in the file: the largest field measured */
+    for (size_t k = 0; k < d->npoints; k++)
+        hsat = fmax(hsat, fabs(d->hb[k]));
+    double *ha = malloc(d->ncurves * sizeof *ha), *m = malloc(d->npoints * sizeof *m);
+    size_t *n = malloc(d->ncurves * sizeof *n);
+    int rc = ha && m && n ? HY_OK : hy_error_set(err, HY_ENOMEM, "out of memory");
+    for (size_t i = 0; i < d->ncurves && !rc; i++) {
+        const hy_forc_curve *c = &d->curve[i];
+        double y;
+        ha[i] = c->ha;
+        n[i] = c->n;
+        rc = fn(ctx, hsat, &y, err);
+        if (!rc)
+            rc = fn(ctx, c->ha, &y, err);
+        for (size_t j = c->first; j < c->first + c->n && !rc; j++)
+            if (!(rc = fn(ctx, d->hb[j], &m[j], err)))
+                ss += (m[j] - d->m[j]) * (m[j] - d->m[j]);
+    }
+    if (!rc && !(rc = hy_forc_data_set(&md, d->ncurves, ha, n, d->hb, m, err))) {
+        md.units = d->units, md.field_unit = d->field_unit, md.moment_unit = d->moment_unit;
+        md.field_to_tesla = d->field_to_tesla;
+        F->rms_meas = sqrt(ss / (double)d->npoints);
+        memcpy(m, d->m, d->npoints * sizeof *m); /* the measured M, for the figure */
+        F->m_model = m;
+        m = NULL;
+        hy_forc_data_free(d);
+        *d = md;
+    }
+    free(ha);
+    free(m);
+    free(n);
+    return rc;
+}
+
 /* The protocol on the model into F->d. */
 static int run_protocol(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
 {
-    hy_forc_protocol pr;
-    int rc = protocol(r, &pr, err);
+    hy_forc_protocol pr = {isfinite(F->d.hsat) ? F->d.hsat : 0, 0, 0, 0, 0}; /* protocol = file: a start only */
+    int rc = F->have_d ? HY_OK : protocol(r, &pr, err);
     if (rc)
         return rc;
     if (r->mtype->ri) {
         hy_rateind m;
         if ((rc = hy_rateind_alloc(&m, r->mtype->ri, r->ri_par, pr.hsat, err)))
             return hy_scene_model_relocate(&r->doc.model, r->mtype, rc, err);
-        rc = hy_forc_protocol_run(&F->d, &pr, ri_fn, &m, err);
+        rc = F->have_d ? on_fields(r, F, ri_fn, &m, err) : hy_forc_protocol_run(&F->d, &pr, ri_fn, &m, err);
         hy_rateind_free(&m);
     } else {
         double g0 = hy_model_g0(&r->model), a = hy_model_a(&r->model);
@@ -188,7 +237,7 @@ static int run_protocol(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
             return hy_decl_error(&r->doc.model.h, HY_DECL_HEAD, err, HY_EINVAL,
                                  "sigma0/g(0) = %g/%g is not a finite positive number", r->model.sigma0, g0);
         ystar_ctx c = {a, g0, pr.hsat, g0}; /* positive saturation at hsat */
-        rc = hy_forc_protocol_run(&F->d, &pr, ystar_fn, &c, err);
+        rc = F->have_d ? on_fields(r, F, ystar_fn, &c, err) : hy_forc_protocol_run(&F->d, &pr, ystar_fn, &c, err);
     }
     if (rc)
         return hy_decl_error(&decl(r)->h, HY_DECL_HEAD, err, rc, "%s", err->msg);
@@ -209,6 +258,8 @@ static double m_range(const hy_forc_data *d)
 static int reproduce(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
 {
     hy_preisach_table t;
+    free(F->m_model); /* protocol = file's measured M: the table's replaces it in the figure */
+    F->m_model = NULL;
     int rc = hy_preisach_table_from_grid(&t, &F->g, err);
     if (!rc && !(F->m_model = malloc(F->d.npoints * sizeof *F->m_model)))
         rc = hy_error_set(err, HY_ENOMEM, "out of memory");
@@ -226,7 +277,7 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
     hy_scene_forc *F = r->forc;
     double t0 = now();
-    int rc = HY_OK, read = F->have_d;
+    int rc = HY_OK, read = F->have_d && decl(r)->protocol == 0;
     if (!read)
         rc = run_protocol(r, F, err);
     double t1 = now();
@@ -238,8 +289,12 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
     }
     if (!rc && decl(r)->reproduce)
         rc = reproduce(r, F, err);
-    snprintf(F->legend[0], sizeof F->legend[0], "%s", has_file(r) ? "measured" : r->mtype->name);
-    if (!rc && F->m_model)
+    int model_on_file = decl(r)->protocol == 1;
+    snprintf(F->legend[0], sizeof F->legend[0], "%s", has_file(r) && !model_on_file ? "measured" : r->mtype->name);
+    if (!rc && model_on_file && !decl(r)->reproduce)
+        snprintf(F->legend[1], sizeof F->legend[1], "measured (RMS of the model: %.2g %% of the range of M)",
+                 100 * F->rms_meas / m_range(&F->d));
+    else if (!rc && F->m_model)
         snprintf(F->legend[1], sizeof F->legend[1], "Preisach, density ρ ≥ 0: RMS of M %.2g %% of its range", 100 * F->rms / m_range(&F->d));
     if (!read)
         F->seconds_data = t1 - t0;
@@ -249,10 +304,13 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
         double da, db;
         hy_forc_steps(&F->d, &da, &db);
         fprintf(log, "%s: FORC %s: %zu curves, %zu points, steps %.6g / %.6g, %s %.3f ms; rho on %zu x %zu nodes "
-                "(%zu fitted) %.3f ms\n", r->path, has_file(r) ? decl(r)->file : r->mtype->name, F->d.ncurves,
-                F->d.npoints, da, db, has_file(r) ? "read" : "protocol", 1e3 * F->seconds_data, F->g.nc, F->g.nu,
+                "(%zu fitted) %.3f ms\n", r->path, read ? decl(r)->file : r->mtype->name, F->d.ncurves,
+                F->d.npoints, da, db, read ? "read" : "protocol", 1e3 * F->seconds_data, F->g.nc, F->g.nu,
                 F->nfit, 1e3 * F->seconds_rho);
-        if (F->m_model)
+        if (isfinite(F->rms_meas))
+            fprintf(log, "%s: FORC %s at the fields of %s: RMS of M against the measured over all %zu points %.6g\n",
+                    r->path, r->mtype->name, decl(r)->file, F->d.npoints, F->rms_meas);
+        if (F->m_model && decl(r)->reproduce)
             fprintf(log, "%s: FORC Preisach density from rho (%zu nodes > 0, %zu negative clipped to 0): RMS of M over "
                     "all %zu points %.6g (%.3g %% of the range of M), saturation output %.6g\n", r->path, F->ntable,
                     F->nclipped, F->d.npoints, F->rms, 100 * F->rms / m_range(&F->d), F->offset);
@@ -331,8 +389,8 @@ static int curves_figure(const hy_scene_run *r, curves_fig *c, hy_error *err)
     c->ax.series = c->s;
     c->ax.nseries = F->m_model ? 2 : 1;
     c->ax.xlabel = df->xlabel ? df->xlabel : c->xlabel;
-    const char *mu = !strcmp(d->moment_unit, "A m2") ? "A m²" : d->moment_unit; /* the file's, upright */
-    snprintf(c->ylabel, sizeof c->ylabel, *mu ? "M (%s)" : "M", mu);
+    const char *mu = !strcmp(d->moment_unit, "A m2") ? "A m^2" : d->moment_unit; /* the file's */
+    snprintf(c->ylabel, sizeof c->ylabel, *mu ? "M (\\mathrm{%s})" : "M", mu); /* units upright */
     c->ax.ylabel = df->ylabel ? df->ylabel : c->ylabel;
     c->ax.title = df->title && df->title[0] ? df->title : NULL;
     c->ax.legend = df->legend;

@@ -144,7 +144,7 @@ typedef struct hy_decl_forc {
     int extend;
     double vmax, field_to_tesla;
     const char *rho_unit;
-    int reproduce, draw;
+    int reproduce, draw, protocol;
 } hy_decl_forc;
 
 typedef struct hy_decl_series {

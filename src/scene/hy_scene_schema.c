@@ -60,6 +60,7 @@ static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {"none", "circle", "square", NULL};
 static const char *const formats[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
 static const char *const forc_draws[] = {"diagram", "curves", NULL};
+static const char *const forc_protocols[] = {"regular", "file", NULL};
 static const char *const themes[] = {"paper", "slides", NULL};
 static const char *const zoom_follows[] = {"none", "minor", NULL};
 static const char *const easings[] = {"linear", "smooth", NULL};
@@ -250,6 +251,11 @@ static const hy_scene_key_spec forc_keys[] = {
     F(draw, HY_KIND_ENUM, forc_draws, NOLIM, 0, 0, "diagram",
       "diagram: the heat map of rho; curves: the FORCs M(H_b), one line per curve (with reproduce, the tabulated "
       "Preisach model's dashed over them, its RMS in the legend)"),
+    F(protocol, HY_KIND_ENUM, forc_protocols, NOLIM, 0, 0, "regular",
+      "regular: the model's curves from range and curves (no file); file: the model run at the fields of the "
+      "measured file (each curve from hsat, default the file's HSat, to its H_a, then through its H_b), its "
+      "distribution drawn, the RMS of model against measured M printed (render -v) and, with draw = curves, the "
+      "measured curves dashed over the model's"),
 };
 #undef SECT
 

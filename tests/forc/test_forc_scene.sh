@@ -87,6 +87,28 @@ pct=$(sed -n 's/.*RMS of M over all 8394 points [^ ]* (\([0-9.e+-]*\) % of the r
 awk -v p="${pct:-nan}" 'BEGIN { exit !(p + 0 > 1 && p + 0 < 15) }' && ok || bad "round-trip RMS '$pct' %: $(cat "$tmp/err")"
 grep -q 'Preisach, density' "$tmp/out/rt.svg" 2>/dev/null || grep -q 'RMS' "$tmp/err" && ok || bad "legend"
 
+# protocol = file: the model at the measured file's fields (the same points), its RMS against the measured M
+cat > "$tmp/s/pf.scene" <<'S'
+[model]
+kind = preisach
+pr_hc = 0.02
+pr_width = 0.03
+pr_ys = 7e-7
+[forc]
+file = "m.forc"
+protocol = file
+[figure]
+kind = forc
+[output]
+formats = svg
+S
+"$hv" render "$tmp/s/pf.scene" -o "$tmp/out" -v 2> "$tmp/err" && ok || bad "render pf.scene: $(cat "$tmp/err")"
+grep -q 'FORC preisach: 120 curves, 8394 points' "$tmp/err" && grep -q 'FORC preisach at the fields of .*m.forc: RMS' "$tmp/err" &&
+    ok || bad "protocol = file: $(cat "$tmp/err")"
+printf '[model]\nkind = preisach\n[forc]\nprotocol = file\n[figure]\nkind = forc\n' > "$tmp/s/e6.scene"
+"$hv" render "$tmp/s/e6.scene" -o "$tmp/out" 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q 'e6.scene:4:1: protocol = file needs \[forc\] file' "$tmp/err" && ok || bad "protocol = file, no file: $(cat "$tmp/err")"
+
 # refused: a missing file, a truncated one (at its line), a bad key, series in a forc figure; nothing written
 rm -rf "$tmp/out"/*
 printf '[forc]\nfile = "none.forc"\n[figure]\nkind = forc\n' > "$tmp/s/e1.scene"
