@@ -239,8 +239,10 @@ static int run_protocol(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
         ystar_ctx c = {a, g0, pr.hsat, g0}; /* positive saturation at hsat */
         rc = F->have_d ? on_fields(r, F, ystar_fn, &c, err) : hy_forc_protocol_run(&F->d, &pr, ystar_fn, &c, err);
     }
-    if (rc)
+    if (rc && !strncmp(err->msg, "FORC protocol", 13)) /* the protocol's own refusal: at [forc] */
         return hy_decl_error(&decl(r)->h, HY_DECL_HEAD, err, rc, "%s", err->msg);
+    if (rc) /* the model refused a move: at the [model] key its message names */
+        return hy_scene_model_relocate(&r->doc.model, r->mtype, rc, err);
     F->have_d = 1;
     return HY_OK;
 }

@@ -59,6 +59,10 @@ for m in "preisach" "play" "boucwen-operator" "dahl" "lugre" "dahl-filter"; do
 done
 printf '[model]\nkind = jiles-atherton\nja_alpha = 6.4e-8\nja_ms = 2.6e5\nja_a = 5.75\nja_k = 4.14\nja_c = 0.5\n[forc]\nrange = -12, 12\nhsat = 40\ncurves = 20\n[figure]\nkind = forc\n' > "$tmp/s/ja.scene"
 "$hv" render "$tmp/s/ja.scene" -o "$tmp/out" --format svg 2> "$tmp/err" && ok || bad "forc of JA: $(cat "$tmp/err")"
+# a move the model refuses is reported at the [model] key its message names (Fig. 1's JA: alpha too large)
+printf '[model]\nkind = jiles-atherton\nja_ms = 1.6e6\nja_a = 1100\nja_k = 400\nja_c = 0.2\nja_alpha = 1.6e-3\n[forc]\nrange = -3000, 3000\ncurves = 20\n[figure]\nkind = forc\n' > "$tmp/s/jae.scene"
+"$hv" render "$tmp/s/jae.scene" -o "$tmp/out" 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q 'jae.scene:7:1: ja_alpha: ' "$tmp/err" && ok || bad "JA refusal: $(cat "$tmp/err")"
 # the Bouc-Wen oscillator is neither rate-independent nor has y*: refused at [model] kind
 printf '[model]\nkind = boucwen\n[forc]\n[figure]\nkind = forc\n' > "$tmp/s/bw.scene"
 "$hv" render "$tmp/s/bw.scene" -o "$tmp/out" 2> "$tmp/err"
