@@ -323,22 +323,6 @@ static int read_data(const forc_args *a, hy_forc_data *d)
     return 0;
 }
 
-static void write_rho(FILE *f, const hy_forc_grid *g)
-{
-    fprintf(f, "hc,hu,rho\n");
-    double dc = g->nc > 1 ? (g->hc1 - g->hc0) / (double)(g->nc - 1) : 0;
-    double du = g->nu > 1 ? (g->hu1 - g->hu0) / (double)(g->nu - 1) : 0;
-    for (size_t iu = 0; iu < g->nu; iu++)
-        for (size_t ic = 0; ic < g->nc; ic++) {
-            double r = g->rho[iu * g->nc + ic];
-            fprintf(f, "%.10g,%.10g,", g->hc0 + (double)ic * dc, g->hu0 + (double)iu * du);
-            if (isfinite(r))
-                fprintf(f, "%.17g\n", r);
-            else
-                fputs("nan\n", f);
-        }
-}
-
 static void write_curves(FILE *f, const hy_forc_data *d)
 {
     fprintf(f, "ha,hb,m\n");
@@ -364,7 +348,7 @@ static int write_all(const forc_args *a, const hy_forc_data *d, const hy_forc_gr
         }
         FILE *f = hy_out_file(&o[n++]);
         if (i == 0)
-            write_rho(f, g);
+            hy_forc_write_csv(g, f);
         else if (i == 1)
             write_curves(f, d);
         else

@@ -385,14 +385,17 @@ static void scene_key(const hy_scene *s, int data, char key[17])
     hy_error e;
     if (hy_scene_decode_fill(s, &d, &e))
         hy_scene_doc_free(&d); /* out of memory: the key without the panels (the render reports it) */
-    for (size_t i = 0; i < d.npanel + d.ndata; i++) { /* its panel files' and measured data's text too */
+    size_t nforc = d.forc.file ? 1 : 0; /* [forc] file: a measured FORC file */
+    for (size_t i = 0; i < d.npanel + d.ndata + nforc; i++) { /* its panel files' and measured data's text too */
         char *t;
         size_t n;
         int user;
         /* the file's bytes, read as the scene resolves the path (a file, not a value) */
         if (i < d.npanel ? hy_scene_read_path(s, "panel", d.panel[i].h.name, "scene", &t, &n, &user, &e)
-                         : hy_scene_read_path_max(s, "data", d.data[i - d.npanel].h.name, "file", HY_TABLE_MAX_BYTES, &t,
-                                                  &n, &user, &e))
+            : i < d.npanel + d.ndata
+                ? hy_scene_read_path_max(s, "data", d.data[i - d.npanel].h.name, "file", HY_TABLE_MAX_BYTES, &t, &n,
+                                         &user, &e)
+                : hy_scene_read_path_max(s, "forc", NULL, "file", HY_TABLE_MAX_BYTES, &t, &n, &user, &e))
             continue; /* the render reports it */
         for (size_t k = 0; k < n; k++) {
             h ^= (unsigned char)t[k];

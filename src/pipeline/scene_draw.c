@@ -14,10 +14,11 @@
 #include "hy_plot.h"
 #include "hy_markup.h"
 #include "scene_model.h"
+#include "scene_forc.h"
 #include "scene_run.h"
 
-static const char *const default_xlabel[] = {"t", "u", "t", "\\nu", "\\varrho"};
-static const char *const default_ylabel[] = {"y", "y", "u(t)", "g(\\nu)", "\\psi_u(\\varrho)"};
+static const char *const default_xlabel[] = {"t", "u", "t", "\\nu", "\\varrho", "H_c"};
+static const char *const default_ylabel[] = {"y", "y", "u(t)", "g(\\nu)", "\\psi_u(\\varrho)", "H_u"};
 
 int hy_scene_catalogue_part(const char *file)
 {
@@ -290,7 +291,7 @@ static int minor_window(const hy_scene_run *r, const hy_axes *ax, double zx[2], 
 int hy_scene_run_validate(const hy_scene_run *r, hy_error *err)
 {
     const hy_scene_doc *d = &r->doc;
-    if (!d->nseries && !d->nannotation && !d->npanel)
+    if (!d->nseries && !d->nannotation && !d->npanel && r->figure_kind != FIG_FORC)
         return hy_error_set(err, HY_EINVAL, "%s:1:1: the scene draws nothing: it has no [series NAME] (or [annotation NAME]) section; "
                                  "a file of shared settings is included by scenes, not rendered", d->source);
     for (size_t i = 0; i < d->nannotation; i++) {
@@ -716,6 +717,16 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
     char paths[HY_FORMAT_COUNT][4400];
     for (size_t i = 0; i < nf; i++)
         snprintf(paths[i], sizeof paths[i], "%s/%s.%s", dir, name, format_ext[fmt[i] - HY_FORMAT_SVG]);
+    if (r->figure_kind == FIG_FORC) { /* the heat map: scene_forc.c */
+        if (!(rc = mkdir_p(dir, err)) && !(rc = hy_scene_output_dir_check(s, cli_dir, dir, err)))
+            rc = hy_scene_forc_write_all(r, paths, fmt, nf, err);
+        for (size_t i = 0; i < nf && !rc && written; i++) {
+            size_t len = strlen(written);
+            snprintf(written + len, written_size - len, "%s\n", paths[i]);
+        }
+        free(odir);
+        return rc;
+    }
     fig_store st;
     rc = hy_scene_run_figure(r, &st, err);
     if (!rc)
@@ -760,7 +771,10 @@ static void data_rows(const hy_scene_run *r, const char *panel, FILE *out)
 
 int hy_scene_run_data(const hy_scene_run *r, FILE *out, hy_error *err)
 {
-    fprintf(out, "series,x,y\n");
+    if (r->figure_kind == FIG_FORC && r->forc)
+        hy_scene_forc_data(r, out);
+    else
+        fprintf(out, "series,x,y\n");
     data_rows(r, NULL, out);
     for (size_t p = 0; p < r->npanels; p++) /* a [panel] figure: PANEL/SERIES */
         data_rows(&r->panels[p], r->doc.panel[p].h.name, out);
@@ -778,6 +792,11 @@ int hy_scene_run_render(const hy_scene_run *r, int format, unsigned char **buf, 
     int rc = hy_scene_run_check_cancel(r, err);
     if (rc)
         return rc;
+    if (r->figure_kind == FIG_FORC) {
+        if (map)
+            memset(map, 0, sizeof *map);
+        return hy_scene_forc_render(r, format, buf, len, err);
+    }
     rc = hy_scene_run_figure(r, &st, err);
     hy_cancel hook = {r->cancelled, r->cancel_ctx}; /* placing the annotations, one at a time */
     st.fig.cancel = r->cancelled ? &hook : NULL;

@@ -16,6 +16,7 @@
 #include "hy_ode.h"
 #include "hy_plot.h"
 #include "scene_boucwen.h"
+#include "scene_forc.h"
 #include "scene_model.h"
 #include "scene_verify.h"
 
@@ -296,7 +297,7 @@ static int build_decoded(hy_scene_run *r, hy_error *err)
     if (!rc)
         rc = hy_scene_run_read_data(r, err); /* every [data] file, once */
     if (!rc)
-        rc = r->mtype->load(r, err);
+        rc = r->figure_kind == FIG_FORC ? hy_scene_forc_load(r, err) : r->mtype->load(r, err);
     if (!rc)
         rc = hy_scene_run_data_check(r, err); /* data = measured, modelled: their [data] */
     if (!rc)
@@ -351,6 +352,7 @@ void hy_scene_run_free(hy_scene_run *r)
     if (r->have_input)
         hy_input_free(&r->input);
     free(r->ri_par);
+    hy_scene_forc_free(r);
     if (!r->scene_borrowed)
         hy_scene_free(r->scene);
     memset(r, 0, sizeof *r);
@@ -1114,7 +1116,8 @@ static double series_points(const hy_scene_run *r, int d, double npts, double pe
 int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
     *work = 0;
-    int rc = r->mtype->estimate(r, work, what, size, err);
+    int rc = r->figure_kind == FIG_FORC ? hy_scene_forc_estimate(r, work, what, size, err)
+                                        : r->mtype->estimate(r, work, what, size, err);
     for (size_t i = 0; !rc && i < r->npanels; i++) { /* a [panel] figure: its panels' work too */
         double w;
         rc = hy_scene_run_estimate(&r->panels[i], &w, NULL, 0, err);
@@ -1199,7 +1202,7 @@ int hy_scene_run_compute(hy_scene_run *r, FILE *log, hy_error *err)
         rc = hy_scene_run_compute(&r->panels[i], log, err);
     }
     if (!rc)
-        rc = r->mtype->compute(r, log, err);
+        rc = r->figure_kind == FIG_FORC ? hy_scene_forc_compute(r, log, err) : r->mtype->compute(r, log, err);
     if (!rc)
         rc = hy_scene_run_data_series(r, err); /* data = measured, modelled */
     if (!rc && log)

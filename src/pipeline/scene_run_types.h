@@ -132,6 +132,7 @@ typedef struct hy_scene_run {
     hy_cancel cancel_hook;    /* {cancelled, cancel_ctx} for the core's loops
                                * (hy_scene_run_cancel_hook)                      */
     double seconds_compute;
+    struct hy_scene_forc *forc; /* [figure] kind = forc: its data and grid (scene_forc.h) */
 } hy_scene_run;
 
 /* HY_ECANCEL (with a message) if r->cancelled says the work is no longer

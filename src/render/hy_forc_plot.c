@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "hy_plot.h"
+#include "hy_plot_private.h"
 #include "hy_ticks.h"
 
 hy_forc_plot_opts hy_forc_plot_defaults(void)
@@ -336,7 +337,80 @@ static cairo_status_t to_file(void *closure, const unsigned char *data, unsigned
     return fwrite(data, 1, len, closure) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
 }
 
+/* cairo numbers SVG surfaces and images ("surface123", "image456") with
+ * process-wide counters: renumber each kind by first appearance (after '"'
+ * or '#': ids and references, never base64 text) so that the bytes depend
+ * only on the figure, not on what the process drew before (the gallery). */
+static int svg_renumbered(const char *b, size_t len, const hy_forc_plot_opts *o, FILE *fp)
+{
+    static const char *const keys[] = {"surface", "image"};
+    long seen[2][64];
+    int nseen[2] = {0, 0};
+    size_t i = 0;
+    const char *root = NULL;
+    for (size_t k = 0; !root && k + 4 <= len; k++)
+        if (!memcmp(b + k, "<svg", 4))
+            root = b + k;
+    const char *gt = root ? memchr(root, '>', len - (size_t)(root - b)) : NULL;
+    if (gt && (o->title || o->desc)) { /* the root's start tag, then <title> and <desc> (hy_output.c's rule) */
+        i = (size_t)(gt + 1 - b);
+        if (fwrite(b, 1, i, fp) != i)
+            return HY_EIO;
+        const char *tag[2] = {"title", "desc"}, *text[2] = {o->title, o->desc};
+        for (int q = 0; q < 2; q++)
+            if (text[q] && (fprintf(fp, "\n<%s>", tag[q]) < 0 || hy__svg_escaped(fp, text[q]) ||
+                            fprintf(fp, "</%s>", tag[q]) < 0))
+                return HY_EIO;
+    }
+    while (i < len) {
+        int k = -1;
+        for (int q = 0; q < 2 && i > 0 && (b[i - 1] == '"' || b[i - 1] == '#'); q++) {
+            size_t n = strlen(keys[q]);
+            if (i + n < len && !memcmp(b + i, keys[q], n) && b[i + n] >= '0' && b[i + n] <= '9')
+                k = q;
+        }
+        if (k < 0) {
+            if (fputc(b[i++], fp) == EOF)
+                return HY_EIO;
+            continue;
+        }
+        size_t j = i + strlen(keys[k]);
+        long v = 0;
+        while (j < len && b[j] >= '0' && b[j] <= '9' && v < 100000000L)
+            v = v * 10 + (b[j++] - '0');
+        int id = 0;
+        while (id < nseen[k] && seen[k][id] != v)
+            id++;
+        if (id == nseen[k] && nseen[k] < 64)
+            seen[k][nseen[k]++] = v;
+        if (fprintf(fp, "%s%d", keys[k], id + 1) < 0)
+            return HY_EIO;
+        i = j;
+    }
+    return HY_OK;
+}
+
+static int plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *fp, int format, hy_error *err);
+
 int hy_forc_plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *fp, int format, hy_error *err)
+{
+    if (format != HY_FORMAT_SVG)
+        return plot_write(g, o, fp, format, err);
+    char *b = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&b, &len);
+    if (!mem)
+        return hy_error_set(err, HY_ENOMEM, "FORC figure: out of memory");
+    int rc = plot_write(g, o, mem, format, err);
+    if (fclose(mem) && !rc)
+        rc = hy_error_set(err, HY_ENOMEM, "FORC figure: out of memory");
+    if (!rc && svg_renumbered(b, len, o, fp))
+        rc = hy_error_set(err, HY_EIO, "FORC figure: cannot write: %s", strerror(errno ? errno : EIO));
+    free(b);
+    return rc;
+}
+
+static int plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *fp, int format, hy_error *err)
 {
     if (!g->rho || g->nc < 2 || g->nu < 2 || g->nc > 100000 || g->nu > 100000 || !(g->hc1 > g->hc0) ||
         !(g->hu1 > g->hu0))
@@ -375,4 +449,20 @@ int hy_forc_plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *
     if (rc)
         return hy_error_set(err, rc, "FORC figure: cannot draw (size or memory)");
     return HY_OK;
+}
+
+void hy_forc_write_csv(const hy_forc_grid *g, FILE *f)
+{
+    fprintf(f, "hc,hu,rho\n");
+    double dc = g->nc > 1 ? (g->hc1 - g->hc0) / (double)(g->nc - 1) : 0;
+    double du = g->nu > 1 ? (g->hu1 - g->hu0) / (double)(g->nu - 1) : 0;
+    for (size_t iu = 0; g->rho && iu < g->nu; iu++)
+        for (size_t ic = 0; ic < g->nc; ic++) {
+            double r = g->rho[iu * g->nc + ic];
+            fprintf(f, "%.10g,%.10g,", g->hc0 + (double)ic * dc, g->hu0 + (double)iu * du);
+            if (isfinite(r))
+                fprintf(f, "%.17g\n", r);
+            else
+                fputs("nan\n", f);
+        }
 }

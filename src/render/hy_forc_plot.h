@@ -29,6 +29,7 @@ typedef struct hy_forc_plot_opts {
     const char *rho_unit; /* unit of ρ for the colour bar ("" or NULL: none)        */
     double width, height; /* points (default 400 x 320)                            */
     double dpi;           /* PNG resolution (default 150)                           */
+    const char *title, *desc; /* an SVG's <title> and <desc> (NULL: none)            */
 } hy_forc_plot_opts;
 
 /* vmax from the grid, levels 0, ±0.1, ±0.3, ±0.5, ±0.7, ±0.9, raw fields, 400 x 320 pt, 150 dpi. */
@@ -41,5 +42,10 @@ double hy_forc_plot_max(const hy_forc_grid *g, double hc_min);
  * HY_EINVAL for a grid without finite values or bad options, HY_EIO when
  * writing fails, HY_ENOMEM. */
 int hy_forc_plot_write(const hy_forc_grid *g, const hy_forc_plot_opts *o, FILE *fp, int format, hy_error *err);
+
+/* The grid as CSV "hc,hu,rho" (H_u slowest; %.10g fields, %.17g rho, "nan"
+ * outside the data): what `hystviz forc -o` and `hystviz data` of a forc
+ * scene write. */
+void hy_forc_write_csv(const hy_forc_grid *g, FILE *f);
 
 #endif

@@ -59,8 +59,7 @@ static cairo_status_t sink_write(void *closure, const unsigned char *data, unsig
 
 /* cairo numbers SVG surfaces ("surface123") with a process-wide counter;
  * renumber them by first appearance so the bytes depend only on the figure. */
-/* Writes text with XML's five special characters escaped (0 or an errno). */
-static int svg_escaped(FILE *fp, const char *text)
+int hy__svg_escaped(FILE *fp, const char *text)
 {
     for (const char *c = text; *c; c++) {
         const char *e = *c == '<' ? "&lt;" : *c == '>' ? "&gt;" : *c == '&' ? "&amp;" : *c == '"' ? "&quot;"
@@ -90,7 +89,7 @@ static size_t svg_head(sink *s, const hy_figure *f, int *rc)
     const char *tag[2] = {"title", "desc"}, *text[2] = {f->svg_title, f->svg_desc};
     for (int i = 0; i < 2 && !*rc; i++)
         if (text[i]) {
-            if (fprintf(s->fp, "\n<%s>", tag[i]) < 0 || (*rc = svg_escaped(s->fp, text[i])) ||
+            if (fprintf(s->fp, "\n<%s>", tag[i]) < 0 || (*rc = hy__svg_escaped(s->fp, text[i])) ||
                 fprintf(s->fp, "</%s>", tag[i]) < 0)
                 *rc = *rc ? *rc : errno ? errno : EIO;
         }

@@ -131,6 +131,23 @@ typedef struct hy_decl_figure {
     long columns;
 } hy_decl_figure;
 
+/* [forc]: the FORC protocol and distribution of a [figure] kind = forc
+ * (docs/FORC.md, "In a scene"). */
+typedef struct hy_decl_forc {
+    hy_decl_head h;
+    const char *file;
+    int drift;
+    double hsat;
+    hy_scene_pair range;
+    double hb_max;
+    long curves;
+    double sf, sc0, sc1;
+    int extend;
+    double vmax, field_to_tesla;
+    const char *rho_unit;
+    int reproduce, draw, protocol;
+} hy_decl_forc;
+
 typedef struct hy_decl_series {
     hy_decl_head h;
     int data;
@@ -205,7 +222,7 @@ typedef struct hy_decl_keyframe {
 /* The sections a doc holds, X(name): each fills the member `name` of type
  * hy_decl_<name>, the named ones as an array `name` of `nname` structs.
  * Decode, free and hy_scene_doc_find are generated from these lists. */
-#define HY_DOC_UNNAMED(X) X(model) X(input) X(compute) X(figure) X(output) X(controls) X(animation)
+#define HY_DOC_UNNAMED(X) X(model) X(input) X(compute) X(figure) X(forc) X(output) X(controls) X(animation)
 #define HY_DOC_NAMED(X) X(series) X(data) X(annotation) X(panel) X(param) X(preset) X(keyframe)
 
 /* A whole scene: its unnamed sections and, in file order, its named ones. */

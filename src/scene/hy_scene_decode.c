@@ -206,7 +206,7 @@ static int check_controls(const hy_scene *s, hy_error *err)
 
 int hy_scene_is_figure(const hy_scene *s)
 {
-    return hy_scene_count(s, "series") > 0 || hy_scene_count(s, "panel") > 0;
+    return hy_scene_count(s, "series") > 0 || hy_scene_count(s, "panel") > 0 || hy_scene_count(s, "forc") > 0;
 }
 
 /* The checks that span keys and sections of a decoded doc; with controls,

@@ -60,6 +60,8 @@ static const char *const bw_quantities[] = {HY_SERIES_QUANTITIES(QUANTITY_NAME) 
 static const char *const decimations[] = {"staged", "single", "none", NULL};
 static const char *const markers[] = {HY_MARKERS(HY_NAME_OF) NULL};
 static const char *const formats[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
+static const char *const forc_draws[] = {"diagram", "curves", NULL};
+static const char *const forc_protocols[] = {"regular", "file", NULL};
 static const char *const themes[] = {HY_THEMES(HY_NAME_OF) NULL};
 static const char *const zoom_follows[] = {"none", "minor", NULL};
 static const char *const easings[] = {HY_EASINGS(HY_NAME_OF) NULL};
@@ -214,6 +216,50 @@ static const hy_scene_key_spec figure_keys[] = {
 };
 #undef SECT
 
+#define SECT hy_decl_forc
+static const hy_scene_key_spec forc_keys[] = {
+    F(file, HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
+      "a measured FORC file (MicroMag 2900/3900 text or CSV rows H_a,H_b,M; docs/FORC.md) drawn instead of the "
+      "model's protocol, relative to the scene file and below its directory"),
+    F(drift, HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false",
+      "file: drift correction from its calibration points (each curve's M times cal(first)/cal(curve))"),
+    FQ("H_{sat}", NULL, hsat, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+       "model: saturating field before each curve, in input units (default: the range's upper end + its width)"),
+    F(range, HY_KIND_PAIR, NULL, NOLIM, 0, 0, "-1, 1",
+      "model: the reversal fields H_a, lowest and highest, in input units (the curves' step is their span / (curves - 1))"),
+    FQ("H_{b,max}", NULL, hb_max, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+       "model: where each curve ends, in input units (default: the range's upper end)"),
+    FQ("N", NULL, curves, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 2000, 0, 0, "100",
+       "model: the number of reversal curves (the field step is the same along H_a and H_b)"),
+    FQ("SF", NULL, sf, HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 12, 0, 0, "3",
+       "smoothing factor: the regression uses the points within (SF + 1/2) steps of a node ((2 SF + 1)^2 on a "
+       "regular grid)"),
+    FQ("SF_0", NULL, sc0, HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 12, 0, 0, "2",
+       "variable smoothing (with sc1): SF at H_c = 0"),
+    FQ("SF_1", NULL, sc1, HY_KIND_NUMBER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 0, 12, 0, 0, "0",
+       "variable smoothing: SF at the grid's largest H_c, linear in H_c from sc0 (0: off, sf for every node)"),
+    F(extend, HY_KIND_BOOL, NULL, NOLIM, 0, 0, "true",
+      "extend every curve below its first point at constant M (Pike 2003) so that H_c = 0 is defined"),
+    FQ("ρ_{max}", NULL, vmax, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
+       "colour scale -vmax .. vmax in rho's unit (0: the largest |rho| beyond the extension's reach)"),
+    F(field_to_tesla, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
+      "model: mu0 H in T per input unit (1.25663706212e-6 for A/m; 0: the axes in input units, no unit); "
+      "a file's own units are used otherwise"),
+    F(rho_unit, HY_KIND_STRING, NULL, NOLIM, 0, 0, "\"\"", "model: the unit of rho on the colour bar (a file: from its units)"),
+    F(reproduce, HY_KIND_BOOL, NULL, NOLIM, 0, 0, "false",
+      "take rho, clipped to rho >= 0, as a tabulated Preisach density and compute that model's FORCs at the data's "
+      "points (its saturation output by least squares): render -v prints the RMS of M over all points"),
+    F(draw, HY_KIND_ENUM, forc_draws, NOLIM, 0, 0, "diagram",
+      "diagram: the heat map of rho; curves: the FORCs M(H_b), one line per curve (with reproduce, the tabulated "
+      "Preisach model's dashed over them, its RMS in the legend)"),
+    F(protocol, HY_KIND_ENUM, forc_protocols, NOLIM, 0, 0, "regular",
+      "regular: the model's curves from range and curves (no file); file: the model run at the fields of the "
+      "measured file (each curve from hsat, default the file's HSat, to its H_a, then through its H_b), its "
+      "distribution drawn, the RMS of model against measured M printed (render -v) and, with draw = curves, the "
+      "measured curves dashed over the model's"),
+};
+#undef SECT
+
 #define SECT hy_decl_panel
 static const hy_scene_key_spec panel_keys[] = {
     F(scene, HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
@@ -356,6 +402,8 @@ static hy_scene_section_spec sections[] = {
     S("input", 0, 0, input_keys, "the periodic input u(t)"),
     S("compute", 0, 0, compute_keys, "what is integrated and how"),
     S("figure", 0, 0, figure_keys, "the axes: kind, labels, ranges, size, fonts"),
+    S("forc", 0, 0, forc_keys, "the FORC protocol on the model, or a measured FORC file, and the FORC distribution "
+      "drawn by [figure] kind = forc (docs/FORC.md)"),
     S("series", 1, 1, series_keys, "one curve per section, drawn in file order"),
     S("annotation", 1, 1, annotation_keys, "one text label per section"),
     S("data", 1, 1, data_keys, "measured samples read from a file (u, y and optionally t columns): drawn by a "

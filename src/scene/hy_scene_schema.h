@@ -50,7 +50,8 @@
     X(LOOP, "loop")                         \
     X(INPUT, "input")                       \
     X(G, "g")                               \
-    X(PSI, "psi")
+    X(PSI, "psi")                           \
+    X(FORC, "forc")
 
 /* What a [series] quantity draws, one line per quantity: X(ID, "name", bw),
  * bw 1 where the Bouc-Wen benchmark draws it.  The schema's quantity list,

@@ -15,7 +15,7 @@ static void syntax(void)
     PARSE_FAILS("[model]\n\x01\n", "t.scene:2:1: expected 'key = value', '[section]' or 'include \"file\"', got '\\x01'");
     /* issue 20 item 10: a refused value is quoted cut to 40 bytes, controls as \xNN */
     PARSE_FAILS("[figure]\nkind = a\x1b]0;PWNED-TITLE\x07\x1b[31mRED\xffxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\n",
-                "t.scene:2:8: 'kind' in [figure] must be one of timeseries, loop, input, g, psi, got "
+                "t.scene:2:8: 'kind' in [figure] must be one of timeseries, loop, input, g, psi, forc, got "
                 "'a\\x1b]0;PWNED-TITLE\\x07\\x1b[31mRED\\xffxxxxxxxxxxxxxx...'");
     PARSE_FAILS("sigma0 = 1\n", "t.scene:1:1: key 'sigma0' outside any section (start one with a [section] header)");
     PARSE_FAILS("[figure]\ntitle = \"x\" junk\n",

@@ -446,6 +446,121 @@ def read_data(path, u="1", y="2", t=None, split=None, u_scale=1.0, y_scale=1.0, 
     return out
 
 
+def _forc_arrays(d):
+    """ha, hb, m (one entry per point), curve (the row offsets) of an hy_forc_data."""
+    nc, n = int(d.ncurves), int(d.npoints)
+    hb = _array(ctypes.addressof(d.hb.contents), n).copy() if n else np.zeros(0)
+    m = _array(ctypes.addressof(d.m.contents), n).copy() if n else np.zeros(0)
+    first = np.array([d.curve[i].first for i in range(nc)] + [n], dtype=np.int64)
+    ha = np.repeat(np.array([d.curve[i].ha for i in range(nc)]), np.diff(first))
+    return {"ha": ha, "hb": hb, "m": m, "curves": first}
+
+
+def read_forc(path, drift=False):
+    """A measured FORC file (MicroMag 2900/3900 text or CSV rows H_a,H_b,M),
+    read by libhystviz's reader (hy_forc_read, the one of `hystviz forc` and
+    of a scene's [forc] file; docs/FORC.md).  Returns a dict of NumPy
+    arrays "ha", "hb", "m" (one entry per point, curve after curve),
+    "curves" (row offsets: curve i = rows curves[i]:curves[i+1]) and the
+    file's "field_unit", "moment_unit", "field_to_tesla"; drift=True applies
+    the drift correction.  A bad file raises SceneError "FILE:LINE:COL: what"."""
+    d = _forc_load(path=path, drift=drift)
+    try:
+        out = _forc_arrays(d)
+        out.update(field_unit=d.field_unit.decode(), moment_unit=d.moment_unit.decode(),
+                   field_to_tesla=d.field_to_tesla)
+    finally:
+        _lib.forc_data_free(ctypes.byref(d))
+    return out
+
+
+def _forc_load(path=None, drift=False, ha=None, hb=None, m=None, model=None, protocol=None):
+    d = _lib.ForcData()
+    err = _lib.Error()
+    if path is not None:
+        with open(path, "rb") as f:
+            text = f.read(_lib.forc_max_bytes + 1)
+        if len(text) > _lib.forc_max_bytes:
+            raise SceneError(1, f"{path}: larger than {_lib.forc_max_bytes} bytes")
+        _check(_lib.forc_read(ctypes.byref(d), text, len(text), os.fsencode(path), ctypes.byref(err)), err)
+    elif model is not None:
+        pr = _lib.ForcProtocol(float(protocol["hsat"]), float(protocol["ha_lo"]), float(protocol["ha_hi"]),
+                               float(protocol.get("hb_max", protocol["ha_hi"])), int(protocol["ncurves"]))
+        failure = []
+
+        def step(ctx, u, y, e):
+            try:
+                y[0] = float(model(u))
+                return 0
+            except Exception as ex:  # raised again below, after the C call returns
+                failure.append(ex)
+                return 1
+
+        cb = _lib.RateindFn(step)
+        rc = _lib.forc_protocol_run(ctypes.byref(d), ctypes.byref(pr), cb, None, ctypes.byref(err))
+        if failure:
+            _lib.forc_data_free(ctypes.byref(d))
+            raise failure[0]
+        _check(rc, err)
+    else:
+        ha, hb, m = (np.ascontiguousarray(a, dtype=np.float64) for a in (ha, hb, m))
+        if not (ha.shape == hb.shape == m.shape and ha.ndim == 1):
+            raise ValueError("forc: ha, hb and m must be 1-D arrays of one length")
+        starts = np.flatnonzero(np.r_[True, ha[1:] != ha[:-1]]) if len(ha) else np.zeros(0, dtype=np.int64)
+        counts = np.diff(np.r_[starts, len(ha)]).astype(np.uintp)
+        has = np.ascontiguousarray(ha[starts])
+        _check(_lib.forc_data_set(ctypes.byref(d), len(starts), has.ctypes.data_as(_lib._dp),
+                                  counts.ctypes.data_as(ctypes.POINTER(ctypes.c_size_t)), hb.ctypes.data_as(_lib._dp),
+                                  m.ctypes.data_as(_lib._dp), ctypes.byref(err)), err)
+    if drift:
+        rc = _lib.forc_drift(ctypes.byref(d), ctypes.byref(err))
+        if rc:
+            _lib.forc_data_free(ctypes.byref(d))
+            _check(rc, err)
+    return d
+
+
+def forc(path=None, *, ha=None, hb=None, m=None, model=None, protocol=None, sf=3.0, sc0=None, sc1=None,
+         extend=True, drift=False):
+    """The FORC curves and distribution rho = -1/2 d2M/dH_a dH_b (local
+    second-order regression, Pike et al. 1999; docs/FORC.md), computed by
+    libhystviz as `hystviz forc` computes it, of
+      - a measured file (path: MicroMag or CSV), or
+      - arrays ha, hb, m (one entry per point; consecutive equal ha = a curve), or
+      - the FORC protocol on a rate-independent model given as a Python
+        callable model(u) -> y that moves the model monotonically to u, with
+        protocol = dict(hsat=, ha_lo=, ha_hi=, ncurves=, hb_max= (default ha_hi)).
+    Returns a dict of NumPy arrays: the curves "ha", "hb", "m", "curves" (row
+    offsets) and the distribution "hc" (nc), "hu" (nu), "rho" (nu x nc: rho[iu,
+    ic], NaN outside the data).  Errors raise SceneError (a file's with
+    FILE:LINE:COL)."""
+    if sum(x is not None for x in (path, ha, model)) != 1:
+        raise ValueError("forc: give one of path, ha/hb/m or model")
+    d = _forc_load(path=path, drift=drift, ha=ha, hb=hb, m=m, model=model, protocol=protocol)
+    g = _lib.ForcGrid()
+    err = _lib.Error()
+    try:
+        o = _lib.forc_defaults()
+        o.sf, o.extend = float(sf), 1 if extend else 0
+        if sc0 is not None or sc1 is not None:
+            o.sc0, o.sc1 = float(sc0), float(sc1)
+        _lib.forc_grid_auto(ctypes.byref(d), ctypes.byref(o), ctypes.byref(g))
+        nfit = ctypes.c_size_t()
+        _check(_lib.forc_rho(ctypes.byref(d), ctypes.byref(o), ctypes.byref(g), ctypes.byref(nfit),
+                             ctypes.byref(err)), err)
+        out = _forc_arrays(d)
+        nc, nu = int(g.nc), int(g.nu)
+        dc = (g.hc1 - g.hc0) / (nc - 1) if nc > 1 else 0.0
+        du = (g.hu1 - g.hu0) / (nu - 1) if nu > 1 else 0.0
+        out["hc"] = g.hc0 + np.arange(nc) * dc  # as hystviz forc computes each node's value
+        out["hu"] = g.hu0 + np.arange(nu) * du
+        out["rho"] = _array(ctypes.addressof(g.rho.contents), nc * nu).copy().reshape(nu, nc)
+    finally:
+        _lib.forc_grid_free(ctypes.byref(g))
+        _lib.forc_data_free(ctypes.byref(d))
+    return out
+
+
 def loop_area(u, y):
     """The signed area of the closed polygon (u[i], y[i]): (1/2) sum(u_i y_{i+1} - u_{i+1} y_i)
     = ∮ u dy, positive counter-clockwise (hy_table_area)."""

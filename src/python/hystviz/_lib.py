@@ -117,3 +117,56 @@ table_max_bytes = 64 << 20  # HY_TABLE_MAX_BYTES
 libc = ctypes.CDLL(None)
 libc.free.argtypes = [ctypes.c_void_p]
 libc.free.restype = None
+
+
+# ---- FORC (hy_forc.h, exported by libhystviz as every core public header) ----
+class ForcCurve(ctypes.Structure):
+    """hy_forc_curve of hy_forc.h."""
+    _fields_ = [("ha", ctypes.c_double), ("first", ctypes.c_size_t), ("n", ctypes.c_size_t),
+                ("cal_h", ctypes.c_double), ("cal_m", ctypes.c_double), ("line", ctypes.c_size_t)]
+
+
+class ForcData(ctypes.Structure):
+    """hy_forc_data of hy_forc.h."""
+    _fields_ = [("curve", ctypes.POINTER(ForcCurve)), ("ncurves", ctypes.c_size_t),
+                ("hb", ctypes.POINTER(ctypes.c_double)), ("m", ctypes.POINTER(ctypes.c_double)),
+                ("npoints", ctypes.c_size_t), ("units", ctypes.c_int), ("field_unit", ctypes.c_char_p),
+                ("moment_unit", ctypes.c_char_p), ("field_to_tesla", ctypes.c_double), ("hsat", ctypes.c_double),
+                ("hcal", ctypes.c_double), ("hncr", ctypes.c_double), ("ncrv", ctypes.c_long),
+                ("ndata", ctypes.c_long), ("ncal", ctypes.c_size_t)]
+
+
+class ForcOpts(ctypes.Structure):
+    """hy_forc_opts of hy_forc.h."""
+    _fields_ = [("sf", ctypes.c_double), ("sc0", ctypes.c_double), ("sc1", ctypes.c_double),
+                ("ramp", ctypes.c_double), ("extend", ctypes.c_int), ("da", ctypes.c_double), ("db", ctypes.c_double)]
+
+
+class ForcGrid(ctypes.Structure):
+    """hy_forc_grid of hy_forc.h."""
+    _fields_ = [("hc0", ctypes.c_double), ("hc1", ctypes.c_double), ("hu0", ctypes.c_double),
+                ("hu1", ctypes.c_double), ("nc", ctypes.c_size_t), ("nu", ctypes.c_size_t),
+                ("rho", ctypes.POINTER(ctypes.c_double))]
+
+
+class ForcProtocol(ctypes.Structure):
+    """hy_forc_protocol of hy_forc.h."""
+    _fields_ = [("hsat", ctypes.c_double), ("ha_lo", ctypes.c_double), ("ha_hi", ctypes.c_double),
+                ("hb_max", ctypes.c_double), ("ncurves", ctypes.c_size_t)]
+
+
+_FD = ctypes.POINTER(ForcData)
+# hy_rateind_fn: int (*)(void *ctx, double u, double *y, hy_error *err)
+RateindFn = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, _dp, ctypes.c_void_p)
+forc_read = _sig("hy_forc_read", ctypes.c_int, _FD, ctypes.c_char_p, _sz, ctypes.c_char_p, _E)
+forc_data_set = _sig("hy_forc_data_set", ctypes.c_int, _FD, _sz, _dp, ctypes.POINTER(_sz), _dp, _dp, _E)
+forc_data_free = _sig("hy_forc_data_free", None, _FD)
+forc_drift = _sig("hy_forc_drift", ctypes.c_int, _FD, _E)
+forc_defaults = _sig("hy_forc_defaults", ForcOpts)
+forc_grid_auto = _sig("hy_forc_grid_auto", None, _FD, ctypes.POINTER(ForcOpts), ctypes.POINTER(ForcGrid))
+forc_rho = _sig("hy_forc_rho", ctypes.c_int, _FD, ctypes.POINTER(ForcOpts), ctypes.POINTER(ForcGrid),
+                ctypes.POINTER(_sz), _E)
+forc_grid_free = _sig("hy_forc_grid_free", None, ctypes.POINTER(ForcGrid))
+forc_protocol_run = _sig("hy_forc_protocol_run", ctypes.c_int, _FD, ctypes.POINTER(ForcProtocol), RateindFn,
+                         ctypes.c_void_p, _E)
+forc_max_bytes = 64 << 20  # what hystviz forc reads of a file
