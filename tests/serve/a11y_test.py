@@ -348,9 +348,10 @@ def test_names(dt, base):
           f"with an SVG <title> and <desc>, the figure is named by the title (taken out of the inline copy: no "
           f"tooltip) and described by the desc: {got}")
     got = dt.js("""(() => { const f = document.getElementById('figure'), NS = 'http://www.w3.org/2000/svg';
-        const svg = f.querySelector('svg'), d = svg.querySelector('desc'), desc = d.textContent;
-        d.remove(); labelFigure(); const r = f.getAttribute('aria-describedby');
-        const e = document.createElementNS(NS, 'desc'); e.textContent = desc; svg.prepend(e); labelFigure();
+        const svg = f.querySelector('svg'), ds = [...svg.querySelectorAll('desc')];
+        ds.forEach(d => d.remove()); labelFigure(); const r = f.getAttribute('aria-describedby');
+        for (const d of ds.reverse()) svg.prepend(d);
+        labelFigure();
         return r; })()""")
     check(got == "caption", f"named by its <title> with no <desc>, the figure is described by the caption: {got}")
     by_dom, _ = ax_tree(dt, "Fig. 15, its SVG given a <title> and <desc>")
