@@ -12,7 +12,7 @@
 #include <stdio.h>
 
 #include "hy_plot.h"
-#include "scene_run.h"
+#include "scene_run_types.h" /* hy_scene_run */
 
 typedef struct hy_scene_forc hy_scene_forc;
 
