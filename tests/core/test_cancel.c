@@ -60,6 +60,7 @@ static void ode(void)
     CHECK_MSG(hy_ode_solve(&m, &in, 1, &o, t, N, y1, NULL, &err), err, HY_ECANCEL, "no longer wanted");
     CHECK(first.asked == 1, "asked %d times after saying stop", first.asked);
     free(t), free(y0), free(y1);
+    hy_input_free(&in);
 }
 
 static void newmark(void)
