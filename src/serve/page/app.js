@@ -417,9 +417,10 @@ async function doRender() {
   try {
     const r = await fetch('/api/render?' + q + '&fmt=json&page=' + hv.page + '&seq=' + my);
     const j = await r.json();
-    if (r.status === 503 && !hv.pending && (hv.busyRetries = (hv.busyRetries || 0) + 1) <= 5) {
+    if (r.status === 503 && (hv.busyRetries = (hv.busyRetries || 0) + 1) <= 5) {
       // the server gave this turn to another client and asks to come back: again after Retry-After
-      await new Promise(res => setTimeout(res, 1000 * (Number(r.headers.get('Retry-After')) || 1)));
+      // (a newer request already waiting goes instead, at once; no error is shown for this one)
+      if (!hv.pending) await new Promise(res => setTimeout(res, 1000 * (Number(r.headers.get('Retry-After')) || 1)));
       hv.pending = true;
     } else {
       hv.busyRetries = 0;
