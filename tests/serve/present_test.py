@@ -348,8 +348,14 @@ def sweep(dt, base, scene, npos=50):
                 for (let i = {i0}; i < Math.min({i0 + 10}, {npos}); i++) {{
                     const v = valueAt(c, Math.round(1000 * i / ({npos} - 1)));
                     // one page id each: they render side by side in serve's slots
-                    all.push(fetch('/api/render?' + query() + '&set=' + encodeURIComponent(c.key + '=' + v)
-                        + '&fmt=json&seq=1&page=sweep' + i).then(async r => {{
+                    // a 503 is serve's fair share giving the turn to another page (they are ten):
+                    // asked again after Retry-After, as the page does; a refused value is anything else
+                    const url = '/api/render?' + query() + '&set=' + encodeURIComponent(c.key + '=' + v)
+                        + '&fmt=json&seq=1&page=sweep' + i;
+                    const get = async n => {{ const r = await fetch(url);
+                        if (r.status === 503 && n < 5) {{ await new Promise(s => setTimeout(s, 1000)); return get(n + 1); }}
+                        return r; }};
+                    all.push(get(0).then(async r => {{
                             if (r.status !== 200) bad.push(v + ': ' + ((await r.json()).error || r.status)); }}));
                 }}
                 await Promise.all(all);
