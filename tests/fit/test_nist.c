@@ -104,7 +104,7 @@ static double rel(double a, double b) { return fabs(a - b) / fabs(b); }
 static void run(const nist *d, int which, double *worst_est, double *worst_se)
 {
     hy_fit_param prm[8];
-    char names[8][4];
+    char names[8][24];
     for (size_t j = 0; j < d->p; j++) { /* NIST's problems are unbounded: the map is theta = u */
         snprintf(names[j], sizeof names[j], "b%zu", j + 1);
         prm[j] = (hy_fit_param){names[j], -INFINITY, INFINITY, HY_FIT_LINEAR};
