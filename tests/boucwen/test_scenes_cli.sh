@@ -6,13 +6,7 @@
 set -u
 hv=$1
 scenes=$2
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 
 "$hv" data "$scenes/bw_fig1b_linear_loop.scene" -o "$tmp/f1b.csv" && ok || bad "data fig1b"
 [ "$(head -1 "$tmp/f1b.csv")" = "series,x,y" ] && ok || bad "data header"
@@ -41,5 +35,4 @@ st=$?
     bad "unknown quantity: status $st, $(cat "$tmp/err")"
 [ ! -e "$tmp/badq.csv" ] && ok || bad "a refused scene left data"
 
-echo "boucwen scenes cli: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "boucwen scenes cli"

@@ -4,13 +4,7 @@
 # non-zero exit status and no partial output.
 set -u
 hv=$1
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 
 "$hv" --help > "$tmp/h" 2>&1 && grep -q 'usage: hystviz COMMAND' "$tmp/h" && grep -q 'loop' "$tmp/h" && ok || bad "--help"
 "$hv" --version | grep -Eq '^hystviz [0-9]+\.[0-9]+\.[0-9]+$' && ok || bad "--version"
@@ -94,5 +88,4 @@ for helper in hystviz-animate hystviz-serve; do
         { [ $rc -eq 3 ] && grep -q 'libmicrohttpd' "$tmp/h.out"; } || bad "$helper --help (exit $rc): $(head -c 300 "$tmp/h.out")"
 done
 
-echo "cli: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "cli"

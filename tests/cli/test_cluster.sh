@@ -19,13 +19,7 @@ hv=$1
 root=$2
 case $hv in /*) ;; *) hv=$(pwd)/$hv ;; esac     # the test works in a temporary directory
 root=$(cd "$root" && pwd)
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 export HYSTVIZ="$hv"
 export HOME="$tmp/home"   # GNU parallel keeps its state (and citation notice) under $HOME
 mkdir -p "$HOME/.parallel" && touch "$HOME/.parallel/will-cite"
@@ -150,5 +144,4 @@ sed -n 1p sbatch.log | grep -q -- "--array=0-4 --cpus-per-task=1 $cl/shard.sbatc
 sed -n 2p sbatch.log | grep -q -- "--dependency=afterany:1001 $cl/merge.sbatch sweep --merge study\$" && ok ||
     bad "merge submission: $(sed -n 2p sbatch.log)"
 
-echo "test_cluster: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "test_cluster"

@@ -8,13 +8,7 @@
 # Bounded by the test's timeout (meson.build), never by a timed assertion.
 set -u
 hv=$1
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 
 scene() { # NAME MODEL-LINES INPUT-LINES
     printf '[model]\nkind = jiles-atherton\n%b[input]\n%b[compute]\npoints = 400\n[series y]\ndata = ystar\n' \
@@ -42,5 +36,4 @@ refused budget 5 "Jiles-Atherton step budget: more than 1000000 steps.*k = 0.003
 "$hv" data "$tmp/big.scene" > "$tmp/big.csv" 2> "$tmp/err" ; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/big.csv" ] && grep -q "|H| reaches 1e+12" "$tmp/err" && ok || bad "data big: exit $rc"
 
-echo "ja_inputs: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "ja_inputs"

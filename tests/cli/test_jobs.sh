@@ -6,10 +6,7 @@
 # usage: test_jobs.sh HYSTVIZ
 set -u
 hv=$1
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+. "$(dirname "$0")/../lib.sh"
 command -v taskset > /dev/null || { echo "FAIL: taskset (util-linux) is not installed"; exit 1; }
 cpu=$(taskset -pc $$ | sed 's/.*: *//; s/[,-].*//')   # the first CPU this shell may use
 n=$(nproc)
@@ -23,5 +20,4 @@ done
 # one description, not a copy per command
 [ "$("$hv" sweep --help | grep -A2 -- '-j, --jobs N')" = "$("$hv" gallery --help | grep -A2 -- '-j, --jobs N')" ] && ok ||
     bad "sweep and gallery describe -j differently"
-echo "test_jobs: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "test_jobs"

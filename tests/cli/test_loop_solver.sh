@@ -5,13 +5,7 @@
 # runs (exit status 2, advice), and the σ1 default that the help states.
 set -u
 hv=$1
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 ex3="--sigma0 1 --sigma1 1 --fc 1 --fs 2 --vs 1 --beta 1 --x0 0 --input bimodal:0,0.2,1,1.5"
 stiff="--sigma0 1e5 --sigma1 316.22776601683796 --fc 1 --fs 1.5 --vs 1e-3 --beta 2 --x0 0"
 
@@ -66,5 +60,4 @@ echo "rkf45 on the stiff problem: error $es with the scaled default atol, $ef wi
 "$hv" loop --input bimodal:0,0.2,1,1.5 --gamma 2 --sigma1 0 > "$tmp/s0.csv"
 cmp -s "$tmp/d.csv" "$tmp/s1.csv" && ! cmp -s "$tmp/d.csv" "$tmp/s0.csv" && ok || bad "sigma1 default is not 1"
 
-echo "loop_solver: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "loop_solver"

@@ -15,13 +15,7 @@
 set -u
 hv=$1
 scenes=$2
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 umask 022
 fig=$scenes/fig15_minor_loop_ex4.scene
 loop_in=bimodal:0,0.5,1,1.5
@@ -238,5 +232,4 @@ if [ -w /dev/full ]; then
     done
 fi
 
-echo "output: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "output"

@@ -16,12 +16,7 @@
 set -u
 root=$1
 bench_serve=$2
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/../lib.sh"
 
 sh "$root/tests/bench/bench_sweep.sh" --rows > "$tmp/want" || bad "bench_sweep.sh --rows failed"
 [ "$(wc -l < "$tmp/want")" -ge 10 ] && ok || bad "bench_sweep.sh --rows printed $(wc -l < "$tmp/want") rows"
@@ -77,5 +72,4 @@ python3 "$root/tests/bench/mpl_fig15.py" --rows > "$tmp/mpl" || bad "mpl_fig15.p
 table serve-yardstick "$tmp/mpl" '[0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+\.[0-9] / [0-9]+\.[0-9] ms \| [0-9]+ bytes \| [0-9]+\.[0-9]'
 # the text that quotes the table names the command that made it
 grep -q 'sh tools/setup.sh bench' "$root/docs/PERFORMANCE.md" && ok || bad "docs/PERFORMANCE.md does not name sh tools/setup.sh bench"
-echo "test_readme_bench: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "test_readme_bench"

@@ -15,12 +15,7 @@ hv=$1
 src=$(cd "$2" && pwd)
 bld=$(cd "$3" && pwd)
 case $hv in /*) ;; *) hv=$(pwd)/$hv ;; esac
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/../lib.sh"
 cd "$tmp" || exit 1
 unset SOURCE_DATE_EPOCH
 fig15=$src/scenes/fig15_minor_loop_ex4.scene
@@ -98,5 +93,4 @@ for p in "$hv" "$(dirname "$hv")/hystviz-animate"; do
     [ -z "$hits" ] && ok || bad "$(basename "$p") holds build paths: $hits"
 done
 
-echo "test_repro: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "test_repro"

@@ -11,13 +11,7 @@
 set -u
 hv=$1
 scenes=$2
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 fig15=$scenes/fig15_minor_loop_ex4.scene
 grid="--grid model.sigma0=1:10:log5 --grid input.umin2=0.1,0.3,0.5"   # 15 points
 
@@ -105,5 +99,4 @@ rm "$tmp/k/sweep.shard-2-of-3.csv" "$tmp/k"/p02_* "$tmp/k"/p05_*
 "$hv" sweep "$fig15" $grid -o "$tmp/k" -q --formats svg,png --shard 2/3 && "$hv" sweep --merge "$tmp/k" -q &&
     diff -r "$tmp/one" "$tmp/k" > /dev/null && ok || bad "killed shard re-run: study differs"
 
-echo "test_shard: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "test_shard"

@@ -10,13 +10,7 @@
 set -u
 hv=$1
 scenes=$2
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 fig15=$scenes/fig15_minor_loop_ex4.scene
 
 # ---- the done-when study ----------------------------------------------------
@@ -189,5 +183,4 @@ a200=$(grep '^0,ok,' "$tmp/ja/sweep.csv" | cut -d, -f9)
 a400=$(grep '^1,ok,' "$tmp/ja/sweep.csv" | cut -d, -f9)
 awk -v a="$a200" -v b="$a400" 'BEGIN { exit !(a > 0 && a < b) }' && ok || bad "ja study: minor area at k = 200 ($a200) not below k = 400 ($a400)"
 
-echo "test_sweep: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "test_sweep"

@@ -11,13 +11,7 @@ set -u
 hv=$1
 scenes=$2
 here=$(dirname "$0")
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM
+. "$(dirname "$0")/../lib.sh"
 /usr/bin/python3 -c 'import numpy' 2> /dev/null || { echo "SKIP: python3-numpy is missing"; exit 77; }
 fig15=$scenes/fig15_minor_loop_ex4.scene
 # umin2 past umax1 = 1: invalid rows with a message; a list axis with a text value
@@ -62,5 +56,4 @@ head -c $(($(wc -c < "$f") - 5)) "$f" > "$tmp/cut" && cat "$tmp/cut" > "$f"
 [ $? -eq 2 ] && [ ! -e "$tmp/u" ] && ok || bad "--table xls accepted"
 "$hv" sweep "$fig15" $g --formats none -o "$tmp/u" --table npy --plot energy 2> /dev/null
 [ $? -eq 2 ] && [ ! -e "$tmp/u" ] && ok || bad "--table npy --plot accepted"
-echo "test_sweep_npy: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "test_sweep_npy"

@@ -1,33 +1,17 @@
 /* SPDX-License-Identifier: MIT */
-/* tutil.h: tiny assertion helpers for hystviz's C tests.  CHECK counts and
- * reports; tu_finish prints "N passed, M failed" and returns the exit code. */
+/* tutil.h: the core tests' checks (tests/hy_test.h under their short names:
+ * CHECK counts and reports; tu_finish prints "N passed, M failed" and returns
+ * the exit code) and a fixed-seed random generator. */
 #ifndef HY_TUTIL_H
 #define HY_TUTIL_H
 
-#include <math.h>
 #include <stdint.h>
-#include <stdio.h>
-#include <string.h>
 
-static int tu_pass, tu_fail;
+#include "../hy_test.h"
 
-#define CHECK(cond, ...)                                                        \
-    do {                                                                        \
-        if (cond)                                                               \
-            tu_pass++;                                                          \
-        else {                                                                  \
-            tu_fail++;                                                          \
-            if (tu_fail <= 25) {                                                \
-                fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);            \
-                fprintf(stderr, __VA_ARGS__);                                   \
-                fputc('\n', stderr);                                            \
-            }                                                                   \
-        }                                                                       \
-    } while (0)
-
-#define CHECK_CLOSE(a, b, tol, what)                                            \
-    CHECK(fabs((double)(a) - (double)(b)) <= (tol), "%s: %.17g vs %.17g (diff %.3g > tol %.3g)", \
-          what, (double)(a), (double)(b), fabs((double)(a) - (double)(b)), (double)(tol))
+/* the core tests' names for tests/hy_test.h's checks */
+#define CHECK HY_CHECK
+#define CHECK_CLOSE HY_CHECK_CLOSE
 
 #define CHECK_MSG(rc, err, expect_code, needle)                                 \
     CHECK((rc) == (expect_code) && strstr((err).msg, (needle)) != NULL,         \
@@ -36,8 +20,7 @@ static int tu_pass, tu_fail;
 
 static inline int tu_finish(const char *name)
 {
-    printf("%s: %d passed, %d failed\n", name, tu_pass, tu_fail);
-    return tu_fail ? 1 : 0;
+    return hy_test_finish(name);
 }
 
 /* splitmix64: a fixed-seed generator so random cases are reproducible */

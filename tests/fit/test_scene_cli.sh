@@ -7,13 +7,7 @@
 # are one line on standard error, exit 2, nothing written.
 set -u
 hv=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM
+. "$(dirname "$0")/../lib.sh"
 s=$tmp/s
 mkdir -p "$s/out"
 # play with r = 0.3 driven 0 -> 1 -> -1 -> 1 from y0 = 0: y = u - r on the way up
@@ -75,5 +69,4 @@ refused "bad.csv:3:2: the row has 1 column" "$s/badx.scene" --free play_r
 printf 'u,y\n1,2\n' > "$s/bad.csv"
 refused "a piecewise-linear input needs at least 3 points" "$s/badx.scene" --free play_r
 "$hv" fit --help | grep -q -- '--free KEY' && ok || bad "--help does not list --free"
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "scene_cli"

@@ -6,13 +6,7 @@
 # tests/forc/test_forc_cli.sh HYSTVIZ FILE.forc
 set -u
 hv=$1 data=$2
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/forc_cli.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM
+. "$(dirname "$0")/../lib.sh"
 
 "$hv" forc --help > "$tmp/help" && grep -q '^usage: hystviz forc FILE' "$tmp/help" && ok || bad "--help"
 
@@ -91,5 +85,4 @@ cmp -s "$tmp/rho.csv" "$tmp/rho3.csv" && ok || bad "--figure changed the CSV"
 "$hv" forc "$data" --levels 0,x 2> "$tmp/err"
 [ $? -eq 2 ] && grep -q -- "--levels" "$tmp/err" && ok || bad "--levels 0,x"
 
-echo "forc_cli: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "forc_cli"

@@ -11,13 +11,7 @@
 # tests/forc/test_forc_scene.sh HYSTVIZ FILE.forc
 set -u
 hv=$1 data=$2
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/forc_scene.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM
+. "$(dirname "$0")/../lib.sh"
 mkdir "$tmp/s" "$tmp/out"
 cp "$data" "$tmp/s/m.forc"
 
@@ -134,5 +128,4 @@ printf '[model]\nkind = preisach\n[forc]\n[figure]\nkind = forc\n[series a]\ndat
 [ $? -eq 2 ] && grep -q 'e5.scene:6:1: .*not \[series\]' "$tmp/err" && ok || bad "series: $(cat "$tmp/err")"
 [ -z "$(ls -A "$tmp/out")" ] && ok || bad "files written by refused scenes: $(ls "$tmp/out")"
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "forc_scene"

@@ -7,15 +7,8 @@
 # links every figure and its tags nest.
 # usage: test_gallery.sh HYSTVIZ   (HYSTVIZ gallery ... must run the command)
 set -u
-. "$(dirname "$0")/../lib/wait.sh"
+. "$(dirname "$0")/../lib.sh"
 hv=$1
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 S=$tmp/scenes
 G=$tmp/gallery
 mkdir "$S"
@@ -375,5 +368,4 @@ builtins_refused "-> a file outside the scene directory" "gallery-builtins: cann
 head -c 20000 /dev/zero | tr '\0' '#' > "$B2/gallery-builtins"
 builtins_refused "of 20000 bytes" "gallery-builtins: cannot read: larger than"
 
-echo "gallery: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "gallery"

@@ -12,13 +12,7 @@
 # usage: test_gallery_shard.sh HYSTVIZ
 set -u
 hv=$1
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 S=$tmp/scenes
 mkdir "$S"
 cat > "$S/look.scene" <<'EOF'
@@ -131,5 +125,4 @@ rm "$S/g_psi2.scene"
 "$hv" gallery --scenes "$S" -o "$G" --shard 2/2 2> /dev/null
 [ $? -eq 2 ] && ok || bad "--shard 2/2 accepted"
 
-echo "test_gallery_shard: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "test_gallery_shard"

@@ -12,13 +12,7 @@ set -u
 hv=$1
 scenes=$2
 command -v ffmpeg > /dev/null || { echo "SKIP: no ffmpeg"; exit 77; }
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 A=minor-loop-ex4
 O="--size 320x180 --fps 10 --duration 1.5 --quiet"   # 15 frames
 
@@ -69,5 +63,4 @@ PATH=/nonexistent "$hv" animate $A -o "$tmp/fr" $O --assemble webm 2> "$tmp/err"
 "$hv" animate $A -o "$tmp/fr" $O --shard 3/3 2> /dev/null
 [ $? -eq 2 ] && ok || bad "--shard 3/3 accepted"
 
-echo "test_assemble: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "test_assemble"

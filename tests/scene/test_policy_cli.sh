@@ -5,13 +5,7 @@
 # Everything is written under a temp dir.
 set -u
 hv=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib.sh"
 mkdir -p "$tmp/proj/scenes" "$tmp/elsewhere" "$tmp/styles"
 s=$tmp/proj/scenes
 
@@ -98,5 +92,4 @@ if [ $st -ne 3 ]; then # 3: built without OSMesa
         bad "animate budget: $st $(cat "$tmp/err")"
 fi
 
-echo "scene policy cli: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "scene policy cli"

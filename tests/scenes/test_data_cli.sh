@@ -7,13 +7,7 @@
 # measured y and the residual beside the model's.
 set -u
 hv=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM
+. "$(dirname "$0")/../lib.sh"
 s=$tmp/scenes
 mkdir -p "$s/out" "$tmp/elsewhere"
 scene() { # scene NAME CSV: a loop figure of the measured file CSV
@@ -82,5 +76,4 @@ awk -F, '$1 == "f" { m[$2 "," NR % 4] = $3; mm[++i] = $3 } $1 == "f@measured" { 
     END { bad = (i != 4 || j != 4 || k != 4); for (n = 1; n <= 4; n++) if (r[n] != mm[n] - me[n] && (r[n] - (mm[n] - me[n]))^2 > 1e-30) bad = 1; exit bad }' "$tmp/csv" &&
     ok || bad "residual is not model - measured"
 
-echo "data_cli: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish "data_cli"

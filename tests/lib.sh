@@ -1,0 +1,36 @@
+# SPDX-License-Identifier: MIT
+# tests/lib.sh: the shell tests' vocabulary (sh and bash), sourced after set -u:
+#     . "$(dirname "$0")/../lib.sh"
+#   ok [WHAT]       counts a passed check (prints "ok: WHAT" when given)
+#   bad WHAT        counts a failed check and prints "FAIL: WHAT"
+#   finish NAME     prints "NAME: P passed, F failed"; its status is the test's
+#                   (0 when no check failed): the test's last line
+#   $tmp            the test's own directory, $TMPDIR/TESTNAME.XXXXXX, removed
+#                   with everything in it when the test exits, also when meson's
+#                   timeout stops it (SIGTERM); nothing else is the test's
+#   wait_pid PID SECONDS WHAT, wait_until SECONDS WHAT COMMAND..., alive PID:
+#                   bounded waits (tests/lib/wait.sh): every wait has a deadline
+# A test that starts background processes replaces the EXIT trap with one that
+# kills them and then runs lib_cleanup.
+pass=0
+fail=0
+ok() {
+    pass=$((pass + 1))
+    [ $# -eq 0 ] || echo "ok: $*"
+}
+bad() {
+    fail=$((fail + 1))
+    echo "FAIL: $*"
+}
+finish() {
+    echo "$1: $pass passed, $fail failed"
+    [ "$fail" -eq 0 ]
+}
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/$(basename "$0" .sh).XXXXXX") || {
+    echo "FAIL: cannot make a temporary directory under ${TMPDIR:-/tmp}"
+    exit 1
+}
+lib_cleanup() { rm -rf "$tmp"; }
+trap lib_cleanup EXIT
+trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
+. "$(dirname "$0")/../lib/wait.sh"
