@@ -13,28 +13,8 @@
 #include "figures.h"
 #include "hy_cairo.h"
 
+#include "../hy_test.h"
 #include "rcheck.h"
-
-static char *slurp(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *buf = malloc((size_t)n + 1);
-    if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-        free(buf);
-        buf = NULL;
-    }
-    fclose(f);
-    if (buf) {
-        buf[n] = '\0';
-        *len = (size_t)n;
-    }
-    return buf;
-}
 
 /* Counts of what an SVG body holds, outside <defs>. */
 typedef struct svg_counts {
@@ -153,7 +133,7 @@ static void test_svg_structure(int i)
     snprintf(path, sizeof path, "out_%s.svg", name);
     CHECK(hy_figure_write(&fig, path, HY_FORMAT_SVG, &err) == 0, "%s", err.msg);
     size_t len;
-    char *svg = slurp(path, &len);
+    char *svg = hy_test_slurp(path, &len);
     CHECK(svg != NULL, "cannot read %s", path);
     if (!svg)
         return;
@@ -197,7 +177,7 @@ static void test_determinism(int i)
         snprintf(a, sizeof a, "det_%s_a.%s", name, ext[f]);
         snprintf(b, sizeof b, "det_%s_b.%s", name, ext[f]);
         CHECK(!hy_figure_write(&fig, a, f, &err) && !hy_figure_write(&fig, b, f, &err), "%s", err.msg);
-        char *da = slurp(a, &la), *db = slurp(b, &lb);
+        char *da = hy_test_slurp(a, &la), *db = hy_test_slurp(b, &lb);
         CHECK(da && db && la == lb && la > 0 && !memcmp(da, db, la), "%s and %s differ", a, b);
         free(da);
         free(db);
@@ -262,7 +242,7 @@ static void test_atomic(void)
     /* A write failure part-way (file size limit, as ENOSPC would): the old file survives. */
     size_t lold = 0, lnow = 0;
     CHECK(hy_figure_write(&fig, "atomic_dir/keep.svg", HY_FORMAT_SVG, &err) == 0, "%s", err.msg);
-    char *old = slurp("atomic_dir/keep.svg", &lold);
+    char *old = hy_test_slurp("atomic_dir/keep.svg", &lold);
     struct rlimit saved, small;
     getrlimit(RLIMIT_FSIZE, &saved);
     small = saved;
@@ -282,7 +262,7 @@ static void test_atomic(void)
         if (rcs[f])
             printf("ok   expected failure: %s\n", errs[f].msg);
     }
-    char *now = slurp("atomic_dir/keep.svg", &lnow);
+    char *now = hy_test_slurp("atomic_dir/keep.svg", &lnow);
     CHECK(old && now && lold == lnow && !memcmp(old, now, lold), "a failed write damaged the existing file");
     CHECK(leftovers("atomic_dir", "big") == 0, "partial files left after write failures");
     CHECK(leftovers("atomic_dir", "keep.svg.") == 0, "temporary file left after a write failure");

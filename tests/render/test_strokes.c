@@ -14,26 +14,8 @@
 
 #include "hy_plot.h"
 
+#include "../hy_test.h"
 #include "rcheck.h"
-
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *buf = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-        free(buf);
-        buf = NULL;
-    }
-    fclose(f);
-    if (buf)
-        buf[n] = '\0';
-    return buf;
-}
 
 /* A single horizontal dash-dot line at y = 0.5 across x = 0..1, no ticks in the way. */
 static void dashdot_figure(hy_figure *fig, hy_axes *ax, hy_series *s, double *x, double *y)
@@ -110,7 +92,7 @@ static void test_dashdot(void)
     dashdot_figure(&fig, &ax, &s, x, y);
     CHECK(hy_figure_write(&fig, "strokes_dashdot.svg", HY_FORMAT_SVG, &err) == 0, "svg: %s", err.msg);
     CHECK(hy_figure_write(&fig, "strokes_dashdot.png", HY_FORMAT_PNG, &err) == 0, "png: %s", err.msg);
-    char *svg = slurp("strokes_dashdot.svg");
+    char *svg = hy_test_slurp("strokes_dashdot.svg", NULL);
     CHECK(svg != NULL, "cannot read strokes_dashdot.svg");
     if (svg)
         check_svg_dots(svg);
