@@ -63,7 +63,8 @@ configure() { # dir, extra options...: set up and build everything
 }
 # configure_for DIR "SUITE..." OPTIONS...: set up DIR and build only what the
 # tests of those suites run (their executables and the targets they name,
-# from meson's introspection), not the whole project
+# from meson's introspection), not the whole project; a suite written !SUITE
+# leaves its tests out ("!check !no-san": every test but those)
 configure_for() {
     dir=$1 suites=$2; shift 2
     setup_dir "$dir" "$@"
@@ -71,14 +72,17 @@ configure_for() {
     meson compile -C "$dir" $( (cd "$dir" && meson introspect --tests --targets) | python3 -c '
 import json, sys
 j = json.load(sys.stdin)
-want = set(sys.argv[1:])
+want = {s for s in sys.argv[1:] if not s.startswith("!")}
+skip = {s[1:] for s in sys.argv[1:] if s.startswith("!")}
+def chosen(suites):
+    return (not want or want & suites) and not skip & suites
 import os
 src = os.getcwd()
 def qualified(t):  # path/name:type: names alone are ambiguous (the hystviz program and library)
     d = os.path.relpath(os.path.dirname(t["defined_in"]), src)
     return ("" if d == "." else d + "/") + t["name"] + ":" + t["type"].replace(" ", "_")
 names = {t["id"]: qualified(t) for t in j["targets"]}
-need = {names[d] for t in j["tests"] if want & {s.split(":")[-1] for s in t["suite"]} for d in t["depends"]}
+need = {names[d] for t in j["tests"] if chosen({s.split(":")[-1] for s in t["suite"]}) for d in t["depends"]}
 print(" ".join(sorted(need)))' $suites)
 }
 # run_tests DIR MESON-TEST-OPTIONS...: the tests with $TMPDIR a fresh directory,
@@ -101,12 +105,21 @@ run_tests() {
 }
 
 # stage NAME: say how long the last stage took and the whole command so far
-# (the test command's budget is 10 minutes on 2 cores)
+# (the test command's budget is 10 minutes on 2 cores), and the CPU time
+# (user + sys) its processes used: on a loaded machine the wall time says
+# little, the CPU time over 2 cores is the time it would take on 2 quiet ones
 t_start=$(date +%s); t_stage=$t_start
+t_times=$(mktemp "${TMPDIR:-/tmp}/hystviz-times.XXXXXX")
+trap 'rm -f "$t_times"' EXIT
+cpu_s() { # the children's user + sys seconds, from the shell's own `times` (no subshell: it would count none)
+    awk 'NR == 2 { s = 0; for (i = 1; i <= 2; i++) { split($i, a, "m"); s += a[1] * 60 + a[2] } printf "%.0f", s }' "$t_times"
+}
+times >"$t_times"; c_start=$(cpu_s); c_stage=$c_start
 stage() {
     now=$(date +%s)
-    echo "setup: $1 took $((now - t_stage)) s ($((now - t_start)) s in all)"
-    t_stage=$now
+    times >"$t_times"; c_now=$(cpu_s)
+    echo "setup: $1 took $((now - t_stage)) s ($((now - t_start)) s in all; CPU $((c_now - c_stage)) s, $((c_now - c_start)) s in all)"
+    t_stage=$now c_stage=$c_now
 }
 
 case "$what" in
@@ -142,7 +155,8 @@ test)
     # for the integer it is converted to); it is added, and made fatal, here
     san="-fsanitize=float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
     # -O1, as ASan's documentation advises for speed; -g keeps the stacks readable
-    configure build-san -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug \
+    # only what its tests run is built (not the benchmarks, man pages, ...)
+    configure_for build-san "!check !no-san" -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug \
         -Doptimization=1 -Dc_args="$san" -Dc_link_args="$san"
     stage "building build-san/"
     # every suite again under ASan + UBSan but the full check and the tests
@@ -150,7 +164,7 @@ test)
     # (fontconfig keeps a process-lifetime cache: suppressed in tests/render/lsan.supp)
     export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
         LSAN_OPTIONS=suppressions="$PWD/tests/render/lsan.supp"
-    run_tests build-san --no-suite check --no-suite no-san
+    run_tests build-san --no-rebuild --no-suite check --no-suite no-san
     stage "the tests in build-san/"
     ;;
 bench)

@@ -101,7 +101,7 @@ def render(hv, scene, sets, tmp):
     args = [hv, "render", scene, "--format", "svg", "-o", out]
     for s in sets:
         args += ["--set", s]
-    r = subprocess.run(args, capture_output=True, text=True)
+    r = subprocess.run(args, capture_output=True, text=True, timeout=300)
     try:
         if r.returncode:
             return r.returncode, r.stderr.strip()
