@@ -16,11 +16,8 @@
 #   - the installed Python package imports and computes (where NumPy is).
 set -u
 build=$(realpath "$1") src=$(realpath "$2")
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-ok() { echo "ok: $*"; }
+. "$(dirname "$0")/../lib.sh"
+T=$tmp
 
 timeout 300 meson install -C "$build" --no-rebuild --quiet --destdir "$T/dest" >"$T/install.log" 2>&1 ||
     { cat "$T/install.log"; echo "FAIL: meson install"; exit 1; }
@@ -29,21 +26,21 @@ P="$T/dest$prefix"
 hv="$P/bin/hystviz"
 [ -x "$hv" ] || { echo "FAIL: no $hv"; exit 1; }
 for helper in hystviz-animate hystviz-serve; do # helpers, not commands: in libexec
-    [ ! -e "$P/bin/$helper" ] && ok "$helper is not in bin/" || fail "$helper installed in bin/"
+    [ ! -e "$P/bin/$helper" ] && ok "$helper is not in bin/" || bad "$helper installed in bin/"
 done
-[ ! -e "$P/bin/hystviz-serve" ] && ok "hystviz-serve is not in bin/" || fail "hystviz-serve installed in bin/"
+[ ! -e "$P/bin/hystviz-serve" ] && ok "hystviz-serve is not in bin/" || bad "hystviz-serve installed in bin/"
 mkdir -p "$T/home"
 run() { (cd / && HOME="$T/home" timeout 300 "$@"); }
 
 v=$(run "$hv" --version) && v_num=${v#hystviz } && [ "$v" = "$(run "$hv" render --version)" ] && ok "--version, also after a command: $v" ||
-    fail "hystviz render --version"
+    bad "hystviz render --version"
 
 nscenes=$(ls "$src/gallery"/*.svg | wc -l) # the committed gallery's figures
 run "$hv" gallery -q -o "$T/home/g" >"$T/gallery.log" 2>&1; st=$?
 nsvg=$(ls "$T/home/g"/*.svg 2>/dev/null | wc -l)
 [ $st -eq 0 ] && [ "$nsvg" -gt 0 ] && [ "$nsvg" -eq "$nscenes" ] &&
     ok "gallery from /: $nsvg figures from the installed scenes" ||
-    { cat "$T/gallery.log"; fail "gallery from /: exit $st, $nsvg SVGs for $nscenes figure scenes"; }
+    { cat "$T/gallery.log"; bad "gallery from /: exit $st, $nsvg SVGs for $nscenes figure scenes"; }
 
 mkdir -p "$T/home/mine"
 cp "$src/scenes/fig15_minor_loop_ex4.scene" "$T/home/mine/"
@@ -51,16 +48,16 @@ run "$hv" render "$T/home/mine/fig15_minor_loop_ex4.scene" -o "$T/home/out" --fo
     "$build/src/app/hystviz" render "$src/scenes/fig15_minor_loop_ex4.scene" -o "$T/tree" --format svg >/dev/null 2>&1 &&
     cmp -s "$T/home/out/fig15_minor_loop_ex4.svg" "$T/tree/fig15_minor_loop_ex4.svg" &&
     ok "a copied paper scene finds style.scene among the installed scenes; SVG == the build tree's" ||
-    { cat "$T/render.log"; fail "copied paper scene"; }
+    { cat "$T/render.log"; bad "copied paper scene"; }
 
 if [ -x "$build/src/app/hystviz-animate" ] && "$build/src/app/hystviz" animate --list >/dev/null 2>&1; then
-    run "$hv" animate --list >/dev/null 2>&1 && ok "animate finds libexec's hystviz-animate" || fail "installed animate --list"
+    run "$hv" animate --list >/dev/null 2>&1 && ok "animate finds libexec's hystviz-animate" || bad "installed animate --list"
 fi
 
 run "$hv" serve --help >"$T/serve.log" 2>&1; rc=$?
 { [ $rc -eq 0 ] && grep -q 'usage: hystviz serve' "$T/serve.log"; } ||
     { [ $rc -eq 3 ] && grep -q 'libmicrohttpd' "$T/serve.log"; } && ok "serve finds libexec's hystviz-serve" ||
-    { cat "$T/serve.log"; fail "installed serve --help (exit $rc)"; }
+    { cat "$T/serve.log"; bad "installed serve --help (exit $rc)"; }
 
 # serve runs libexec's hystviz-serve on the installed scenes: a URL, then /api/scenes
 if [ -x "$build/src/app/hystviz-serve" ] && command -v curl >/dev/null; then
@@ -76,7 +73,7 @@ if [ -x "$build/src/app/hystviz-serve" ] && command -v curl >/dev/null; then
         sleep 0.1
     done
     [ -n "$url" ] && curl -s --max-time 30 "${url%/}/api/scenes" | grep -q fig15_minor_loop_ex4 &&
-        ok "serve from the install answers with its scenes" || { cat "$T/serve.err"; fail "installed serve: ${url:-no URL}"; }
+        ok "serve from the install answers with its scenes" || { cat "$T/serve.err"; bad "installed serve: ${url:-no URL}"; }
     kill -INT $sp 2>/dev/null
     for _ in $(seq 50); do kill -0 $sp 2>/dev/null || break; sleep 0.1; done
     kill -9 $sp 2>/dev/null
@@ -85,13 +82,13 @@ fi
 
 run "$hv" boucwen data --signal validation -o "$T/home/yval.csv" >/dev/null 2>&1 &&
     [ "$(wc -l <"$T/home/yval.csv")" -gt 1000 ] && ok "Bouc-Wen validation data from share/hystviz/boucwen" ||
-    fail "boucwen data --signal validation"
+    bad "boucwen data --signal validation"
 
 if command -v man >/dev/null; then
     (cd / && MANPATH="$P/share/man" timeout 60 man -P cat hystviz-sweep 2>/dev/null) | grep -q "hystviz-sweep" &&
-        ok "man hystviz-sweep opens the installed page" || fail "man hystviz-sweep"
+        ok "man hystviz-sweep opens the installed page" || bad "man hystviz-sweep"
 fi
-[ -f "$P/share/bash-completion/completions/hystviz" ] && ok "bash completion installed" || fail "no bash completion"
+[ -f "$P/share/bash-completion/completions/hystviz" ] && ok "bash completion installed" || bad "no bash completion"
 pcfile=$(find "$T/dest" -name hystviz.pc | head -1)
 if command -v pkg-config >/dev/null && command -v cc >/dev/null && [ -n "$pcfile" ]; then
     # the .pc names the configured prefix: point it at the destdir's copy
@@ -101,7 +98,7 @@ if command -v pkg-config >/dev/null && command -v cc >/dev/null && [ -n "$pcfile
         timeout 120 cc -std=c11 "$src/docs/examples/minor_loop_area.c" $flags -o "$T/area" &&
         got=$(LD_LIBRARY_PATH="$(dirname "$(find "$T/dest" -name 'libhystviz.so.0' | head -1)")" "$T/area") &&
         [ "$got" = 0.19910737569481529 ] && ok "pkg-config example against the install prints $got" ||
-        fail "pkg-config example against the install: ${got:-no output} ($flags)"
+        bad "pkg-config example against the install: ${got:-no output} ($flags)"
 fi
 
 site=$(dirname "$(find "$T/dest" -path '*hystviz/__init__.py' | head -1)")
@@ -110,7 +107,7 @@ for py in /usr/bin/python3 python3; do
     lib=$(dirname "$(find "$T/dest" -name 'libhystviz.so.0' | head -1)")
     out=$(cd / && PYTHONPATH="$(dirname "$site")" LD_LIBRARY_PATH="$lib" timeout 120 "$py" -c \
         "import hystviz; print(repr(hystviz.minor_loops(hystviz.Model('lugre', sigma0=6), hystviz.Input('bimodal', umin1=0, umin2=0.5, umax1=1, umax2=1.5))[0].area))" 2>&1)
-    [ "$out" = 0.1991073756948153 ] && ok "the installed Python package prints $out" || fail "installed Python: $out"
+    [ "$out" = 0.1991073756948153 ] && ok "the installed Python package prints $out" || bad "installed Python: $out"
     # pip install of src/python (a copy: pip builds in place), offline
     if "$py" -c "import setuptools, wheel, pip" 2>/dev/null; then
         cp -r "$src/src/python" "$T/pysrc"
@@ -119,8 +116,8 @@ for py in /usr/bin/python3 python3; do
         out=$(cd / && PYTHONPATH="$T/pip" LD_LIBRARY_PATH="$lib" timeout 120 "$py" -c \
             "import hystviz; print(hystviz.__file__.startswith('$T/pip'), hystviz.__version__)" 2>&1)
         [ "$out" = "True $v_num" ] && ok "pip install src/python: imports from pip's target" ||
-            { cat "$T/pip.log"; fail "pip install src/python: $out"; }
+            { cat "$T/pip.log"; bad "pip install src/python: $out"; }
     fi
     break
 done
-exit $((fails > 0))
+exit $((fail > 0))

@@ -14,15 +14,14 @@
 set -u
 export LC_ALL=C # sort as python sorts (by code point)
 hv=$1 docs=$2 gen=$3 src=$4
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+. "$(dirname "$0")/../lib.sh"
 command -v groff >/dev/null || { echo "SKIP: groff is not installed"; exit 77; }
 cmds=$(python3 "$gen" commands "$src/src/app/main.c")
-[ "$(echo "$cmds" | wc -w)" -ge 10 ] || fail "only $(echo "$cmds" | wc -w) commands read from main.c"
+[ "$(echo "$cmds" | wc -w)" -ge 10 ] || bad "only $(echo "$cmds" | wc -w) commands read from main.c"
 for page in "$docs"/*.[135]; do
     w=$(groff -man -Tutf8 -ww -z "$page" 2>&1)
-    [ -z "$w" ] || fail "$(basename "$page"): groff warns: $w"
-    grep -q '^\.SH NAME' "$page" && grep -q '^\.SH \(SYNOPSIS\|DESCRIPTION\)' "$page" || fail "$(basename "$page"): no NAME/SYNOPSIS"
+    [ -z "$w" ] || bad "$(basename "$page"): groff warns: $w"
+    grep -q '^\.SH NAME' "$page" && grep -q '^\.SH \(SYNOPSIS\|DESCRIPTION\)' "$page" || bad "$(basename "$page"): no NAME/SYNOPSIS"
 done
 complete() { # words... -> the completions of the last word
     bash -c 'source "$1"; shift; COMP_WORDS=("$@"); COMP_CWORD=$(($# - 1)); _hystviz; printf "%s\n" "${COMPREPLY[@]}"' \
@@ -45,23 +44,23 @@ for c in sys.argv[2:]:
     names = sorted(n for o in t["options"] for n in (o["short"], o["long"]) if n)
     line = [w for o in t["options"] if o["long"] not in ("--help", "--version")
             for n in (o["short"], o["long"]) if n for w in [n] + (["1"] if o["arg"] else [])]
-    print(c, " ".join(names) + " ", " ".join(line), sep="\t")' "$hv" - $cmds) || fail "cannot read the option tables"
+    print(c, " ".join(names) + " ", " ".join(line), sep="\t")' "$hv" - $cmds) || bad "cannot read the option tables"
 version=$("$hv" --version)
 for c in - $cmds; do
     p="$docs/hystviz-$c.1" args=("$c")
     [ "$c" = - ] && p="$docs/hystviz.1" args=()
-    [ -f "$p" ] || { fail "no page for '$c'"; continue; }
+    [ -f "$p" ] || { bad "no page for '$c'"; continue; }
     want=$(echo "$tables" | awk -F '\t' -v c="$c" '$1 == c { print $2 }')
-    [ -n "$want" ] || { fail "hystviz $c: no option table"; continue; }
+    [ -n "$want" ] || { bad "hystviz $c: no option table"; continue; }
     got=$(grep -A1 '^\.TP$' "$p" | grep -v '^\.TP$\|^--$' | grep -o '\\fB[^\\]*\(\\e[^\\]*\)*\\fR' |
         sed 's/\\fB//; s/\\fR//; s/\\e/\\/g' | sort | tr '\n' ' ')
-    [ "$got" = "$want" ] || fail "hystviz $c: page names '$got', table '$want'"
+    [ "$got" = "$want" ] || bad "hystviz $c: page names '$got', table '$want'"
     got=$("$hv" "${args[@]}" --help | help_opts)
-    [ "$got" = "$want" ] || fail "hystviz $c: --help lists '$got', table '$want'"
+    [ "$got" = "$want" ] || bad "hystviz $c: --help lists '$got', table '$want'"
     if [ "$c" != - ]; then
         got=$(complete hystviz "$c" - | sort | tr '\n' ' ')
-        [ "$got" = "$want" ] || fail "hystviz $c: completion offers '$got', table '$want'"
-        v=$("$hv" "$c" --version) && [ "$v" = "$version" ] || fail "hystviz $c --version: '$v'"
+        [ "$got" = "$want" ] || bad "hystviz $c: completion offers '$got', table '$want'"
+        v=$("$hv" "$c" --version) && [ "$v" = "$version" ] || bad "hystviz $c --version: '$v'"
     fi
     # the parser: every option of the table accepted (all on one line, each
     # with a value where it takes one; the line is checked whole before any
@@ -70,15 +69,15 @@ for c in - $cmds; do
     err=$("$hv" "${args[@]}" $line "$probe" 2>&1 >/dev/null </dev/null)
     st=$?
     [ $st -eq 2 ] && [ "$err" = "hystviz${args:+ $c}: unknown option '$probe' (see hystviz${args:+ $c} --help)" ] ||
-        fail "hystviz $c $line $probe: status $st, '$err' (an option of the table not accepted?)"
+        bad "hystviz $c $line $probe: status $st, '$err' (an option of the table not accepted?)"
     nprobe=$((nprobe + $(echo "$line" | tr ' ' '\n' | grep -c '^-')))
 done
 n=$(ls "$docs"/hystviz-*.1 | wc -l)
-[ "$n" -eq "$(echo "$cmds" | wc -w)" ] || fail "$n command pages for $(echo "$cmds" | wc -w) commands"
-[ "$(complete hystviz swe)" = sweep ] || fail "complete 'hystviz swe': '$(complete hystviz swe)'"
-[ "$(complete hystviz loop --model dahl | tr '\n' ' ')" = "dahl dahl-filter " ] || fail "complete --model dahl (its choices)"
-complete hystviz sweep --gr | grep -qx -- --grid || fail "complete 'hystviz sweep --gr'"
-complete hystviz render x.scene --set model.sig | grep -qx 'model.sigma0=' || fail "complete --set model.sig"
-complete hystviz sweep x.scene --grid input.umi | grep -qx 'input.umin2=' || fail "complete --grid input.umi"
-[ $fails -eq 0 ] && echo "ok: $(ls "$docs"/*.[135] | wc -l) man pages format cleanly; tables == --help == pages == completion; $nprobe options accepted by the parser"
-exit $((fails > 0))
+[ "$n" -eq "$(echo "$cmds" | wc -w)" ] || bad "$n command pages for $(echo "$cmds" | wc -w) commands"
+[ "$(complete hystviz swe)" = sweep ] || bad "complete 'hystviz swe': '$(complete hystviz swe)'"
+[ "$(complete hystviz loop --model dahl | tr '\n' ' ')" = "dahl dahl-filter " ] || bad "complete --model dahl (its choices)"
+complete hystviz sweep --gr | grep -qx -- --grid || bad "complete 'hystviz sweep --gr'"
+complete hystviz render x.scene --set model.sig | grep -qx 'model.sigma0=' || bad "complete --set model.sig"
+complete hystviz sweep x.scene --grid input.umi | grep -qx 'input.umin2=' || bad "complete --grid input.umi"
+[ $fail -eq 0 ] && echo "ok: $(ls "$docs"/*.[135] | wc -l) man pages format cleanly; tables == --help == pages == completion; $nprobe options accepted by the parser"
+exit $((fail > 0))

@@ -20,19 +20,16 @@ set -u
 hv=$1
 ha=$2
 scenes=$3
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+. "$(dirname "$0")/../lib.sh"
 
-T=$(mktemp -d)
+T=$tmp
 mkdir "$T/tmp"
 TMPDIR=$T/tmp
 export TMPDIR
 pid=
 cleanup() { [ -n "$pid" ] && kill -9 "$pid" 2>/dev/null; rm -rf "$T"; }
 trap cleanup EXIT
-trap 'exit 1' INT TERM
 
-. "$(dirname "$0")/../lib/wait.sh"
 # whether process $1's main began: it runs the program (no longer the shell
 # that forked it) and handles SIGINT (SigIgn read, bit 1 clear).  Looking at
 # SigIgn alone raced: right after the fork the child still has the shell's
@@ -59,7 +56,7 @@ run() {
         sig=${case%:*} delay=${case#*:}
         want=$want_int
         [ "$sig" = TERM ] && want=$want_term
-        f0=$fails
+        f0=$fail
         rm -rf "$T/out"
         mkdir "$T/out"
         "$@" >"$T/log" 2>&1 </dev/null &
@@ -71,7 +68,7 @@ run() {
             i=$((i + 1))
         done
         if alive "$pid" && ! started "$pid"; then
-            fail "$name: still ignores SIGINT 20 s after it started (a signal at start-up is lost)"
+            bad "$name: still ignores SIGINT 20 s after it started (a signal at start-up is lost)"
         fi
         [ "$delay" = 0 ] || sleep "$delay"
         t0=$(date +%s%N)
@@ -80,12 +77,12 @@ run() {
         rc=$?
         ms=$((($(date +%s%N) - t0) / 1000000))
         pid=
-        [ "$rc" -eq 124 ] && fails=$((fails + 1))
-        [ "$rc" -eq "$want" ] || [ "$rc" -eq 124 ] || fail "$name: SIG$sig after ${delay} s: exit status $rc, want $want: $(head -c 600 "$T/log")"
+        [ "$rc" -eq 124 ] && fail=$((fail + 1))
+        [ "$rc" -eq "$want" ] || [ "$rc" -eq 124 ] || bad "$name: SIG$sig after ${delay} s: exit status $rc, want $want: $(head -c 600 "$T/log")"
         left=$(find "$T/out" "$T/tmp" -name '*hystviz-tmp*' 2>/dev/null; ls -A "$T/tmp")
-        [ -z "$left" ] || fail "$name: SIG$sig after ${delay} s left: $left"
+        [ -z "$left" ] || bad "$name: SIG$sig after ${delay} s left: $left"
         rm -rf "$T/tmp"/* "$T/tmp"/.[!.]* 2>/dev/null
-        [ $fails -eq "$f0" ] && echo "ok: $name: SIG$sig ${delay} s after start: status $rc after $ms ms"
+        [ $fail -eq "$f0" ] && echo "ok: $name: SIG$sig ${delay} s after start: status $rc after $ms ms"
     done
 }
 
@@ -107,5 +104,5 @@ else
     echo "SKIP (animate): built without OSMesa and EGL"
 fi
 
-[ $fails -eq 0 ] || { echo "$fails failure(s)"; exit 1; }
+[ $fail -eq 0 ] || { echo "$fail failure(s)"; exit 1; }
 echo "all signal tests passed"

@@ -13,11 +13,7 @@ set -u
 hv=$1
 close=$2
 src=$3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM
-fail=0
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+. "$(dirname "$0")/../lib.sh"
 
 "$hv" gallery --scenes "$src/scenes" -o "$tmp/g" -j 2 -q || bad "gallery failed"
 n=0
