@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* scene_test.h: a tiny check harness and temp-dir helpers for the scene tests. */
+/* scene_test.h: the scene tests' checks (tests/hy_test.h under their names)
+ * and parse, override and temp-dir helpers. */
 #ifndef SCENE_TEST_H
 #define SCENE_TEST_H
 
@@ -10,35 +11,21 @@
 #include <unistd.h>
 #include <sys/stat.h>
 
+#include "../hy_test.h"
 #include "hy_scene.h"
 
-static int st_failures;
+/* the scene tests' names for tests/hy_test.h's counter and checks */
+#define st_failures hy_test_fail
 
-#define CHECK(cond)                                                              \
-    do {                                                                         \
-        if (!(cond)) {                                                           \
-            fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
-            st_failures++;                                                       \
-        }                                                                        \
-    } while (0)
+#define CHECK(cond) HY_CHECK(cond, "check failed: %s", #cond)
 
-#define CHECK_NEAR(a, b, tol)                                                    \
-    do {                                                                         \
-        double a_ = (a), b_ = (b);                                               \
-        if (!(fabs(a_ - b_) <= (tol))) {                                         \
-            fprintf(stderr, "%s:%d: %s = %.17g, expected %.17g\n", __FILE__, __LINE__, #a, a_, b_); \
-            st_failures++;                                                       \
-        }                                                                        \
-    } while (0)
+#define CHECK_NEAR(a, b, tol) HY_CHECK_CLOSE(a, b, tol, #a)
 
 #define CHECK_STR(a, b)                                                          \
     do {                                                                         \
         const char *a_ = (a), *b_ = (b);                                         \
-        if (!a_ || strcmp(a_, b_) != 0) {                                        \
-            fprintf(stderr, "%s:%d: %s = \"%s\"\n    expected \"%s\"\n", __FILE__, __LINE__, #a, \
-                    a_ ? a_ : "(null)", b_);                                      \
-            st_failures++;                                                       \
-        }                                                                        \
+        HY_CHECK(a_ && strcmp(a_, b_) == 0, "%s = \"%s\"\n    expected \"%s\"", #a, \
+                 a_ ? a_ : "(null)", b_);                                        \
     } while (0)
 
 /* The test's exit status: 0, or 1 after saying on stderr how many checks failed. */
@@ -96,12 +83,11 @@ static inline void st_set_fails(hy_scene *s, const char *a, const char *want, in
 }
 #define SET_FAILS(s, a, want) st_set_fails(s, a, want, __LINE__)
 
-/* Creates a fresh temp directory; path in buf. */
+/* Creates a fresh directory below the test's own (tests/tmpdir.h: removed
+ * with all in it when the test exits, also after failed checks); path in buf. */
 static inline void st_tempdir(char *buf, size_t n)
 {
-    const char *t = getenv("TMPDIR");
-    snprintf(buf, n, "%s/hyscene.XXXXXX", t && *t ? t : "/tmp");
-    if (!mkdtemp(buf)) {
+    if (!mkdtemp(test_tmppath(buf, n, "hyscene.XXXXXX"))) {
         perror("mkdtemp");
         exit(1);
     }
