@@ -270,7 +270,7 @@ wait_until 30 "lock on the held temporary" held_tmp
 run tmps2
 [ ! -e "$G/.a_loop.png.hystviz-tmp.AbC123" ] && [ ! -e "$G/a_loop.svg.tmp.Xy9Zq1" ] && ok || bad "stale temporaries kept: $(ls -A "$G")"
 [ -e "$G/.held.svg.hystviz-tmp.LiVe01" ] && [ -e "$G/notes.tmp.txt" ] && ok || bad "a locked temporary or a user file was removed"
-pkill -P $holder sleep 2> /dev/null
+pkill -P "$holder" 2> /dev/null
 kill $holder 2> /dev/null
 wait $holder 2> /dev/null
 rm -f "$G/.held.svg.hystviz-tmp.LiVe01" "$G/notes.tmp.txt"
@@ -295,7 +295,7 @@ held() { ! flock -n "$G/.lock" true; }
 wait_until 30 "lock held by the test's holder" held
 timeout 10 "$hv" gallery --scenes "$S" -o "$G" --no-times > /dev/null 2> "$tmp/lock.err"
 [ $? -eq 124 ] && grep -q 'waiting for another gallery run' "$tmp/lock.err" && ok || bad "gallery ran while the lock was held: $(cat "$tmp/lock.err")"
-pkill -P $holder sleep 2> /dev/null # (flock's child; killing flock alone leaves it for 60 s)
+pkill -P "$holder" 2> /dev/null # (flock's child; killing flock alone leaves it for 60 s)
 kill $holder 2> /dev/null
 wait $holder 2> /dev/null
 run unlocked
