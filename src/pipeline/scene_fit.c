@@ -35,6 +35,8 @@ typedef struct fit_ctx {
     size_t max_evals;       /* 0, or evaluations o->max_work allows */
     atomic_size_t evals;    /* evaluations begun */
     atomic_int over;        /* max_evals reached */
+    atomic_int stopped;     /* user said stop once (a hook may say it only once: serve's looks
+                               at most once a millisecond and says 0 between) */
     hy_cancel hook;         /* {fit_stop, this}: what hy_fit polls */
 } fit_ctx;
 
@@ -42,7 +44,9 @@ typedef struct fit_ctx {
 static int fit_stop(void *vctx)
 {
     fit_ctx *c = vctx;
-    return atomic_load(&c->over) || (c->user && c->user->fn && c->user->fn(c->user->ctx));
+    if (!atomic_load(&c->stopped) && c->user && c->user->fn && c->user->fn(c->user->ctx))
+        atomic_store(&c->stopped, 1);
+    return atomic_load(&c->over) || atomic_load(&c->stopped);
 }
 
 void hy_scene_fit_opts_default(hy_scene_fit_opts *o)
@@ -377,6 +381,7 @@ int hy_scene_fit_run(const char *path, const hy_scene_fit_opts *o, hy_scene_fit 
     fit_ctx c = {.f = f, .slot = slot, .nslot = nslot, .user = o->fit.cancel};
     atomic_init(&c.evals, 0);
     atomic_init(&c.over, 0);
+    atomic_init(&c.stopped, 0);
     c.hook = (hy_cancel){fit_stop, &c};
     hy_fit_opts fo = o->fit;
     fo.cancel = &c.hook;
@@ -392,7 +397,7 @@ int hy_scene_fit_run(const char *path, const hy_scene_fit_opts *o, hy_scene_fit 
     if (rc && atomic_load(&c.over)) /* the budget, not the caller, stopped it */
         rc = hy_error_set(err, HY_EINVAL, "the fit stopped after %zu model evaluations of %zu points: over its work "
                           "budget of %.3g points (hystviz fit runs it)", c.max_evals, f->pb.n, o->max_work);
-    else if (rc && fit_stop(&c))
+    else if (rc && atomic_load(&c.stopped))
         rc = hy_cancel_error(err);
     if (!rc) { /* the model at the estimate (the residual plus the data) */
         for (size_t i = 0; i < f->pb.n; i++)
