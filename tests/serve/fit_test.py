@@ -10,7 +10,9 @@ machine), as a [data] scene whose [model] starts 20 % off; then through serve:
  - the fit's estimates lie within 3 standard errors of the truth (a correct
    standard error puts 99.7 % of them there) and its RMS within 30 % of sigma
    (the residual of a good fit is the noise); every field the page shows is in
-   the answer; the page's values (set=) are the start;
+   the answer; the estimates are those of `hystviz fit -j 1 -o` to the last
+   bit (the same engine from the same start); the page's values (set=) are
+   the start;
  - the fit's bounds are the sliders' ranges (GET /api/scene): one rule;
  - a scene without data, an unknown key, no free key: 4xx with a message;
  - serve's work budget: with --max-work 1000 (8 evaluations of 113 points)
@@ -125,7 +127,7 @@ def stop(p):
         return p.communicate()[1]
 
 
-def test_fit(port):
+def test_fit(port, hv, sdir, tmp):
     q = "scene=fitme.scene&free=pr_hc,pr_width,pr_ys"
     st, j = post(port, q)
     check(st == 200, "fit: HTTP %d %s" % (st, j))
@@ -154,6 +156,13 @@ def test_fit(port):
         check(c is not None and c["lo"] == p["lo"] and c["hi"] == p["hi"] and c["log"] == p["log"],
               "%s: slider [%s, %s] log %s, fit bounds [%s, %s] log %s" %
               (p["key"], c and c["lo"], c and c["hi"], c and c["log"], p["lo"], p["hi"], p["log"]))
+    # the same fit as the command's (one start, one thread): the same estimates, bit for bit
+    out = os.path.join(sdir, "cli_fitted.scene")  # next to the scene: its data file resolves
+    r = subprocess.run([hv, "fit", os.path.join(sdir, "fitme.scene"), "--free", "pr_hc,pr_width,pr_ys", "-j", "1", "-q",
+                        "-o", out], capture_output=True, text=True, timeout=60)
+    cli = dict(re.findall(r"^(pr_\w+) = (\S+)$", open(out).read(), re.M)) if r.returncode == 0 else {}
+    same = all(p["key"][6:] in cli and float(cli[p["key"][6:]]) == p["estimate"] for p in j["params"])
+    check(same, "serve's estimates %s, hystviz fit -j 1's %s %s" % ([p["estimate"] for p in j["params"]], cli, r.stderr))
     # the page's values are the start
     st, j2 = post(port, q + "&set=" + urllib.parse.quote("model.pr_hc=0.55"))
     check(st == 200 and j2["params"][0]["start"] == 0.55, "fit with set: HTTP %d start %s" %
@@ -228,7 +237,7 @@ def main():
         reader = threading.Thread(target=lambda: err_lines.extend(iter(p.stderr.readline, "")), daemon=True)
         reader.start()
         try:
-            test_fit(port)
+            test_fit(port, hv, sdir, tmp)
             test_refused(port)
             test_superseded(port)
             test_gone(port, err_lines)
