@@ -244,12 +244,16 @@ def main():
         finally:
             p.terminate()
             p.wait(10)
+            reader.join(10)
+        # a sanitizer build: nothing leaked or overrun on the fits' paths (done, refused, stopped)
+        check(not any("Sanitizer" in l for l in err_lines), "serve's standard error: " + "".join(err_lines)[-2000:])
         p, port = serve(hv, sdir, "--max-work", "1000")
         try:
             st, j = post(port, "scene=fitme.scene&free=pr_hc,pr_width,pr_ys")
             check(st == 422 and "over its work budget" in j.get("error", ""), "--max-work 1000: HTTP %d %s" % (st, j))
         finally:
-            stop(p)
+            err = stop(p)
+            check("Sanitizer" not in err, "serve's standard error: " + err[-2000:])
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     print("%s" % ("ok" if not fails else "%d failed" % fails))
