@@ -42,9 +42,11 @@ static const char usage[] =
     "all at once), each record from [input] start, against the measured\n"
     "outputs.  Each key is kept in the range a page's slider gives it (the\n"
     "schema's bounds; an open one 1/100 to 100 times the scene's value),\n"
-    "logarithmic when that spans a factor 50 or more.  Start 0 is the\n"
-    "scene's values; --starts N more come from a Latin hypercube over the\n"
-    "ranges (--seed).  A start the model refuses is reported and skipped.\n"
+    "logarithmic when that spans a factor 50 or more.  --set S.K=V applies\n"
+    "to the scene first, as render's --set: a free key's start and range,\n"
+    "a fixed key's value.  Start 0 is the scene's values; --starts N more\n"
+    "come from a Latin hypercube over the ranges (--seed).  A start the\n"
+    "model refuses is reported and skipped.\n"
     "Prints the estimates, standard errors, 95 % intervals, correlations,\n"
     "condition number, unidentifiable keys and fit statistics; -o writes the\n"
     "scene with the estimates written in (hystviz render draws data and\n"
@@ -78,11 +80,13 @@ static const char tail[] =
     "  hystviz fit --benchmark boucwen          (about 30 s of CPU)\n";
 
 enum { OPT_BENCH = CLI_FIRST, OPT_SEED, OPT_REAL, OPT_PERIODS, OPT_NOISE, OPT_PARAMS, OPT_FIXNU, OPT_STARTS,
-       OPT_DATA_DIR, OPT_QUIET, OPT_FREE, OPT_DATA, OPT_OUT, OPT_RESID };
+       OPT_DATA_DIR, OPT_QUIET, OPT_FREE, OPT_DATA, OPT_OUT, OPT_RESID, OPT_SET };
 static const cli_opt fit_opts[] = {
     {"free", 0, "KEY,...", "the [model] keys to fit (repeatable)", OPT_FREE, 0, NULL, NULL, NULL},
     {"data", 0, "NAME,...", "the [data] sets fitted at once, each driving the\n"
      "model in turn (default: [input] data; repeatable)", OPT_DATA, 0, NULL, NULL, NULL},
+    {"set", 0, "S.K=V", "override a scene key before fitting, as render's\n"
+     "--set: a free key's start, a fixed key's value (repeatable)", OPT_SET, CLI_SCENE_KEY, NULL, NULL, NULL},
     {"output", 'o', "FILE", "the fitted scene: SCENE with the estimates written in", OPT_OUT, 0, NULL, NULL, NULL},
     {"residuals", 0, "FIG", "a figure (.svg, .png, .pdf) of the residuals", OPT_RESID, 0, NULL, NULL, NULL},
     {"benchmark", 0, "NAME", "the identification benchmark to run: boucwen", OPT_BENCH, 0, NULL, NULL, NULL},
@@ -116,6 +120,8 @@ typedef struct fopts {
     int all, quiet, seed_set;
     hy_scene_policy pol; /* --include-dir, --max-work */
     const char **dirs;
+    char **sets;         /* --set, as given (argv's) */
+    size_t nsets;
 } fopts;
 
 static double now(void)
@@ -182,6 +188,7 @@ static int take(fopts *o, int id, const char *v)
     case CLI_ARG: o->scene = v; return 0;
     case OPT_OUT: o->out = v; return 0;
     case OPT_RESID: o->resid = v; return 0;
+    case OPT_SET: o->sets[o->nsets++] = (char *)v; return 0; /* checked where it is applied (hy_scene_set) */
     case OPT_FREE: return split_list("--free", v, o->keys, &o->nkeys, MAX_KEYS);
     case OPT_DATA: return split_list("--data", v, o->data, &o->ndata, MAX_DATA);
     case OPT_PARAMS:
@@ -464,6 +471,7 @@ static int hy_cmd_fit_scene(fopts *o)
         data[d] = o->data[d];
     so.pol = &o->pol;
     so.free_keys = keys, so.nfree = o->nkeys, so.data = data, so.ndata = o->ndata;
+    so.sets = o->sets, so.nsets = o->nsets;
     so.fit.starts = o->bw.fit.starts;
     so.fit.jobs = o->bw.fit.jobs;
     so.fit.seed = o->seed_set ? o->bw.seed : 1;
@@ -503,6 +511,8 @@ static int fit_main(fopts *o)
         return bad("unknown benchmark '%s' (boucwen)", o->bench);
     if (o->scene)
         return bad("--benchmark takes no scene ('%s')", o->scene);
+    if (o->nsets)
+        return bad("--benchmark takes no --set ('%s'): it has no scene", o->sets[0]);
     return boucwen(o);
 }
 
@@ -511,7 +521,10 @@ int hy_cmd_fit(int argc, char **argv)
     fopts o = {0};
     o.pol = hy_scene_policy_default();
     o.dirs = calloc((size_t)argc + 1, sizeof *o.dirs); /* --include-dir: one per argument at most */
-    if (!o.dirs) {
+    o.sets = calloc((size_t)argc + 1, sizeof *o.sets); /* --set: likewise */
+    if (!o.dirs || !o.sets) {
+        free(o.dirs);
+        free(o.sets);
         fprintf(stderr, "hystviz fit: out of memory\n");
         return CLI_FAILED;
     }
@@ -530,5 +543,6 @@ int hy_cmd_fit(int argc, char **argv)
     if (rc < 0)
         rc = fit_main(&o);
     free(o.dirs);
+    free(o.sets);
     return rc;
 }

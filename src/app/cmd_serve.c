@@ -53,7 +53,9 @@ static const cli_opt serve_opts[] = {
     {"open", 0, NULL, "open the page in the desktop's browser (xdg-open)", OPT_OPEN, 0, NULL, NULL, NULL},
     {"max-work", 0, "W", "work budget of one render (default 2e6, 50 times the largest\n"
      "gallery figure; `hystviz render` allows 1e8):\n"
-     "a page's request for more is refused before computing (422)", OPT_MAX_WORK, 0, NULL, NULL, NULL},
+     "a page's request for more is refused before computing (422);\n"
+     "a fit (the page's fit button) stops past W measured points\n"
+     "summed over its model evaluations (422)", OPT_MAX_WORK, 0, NULL, NULL, NULL},
     {"include-dir", 0, "DIR", "a directory scenes may include from and read input files\n"
      "from, besides their own (as for hystviz render); repeatable", CLI_INCLUDE_DIR, 0, NULL, NULL, NULL},
     {"allow-save", 0, NULL, "enable \"save as new scene\": the page carries a token that lets it\n"

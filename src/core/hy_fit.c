@@ -340,17 +340,28 @@ static void iter_cb(const size_t iter, void *params, const gsl_multifit_nlinear_
     report(jb, iter, nrm * nrm, 0, HY_OK);
 }
 
+/* drive's status when o->cancel said stop (GSL's own are >= -2) */
+#define FIT_STOPPED (-1000)
+
+static int stopped(const hy_fit_opts *o)
+{
+    return o->cancel && o->cancel->fn && o->cancel->fn(o->cancel->ctx);
+}
+
 /* gsl_multifit_nlinear_driver's loop with the relative RSS test added:
  * iterate (one accepted step each) until GSL's xtol or gtol test passes
  * (info 1, 2), the RSS fell by less than ftol of itself in the last step
  * (info 3), no step can be found (GSL_ENOPROG) or max_iter steps were taken
- * (GSL_EMAXITER).  Returns 0 on the tests, else that status. */
+ * (GSL_EMAXITER), or o->cancel says stop (FIT_STOPPED).  Returns 0 on the
+ * tests, else that status. */
 static int drive(job *jb, gsl_multifit_nlinear_workspace *w, int *info)
 {
     const hy_fit_opts *o = jb->o;
     double prev = gsl_blas_dnrm2(gsl_multifit_nlinear_residual(w));
     iter_cb(0, jb, w);
     for (size_t it = 0; it < o->max_iter; it++) {
+        if (stopped(o))
+            return FIT_STOPPED;
         int st = gsl_multifit_nlinear_iterate(w);
         if (st)
             return st;
@@ -406,6 +417,11 @@ static void run_start(job *jb)
         snprintf(rec->msg, sizeof rec->msg, "out of memory");
         goto done;
     }
+    if (stopped(o)) {
+        rec->status = HY_ECANCEL;
+        snprintf(rec->msg, sizeof rec->msg, "stopped: the work is no longer wanted");
+        goto done;
+    }
     if (start_scale(jb, r))
         goto done;
     gsl_multifit_nlinear_parameters prm = gsl_multifit_nlinear_default_parameters();
@@ -433,6 +449,11 @@ static void run_start(job *jb)
     rec->gsl_status = st;
     rec->info = info;
     rec->iter = gsl_multifit_nlinear_niter(w);
+    if (st == FIT_STOPPED) {
+        rec->status = HY_ECANCEL;
+        snprintf(rec->msg, sizeof rec->msg, "stopped: the work is no longer wanted");
+        goto done;
+    }
     if (st && st != GSL_EMAXITER && st != GSL_ENOPROG) {
         if (!rec->msg[0])
             snprintf(rec->msg, sizeof rec->msg, "GSL: %s", gsl_strerror(st));
@@ -830,6 +851,11 @@ int hy_fit_run(const hy_fit_problem *pb, const hy_fit_opts *o, hy_fit_result *re
                            .col_jobs = col_jobs};
     run_all(&pl, o->jobs);
     free(pl.jobs);
+    for (size_t s = 0; s < res->nstarts; s++)
+        if (res->start[s].status == HY_ECANCEL || stopped(o)) {
+            hy_fit_result_free(res);
+            return hy_cancel_error(err);
+        }
     size_t best = SIZE_MAX;
     for (size_t s = 0; s < res->nstarts; s++) {
         hy_fit_start *st = &res->start[s];

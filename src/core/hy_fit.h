@@ -36,6 +36,7 @@
 #ifndef HY_FIT_H
 #define HY_FIT_H
 
+#include "hy_cancel.h"
 #include "hy_status.h"
 
 #include <stddef.h>
@@ -113,6 +114,9 @@ typedef struct hy_fit_opts {
     void (*progress)(const hy_fit_progress *pr, void *ctx); /* NULL: silent;
                         called from the worker threads */
     void *progress_ctx;
+    const hy_cancel *cancel; /* NULL: never; polled before each start and each
+                        iteration: when it says stop, hy_fit_run returns
+                        HY_ECANCEL (no result) after the iteration running */
 } hy_fit_opts;
 
 /* One start: where it began and ended and how. */
@@ -156,7 +160,8 @@ void hy_fit_opts_default(hy_fit_opts *o);
  * hy_fit_result_free) and HY_OK is returned.  HY_EINVAL: a bad problem or
  * option (bounds, start outside them, design over infinite bounds); HY_ENUM:
  * every start failed (res is zeroed and needs no free; the message quotes
- * the first start's reason); HY_ENOMEM. */
+ * the first start's reason); HY_ECANCEL: o->cancel said stop (res zeroed);
+ * HY_ENOMEM. */
 int hy_fit_run(const hy_fit_problem *pb, const hy_fit_opts *o, hy_fit_result *res, hy_error *err);
 
 /* The statistics of hy_fit_run at a given theta, without fitting (res->start

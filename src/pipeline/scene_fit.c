@@ -9,6 +9,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,7 +31,23 @@ typedef struct fit_ctx {
     const hy_scene_fit *f;
     fit_slot *slot;
     size_t nslot;
+    const hy_cancel *user;  /* the caller's hook (o->fit.cancel), or NULL */
+    size_t max_evals;       /* 0, or evaluations o->max_work allows */
+    atomic_size_t evals;    /* evaluations begun */
+    atomic_int over;        /* max_evals reached */
+    atomic_int stopped;     /* user said stop once (a hook may say it only once: serve's looks
+                               at most once a millisecond and says 0 between) */
+    hy_cancel hook;         /* {fit_stop, this}: what hy_fit polls */
 } fit_ctx;
+
+/* Whether the fit is to stop: the caller said so, or the budget is spent. */
+static int fit_stop(void *vctx)
+{
+    fit_ctx *c = vctx;
+    if (!atomic_load(&c->stopped) && c->user && c->user->fn && c->user->fn(c->user->ctx))
+        atomic_store(&c->stopped, 1);
+    return atomic_load(&c->over) || atomic_load(&c->stopped);
+}
 
 void hy_scene_fit_opts_default(hy_scene_fit_opts *o)
 {
@@ -38,20 +55,27 @@ void hy_scene_fit_opts_default(hy_scene_fit_opts *o)
     hy_fit_opts_default(&o->fit);
 }
 
-void hy_scene_fit_range(const hy_scene_key_spec *k, double v, double *lo, double *hi, int *log)
+void hy_scene_key_range(const hy_scene_key_spec *k, double v, double *lo, double *hi, int *log)
 {
     int has_min = (k->flags & HY_SPEC_MIN) != 0, has_max = (k->flags & HY_SPEC_MAX) != 0;
+    int integer = k->kind == HY_KIND_INTEGER;
     *log = 0;
     if (has_min && k->min >= 0 && v > 0) {
         *lo = v / 100, *hi = v * 100;
+        if (integer)
+            *lo = ceil(*lo), *hi = floor(*hi);
         if (*lo < k->min || (*lo == k->min && (k->flags & HY_SPEC_MIN_EXCL)))
             *lo = (k->flags & HY_SPEC_MIN_EXCL) ? (k->min > 0 ? k->min * 1.000001 : v / 100) : k->min;
         if (has_max && *hi > k->max)
             *hi = k->max;
+        if (integer && *lo < 1)
+            *lo = 1;
         *log = *lo > 0 && *hi / *lo >= 50;
+        if (!*log && integer && !has_max)
+            *hi = *lo + 100;
     } else if (has_min && k->min >= 0) { /* v = 0 */
         *lo = k->min;
-        *hi = has_max ? k->max : k->min + 1;
+        *hi = has_max ? k->max : k->min + (integer ? 100 : 1);
     } else {
         double w = fabs(v) > 0 ? fabs(v) : 1;
         *lo = v - w, *hi = v + w;
@@ -70,6 +94,10 @@ static int resid(const double *theta, double *r, void *vctx)
 {
     fit_ctx *c = vctx;
     const hy_scene_fit *f = c->f;
+    if (c->max_evals && atomic_fetch_add(&c->evals, 1) >= c->max_evals)
+        atomic_store(&c->over, 1);
+    if (fit_stop(c)) /* fails at once: hy_fit stops at its next poll */
+        return HY_ECANCEL;
     fit_slot *s = NULL;
     for (size_t i = 0; !s && i < c->nslot; i++)
         if (!pthread_mutex_trylock(&c->slot[i].mu))
@@ -122,7 +150,7 @@ static int free_key(const hy_scene_run *r, const char *key, hy_fit_param *q, dou
     if (hy_scene_doc_num(&r->doc, "model", key, &v))
         return hy_error_set(err, HY_EINVAL, "--free %s: it has no value to start from (set it in [model])", key);
     int lg;
-    hy_scene_fit_range(k, v, &q->lo, &q->hi, &lg);
+    hy_scene_key_range(k, v, &q->lo, &q->hi, &lg);
     q->name = k->name;
     q->scale = lg ? HY_FIT_LOG : HY_FIT_LINEAR;
     *x0 = fmin(fmax(v, q->lo), q->hi);
@@ -138,28 +166,34 @@ static int load_runs(const char *path, const hy_scene_fit_opts *o, size_t ndata,
     hy_scene *sc = NULL;
     hy_scene_doc d;
     memset(&d, 0, sizeof d);
-    int rc = o->ndata ? hy_scene_parse_file_policy(path, o->pol, &sc, err) : HY_OK;
+    int rc = !o->ndata ? HY_OK
+             : o->text ? hy_scene_parse_buffer_policy(path, o->text, o->text_len, o->pol, &sc, err)
+                       : hy_scene_parse_file_policy(path, o->pol, &sc, err);
     if (!rc && sc && (rc = hy_scene_decode(sc, &d, err)))
         memset(&d, 0, sizeof d);
     size_t ns = 0, nm = 0;
     for (size_t i = 0; i < d.nseries; i++)
         nm += d.series[i].data == HY_DATA_MODELLED;
-    char (*set)[200] = calloc(nm + 1, sizeof *set), **sets = calloc(nm + 1, sizeof *sets);
+    char (*set)[200] = calloc(nm + 1, sizeof *set), **sets = calloc(o->nsets + nm + 1, sizeof *sets);
     if (!rc && (!set || !sets))
         rc = hy_error_set(err, HY_ENOMEM, "out of memory");
     size_t d_ok = 0;
     for (; !rc && d_ok < ndata; d_ok++) {
-        ns = 0;
+        ns = 0; /* the caller's overrides, then the data set's */
+        for (size_t i = 0; i < o->nsets; i++)
+            sets[ns++] = o->sets[i];
+        size_t k = 0;
         if (o->ndata) {
-            snprintf(set[ns], sizeof set[ns], "input.data=%s", o->data[d_ok]);
-            sets[ns] = set[ns], ns++;
+            snprintf(set[k], sizeof set[k], "input.data=%s", o->data[d_ok]);
+            sets[ns++] = set[k++];
             for (size_t i = 0; i < d.nseries; i++)
                 if (d.series[i].data == HY_DATA_MODELLED) {
-                    snprintf(set[ns], sizeof set[ns], "series.%s.of=%s", d.series[i].h.name, o->data[d_ok]);
-                    sets[ns] = set[ns], ns++;
+                    snprintf(set[k], sizeof set[k], "series.%s.of=%s", d.series[i].h.name, o->data[d_ok]);
+                    sets[ns++] = set[k++];
                 }
         }
-        rc = hy_scene_run_load_policy(&run[d_ok], path, sets, ns, o->pol, err);
+        rc = o->text ? hy_scene_run_load_text(&run[d_ok], path, o->text, o->text_len, sets, ns, o->pol, err)
+                     : hy_scene_run_load_policy(&run[d_ok], path, sets, ns, o->pol, err);
     }
     if (rc)
         for (size_t e = 0; e + 1 < d_ok; e++)
@@ -234,11 +268,17 @@ static int put(char **t, size_t *n, size_t *cap, const char *s, size_t len)
 /* The scene's text with each free key's estimate written in: on the key's
  * own line when the file writes it there, else after the [model] header,
  * else in a [model] section added at the end; a header comment says so. */
-static int fitted_text(hy_scene_fit *f, const char *path, const hy_scene_policy *pol, hy_error *err)
+static int fitted_text(hy_scene_fit *f, const char *path, const hy_scene_fit_opts *o, hy_error *err)
 {
+    const hy_scene_policy *pol = o->pol;
     char *src = NULL, why[200];
-    size_t len;
-    if (hy_file_read(path, TEXT_MAX, &src, &len, NULL, why, sizeof why))
+    size_t len = o->text_len;
+    if (o->text && (src = malloc(len + 1))) { /* the caller's text: the file as read once */
+        memcpy(src, o->text, len);
+        src[len] = '\0';
+    } else if (o->text)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    else if (hy_file_read(path, TEXT_MAX, &src, &len, NULL, why, sizeof why))
         return hy_error_set(err, HY_EIO, "cannot read %s: %s", path, why);
     hy_scene *sc = NULL; /* the file as written (the runs' scenes carry the last evaluation's overrides) */
     if (pol ? hy_scene_parse_buffer_policy(path, src, len, pol, &sc, err) : hy_scene_parse_buffer(path, src, len, &sc, err)) {
@@ -271,6 +311,10 @@ static int fitted_text(hy_scene_fit *f, const char *path, const hy_scene_policy 
         snprintf(line, sizeof line, "#   %s %.17g\n", f->prm[j].name, f->res.se[j]);
         rc = put(&f->text, &n, &cap, line, strlen(line));
     }
+    for (size_t i = 0; !rc && i < o->nsets; i++) /* not written in: render needs them too */
+        rc = put(&f->text, &n, &cap, i ? " --set " : "# fitted with --set ", i ? 7 : 20) ||
+             put(&f->text, &n, &cap, o->sets[i], strlen(o->sets[i])) ||
+             (i + 1 == o->nsets && put(&f->text, &n, &cap, "\n", 1));
     int ln = 1;
     for (const char *s = src; !rc && *s; ln++) {
         const char *nl = strchr(s, '\n');
@@ -334,18 +378,31 @@ int hy_scene_fit_run(const char *path, const hy_scene_fit_opts *o, hy_scene_fit 
     }
     if (!rc)
         rc = take_data(f, slot[0].run, err);
-    fit_ctx c = {f, slot, nslot};
+    fit_ctx c = {.f = f, .slot = slot, .nslot = nslot, .user = o->fit.cancel};
+    atomic_init(&c.evals, 0);
+    atomic_init(&c.over, 0);
+    atomic_init(&c.stopped, 0);
+    c.hook = (hy_cancel){fit_stop, &c};
+    hy_fit_opts fo = o->fit;
+    fo.cancel = &c.hook;
     if (!rc) {
         f->pb = (hy_fit_problem){f->off[f->ndata], p, f->prm, resid, &c, f->x0, f->y};
         if (f->pb.n <= p)
             rc = hy_error_set(err, HY_EINVAL, "%zu measured points for %zu free parameters: too few", f->pb.n, p);
+        if (o->max_work > 0) /* at least one evaluation: the budget refuses fits, not scenes */
+            c.max_evals = (size_t)fmax(1, floor(o->max_work / (double)(f->pb.n ? f->pb.n : 1)));
     }
     if (!rc)
-        rc = hy_fit_run(&f->pb, &o->fit, &f->res, err);
+        rc = hy_fit_run(&f->pb, &fo, &f->res, err);
+    if (rc && atomic_load(&c.over)) /* the budget, not the caller, stopped it */
+        rc = hy_error_set(err, HY_EINVAL, "the fit stopped after %zu model evaluations of %zu points: over its work "
+                          "budget of %.3g points (hystviz fit runs it)", c.max_evals, f->pb.n, o->max_work);
+    else if (rc && atomic_load(&c.stopped))
+        rc = hy_cancel_error(err);
     if (!rc) { /* the model at the estimate (the residual plus the data) */
         for (size_t i = 0; i < f->pb.n; i++)
             f->ymodel[i] = f->res.resid[i] + f->y[i];
-        rc = fitted_text(f, path, o->pol, err);
+        rc = fitted_text(f, path, o, err);
     }
     f->pb.ctx = NULL; /* c goes with this call */
     free_slots(slot, nslot, f->ndata);

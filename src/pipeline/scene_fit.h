@@ -31,8 +31,19 @@ typedef struct hy_scene_fit_opts {
                                      the model in turn ([input] data = NAME); 0: the
                                      scene's own [input] data */
     size_t ndata;
-    hy_fit_opts fit;              /* starts, seed, jobs, progress (hy_fit_opts_default) */
+    hy_fit_opts fit;              /* starts, seed, jobs, progress (hy_fit_opts_default);
+                                     fit.cancel also stops the model evaluations */
     const struct hy_scene_policy *pol; /* include dirs, work budget (NULL: defaults) */
+    char *const *sets;            /* nsets overrides "SECTION.KEY=VALUE" (render's
+                                     --set) applied before fitting: the start
+                                     values and the fixed ones */
+    size_t nsets;
+    const char *text;             /* the scene's text (text_len bytes; path names
+                                     it), or NULL: read from path */
+    size_t text_len;
+    double max_work;              /* 0, or the most measured points over all
+                                     evaluations (serve's budget of one fit):
+                                     past it the fit stops with HY_EINVAL */
 } hy_scene_fit_opts;
 
 /* A fit: the problem as hy_fit saw it, its result, and what it was fitted to. */
@@ -53,17 +64,20 @@ typedef struct hy_scene_fit {
 /* o with no keys, no data names and hy_fit_opts_default's options. */
 void hy_scene_fit_opts_default(hy_scene_fit_opts *o);
 
-/* The fitting range of a [model] number key: the range a page's slider gives
- * it at the scene's value v (the schema's bounds; where one is open,
- * v/100 .. 100 v for a key >= 0, v -+ |v| otherwise), logarithmic when it
- * is positive and spans at least a factor 50.  One rule for fit and sliders. */
-void hy_scene_fit_range(const hy_scene_key_spec *k, double v, double *lo, double *hi, int *log);
+/* The range of a number or integer key at the scene's value v: the range
+ * serve's slider gives it and the bounds hystviz fit keeps it in (one rule
+ * for both): the schema's bounds; where one is open, v/100 .. 100 v for a
+ * key >= 0 (an integer: whole, at least 1, lo + 100 when linear and open
+ * above), v -+ |v| otherwise; logarithmic when it is positive and spans at
+ * least a factor 50.  Always lo < hi. */
+void hy_scene_key_range(const hy_scene_key_spec *k, double v, double *lo, double *hi, int *log);
 
 /* Loads the scene at path, checks the free keys and the data, fits.  HY_OK:
  * f holds the result (release with hy_scene_fit_free).  HY_EINVAL with one
  * line: an unknown key, not a [model] number key of the scene's model, a
- * range of one value, no data, a bad data file (file:line:col); HY_ENUM:
- * every start failed.  On error f needs no free. */
+ * range of one value, no data, a bad data file (file:line:col), a bad
+ * override, o->max_work spent; HY_ENUM: every start failed; HY_ECANCEL:
+ * o->fit.cancel said stop.  On error f needs no free. */
 int hy_scene_fit_run(const char *path, const hy_scene_fit_opts *o, hy_scene_fit *f, hy_error *err);
 
 /* Releases f; f is zeroed. */

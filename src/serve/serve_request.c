@@ -51,6 +51,7 @@ static const struct {
     {"scene", offsetof(sv_args, scene)}, {"fmt", offsetof(sv_args, fmt)},     {"page", offsetof(sv_args, page)},
     {"seq", offsetof(sv_args, seq)},     {"frame", offsetof(sv_args, frame)}, {"name", offsetof(sv_args, name)},
     {"hover", offsetof(sv_args, hover)}, {"from", offsetof(sv_args, from)},   {"to", offsetof(sv_args, to)},
+    {"free", offsetof(sv_args, free)},
 };
 
 enum MHD_Result sv_arg_it(void *cls, enum MHD_ValueKind kind, const char *key, size_t key_size, const char *value,

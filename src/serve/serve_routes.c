@@ -7,6 +7,7 @@
 
 #include "serve_assets.h"
 #include "serve_events.h"
+#include "serve_fit.h"
 #include "serve_render.h"
 #include "serve_request.h"
 #include "serve_save.h"
@@ -24,6 +25,7 @@ const sv_route sv_routes[] = {
     {SV_GET, "/api/render", 0, sv_api_render, SV_OPEN, "a render slot and the page's slot; --max-work; 32 MB"},
     {SV_GET, "/api/frame", 0, sv_api_frame, SV_OPEN, "a render slot, the page's slot and a frame worker"},
     {SV_GET, "/api/frames", 0, sv_api_frames, SV_OPEN, "per frame a render slot, the page's slot and a worker"},
+    {SV_POST, "/api/fit", 0, sv_api_fit, SV_OPEN, "a render slot and the page's slot; --max-work measured points in all"},
     {SV_POST, "/api/save", 0, sv_api_save, SV_SAVE, "100 new scenes a run, one a second"},
     {SV_GET, "/scenes/", 1, sv_api_text, SV_OPEN, "a scene file's text (HY_SCENE_MAX_FILE_BYTES)"},
     {0, NULL, 0, NULL, 0, NULL},

@@ -276,6 +276,11 @@ enum MHD_Result sv_api_scene(sv_server *s, struct MHD_Connection *c, const sv_ar
         sv_controls_json(&b, sc, &d, hy_scene_doc_reads(&d));
         sv_puts(&b, ",\"presets\":");
         sv_presets_json(&b, sc, &d);
+        sv_puts(&b, ",\"fit\":"); /* the [data] that drives the model: the page offers POST /api/fit */
+        if (d.input.data)
+            sv_json(&b, d.input.data);
+        else
+            sv_puts(&b, "null");
         if (is_animation(&d))
             sv_json_anim(&b, s, c, hy_scene_hash(sc), path, text, tl);
         else

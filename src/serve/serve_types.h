@@ -105,7 +105,7 @@ typedef struct sv_server {
 /* A request's query arguments (sv_arg_it); the strings are libmicrohttpd's. */
 typedef struct sv_args {
     int n, too_many;
-    const char *scene, *fmt, *page, *seq, *frame, *name, *hover, *from, *to;
+    const char *scene, *fmt, *page, *seq, *frame, *name, *hover, *from, *to, *free;
     const char *sets[MAX_ARGS];
     size_t nsets;
     int bad_nul;

@@ -2,6 +2,7 @@
 /* serve_util.c: see serve_util.h. */
 #include "serve_util.h"
 #include "hy_scene_decl.h"
+#include "scene_fit.h"
 #include "scene_model.h"
 
 #include <errno.h>
@@ -199,39 +200,6 @@ int sv_set_ok(const char *set, hy_error *err)
 
 /* ---- controls ------------------------------------------------------- */
 
-void sv_slider_range(const hy_scene_key_spec *k, double v, double *lo, double *hi, int *log)
-{
-    int has_min = (k->flags & HY_SPEC_MIN) != 0, has_max = (k->flags & HY_SPEC_MAX) != 0;
-    int integer = k->kind == HY_KIND_INTEGER;
-    *log = 0;
-    if (has_min && k->min >= 0 && v > 0) {
-        *lo = v / 100, *hi = v * 100;
-        if (integer)
-            *lo = ceil(*lo), *hi = floor(*hi);
-        if (*lo < k->min || (*lo == k->min && (k->flags & HY_SPEC_MIN_EXCL)))
-            *lo = (k->flags & HY_SPEC_MIN_EXCL) ? (k->min > 0 ? k->min * 1.000001 : v / 100) : k->min;
-        if (has_max && (*hi > k->max))
-            *hi = k->max;
-        if (integer && *lo < 1)
-            *lo = 1;
-        *log = *lo > 0 && *hi / *lo >= 50;
-        if (!*log && integer && !has_max)
-            *hi = *lo + 100;
-    } else if (has_min && k->min >= 0) { /* v = 0 */
-        *lo = k->min;
-        *hi = has_max ? k->max : k->min + (integer ? 100 : 1);
-    } else {
-        double w = fabs(v) > 0 ? fabs(v) : 1;
-        *lo = v - w, *hi = v + w;
-        if (has_min && *lo < k->min)
-            *lo = k->min;
-        if (has_max && *hi > k->max)
-            *hi = k->max;
-    }
-    if (!(*hi > *lo))
-        *hi = *lo + 1;
-}
-
 /* The parameters a model kind or input kind has (shown with their defaults
  * when the scene leaves them unset). */
 static int wanted(const char *sec, const char *kind, const char *key)
@@ -306,7 +274,7 @@ static void control(sv_buf *b, int *first, double v, const hy_scene_key_spec *k,
 {
     double lo, hi;
     int lg, d = -1;
-    sv_slider_range(k, v, &lo, &hi, &lg);
+    hy_scene_key_range(k, v, &lo, &hi, &lg); /* the fitter's bounds too */
     for (size_t i = 0; i < sizeof domains / sizeof domains[0] && d < 0 && !param; i++)
         if (!strcmp(domains[i].sec, sec) && !strcmp(domains[i].key, k->name) &&
             (!domains[i].kind[0] || !strcmp(domains[i].kind, input)) &&

@@ -66,10 +66,6 @@ void sv_controls_json(sv_buf *b, const hy_scene *s, const hy_scene_doc *d, unsig
  * d is s decoded; s splits each preset's set text. */
 void sv_presets_json(sv_buf *b, const hy_scene *s, const hy_scene_doc *d);
 
-/* Slider range for a key spec and its current value: [lo, hi], logarithmic
- * when the range spans decades; kept inside the documented bounds. */
-void sv_slider_range(const hy_scene_key_spec *k, double v, double *lo, double *hi, int *log);
-
 /* The text of a new scene: the original text with every override written in
  * (a key the file sets is replaced on its line, a key it does not set goes
  * under its section's header, or into a new section at the end) and

@@ -37,6 +37,16 @@ cp "$s/play.csv" "$s/play2.csv"
 "$hv" fit "$s/two.scene" --free play_r --data d --data e -q > "$tmp/o" 2> "$tmp/e"
 grep -q '122 measured points in \[data d\] (1 record), \[data e\] (1 record)' "$tmp/o" && ok ||
     bad "--data d --data e: $(cat "$tmp/e") $(head -1 "$tmp/o")"
+# --set before fitting (as render's): a free key's start (the start column,
+# the range around it), a fixed key's value (y_0 = 0.2 where the data have 0:
+# the first point alone misses by 0.2, so max |error| = 0.2 and RMS > 0)
+"$hv" fit "$s/play.scene" --free play_r --set model.play_r=0.25 -q > "$tmp/o" 2> "$tmp/e"
+grep -Eq '^play_r +0\.25 +0\.0025 +25 +log' "$tmp/o" && ok || bad "--set start: $(cat "$tmp/e") $(head -3 "$tmp/o")"
+"$hv" fit "$s/play.scene" --free play_r --set model.play_y0=0.2 -q > "$tmp/o" 2> "$tmp/e"
+grep -q 'max |error| 0\.2,' "$tmp/o" && ok || bad "--set fixed y0: $(cat "$tmp/e") $(grep RMS "$tmp/o")"
+# a key the scene does not write has no start unless --set gives it one
+"$hv" fit "$s/play.scene" --free play_r,play_y0 --set model.play_y0=0.01 -o "$s/fitted.scene" -q > "$tmp/o" 2> "$tmp/e"
+grep -q '^# fitted with --set model.play_y0=0.01$' "$s/fitted.scene" && ok || bad "--set not noted: $(cat "$tmp/e")"
 rm -f "$s/fitted.scene" "$s/resid.svg"
 # refused ARGS... : one line on standard error, exit 2, nothing written
 refused() {
@@ -55,6 +65,8 @@ refused "named twice" "$s/play.scene" --free play_r,model.play_r
 refused "an empty name" "$s/play.scene" --free play_r,
 refused "no \[data nosuch\]" "$s/play.scene" --free play_r --data nosuch
 refused "free KEY" "$s/play.scene"
+refused "unknown key 'nosuch' in \[model\]" "$s/play.scene" --free play_r --set model.nosuch=1
+refused "takes no --set" --benchmark boucwen --set model.m=1
 "$hv" fit "$s/play.scene" --free play_r --residuals "$s/r.txt" -o "$s/fitted.scene" -q > /dev/null 2> "$tmp/e"
 st=$?
 [ $st -eq 2 ] && grep -q "must end in .svg" "$tmp/e" && [ ! -e "$s/fitted.scene" ] && [ ! -e "$s/r.txt" ] && ok ||

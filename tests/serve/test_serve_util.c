@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "scene_fit.h"
 #include "serve_util.h"
 #include "../tmpdir.h"
 
@@ -124,19 +125,19 @@ int main(void)
     /* slider ranges: sigma0 (> 0) log over four decades around the value */
     double lo, hi;
     int lg;
-    sv_slider_range(spec("model", "sigma0"), 6, &lo, &hi, &lg);
+    hy_scene_key_range(spec("model", "sigma0"), 6, &lo, &hi, &lg);
     CHECK(lg && fabs(lo - 0.06) < 1e-15 && fabs(hi - 600) < 1e-12);
     /* sigma2 = 0 (>= 0): linear from 0 */
-    sv_slider_range(spec("model", "sigma2"), 0, &lo, &hi, &lg);
+    hy_scene_key_range(spec("model", "sigma2"), 0, &lo, &hi, &lg);
     CHECK(!lg && lo == 0 && hi > 0);
     /* umin2 (unbounded): linear around the value */
-    sv_slider_range(spec("input", "umin2"), 0.5, &lo, &hi, &lg);
+    hy_scene_key_range(spec("input", "umin2"), 0.5, &lo, &hi, &lg);
     CHECK(!lg && lo == 0 && hi == 1);
     /* dpi in [36, 2400]: kept inside the documented bounds */
-    sv_slider_range(spec("figure", "dpi"), 200, &lo, &hi, &lg);
+    hy_scene_key_range(spec("figure", "dpi"), 200, &lo, &hi, &lg);
     CHECK(lo >= 36 && hi <= 2400 && lo < 200 && hi > 200);
     /* rtol in (0, 1]: never above 1, never 0 */
-    sv_slider_range(spec("compute", "rtol"), 1e-8, &lo, &hi, &lg);
+    hy_scene_key_range(spec("compute", "rtol"), 1e-8, &lo, &hi, &lg);
     CHECK(lg && lo > 0 && hi <= 1);
 
     /* save as new scene: replaced lines, inserted keys, a new section */

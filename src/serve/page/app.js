@@ -13,6 +13,7 @@ const hv = window.hv = {
   hover: null, hoverTimer: 0,
   frame: -1, frameB64: null, frameSeq: 0, frameInflight: false, framePending: -1, playing: false,
   pins: [], sliderPlay: null, speed: 1, axesHeld: null,
+  fitKeys: new Set(), fitAbort: null, fit: null,
 };
 const $ = id => document.getElementById(id);
 const enc = encodeURIComponent;
@@ -137,7 +138,7 @@ async function openScene(file, keep, st) {
     hv.preset = st ? st.preset : null;
     hv.lastKey = null; hv.svg = null; $('figure').replaceChildren(); hv.hover = null;
     sliderPlayStop();
-    if (!same) { hv.pins = []; pinList(); } // pins belong to their scene
+    if (!same) { hv.pins = []; pinList(); hv.fitKeys = new Set(); fitStop(); $('fit').hidden = true; } // pins and fits belong to their scene
     syncHeld();
     $('newname').value = '';
     // the new figure where it can be seen (a switch keeps no scroll position)
@@ -299,6 +300,9 @@ function buildControls(info) {
       onclick: () => sliderStep(-1) }, '◀|'),
     el('button', { type: 'button', class: 'stepbtn', 'aria-label': 'step the slider on', title: '. (full stop): the slider played or moved last, one step on',
       onclick: () => sliderStep(1) }, '|▶'),
+    ...(info.fit ? [el('button', { type: 'button', id: 'fitbtn', onclick: () => hv.fitAbort ? fitStop(true) : doFit(),
+      title: 'fit the ticked [model] parameters to the measured data [data ' + info.fit + '] from the values shown (hystviz fit --free … --set …); the sliders take the estimates' },
+      hv.fitAbort ? 'stop fit' : 'fit to data')] : []),
     el('label', { title: 'figure.theme = slides: dark background, thicker lines, larger text (t)' },
       el('input', { type: 'checkbox', id: 'slides', onchange: ev => setTheme(ev.target.checked) }), ' slides theme'),
     ...(info.presets || []).map((p, i) => el('button', { type: 'button', class: 'preset' + (hv.preset === p.name ? ' on' : ''),
@@ -317,10 +321,16 @@ function buildControls(info) {
     const play = el('button', { type: 'button', class: 'playkey' + (hv.sliderPlay && hv.sliderPlay.key === c.key ? ' on' : ''),
       'data-key': c.key, 'aria-label': 'play ' + ctlName(c), 'aria-pressed': String(!!(hv.sliderPlay && hv.sliderPlay.key === c.key)), title: 'play: move ' + ctlName(c) + ' back and forth over its range (space stops)',
       onclick: () => toggleSliderPlay(c.key) }, hv.sliderPlay && hv.sliderPlay.key === c.key ? '■' : '▶');
+    // a scene with measured data: a [model] number key may be ticked as a free key of the fit
+    const fitOk = info.fit && /^model\.[^.]+$/.test(c.key) && !c.int;
+    const tick = fitOk ? [el('label', { class: 'fitkey', title: 'fit ' + ctlName(c) + ' to the measured data (the fit button)' },
+      el('input', { type: 'checkbox', 'data-key': c.key, 'aria-label': 'fit ' + ctlName(c),
+        onchange: ev => { if (ev.target.checked) hv.fitKeys.add(c.key); else hv.fitKeys.delete(c.key); } }), ' fit')] : [];
+    if (fitOk && hv.fitKeys.has(c.key)) tick[0].firstChild.checked = true;
     const div = el('div', { class: 'ctl' + (hv.sets[c.key] !== undefined ? ' changed' : '') + (mains.includes(c) ? ' main' : ''),
       'data-key': c.key },
       el('label', { title }, labelNode(c), el('span', { class: 'file' }, 'file: ' + c.value + (c.set ? '' : ' (default)'))),
-      range, el('div', { class: 'row' }, box, play, el('span', { class: 'note' }, c.range + (c.log ? ' · log slider' : ''))), err);
+      range, el('div', { class: 'row' }, box, play, ...tick, el('span', { class: 'note' }, c.range + (c.log ? ' · log slider' : ''))), err);
     range.value = toPos(c, parseFloat(cur));
     const apply = (v) => {
       if (v === c.value) delete hv.sets[c.key]; else hv.sets[c.key] = v;
@@ -392,6 +402,76 @@ function setTheme(on) {
   document.body.classList.toggle('slides', on);
   pushUrl(false);
   requestRender();
+}
+
+// ---- fitting: the ticked [model] keys to the scene's measured data -------------
+// POST /api/fit with the values shown (they are the start and the fixed values)
+// and a new sequence number of the page: a render asked for while it runs (a
+// slider moved) stops it on the server, as does "stop fit" (the connection
+// closes).  The answer's estimates become the sliders' values (one render).
+
+function fitStop(said) {
+  if (!hv.fitAbort) return;
+  hv.fitAbort.abort();
+  hv.fitAbort = null;
+  const b = $('fitbtn');
+  if (b) b.textContent = 'fit to data';
+  if (said) say('fit stopped');
+}
+
+function fitNum(v) { return v === null || v === undefined ? '–' : Number(v).toPrecision(6).replace(/\.?0+(e|$)/, '$1'); }
+
+function showFit(j) {
+  const names = j.params.map(p => { const c = ctlOf(p.key); return c ? ctlName(c) : p.key; });
+  $('fitcap').textContent = 'estimates from ' + j.points + ' measured points of [data ' + j.data.join('], [data ') + ']';
+  $('fitrows').replaceChildren(...j.params.map((p, i) => el('tr', {},
+    el('th', { scope: 'row' }, names[i]), el('td', {}, fitNum(p.start)), el('td', {}, fitNum(p.estimate)),
+    el('td', {}, fitNum(p.se)), el('td', {}, '[' + fitNum(p.ci_lo) + ', ' + fitNum(p.ci_hi) + ']'),
+    el('td', {}, p.unidentifiable ? 'unidentifiable: the data do not determine it' : ''))));
+  $('fitstats').textContent = 'RMS ' + fitNum(j.rms) + ', normalised RMS ' + fitNum(j.nrms) + ', max error ' +
+    fitNum(j.max_error) + ' · ' + j.iterations + ' iterations, ' + j.evaluations + ' model evaluations, ' +
+    j.seconds.toFixed(2) + ' s';
+  const un = j.params.filter(p => p.unidentifiable).map(p => { const c = ctlOf(p.key); return c ? ctlName(c) : p.key; });
+  const nm = k => { const c = ctlOf(k); return c ? ctlName(c) : k; };
+  $('fitflags').textContent = (un.length ? 'unidentifiable: ' + un.join(', ') + '. ' : '') +
+    (j.correlated.length ? 'correlated (|r| > 0.95): ' + j.correlated.map(q => nm(q[0]) + ' and ' + nm(q[1]) + ' (r = ' + q[2].toFixed(3) + ')').join(', ')
+      : 'no pair correlated above |r| = 0.95');
+  $('fit').hidden = false;
+  say('fit done: ' + names.map((n, i) => n + ' = ' + fitNum(j.params[i].estimate)).join(', ') + '; RMS ' + fitNum(j.rms) +
+    (un.length ? '; unidentifiable: ' + un.join(', ') : ''));
+}
+
+async function doFit() {
+  if (!hv.info || !hv.info.fit) return;
+  const keys = hv.info.controls.filter(c => hv.fitKeys.has(c.key)).map(c => c.key.slice(6));
+  if (!keys.length) { flash('tick the parameters to fit (the "fit" box beside each slider of the model)'); return; }
+  sliderPlayStop();
+  const ctl = hv.fitAbort = new AbortController();
+  $('fitbtn').textContent = 'stop fit';
+  say('fitting ' + keys.join(', ') + '…');
+  const my = ++hv.seq;
+  try {
+    const r = await fetch('/api/fit?' + query() + '&free=' + enc(keys.join(',')) + '&page=' + hv.page + '&seq=' + my,
+      { method: 'POST', signal: ctl.signal });
+    const j = await r.json();
+    if (hv.fitAbort !== ctl) return; // stopped meanwhile
+    if (r.status === 200) {
+      hv.fit = j;
+      for (const p of j.params) {
+        const c = ctlOf(p.key), v = String(p.estimate);
+        if (c && v === c.value) delete hv.sets[p.key]; else hv.sets[p.key] = v;
+      }
+      hv.preset = null;
+      buildControls(hv.info);
+      showFit(j);
+      pushUrl(false);
+      requestRender();
+    } else if (r.status === 409) say('fit stopped: the page asked for something newer');
+    else showError(j.error || ('HTTP ' + r.status));
+  } catch (e) {
+    if (e.name !== 'AbortError') showError('the fit got no answer: ' + e);
+  }
+  if (hv.fitAbort === ctl) { hv.fitAbort = null; const b = $('fitbtn'); if (b) b.textContent = 'fit to data'; }
 }
 
 // ---- rendering -------------------------------------------------------------
