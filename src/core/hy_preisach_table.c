@@ -52,6 +52,26 @@ double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b)
     return e;
 }
 
+double hy_preisach_table_demag(const hy_preisach_table *t, double u)
+{
+    double s = 0;
+    for (size_t k = 0; k < t->n; k++) {
+        int down = t->alpha[k] + t->beta[k] >= 0;
+        if (u > 0 ? down && t->alpha[k] <= u : u < 0 && !down && t->beta[k] >= u)
+            s += t->w[k];
+    }
+    return s;
+}
+
+double hy_preisach_table_area(const hy_preisach_table *t, double lo, double hi)
+{
+    double s = 0;
+    for (size_t k = 0; k < t->n; k++)
+        if (t->beta[k] >= lo && t->alpha[k] <= hi)
+            s += t->w[k] * (t->alpha[k] - t->beta[k]);
+    return 2 * s;
+}
+
 int hy_preisach_table_forc(const hy_preisach_table *t, const hy_forc_data *d, double *m_model, double *rms,
                            double *offset, hy_error *err)
 {
@@ -263,10 +283,10 @@ static int to_grid(rd *r, const rows *t, hy_forc_grid *g)
         size_t ic = k % nc, iu = k / nc;
         double hc = v[3 * k], hu = v[3 * k + 1];
         if (!(dc > 0) || !near(hc, node_at(hc0, hc1, ic, nc), 1e-6 * dc))
-            return hy_error_set(r->err, HY_EINVAL, "%s:%zu:1: H_c = %.17g is not node %zu of the first run's regular "
+            return hy_error_set(r->err, HY_EINVAL, "%s:%zu:1: H_c = %.10g is not node %zu of the first run's regular "
                                 "H_c grid (%g to %g, %zu nodes)", r->name, t->line[k], hc, ic, hc0, hc1, nc);
         if (!(du > 0) || !near(hu, node_at(hu0, hu1, iu, nu), 1e-6 * du) || (ic && hu != v[3 * k - 2]))
-            return hy_error_set(r->err, HY_EINVAL, "%s:%zu:1: H_u = %.17g is not node %zu of a regular ascending H_u "
+            return hy_error_set(r->err, HY_EINVAL, "%s:%zu:1: H_u = %.10g is not node %zu of a regular ascending H_u "
                                 "grid (%g to %g, %zu nodes; one H_u per run of %zu rows)", r->name, t->line[k], hu,
                                 iu, hu0, hu1, nu, nc);
     }
@@ -370,6 +390,13 @@ static int nnls_cd(const gsl_matrix *G, const gsl_vector *b, double *x, size_t n
     *sweeps = it + 1 < max ? it + 1 : max;
     free(g);
     return HY_OK;
+}
+
+void hy_preisach_table_fit_shape(const hy_forc_grid *g, size_t *nc, size_t *nu)
+{
+    double s = sqrt((double)HY_PREISACH_TABLE_FIT_NODES / (double)(g->nc * g->nu));
+    *nc = s < 1 ? (size_t)fmax(2, floor(s * (double)g->nc)) : g->nc;
+    *nu = s < 1 ? (size_t)fmax(2, floor(s * (double)g->nu)) : g->nu;
 }
 
 int hy_preisach_table_fit(const hy_forc_data *d, const hy_forc_grid *shape, size_t nc, size_t nu,

@@ -19,8 +19,12 @@
  * in any scene (src/pipeline/model_preisach.c).
  *
  * hy_preisach_table_fit finds μ >= 0 on a coarser grid by least squares of
- * the model's FORCs to the data (GSL multifit_nlinear over μ = θ², after
- * reducing the problem to the normal equations' Cholesky factor).
+ * the model's FORCs to the data: the model is linear in the relays'
+ * weights, so the normal equations (GSL matrices) are formed once and
+ * minimised over μ >= 0 by cyclic coordinate descent (exact along each
+ * coordinate, projected).  GSL multifit_nlinear over μ = θ² reached the
+ * same minimum on the measured file but in 500 trust-region iterations
+ * (39 s of CPU for 296 parameters); the descent takes about 0.5 s.
  *
  * Quadrature: node (i_c, i_u) stands for its cell, of area 2 ΔH_c ΔH_u in
  * (α, β) (α = H_u + H_c, β = H_u − H_c), half that on the H_c = 0 row; the
@@ -60,6 +64,14 @@ double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b)
 int hy_preisach_table_forc(const hy_preisach_table *t, const hy_forc_data *d, double *m_model, double *rms,
                            double *offset, hy_error *err);
 
+/* For hy_preisach's demagnetised state (relays up where α + β < 0): the
+ * weight switched moving monotonically from 0 to u, up (u > 0: relays with
+ * α + β >= 0 and α <= u) or down (u < 0: α + β < 0 and β >= u). */
+double hy_preisach_table_demag(const hy_preisach_table *t, double u);
+
+/* ∮ u dy of the loop between lo < hi: 2 Σ w (α − β) over lo <= β, α <= hi. */
+double hy_preisach_table_area(const hy_preisach_table *t, double lo, double hi);
+
 void hy_preisach_table_free(hy_preisach_table *t);
 
 /* Caps of a density file: bytes, and nodes (as a FORC grid, hy_forc.h). */
@@ -85,13 +97,20 @@ typedef struct hy_preisach_table_fitres {
     double offset;       /* the output at positive saturation (fitted)        */
     double rms;          /* RMS of M_model − M over all points                */
     size_t nfree;        /* free parameters: the nodes the data see, + offset  */
-    size_t iters;        /* trust-region iterations                            */
+    size_t iters;        /* coordinate-descent sweeps                          */
 } hy_preisach_table_fitres;
+
+/* The fit grid for a distribution's grid g: g's ranges with at most
+ * HY_PREISACH_TABLE_FIT_NODES nodes, g's node counts scaled by one factor
+ * (at least 2 a side). */
+#define HY_PREISACH_TABLE_FIT_NODES 400
+void hy_preisach_table_fit_shape(const hy_forc_grid *g, size_t *nc, size_t *nu);
 
 /* Least squares of a tabulated density to FORC data d: μ >= 0 (μ = θ²) on
  * the grid over shape's ranges with nc x nu nodes (each >= 2), and the
  * offset, minimising Σ (M_model − M)² over all points (M_model as
  * hy_preisach_table_forc).  A node whose relay no point switches is 0.
+ * The normal equations carry a ridge of 1e-9 of their diagonal.
  * HY_EINVAL for data without points or a bad grid, HY_ENUM when GSL
  * fails, HY_ENOMEM.  Free the result with free(res->g.rho). */
 int hy_preisach_table_fit(const hy_forc_data *d, const hy_forc_grid *shape, size_t nc, size_t nu,

@@ -154,7 +154,7 @@ int hy_scene_forc_load(hy_scene_run *r, hy_error *err)
     if (mt->ri) {
         if (!(r->ri_par = calloc(1, mt->ri_par_size)))
             return hy_error_set(err, HY_ENOMEM, "out of memory");
-        return mt->read(&r->doc.model, r->ri_par, err);
+        return mt->read(r->scene, &r->doc.model, r->ri_par, err);
     }
     if (mt->caps & HY_CAP_YSTAR) /* Dahl, LuGre, the filter system: their limit y*_u */
         return hy_scene_run_build_model(r, err);
@@ -260,16 +260,6 @@ static double m_range(const hy_forc_data *d)
     return hi > lo ? hi - lo : 1;
 }
 
-/* The fit grid: the distribution's ranges, FIT_NODES nodes or fewer, about
- * as many per field step along H_c as along H_u. */
-#define FIT_NODES 400
-static void fit_shape(const hy_forc_grid *g, size_t *nc, size_t *nu)
-{
-    double s = sqrt((double)FIT_NODES / (double)(g->nc * g->nu));
-    *nc = s < 1 ? (size_t)fmax(2, floor(s * (double)g->nc)) : g->nc;
-    *nu = s < 1 ? (size_t)fmax(2, floor(s * (double)g->nu)) : g->nu;
-}
-
 /* [forc] reproduce: the baseline (ρ clipped as a tabulated Preisach density)
  * and the least-squares density (hy_preisach_table_fit), its FORCs. */
 static int reproduce(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
@@ -286,7 +276,7 @@ static int reproduce(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
         hy_preisach_table_free(&t);
     }
     size_t nc, nu;
-    fit_shape(&F->g, &nc, &nu);
+    hy_preisach_table_fit_shape(&F->g, &nc, &nu);
     double t0 = now();
     if (!rc && !(rc = hy_preisach_table_fit(&F->d, &F->g, nc, nu, &F->fit, err))) {
         F->have_fit = 1;
@@ -343,7 +333,7 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
                     "of M over all %zu points %.6g (%.3g %% of the range of M)\n", r->path, F->ntable, F->nclipped,
                     F->d.npoints, F->rms_clip, 100 * F->rms_clip / m_range(&F->d));
             fprintf(log, "%s: FORC Preisach density by least squares on %zu x %zu nodes (%zu free parameters, %zu "
-                    "iterations, %.3f ms): RMS of M over all %zu points %.6g (%.3g %% of the range of M), saturation "
+                    "sweeps, %.3f ms): RMS of M over all %zu points %.6g (%.3g %% of the range of M), saturation "
                     "output %.6g\n", r->path, F->fit.g.nc, F->fit.g.nu, F->fit.nfree, F->fit.iters,
                     1e3 * F->seconds_fit, F->d.npoints, F->rms, 100 * F->rms / m_range(&F->d), F->offset);
         }

@@ -141,5 +141,48 @@ printf '[model]\nkind = preisach\n[forc]\n[figure]\nkind = forc\n[series a]\ndat
 [ $? -eq 2 ] && grep -q 'e5.scene:6:1: .*not \[series\]' "$tmp/err" && ok || bad "series: $(cat "$tmp/err")"
 [ -z "$(ls -A "$tmp/out")" ] && ok || bad "files written by refused scenes: $(ls "$tmp/out")"
 
+# [model] pr_file (issue 33 item 5): the least-squares density written by
+# hystviz forc --density-out, in an ordinary loop scene; refusals: a broken
+# density file at its file:line:col, analytic keys beside pr_file, a file
+# outside the scene's directory; exit 2, nothing written.
+"$hv" forc "$tmp/s/m.forc" --density-out "$tmp/s/dens.csv" -o "$tmp/rho.csv" -v 2> "$tmp/err" &&
+    grep -q 'least squares on 11 x 33 nodes (295 free parameters' "$tmp/err" && [ -s "$tmp/s/dens.csv" ] && ok ||
+    bad "--density-out: $(cat "$tmp/err")"
+cat > "$tmp/s/pl.scene" <<'S'
+[model]
+kind = preisach
+pr_file = "dens.csv"
+[input]
+kind = bimodal
+umin1 = -0.2
+umin2 = -0.05
+umax1 = 0.05
+umax2 = 0.2
+[figure]
+kind = loop
+[series major]
+data = major
+[series minor]
+data = minor
+[output]
+formats = svg
+S
+mkdir "$tmp/pl_out" "$tmp/pb_out"
+"$hv" render "$tmp/s/pl.scene" -o "$tmp/pl_out" -v 2> "$tmp/err" && [ -s "$tmp/pl_out/pl.svg" ] &&
+    grep -q '1 minor loops; energy per cycle' "$tmp/err" && ok || bad "pr_file loop scene: $(cat "$tmp/err")"
+printf 'hc,hu,mu\n0,0,1\n0.5,0,-1\n0,1,1\n0.5,1,1\n' > "$tmp/s/bad.csv"
+sed 's/dens.csv/bad.csv/' "$tmp/s/pl.scene" > "$tmp/s/pb.scene"
+"$hv" render "$tmp/s/pb.scene" -o "$tmp/pb_out" 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q 'bad.csv:3:7: mu = -1 < 0' "$tmp/err" && ok || bad "bad density file: $(cat "$tmp/err")"
+sed 's/^pr_file = .*/&\npr_hc = 0.3/' "$tmp/s/pl.scene" > "$tmp/s/pa.scene"
+"$hv" render "$tmp/s/pa.scene" -o "$tmp/pb_out" 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q 'pa.scene:4:[0-9]*: pr_hc is for the analytic densities' "$tmp/err" && ok ||
+    bad "pr_hc beside pr_file: $(cat "$tmp/err")"
+cp "$tmp/s/dens.csv" "$tmp/dens_outside.csv"
+sed 's|dens.csv|../dens_outside.csv|' "$tmp/s/pl.scene" > "$tmp/s/po.scene"
+"$hv" render "$tmp/s/po.scene" -o "$tmp/pb_out" 2> "$tmp/err"
+[ $? -eq 2 ] && grep -q 'po.scene:3:' "$tmp/err" && ok || bad "pr_file outside: $(cat "$tmp/err")"
+[ -z "$(ls -A "$tmp/pb_out")" ] && ok || bad "files written by refused pr_file scenes: $(ls "$tmp/pb_out")"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
