@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_preisach_table.c: the classical Preisach model with a tabulated density
- * (a clipped FORC distribution): Everett function by cell quadrature and the
- * FORCs M(H_a, H_b) = y_s − 2E(+∞, H_a) + 2E(H_b, H_a) (docs/FORC.md, "The
- * protocol on a model" and "A Preisach density from FORCs"). */
+ * (weighted relays on an (H_c, H_u) grid): Everett function by cell
+ * quadrature and the FORCs M(H_a, H_b) = y_s − 2E(+∞, H_a) + 2E(H_b, H_a);
+ * the density file (text rows hc,hu,mu); the least-squares density, μ >= 0,
+ * of FORC data (normal equations, projected coordinate descent)
+ * (docs/FORC.md, "A Preisach density from FORCs" and "The density file"). */
 #include "hy_preisach_table.h"
 
 #include <gsl/gsl_matrix.h>
@@ -135,8 +137,10 @@ typedef struct rd {
     hy_error *err;
 } rd;
 
-/* One field of a row: a finite decimal number at *p, then blanks, then ',' or
- * the line's end; *p moves past it.  col: 1-based column for messages. */
+/* One field of a row: a finite decimal number at *p (at most 63 bytes; a
+ * subnormal is taken as strtod rounds it, so a written value reads back),
+ * then blanks, then ',' or the line's end; *p moves past it.  line: the
+ * line's start, for the column in messages. */
 static int field(rd *r, const char *line, const char **p, const char *end, double *v)
 {
     while (*p < end && (**p == ' ' || **p == '\t'))
@@ -147,10 +151,11 @@ static int field(rd *r, const char *line, const char **p, const char *end, doubl
     while (*p < end && **p != ',' && **p != ' ' && **p != '\t' && n < sizeof buf - 1)
         buf[n++] = *(*p)++;
     buf[n] = 0;
+    int longer = *p < end && **p != ',' && **p != ' ' && **p != '\t';
     char *e;
     errno = 0;
     *v = n ? strtod(buf, &e) : 0;
-    if (!n || *e || !isfinite(*v) || errno == ERANGE || strpbrk(buf, "xXnNiI"))
+    if (!n || longer || *e || !isfinite(*v) || (errno == ERANGE && fabs(*v) > 1) || strpbrk(buf, "xXnNiI"))
         return hy_error_set(r->err, HY_EINVAL, "%s:%zu:%zu: not a finite decimal number", r->name, r->line,
                             (size_t)(s - line) + 1);
     while (*p < end && (**p == ' ' || **p == '\t'))
@@ -315,6 +320,7 @@ int hy_preisach_table_read(const char *text, size_t len, const char *name, hy_fo
 
 #define FIT_TOL 1e-9      /* coordinate descent stops when no x moves more (relative) */
 #define FIT_SWEEPS 20000  /* or after this many sweeps                                */
+#define FIT_RIDGE 1e-9    /* added to the normal equations' diagonal, relative         */
 
 /* G = AᵀA and Aᵀy of the scaled problem: row k of A has −2 at the relays
  * with β_j >= H_a and α_j > H_b (switched down at H_a, not yet back up at
@@ -433,14 +439,14 @@ int hy_preisach_table_fit(const hy_forc_data *d, const hy_forc_grid *shape, size
         size_t seen = 0;
         for (size_t j = 0; j < m; j++)
             seen += gsl_matrix_get(G, j, j) > 0;
-        for (size_t j = 0; j < n; j++) { /* a relay no point switches: pinned to 0 by its own term */
+        for (size_t j = 0; j < n; j++) {
             double *gjj = gsl_matrix_ptr(G, j, j);
-            *gjj = *gjj > 0 ? *gjj * (1 + 1e-9) : 1;
+            /* start: the range of M spread over the relays the data see; a relay no point
+               switches has a zero column: a unit diagonal keeps it at 0 */
+            x[j] = j == m ? mean / R + 0.5 : *gjj > 0 ? 0.5 / (double)seen : 0;
+            *gjj = *gjj > 0 ? *gjj * (1 + FIT_RIDGE) : 1;
         }
         res->nfree = seen + 1;
-        for (size_t j = 0; j < m; j++) /* start: the range of M spread over the relays the data see */
-            x[j] = gsl_matrix_get(G, j, j) != 1 ? 0.5 / (double)seen : 0;
-        x[m] = mean / R + 0.5;
         if (nnls_cd(G, b, x, n, FIT_TOL, FIT_SWEEPS, &res->iters))
             rc = hy_error_set(err, HY_ENOMEM, "out of memory");
     }

@@ -73,7 +73,7 @@ static void test_roundtrip_hand(void)
     enum { NC = 7, NU = 9 };
     double rho[NC * NU];
     for (int k = 0; k < NC * NU; k++) /* positive, negative (clipped), NaN (0) and tiny values */
-        rho[k] = k % 11 == 3 ? NAN : k % 7 == 2 ? -0.3 : k % 5 == 1 ? 1e-300 : sin(0.37 * k) + 1.1;
+        rho[k] = k % 11 == 3 ? NAN : k % 7 == 2 ? -0.3 : k % 5 == 1 ? 1e-300 : k == 4 ? 3e-310 : sin(0.37 * k) + 1.1;
     hy_forc_grid g = {0, 0.0211 * 3.1, -0.218002, 0.1731, NC, NU, rho}, back;
     if (!write_read(&g, &back)) {
         CHECK(back.nc == NC && back.nu == NU && back.hc0 == g.hc0 && back.hc1 == g.hc1 && back.hu0 == g.hu0 &&
@@ -113,6 +113,9 @@ static void test_refusals(void)
     refused("hc,hu,mu\n0,0,1\n0.5,0,nan\n", "d.csv:3:7:", "finite decimal");
     refused("hc,hu,mu\n0,0,1\n0.5,0,1e999\n", "d.csv:3:7:", "finite decimal");
     refused("hc,hu,mu\r\n0,0,1\r\n0.5,0,-2\r\n", "d.csv:3:7:", "not negative");
+    refused("hc,hu,mu\n0,0,1\n0.5,0,0x1p3\n", "d.csv:3:7:", "finite decimal");
+    refused("hc,hu,mu\n0,0,1\n0.5,0,0.0000000000000000000000000000000000000000000000000000000000000000001\n",
+            "d.csv:3:7:", "finite decimal");
     refused("hc,hu,mu\n0,0,1,7\n", "d.csv:2:7:", "text after");
     refused("hc,hu,mu\n0,0\n", "d.csv:2:4:", "3 fields");
     refused("hc,hu,mu\n0,0,1\n0.5,0,2\n0,1,3\n0.6,1,4\n", "d.csv:5:1:", "H_c = 0.6");
