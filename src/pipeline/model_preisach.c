@@ -129,13 +129,13 @@ static void pr_par_free(void *par)
  * of the density file on refusal), its relays as pr's density. */
 static int pr_file_read(const hy_scene *s, const hy_decl_model *m, hy_preisach *pr, hy_error *err)
 {
-    static const size_t analytic[] = {AT(density), AT(hc), AT(width), AT(ys), AT(support), AT(hs)};
-    static const char *const names[] = {"pr_density", "pr_hc", "pr_width", "pr_ys", "pr_support", "pr_hs"};
     const pr_par *p = (const void *)m->par;
-    for (size_t i = 0; i < sizeof analytic / sizeof analytic[0]; i++)
-        if (hy_decl_got(&m->h, analytic[i]) == HY_SCENE_SET)
-            return hy_decl_error(&m->h, analytic[i], err, HY_EINVAL, "%s is for the analytic densities: pr_file's "
-                                 "tabulated density is used as written", names[i]);
+    for (size_t i = 0; i < hy_model_rows_preisach.n; i++) { /* the rows of the analytic density: all but two */
+        const hy_scene_key_spec *k = &hy_model_rows_preisach.rows[i];
+        if (k->field != AT(start) && k->field != AT(file) && hy_decl_got(&m->h, k->field) == HY_SCENE_SET)
+            return hy_decl_error(&m->h, k->field, err, HY_EINVAL, "%s is for the analytic densities: pr_file's "
+                                 "tabulated density is used as written", k->name);
+    }
     char *text;
     size_t len;
     int user, rc = hy_scene_read_path_max(s, "model", NULL, "pr_file", HY_PREISACH_TABLE_MAX_BYTES, &text, &len,
