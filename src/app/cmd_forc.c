@@ -16,13 +16,15 @@
 #include "hy_forc.h"
 #include "hy_forc_plot.h"
 #include "hy_out.h"
+#include "hy_preisach_table.h"
 #include "hy_plot.h"
 
 #define FORC_FILE_MAX (64u << 20) /* bytes of a FORC file read */
 
 static const char forc_usage[] =
     "usage: hystviz forc FILE [--sf N | --sc0 A --sc1 B [--ramp HC]] [--grid SPEC] [--drift]\n"
-    "                    [--no-extend] [-o OUT.csv] [--figure OUT.svg|pdf|png [--levels L,...] [--vmax V]] [-v]\n"
+    "                    [--no-extend] [-o OUT.csv] [--figure OUT.svg|pdf|png [--levels L,...] [--vmax V]]\n"
+    "                    [--density-out DENSITY.csv] [-v]\n"
     "       hystviz forc --preisach DIST:HC,SIGMA [--curves N] [--range LO:HI] [--hsat H] ...\n"
     "\n"
     "The FORC distribution rho(H_a, H_b) = -1/2 d2M/dH_a dH_b of a measured FORC\n"
@@ -52,7 +54,7 @@ static const char forc_tail[] =
 
 enum {
     OPT_SF = CLI_FIRST, OPT_SC0, OPT_SC1, OPT_RAMP, OPT_GRID, OPT_DRIFT, OPT_NOEXT, OPT_OUT, OPT_VERB,
-    OPT_PREISACH, OPT_CURVES, OPT_RANGE, OPT_HSAT, OPT_CURVES_OUT, OPT_FIGURE, OPT_LEVELS, OPT_VMAX
+    OPT_PREISACH, OPT_CURVES, OPT_RANGE, OPT_HSAT, OPT_CURVES_OUT, OPT_FIGURE, OPT_LEVELS, OPT_VMAX, OPT_DENSITY_OUT
 };
 static const cli_opt forc_opts[] = {
     {"sf", 0, "N", "smoothing factor SF >= 1 (default 3; may be fractional)", OPT_SF, 0, NULL, NULL, NULL},
@@ -72,6 +74,9 @@ static const cli_opt forc_opts[] = {
     {"hsat", 0, "H", "saturating field of the --preisach protocol", OPT_HSAT, 0, NULL, NULL, NULL},
     {"curves-out", 0, "FILE", "also write the curves as CSV 'ha,hb,m' (after drift correction)", OPT_CURVES_OUT, 0,
      NULL, NULL, NULL},
+    {"density-out", 0, "FILE", "also fit a Preisach density to the curves by least squares (mu >= 0 on a grid of\n"
+     "at most 400 nodes over rho's ranges) and write it as a density file 'hc,hu,mu'\n"
+     "(the tabulated density of a Preisach scene; docs/FORC.md); -v prints its RMS of M", OPT_DENSITY_OUT, 0, NULL, NULL, NULL},
     {"output", 'o', "FILE", "the CSV of rho (default: standard output unless --figure)", OPT_OUT, 0, NULL, NULL,
      NULL},
     {"figure", 0, "FILE", "also draw the FORC diagram (.svg, .pdf: the map an embedded image,\n"
@@ -90,7 +95,7 @@ static const cli_opt forc_opts[] = {
 static const cli_cmd forc_cli = {"forc", forc_usage, forc_tail, "FILE", forc_opts};
 
 typedef struct forc_args {
-    const char *file, *out, *curves_out, *preisach, *grid, *range, *figure;
+    const char *file, *out, *curves_out, *preisach, *grid, *range, *figure, *density_out;
     hy_forc_plot_opts po;
     int format;
     hy_forc_opts o;
@@ -190,6 +195,7 @@ static int take(forc_args *a, int id, const char *s, const char *v)
     case OPT_RANGE: a->range = v; return 0;
     case OPT_HSAT: a->have_hsat = 1; return cli_num(s, v, &a->hsat) ? 2 : 0;
     case OPT_CURVES_OUT: a->curves_out = v; return 0;
+    case OPT_DENSITY_OUT: a->density_out = v; return 0;
     case OPT_FIGURE:
         a->figure = v;
         if ((a->format = hy_format_from_path(v)) < 0) {
@@ -332,14 +338,41 @@ static void write_curves(FILE *f, const hy_forc_data *d)
                     d->m[d->curve[i].first + j]);
 }
 
-/* Every output or none; 0 or 1 (message printed). */
-static int write_all(const forc_args *a, const hy_forc_data *d, const hy_forc_grid *g, const hy_forc_plot_opts *po)
+/* --density-out: the least-squares density (hy_preisach_table_fit) on the fit
+ * grid of rho's; 0 or an exit status (message printed). */
+static int fit_density(const forc_args *a, const hy_forc_data *d, const hy_forc_grid *g,
+                       hy_preisach_table_fitres *fit)
 {
-    hy_out o[3];
+    size_t nc, nu;
+    hy_error err = {0};
+    hy_preisach_table_fit_shape(g, &nc, &nu);
+    double t0 = now(CLOCK_PROCESS_CPUTIME_ID);
+    int rc = hy_preisach_table_fit(d, g, nc, nu, fit, &err);
+    if (rc) {
+        fprintf(stderr, "hystviz forc: --density-out: %s\n", err.msg);
+        return cli_exit_status(rc);
+    }
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t k = 0; k < d->npoints; k++)
+        lo = fmin(lo, d->m[k]), hi = fmax(hi, d->m[k]);
+    if (a->verbose)
+        fprintf(stderr, "hystviz forc: Preisach density by least squares on %zu x %zu nodes (%zu free parameters, %zu "
+                "sweeps, CPU %.3f ms): RMS of M over all %zu points %.6g (%.3g %% of the range of M), saturation "
+                "output %.6g\n", nc, nu, fit->nfree, fit->iters, 1e3 * (now(CLOCK_PROCESS_CPUTIME_ID) - t0),
+                d->npoints, fit->rms, 100 * fit->rms / (hi > lo ? hi - lo : 1), fit->offset);
+    return 0;
+}
+
+/* Every output or none; 0 or 1 (message printed). */
+static int write_all(const forc_args *a, const hy_forc_data *d, const hy_forc_grid *g, const hy_forc_plot_opts *po,
+                     const hy_forc_grid *density)
+{
+    hy_out o[4];
     hy_error err = {0};
     int n = 0, rc = 0;
-    const char *path[3] = {a->out ? a->out : a->figure ? NULL : "-", a->curves_out, a->figure};
-    for (int i = 0; i < 3 && !rc; i++) {
+    const char *path[4] = {a->out ? a->out : a->figure || a->density_out ? NULL : "-", a->curves_out, a->figure,
+                           a->density_out};
+    for (int i = 0; i < 4 && !rc; i++) {
         if (!path[i])
             continue;
         if (hy_out_open(&o[n], path[i], HY_OUT_FOLLOW | HY_OUT_HOLD, &err)) {
@@ -351,8 +384,10 @@ static int write_all(const forc_args *a, const hy_forc_data *d, const hy_forc_gr
             hy_forc_write_csv(g, f);
         else if (i == 1)
             write_curves(f, d);
-        else
+        else if (i == 2)
             rc = hy_forc_plot_write(g, po, f, a->format, &err) ? 1 : 0;
+        else
+            rc = hy_preisach_table_write(f, density, &err) ? 1 : 0;
     }
     for (int i = 0; i < n && !rc; i++)
         rc = hy_out_finish(&o[i], &err) ? 1 : 0;
@@ -425,7 +460,14 @@ int hy_cmd_forc(int argc, char **argv)
                       : d.units == HY_FORC_UNITS_SI      ? "A m²/(A/m)²"
                                                          : "";
     }
-    rc = write_all(&a, &d, &g, &po);
+    hy_preisach_table_fitres fit = {0};
+    if (a.density_out && (rc = fit_density(&a, &d, &g, &fit))) {
+        hy_forc_data_free(&d);
+        hy_forc_grid_free(&g);
+        return rc;
+    }
+    rc = write_all(&a, &d, &g, &po, &fit.g);
+    free(fit.g.rho);
     hy_forc_data_free(&d);
     hy_forc_grid_free(&g);
     return rc;

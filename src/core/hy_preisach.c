@@ -5,6 +5,7 @@
  * the half-plane or the triangle -hs <= β <= α <= hs, from saturation or from
  * the demagnetised state (the staircase α = -β). */
 #include "hy_preisach.h"
+#include "hy_preisach_table.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -146,6 +147,23 @@ int hy_preisach_init(hy_preisach *p, int dist, double ma, double sa, double mb, 
     p->mass = mass;
     p->scale = ys / mass;
     gauss_legendre(HY_PREISACH_GL, p->glx, p->glw);
+    return HY_OK;
+}
+
+int hy_preisach_tabulated(hy_preisach *p, const hy_preisach_table *t, hy_error *err)
+{
+    double ys = 0;
+    for (size_t k = 0; k < t->n; k++)
+        ys += t->w[k];
+    if (!(ys > 0) || !isfinite(ys))
+        return hy_error_set(err, HY_EINVAL, "Preisach tabulated density: no relay of weight > 0 (an all-zero density)");
+    memset(p, 0, sizeof *p);
+    p->ys = ys;
+    p->start = HY_PREISACH_NEGATIVE;
+    p->hs = INFINITY;
+    p->mass = ys;
+    p->scale = 1;
+    p->table = t;
     return HY_OK;
 }
 
@@ -362,6 +380,10 @@ int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_
         *E = p->ys;
         return HY_OK;
     }
+    if (p->table) {
+        *E = hy_preisach_table_everett(p->table, a, b);
+        return HY_OK;
+    }
     if (p->hs < INFINITY) { /* the triangle: no relay beyond ±hs */
         a = fmin(a, p->hs);
         b = fmax(b, -p->hs);
@@ -426,6 +448,10 @@ static double demag_f(double v, double o, const void *ctx)
 static int demag_edge(const hy_preisach *p, double u, double *T, hy_error *err)
 {
     int up = u > 0;
+    if (p->table) {
+        *T = hy_preisach_table_demag(p->table, u);
+        return HY_OK;
+    }
     double lim = up ? fmin(u, p->hs) : fmax(u, -p->hs);
     if (p->dist == HY_PREISACH_GAUSSIAN) /* the density of the integration variable ends at GAUSS_CUT widths */
         lim = up ? fmin(lim, p->ma + GAUSS_CUT * p->sa) : fmax(lim, p->mb - GAUSS_CUT * p->sb);
@@ -613,6 +639,10 @@ int hy_preisach_loop_area(const hy_preisach *p, double lo, double hi, double *ar
 {
     if (!isfinite(lo) || !isfinite(hi) || !(lo < hi))
         return hy_error_set(err, HY_EINVAL, "Preisach loop area needs finite lo < hi (got %g, %g)", lo, hi);
+    if (p->table) {
+        *area = hy_preisach_table_area(p->table, lo, hi);
+        return HY_OK;
+    }
     lo = fmax(lo, -p->hs); /* the triangle: no relay beyond ±hs */
     hi = fmin(hi, p->hs);
     if (!(lo < hi)) {

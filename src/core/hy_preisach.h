@@ -63,6 +63,9 @@ typedef struct hy_preisach {
     double mass;         /* ∫∫ of the unscaled density over the support         */
     double scale;        /* K = ys / mass                                       */
     double glx[HY_PREISACH_GL], glw[HY_PREISACH_GL]; /* nodes/weights on [-1,1] */
+    /* NULL: the analytic density above; else a tabulated density
+       (hy_preisach_tabulated), borrowed: it must outlive p */
+    const struct hy_preisach_table *table;
 } hy_preisach;
 
 /* The distributions' names in the order of their values, NULL-terminated
@@ -82,6 +85,13 @@ int hy_preisach_init(hy_preisach *p, int dist, double ma, double sa, double mb, 
                      hy_error *err);
 /* The usual symmetric density: α around +hc, β around -hc, both of width sigma. */
 int hy_preisach_symmetric(hy_preisach *p, int dist, double hc, double sigma, double ys, hy_error *err);
+
+/* Fills p with the tabulated density t (weighted relays, hy_preisach_table.h;
+ * borrowed): ys = the relays' total weight, from negative saturation, on
+ * the half-plane; the Everett function, the demagnetised state and loop
+ * areas are the sums over the relays (exact for this discrete density).
+ * HY_EINVAL for a table without a relay of weight > 0. */
+int hy_preisach_tabulated(hy_preisach *p, const struct hy_preisach_table *t, hy_error *err);
 
 /* Puts the density on the triangle -hs <= β <= α <= hs (the relays outside
  * it are removed; the input saturates the model at |u| >= hs) and scales it

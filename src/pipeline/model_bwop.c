@@ -144,8 +144,9 @@ static int op_validate(const bwop *p, hy_error *err)
     return HY_OK;
 }
 
-static int op_read(const hy_decl_model *m, void *par, hy_error *err)
+static int op_read(const hy_scene *s, const hy_decl_model *m, void *par, hy_error *err)
 {
+    (void)s;
     bwop *p = par;
     *p = (bwop){1, 1, 0.5, 0.5, 1, 0};
     hy_scene_model_read_numbers(m, keys, offsets, p);
@@ -156,4 +157,4 @@ const hy_scene_model hy_scene_model_bwop = {
     "boucwen-operator", keys, quantities, NULL, NULL,
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_EXACT_STEP,
     "z and the path integral of z du (exact piecewise-exponential steps)", hy_scene_rateind_load,
-    hy_scene_rateind_estimate, hy_scene_rateind_compute, &op_type, sizeof(bwop), op_read, core_names};
+    hy_scene_rateind_estimate, hy_scene_rateind_compute, &op_type, sizeof(bwop), op_read, core_names, NULL};

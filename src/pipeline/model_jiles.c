@@ -74,8 +74,9 @@ static int ja_copy(const void *par, void *dst, const void *src, hy_error *err)
 static const hy_rateind_type ja_type = {"jiles-atherton", sizeof(hy_jiles_state), HY_RI_PATH_AREA, ja_init,
                                         ja_apply, ja_copy, NULL, NULL};
 
-static int ja_read(const hy_decl_model *m, void *par, hy_error *err)
+static int ja_read(const hy_scene *s, const hy_decl_model *m, void *par, hy_error *err)
 {
+    (void)s;
     hy_jiles *j = par;
     memcpy(j, m->par, sizeof *j); /* every row: set or its default */
     j->rtol = HY_JILES_RTOL;
@@ -126,5 +127,5 @@ const hy_scene_model hy_scene_model_jiles = {
     "jiles-atherton", NULL, quantities, "H (A/m)", "B (T)",
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_GSL,
     "H, M and the path integral of B dH (GSL rk8pd in H, restarted at every reversal)", ja_load,
-    hy_scene_rateind_estimate, ja_compute, &ja_type, sizeof(hy_jiles), ja_read, core_names};
+    hy_scene_rateind_estimate, ja_compute, &ja_type, sizeof(hy_jiles), ja_read, core_names, NULL};
 #endif

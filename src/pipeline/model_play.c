@@ -104,8 +104,9 @@ static int play_copy(const void *par, void *dst, const void *src, hy_error *err)
 static const hy_rateind_type play_type = {"play", sizeof(play_state), HY_RI_PATH_AREA, play_init, play_apply,
                                           play_copy, NULL, NULL};
 
-static int play_read(const hy_decl_model *m, void *par, hy_error *err)
+static int play_read(const hy_scene *s, const hy_decl_model *m, void *par, hy_error *err)
 {
+    (void)s;
     (void)err; /* r > 0 and y0 finite: the rows' ranges */
     memcpy(par, m->par, sizeof(play_par));
     return HY_OK;
@@ -116,5 +117,5 @@ const hy_scene_model hy_scene_model_play = {
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_EXACT_STEP,
     "the output y and the path integral of y du (exact: constant, then dragged at distance r)",
     hy_scene_rateind_load, hy_scene_rateind_estimate, hy_scene_rateind_compute, &play_type, sizeof(play_par),
-    play_read, NULL};
+    play_read, NULL, NULL};
 #endif

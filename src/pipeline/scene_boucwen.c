@@ -715,4 +715,4 @@ static int bw_estimate(const hy_scene_run *r, double *work, char *what, size_t s
 const hy_scene_model hy_scene_model_boucwen = {
     "boucwen", bw_keys, quantity_names, NULL, NULL, 0,
     "displacement, velocity and the hysteretic z (Newmark)", hy_scene_boucwen_load, bw_estimate,
-    hy_scene_boucwen_compute, NULL, 0, NULL, NULL};
+    hy_scene_boucwen_compute, NULL, 0, NULL, NULL, NULL};

@@ -33,8 +33,12 @@ struct hy_scene_forc {
     double *m_model;          /* reproduce: the tabulated Preisach model's M at the data's points;
                                * protocol = file (without reproduce): the measured M */
     double rms_meas;          /* protocol = file: RMS of the model's M against the measured (NaN: none) */
-    double rms, offset;
+    double rms, offset;       /* reproduce: the fitted density's RMS and saturation output */
+    double rms_clip;          /* reproduce: the clipped distribution's RMS (the baseline)   */
     size_t ntable, nclipped;
+    hy_preisach_table_fitres fit; /* reproduce: the least-squares density                  */
+    int have_fit;
+    double seconds_fit;
     char legend[2][160];      /* draw = curves: the two labels */
 };
 
@@ -150,7 +154,7 @@ int hy_scene_forc_load(hy_scene_run *r, hy_error *err)
     if (mt->ri) {
         if (!(r->ri_par = calloc(1, mt->ri_par_size)))
             return hy_error_set(err, HY_ENOMEM, "out of memory");
-        return mt->read(&r->doc.model, r->ri_par, err);
+        return mt->read(r->scene, &r->doc.model, r->ri_par, err);
     }
     if (mt->caps & HY_CAP_YSTAR) /* Dahl, LuGre, the filter system: their limit y*_u */
         return hy_scene_run_build_model(r, err);
@@ -256,20 +260,32 @@ static double m_range(const hy_forc_data *d)
     return hi > lo ? hi - lo : 1;
 }
 
-/* [forc] reproduce: ρ clipped as a tabulated Preisach density, its FORCs. */
+/* [forc] reproduce: the baseline (ρ clipped as a tabulated Preisach density)
+ * and the least-squares density (hy_preisach_table_fit), its FORCs. */
 static int reproduce(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
 {
     hy_preisach_table t;
+    double clip_offset;
     free(F->m_model); /* protocol = file's measured M: the table's replaces it in the figure */
-    F->m_model = NULL;
-    int rc = hy_preisach_table_from_grid(&t, &F->g, err);
-    if (!rc && !(F->m_model = malloc(F->d.npoints * sizeof *F->m_model)))
-        rc = hy_error_set(err, HY_ENOMEM, "out of memory");
-    if (!rc)
-        rc = hy_preisach_table_forc(&t, &F->d, F->m_model, &F->rms, &F->offset, err);
-    F->ntable = t.n;
-    F->nclipped = t.nclipped;
-    hy_preisach_table_free(&t);
+    F->m_model = malloc(F->d.npoints * sizeof *F->m_model);
+    int rc = F->m_model ? hy_preisach_table_from_grid(&t, &F->g, err) : hy_error_set(err, HY_ENOMEM, "out of memory");
+    if (!rc) {
+        rc = hy_preisach_table_forc(&t, &F->d, F->m_model, &F->rms_clip, &clip_offset, err);
+        F->ntable = t.n;
+        F->nclipped = t.nclipped;
+        hy_preisach_table_free(&t);
+    }
+    size_t nc, nu;
+    hy_preisach_table_fit_shape(&F->g, &nc, &nu);
+    double t0 = now();
+    if (!rc && !(rc = hy_preisach_table_fit(&F->d, &F->g, nc, nu, &F->fit, err))) {
+        F->have_fit = 1;
+        if (!(rc = hy_preisach_table_from_grid(&t, &F->fit.g, err))) {
+            rc = hy_preisach_table_forc(&t, &F->d, F->m_model, &F->rms, &F->offset, err);
+            hy_preisach_table_free(&t);
+        }
+    }
+    F->seconds_fit = now() - t0;
     if (rc)
         return hy_decl_error(&decl(r)->h, AT(reproduce), err, rc, "%s", err->msg);
     return HY_OK;
@@ -297,7 +313,7 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
         snprintf(F->legend[1], sizeof F->legend[1], "measured (RMS of the model: %.2g %% of the range of M)",
                  100 * F->rms_meas / m_range(&F->d));
     else if (!rc && F->m_model)
-        snprintf(F->legend[1], sizeof F->legend[1], "Preisach, density ρ ≥ 0: RMS of M %.2g %% of its range", 100 * F->rms / m_range(&F->d));
+        snprintf(F->legend[1], sizeof F->legend[1], "Preisach, least-squares density ρ ≥ 0: RMS of M %.2g %% of its range", 100 * F->rms / m_range(&F->d));
     if (!read)
         F->seconds_data = t1 - t0;
     F->seconds_rho = now() - t1;
@@ -312,10 +328,15 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
         if (isfinite(F->rms_meas))
             fprintf(log, "%s: FORC %s at the fields of %s: RMS of M against the measured over all %zu points %.6g\n",
                     r->path, r->mtype->name, decl(r)->file, F->d.npoints, F->rms_meas);
-        if (F->m_model && decl(r)->reproduce)
-            fprintf(log, "%s: FORC Preisach density from rho (%zu nodes > 0, %zu negative clipped to 0): RMS of M over "
-                    "all %zu points %.6g (%.3g %% of the range of M), saturation output %.6g\n", r->path, F->ntable,
-                    F->nclipped, F->d.npoints, F->rms, 100 * F->rms / m_range(&F->d), F->offset);
+        if (F->have_fit) {
+            fprintf(log, "%s: FORC Preisach density from rho clipped (%zu nodes > 0, %zu negative clipped to 0): RMS "
+                    "of M over all %zu points %.6g (%.3g %% of the range of M)\n", r->path, F->ntable, F->nclipped,
+                    F->d.npoints, F->rms_clip, 100 * F->rms_clip / m_range(&F->d));
+            fprintf(log, "%s: FORC Preisach density by least squares on %zu x %zu nodes (%zu free parameters, %zu "
+                    "sweeps, %.3f ms): RMS of M over all %zu points %.6g (%.3g %% of the range of M), saturation "
+                    "output %.6g\n", r->path, F->fit.g.nc, F->fit.g.nu, F->fit.nfree, F->fit.iters,
+                    1e3 * F->seconds_fit, F->d.npoints, F->rms, 100 * F->rms / m_range(&F->d), F->offset);
+        }
     }
     return rc;
 }
@@ -518,6 +539,7 @@ void hy_scene_forc_free(hy_scene_run *r)
     if (F->have_g)
         hy_forc_grid_free(&F->g);
     free(F->m_model);
+    free(F->fit.g.rho);
     free(F);
     r->forc = NULL;
 }

@@ -90,3 +90,9 @@ int hy_scene_model_relocate(const hy_decl_model *m, const hy_scene_model *mt, in
         }
     return hy_decl_error(&m->h, HY_DECL_HEAD, err, rc, "%s", msg);
 }
+
+void hy_scene_model_par_free(const hy_scene_model *mt, void *par)
+{
+    if (mt && mt->par_free && par)
+        mt->par_free(par);
+}

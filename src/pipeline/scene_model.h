@@ -57,9 +57,13 @@ typedef struct hy_scene_model {
     /* rate-independent models only (else NULL / 0) */
     const hy_rateind_type *ri;
     size_t ri_par_size;
-    int (*read)(const hy_decl_model *m, void *par, hy_error *err); /* from the decoded [model] */
+    /* from the decoded [model] of scene s (files its keys name are read
+       through s's file policy); on error par owns nothing */
+    int (*read)(const hy_scene *s, const hy_decl_model *m, void *par, hy_error *err);
     /* how the core's messages name key i (hy_scene_model_param; NULL: no relocation) */
     const char *const *core_names;
+    /* frees what read allocated in par (not par itself); NULL: nothing */
+    void (*par_free)(void *par);
 } hy_scene_model;
 
 /* Each model file's entry: hy_scene_model_dahl, ..._jiles, ..._preisach. */
@@ -157,6 +161,9 @@ int hy_scene_model_area_sign(const hy_scene_model *mt);
 /* Re-raises a core message (err->msg) with status rc at the [model] key it
  * names (the first mt->core_names[i] found in it is hy_scene_model_param(mt,
  * i)), else at [model]; rc 0 returns 0. */
+/* Frees what mt's read allocated in par (a rate-independent model's). */
+void hy_scene_model_par_free(const hy_scene_model *mt, void *par);
+
 int hy_scene_model_relocate(const hy_decl_model *m, const hy_scene_model *mt, int rc, hy_error *err);
 
 #endif

@@ -81,7 +81,7 @@ int hy_scene_rateind_load(hy_scene_run *r, hy_error *err)
     if (!rc && !(r->ri_par = calloc(1, r->mtype->ri_par_size)))
         rc = hy_error_set(err, HY_ENOMEM, "out of memory");
     if (!rc)
-        rc = r->mtype->read(&r->doc.model, r->ri_par, err);
+        rc = r->mtype->read(r->scene, &r->doc.model, r->ri_par, err);
     if (!rc)
         rc = hy_scene_run_build_input(r, err);
     if (!rc)

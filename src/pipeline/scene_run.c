@@ -351,6 +351,8 @@ void hy_scene_run_free(hy_scene_run *r)
         hy_steady_free(&r->steady);
     if (r->have_input)
         hy_input_free(&r->input);
+    if (r->ri_par)
+        hy_scene_model_par_free(r->mtype, r->ri_par);
     free(r->ri_par);
     hy_scene_forc_free(r);
     if (!r->scene_borrowed)

@@ -163,10 +163,10 @@ static const struct {
 } page_settable[] = {
     {"model", PAGE_VALUES},  {"input", PAGE_VALUES},  {"compute", PAGE_VALUES},
     {"series", PAGE_VALUES}, {"figure", PAGE_VALUES}, {"annotation", PAGE_VALUES},
-    {"param", PAGE_VALUES},
+    {"param", PAGE_VALUES},  {"forc", PAGE_VALUES},
 };
 
-const char *sv_settable_sections(void) { return "model, input, compute, series, figure, annotation and param"; }
+const char *sv_settable_sections(void) { return "model, input, compute, series, figure, annotation, param and forc"; }
 
 int sv_set_ok(const char *set, hy_error *err)
 {
@@ -342,7 +342,7 @@ static int main_place(char (*mains)[HY_SCENE_KEY_MAX], size_t nmain, const char 
 
 void sv_controls_json(sv_buf *b, const hy_scene *s, const hy_scene_doc *d, unsigned reads)
 {
-    static const char *const secs[] = {"model", "input", "compute", "series"};
+    static const char *const secs[] = {"model", "input", "compute", "series", "forc"};
     size_t nsec;
     const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
     char mains[9][HY_SCENE_KEY_MAX];

@@ -401,7 +401,7 @@ static void refusals(void)
             "ja_c, ja_alpha, ja_m0, ja_variant)"); /* another model's own row: decoded into nothing, refused where written */
     refused("[model]\nkind = preisach\nja_ms = 1e6\n[series a]\ndata = input\n", 1,
             "bad.scene:3:1: 'ja_ms' is not a parameter of a preisach model (its keys: pr_density, pr_hc, pr_width, "
-            "pr_ys, pr_start, pr_support, pr_hs)");
+            "pr_ys, pr_start, pr_support, pr_hs, pr_file)");
     refused("[model]\nkind = preisach\n[figure]\nkind = g\n[series a]\ndata = g\n", 1,
             "data = g is the friction function g(v) of Dahl and LuGre; a preisach model has none");
     refused("[model]\nkind = lugre\n[series a]\ndata = ysteady\nquantity = magnetisation\n", 1,
