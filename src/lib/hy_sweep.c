@@ -996,6 +996,12 @@ int hy_sweep_npy(const char *path, const char *const *sets, size_t nsets, const 
         char *arg = axis_arg(keys[a], values[a], counts[a], err);
         rc = !arg ? (err ? err->code : HY_EINVAL) : hy_grid_add(&o.grid, arg, err);
         free(arg);
+        char *spec = rc ? NULL : malloc(48); /* messages name the axis by its count, not its list */
+        if (spec) {
+            snprintf(spec, 48, "<%zu values>", counts[a]);
+            free(o.grid.axes[a].spec);
+            o.grid.axes[a].spec = spec;
+        }
     }
     hy_sweep_study s;
     memset(&s, 0, sizeof s);
