@@ -476,6 +476,7 @@ typedef struct point_buf {
     int typed;         /* every axis is a typed write into work (typed_axes) */
     struct typed_axis *ta;
     hy_scene_doc work; /* base with the typed axes' fields of the last point */
+    int validated;     /* a point loaded from work: its placeholders were checked */
 } point_buf;
 
 /* The worker's scene: parsed under the policy, the user's --set applied,
@@ -601,6 +602,7 @@ static int typed_axis_make(const hy_sweep_opts *o, point_buf *pb, size_t a, type
 static void typed_setup(const hy_sweep_opts *o, point_buf *pb)
 {
     pb->typed = 0;
+    pb->validated = 0;
     pb->ta = NULL;
     if (o->figures || !pb->have_base || !o->grid.naxes || !(pb->ta = calloc(o->grid.naxes, sizeof *pb->ta)))
         return;
@@ -647,7 +649,9 @@ static void run_point(const hy_sweep_study *s, point_buf *pb, size_t i, int *kin
     if (!rc && pb->typed) { /* the decoded scene with this point's values written in */
         for (size_t a = 0; a < g->naxes; a++)
             typed_write(&pb->work, &pb->ta[a], hy_grid_coord(g, i, a));
-        rc = hy_scene_run_load_doc(&r, pb->scene, &pb->work, o->scene, hy_scene_policy_budget(&o->pol), &err);
+        rc = hy_scene_run_load_doc(&r, pb->scene, &pb->work, pb->validated, o->scene, hy_scene_policy_budget(&o->pol),
+                                   &err);
+        pb->validated |= !rc; /* only grid values change from here on: placeholders stay valid */
     } else if (!rc) { /* the parsed scene as the file + the user's --set, then this point's overrides */
         hy_scene_restore(pb->scene);
         for (size_t k = 0; k < nsets && !rc; k++)
