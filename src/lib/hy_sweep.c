@@ -965,8 +965,8 @@ static char *axis_arg(const char *key, const double *v, size_t n, hy_error *err)
 }
 
 int hy_sweep_npy(const char *path, const char *const *sets, size_t nsets, const char *const *keys,
-                 const double *const *values, const size_t *counts, size_t naxes, long jobs, double max_work,
-                 unsigned char **npy, size_t *len, hy_error *err)
+                 const double *const *values, const size_t *counts, size_t naxes, long shard_k, long shard_n,
+                 long jobs, double max_work, unsigned char **npy, size_t *len, hy_error *err)
 {
     if (npy)
         *npy = NULL;
@@ -978,8 +978,14 @@ int hy_sweep_npy(const char *path, const char *const *sets, size_t nsets, const 
     if (!isfinite(max_work))
         return hy_error_set(err, HY_EINVAL, "hy_sweep_npy: the work budget max_work must be a finite number "
                                             "(<= 0: the default), got %g", max_work);
+    if (shard_n < 1 || shard_n > HY_SHARD_MAX || shard_k < 0 || shard_k >= shard_n)
+        return hy_error_set(err, HY_EINVAL, "hy_sweep_npy: shard %ld of %ld: want 0 <= shard_k < shard_n <= %ld",
+                            shard_k, shard_n, HY_SHARD_MAX);
     hy_sweep_opts o;
     memset(&o, 0, sizeof o);
+    o.sharded = shard_n > 1;
+    o.shard_k = shard_k;
+    o.shard_n = shard_n;
     o.scene = path;
     o.sets = (char **)(uintptr_t)sets;
     o.nsets = nsets;

@@ -232,19 +232,24 @@ static void sweeper(void)
         fputs(scene, fp);
         fclose(fp);
     }
-    REFUSED(hy_sweep_npy(NULL, NULL, 0, keys, vals, &two, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(NULL, NULL, 0, keys, vals, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
     CHECK(npy == NULL && len == 0, "sweep_npy: *npy NULL, *len 0 after an error");
-    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 1, 0, NULL, &len, &err), err, "must not be NULL");
-    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 1, 0, &npy, NULL, &err), err, "must not be NULL");
-    REFUSED(hy_sweep_npy(sc, NULL, 1, keys, vals, &two, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
-    REFUSED(hy_sweep_npy(sc, NULL, 0, NULL, vals, &two, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
-    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, NULL, &two, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
-    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, NULL, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
-    REFUSED(hy_sweep_npy(sc, NULL, 0, nokey, vals, &two, 1, 1, 0, &npy, &len, &err), err, "key is NULL");
-    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &zero, 1, 1, 0, &npy, &len, &err), err, "no values");
-    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, infs, &one, 1, 1, 0, &npy, &len, &err), err, "finite");
-    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 1, NAN, &npy, &len, &err), err, "max_work");
-    CHECK(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 2, 0, &npy, &len, NULL) == 0 && npy && len > 128 &&
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 1, 1, 0, NULL, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 1, 1, 0, &npy, NULL, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 1, keys, vals, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, NULL, vals, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, NULL, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, NULL, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, nokey, vals, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "key is NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &zero, 1, 0, 1, 1, 0, &npy, &len, &err), err, "no values");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, infs, &one, 1, 0, 1, 1, 0, &npy, &len, &err), err, "finite");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 1, 1, NAN, &npy, &len, &err), err, "max_work");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 2, 2, 1, 0, &npy, &len, &err), err, "shard 2 of 2");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 0, 1, 0, &npy, &len, &err), err, "shard 0 of 0");
+    CHECK(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 1, 2, 1, 0, &npy, &len, NULL) == 0 && npy &&
+              has(npy, len, "'shape': (1,)"), "sweep_npy shard 1 of 2: one record");
+    free(npy);
+    CHECK(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 1, 2, 0, &npy, &len, NULL) == 0 && npy && len > 128 &&
               !memcmp(npy, "\x93NUMPY", 6) && has(npy, len, "'shape': (2,)"),
           "sweep_npy of two points, err NULL");
     free(npy);

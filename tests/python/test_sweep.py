@@ -61,6 +61,8 @@ s = a["model.sigma0"].reshape(sigma0.size, umin2.size)
 check(np.array_equal(s[:, 0].view(np.uint64), sigma0.view(np.uint64)), "the first axis is the outermost, values bit for bit")
 one = hystviz.sweep(scene, grid=grid, jobs=1)
 check(one.tobytes() == a.tobytes(), "jobs=1 gives the bytes of jobs=2")
+sh = hystviz.sweep(scene, grid=grid, jobs=2, shard=(1, 3))
+check(sh.tobytes() == a[1::3].tobytes(), "shard=(1, 3) gives the whole study's records 1, 4, 7, ...")
 cols = ["minor1_area", "model.sigma0", "energy"]
 c = hystviz.sweep(scene, grid=grid, columns=cols, jobs=2)
 check(c.dtype.names == tuple(cols) and all(c[k].tobytes() == a[k].tobytes() for k in cols),

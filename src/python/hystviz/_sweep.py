@@ -6,7 +6,7 @@ issue 37)."""
 import ctypes
 import io
 import os
-from typing import Iterable, Mapping, Optional, Sequence, Union
+from typing import Iterable, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.lib.format as npy_format
@@ -18,7 +18,7 @@ __all__ = ["sweep", "grid_text", "SweepError"]
 
 _npy = _lib._sig("hy_sweep_npy", ctypes.c_int, ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p), _lib._sz,
                  ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(_lib._dp), ctypes.POINTER(_lib._sz), _lib._sz,
-                 ctypes.c_long, ctypes.c_double, ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(_lib._sz), _lib._E)
+                 ctypes.c_long, ctypes.c_long, ctypes.c_long, ctypes.c_double, ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(_lib._sz), _lib._E)
 
 
 class SweepError(ValueError):
@@ -52,7 +52,7 @@ def _axis(key: str, values) -> np.ndarray:
 
 def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequence[float], np.ndarray]],
           columns: Optional[Iterable[str]] = None, sets: Optional[Mapping[str, object]] = None,
-          jobs: Optional[int] = None, max_work: float = 0.0) -> np.ndarray:
+          jobs: Optional[int] = None, max_work: float = 0.0, shard: Tuple[int, int] = (0, 1)) -> np.ndarray:
     """A table-only parameter study of a scene, as a NumPy structured array.
 
     Computes `scene` at every point of the Cartesian product of `grid`'s axes
@@ -83,6 +83,12 @@ def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequen
         Threads (default: ``os.cpu_count()``).
     max_work : float, optional
         The work budget of each point (<= 0: the default of ``hystviz render``).
+    shard : (int, int), optional
+        ``(k, n)``: only the points ``i`` with ``i % n == k``, as ``hystviz
+        sweep --shard k/n`` (default ``(0, 1)``: all).  Their records are the
+        whole study's (global index, name, error sample): ``t[k::n]`` of the
+        whole table, so shards computed apart (Dask, docs/STUDIES.md) join
+        into it exactly.
 
     Returns
     -------
@@ -124,7 +130,8 @@ def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequen
     c_counts = (_lib._sz * len(axes))(*[a.size for a in axes])
     nthreads = int(jobs) if jobs is not None else (os.cpu_count() or 1)
     buf, n, err = ctypes.c_void_p(), _lib._sz(), _lib.Error()
-    rc = _npy(path, c_sets, len(enc), c_keys, c_vals, c_counts, len(axes), nthreads, float(max_work),
+    k, n_shards = (int(x) for x in shard)
+    rc = _npy(path, c_sets, len(enc), c_keys, c_vals, c_counts, len(axes), k, n_shards, nthreads, float(max_work),
               ctypes.byref(buf), ctypes.byref(n), ctypes.byref(err))
     if rc:
         raise SweepError("hystviz.sweep: " + err.msg.decode("utf-8", "replace"))
