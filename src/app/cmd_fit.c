@@ -77,7 +77,7 @@ static const char tail[] =
     "\n"
     "examples:\n"
     "  hystviz fit friction.scene --free sigma0,fc,fs,vs -o fitted.scene --residuals resid.svg\n"
-    "  hystviz fit --benchmark boucwen          (about 30 s of CPU)\n";
+    "  hystviz fit --benchmark boucwen          (minutes: 165 s in all in docs/FIT.md's run [bench fit-boucwen])\n";
 
 enum { OPT_BENCH = CLI_FIRST, OPT_SEED, OPT_REAL, OPT_PERIODS, OPT_NOISE, OPT_PARAMS, OPT_FIXNU, OPT_STARTS,
        OPT_DATA_DIR, OPT_QUIET, OPT_FREE, OPT_DATA, OPT_OUT, OPT_RESID, OPT_SET };

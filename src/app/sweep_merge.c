@@ -23,25 +23,6 @@ void hy_sweep_shard_path(const char *dir, long k, long n, const char *ext, char 
     snprintf(buf, size, "%s/sweep.shard-%ld-of-%ld.%s", dir, k, n, ext);
 }
 
-size_t hy_npy_header(const char *descr, size_t nrows, char *buf, size_t size)
-{
-    char dict[HY_NPY_HEAD_MAX];
-    int n = snprintf(dict, sizeof dict, "{'descr': %s, 'fortran_order': False, 'shape': (%zu,), }", descr, nrows);
-    if (n < 0 || (size_t)n + 1 >= sizeof dict)
-        return 0;
-    size_t total = (10 + (size_t)n + 1 + 63) / 64 * 64; /* magic, version, length, dict, '\n': 64-aligned */
-    if (total > size || total - 10 > 65535)
-        return 0;
-    size_t hl = total - 10;
-    memcpy(buf, "\x93NUMPY\x01\x00", 8);
-    buf[8] = (char)(hl & 0xff);
-    buf[9] = (char)(hl >> 8);
-    memcpy(buf + 10, dict, (size_t)n);
-    memset(buf + 10 + n, ' ', total - 11 - (size_t)n);
-    buf[total - 1] = '\n';
-    return total;
-}
-
 /* Reads an .npy v1.0 header from f: its descr text into descr (size bytes)
  * and its row count; -1 if f holds none. */
 static int npy_read_header(FILE *f, char *descr, size_t size, size_t *nrows)

@@ -21,16 +21,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "hy_sweep.h" /* hy_npy_header */
+
 /* DIR/sweep.shard-K-of-N.EXT into buf (EXT: csv, npy). */
 void hy_sweep_shard_path(const char *dir, long k, long n, const char *ext, char *buf, size_t size);
-
-/* The longest .npy header dictionary (v1.0: its length is 16 bits). */
-#define HY_NPY_HEAD_MAX 65000
-
-/* An .npy v1.0 header (magic, version, length, the dict with descr, not
- * Fortran order, shape (nrows,), padded with spaces and '\n' to a multiple
- * of 64 bytes) into buf; its length, 0 if it would not fit size or 64 KiB. */
-size_t hy_npy_header(const char *descr, size_t nrows, char *buf, size_t size);
 
 /* The re-run text of a shard run with argv ("sweep" ARGS...): "\tCWD\tsweep
  * ARGS" quoted for sh, without -j/--jobs N and --shard K/N; NULL when the

@@ -78,6 +78,29 @@ int hy_result_from_file(const char *path, const char *const *sets, size_t nsets,
 /* Frees r (NULL is allowed). */
 void hy_result_free(hy_result *r);
 
+/* A parameter study in memory (docs/STUDIES.md, issue 37): the scene file at
+ * path with the nsets overrides "section.key=value", table only, at every
+ * point of the grid whose axis a is the key keys[a] with the counts[a] values
+ * values[a] (points in row-major order, the first axis outermost, as `hystviz
+ * sweep --grid`), on jobs threads (< 1: one).  On success *npy (free it with
+ * free()) holds *len bytes: the sweep.npy that `hystviz sweep PATH --set ...
+ * --grid KEY=V1,V2,... --formats none --table npy` writes, byte for byte, each
+ * V the shortest of %.15g/%.16g/%.17g that reads back to the value (a
+ * structured array, one field per column; a point the scene refuses is a
+ * record with status 1 invalid or 2 failed and its message).  shard_k of
+ * shard_n (0 <= shard_k < shard_n; 0 of 1: all) computes only the points i
+ * with i mod shard_n = shard_k, as `--shard K/N` does: their records are
+ * those of the whole study (global index, name, error sample), so the
+ * shards' records interleaved are the whole study's.  max_work as
+ * for hy_result_from_text, per point.  On error (HY_EINVAL: a key the scene
+ * does not have, a value it refuses, a non-finite value, a bad scene or
+ * override, with a message naming it) *npy is NULL and *len 0.
+ * Pointers: sets may be NULL only when nsets is 0; keys, values and counts
+ * only when naxes is 0; path, npy and len must not be NULL. */
+int hy_sweep_npy(const char *path, const char *const *sets, size_t nsets, const char *const *keys,
+                 const double *const *values, const size_t *counts, size_t naxes, long shard_k, long shard_n,
+                 long jobs, double max_work, unsigned char **npy, size_t *len, hy_error *err);
+
 /* The number of series (the scene's [series NAME] sections, in order); 0
  * for r NULL.  Every reader below takes r NULL as "no result" (0, NULL or
  * NaN, as it says for i out of range). */

@@ -162,7 +162,7 @@ int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
 }
 
 static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err);
-static int build_decoded(hy_scene_run *r, hy_error *err);
+static int build_decoded(hy_scene_run *r, int validated, hy_error *err);
 
 int hy_scene_run_load(hy_scene_run *r, const char *path, char *const *sets, size_t nsets, hy_error *err)
 {
@@ -197,17 +197,20 @@ int hy_scene_run_load_marked(hy_scene_run *r, hy_scene *scene, const hy_scene_do
     return build_run(r, base, err);
 }
 
-int hy_scene_run_load_doc(hy_scene_run *r, hy_scene *scene, const hy_scene_doc *doc, const char *path, double budget,
-                          hy_error *err)
+int hy_scene_run_load_doc(hy_scene_run *r, hy_scene *scene, const hy_scene_doc *doc, int validated, const char *path,
+                          double budget, hy_error *err)
 {
-    memset(r, 0, sizeof *r);
+    /* zeroed around doc, which is copied (a sweep's every point: the doc is most of the run's bytes) */
+    size_t at = offsetof(hy_scene_run, doc), after = at + sizeof r->doc;
+    memset(r, 0, at);
+    memset((char *)r + after, 0, sizeof *r - after);
+    r->doc = *doc;
     r->path = path;
     r->budget = budget;
     r->scene = scene;
     r->scene_borrowed = 1;
-    r->doc = *doc;
     r->doc_borrowed = 1;
-    return build_decoded(r, err);
+    return build_decoded(r, validated, err);
 }
 
 /* A series' quantity, where written, is one the model draws. */
@@ -284,11 +287,12 @@ static int build_run(hy_scene_run *r, const hy_scene_doc *base, hy_error *err)
         hy_scene_run_free(r);
         return rc;
     }
-    return build_decoded(r, err);
+    return build_decoded(r, 0, err);
 }
 
-/* build_run's steps after decoding: model, input, panels, checks. */
-static int build_decoded(hy_scene_run *r, hy_error *err)
+/* build_run's steps after decoding: model, input, panels, checks (the
+ * placeholders' unless validated: hy_scene_run_load_doc). */
+static int build_decoded(hy_scene_run *r, int validated, hy_error *err)
 {
     int rc;
     r->figure_kind = r->doc.figure.kind;
@@ -302,7 +306,7 @@ static int build_decoded(hy_scene_run *r, hy_error *err)
         rc = hy_scene_run_data_check(r, err); /* data = measured, modelled: their [data] */
     if (!rc)
         rc = load_panels(r, err);
-    if (!rc)
+    if (!rc && !validated)
         rc = hy_scene_run_validate(r, err);
     if (rc)
         hy_scene_run_free(r);

@@ -41,9 +41,12 @@ int hy_scene_run_load_scene(hy_scene_run *r, hy_scene *scene, const char *path, 
 /* As hy_scene_run_load_scene with the scene already decoded by the caller:
  * doc is what hy_scene_decode gives for scene (hystviz sweep writes its grid
  * values into a copy of the decoded fields); its section arrays are lent,
- * never freed nor changed by the run. */
-int hy_scene_run_load_doc(hy_scene_run *r, hy_scene *scene, const hy_scene_doc *doc, const char *path, double budget,
-                          hy_error *err);
+ * never freed nor changed by the run.  validated: the caller loaded a doc
+ * that differs from this one only in NUMBER/INTEGER fields of [model],
+ * [input] or [compute] before, without error: the annotation placeholders
+ * (which depend on no such value) are not checked again. */
+int hy_scene_run_load_doc(hy_scene_run *r, hy_scene *scene, const hy_scene_doc *doc, int validated, const char *path,
+                          double budget, hy_error *err);
 
 /* As hy_scene_run_load_scene on a scene marked (hy_scene_mark) when base was
  * decoded from it and since changed only by overrides: the run's doc is base

@@ -50,7 +50,7 @@ enum { HY_PNG_FILTER_NONE = 0, HY_PNG_FILTER_SUB, HY_PNG_FILTER_UP, HY_PNG_FILTE
  * 207 kB, small 13.5 ms and 173 kB. */
 #define HY_PNG_MODES(X)                                                                            \
     X("fast", 2, HY_PNG_FAST, "hystviz's encoder for plot frames (runs, the row above, pixel pairs)") \
-    X("small", 6, HY_PNG_LIBDEFLATE, "libdeflate level 6, else zlib level 6: about 16 % smaller, 3x the time")
+    X("small", 6, HY_PNG_LIBDEFLATE, "libdeflate level 6, else zlib level 6: about 16 % smaller, 3x the time [bench gl]")
 
 /* The frame default: the first PNG mode. */
 hy_png_opts hy_png_frame_defaults(void);

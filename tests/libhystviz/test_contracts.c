@@ -205,6 +205,57 @@ static void fitter(void)
     unlink(sc);
 }
 
+/* Whether the n bytes at b hold the text t. */
+static int has(const unsigned char *b, size_t n, const char *t)
+{
+    size_t m = strlen(t);
+    for (size_t i = 0; i + m <= n; i++)
+        if (!memcmp(b + i, t, m))
+            return 1;
+    return 0;
+}
+
+/* hy_sweep_npy: NULLs and empty axes refused with *npy NULL, *len 0; a
+ * two-point study gives an .npy with two records. */
+static void sweeper(void)
+{
+    hy_error err;
+    unsigned char *npy = (unsigned char *)&err; /* not NULL: must be set to NULL on error */
+    size_t len = 7, one = 1, two = 2, zero = 0;
+    const char *keys[] = {"model.sigma0"}, *nokey[] = {NULL};
+    double v[2] = {1, 2}, inf = INFINITY;
+    const double *vals[] = {v}, *infs[] = {&inf};
+    char sc[4300];
+    test_tmppath(sc, sizeof sc, "sweep.scene");
+    FILE *fp = fopen(sc, "w");
+    if (fp) {
+        fputs(scene, fp);
+        fclose(fp);
+    }
+    REFUSED(hy_sweep_npy(NULL, NULL, 0, keys, vals, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    CHECK(npy == NULL && len == 0, "sweep_npy: *npy NULL, *len 0 after an error");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 1, 1, 0, NULL, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 1, 1, 0, &npy, NULL, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 1, keys, vals, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, NULL, vals, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, NULL, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, NULL, 1, 0, 1, 1, 0, &npy, &len, &err), err, "must not be NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, nokey, vals, &two, 1, 0, 1, 1, 0, &npy, &len, &err), err, "key is NULL");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &zero, 1, 0, 1, 1, 0, &npy, &len, &err), err, "no values");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, infs, &one, 1, 0, 1, 1, 0, &npy, &len, &err), err, "finite");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 1, 1, NAN, &npy, &len, &err), err, "max_work");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 2, 2, 1, 0, &npy, &len, &err), err, "shard 2 of 2");
+    REFUSED(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 0, 1, 0, &npy, &len, &err), err, "shard 0 of 0");
+    CHECK(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 1, 2, 1, 0, &npy, &len, NULL) == 0 && npy &&
+              has(npy, len, "'shape': (1,)"), "sweep_npy shard 1 of 2: one record");
+    free(npy);
+    CHECK(hy_sweep_npy(sc, NULL, 0, keys, vals, &two, 1, 0, 1, 2, 0, &npy, &len, NULL) == 0 && npy && len > 128 &&
+              !memcmp(npy, "\x93NUMPY", 6) && has(npy, len, "'shape': (2,)"),
+          "sweep_npy of two points, err NULL");
+    free(npy);
+    unlink(sc);
+}
+
 int main(void)
 {
     makers();
@@ -216,5 +267,6 @@ int main(void)
     hy_result_free(r);
     writer();
     fitter();
+    sweeper();
     return tu_finish("contracts");
 }

@@ -1,6 +1,7 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# tests/python/run.sh SOURCE_ROOT LIB HYSTVIZ [notebook]: runs test_python.py
+# tests/python/run.sh SOURCE_ROOT LIB HYSTVIZ [notebook|SCRIPT.py]: runs test_python.py
+# (or tests/python/SCRIPT.py with the same arguments)
 # (or, with "notebook", docs/examples/minor_loops.ipynb through nbclient) with a
 # Python 3 that has NumPy (Debian's python3-numpy is for /usr/bin/python3,
 # which may not be the first python3 on PATH).  Without one: SKIP, or FAIL
@@ -14,7 +15,7 @@ for py in /usr/bin/python3 python3; do
             "$src/docs/examples/minor_loops.ipynb" "$src/scenes"
     fi
     if "$py" -c "import numpy" 2>/dev/null; then
-        PYTHONPATH="$src/src/python" HYSTVIZ_LIB="$lib" exec timeout 300 "$py" "$src/tests/python/test_python.py" "$hv" "$src/scenes"
+        PYTHONPATH="$src/src/python" HYSTVIZ_LIB="$lib" exec timeout 300 "$py" "$src/tests/python/${4:-test_python.py}" "$hv" "$src/scenes"
     fi
 done
 if [ "${CI:-}" = true ]; then

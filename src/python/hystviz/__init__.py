@@ -30,7 +30,7 @@ from . import _lib
 
 __all__ = ["SceneError", "Model", "Input", "models", "Result", "Figure", "MinorLoop", "run", "render", "steady_loop",
            "limit", "ygamma", "kcycles", "minor_loops", "schema", "boucwen", "read_data", "loop_area", "fit", "FitResult",
-           "__version__"]
+           "__version__", "sweep", "SweepError"]
 
 __version__ = _lib.version().decode()
 
@@ -602,6 +602,7 @@ def minor_loops(model, input):
 
 
 from . import boucwen  # noqa: E402  (uses the names above)
+from ._sweep import sweep, SweepError  # noqa: E402,F401  (a parameter study as arrays, issue 37)
 
 
 class FitResult:
