@@ -105,9 +105,9 @@ run_tests() {
 # directory, configured and built for suite 'dist', whose tests run there
 dist_check() {
     rm -rf build/meson-dist
-    meson dist -C build --no-tests --formats xztar >/dev/null
+    meson dist -C build --no-tests --formats gztar >/dev/null
     d=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-dist.XXXXXX")
-    tar -xf build/meson-dist/hystviz-*.tar.xz -C "$d"
+    tar -xzf build/meson-dist/hystviz-*.tar.gz -C "$d"
     st=0
     (cd "$d"/hystviz-* && configure_for build dist && run_tests build --no-rebuild --suite dist) || st=$?
     rm -rf "$d"

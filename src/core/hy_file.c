@@ -192,7 +192,8 @@ static int exists(const char *path, int dir)
 /* The source tree of a program run from its build tree, into root: the
  * build writes it into HY_SOURCE_ROOT_FILE at the top of the build directory,
  * found from the program's directory dir upwards (at most 4 levels: build/,
- * build/src/app/, build/tests/cli/decoyprefix/); -1 for an installed program. */
+ * build/src/app/, build/tests/cli/decoyprefix/); -1 for an installed program
+ * (hy_file_installed uses only whether there is one). */
 static int build_source_root(const char *dir, char *root, size_t size)
 {
     char d[4096], path[4200];
@@ -215,18 +216,6 @@ static int build_source_root(const char *dir, char *root, size_t size)
     return -1;
 }
 
-/* The source tree's counterpart of an installed data directory sub */
-static const char *source_data(const char *sub)
-{
-    static const struct {
-        const char *installed, *source;
-    } map[] = {{"scenes", "scenes"}, {"boucwen", "tests/data/boucwen"}};
-    for (size_t i = 0; i < sizeof map / sizeof map[0]; i++)
-        if (!strcmp(sub, map[i].installed))
-            return map[i].source;
-    return NULL;
-}
-
 int hy_file_installed(int what, const char *sub, char *buf, size_t size)
 {
     char self[4096], root[4096];
@@ -239,14 +228,11 @@ int hy_file_installed(int what, const char *sub, char *buf, size_t size)
     if (have && what == HY_INSTALLED_LIBEXEC && (size_t)snprintf(buf, size, "%s/%s", self, sub) < size &&
         exists(buf, 0))
         return 0;
-    /* a program in its build tree uses its source tree's files, never an
-       install's (the tests of a build, or of an unpacked tarball, run the
-       build's programs even where an older hystviz is installed in the
-       configured prefix: tests/cli/test_decoy.sh) */
+    /* a program in its build tree never uses an install's files: it behaves
+       as where nothing is installed (the tests of a build, or of an unpacked
+       tarball, run the build's programs even where another hystviz is
+       installed in the configured prefix: tests/cli/test_decoy.sh) */
     if (have && !build_source_root(self, root, sizeof root)) {
-        const char *src = what == HY_INSTALLED_DATA ? source_data(sub) : NULL;
-        if (src && (size_t)snprintf(buf, size, "%s/%s", root, src) < size && exists(buf, 1))
-            return 0;
         if (size)
             buf[0] = '\0';
         return -1;

@@ -42,9 +42,9 @@ enum { HY_INSTALLED_DATA = 0, HY_INSTALLED_LIBEXEC = 1 };
  * HY_INSTALLED_LIBEXEC looks for the program sub in the running program's
  * own directory (the build tree), then PREFIX/libexec.  A program run from
  * its build tree (the file hystviz-source-root at the top of the build
- * directory) takes the source tree's scenes/ and tests/data/boucwen/ instead
- * and never looks in an install.  Returns 0 if found, -1 if not (buf then
- * empty). */
+ * directory) never looks in an install: it finds only a helper next to
+ * itself, as where nothing is installed.  Returns 0 if found, -1 if not (buf
+ * then empty). */
 int hy_file_installed(int what, const char *sub, char *buf, size_t size);
 
 #ifdef __cplusplus
