@@ -20,6 +20,8 @@ def declared(paths):
             text = f.read()
         text = re.sub(r"/\*.*?\*/", " ", text, flags=re.S)
         text = re.sub(r"//[^\n]*", " ", text)
+        # the C++ guards' braces (extern "C" {, }) are no scope
+        text = re.sub(r"^#ifdef __cplusplus\n.*?^#endif", " ", text, flags=re.S | re.M)
         text = "\n".join(l for l in text.split("\n") if not l.lstrip().startswith("#"))
         depth, top = 0, []
         for ch in text:

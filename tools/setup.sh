@@ -31,8 +31,9 @@ pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # iproute2 (a single-node Slurm on loopback: tests/cli/test_slurm.sh);
 # python3-numpy, python3-nbclient and python3-ipykernel (the Python package and
 # its notebook: tests/python); python3-distributed (the Dask recipe of
-# docs/STUDIES.md: tests/python/test_dask.py)
-case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-distributed python3-pip python3-wheel chromium pngcheck python3-pil slurm-wlm munge iproute2" ;; bench) pkgs="$pkgs curl bash python3 chromium pngcheck python3-pil python3-matplotlib python3-numpy python3-scipy" ;; esac
+# docs/STUDIES.md: tests/python/test_dask.py); cmake and g++ (a CMake project
+# and a C++17 program against the installed library: tests/libhystviz/test_cmake.sh)
+case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-distributed python3-pip python3-wheel chromium pngcheck python3-pil slurm-wlm munge iproute2 cmake g++" ;; bench) pkgs="$pkgs curl bash python3 chromium pngcheck python3-pil python3-matplotlib python3-numpy python3-scipy" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"
@@ -105,6 +106,19 @@ run_tests() {
     return "$st"
 }
 
+# dist_check: build/'s `meson dist` tarball, unpacked in a temporary
+# directory, configured and built for suite 'dist', whose tests run there
+dist_check() {
+    rm -rf build/meson-dist
+    meson dist -C build --no-tests --formats gztar >/dev/null
+    d=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-dist.XXXXXX")
+    tar -xzf build/meson-dist/hystviz-*.tar.gz -C "$d"
+    st=0
+    (cd "$d"/hystviz-* && configure_for build dist && run_tests build --no-rebuild --suite dist) || st=$?
+    rm -rf "$d"
+    return "$st"
+}
+
 # stage NAME: say how long the last stage took and the whole command so far
 # (the test command's budget is 10 minutes on 2 cores), and the CPU time
 # (user + sys) its processes used: on a loaded machine the wall time says
@@ -167,6 +181,14 @@ test)
         LSAN_OPTIONS=suppressions="$PWD/tests/render/lsan.supp"
     run_tests build-san --no-rebuild --no-suite check --no-suite no-san
     stage "the tests in build-san/"
+    # the release tarball passes its own tests (issue 35 item 5): `meson dist`
+    # makes it from git (--no-tests: its own check rebuilds everything and
+    # runs every test, too long for the budget); it is unpacked outside any
+    # checkout, built for the tests of suite 'dist' only and those run: the
+    # licence lines without git, the build tree's files against a decoy
+    # install, the library's symbols, ABI, reference and pipeline
+    dist_check
+    stage "the dist tarball (building, its dist suite)"
     ;;
 bench)
     configure build

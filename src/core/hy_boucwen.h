@@ -27,6 +27,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Physical parameters, SI units (Table 1 of the benchmark by default). */
 typedef struct hy_boucwen_params {
     double m;     /* mass m_L, kg                 (> 0)   */
@@ -136,5 +140,9 @@ int hy_boucwen_synth_periodic(const hy_boucwen_params *p,
 int hy_boucwen_synth_periodic_kept(const hy_boucwen_params *p, const hy_newmark_opts *o, double fs, size_t r,
                                    int staged, const double *u_period, size_t n_period, size_t first,
                                    size_t periods, double *y_out, hy_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

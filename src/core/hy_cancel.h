@@ -21,6 +21,10 @@
 
 #include "hy_status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct hy_cancel {
     int (*fn)(void *ctx);   /* nonzero: stop the work */
     void *ctx;
@@ -32,5 +36,9 @@ int hy_cancel_poll(const hy_cancel *c, unsigned *tick, unsigned every);
 
 /* HY_ECANCEL with the message every stopped loop gives. */
 #define hy_cancel_error(err) hy_error_set((err), HY_ECANCEL, "stopped: the work is no longer wanted")
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

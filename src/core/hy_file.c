@@ -189,9 +189,36 @@ static int exists(const char *path, int dir)
     return stat(path, &st) == 0 && (dir ? S_ISDIR(st.st_mode) : S_ISREG(st.st_mode));
 }
 
+/* The source tree of a program run from its build tree, into root: the
+ * build writes it into HY_SOURCE_ROOT_FILE at the top of the build directory,
+ * found from the program's directory dir upwards (at most 4 levels: build/,
+ * build/src/app/, build/tests/cli/decoyprefix/); -1 for an installed program
+ * (hy_file_installed uses only whether there is one). */
+static int build_source_root(const char *dir, char *root, size_t size)
+{
+    char d[4096], path[4200];
+    snprintf(d, sizeof d, "%s", dir);
+    for (int up = 0; up < 4 && d[0]; up++) {
+        if ((size_t)snprintf(path, sizeof path, "%s/" HY_SOURCE_ROOT_FILE, d) < sizeof path) {
+            FILE *f = fopen(path, "r");
+            if (f) {
+                int ok = fgets(root, (int)size, f) != NULL;
+                fclose(f);
+                root[strcspn(root, "\n")] = '\0';
+                return ok && root[0] == '/' ? 0 : -1;
+            }
+        }
+        char *slash = strrchr(d, '/');
+        if (!slash)
+            break;
+        *slash = '\0';
+    }
+    return -1;
+}
+
 int hy_file_installed(int what, const char *sub, char *buf, size_t size)
 {
-    char self[4096];
+    char self[4096], root[4096];
     const char *rel = what == HY_INSTALLED_LIBEXEC ? HY_LIBEXECDIR_REL : HY_DATADIR_REL "/hystviz";
     const char *configured = what == HY_INSTALLED_LIBEXEC ? HY_LIBEXECDIR : HY_DATA_DIR;
     int have = exe_dir(self, sizeof self) == 0;
@@ -201,6 +228,15 @@ int hy_file_installed(int what, const char *sub, char *buf, size_t size)
     if (have && what == HY_INSTALLED_LIBEXEC && (size_t)snprintf(buf, size, "%s/%s", self, sub) < size &&
         exists(buf, 0))
         return 0;
+    /* a program in its build tree never uses an install's files: it behaves
+       as where nothing is installed (the tests of a build, or of an unpacked
+       tarball, run the build's programs even where another hystviz is
+       installed in the configured prefix: tests/cli/test_decoy.sh) */
+    if (have && !build_source_root(self, root, sizeof root)) {
+        if (size)
+            buf[0] = '\0';
+        return -1;
+    }
     /* an install, wherever it now is: PREFIX/BINDIR/hystviz */
     size_t nb = strlen(HY_BINDIR_REL), ns = have ? strlen(self) : 0;
     if (have && ns > nb && self[ns - nb - 1] == '/' && !strcmp(self + ns - nb, HY_BINDIR_REL)) {

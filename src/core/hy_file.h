@@ -11,6 +11,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Reads the regular file at path, at most max bytes, into *buf (malloc'ed,
  * NUL-terminated; len excludes the NUL).  If real is not NULL it receives the
  * malloc'ed real path of the file actually opened (symlinks resolved).
@@ -27,15 +31,24 @@ const char *hy_file_excerpt(const char *p, size_t n, char *buf, size_t size);
  * \xNN, "..." appended if cut: a name or text safe to quote in a message. */
 const char *hy_file_shown(const char *p, size_t n, size_t max, char *buf, size_t size);
 
+/* what hy_file_installed looks for: a data directory, a helper program */
+enum { HY_INSTALLED_DATA = 0, HY_INSTALLED_LIBEXEC = 1 };
+
 /* Where an installed hystviz keeps what it ships: *buf receives
  * PREFIX/share/hystviz/sub (sub "scenes", "boucwen") when that directory
  * exists, PREFIX taken first from the running program's location (an
  * install moved or made with DESTDIR still finds its files: bin/hystviz ->
  * share/hystviz), then the prefix it was configured with.  what ==
  * HY_INSTALLED_LIBEXEC looks for the program sub in the running program's
- * own directory (the build tree), then PREFIX/libexec.  Returns 0 if found,
- * -1 if not (buf then empty). */
-enum { HY_INSTALLED_DATA = 0, HY_INSTALLED_LIBEXEC = 1 };
+ * own directory (the build tree), then PREFIX/libexec.  A program run from
+ * its build tree (the file hystviz-source-root at the top of the build
+ * directory) never looks in an install: it finds only a helper next to
+ * itself, as where nothing is installed.  Returns 0 if found, -1 if not (buf
+ * then empty). */
 int hy_file_installed(int what, const char *sub, char *buf, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

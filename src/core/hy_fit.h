@@ -43,6 +43,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A parameter's scale: the design and the bound map work on theta or log theta. */
 enum { HY_FIT_LINEAR = 0, HY_FIT_LOG = 1 };
 
@@ -177,7 +181,8 @@ void hy_fit_result_free(hy_fit_result *res);
  * in it, strata permuted independently.  HY_EINVAL on an infinite bound. */
 int hy_fit_design(size_t p, const hy_fit_param *param, size_t npts, uint64_t seed, double *x, hy_error *err);
 
-/* The bound map of one parameter: theta from the unbounded u, and back
+/* The bound map of one parameter: theta from the unbounded u (hy_fit_theta),
+ * and back (hy_fit_u)
  * (a theta on a finite bound maps to the u of a point 1e-12 of the range
  * inside it). */
 double hy_fit_theta(const hy_fit_param *q, double u);
@@ -186,5 +191,9 @@ double hy_fit_u(const hy_fit_param *q, double theta);
 /* Prints the estimates, errors, intervals, flags, correlations |r| > 0.95,
  * condition number and fit statistics as a table. */
 void hy_fit_report(FILE *f, const hy_fit_problem *pb, const hy_fit_result *res);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

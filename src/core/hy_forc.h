@@ -30,6 +30,10 @@
 #include "hy_rateind.h"
 #include "hy_status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Caps on a file (untrusted input): more is refused naming the cap. */
 #define HY_FORC_MAX_CURVES 100000u   /* curves in one file                 */
 #define HY_FORC_MAX_POINTS 4000000u  /* points (H_b, M) in all curves      */
@@ -88,6 +92,8 @@ int hy_forc_read(hy_forc_data *d, const char *text, size_t len, const char *name
 int hy_forc_data_set(hy_forc_data *d, size_t ncurves, const double *ha, const size_t *n, const double *hb,
                      const double *m, hy_error *err);
 
+/* Frees d's curves and points and zeroes it (d may be NULL; a second call is
+ * harmless). */
 void hy_forc_data_free(hy_forc_data *d);
 
 /* Drift correction: multiplies every curve's M by cal_m(first curve) /
@@ -134,6 +140,7 @@ void hy_forc_grid_auto(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_gri
  * HY_ENOMEM.  Also reports the fitted nodes in *nfit (may be NULL). */
 int hy_forc_rho(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_grid *g, size_t *nfit, hy_error *err);
 
+/* Frees g->rho (g may be NULL; a second call is harmless). */
 void hy_forc_grid_free(hy_forc_grid *g);
 
 /* ---- the protocol on a model ---------------------------------------------- */
@@ -156,5 +163,9 @@ int hy_forc_protocol_run(hy_forc_data *d, const hy_forc_protocol *pr, hy_rateind
  * saturation at hsat): M(H_a, H_b) = y_s − 2E(+∞, H_a) + 2E(H_b, H_a), whose
  * FORC distribution is the density μ(α = H_b, β = H_a). */
 int hy_forc_preisach(hy_forc_data *d, const hy_forc_protocol *pr, const hy_preisach *p, hy_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -21,6 +21,10 @@
 #include "hy_input.h"
 #include "hy_model.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Nonzero when hy_gamma_exact can solve this model/input pair. */
 int hy_gamma_exact_applies(const hy_model *m, const hy_input *in);
 
@@ -33,5 +37,9 @@ int hy_gamma_exact(const hy_model *m, const hy_input *in, double gamma, const do
 
 /* Checks γ: finite and > 0. */
 int hy_gamma_check(double gamma, hy_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -20,6 +20,10 @@
 #include <stddef.h>
 #include "hy_status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum { HY_PIECE_LINEAR = 0, HY_PIECE_SINE = 1 };
 enum { HY_SHAPE_LINEAR = 0, HY_SHAPE_COSINE = 1 };
 
@@ -90,6 +94,8 @@ int hy_input_text(hy_input *in, const char *text, size_t len, const char *name, 
  * "file:PATH"; a trailing ":cosine" on bimodal/multimodal selects half-cosines. */
 int hy_input_parse(hy_input *in, const char *spec, hy_error *err);
 
+/* Frees what in holds (its pieces and runs) and empties it, so a second call
+ * is harmless; in may be NULL. */
 void hy_input_free(hy_input *in);
 
 /* t - k T, the time within period k, with k T carried exactly (an fma gives
@@ -102,11 +108,13 @@ double hy_input_reduce(const hy_input *in, double t, double k);
 double hy_input_snap(double tb);
 /* Index of the piece containing t modulo the period (t in [t0, t1)). */
 size_t hy_input_piece_at(const hy_input *in, double t, double *tmod, double *kcycles);
-/* u(t), u̇(t), ü(t) for any t >= 0 (periodic extension). */
+/* u(t), u̇(t), ü(t) for any t >= 0 (periodic extension): hy_input_u,
+ * hy_input_du, hy_input_ddu. */
 double hy_input_u(const hy_input *in, double t);
 double hy_input_du(const hy_input *in, double t);
 double hy_input_ddu(const hy_input *in, double t);
-/* u, u̇ on piece p at absolute time t inside it (no search). */
+/* u, u̇ on piece p at absolute time t inside it (no search): hy_piece_u,
+ * hy_piece_du. */
 double hy_piece_u(const hy_piece *p, double t);
 double hy_piece_du(const hy_piece *p, double t);
 /* ρ_u(t) = ∫_0^t |u̇| (Eq. 5), including whole periods. */
@@ -115,5 +123,9 @@ double hy_input_rho(const hy_input *in, double t);
 double hy_input_psi(const hy_input *in, double rho);
 /* Index of the run containing ϱ modulo ρ_T. */
 size_t hy_input_run_at(const hy_input *in, double rho, double *rmod);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

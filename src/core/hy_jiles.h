@@ -47,6 +47,10 @@
 #include "hy_input.h"
 #include "hy_rateind.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define HY_MU0 1.25663706212e-6 /* vacuum permeability, N/A² (CODATA 2018) */
 #define HY_JILES_RTOL 1e-13     /* the stepper's default local tolerance (hy_jiles.rtol) */
 #define HY_JILES_MAX_STEPS 1000000 /* default step budget of a state (hy_jiles.max_steps): about 1 s */
@@ -165,5 +169,9 @@ int hy_jiles_major_loop(const hy_jiles *j, double hmax, hy_jiles_loop *out, hy_e
  * M at u_min,1 changes by < 1e-11 Ms per period (HY_ENUM after 400); the loop
  * does not close exactly (no return-point memory): y_close != y_start. */
 int hy_jiles_minor_loop(const hy_jiles *j, const hy_input *in, hy_minor_loop *out, hy_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -22,6 +22,10 @@
 #include "hy_input.h"
 #include "hy_model.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* φ1(x) = (1 - e^{-x})/x, φ1(0) = 1; accurate for every x >= 0. */
 double hy_phi1(double x);
 /* φ2(x) = (x - 1 + e^{-x})/x², φ2(0) = 1/2; accurate for every x >= 0. */
@@ -42,6 +46,7 @@ typedef struct hy_steady {
 /* Computes y° at every extremum of the input (fixed point of the period map).
  * Returns HY_OK, HY_EINVAL (bad model) or HY_ENOMEM. */
 int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_error *err);
+/* Frees the steady state's table (st may be NULL; a second call is harmless). */
 void hy_steady_free(hy_steady *st);
 
 /* y°(ϱ): the steady state along the normalised input ψ_u (Eqs. 11-14). */
@@ -65,6 +70,8 @@ typedef struct hy_theorem_a {
     double rho[6];
     double y[5];
 } hy_theorem_a;
+/* Fills th from Theorem A for LuGre's σ0 and g0 and the bimodal extrema;
+ * HY_EINVAL (th unspecified) when Definition 1 fails. */
 int hy_theorem_a_init(hy_theorem_a *th, double sigma0, double g0, double umin1, double umin2,
                       double umax1, double umax2, hy_error *err);
 /* y°(ϱ) from Eqs. (11)-(14) (signs alternate: + on rising pieces). */
@@ -75,5 +82,9 @@ double hy_theorem_a_psi(const hy_theorem_a *th, double rho);
  * for stiff parameters.  statement_signs != 0 uses the statement's "−" on every
  * piece instead of the proof's alternating signs.  For tests and reports only. */
 double hy_theorem_a_printed(const hy_theorem_a *th, double rho, int statement_signs);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

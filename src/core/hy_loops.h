@@ -24,6 +24,10 @@
 
 #include "hy_limit.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct hy_loop {
     double rho_start, rho_turn, rho_close; /* absolute ϱ; may pass ρ_T (wrap) */
     double u_start, u_turn;
@@ -43,6 +47,8 @@ typedef struct hy_loops {
 
 /* Finds the loops of the steady state; HY_ENOMEM on allocation failure. */
 int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err);
+/* Frees the minor loops of l and empties it (l may be NULL; a second call is
+ * harmless). */
 void hy_loops_free(hy_loops *l);
 
 /* Any model: the same pairing of the input's turning points alone (ϱ and u
@@ -64,5 +70,9 @@ typedef struct hy_arc {
 } hy_arc;
 /* Writes up to max arcs of [rho0, rho1] into arcs; returns how many it needs. */
 size_t hy_steady_arcs(const hy_steady *st, double rho0, double rho1, hy_arc *arcs, size_t max);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -19,6 +19,10 @@
 
 #include "hy_status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct hy_model hy_model;
 
 typedef struct hy_model_type {
@@ -62,5 +66,9 @@ double hy_model_g0(const hy_model *m);
 double hy_model_a(const hy_model *m);
 /* Nonzero when y_γ does not depend on γ (g constant, σ1 = σ2 = 0, no filter). */
 int hy_model_rate_independent(const hy_model *m);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -24,6 +24,10 @@
 #include "hy_cancel.h"
 #include "hy_model.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct hy_ode_opts {
     const char *stepper;      /* rk2 rk4 rkf45 rkck rk8pd rk1imp rk2imp rk4imp bsimp msadams msbdf */
     double rtol, atol;        /* local error control: atol + rtol |y|          */
@@ -109,5 +113,9 @@ int hy_ode_check_work(const hy_model *m, const hy_input *in, double gamma, const
  * or the step cap is hit (message gives the time), HY_ENOMEM. */
 int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                  const double *t, size_t n, double *y_out, hy_ode_stats *stats, hy_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -40,6 +40,10 @@
 #include "hy_input.h"
 #include "hy_rateind.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum { HY_PREISACH_GAUSSIAN = 0, HY_PREISACH_LORENTZIAN = 1 };
 
 /* The state before u(0) (hy_preisach.start). */
@@ -128,6 +132,8 @@ int hy_preisach_mem_init(hy_preisach_mem *m, const hy_preisach *p, double u0, hy
 /* Moves the input monotonically from its present value to u; *y (may be NULL)
  * gets the output.  On error the memory is left as before the call. */
 int hy_preisach_mem_apply(hy_preisach_mem *m, double u, double *y, hy_error *err);
+/* Frees m's memory curve and empties it (m must not be NULL; a second call is
+ * harmless). */
 void hy_preisach_mem_free(hy_preisach_mem *m);
 
 /* Output for the input sequence u[0..n-1] (u[0] reached from saturation,
@@ -149,5 +155,9 @@ int hy_preisach_loop_area(const hy_preisach *p, double lo, double hi, double *ar
  * (return-point memory), areas from hy_preisach_loop_area, cycles = 1 (the
  * state is periodic once both global extrema were visited). */
 int hy_preisach_minor_loop(const hy_preisach *p, const hy_input *in, hy_minor_loop *out, hy_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

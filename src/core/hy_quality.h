@@ -10,6 +10,10 @@
 #ifndef HY_QUALITY_H
 #define HY_QUALITY_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define HY_QUALITY_PRESETS(X)                                                    \
     X("480p15", 854, 480, 15)                                                    \
     X("480p30", 854, 480, 30)                                                    \
@@ -19,5 +23,9 @@
     X("1080p60", 1920, 1080, 60)                                                 \
     X("1440p60", 2560, 1440, 60)                                                 \
     X("2160p60", 3840, 2160, 60)
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

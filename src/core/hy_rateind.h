@@ -19,6 +19,10 @@
 #include "hy_cancel.h"
 #include "hy_input.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Moves the model held in ctx to input value u (from wherever it is, along a
  * monotone path) and writes its output into *y.  Returns an hy_status code. */
 typedef int (*hy_rateind_fn)(void *ctx, double u, double *y, hy_error *err);
@@ -120,6 +124,7 @@ int hy_rateind_alloc(hy_rateind *m, const hy_rateind_type *type, const void *par
 int hy_rateind_apply(hy_rateind *m, double u, hy_error *err);
 /* dst becomes an independent copy of src (dst uninitialised). */
 int hy_rateind_clone(hy_rateind *dst, const hy_rateind *src, hy_error *err);
+/* Frees m's state (m must not be NULL; a second call is harmless). */
 void hy_rateind_free(hy_rateind *m);
 
 /* Drives the model (sitting at u(0), at a period's start) through whole
@@ -135,5 +140,9 @@ int hy_rateind_settle(hy_rateind *m, const hy_input *in, double tol, int max_per
  * (by_rho 0: values u(t)) or variations ϱ (by_rho 1: values ψ_u(ϱ), Eq. 10). */
 int hy_rateind_sample(hy_rateind *m, const hy_input *in, int by_rho, const double *x, size_t n,
                       double *const rows[HY_RI_NOUT], hy_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -23,6 +23,10 @@
 #include "hy_input.h"
 #include "hy_model.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct hy_ref_limit {
     const hy_input *in;       /* borrowed                                     */
     long double a, g0, rho_T;
@@ -32,6 +36,7 @@ typedef struct hy_ref_limit {
 
 /* HY_EINVAL for a non-positive or non-finite σ0 or g0, HY_ENOMEM. */
 int hy_ref_limit_init(hy_ref_limit *R, double sigma0, double g0, const hy_input *in, hy_error *err);
+/* Frees R's table (R may be NULL; a second call is harmless). */
 void hy_ref_limit_free(hy_ref_limit *R);
 /* y°(ρ) for any ρ >= 0 (periodic). */
 double hy_ref_steady_rho(const hy_ref_limit *R, double rho);
@@ -48,5 +53,9 @@ long double hy_ref_period(const hy_ref_limit *R, long double y0);
  * with the time within the period formed exactly; HY_EUNSUP otherwise. */
 int hy_ref_gamma(const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n, double *y,
                  hy_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -23,6 +23,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Random-phase multisine: lines of equal magnitude, phases uniform in [0, 2π). */
 typedef struct hy_multisine {
     double fs;    /* working sampling rate, Hz (750)     */
@@ -130,8 +134,9 @@ int hy_signal_upsample_fft(const double *x, size_t n, size_t r, double *y,
 int hy_signal_upsample_sinc(const double *x, size_t n, size_t r, double *y,
                             hy_error *err);
 
-/* In-place real DFT of n values into GSL's halfcomplex layout, and its
- * inverse (which divides by n).  Mixed radix: any n >= 1. */
+/* In-place real DFT of n values into GSL's halfcomplex layout
+ * (hy_signal_fft_forward), and its inverse (hy_signal_fft_inverse, which
+ * divides by n).  Mixed radix: any n >= 1. */
 int hy_signal_fft_forward(double *x, size_t n, hy_error *err);
 int hy_signal_fft_inverse(double *x, size_t n, hy_error *err);
 
@@ -173,5 +178,9 @@ double hy_signal_erms(const double *a, const double *b, size_t n);
 
 /* Plain RMS sqrt(mean(x²)). */
 double hy_signal_rms(const double *x, size_t n);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

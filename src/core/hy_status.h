@@ -14,6 +14,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     HY_OK = 0,
     HY_EINVAL = 1,  /* a parameter or input is outside its domain      */
@@ -56,5 +60,9 @@ void hy_error_prefix(hy_error *e, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -21,6 +21,10 @@
 
 #include "hy_status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Caps (docs/SCENES.md states them). */
 #define HY_TABLE_MAX_BYTES ((size_t)64 << 20) /* a measured data file: 64 MiB          */
 #define HY_TABLE_MAX_ROWS ((size_t)1 << 22)   /* data rows: 4,194,304                  */
@@ -62,6 +66,8 @@ typedef struct hy_table {
 int hy_table_parse(const char *text, size_t len, const char *name, const hy_table_spec *spec, int quote,
                    hy_table *out, hy_error *err);
 
+/* Frees t's columns and records and zeroes it (t must not be NULL; a second
+ * call is harmless). */
 void hy_table_free(hy_table *t);
 
 /* The signed area of the closed polygon (u[i], y[i]), i < n, the last point
@@ -70,5 +76,9 @@ void hy_table_free(hy_table *t);
  * Coordinates are taken relative to the first point (no cancellation in the
  * sum); 0 for n < 3. */
 double hy_table_area(const double *u, const double *y, size_t n);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

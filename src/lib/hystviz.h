@@ -8,6 +8,10 @@
  *
  *     cc prog.c $(pkg-config --cflags --libs hystviz)
  *
+ * or, from CMake, find_package(hystviz) and the target hystviz::hystviz.  The
+ * headers serve C++ as they are (extern "C"); hystviz_version.h gives their
+ * version (HYSTVIZ_VERSION_CHECK).  Each function has a man page in section 3.
+ *
  * The core computes on structs you own (a model, an input, the steady state
  * y° and its loops).  The pipeline below takes a scene (the text of a .scene
  * file, docs/SCENES.md) and overrides ("section.key=value", as `--set`),
@@ -48,6 +52,11 @@
 #include "hy_model.h"
 #include "hy_status.h"
 #include "hy_table.h"
+#include "hystviz_version.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* The library's version, "MAJOR.MINOR.PATCH" (that of the hystviz command
  * built with it); never NULL. */
@@ -116,7 +125,8 @@ size_t hy_result_series(const hy_result *r, size_t i, const double **x, const do
  * its n (0 for i out of range): one call where a foreign caller (the Python
  * package) would otherwise make three. */
 size_t hy_result_series_copy(const hy_result *r, size_t i, double *x, double *y, size_t cap);
-/* Series i's name and its data key; NULL for i out of range or r NULL. */
+/* Series i's name (hy_result_series_name) and its data key
+ * (hy_result_series_data); NULL for i out of range or r NULL. */
 const char *hy_result_series_name(const hy_result *r, size_t i);
 const char *hy_result_series_data(const hy_result *r, size_t i);
 
@@ -199,12 +209,17 @@ const double *hy_scene_fitted_array(const hy_scene_fitted *f, const char *what, 
  * an unknown name or f NULL. */
 double hy_scene_fitted_stat(const hy_scene_fitted *f, const char *what);
 
-/* Parameter j's key, data set j's name (NULL out of range or f NULL). */
+/* Parameter j's key (hy_scene_fitted_key), data set j's name
+ * (hy_scene_fitted_data); NULL out of range or f NULL. */
 const char *hy_scene_fitted_key(const hy_scene_fitted *f, size_t j);
 const char *hy_scene_fitted_data(const hy_scene_fitted *f, size_t j);
 
 /* The fitted scene's text (the scene with the estimates written in, what
  * hystviz fit -o writes), owned by f; NULL for f NULL. */
 const char *hy_scene_fitted_text(const hy_scene_fitted *f);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

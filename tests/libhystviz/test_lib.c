@@ -82,6 +82,18 @@ int main(int argc, char **argv)
     }
     scene = argv[1];
     CHECK(strcmp(hy_version(), "") != 0, "no version");
+    /* the headers' version macros and the library's version come from meson's one project version */
+    CHECK(strcmp(hy_version(), HYSTVIZ_VERSION_STRING) == 0, "hy_version() %s, the headers %s", hy_version(),
+          HYSTVIZ_VERSION_STRING);
+    char made[64];
+    snprintf(made, sizeof made, "%d.%d.%d", HYSTVIZ_VERSION_MAJOR, HYSTVIZ_VERSION_MINOR, HYSTVIZ_VERSION_PATCH);
+    CHECK(strcmp(made, HYSTVIZ_VERSION_STRING) == 0, "MAJOR.MINOR.PATCH %s, HYSTVIZ_VERSION_STRING %s", made,
+          HYSTVIZ_VERSION_STRING);
+    CHECK(HYSTVIZ_VERSION_CHECK(HYSTVIZ_VERSION_MAJOR, HYSTVIZ_VERSION_MINOR, HYSTVIZ_VERSION_PATCH) &&
+              HYSTVIZ_VERSION_CHECK(0, 0, 0) &&
+              !HYSTVIZ_VERSION_CHECK(HYSTVIZ_VERSION_MAJOR, HYSTVIZ_VERSION_MINOR, HYSTVIZ_VERSION_PATCH + 1) &&
+              !HYSTVIZ_VERSION_CHECK(HYSTVIZ_VERSION_MAJOR + 1, 0, 0),
+          "HYSTVIZ_VERSION_CHECK: true for this version and older, false for newer");
 
     /* the CLI's numbers */
     hy_result *r;
