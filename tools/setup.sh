@@ -30,8 +30,9 @@ pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # chromium (the page in a real browser, headless); slurm-wlm, munge and
 # iproute2 (a single-node Slurm on loopback: tests/cli/test_slurm.sh);
 # python3-numpy, python3-nbclient and python3-ipykernel (the Python package and
-# its notebook: tests/python)
-case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-pip python3-wheel chromium pngcheck python3-pil slurm-wlm munge iproute2" ;; bench) pkgs="$pkgs curl bash python3 chromium pngcheck python3-pil python3-matplotlib python3-numpy python3-scipy" ;; esac
+# its notebook: tests/python); python3-mesonpy and python3-venv (pip wheel . into
+# a venv), mypy (mypy --strict) and python3-matplotlib (hystviz.plot's example)
+case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-pip python3-wheel python3-mesonpy python3-venv mypy python3-matplotlib chromium pngcheck python3-pil slurm-wlm munge iproute2" ;; bench) pkgs="$pkgs curl bash python3 chromium pngcheck python3-pil python3-matplotlib python3-numpy python3-scipy" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"

@@ -31,10 +31,17 @@ mkdir "$T/src"
 (cd "$src" && tar cf - --exclude='./build*' --exclude='__pycache__' --exclude='./.git' --exclude='./.mesonpy*' \
     --exclude='./gallery' --exclude='./tests' --exclude='./docs' .) | (cd "$T/src" && tar xf -) ||
     { echo "FAIL: copying the source tree"; exit 1; }
+(cd "$T/src" && find . | sort) >"$T/before"
 unset PYTHONPATH HYSTVIZ_LIB HYSTVIZ_SCENES LD_LIBRARY_PATH
 export PIP_CONFIG_FILE=/dev/null PIP_NO_CACHE_DIR=1 PIP_DISABLE_PIP_VERSION_CHECK=1 HOME="$T/home"
 (cd "$T/src" && timeout 900 "$py" -m pip wheel -q --no-build-isolation --no-deps --no-index -w "$T/wheel" . \
     --config-settings=compile-args=-j2 >"$T/wheel.log" 2>&1) || { tail -40 "$T/wheel.log"; fail "pip wheel ."; exit 1; }
+# the tree is left as it was but for meson-python's native file (.gitignore'd):
+# no build/, *.egg-info or other leftovers
+left=$( (cd "$T/src" && find . | sort) | comm -13 "$T/before" - | grep -v '^\./\.mesonpy-native-file\.ini$')
+[ -z "$left" ] && ok "pip wheel . leaves nothing in the tree (but .mesonpy-native-file.ini, ignored)" ||
+    fail "pip wheel . left in the tree: $left"
+grep -qx '/.mesonpy-native-file.ini' "$T/src/.gitignore" || fail ".gitignore does not name .mesonpy-native-file.ini"
 whl=$(ls "$T"/wheel/hystviz-*.whl)
 case "$whl" in
     *-linux_*.whl) ok "pip wheel . made $(basename "$whl") (platform-tagged)" ;;
