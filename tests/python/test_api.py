@@ -9,7 +9,9 @@
      one the data were made with, a unit square's shoelace area is 1);
   3. help() shows the schema's units: a [model] key with a unit in the schema
      has it in help(hystviz.Model) and in help(hystviz.models[kind]);
-  4. files: a missing scene is FileNotFoundError, an unreadable one
+  4. plot(result, ax=ax) draws each series with its own points (when
+     matplotlib is installed; otherwise that part is skipped with a message);
+  5. files: a missing scene is FileNotFoundError, an unreadable one
      PermissionError (skipped as root, who reads any file), a bad scene SceneError.
 plot()'s example needs matplotlib: without it that example is left out with
 a message (the rest still runs).
@@ -80,6 +82,26 @@ with tempfile.TemporaryDirectory() as tmp:
     bw = [k for k, spec in hystviz._MODELS.items() if "c" in spec["params"]]
     check(bool(bw) and "c : number, N s/m" in hystviz.models[bw[0]].__doc__,
           f"help(hystviz.models[{bw[0] if bw else None!r}]) shows c's unit N s/m")
+
+    # plot: one line a series, its points the Result's own (bit for bit)
+    if have_mpl:
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots()
+        res = hystviz.run(hystviz.scene_path("fig15_minor_loop_ex4"))
+        back = hystviz.plot(res, ax=ax)
+        lines = {ln.get_label(): ln for ln in ax.get_lines()}
+        same = back is ax and set(lines) == set(res.series) and all(
+            np.array_equal(lines[k].get_xdata(), x, equal_nan=True) and
+            np.array_equal(lines[k].get_ydata(), y, equal_nan=True) for k, (x, y) in res.series.items())
+        check(same, f"plot(Result, ax=ax) draws each of {len(res.series)} series with its own points into ax")
+        try:
+            hystviz.plot(res, ax=ax, model__sigma0=2)
+            check(False, "plot(Result, overrides) raised nothing")
+        except ValueError as e:
+            check("overrides" in str(e), f"plot(Result, overrides) is a ValueError ({e})")
+        plt.close(fig)
+    else:
+        print("SKIP (part): plot(): matplotlib is not installed (apt-get install python3-matplotlib)")
 
     # files: the OS's exceptions; scenes: SceneError
     missing = os.path.join(tmp, "nosuch.scene")

@@ -25,6 +25,7 @@ scenes that the package carries; plot(..., ax=...) draws into matplotlib.
 from __future__ import annotations
 
 import ctypes
+import functools
 import json
 import math
 import os
@@ -653,25 +654,42 @@ def render(scene: PathLike, sets: Optional[Mapping[str, Value]] = None, **overri
 
 def _scene(model: Model, inp: Input, series: str, points: int, cycles: int = 1, extra: str = "",
            kind: str = "timeseries") -> str:
-    return (model.scene_text() + inp.scene_text() + f"[compute]\npoints = {int(points)}\ncycles = {int(cycles)}\n"
+    """The scene text of model and inp computing series on points samples a period."""
+    return _scene_bytes(model.scene_text(), inp.scene_text(), series, points, cycles, extra, kind).decode()
+
+
+@functools.lru_cache(maxsize=256)
+def _scene_bytes(model_text: str, inp_text: str, series: str, points: int, cycles: int = 1, extra: str = "",
+                 kind: str = "timeseries") -> bytes:
+    """_scene's text, encoded, made once for each combination (a Model's and
+    an Input's text is fixed when they are made): a repeated call with the
+    same arguments does no string work (the call-overhead benchmark)."""
+    return (model_text + inp_text + f"[compute]\npoints = {int(points)}\ncycles = {int(cycles)}\n"
             + extra + f"[figure]\nkind = {kind}\n" + ("[series u]\ndata = input\n" if kind == "timeseries" else "")
-            + series)
+            + series).encode()
+
+
+def _addr(a: Array) -> int:
+    """The address of a's data (a.ctypes.data builds an object and costs about
+    5 µs a call; the array interface about 1)."""
+    addr: int = a.__array_interface__["data"][0]
+    return addr
 
 
 def _array(p: Any, n: int) -> Array:
     """A copy of n doubles at the C pointer p (one memmove into a new array;
     np.ctypeslib.as_array costs tens of µs a call)."""
     a = np.empty(n)
-    ctypes.memmove(a.ctypes.data, p, 8 * n)
+    ctypes.memmove(_addr(a), p, 8 * n)
     return a
 
 
-def _tuy(text: str, points: int, sets: Sequence[bytes] = ()) -> Tuple[Array, Array, Array]:
+def _tuy(text: Union[str, bytes], points: int, sets: Sequence[bytes] = ()) -> Tuple[Array, Array, Array]:
     """(t, u, y) of a _scene: series 0 is the input, series 1 the output, on
     the same grid; straight through the C calls, no Result, one copy of each
     series into one (3, n) array (the short path of the call-overhead
     benchmark: a few µs over the C call, tests/bench/bench_python.py)."""
-    b = text.encode()
+    b = text.encode() if isinstance(text, str) else text
     h = ctypes.c_void_p()
     err = _lib.Error()
     _check(_lib.from_text(b"<python>/scene.scene", b, len(b), _carray(sets) if sets else None, len(sets), 0.0,
@@ -680,7 +698,7 @@ def _tuy(text: str, points: int, sets: Sequence[bytes] = ()) -> Tuple[Array, Arr
         cap = points + 1
         while True:
             out = np.empty((3, cap))
-            p = out.ctypes.data
+            p = _addr(out)
             n = _lib.series_copy(h, 0, p, p + 8 * cap, cap)
             if n <= cap:
                 break
@@ -1031,7 +1049,8 @@ def steady_loop(model: Model, input: Input, points: int = 2000) -> Tuple[Array, 
     >>> t.shape, float(y[0]) == float(y[-1])
     ((201,), True)
     """
-    return _tuy(_scene(model, input, "[series y]\ndata = ysteady\n", points), points, _sets_of(model, input))
+    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), "[series y]\ndata = ysteady\n", points), points,
+                _sets_of(model, input))
 
 
 def limit(model: Model, input: Input, points: int = 2000, cycles: int = 1) -> Tuple[Array, Array, Array]:
@@ -1066,7 +1085,7 @@ def limit(model: Model, input: Input, points: int = 2000, cycles: int = 1) -> Tu
     >>> hystviz.limit(m, u, points=100, cycles=2)[2].shape
     (201,)
     """
-    return _tuy(_scene(model, input, "[series y]\ndata = ystar\n", points, cycles), points * cycles,
+    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), "[series y]\ndata = ystar\n", points, cycles), points * cycles,
                 _sets_of(model, input))
 
 
@@ -1108,7 +1127,7 @@ def ygamma(model: Model, input: Input, gamma: float, points: int = 2000, cycles:
     (101,)
     """
     solver_set = f"compute.solver={_text_param('solver', solver)}".encode()  # the --set parser, not scene text
-    return _tuy(_scene(model, input, f"[series y]\ndata = ygamma\ngamma = {_fmt(float(gamma))}\n", points,
+    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), f"[series y]\ndata = ygamma\ngamma = {_fmt(float(gamma))}\n", points,
                        cycles), points * cycles, _sets_of(model, input, solver_set))
 
 
@@ -1145,7 +1164,7 @@ def kcycles(model: Model, input: Input, k: int, points: int = 2000) -> Tuple[Arr
     >>> float(t[0]), t.shape
     (0.0, (101,))
     """
-    return _tuy(_scene(model, input, f"[series y]\ndata = yk\nk = {int(k)}\n", points), points,
+    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), f"[series y]\ndata = yk\nk = {int(k)}\n", points), points,
                 _sets_of(model, input))
 
 
