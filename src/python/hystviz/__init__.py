@@ -11,7 +11,7 @@ writes.
     >>> u = hystviz.Input("bimodal", umin1=0, umin2=0.5, umax1=1, umax2=1.5)
     >>> [round(l.area, 6) for l in hystviz.minor_loops(m, u)]
     [0.199107]
-    >>> fig = hystviz.render("scenes/fig15_minor_loop_ex4.scene", model__sigma0=2)  # doctest: +SKIP
+    >>> fig = hystviz.render(hystviz.scene_path("fig15_minor_loop_ex4"), model__sigma0=2)
 
 Scene keys are written section.key; as a keyword argument, section__key
 (model__sigma0=2), or pass a dict: render(scene, **{"model.sigma0": 2}).
@@ -669,18 +669,11 @@ def _scene_bytes(model_text: str, inp_text: str, series: str, points: int, cycle
             + series).encode()
 
 
-def _addr(a: Array) -> int:
-    """The address of a's data (a.ctypes.data builds an object and costs about
-    5 µs a call; the array interface about 1)."""
-    addr: int = a.__array_interface__["data"][0]
-    return addr
-
-
 def _array(p: Any, n: int) -> Array:
     """A copy of n doubles at the C pointer p (one memmove into a new array;
     np.ctypeslib.as_array costs tens of µs a call)."""
     a = np.empty(n)
-    ctypes.memmove(_addr(a), p, 8 * n)
+    ctypes.memmove(a.ctypes.data, p, 8 * n)
     return a
 
 
@@ -698,7 +691,7 @@ def _tuy(text: Union[str, bytes], points: int, sets: Sequence[bytes] = ()) -> Tu
         cap = points + 1
         while True:
             out = np.empty((3, cap))
-            p = _addr(out)
+            p = out.ctypes.data
             n = _lib.series_copy(h, 0, p, p + 8 * cap, cap)
             if n <= cap:
                 break
