@@ -70,6 +70,8 @@ tmp = sys.argv[1]
 pkg = os.path.dirname(hystviz.__file__)
 assert pkg.startswith(os.path.join(tmp, "venv")), f"hystviz imported from {pkg}"
 assert os.path.dirname(_lib.lib._name) == pkg, f"libhystviz loaded from {_lib.lib._name}, not the package"
+# found without ctypes.util.find_library (it runs ldconfig and a compiler)
+print("find_library", "ctypes.util" in sys.modules or "subprocess" in sys.modules)
 m = hystviz.Model("lugre", sigma0=6)
 u = hystviz.Input("bimodal", umin1=0, umin2=0.5, umax1=1, umax2=1.5)
 print(f"area {hystviz.minor_loops(m, u)[0].area:.17g}")
@@ -83,6 +85,8 @@ PYEOF
 echo "$out"
 case "$out" in *"area 0.19910737569481529"*) ok "Fig. 15's minor-loop area from the venv, run from /" ;;
     *) fail "minor-loop area from the venv" ;; esac
+case "$out" in *"find_library False"*) ok "import hystviz loads no ctypes.util nor subprocess" ;;
+    *) fail "import hystviz imported ctypes.util or subprocess" ;; esac
 case "$out" in *"png True svg True"*) ok "render(scene_path('fig15_minor_loop_ex4')) writes a PNG and an SVG" ;;
     *) fail "render from the venv" ;; esac
 exit $((fails > 0))
