@@ -1078,8 +1078,8 @@ def limit(model: Model, input: Input, points: int = 2000, cycles: int = 1) -> Tu
     >>> hystviz.limit(m, u, points=100, cycles=2)[2].shape
     (201,)
     """
-    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), "[series y]\ndata = ystar\n", points, cycles), points * cycles,
-                _sets_of(model, input))
+    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), "[series y]\ndata = ystar\n", points, cycles),
+                points * cycles, _sets_of(model, input))
 
 
 def ygamma(model: Model, input: Input, gamma: float, points: int = 2000, cycles: int = 1,
@@ -1120,8 +1120,9 @@ def ygamma(model: Model, input: Input, gamma: float, points: int = 2000, cycles:
     (101,)
     """
     solver_set = f"compute.solver={_text_param('solver', solver)}".encode()  # the --set parser, not scene text
-    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), f"[series y]\ndata = ygamma\ngamma = {_fmt(float(gamma))}\n", points,
-                       cycles), points * cycles, _sets_of(model, input, solver_set))
+    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(),
+                             f"[series y]\ndata = ygamma\ngamma = {_fmt(float(gamma))}\n", points, cycles),
+                points * cycles, _sets_of(model, input, solver_set))
 
 
 def kcycles(model: Model, input: Input, k: int, points: int = 2000) -> Tuple[Array, Array, Array]:
@@ -1157,8 +1158,8 @@ def kcycles(model: Model, input: Input, k: int, points: int = 2000) -> Tuple[Arr
     >>> float(t[0]), t.shape
     (0.0, (101,))
     """
-    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), f"[series y]\ndata = yk\nk = {int(k)}\n", points), points,
-                _sets_of(model, input))
+    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), f"[series y]\ndata = yk\nk = {int(k)}\n", points),
+                points, _sets_of(model, input))
 
 
 def minor_loops(model: Model, input: Input) -> List[MinorLoop]:
