@@ -87,6 +87,9 @@ with tempfile.TemporaryDirectory() as tmp:
     bw = [k for k, spec in hystviz._MODELS.items() if "c" in spec["params"]]
     check(bool(bw) and "c : number, N s/m" in hystviz.models[bw[0]].__doc__,
           f"help(hystviz.models[{bw[0] if bw else None!r}]) shows c's unit N s/m")
+    check(bool(bw) and hystviz.models[bw[0]].units.get("c") == "N s/m" and hystviz.Model.units == units | {
+          k: None for k in hystviz.Model.units if k not in units},
+          f"hystviz.models[{bw[0] if bw else None!r}].units['c'] == 'N s/m'; Model.units the schema's")
 
     # plot: one line a series, its points the Result's own (bit for bit)
     if have_mpl:

@@ -256,6 +256,9 @@ class _Section:
 class Model(_Section):
     section = "model"
     _example = "'lugre', sigma0=6"
+    #: each parameter's unit from the schema (None: dimensionless or none);
+    #: a class of hystviz.models has its kind's parameters, Model all keys
+    units: Dict[str, Optional[str]] = {}
 
     def __init__(self, kind: str, **params: Value) -> None:
         spec = _MODELS.get(kind)
@@ -279,6 +282,7 @@ _MODEL_KEYS = {k["name"]: k for k in _SECTIONS["model"]["keys"]}
 
 def _model_class(spec: Mapping[str, Any]) -> Type[Model]:
     kind = spec["name"]
+    units = {p: _MODEL_KEYS[p]["unit"] for p in spec["params"] if p in _MODEL_KEYS}
 
     def init(self: Model, **params: Value) -> None:
         Model.__init__(self, kind, **params)
@@ -287,13 +291,15 @@ def _model_class(spec: Mapping[str, Any]) -> Type[Model]:
            f"{', '.join(spec['quantities']) or '-'}.\n\nParameters\n----------\n" +
            "\n".join(_keydoc(_MODEL_KEYS[p]) for p in spec["params"] if p in _MODEL_KEYS))
     doc += (f"\n\nRaises\n------\nSceneError\n    A key that is not one of these.\n\nExamples\n--------\n"
-            f">>> hystviz.models[{kind!r}]().kind\n{kind!r}\n")
+            f">>> hystviz.models[{kind!r}]().kind\n{kind!r}\n"
+            f">>> sorted(hystviz.models[{kind!r}].units)[:2]\n{sorted(units)[:2]!r}\n")
     name = "".join(w.capitalize() for w in kind.replace("_", "-").split("-"))
-    return type(name, (Model,), {"__init__": init, "__doc__": doc})
+    return type(name, (Model,), {"__init__": init, "__doc__": doc, "units": units})
 
 
 # one class per kind of the model table: models["lugre"](sigma0=6), help(models["preisach"])
 models: Dict[str, Type[Model]] = {kind: _model_class(spec) for kind, spec in _MODELS.items()}
+Model.units = {k["name"]: k["unit"] for k in _SECTIONS["model"]["keys"] if k["name"] != "kind"}
 
 for _cls in (Model, Input):
     _sec = _SECTIONS[_cls.section]
