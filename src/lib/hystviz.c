@@ -331,6 +331,18 @@ char *hy_schema_json(void)
             }
             fputs("],\"doc\":", f);
             json_str(f, k->doc);
+            /* the unit ("N s/m"; null: none or dimensionless) and the symbol
+               as the papers print it (markup; null: none) */
+            fputs(",\"unit\":", f);
+            if (k->unit)
+                json_str(f, k->unit);
+            else
+                fputs("null", f);
+            fputs(",\"symbol\":", f);
+            if (k->symbol)
+                json_str(f, k->symbol);
+            else
+                fputs("null", f);
             fputc('}', f);
         }
         fputs("]}", f);

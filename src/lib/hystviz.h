@@ -163,8 +163,8 @@ int hy_result_csv(const hy_result *r, char **text, size_t *len, hy_error *err);
  * reason"; no temporary is left. */
 int hy_write_file(const char *path, const void *data, size_t len, hy_error *err);
 
-/* The scene vocabulary (sections, keys, kinds, ranges, defaults, one-line
- * descriptions) as JSON, malloc'd; for bindings that build their classes
+/* The scene vocabulary (sections, keys, kinds, ranges, defaults, units,
+ * symbols, one-line descriptions) as JSON, malloc'd; for bindings that build their classes
  * from it (the Python package does).  NULL when out of memory. */
 char *hy_schema_json(void);
 

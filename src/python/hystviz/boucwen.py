@@ -1,17 +1,48 @@
 # SPDX-License-Identifier: MIT
 """The Bouc-Wen benchmark (Noël and Schoukens), from Python."""
+from __future__ import annotations
+
 import ctypes
+from typing import TYPE_CHECKING, Sequence, Union
 
 import numpy as np
 
 from . import _lib
 
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
-def simulate(u, fs=750.0):
-    """The benchmark's output y (NumPy array) for the force u sampled at fs Hz,
-    integrated at that rate from rest with the benchmark's parameters and
-    Newmark integrator, without measurement noise: `hystviz boucwen data
-    --input FILE --upsample 1 --fs FS --noise 0`."""
+
+def simulate(u: Union[Sequence[float], npt.NDArray[np.float64]], fs: float = 750.0) -> npt.NDArray[np.float64]:
+    """The benchmark's output for a force, without measurement noise.
+
+    Integrated at fs from rest with the benchmark's parameters and Newmark
+    integrator: `hystviz boucwen data --input FILE --upsample 1 --fs FS
+    --noise 0`.
+
+    Parameters
+    ----------
+    u : array_like
+        The force (N), one sample a 1/fs s; 1-D, at least one sample.
+    fs : float
+        The sampling rate (Hz).
+
+    Returns
+    -------
+    ndarray
+        The displacement y (m), float64, one a sample of u.
+
+    Raises
+    ------
+    SceneError
+        u is not 1-D with a sample, or fs out of the library's range.
+
+    Examples
+    --------
+    >>> y = hystviz.boucwen.simulate(np.zeros(8))
+    >>> y.shape, float(np.abs(y).max())
+    ((8,), 0.0)
+    """
     from . import SceneError
     ua = np.ascontiguousarray(u, dtype=np.float64)
     if ua.ndim != 1 or ua.size < 1:

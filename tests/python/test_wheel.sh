@@ -1,0 +1,92 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# tests/python/test_wheel.sh SOURCE_ROOT: `pip wheel .` at the repository root
+# (meson-python, offline, --no-build-isolation: Debian's python3-mesonpy) on a
+# copy of the source tree, the wheel installed into a fresh venv (Debian's
+# NumPy through --system-site-packages), the copy removed, then from / with
+# no PYTHONPATH, HYSTVIZ_LIB or LD_LIBRARY_PATH: import hystviz (from the
+# venv, its library from the package's own directory), Fig. 15's minor-loop
+# area (0.19910737569481529, as docs/examples/minor_loop_area.c prints it)
+# and a rendered figure of the scene the wheel carries.  SKIP (77) without
+# /usr/bin/python3's mesonpy, venv or numpy (apt-get install python3-mesonpy
+# python3-venv python3-numpy); FAIL for those when CI=true.
+set -u
+src=$1
+py=/usr/bin/python3
+if ! "$py" -c "import mesonpy, venv, numpy, ensurepip" 2>/dev/null; then
+    msg="no python3-mesonpy, python3-venv or python3-numpy for $py (apt-get install python3-mesonpy python3-venv python3-numpy)"
+    [ "${CI:-}" = true ] && { echo "FAIL: $msg"; exit 1; }
+    echo "SKIP: $msg"
+    exit 77
+fi
+T=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-wheel.XXXXXX") || exit 1
+trap 'rm -rf "$T"' EXIT
+fails=0
+ok() { echo "ok: $*"; }
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+
+# the tree as a tarball would have it (no build directories, no caches):
+# meson-python writes its native file into the tree it builds
+mkdir "$T/src"
+(cd "$src" && tar cf - --exclude='./build*' --exclude='__pycache__' --exclude='./.git' --exclude='./.mesonpy*' \
+    --exclude='./gallery' --exclude='./tests' --exclude='./docs' .) | (cd "$T/src" && tar xf -) ||
+    { echo "FAIL: copying the source tree"; exit 1; }
+(cd "$T/src" && find . | sort) >"$T/before"
+unset PYTHONPATH HYSTVIZ_LIB HYSTVIZ_SCENES LD_LIBRARY_PATH
+export PIP_CONFIG_FILE=/dev/null PIP_NO_CACHE_DIR=1 PIP_DISABLE_PIP_VERSION_CHECK=1 HOME="$T/home"
+(cd "$T/src" && timeout 900 "$py" -m pip wheel -q --no-build-isolation --no-deps --no-index -w "$T/wheel" . \
+    --config-settings=compile-args=-j2 >"$T/wheel.log" 2>&1) || { tail -40 "$T/wheel.log"; fail "pip wheel ."; exit 1; }
+# the tree is left as it was but for meson-python's native file (.gitignore'd):
+# no build/, *.egg-info or other leftovers
+left=$( (cd "$T/src" && find . | sort) | comm -13 "$T/before" - | grep -v '^\./\.mesonpy-native-file\.ini$')
+[ -z "$left" ] && ok "pip wheel . leaves nothing in the tree (but .mesonpy-native-file.ini, ignored)" ||
+    fail "pip wheel . left in the tree: $left"
+grep -qx '/.mesonpy-native-file.ini' "$T/src/.gitignore" || fail ".gitignore does not name .mesonpy-native-file.ini"
+whl=$(ls "$T"/wheel/hystviz-*.whl)
+case "$whl" in
+    *-linux_*.whl) ok "pip wheel . made $(basename "$whl") (platform-tagged)" ;;
+    *) fail "wheel not tagged for the platform: $whl" ;;
+esac
+(cd "$T/src" && "$py" - "$whl") <<'PYEOF' && ok "the wheel carries libhystviz.so.0, every module, the scenes and LICENSE" || fail "wheel contents"
+import os, sys, zipfile
+names = set(zipfile.ZipFile(sys.argv[1]).namelist())
+mods = {f"hystviz/{m}" for m in os.listdir("src/python/hystviz") if m.endswith(".py")} if os.path.isdir("src/python/hystviz") else set()
+need = {"hystviz/libhystviz.so.0", "hystviz/__init__.py", "hystviz/py.typed", "hystviz/scenes/style.scene",
+        "hystviz/scenes/fig15_minor_loop_ex4.scene"} | mods
+missing = need - names
+lic = any(n.endswith(".dist-info/LICENSE") for n in names)
+print("missing:", sorted(missing) or "none", "| LICENSE:", lic)
+sys.exit(0 if not missing and lic else 1)
+PYEOF
+rm -rf "$T/src"  # the source tree out of reach
+"$py" -m venv --system-site-packages "$T/venv" >"$T/venv.log" 2>&1 || { cat "$T/venv.log"; fail "venv"; exit 1; }
+timeout 300 "$T/venv/bin/python" -m pip install -q --no-deps --no-index "$whl" >"$T/pip.log" 2>&1 ||
+    { cat "$T/pip.log"; fail "pip install the wheel"; exit 1; }
+out=$(cd / && timeout 300 "$T/venv/bin/python" - "$T" <<'PYEOF' 2>&1
+import os, sys
+import hystviz
+from hystviz import _lib
+tmp = sys.argv[1]
+pkg = os.path.dirname(hystviz.__file__)
+assert pkg.startswith(os.path.join(tmp, "venv")), f"hystviz imported from {pkg}"
+assert os.path.dirname(_lib.lib._name) == pkg, f"libhystviz loaded from {_lib.lib._name}, not the package"
+# found without ctypes.util.find_library (it runs ldconfig and a compiler)
+print("find_library", "ctypes.util" in sys.modules or "subprocess" in sys.modules)
+m = hystviz.Model("lugre", sigma0=6)
+u = hystviz.Input("bimodal", umin1=0, umin2=0.5, umax1=1, umax2=1.5)
+print(f"area {hystviz.minor_loops(m, u)[0].area:.17g}")
+fig = hystviz.render(hystviz.scene_path("fig15_minor_loop_ex4"), model__sigma0=2)
+png = os.path.join(tmp, "fig15.png")
+fig.save(png)
+with open(png, "rb") as f:
+    print("png", f.read(8) == b"\x89PNG\r\n\x1a\n", "svg", fig.svg.startswith(b"<?xml"))
+PYEOF
+)
+echo "$out"
+case "$out" in *"area 0.19910737569481529"*) ok "Fig. 15's minor-loop area from the venv, run from /" ;;
+    *) fail "minor-loop area from the venv" ;; esac
+case "$out" in *"find_library False"*) ok "import hystviz loads no ctypes.util nor subprocess" ;;
+    *) fail "import hystviz imported ctypes.util or subprocess" ;; esac
+case "$out" in *"png True svg True"*) ok "render(scene_path('fig15_minor_loop_ex4')) writes a PNG and an SVG" ;;
+    *) fail "render from the venv" ;; esac
+exit $((fails > 0))
