@@ -6,7 +6,7 @@ issue 37)."""
 import ctypes
 import io
 import os
-from typing import Iterable, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union, cast
 
 import numpy as np
 import numpy.lib.format as npy_format
@@ -22,7 +22,21 @@ _npy = _lib._sig("hy_sweep_npy", ctypes.c_int, ctypes.c_char_p, ctypes.POINTER(c
 
 
 class SweepError(ValueError):
-    """A scene, grid key, grid value or column that hystviz.sweep refused; str() is the message."""
+    """A scene, grid key, grid value or column that hystviz.sweep refused.
+
+    Parameters
+    ----------
+    msg : str
+        The message (``str()`` of the exception), naming what was refused.
+
+    Examples
+    --------
+    >>> try:
+    ...     hystviz.sweep(hystviz.scene_path("fig15_minor_loop_ex4"), grid={"model.no_such_key": [1.0]})
+    ... except hystviz.SweepError as e:
+    ...     print("refused")
+    refused
+    """
 
 
 def grid_text(v: float) -> str:
@@ -41,7 +55,7 @@ def grid_text(v: float) -> str:
     return t
 
 
-def _axis(key: str, values) -> np.ndarray:
+def _axis(key: str, values: Any) -> "np.ndarray[Any, Any]":
     if not isinstance(key, str) or not key or "\0" in key or "=" in key:
         raise SweepError(f"hystviz.sweep: grid key {key!r}: expected 'section.key' (a str without '=' or NUL)")
     a = np.ascontiguousarray(np.atleast_1d(np.asarray(values, dtype=np.float64)))
@@ -50,9 +64,9 @@ def _axis(key: str, values) -> np.ndarray:
     return a
 
 
-def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequence[float], np.ndarray]],
+def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequence[float], "np.ndarray[Any, Any]"]],
           columns: Optional[Iterable[str]] = None, sets: Optional[Mapping[str, object]] = None,
-          jobs: Optional[int] = None, max_work: float = 0.0, shard: Tuple[int, int] = (0, 1)) -> np.ndarray:
+          jobs: Optional[int] = None, max_work: float = 0.0, shard: Tuple[int, int] = (0, 1)) -> "np.ndarray[Any, Any]":
     """A table-only parameter study of a scene, as a NumPy structured array.
 
     Computes `scene` at every point of the Cartesian product of `grid`'s axes
@@ -104,8 +118,12 @@ def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequen
         A point the scene refuses at compute time is a record with status 1 or
         2 and its ``message``, not an exception.
 
-    Example
-    -------
+    Examples
+    --------
+    >>> t = hystviz.sweep(hystviz.scene_path("fig15_minor_loop_ex4"), grid={"model.sigma0": [1.0, 10.0]},
+    ...                   columns=["model.sigma0", "status"])
+    >>> t["model.sigma0"].tolist(), t["status"].tolist()
+    ([1.0, 10.0], [0, 0])
     >>> import numpy as np, hystviz
     >>> t = hystviz.sweep("scenes/fig15_minor_loop_ex4.scene",
     ...                   grid={"model.sigma0": np.logspace(0, 2, 200), "input.umin2": np.linspace(0.1, 0.5, 50)},
@@ -136,18 +154,18 @@ def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequen
     if rc:
         raise SweepError("hystviz.sweep: " + err.msg.decode("utf-8", "replace"))
     try:
-        raw = (ctypes.c_char * n.value).from_address(buf.value)
+        raw = (ctypes.c_char * n.value).from_address(buf.value or 0)
         head = memoryview(raw)
         f = io.BytesIO(bytes(head[:min(n.value, 65536 + 64)]))
-        npy_format.read_magic(f)
-        shape, _, dtype = npy_format.read_array_header_1_0(f)
-        data = np.frombuffer(raw, dtype=dtype, count=shape[0], offset=f.tell())
+        npy_format.read_magic(f)  # type: ignore[no-untyped-call]
+        shape, _, dtype = npy_format.read_array_header_1_0(f)  # type: ignore[no-untyped-call]
+        data = np.frombuffer(head, dtype=dtype, count=shape[0], offset=f.tell())
         if columns is None:
             return data.copy()
         cols = list(columns)
         for c in cols:
             if c not in dtype.names:
                 raise SweepError(f"hystviz.sweep: unknown column {c!r} (the columns: {', '.join(dtype.names)})")
-        return rfn.repack_fields(data[cols])
+        return cast("np.ndarray[Any, Any]", rfn.repack_fields(data[cols]))
     finally:
         _lib.libc.free(buf)
