@@ -5,7 +5,6 @@
  * the half-plane or the triangle -hs <= β <= α <= hs, from saturation or from
  * the demagnetised state (the staircase α = -β). */
 #include "hy_preisach.h"
-#include "hy_preisach_table.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -685,4 +684,33 @@ int hy_preisach_minor_loop(const hy_preisach *p, const hy_input *in, hy_minor_lo
     L.area_period = L.area + major;
     *out = L;
     return HY_OK;
+}
+
+double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b)
+{
+    double e = 0;
+    for (size_t k = 0; k < t->n; k++)
+        if (t->beta[k] >= b && t->alpha[k] <= a)
+            e += t->w[k];
+    return e;
+}
+
+double hy_preisach_table_demag(const hy_preisach_table *t, double u)
+{
+    double s = 0;
+    for (size_t k = 0; k < t->n; k++) {
+        int down = t->alpha[k] + t->beta[k] >= 0;
+        if (u > 0 ? down && t->alpha[k] <= u : u < 0 && !down && t->beta[k] >= u)
+            s += t->w[k];
+    }
+    return s;
+}
+
+double hy_preisach_table_area(const hy_preisach_table *t, double lo, double hi)
+{
+    double s = 0;
+    for (size_t k = 0; k < t->n; k++)
+        if (t->beta[k] >= lo && t->alpha[k] <= hi)
+            s += t->w[k] * (t->alpha[k] - t->beta[k]);
+    return 2 * s;
 }

@@ -51,6 +51,26 @@ enum { HY_PREISACH_NEGATIVE = -1, HY_PREISACH_DEMAGNETISED = 0, HY_PREISACH_POSI
 
 #define HY_PREISACH_GL 20 /* Gauss-Legendre nodes for short CDF differences */
 
+/* A tabulated density (hy_preisach_table.h builds, reads and fits one): weighted
+ * relays; the three sums the model evaluates over it live here, with the model. */
+typedef struct hy_preisach_table {
+    size_t n;              /* nodes with μ > 0                          */
+    double *alpha, *beta;  /* their switching fields α = H_b, β = H_a   */
+    double *w;             /* μ times the cell's area in (α, β)          */
+    size_t nclipped;       /* finite nodes with ρ < 0 set to 0           */
+} hy_preisach_table;
+
+/* E(a, b): the weight of the nodes with b <= β and α <= a (0 when a <= b). */
+double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b);
+
+/* For hy_preisach's demagnetised state (relays up where α + β < 0): the
+ * weight switched moving monotonically from 0 to u, up (u > 0: relays with
+ * α + β >= 0 and α <= u) or down (u < 0: α + β < 0 and β >= u). */
+double hy_preisach_table_demag(const hy_preisach_table *t, double u);
+
+/* ∮ u dy of the loop between lo < hi: 2 Σ w (α − β) over lo <= β, α <= hi. */
+double hy_preisach_table_area(const hy_preisach_table *t, double lo, double hi);
+
 typedef struct hy_preisach {
     int dist;            /* HY_PREISACH_GAUSSIAN or HY_PREISACH_LORENTZIAN      */
     double ma, sa;       /* up-switching fields α: centre and width (> 0)       */

@@ -45,35 +45,6 @@ int hy_preisach_table_from_grid(hy_preisach_table *t, const hy_forc_grid *g, hy_
     return HY_OK;
 }
 
-double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b)
-{
-    double e = 0;
-    for (size_t k = 0; k < t->n; k++)
-        if (t->beta[k] >= b && t->alpha[k] <= a)
-            e += t->w[k];
-    return e;
-}
-
-double hy_preisach_table_demag(const hy_preisach_table *t, double u)
-{
-    double s = 0;
-    for (size_t k = 0; k < t->n; k++) {
-        int down = t->alpha[k] + t->beta[k] >= 0;
-        if (u > 0 ? down && t->alpha[k] <= u : u < 0 && !down && t->beta[k] >= u)
-            s += t->w[k];
-    }
-    return s;
-}
-
-double hy_preisach_table_area(const hy_preisach_table *t, double lo, double hi)
-{
-    double s = 0;
-    for (size_t k = 0; k < t->n; k++)
-        if (t->beta[k] >= lo && t->alpha[k] <= hi)
-            s += t->w[k] * (t->alpha[k] - t->beta[k]);
-    return 2 * s;
-}
-
 int hy_preisach_table_forc(const hy_preisach_table *t, const hy_forc_data *d, double *m_model, double *rms,
                            double *offset, hy_error *err)
 {

@@ -39,21 +39,14 @@
 #include <stdio.h>
 
 #include "hy_forc.h"
+#include "hy_preisach.h"
 #include "hy_status.h"
 
-typedef struct hy_preisach_table {
-    size_t n;              /* nodes with μ > 0                          */
-    double *alpha, *beta;  /* their switching fields α = H_b, β = H_a   */
-    double *w;             /* μ times the cell's area in (α, β)          */
-    size_t nclipped;       /* finite nodes with ρ < 0 set to 0           */
-} hy_preisach_table;
 
 /* μ = max(ρ, 0) on the grid's nodes (NaN: 0).  HY_EINVAL for a grid without
  * values or with fewer than 2 nodes a side, HY_ENOMEM. */
 int hy_preisach_table_from_grid(hy_preisach_table *t, const hy_forc_grid *g, hy_error *err);
 
-/* E(a, b): the weight of the nodes with b <= β and α <= a (0 when a <= b). */
-double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b);
 
 /* The model's FORCs at the data's points: M(H_a, H_b) = c + 2 E(H_b, H_a) −
  * 2 E(+∞, H_a) (from positive saturation, docs/FORC.md), the constant c
@@ -64,13 +57,7 @@ double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b)
 int hy_preisach_table_forc(const hy_preisach_table *t, const hy_forc_data *d, double *m_model, double *rms,
                            double *offset, hy_error *err);
 
-/* For hy_preisach's demagnetised state (relays up where α + β < 0): the
- * weight switched moving monotonically from 0 to u, up (u > 0: relays with
- * α + β >= 0 and α <= u) or down (u < 0: α + β < 0 and β >= u). */
-double hy_preisach_table_demag(const hy_preisach_table *t, double u);
 
-/* ∮ u dy of the loop between lo < hi: 2 Σ w (α − β) over lo <= β, α <= hi. */
-double hy_preisach_table_area(const hy_preisach_table *t, double lo, double hi);
 
 void hy_preisach_table_free(hy_preisach_table *t);
 
