@@ -89,7 +89,12 @@ def serve(hv, sdir, *extra):
     deadline = time.time() + 20
     while time.time() < deadline and "http://" not in line:
         line = p.stdout.readline()
+        if not line and p.poll() is not None:
+            break
     m = re.search(r"http://[^:]+:(\d+)/", line)
+    if not m and p.poll() == 3:  # serve built without libmicrohttpd (-Dmicrohttpd=disabled): exit 3 names it
+        print("SKIP: hystviz serve is not built here: " + p.stderr.read().strip())
+        sys.exit(77)
     if not m:
         p.kill()
         print("serve did not start: " + line)
