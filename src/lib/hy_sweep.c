@@ -874,7 +874,8 @@ int hy_sweep_check(hy_sweep_study *s, uint64_t *hash, hy_error *msg)
     size_t used = 0;
     if (!pb.sets)
         return 2;
-    memcpy(pb.sets, o->sets, o->nsets * sizeof *pb.sets);
+    if (o->nsets) /* no overrides: sets may be NULL (memcpy from NULL is undefined even for 0 bytes) */
+        memcpy(pb.sets, o->sets, o->nsets * sizeof *pb.sets);
     for (size_t a = 0; a < g->naxes && used < sizeof text; a++) {
         pb.sets[nsets++] = text + used;
         used += (size_t)snprintf(text + used, sizeof text - used, "%s=%s", g->axes[a].key, g->axes[a].values[0]) + 1;
