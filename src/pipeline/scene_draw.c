@@ -183,17 +183,6 @@ static int expand_text(const hy_scene_run *r, const char *text, const hy_decl_he
     return HY_OK;
 }
 
-static hy_range range_of(const hy_scene_pair *lim, int log)
-{
-    hy_range rg = {0, 0, 0, 0};
-    if (!lim->is_auto) {
-        rg.lo = lim->v[0];
-        rg.hi = lim->v[1];
-    }
-    rg.log = log;
-    return rg;
-}
-
 typedef hy_scene_fig fig_store;
 
 /* The figure's [figure] size and dpi (all a format check needs). */
@@ -557,8 +546,8 @@ int hy_scene_run_figure(const hy_scene_run *r, hy_scene_fig *st, hy_error *err)
     ax->xlabel = df->xlabel ? df->xlabel : default_xlabel[r->figure_kind];
     ax->ylabel = df->ylabel ? df->ylabel : default_ylabel[r->figure_kind];
     ax->title = df->title && df->title[0] ? df->title : NULL;
-    ax->x = range_of(&df->xlim, df->xlog);
-    ax->y = range_of(&df->ylim, df->ylog);
+    ax->x = hy_scene_axis_range(&df->xlim, df->xlog);
+    ax->y = hy_scene_axis_range(&df->ylim, df->ylog);
     ax->legend = df->legend;
     ax->grid = df->grid;
     if (hy_decl_got(&df->h, offsetof(hy_decl_figure, shade)) == HY_SCENE_SET) {

@@ -313,7 +313,7 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
         snprintf(F->legend[1], sizeof F->legend[1], "measured (RMS of the model: %.2g %% of the range of M)",
                  100 * F->rms_meas / m_range(&F->d));
     else if (!rc && F->m_model)
-        snprintf(F->legend[1], sizeof F->legend[1], "Preisach, least-squares density ρ ≥ 0: RMS of M %.2g %% of its range", 100 * F->rms / m_range(&F->d));
+        snprintf(F->legend[1], sizeof F->legend[1], "Preisach, least-squares density ρ ≥ 0 (RMS %.2g %%)", 100 * F->rms / m_range(&F->d));
     if (!read)
         F->seconds_data = t1 - t0;
     F->seconds_rho = now() - t1;
@@ -416,6 +416,8 @@ static int curves_figure(const hy_scene_run *r, curves_fig *c, hy_error *err)
     snprintf(c->ylabel, sizeof c->ylabel, *mu ? "M (\\mathrm{%s})" : "M", mu); /* units upright */
     c->ax.ylabel = df->ylabel ? df->ylabel : c->ylabel;
     c->ax.title = df->title && df->title[0] ? df->title : NULL;
+    c->ax.x = hy_scene_axis_range(&df->xlim, df->xlog); /* in the drawn units (mT where converted) */
+    c->ax.y = hy_scene_axis_range(&df->ylim, df->ylog);
     c->ax.legend = df->legend;
     c->ax.grid = df->grid;
     c->fig = (hy_figure){.width = df->size[0], .height = df->size[1], .dpi = (double)df->dpi, .font = df->font,

@@ -155,4 +155,17 @@ static inline const hy_cancel *hy_scene_run_cancel_hook(hy_scene_run *r)
     return r->cancelled ? &r->cancel_hook : NULL;
 }
 
+/* An axis range from [figure] xlim or ylim and xlog or ylog (lo = hi = 0:
+ * automatic); every figure kind's axes take theirs through this. */
+static inline hy_range hy_scene_axis_range(const hy_scene_pair *lim, int log)
+{
+    hy_range rg = {0, 0, 0, 0};
+    if (!lim->is_auto) {
+        rg.lo = lim->v[0];
+        rg.hi = lim->v[1];
+    }
+    rg.log = log;
+    return rg;
+}
+
 #endif

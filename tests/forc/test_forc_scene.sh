@@ -91,6 +91,11 @@ lsq=$(sed -n 's/.*least squares.*RMS of M over all 8394 points [^ ]* (\([0-9.e+-
 awk -v p="${lsq:-nan}" -v c="${pct:-nan}" 'BEGIN { exit !(p + 0 > 0.1 && p + 0 < 1.5 && p + 0 < (c + 0) / 5) }' && ok ||
     bad "least-squares round-trip RMS '$lsq' % (clipped '$pct' %): $(cat "$tmp/err")"
 grep -q 'least-squares density' "$tmp/out/rt.svg" 2>/dev/null || grep -q 'RMS' "$tmp/err" && ok || bad "legend"
+# [figure] ylim applies to the curves figure too (it was ignored there): the
+# same scene with another y range draws another SVG
+mkdir "$tmp/out2"
+"$hv" render "$tmp/s/rt.scene" -o "$tmp/out2" --set 'figure.ylim=-2e-6, 3e-6' 2> "$tmp/err" && ok || bad "render with ylim: $(cat "$tmp/err")"
+cmp -s "$tmp/out/rt.svg" "$tmp/out2/rt.svg" && bad "figure.ylim ignored by kind = forc" || ok
 
 # protocol = file: the model at the measured file's fields (the same points), its RMS against the measured M
 cat > "$tmp/s/pf.scene" <<'S'
