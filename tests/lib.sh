@@ -9,6 +9,7 @@
 #                   prints "FAIL: WHAT" and the summary (NAME: the script's
 #                   name without .sh) and ends the test with status 1
 #   skip WHY        ends the test as skipped: "SKIP: WHY", status 77 (meson's)
+#   need CMD...     skip unless every CMD is installed (names the first missing)
 #   $tmp            the test's own directory, $TMPDIR/TESTNAME.XXXXXX, removed
 #                   with everything in it when the test exits, also when meson's
 #                   timeout stops it (SIGTERM); nothing else is the test's
@@ -38,6 +39,11 @@ fatal() {
 skip() {
     echo "SKIP: $*"
     exit 77
+}
+need() {
+    for _cmd in "$@"; do
+        command -v "$_cmd" >/dev/null || skip "$_cmd is not installed"
+    done
 }
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/$(basename "$0" .sh).XXXXXX") || {
     echo "FAIL: cannot make a temporary directory under ${TMPDIR:-/tmp}"
