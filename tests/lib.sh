@@ -5,6 +5,11 @@
 #   bad WHAT        counts a failed check and prints "FAIL: WHAT"
 #   finish NAME     prints "NAME: P passed, F failed"; its status is the test's
 #                   (0 when no check failed): the test's last line
+#   fatal WHAT      a failed check the rest cannot go on without: counts it,
+#                   prints "FAIL: WHAT" and the summary (NAME: the script's
+#                   name without .sh) and ends the test with status 1
+#   skip WHY        ends the test as skipped: "SKIP: WHY", status 77 (meson's)
+#   need CMD...     skip unless every CMD is installed (names the first missing)
 #   $tmp            the test's own directory, $TMPDIR/TESTNAME.XXXXXX, removed
 #                   with everything in it when the test exits, also when meson's
 #                   timeout stops it (SIGTERM); nothing else is the test's
@@ -25,6 +30,20 @@ bad() {
 finish() {
     echo "$1: $pass passed, $fail failed"
     [ "$fail" -eq 0 ]
+}
+fatal() {
+    bad "$*"
+    finish "$(basename "$0" .sh)"
+    exit 1
+}
+skip() {
+    echo "SKIP: $*"
+    exit 77
+}
+need() {
+    for _cmd in "$@"; do
+        command -v "$_cmd" >/dev/null || skip "$_cmd is not installed"
+    done
 }
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/$(basename "$0" .sh).XXXXXX") || {
     echo "FAIL: cannot make a temporary directory under ${TMPDIR:-/tmp}"

@@ -138,6 +138,48 @@ static int is_animation(const export_opts *o)
     return anim;
 }
 
+/* Checks how the options read into o combine and names the page when -o did
+ * not: 0 ok, 2 usage error (message printed). */
+static int finish_opts(export_opts *o)
+{
+    if (o->merge && (o->scene || o->grid.naxes || o->sharded || o->out)) {
+        fprintf(stderr, "hystviz export: --merge FILE takes no scene, --grid, --shard or -o\n");
+        return 2;
+    }
+    if (o->merge)
+        return 0;
+    if (!o->scene) {
+        fprintf(stderr, "hystviz export: give a scene file (see hystviz export --help)\n");
+        return 2;
+    }
+    if (!o->grid.naxes && (o->anim = is_animation(o)) != 1)
+        return o->anim ? 2 : (fprintf(stderr, "hystviz export: give at least one --grid KEY=SPEC (a slider each); "
+                                      "'%s' has no [keyframe] sections, so it is no animation\n", o->scene), 2);
+    if (o->anim && o->sharded) {
+        fprintf(stderr, "hystviz export: an animation is exported whole (-j N renders its frames in parallel); "
+                "--shard is for --grid\n");
+        return 2;
+    }
+    if (o->size && !o->anim) {
+        fprintf(stderr, "hystviz export: --size is for animations (a figure's size is its scene's)\n");
+        return 2;
+    }
+    if (hy_grid_points(&o->grid) > EXPORT_MAX_POINTS) {
+        fprintf(stderr, "hystviz export: the grid has %zu points; a page holds at most %lu\n",
+                hy_grid_points(&o->grid), EXPORT_MAX_POINTS);
+        return 2;
+    }
+    if (!o->out) { /* NAME.html from the scene file's name, in the current directory */
+        const char *base = strrchr(o->scene, '/') ? strrchr(o->scene, '/') + 1 : o->scene;
+        size_t n = strlen(base);
+        if (n > 6 && !strcmp(base + n - 6, ".scene"))
+            n -= 6;
+        snprintf(o->out_buf, sizeof o->out_buf, "%.*s.html", (int)n, base);
+        o->out = o->out_buf;
+    }
+    return 0;
+}
+
 /* 0 ok, 1 help printed, 2 usage error (message printed). */
 static int parse_opts(int argc, char **argv, export_opts *o)
 {
@@ -189,42 +231,7 @@ static int parse_opts(int argc, char **argv, export_opts *o)
         else if (cli_policy_take(&o->pol, o->dirs, "export", id, v) < 0)
             return 2;
     }
-    if (o->merge && (o->scene || o->grid.naxes || o->sharded || o->out)) {
-        fprintf(stderr, "hystviz export: --merge FILE takes no scene, --grid, --shard or -o\n");
-        return 2;
-    }
-    if (o->merge)
-        return 0;
-    if (!o->scene) {
-        fprintf(stderr, "hystviz export: give a scene file (see hystviz export --help)\n");
-        return 2;
-    }
-    if (!o->grid.naxes && (o->anim = is_animation(o)) != 1)
-        return o->anim ? 2 : (fprintf(stderr, "hystviz export: give at least one --grid KEY=SPEC (a slider each); "
-                                      "'%s' has no [keyframe] sections, so it is no animation\n", o->scene), 2);
-    if (o->anim && o->sharded) {
-        fprintf(stderr, "hystviz export: an animation is exported whole (-j N renders its frames in parallel); "
-                "--shard is for --grid\n");
-        return 2;
-    }
-    if (o->size && !o->anim) {
-        fprintf(stderr, "hystviz export: --size is for animations (a figure's size is its scene's)\n");
-        return 2;
-    }
-    if (hy_grid_points(&o->grid) > EXPORT_MAX_POINTS) {
-        fprintf(stderr, "hystviz export: the grid has %zu points; a page holds at most %lu\n",
-                hy_grid_points(&o->grid), EXPORT_MAX_POINTS);
-        return 2;
-    }
-    if (!o->out) { /* NAME.html from the scene file's name, in the current directory */
-        const char *base = strrchr(o->scene, '/') ? strrchr(o->scene, '/') + 1 : o->scene;
-        size_t n = strlen(base);
-        if (n > 6 && !strcmp(base + n - 6, ".scene"))
-            n -= 6;
-        snprintf(o->out_buf, sizeof o->out_buf, "%.*s.html", (int)n, base);
-        o->out = o->out_buf;
-    }
-    return 0;
+    return finish_opts(o);
 }
 
 /* ---- the study ---------------------------------------------------------- */

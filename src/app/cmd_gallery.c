@@ -1578,12 +1578,11 @@ static void shard_remove(const opts *o)
         closedir(d);
 }
 
-/* Plans, renders, writes the manifest and the index; returns the exit status. */
-static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman, builtin *b, size_t nb)
+/* Whether a scene's file name is one the page cannot carry (each one
+ * printed): invalid input, refused before anything is rendered or written
+ * (no index.html listing the others). */
+static int bad_names(const opts *o, const job *jobs, size_t n)
 {
-    double t0 = now();
-    /* a name the page cannot carry is invalid input: refused before anything
-     * is rendered or written (no index.html listing the others) */
     int bad_name = 0;
     for (size_t i = 0; i < n; i++)
         if (!printable_name(jobs[i].file)) {
@@ -1593,7 +1592,14 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman, 
                     o->scenes, hy_file_shown(jobs[i].file, strlen(jobs[i].file), 60, shown, sizeof shown));
             bad_name = 1;
         }
-    if (bad_name)
+    return bad_name;
+}
+
+/* Plans, renders, writes the manifest and the index; returns the exit status. */
+static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman, builtin *b, size_t nb)
+{
+    double t0 = now();
+    if (bad_names(o, jobs, n))
         return 2;
     for (size_t i = 0; i < n; i++)
         job_plan(o, jobs, i, man, nman);

@@ -125,6 +125,51 @@ static int refused_key(const char *opt, const char *assignment)
     return 0;
 }
 
+/* Checks how the options read into o combine and the --formats list: 0 ok,
+ * 2 usage error (message printed). */
+static int finish_opts(hy_sweep_opts *o)
+{
+    if (o->merge && (o->scene || o->grid.naxes || o->sharded)) {
+        fprintf(stderr, "hystviz sweep: --merge DIR takes no scene, --grid or --shard\n");
+        return 2;
+    }
+    if (o->npy && o->plot) {
+        fprintf(stderr, "hystviz sweep: --plot reads a CSV table: give it without --table npy\n");
+        return 2;
+    }
+    if (o->merge && o->npy) {
+        fprintf(stderr, "hystviz sweep: --merge DIR finds the shards' table format itself (no --table)\n");
+        return 2;
+    }
+    if (!o->merge && !o->scene) {
+        fprintf(stderr, "hystviz sweep: give a scene file (see hystviz sweep --help)\n");
+        return 2;
+    }
+    if (o->formats && !strcmp(o->formats, "none"))
+        o->figures = 0;
+    else if (o->formats) {
+        char buf[64];
+        snprintf(buf, sizeof buf, "%s", o->formats);
+        char *save = NULL;
+        size_t n = 0;
+        static const char *const ext[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
+        for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save), n++) {
+            size_t k = 0;
+            while (ext[k] && strcmp(t, ext[k]))
+                k++;
+            if (!ext[k]) {
+                fprintf(stderr, "hystviz sweep: --formats: unknown format '%s' (%s, or none)\n", t, HY_FORMAT_NAMES);
+                return 2;
+            }
+        }
+        if (!n || strlen(o->formats) >= sizeof buf) {
+            fprintf(stderr, "hystviz sweep: --formats '%s': expected a list of %s, or none\n", o->formats, HY_FORMAT_NAMES);
+            return 2;
+        }
+    }
+    return 0;
+}
+
 /* 0 ok, 1 help printed, 2 usage error (message printed). */
 static int parse_opts(int argc, char **argv, hy_sweep_opts *o)
 {
@@ -196,45 +241,7 @@ static int parse_opts(int argc, char **argv, hy_sweep_opts *o)
         else if (cli_policy_take(&o->pol, o->dirs, "sweep", id, v) < 0)
             return 2;
     }
-    if (o->merge && (o->scene || o->grid.naxes || o->sharded)) {
-        fprintf(stderr, "hystviz sweep: --merge DIR takes no scene, --grid or --shard\n");
-        return 2;
-    }
-    if (o->npy && o->plot) {
-        fprintf(stderr, "hystviz sweep: --plot reads a CSV table: give it without --table npy\n");
-        return 2;
-    }
-    if (o->merge && o->npy) {
-        fprintf(stderr, "hystviz sweep: --merge DIR finds the shards' table format itself (no --table)\n");
-        return 2;
-    }
-    if (!o->merge && !o->scene) {
-        fprintf(stderr, "hystviz sweep: give a scene file (see hystviz sweep --help)\n");
-        return 2;
-    }
-    if (o->formats && !strcmp(o->formats, "none"))
-        o->figures = 0;
-    else if (o->formats) {
-        char buf[64];
-        snprintf(buf, sizeof buf, "%s", o->formats);
-        char *save = NULL;
-        size_t n = 0;
-        static const char *const ext[] = {HY_FIGURE_FORMATS(HY_FORMAT_EXT) NULL};
-        for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save), n++) {
-            size_t k = 0;
-            while (ext[k] && strcmp(t, ext[k]))
-                k++;
-            if (!ext[k]) {
-                fprintf(stderr, "hystviz sweep: --formats: unknown format '%s' (%s, or none)\n", t, HY_FORMAT_NAMES);
-                return 2;
-            }
-        }
-        if (!n || strlen(o->formats) >= sizeof buf) {
-            fprintf(stderr, "hystviz sweep: --formats '%s': expected a list of %s, or none\n", o->formats, HY_FORMAT_NAMES);
-            return 2;
-        }
-    }
-    return 0;
+    return finish_opts(o);
 }
 
 /* ---- the study -------------------------------------------------------- */
@@ -280,7 +287,25 @@ static int plot_column_unknown(const hy_sweep_study *s)
     return !found;
 }
 
+/* Checks the study s->o describes and plans its points (hy_sweep_check,
+ * hy_sweep_prepare), its hash in *hash, and that --plot names a column of its
+ * table: 0 ok, else the exit status (message printed). */
+static int prepare_study(hy_sweep_study *s, uint64_t *hash)
+{
+    hy_error msg = {0};
+    int rc = hy_sweep_check(s, hash, &msg);
+    if (rc)
+        fprintf(stderr, "hystviz sweep: %s\n", msg.msg);
+    else if (hy_sweep_prepare(s, &msg)) {
+        fprintf(stderr, "hystviz sweep: %s\n", msg.msg);
+        rc = 2;
+    }
+    if (!rc && s->o->plot && !s->o->sharded && plot_column_unknown(s))
+        rc = 2;
+    return rc;
+}
 
+/* Runs the study o describes and writes its table; returns the exit status. */
 static int sweep(const hy_sweep_opts *o)
 {
     hy_sweep_study s;
@@ -288,21 +313,10 @@ static int sweep(const hy_sweep_opts *o)
     s.o = o;
     uint64_t hash = 0;
     size_t npoints = hy_grid_points(&o->grid);
-    hy_error msg = {0};
-    int rc = hy_sweep_check(&s, &hash, &msg);
-    if (rc)
-        fprintf(stderr, "hystviz sweep: %s\n", msg.msg);
-    else if (hy_sweep_prepare(&s, &msg)) {
-        fprintf(stderr, "hystviz sweep: %s\n", msg.msg);
-        rc = 2;
-    }
+    int rc = prepare_study(&s, &hash);
     if (rc) {
         hy_sweep_study_free(&s);
         return rc;
-    }
-    if (o->plot && !o->sharded && plot_column_unknown(&s)) {
-        hy_sweep_study_free(&s);
-        return 2;
     }
     static char npy_head[65536 + 64];
     size_t npy_hl = 0;

@@ -129,6 +129,48 @@ static int stop_pending(const sigset_t *stop)
     return 0;
 }
 
+/* The directories to watch, each scene's (includes stay inside it), each
+ * once: into dirs (nw long; NULL when it could not be allocated), their count
+ * in *nd, the caller frees them.  0; 2 when a scene's directory cannot be
+ * resolved or dirs is NULL, 1 out of memory (message printed). */
+static int scene_dirs(const watched *ws, size_t nw, char **dirs, size_t *nd)
+{
+    int rc = 0;
+    for (size_t i = 0; !rc && i < nw; i++) {
+        char tmp[PATH_MAX], real[PATH_MAX];
+        const char *slash = strrchr(ws[i].path, '/');
+        snprintf(tmp, sizeof tmp, "%.*s", slash ? (int)(slash - ws[i].path) : 1, slash ? ws[i].path : ".");
+        if (!tmp[0])
+            snprintf(tmp, sizeof tmp, "/");
+        if (!dirs || !realpath(tmp, real)) {
+            fprintf(stderr, "hystviz watch: %s: %s\n", ws[i].path, dirs ? strerror(errno) : "out of memory");
+            rc = 2;
+            break;
+        }
+        size_t k = 0;
+        while (k < *nd && strcmp(dirs[k], real))
+            k++;
+        if (k == *nd && !(dirs[(*nd)++] = strdup(real)))
+            rc = 1;
+    }
+    return rc;
+}
+
+/* A signalfd for SIGINT, SIGTERM and SIGHUP (stop gets the set): the signals
+ * main blocked before anything else, pending since then if one came, are
+ * readable on it.  -1 on failure (message printed). */
+static int stop_fd(sigset_t *stop)
+{
+    sigemptyset(stop);
+    sigaddset(stop, SIGINT);
+    sigaddset(stop, SIGTERM);
+    sigaddset(stop, SIGHUP);
+    int sfd = signalfd(-1, stop, SFD_CLOEXEC);
+    if (sfd < 0)
+        fprintf(stderr, "hystviz watch: signalfd: %s\n", strerror(errno));
+    return sfd;
+}
+
 int hy_cmd_watch(int argc, char **argv)
 {
     const char *out = NULL, *formats = NULL;
@@ -164,26 +206,10 @@ int hy_cmd_watch(int argc, char **argv)
         fprintf(stderr, "hystviz watch: give at least one scene file (see hystviz watch --help)\n");
         rc = 2;
     }
-    /* the directories to watch: each scene's (includes stay inside it) */
     char **dirs = rc ? NULL : calloc(nw, sizeof *dirs);
     size_t nd = 0;
-    for (size_t i = 0; !rc && i < nw; i++) {
-        char tmp[PATH_MAX], real[PATH_MAX];
-        const char *slash = strrchr(ws[i].path, '/');
-        snprintf(tmp, sizeof tmp, "%.*s", slash ? (int)(slash - ws[i].path) : 1, slash ? ws[i].path : ".");
-        if (!tmp[0])
-            snprintf(tmp, sizeof tmp, "/");
-        if (!dirs || !realpath(tmp, real)) {
-            fprintf(stderr, "hystviz watch: %s: %s\n", ws[i].path, dirs ? strerror(errno) : "out of memory");
-            rc = 2;
-            break;
-        }
-        size_t k = 0;
-        while (k < nd && strcmp(dirs[k], real))
-            k++;
-        if (k == nd && !(dirs[nd++] = strdup(real)))
-            rc = 1;
-    }
+    if (!rc)
+        rc = scene_dirs(ws, nw, dirs, &nd);
     hy_dirwatch *w = NULL;
     hy_error err = {0};
     if (!rc && !(w = hy_dirwatch_open((const char *const *)dirs, nd, &err))) {
@@ -194,14 +220,9 @@ int hy_cmd_watch(int argc, char **argv)
      * pending since then if one came: readable here */
     sigset_t stop;
     sigemptyset(&stop);
-    sigaddset(&stop, SIGINT);
-    sigaddset(&stop, SIGTERM);
-    sigaddset(&stop, SIGHUP);
-    int sfd = rc ? -1 : signalfd(-1, &stop, SFD_CLOEXEC);
-    if (!rc && sfd < 0) {
-        fprintf(stderr, "hystviz watch: signalfd: %s\n", strerror(errno));
+    int sfd = rc ? -1 : stop_fd(&stop);
+    if (!rc && sfd < 0)
         rc = 1;
-    }
     if (!rc) {
         /* Ctrl-C ends the wait, never a write: no partial file */
         fprintf(stderr, "hystviz watch: watching %zu scene%s (Ctrl-C stops)\n", nw, nw == 1 ? "" : "s");

@@ -397,6 +397,50 @@ static int start_scale(job *jb, double *r)
     return 0;
 }
 
+/* The trust-region workspace for n residuals and p parameters (Levenberg-
+ * Marquardt, with geodesic acceleration when o->accel); NULL when out of memory. */
+static gsl_multifit_nlinear_workspace *new_workspace(const hy_fit_opts *o, size_t n, size_t p)
+{
+    gsl_multifit_nlinear_parameters prm = gsl_multifit_nlinear_default_parameters();
+    prm.trs = o->accel ? gsl_multifit_nlinear_trs_lmaccel : gsl_multifit_nlinear_trs_lm;
+    prm.solver = gsl_multifit_nlinear_solver_svd; /* robust where J loses rank */
+    prm.scale = gsl_multifit_nlinear_scale_more;
+    return gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm, n, p);
+}
+
+/* Records in jb->rec what the drive that returned st (and info) reached in w:
+ * its status, iterations, message and, unless it failed or was stopped, the
+ * optimum in theta and its residual sum of squares. */
+static void record_result(job *jb, gsl_multifit_nlinear_workspace *w, int st, int info)
+{
+    const hy_fit_problem *pb = jb->pb;
+    hy_fit_start *rec = jb->rec;
+    rec->gsl_status = st;
+    rec->info = info;
+    rec->iter = gsl_multifit_nlinear_niter(w);
+    if (st == FIT_STOPPED) {
+        rec->status = HY_ECANCEL;
+        snprintf(rec->msg, sizeof rec->msg, "stopped: the work is no longer wanted");
+        return;
+    }
+    if (st && st != GSL_EMAXITER && st != GSL_ENOPROG) {
+        if (!rec->msg[0])
+            snprintf(rec->msg, sizeof rec->msg, "GSL: %s", gsl_strerror(st));
+        return;
+    }
+    gsl_vector *u = gsl_multifit_nlinear_position(w);
+    for (size_t j = 0; j < pb->p; j++)
+        rec->x[j] = hy_fit_theta(&pb->param[j], gsl_vector_get(u, j));
+    double nrm = gsl_blas_dnrm2(gsl_multifit_nlinear_residual(w)) * jb->scale;
+    rec->rss = nrm * nrm;
+    rec->status = HY_OK;
+    if (st)
+        snprintf(rec->msg, sizeof rec->msg, "%s", st == GSL_EMAXITER ? "stopped at the iteration limit"
+                                                                     : "no further progress possible");
+}
+
+/* One start of the multi-start fit, from jb->rec->x0: its outcome, the
+ * optimum or the reason there is none, in jb->rec (never fails otherwise). */
 static void run_start(job *jb)
 {
     const hy_fit_problem *pb = jb->pb;
@@ -424,12 +468,8 @@ static void run_start(job *jb)
     }
     if (start_scale(jb, r))
         goto done;
-    gsl_multifit_nlinear_parameters prm = gsl_multifit_nlinear_default_parameters();
-    prm.trs = o->accel ? gsl_multifit_nlinear_trs_lmaccel : gsl_multifit_nlinear_trs_lm;
-    prm.solver = gsl_multifit_nlinear_solver_svd; /* robust where J loses rank */
-    prm.scale = gsl_multifit_nlinear_scale_more;
     gsl_multifit_nlinear_fdf fdf = {gsl_f, gsl_df, NULL, n, p, jb, 0, 0, 0};
-    w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm, n, p);
+    w = new_workspace(o, n, p);
     if (!w) {
         rec->status = HY_ENOMEM;
         snprintf(rec->msg, sizeof rec->msg, "out of memory for the GSL workspace");
@@ -446,28 +486,7 @@ static void run_start(job *jb)
     }
     int info = 0;
     st = drive(jb, w, &info);
-    rec->gsl_status = st;
-    rec->info = info;
-    rec->iter = gsl_multifit_nlinear_niter(w);
-    if (st == FIT_STOPPED) {
-        rec->status = HY_ECANCEL;
-        snprintf(rec->msg, sizeof rec->msg, "stopped: the work is no longer wanted");
-        goto done;
-    }
-    if (st && st != GSL_EMAXITER && st != GSL_ENOPROG) {
-        if (!rec->msg[0])
-            snprintf(rec->msg, sizeof rec->msg, "GSL: %s", gsl_strerror(st));
-        goto done;
-    }
-    gsl_vector *u = gsl_multifit_nlinear_position(w);
-    for (size_t j = 0; j < p; j++)
-        rec->x[j] = hy_fit_theta(&pb->param[j], gsl_vector_get(u, j));
-    double nrm = gsl_blas_dnrm2(gsl_multifit_nlinear_residual(w)) * jb->scale;
-    rec->rss = nrm * nrm;
-    rec->status = HY_OK;
-    if (st)
-        snprintf(rec->msg, sizeof rec->msg, "%s", st == GSL_EMAXITER ? "stopped at the iteration limit"
-                                                                     : "no further progress possible");
+    record_result(jb, w, st, info);
 done:
     rec->nevals = jb->nevals;
     rec->nfailed = jb->nfailed;

@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_ode.c: GSL odeiv2 integration of Eq. (3) of seed 000 and system (16),
- * restarted at every breakpoint of u̇. */
+ * restarted at every breakpoint of u̇.
+ * Kernels read whole: hy_ode_solve (the driver's loop over the pieces of u̇:
+ * where it stops, restarts and counts periods reads best in one place). */
 #include "hy_ode.h"
 
 #include <gsl/gsl_errno.h>
@@ -285,8 +287,10 @@ static double first_step(const hy_ode_opts *o, double len)
     return o->h0 > 0 ? o->h0 : o->dense ? len : 1e-3 * len;
 }
 
-int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
-                 const double *t, size_t n, double *y_out, hy_ode_stats *stats, hy_error *err)
+/* HY_OK when hy_ode_solve's arguments are valid (the model, gamma, the
+ * options, the output times and the work they ask); else the error, in err. */
+static int check_solve_args(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
+                            const double *t, size_t n, hy_error *err)
 {
     int rc;
     if ((rc = hy_model_validate(m, err)) || (rc = hy_gamma_check(gamma, err)) || (rc = check_opts(o, err)))
@@ -294,7 +298,14 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
     for (size_t i = 0; i < n; i++)
         if (!isfinite(t[i]) || t[i] < 0 || (i && t[i] < t[i - 1]))
             return hy_error_set(err, HY_EINVAL, "output times must be finite, >= 0 and ascending (t[%zu] = %g)", i, t[i]);
-    if ((rc = hy_ode_check_work(m, in, gamma, o, n ? t[n - 1] : 0, err)))
+    return hy_ode_check_work(m, in, gamma, o, n ? t[n - 1] : 0, err);
+}
+
+int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
+                 const double *t, size_t n, double *y_out, hy_ode_stats *stats, hy_error *err)
+{
+    int rc;
+    if ((rc = check_solve_args(m, in, gamma, o, t, n, err)))
         return rc;
     hy_ode_stats local;
     if (!stats)

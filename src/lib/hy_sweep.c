@@ -799,59 +799,39 @@ static uint64_t fnv(uint64_t h, const char *t)
     return (h ^ 0xff) * 1099511628211ULL; /* a separator: "ab","c" != "a","bc" */
 }
 
-/* Checks the study before anything is written: the scene loads at point 0,
- * every grid value is accepted by the scene on its own; fills the series
- * columns and the study hash.  2 on bad input (message printed). */
-int hy_sweep_check(hy_sweep_study *s, uint64_t *hash, hy_error *msg)
+/* The study's scene with its --set overrides in *base (the caller frees it);
+ * 2, with the reason in msg and *base NULL, when it does not load or an
+ * override is refused. */
+static int load_base(const hy_sweep_opts *o, hy_scene **base, hy_error *msg)
 {
-    const hy_sweep_opts *o = s->o;
-    const hy_grid *g = &o->grid;
     hy_error err = {0};
-    hy_scene *base = NULL;
-    if (hy_scene_parse_file_policy(o->scene, &o->pol, &base, &err)) {
+    *base = NULL;
+    if (hy_scene_parse_file_policy(o->scene, &o->pol, base, &err)) {
         *msg = err;
         return 2;
     }
     for (size_t k = 0; k < o->nsets; k++)
-        if (hy_scene_set(base, o->sets[k], &err)) {
+        if (hy_scene_set(*base, o->sets[k], &err)) {
             hy_error_set(msg, err.code, "--set %s: %s", o->sets[k], err.msg);
-            hy_scene_free(base);
+            hy_scene_free(*base);
+            *base = NULL;
             return 2;
         }
-    uint64_t h = 14695981039346656037ULL;
-    char num[64];
-    snprintf(num, sizeof num, "%016" PRIx64, hy_scene_hash(base));
-    h = fnv(fnv(fnv(h, "hystviz sweep 1"), HY_VERSION), num);
-    h = fnv(fnv(h, o->figures ? (o->formats ? o->formats : "scene formats") : "none"), o->times ? "times" : "");
-    snprintf(num, sizeof num, "verify %ld", o->verify_every); /* which rows hold errors */
-    h = fnv(h, num);
-    snprintf(num, sizeof num, "%.17g", hy_scene_policy_budget(&o->pol)); /* it decides which points are refused */
-    h = fnv(h, num);
-    if (o->npy) /* (the CSV study's hash is as before --table) */
-        h = fnv(h, "table npy");
+    return 0;
+}
+
+/* Fills the study's series columns (names, and which ones hold distances)
+ * from the first ns series of d; 2 when out of memory (the columns made so
+ * far stay in s for hy_sweep_study_free). */
+static int series_columns(hy_sweep_study *s, const hy_scene_doc *d, size_t ns)
+{
     int rc = 0;
-    for (size_t a = 0; a < g->naxes && !rc; a++) {
-        h = fnv(fnv(h, g->axes[a].key), g->axes[a].spec);
-        char buf[4200];
-        for (size_t v = 0; v < g->axes[a].nvalues && !rc; v++) {
-            snprintf(buf, sizeof buf, "%s=%s", g->axes[a].key, g->axes[a].values[v]);
-            if (hy_scene_set(base, buf, &err)) {
-                hy_error_set(msg, err.code, "--grid %s=%s: value '%s': %s", g->axes[a].key, g->axes[a].spec,
-                        g->axes[a].values[v], err.msg);
-                rc = 2;
-            }
-        }
-    }
-    hy_scene_doc d = {0};
-    if (!rc && hy_scene_decode_fill(base, &d, &err))
-        rc = 2;
-    size_t ns = rc ? 0 : d.nseries;
     s->series = calloc(ns ? ns : 1, sizeof *s->series);
     s->series_dist = calloc(ns ? ns : 1, sizeof *s->series_dist);
     if (!s->series || !s->series_dist)
         rc = 2;
     for (size_t k = 0; k < ns && !rc; k++) {
-        const hy_decl_series *se = &d.series[k];
+        const hy_decl_series *se = &d->series[k];
         size_t n = strlen(se->h.name) + 1;
         if (!(s->series[k] = malloc(n)))
             rc = 2;
@@ -861,11 +841,16 @@ int hy_sweep_check(hy_sweep_study *s, uint64_t *hash, hy_error *msg)
                             (se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT);
         s->nseries++;
     }
-    hy_scene_doc_free(&d);
-    hy_scene_free(base);
-    if (rc)
-        return rc;
-    /* the whole scene at point 0: keys that only the model/input check refuse */
+    return rc;
+}
+
+/* Loads the whole scene at the grid's point 0 and checks its output formats
+ * and its work against the budget (keys that only the model/input check
+ * refuses); 2, with the reason in msg, when any of that fails. */
+static int check_point0(const hy_sweep_opts *o, hy_error *msg)
+{
+    const hy_grid *g = &o->grid;
+    hy_error err = {0};
     point_buf pb;
     pb.sets = calloc(o->nsets + g->naxes + 1, sizeof *pb.sets);
     hy_scene_run r;
@@ -895,12 +880,58 @@ int hy_sweep_check(hy_sweep_study *s, uint64_t *hash, hy_error *msg)
                      (work > hy_scene_policy_budget(&o->pol) &&
                       hy_scene_run_over_budget(&r.doc, work, hy_scene_policy_budget(&o->pol), what, &err));
     hy_scene_run_free(&r);
+    free(pb.sets);
     if (bad_output) {
         *msg = err;
-        free(pb.sets);
         return 2;
     }
-    free(pb.sets);
+    return 0;
+}
+
+/* Checks the study before anything is written: the scene loads at point 0,
+ * every grid value is accepted by the scene on its own; fills the series
+ * columns and the study hash.  2 on bad input (message printed). */
+int hy_sweep_check(hy_sweep_study *s, uint64_t *hash, hy_error *msg)
+{
+    const hy_sweep_opts *o = s->o;
+    const hy_grid *g = &o->grid;
+    hy_error err = {0};
+    hy_scene *base = NULL;
+    if (load_base(o, &base, msg))
+        return 2;
+    uint64_t h = 14695981039346656037ULL;
+    char num[64];
+    snprintf(num, sizeof num, "%016" PRIx64, hy_scene_hash(base));
+    h = fnv(fnv(fnv(h, "hystviz sweep 1"), HY_VERSION), num);
+    h = fnv(fnv(h, o->figures ? (o->formats ? o->formats : "scene formats") : "none"), o->times ? "times" : "");
+    snprintf(num, sizeof num, "verify %ld", o->verify_every); /* which rows hold errors */
+    h = fnv(h, num);
+    snprintf(num, sizeof num, "%.17g", hy_scene_policy_budget(&o->pol)); /* it decides which points are refused */
+    h = fnv(h, num);
+    if (o->npy) /* (the CSV study's hash is as before --table) */
+        h = fnv(h, "table npy");
+    int rc = 0;
+    for (size_t a = 0; a < g->naxes && !rc; a++) {
+        h = fnv(fnv(h, g->axes[a].key), g->axes[a].spec);
+        char buf[4200];
+        for (size_t v = 0; v < g->axes[a].nvalues && !rc; v++) {
+            snprintf(buf, sizeof buf, "%s=%s", g->axes[a].key, g->axes[a].values[v]);
+            if (hy_scene_set(base, buf, &err)) {
+                hy_error_set(msg, err.code, "--grid %s=%s: value '%s': %s", g->axes[a].key, g->axes[a].spec,
+                        g->axes[a].values[v], err.msg);
+                rc = 2;
+            }
+        }
+    }
+    hy_scene_doc d = {0};
+    if (!rc && hy_scene_decode_fill(base, &d, &err))
+        rc = 2;
+    if (series_columns(s, &d, rc ? 0 : d.nseries))
+        rc = 2;
+    hy_scene_doc_free(&d);
+    hy_scene_free(base);
+    if (rc || (rc = check_point0(o, msg)))
+        return rc;
     *hash = h;
     return 0;
 }
@@ -965,6 +996,32 @@ static char *axis_arg(const char *key, const double *v, size_t n, hy_error *err)
     return t;
 }
 
+/* Adds the naxes axes (keys[a], counts[a] values at values[a]) to g, each
+ * named in messages by its count of values; HY_OK, or the error (in err) of
+ * the first axis that is missing, empty or refused. */
+static int add_axes(hy_grid *g, const char *const *keys, const double *const *values, const size_t *counts,
+                    size_t naxes, hy_error *err)
+{
+    int rc = 0;
+    for (size_t a = 0; a < naxes && !rc; a++) {
+        if (!keys[a] || (counts[a] && !values[a]) || !counts[a]) {
+            rc = hy_error_set(err, HY_EINVAL, "grid axis %zu: %s", a,
+                              !keys[a] ? "its key is NULL" : "it has no values (give at least one)");
+            break;
+        }
+        char *arg = axis_arg(keys[a], values[a], counts[a], err);
+        rc = !arg ? (err ? err->code : HY_EINVAL) : hy_grid_add(g, arg, err);
+        free(arg);
+        char *spec = rc ? NULL : malloc(48); /* messages name the axis by its count, not its list */
+        if (spec) {
+            snprintf(spec, 48, "<%zu values>", counts[a]);
+            free(g->axes[a].spec);
+            g->axes[a].spec = spec;
+        }
+    }
+    return rc;
+}
+
 int hy_sweep_npy(const char *path, const char *const *sets, size_t nsets, const char *const *keys,
                  const double *const *values, const size_t *counts, size_t naxes, long shard_k, long shard_n,
                  long jobs, double max_work, unsigned char **npy, size_t *len, hy_error *err)
@@ -997,23 +1054,7 @@ int hy_sweep_npy(const char *path, const char *const *sets, size_t nsets, const 
     o.quiet = 1;
     o.npy = 1;
     hy_grid_init(&o.grid);
-    int rc = 0;
-    for (size_t a = 0; a < naxes && !rc; a++) {
-        if (!keys[a] || (counts[a] && !values[a]) || !counts[a]) {
-            rc = hy_error_set(err, HY_EINVAL, "grid axis %zu: %s", a,
-                              !keys[a] ? "its key is NULL" : "it has no values (give at least one)");
-            break;
-        }
-        char *arg = axis_arg(keys[a], values[a], counts[a], err);
-        rc = !arg ? (err ? err->code : HY_EINVAL) : hy_grid_add(&o.grid, arg, err);
-        free(arg);
-        char *spec = rc ? NULL : malloc(48); /* messages name the axis by its count, not its list */
-        if (spec) {
-            snprintf(spec, 48, "<%zu values>", counts[a]);
-            free(o.grid.axes[a].spec);
-            o.grid.axes[a].spec = spec;
-        }
-    }
+    int rc = add_axes(&o.grid, keys, values, counts, naxes, err);
     hy_sweep_study s;
     memset(&s, 0, sizeof s);
     s.o = &o;

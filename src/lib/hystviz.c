@@ -292,6 +292,83 @@ static void json_bound(FILE *f, const char *name, int has, double v, int excl)
         fputs("null", f);
 }
 
+/* s as a JSON string, or null when s is NULL */
+static void json_str_or_null(FILE *f, const char *s)
+{
+    if (s)
+        json_str(f, s);
+    else
+        fputs("null", f);
+}
+
+/* One key of the schema as a JSON object: name, kind, bounds, default, enums,
+ * doc, unit ("N s/m"; null: none or dimensionless) and the symbol as the
+ * papers print it (markup; null: none). */
+static void json_key(FILE *f, const hy_scene_key_spec *k)
+{
+    fputs("{\"name\":", f);
+    json_str(f, k->name);
+    fputs(",\"kind\":", f);
+    json_str(f, hy_scene_kind_name(k->kind));
+    json_bound(f, "min", k->flags & HY_SPEC_MIN, k->min, k->flags & HY_SPEC_MIN_EXCL);
+    json_bound(f, "max", k->flags & HY_SPEC_MAX, k->max, k->flags & HY_SPEC_MAX_EXCL);
+    fputs(",\"default\":", f);
+    json_str_or_null(f, k->def);
+    fputs(",\"enums\":", f);
+    json_list(f, k->enums);
+    fputs(",\"doc\":", f);
+    json_str(f, k->doc);
+    fputs(",\"unit\":", f);
+    json_str_or_null(f, k->unit);
+    fputs(",\"symbol\":", f);
+    json_str_or_null(f, k->symbol);
+    fputc('}', f);
+}
+
+/* One section of the schema as a JSON object, its keys included. */
+static void json_section(FILE *f, const hy_scene_section_spec *sec)
+{
+    fputs("{\"name\":", f);
+    json_str(f, sec->name);
+    fprintf(f, ",\"takes_name\":%s,\"repeatable\":%s,\"doc\":", sec->takes_name ? "true" : "false",
+            sec->repeatable ? "true" : "false");
+    json_str(f, sec->doc);
+    fputs(",\"keys\":[", f);
+    for (size_t j = 0; j < sec->nkeys; j++) {
+        fputs(j ? "," : "", f);
+        json_key(f, &sec->keys[j]);
+    }
+    fputs("]}", f);
+}
+
+/* One entry of the model table as a JSON object: its keys, quantities, state
+ * and capabilities. */
+static void json_model(FILE *f, const hy_scene_model *mt)
+{
+    fputs("{\"name\":", f);
+    json_str(f, mt->name);
+    fputs(",\"params\":[", f);
+    const char *p;
+    for (size_t k = 0; (p = hy_scene_model_param(mt, k)); k++) {
+        fputs(k ? "," : "", f);
+        json_str(f, p);
+    }
+    fputc(']', f);
+    fputs(",\"quantities\":", f);
+    json_list(f, mt->quantities);
+    fputs(",\"state\":", f);
+    json_str(f, mt->state);
+    fputs(",\"caps\":[", f);
+    int first = 1;
+    for (unsigned b = 1; b; b <<= 1)
+        if ((mt->caps & b) && hy_scene_cap_name(b)) {
+            fputs(first ? "" : ",", f);
+            first = 0;
+            json_str(f, hy_scene_cap_name(b));
+        }
+    fputs("]}", f);
+}
+
 char *hy_schema_json(void)
 {
     char *buf = NULL;
@@ -304,75 +381,14 @@ char *hy_schema_json(void)
     json_str(f, HY_VERSION);
     fputs(",\"sections\":[", f);
     for (size_t i = 0; i < nsec; i++) {
-        fputs(i ? ",{\"name\":" : "{\"name\":", f);
-        json_str(f, sec[i].name);
-        fprintf(f, ",\"takes_name\":%s,\"repeatable\":%s,\"doc\":", sec[i].takes_name ? "true" : "false",
-                sec[i].repeatable ? "true" : "false");
-        json_str(f, sec[i].doc);
-        fputs(",\"keys\":[", f);
-        for (size_t j = 0; j < sec[i].nkeys; j++) {
-            const hy_scene_key_spec *k = &sec[i].keys[j];
-            fputs(j ? ",{\"name\":" : "{\"name\":", f);
-            json_str(f, k->name);
-            fputs(",\"kind\":", f);
-            json_str(f, hy_scene_kind_name(k->kind));
-            json_bound(f, "min", k->flags & HY_SPEC_MIN, k->min, k->flags & HY_SPEC_MIN_EXCL);
-            json_bound(f, "max", k->flags & HY_SPEC_MAX, k->max, k->flags & HY_SPEC_MAX_EXCL);
-            fputs(",\"default\":", f);
-            if (k->def)
-                json_str(f, k->def);
-            else
-                fputs("null", f);
-            fputs(",\"enums\":[", f);
-            for (size_t e = 0; k->enums && k->enums[e]; e++) {
-                if (e)
-                    fputc(',', f);
-                json_str(f, k->enums[e]);
-            }
-            fputs("],\"doc\":", f);
-            json_str(f, k->doc);
-            /* the unit ("N s/m"; null: none or dimensionless) and the symbol
-               as the papers print it (markup; null: none) */
-            fputs(",\"unit\":", f);
-            if (k->unit)
-                json_str(f, k->unit);
-            else
-                fputs("null", f);
-            fputs(",\"symbol\":", f);
-            if (k->symbol)
-                json_str(f, k->symbol);
-            else
-                fputs("null", f);
-            fputc('}', f);
-        }
-        fputs("]}", f);
+        fputs(i ? "," : "", f);
+        json_section(f, &sec[i]);
     }
     /* the model table: each kind's keys, quantities and capabilities */
     fputs("],\"models\":[", f);
     for (size_t i = 0; hy_scene_models[i]; i++) {
-        const hy_scene_model *mt = hy_scene_models[i];
-        fputs(i ? ",{\"name\":" : "{\"name\":", f);
-        json_str(f, mt->name);
-        fputs(",\"params\":[", f);
-        const char *p;
-        for (size_t k = 0; (p = hy_scene_model_param(mt, k)); k++) {
-            fputs(k ? "," : "", f);
-            json_str(f, p);
-        }
-        fputc(']', f);
-        fputs(",\"quantities\":", f);
-        json_list(f, mt->quantities);
-        fputs(",\"state\":", f);
-        json_str(f, mt->state);
-        fputs(",\"caps\":[", f);
-        int first = 1;
-        for (unsigned b = 1; b; b <<= 1)
-            if ((mt->caps & b) && hy_scene_cap_name(b)) {
-                fputs(first ? "" : ",", f);
-                first = 0;
-                json_str(f, hy_scene_cap_name(b));
-            }
-        fputs("]}", f);
+        fputs(i ? "," : "", f);
+        json_model(f, hy_scene_models[i]);
     }
     fputs("]}", f);
     if (fclose(f)) {

@@ -224,6 +224,44 @@ static void two_codes(uint32_t *freq, int n, int a, int b)
         freq[a] += !freq[a], freq[b] += !freq[b];
 }
 
+/* The first hlit literal/length code lengths and the first hdist distance
+ * code lengths, run-length coded (RFC 1951 3.2.7): their code-length symbols
+ * (0..18) in sym and each one's extra bits in extra (both at least
+ * NLIT + NDIST long); returns how many symbols. */
+static int rle_code_lengths(const uint8_t *llen, int hlit, const uint8_t *dlen, int hdist,
+                            uint8_t *sym, uint8_t *extra)
+{
+    uint8_t all[NLIT + NDIST];
+    int n = 0, ns = 0;
+    for (int s = 0; s < hlit; s++)
+        all[n++] = llen[s];
+    for (int s = 0; s < hdist; s++)
+        all[n++] = dlen[s];
+    for (int i = 0; i < n;) {
+        int v = all[i], run = 1;
+        while (i + run < n && all[i + run] == v)
+            run++;
+        i += run;
+        if (!v) {
+            while (run >= 11) {
+                int r = run > 138 ? 138 : run;
+                sym[ns] = 18, extra[ns++] = (uint8_t)(r - 11), run -= r;
+            }
+            if (run >= 3)
+                sym[ns] = 17, extra[ns++] = (uint8_t)(run - 3), run = 0;
+        } else {
+            sym[ns] = (uint8_t)v, extra[ns++] = 0, run--;
+            while (run >= 3) {
+                int r = run > 6 ? 6 : run;
+                sym[ns] = 16, extra[ns++] = (uint8_t)(r - 3), run -= r;
+            }
+        }
+        while (run-- > 0)
+            sym[ns] = (uint8_t)v, extra[ns++] = 0;
+    }
+    return ns;
+}
+
 /* Writes the block of z's tokens with its own dynamic codes; final: BFINAL.
  * Every code is complete: the literal/length code always (a block has a
  * token besides end-of-block, and two_codes guards it anyway), the distance
@@ -251,35 +289,9 @@ static void write_block(hy_zfast *z, int final)
     while (hdist > 1 && !dlen[hdist - 1])
         hdist--;
     /* the code lengths, run-length coded with symbols 16, 17, 18 */
-    uint8_t all[NLIT + NDIST], sym[NLIT + NDIST], extra[NLIT + NDIST];
-    int n = 0, ns = 0;
-    for (int s = 0; s < hlit; s++)
-        all[n++] = llen[s];
-    for (int s = 0; s < hdist; s++)
-        all[n++] = dlen[s];
+    uint8_t sym[NLIT + NDIST], extra[NLIT + NDIST];
+    int ns = rle_code_lengths(llen, hlit, dlen, hdist, sym, extra);
     uint32_t cfreq[NCL] = {0};
-    for (int i = 0; i < n;) {
-        int v = all[i], run = 1;
-        while (i + run < n && all[i + run] == v)
-            run++;
-        i += run;
-        if (!v) {
-            while (run >= 11) {
-                int r = run > 138 ? 138 : run;
-                sym[ns] = 18, extra[ns++] = (uint8_t)(r - 11), run -= r;
-            }
-            if (run >= 3)
-                sym[ns] = 17, extra[ns++] = (uint8_t)(run - 3), run = 0;
-        } else {
-            sym[ns] = (uint8_t)v, extra[ns++] = 0, run--;
-            while (run >= 3) {
-                int r = run > 6 ? 6 : run;
-                sym[ns] = 16, extra[ns++] = (uint8_t)(r - 3), run -= r;
-            }
-        }
-        while (run-- > 0)
-            sym[ns] = (uint8_t)v, extra[ns++] = 0;
-    }
     for (int i = 0; i < ns; i++)
         cfreq[sym[i]]++;
     two_codes(cfreq, NCL, 0, 8);
@@ -423,23 +435,53 @@ void hy_zfast_free(hy_zfast *z)
 
 const unsigned char *hy_zfast_data(const hy_zfast *z) { return z->out; }
 
-size_t hy_zfast_png(hy_zfast *z, const unsigned char *xrgb, int w, int h, int stride)
+/* Grows z's token buffer (a block's tokens plus a row's) and its row buffer
+ * to rows of rowb bytes; nonzero, with the short buffer's capacity 0, when
+ * memory ran out. */
+static int grow_buffers(hy_zfast *z, size_t rowb)
 {
-    size_t rowb = 1 + 3 * (size_t)w;
-    if (w < 1 || h < 1 || rowb > 32768)
-        return 0;
     if (z->tokcap < BLOCK_TOKENS + rowb) {   /* a step adds at most 3 literals or rowb / 86 + 1 matches */
         free(z->tok);
         if (!(z->tok = malloc((BLOCK_TOKENS + rowb) * sizeof *z->tok)))
-            return z->tokcap = 0, (size_t)0;
+            return z->tokcap = 0, 1;
         z->tokcap = BLOCK_TOKENS + rowb;
     }
     if (z->rowcap < rowb) {
         free(z->row);
         if (!(z->row = malloc(rowb)))
-            return z->rowcap = 0, (size_t)0;
+            return z->rowcap = 0, 1;
         z->rowcap = rowb;
     }
+    return 0;
+}
+
+/* Ends the stream after its final block: the last bits to a byte boundary and
+ * the Adler-32 of the data (RFC 1950).  The stream's length, or 0 when writing
+ * failed or memory ran out. */
+static size_t finish_stream(hy_zfast *z, uint32_t adler)
+{
+    if (z->failed || reserve(z, 16))
+        return 0;
+    while (z->nacc > 0) {             /* the last bits, to a byte boundary */
+        z->out[z->outlen++] = (unsigned char)z->acc;
+        z->acc >>= 8;
+        z->nacc -= 8;
+    }
+    z->nacc = 0, z->acc = 0;
+    unsigned char *o = z->out + z->outlen;
+    o[0] = (unsigned char)(adler >> 24), o[1] = (unsigned char)(adler >> 16);
+    o[2] = (unsigned char)(adler >> 8), o[3] = (unsigned char)adler;
+    z->outlen += 4;
+    return z->outlen;
+}
+
+size_t hy_zfast_png(hy_zfast *z, const unsigned char *xrgb, int w, int h, int stride)
+{
+    size_t rowb = 1 + 3 * (size_t)w;
+    if (w < 1 || h < 1 || rowb > 32768)
+        return 0;
+    if (grow_buffers(z, rowb))
+        return 0;
     z->outlen = 0, z->acc = 0, z->nacc = 0, z->failed = 0, z->ntok = 0;
     memset(z->hash, 0, sizeof z->hash);   /* the same bytes for the same frame, whatever came before */
     memset(z->lfreq, 0, sizeof z->lfreq);
@@ -509,17 +551,5 @@ size_t hy_zfast_png(hy_zfast *z, const unsigned char *xrgb, int w, int h, int st
         }
     }
     write_block(z, 1);
-    if (z->failed || reserve(z, 16))
-        return 0;
-    while (z->nacc > 0) {             /* the last bits, to a byte boundary */
-        z->out[z->outlen++] = (unsigned char)z->acc;
-        z->acc >>= 8;
-        z->nacc -= 8;
-    }
-    z->nacc = 0, z->acc = 0;
-    unsigned char *o = z->out + z->outlen;
-    o[0] = (unsigned char)(adler >> 24), o[1] = (unsigned char)(adler >> 16);
-    o[2] = (unsigned char)(adler >> 8), o[3] = (unsigned char)adler;
-    z->outlen += 4;
-    return z->outlen;
+    return finish_stream(z, (uint32_t)adler);
 }

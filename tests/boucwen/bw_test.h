@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* bw_test.h: tiny check macros and the location of the benchmark's data for
+/* bw_test.h: the check (tests/hy_test.h) and the location of the benchmark's data for
  * the Bouc-Wen tests (tests/data/boucwen, in the tree: a test that cannot find
  * it fails after saying where it looked). */
 #ifndef BW_TEST_H
@@ -12,18 +12,11 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static int bw_failures;
+#include "../hy_test.h"
 
-#define CHECK(cond, ...)                                                      \
-    do {                                                                      \
-        if (!(cond)) {                                                        \
-            fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__,  \
-                    #cond);                                                   \
-            fprintf(stderr, __VA_ARGS__);                                     \
-            fputc('\n', stderr);                                              \
-            bw_failures++;                                                    \
-        }                                                                     \
-    } while (0)
+/* the Bouc-Wen tests' name for tests/hy_test.h's check: CHECK(cond, fmt, ...)
+ * counts and says what failed; a test ends with return hy_test_finish(name) */
+#define CHECK HY_CHECK
 
 /* The folder holding uval_multisine.txt: $HY_BOUCWEN_DATA, else the copy in
  * the source tree (tests/data/boucwen).  The data belongs to the project, so a

@@ -183,5 +183,5 @@ int main(void)
     unlink(tab);
     rmdir(dir);
     free(u); free(y); free(yref); free(uref); free(u2); free(y2); free(u3); free(y3);
-    return bw_failures ? 1 : 0;
+    return hy_test_finish("test_cmd");
 }

@@ -143,5 +143,5 @@ int main(void)
         printf("nu = %g: peak %.3e m, |y_h - y_h/2| = %.3e m\n", q.nu, peak, d);
         CHECK(d < 1e-2 * peak, "nu = %g: h-change %g vs peak %g", q.nu, d, peak);
     }
-    return bw_failures ? 1 : 0;
+    return hy_test_finish("test_convergence");
 }

@@ -71,5 +71,5 @@ int main(void)
     free(u);
     free(y);
     free(z);
-    return bw_failures ? 1 : 0;
+    return hy_test_finish("test_linear");
 }

@@ -291,7 +291,5 @@ int main(void)
     test_transient();
     test_noise();
     test_refused();
-    if (bw_failures)
-        fprintf(stderr, "test_scenes: %d check(s) failed\n", bw_failures);
-    return bw_failures ? 1 : 0;
+    return hy_test_finish("test_scenes");
 }

@@ -236,5 +236,5 @@ int main(void)
     test_decimate();
     test_noise();
     test_sweep();
-    return bw_failures ? 1 : 0;
+    return hy_test_finish("test_signals");
 }

@@ -384,7 +384,5 @@ int main(void)
     test_defaults();
     test_validation_sweep();
     rmdir(dir);
-    if (bw_failures)
-        fprintf(stderr, "test_sweep: %d check(s) failed\n", bw_failures);
-    return bw_failures ? 1 : 0;
+    return hy_test_finish("test_sweep");
 }

@@ -17,12 +17,10 @@
 #     the suite runs it, never runs the decoy hystviz and passes against the
 #     build tree's library.
 set -u
+. "$(dirname "$0")/../lib.sh"
 prog=$1 prefix=$2 src=$3 build=$4 hv=$5
-fails=0
-ok() { echo "ok: $*"; }
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-T=$(mktemp -d)
-trap 'rm -rf "$T" "$prefix"' EXIT
+T=$tmp
+trap 'rm -rf "$prefix"; lib_cleanup' EXIT
 rm -rf "$prefix"
 mkdir -p "$prefix/share/hystviz/scenes" "$prefix/share/hystviz/boucwen" "$prefix/libexec" "$prefix/bin" "$prefix/lib"
 echo "# decoy" >"$prefix/share/hystviz/scenes/style.scene"
@@ -31,9 +29,9 @@ cp "$prefix/bin/hystviz" "$prefix/libexec/hystviz-animate"
 chmod +x "$prefix/bin/hystviz" "$prefix/libexec/hystviz-animate"
 echo "not a library" >"$prefix/lib/libhystviz.so.0"
 ln -s libhystviz.so.0 "$prefix/lib/libhystviz.so"
-out=$(timeout 30 "$prog") || fail "$prog exited non-zero"
+out=$(timeout 30 "$prog") || bad "$prog exited non-zero"
 [ "$(sed -n 's/^configured //p' <<<"$out")" = "$prefix/share/hystviz" ] ||
-    fail "PROG was not configured with the decoy prefix: $out"
+    bad "PROG was not configured with the decoy prefix: $out"
 # the same program outside any build tree: an installed program's lookup
 mkdir -p "$T/outside/bin"
 cp "$prog" "$T/outside/bin/prog"
@@ -41,15 +39,15 @@ outside=$(timeout 30 "$T/outside/bin/prog")
 [ "$(sed -n 's/^scenes //p' <<<"$outside")" = "$prefix/share/hystviz/scenes" ] &&
     [ "$(sed -n 's/^hystviz-animate //p' <<<"$outside")" = "$prefix/libexec/hystviz-animate" ] &&
     ok "outside the build tree the lookup finds the decoy install" ||
-    fail "outside the build tree the decoy install was not found (the test cannot tell): $outside"
+    bad "outside the build tree the decoy install was not found (the test cannot tell): $outside"
 # in the build tree: nothing found, as where nothing is installed
 [ "$(grep -v '^configured ' <<<"$out")" = "$(printf 'scenes -\nboucwen -\nhystviz-animate -')" ] &&
     ok "build tree: no scenes, data or helper of the decoy install found" ||
-    fail "build tree: found in an install: $out"
+    bad "build tree: found in an install: $out"
 # a suite helper with the decoy first in PATH and in the linker's path
 PATH="$prefix/bin:$PATH" LIBRARY_PATH="$prefix/lib" timeout 100 bash "$src/tests/libhystviz/test_example.sh" \
     "$build" "$src" "$hv" >"$T/example.log" 2>&1 &&
     ok "the pkg-config example's test passes with the decoy first in PATH and LIBRARY_PATH" ||
-    { cat "$T/example.log"; fail "the pkg-config example's test with the decoy in PATH and LIBRARY_PATH"; }
-[ ! -e "$T/decoy-ran" ] && ok "the decoy hystviz never ran" || fail "the decoy ran: $(cat "$T/decoy-ran")"
-[ "$fails" -eq 0 ] || exit 1
+    { cat "$T/example.log"; bad "the pkg-config example's test with the decoy in PATH and LIBRARY_PATH"; }
+[ ! -e "$T/decoy-ran" ] && ok "the decoy hystviz never ran" || bad "the decoy ran: $(cat "$T/decoy-ran")"
+finish decoy

@@ -147,6 +147,5 @@ int main(void)
     formats();
     refusals();
     shards();
-    printf("test_grid: %d failures\n", fails);
-    return fails != 0;
+    return hy_test_finish("test_grid");
 }

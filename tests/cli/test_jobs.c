@@ -118,6 +118,5 @@ int main(void)
     parsers();
     walk();
     affinity();
-    printf("test_jobs: %s\n", fails ? "FAILED" : "ok");
-    return fails ? 1 : 0;
+    return hy_test_finish("test_jobs");
 }

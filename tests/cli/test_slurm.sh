@@ -12,6 +12,7 @@
 # not start, the test fails (with their logs), it does not skip.
 # usage: test_slurm.sh HYSTVIZ SOURCE_ROOT
 set -u
+. "$(dirname "$0")/../lib.sh" # (the outer run's $tmp holds the cluster; the body's own stays empty)
 if [ "${1:-}" != --body ]; then
     hv=$1
     root=$(cd "$2" && pwd)
@@ -19,13 +20,9 @@ if [ "${1:-}" != --body ]; then
     PATH=$PATH:/usr/sbin:/sbin
     for p in slurmctld slurmd munged sbatch; do
         command -v $p > /dev/null ||
-            { echo "FAIL: $p is not installed (Debian: apt-get install slurm-wlm munge; tools/setup.sh test does)"; exit 1; }
+            fatal "$p is not installed (Debian: apt-get install slurm-wlm munge; tools/setup.sh test does)"
     done
-    tmp=$(mktemp -d)
-    trap 'rm -rf "$tmp"' EXIT
-    trap 'exit 143' TERM
-    trap 'exit 130' INT
-    cd "$tmp" || exit 1
+    cd "$tmp" || fatal "cannot cd to $tmp"
     # the whole run bounded (the daemons' start and every wait have their own deadlines)
     timeout -k 5 150 sh "$root/tools/cluster/slurm-local.sh" sh "$root/tests/cli/test_slurm.sh" --body "$hv" "$root"
     st=$?
@@ -37,10 +34,6 @@ fi
 hv=$2
 root=$3
 export HYSTVIZ="$hv"
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 cl=$root/tools/cluster
 fig15=$root/scenes/fig15_minor_loop_ex4.scene
 grid="--grid model.sigma0=1:10:log10 --grid input.umin2=0.1:0.5:5"
@@ -65,13 +58,12 @@ SBATCH_OPTS=--hold sh "$cl/slurm-submit.sh" 4 sweep "$fig15" $grid -o study -q >
 jid=$(sed -n 's/^array job \([0-9]*\) (4 shards), merge job \([0-9]*\)$/\1/p' submit.out)
 mid=$(sed -n 's/^array job \([0-9]*\) (4 shards), merge job \([0-9]*\)$/\2/p' submit.out)
 if [ -z "$jid" ] || [ -z "$mid" ]; then
-    bad "no job ids in: $(cat submit.out)"
-    exit 1
+    fatal "no job ids in: $(cat submit.out)"
 fi
 # task 2 cancelled while held (never run), then the rest released
 timeout 10 scancel "${jid}_2" && ok || bad "scancel ${jid}_2"
 timeout 10 scontrol release "$jid" && timeout 10 scontrol release "$mid" && ok || bad "scontrol release"
-wait_done "$jid" 60 && wait_done "$mid" 60 || exit 1
+wait_done "$jid" 60 && wait_done "$mid" 60 || fatal "the array or the merge job did not end"
 t1=$(date +%s)
 echo "array of 4 tasks (one cancelled) and the merge job: $((t1 - t0)) s"
 out=hystviz-merge-$mid.out
@@ -86,12 +78,11 @@ expect="sbatch --array=2 $cl/shard.sbatch 4 sweep $fig15 $grid -o study -q"
 rid=$(eval "$line" | sed -n 's/^Submitted batch job \([0-9]*\)$/\1/p')
 [ -n "$rid" ] && ok || bad "the printed line submitted nothing: $line"
 mid2=$(sbatch --parsable --dependency=afterany:"$rid" "$cl/merge.sbatch" sweep --merge study)
-wait_done "$rid" 60 && wait_done "${mid2%%;*}" 60 || exit 1
+wait_done "$rid" 60 && wait_done "${mid2%%;*}" 60 || fatal "the re-run task or the second merge did not end"
 echo "re-run task and the second merge job: $(($(date +%s) - t1)) s"
 grep -q 'sweep --merge: 4 shards, 50 points: 50 ok' "hystviz-merge-${mid2%%;*}.out" && ok ||
     bad "second merge: $(cat "hystviz-merge-${mid2%%;*}.out")"
 diff -r one study > diff.out && ok || bad "the merged study differs from the unsharded one: $(head -n 3 diff.out)"
 [ "$(ls study | wc -l)" -eq "$(ls one | wc -l)" ] && ok || bad "study has $(ls study | wc -l) files, one $(ls one | wc -l)"
 
-echo "test_slurm: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish test_slurm

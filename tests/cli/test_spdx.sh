@@ -9,7 +9,8 @@
 # holding meson-private/).  Fewer than MIN (default 100) files checked is a
 # failure: the wrong tree.  tests/cli/test_spdx_modes.sh runs it both ways.
 set -u
-cd "$1" || exit 1
+. "$(dirname "$0")/../lib.sh"
+cd "$1" || fatal "cannot cd to $1"
 min=${2:-100}
 root=$(pwd -P)
 top=$(git rev-parse --show-toplevel 2>/dev/null) && top=$(cd "$top" && pwd -P)
@@ -28,11 +29,16 @@ else
 fi
 files=$(list | grep -E '\.(c|h|sh|py|glsl|js|css|html)$|(^|/)meson\.build$' | grep -v '^gallery/')
 n=$(printf '%s\n' "$files" | grep -c .)
-[ "$n" -ge "$min" ] || { echo "FAIL: only $n source files $how under $root (at least $min expected)"; exit 1; }
+[ "$n" -ge "$min" ] || fatal "only $n source files $how under $root (at least $min expected)"
 # (one head and one awk for all files: a process per file took 30 s under load)
 missing=$(printf '%s\n' "$files" | xargs -d '\n' head -v -n 3 -- | awk '
         /^==> .* <==$/ { if (f != "" && !ok) print f; f = substr($0, 5, length($0) - 8); ok = 0; next }
         /SPDX-License-Identifier: MIT/ { ok = 1 }
         END { if (f != "" && !ok) print f }')
-[ -z "$missing" ] || { echo "FAIL: no SPDX line in:"; echo "$missing"; exit 1; }
-echo "ok: all $n source files $how have their SPDX line"
+if [ -n "$missing" ]; then
+    bad "no SPDX line in:"
+    echo "$missing"
+else
+    ok "all $n source files $how have their SPDX line"
+fi
+finish spdx

@@ -8,11 +8,10 @@
 # git checkout of its own (only tracked files count).  Each time it must
 # name exactly the file without the line, and pass once that file has it.
 set -u
+. "$(dirname "$0")/../lib.sh"
 spdx=$1
-command -v git >/dev/null || { echo "SKIP: git is not installed"; exit 77; }
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0
+need git
+T=$tmp
 export GIT_CONFIG_GLOBAL=/dev/null GIT_CONFIG_NOSYSTEM=1 GIT_AUTHOR_NAME=t GIT_AUTHOR_EMAIL=t@t \
     GIT_COMMITTER_NAME=t GIT_COMMITTER_EMAIL=t@t
 make_tree() { # DIR
@@ -25,14 +24,14 @@ make_tree() { # DIR
 }
 expect() { # WHERE DIR: fails naming src/bad.py alone, passes once it has its line
     out=$(sh "$spdx" "$2" 3 2>&1)
-    if [ $? -ne 0 ] && [ "$(printf '%s\n' "$out" | sed -n '2,$p')" = "src/bad.py" ]; then
-        echo "ok: $1: names src/bad.py alone"
+    # (its output: the FAIL line, the files, and tests/lib.sh's summary line)
+    if [ $? -ne 0 ] && [ "$(printf '%s\n' "$out" | sed -n '2,$p' | sed '$d')" = "src/bad.py" ]; then
+        ok "$1: names src/bad.py alone"
     else
-        echo "FAIL: $1: expected a failure naming src/bad.py alone, got: $out"; fails=$((fails + 1))
+        bad "$1: expected a failure naming src/bad.py alone, got: $out"
     fi
     sed -i '1i # SPDX-License-Identifier: MIT' "$2/src/bad.py"
-    out=$(sh "$spdx" "$2" 3 2>&1) && echo "ok: $1: passes once it has its line ($out)" ||
-        { echo "FAIL: $1: still fails: $out"; fails=$((fails + 1)); }
+    out=$(sh "$spdx" "$2" 3 2>&1) && ok "$1: passes once it has its line ($out)" || bad "$1: still fails: $out"
 }
 make_tree "$T/alone"
 expect "no git checkout" "$T/alone"
@@ -43,4 +42,4 @@ make_tree "$T/own"
 git -C "$T/own" init -q && git -C "$T/own" add src/a.c src/bad.py run.sh meson.build && git -C "$T/own" commit -qm x
 printf 'int untracked;\n' >"$T/own/src/scratch.c"
 expect "its own checkout (untracked files do not count)" "$T/own"
-[ "$fails" -eq 0 ] || exit 1
+finish spdx-modes

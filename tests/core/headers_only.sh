@@ -2,16 +2,15 @@
 # SPDX-License-Identifier: MIT
 # The numerical core includes no graphics header (STYLE.md, NanoVG): every
 # src/core file must compile with only the C library, GSL and its own headers.
-set -eu
+set -u
+. "$(dirname "$0")/../lib.sh"
 src=$1
-bad=$(grep -nE '#include *[<"](cairo|GL/|GLES|png|osmesa|EGL)' "$src"/src/core/*.[ch] || true)
-if [ -n "$bad" ]; then
-    echo "graphics headers in src/core:"
-    echo "$bad"
-    exit 1
-fi
+graphics=$(grep -nE '#include *[<"](cairo|GL/|GLES|png|osmesa|EGL)' "$src"/src/core/*.[ch])
+[ -z "$graphics" ] && ok "no graphics header in src/core" || bad "graphics headers in src/core:
+$graphics"
 for f in "$src"/src/core/*.h; do
     printf '#include "%s"\nint main(void){return 0;}\n' "$(basename "$f")" |
-        ${CC:-cc} -std=c11 -Wall -Wextra -Wpedantic -Werror -I"$src/src/core" -x c - -fsyntax-only
+        ${CC:-cc} -std=c11 -Wall -Wextra -Wpedantic -Werror -I"$src/src/core" -x c - -fsyntax-only &&
+        ok || bad "src/core/$(basename "$f") does not compile alone (above)"
 done
-echo "headers_only: $(ls "$src"/src/core/*.h | wc -l) passed, 0 failed"
+finish headers_only

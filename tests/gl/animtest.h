@@ -12,6 +12,8 @@
 
 #include "cmd_animate.h"
 
+#include "../hy_test.h"
+
 /* hystviz animate ARGS... (NULL-terminated); returns its exit status. */
 static inline int run_cmd(const char *first, ...)
 {
@@ -50,28 +52,11 @@ static inline long count_tmps(const char *dir)
     return n;
 }
 
-/* The whole file, or NULL. */
-static inline unsigned char *slurp(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    unsigned char *b = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n)
-        free(b), b = NULL;
-    fclose(f);
-    *len = n >= 0 ? (size_t)n : 0;
-    return b;
-}
-
 /* Byte-identical files. */
 static inline int same_file(const char *a, const char *b)
 {
     size_t la = 0, lb = 0;
-    unsigned char *x = slurp(a, &la), *y = slurp(b, &lb);
+    char *x = hy_test_slurp(a, &la), *y = hy_test_slurp(b, &lb);
     int same = x && y && la == lb && !memcmp(x, y, la);
     free(x);
     free(y);

@@ -19,25 +19,22 @@
 # the browser); with "all", every frame of the nine clips (the benchmark,
 # tests/bench: about 1,600 frames).  A decoder that is not installed is
 # reported and left out, except under CI=true (tools/setup.sh test installs
-# them all), where that fails.  Everything is written under a temporary
-# directory that is removed at the end.
+# them all), where that fails.  Everything is written under the test's own
+# $tmp (tests/lib.sh).
 set -u
+. "$(dirname "$0")/../lib.sh"
 hv=$1 strict=$2 src=$3 mode=${4:-sample}
 here=$(dirname "$0")
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/hyframes.XXXXXX") || exit 1
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' INT TERM
-fail=0
 clips="gamma-sweep-ex1 gamma-sweep-ex2 gamma-sweep-ex3 k-cycle-ex2 k-cycle-ex3 minor-loop-ex4 preisach-plane
 $src/scenes/anim_gamma_sweep_ex3.scene $src/scenes/anim_minor_loop_ex4.scene"
 render() { # clip, A:B
     "$hv" animate "$1" --frames "$2" -o "$tmp/frames" -q --include-dir "$src/scenes" 2>"$tmp/err" ||
-        { echo "FAIL: hystviz animate $1 --frames $2: $(cat "$tmp/err")"; fail=1; }
+        bad "hystviz animate $1 --frames $2: $(cat "$tmp/err")"
 }
 nclips=0
 for c in $clips; do
     n=$("$hv" animate "$c" --info --include-dir "$src/scenes" | sed -n 's/^frames \([0-9]*\) .*/\1/p')
-    [ -n "$n" ] || { echo "FAIL: hystviz animate $c --info"; fail=1; continue; }
+    [ -n "$n" ] || { bad "hystviz animate $c --info"; continue; }
     nclips=$((nclips + 1))
     if [ "$mode" = all ]; then
         render "$c" 0:
@@ -54,24 +51,23 @@ fi
 find "$tmp/frames" -name 'frame_*.png' | sort >"$tmp/list"
 total=$(wc -l <"$tmp/list")
 echo "frames: $total PNGs of $nclips clips ($mode)"
-[ "$total" -gt 0 ] || exit 1
+[ "$total" -gt 0 ] || fatal "no frames rendered"
 for f in gamma-sweep-ex2/frame_00060 preisach-plane/frame_00049 preisach-plane/frame_00051; do
-    grep -q "/$f.png\$" "$tmp/list" || { echo "FAIL: $f.png was not rendered"; fail=1; }
+    grep -q "/$f.png\$" "$tmp/list" || bad "$f.png was not rendered"
 done
 missing() { # decoder, why
     if [ "${CI:-}" = true ]; then
-        echo "FAIL: $1: $2 (CI=true: sh tools/setup.sh test installs it)"
-        fail=1
+        bad "$1: $2 (CI=true: sh tools/setup.sh test installs it)"
     else
         echo "$1: not run: $2"
     fi
 }
 # xargs: one process per 200 files (png_decode and png_browser start once per batch)
-xargs -n 200 "$strict" <"$tmp/list" >"$tmp/strict.out" 2>&1 || fail=1
+xargs -n 200 "$strict" <"$tmp/list" >"$tmp/strict.out" 2>&1 && ok || bad "png_strict refused a frame"
 grep FAIL "$tmp/strict.out"
 echo "png_strict (zlib, strict inflater, libpng): $(grep -c '^FAIL' "$tmp/strict.out") of $total failed"
 if command -v pngcheck >/dev/null; then
-    xargs -n 200 pngcheck -q <"$tmp/list" >"$tmp/pngcheck.out" 2>&1 || fail=1
+    xargs -n 200 pngcheck -q <"$tmp/list" >"$tmp/pngcheck.out" 2>&1 && ok || bad "pngcheck refused a frame"
     cat "$tmp/pngcheck.out"
     echo "pngcheck: $(grep -c . "$tmp/pngcheck.out") of $total failed (it prints only the failures)"
 else
@@ -82,7 +78,7 @@ for p in python3 /usr/bin/python3; do
     command -v "$p" >/dev/null && "$p" -c 'import PIL' 2>/dev/null && { py=$p; break; }
 done
 if [ -n "$py" ]; then
-    xargs -n 200 "$py" "$here/png_decode.py" <"$tmp/list" >"$tmp/pil.out" 2>&1 || fail=1
+    xargs -n 200 "$py" "$here/png_decode.py" <"$tmp/list" >"$tmp/pil.out" 2>&1 && ok || bad "png_decode refused a frame"
     grep FAIL "$tmp/pil.out"
     echo "png_decode (Python zlib, PIL): $(grep -c '^FAIL' "$tmp/pil.out") of $total failed"
 else
@@ -99,11 +95,10 @@ if [ -n "$py" ]; then
     if grep -q '^SKIP' "$tmp/br.out" && [ "${CI:-}" != true ]; then
         echo "png_browser (chromium): not run"
     else
-        [ $rc -eq 0 ] || fail=1
+        [ $rc -eq 0 ] && ok || bad "png_browser refused a frame (exit $rc)"
         echo "png_browser (chromium createImageBitmap, <img>): $(grep -c '^FAIL' "$tmp/br.out") of $total failed"
     fi
 else
     missing "png_browser (chromium)" "no python3"
 fi
-[ $fail -eq 0 ] && echo "frames_decode: $total frames, every decoder run accepts all" || echo "frames_decode: FAILED"
-exit $fail
+finish "frames_decode ($total frames)"

@@ -4,13 +4,11 @@
 # (--gl, then HYSTVIZ_GL, then osmesa where built, else egl), what --gl-info
 # and --list say, and the refusals: an unknown name (status 2), a backend not
 # built or an EGL without any device (3), a bad HYSTVIZ_EGL_DEVICE (2); a
-# refused run writes nothing.
+# refused run writes nothing.  Everything it writes is under its own $tmp.
 set -u
-anim=$1 out=$2 built=$3
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-rm -rf "$out"
-mkdir -p "$out"
+. "$(dirname "$0")/../lib.sh"
+anim=$1 built=$2
+out=$tmp
 unset HYSTVIZ_GL HYSTVIZ_EGL_DEVICE
 
 # expect STATUS TEXT CMD...: status and a line of stderr; no output directory
@@ -19,28 +17,28 @@ expect() {
     rm -rf "$out/refused"
     "$@" -o "$out/refused" --size 64x64 --frames 0:1 --quiet > "$out/stdout" 2> "$out/stderr"
     rc=$?
-    [ "$rc" -eq "$want" ] || fail "$* -> status $rc, $want expected ($(cat "$out/stderr"))"
-    grep -q "$text" "$out/stderr" || fail "$* -> stderr lacks '$text': $(cat "$out/stderr")"
-    [ ! -e "$out/refused" ] || fail "$* -> wrote $out/refused"
+    [ "$rc" -eq "$want" ] && ok || bad "$* -> status $rc, $want expected ($(cat "$out/stderr"))"
+    grep -q "$text" "$out/stderr" && ok || bad "$* -> stderr lacks '$text': $(cat "$out/stderr")"
+    [ ! -e "$out/refused" ] && ok || bad "$* -> wrote $out/refused"
 }
 
 first=${built%% *}
-"$anim" animate --gl-info > "$out/info" || fail "--gl-info failed"
+"$anim" animate --gl-info > "$out/info" && ok || bad "--gl-info failed"
 cat "$out/info"
-grep -qx "backends built: $built" "$out/info" || fail "--gl-info does not list '$built'"
-grep -qx "backend: $first (default)" "$out/info" || fail "the default is not $first"
-case " $built " in *" osmesa "*) [ "$first" = osmesa ] || fail "osmesa is built but not the default" ;; esac
-"$anim" animate --list | tail -n 1 | grep -q "^renderer: .*($first)$" || fail "--list does not end with the renderer"
+grep -qx "backends built: $built" "$out/info" && ok || bad "--gl-info does not list '$built'"
+grep -qx "backend: $first (default)" "$out/info" && ok || bad "the default is not $first"
+case " $built " in *" osmesa "*) [ "$first" = osmesa ] && ok || bad "osmesa is built but not the default" ;; esac
+"$anim" animate --list | tail -n 1 | grep -q "^renderer: .*($first)$" && ok || bad "--list does not end with the renderer"
 
 for b in $built; do
-    "$anim" animate --gl-info --gl "$b" > "$out/info_$b" || fail "--gl $b --gl-info failed"
-    grep -qx "backend: $b (--gl)" "$out/info_$b" || fail "--gl $b is not used"
-    grep -q "^renderer: .* ($b)$" "$out/info_$b" || fail "--gl $b: no renderer of $b"
-    HYSTVIZ_GL=$b "$anim" animate --gl-info | grep -qx "backend: $b (HYSTVIZ_GL)" || fail "HYSTVIZ_GL=$b is not used"
+    "$anim" animate --gl-info --gl "$b" > "$out/info_$b" && ok || bad "--gl $b --gl-info failed"
+    grep -qx "backend: $b (--gl)" "$out/info_$b" && ok || bad "--gl $b is not used"
+    grep -q "^renderer: .* ($b)$" "$out/info_$b" && ok || bad "--gl $b: no renderer of $b"
+    HYSTVIZ_GL=$b "$anim" animate --gl-info | grep -qx "backend: $b (HYSTVIZ_GL)" && ok || bad "HYSTVIZ_GL=$b is not used"
     other=egl; [ "$b" = egl ] && other=osmesa
     case " $built " in *" $other "*)
         HYSTVIZ_GL=$other "$anim" animate --gl-info --gl "$b" | grep -qx "backend: $b (--gl)" ||
-            fail "--gl $b does not beat HYSTVIZ_GL=$other" ;;
+            bad "--gl $b does not beat HYSTVIZ_GL=$other" ;;
     *)  expect 3 "built without the $other backend" "$anim" animate gamma-sweep-ex3 --gl "$other"
         expect 3 "built without the $other backend" env HYSTVIZ_GL=$other "$anim" animate gamma-sweep-ex3 ;;
     esac
@@ -49,12 +47,12 @@ expect 2 "'vulkan' is not a GL backend" "$anim" animate gamma-sweep-ex3 --gl vul
 expect 2 "HYSTVIZ_GL 'vulkan' is not a GL backend" env HYSTVIZ_GL=vulkan "$anim" animate gamma-sweep-ex3
 
 case " $built " in *" egl "*)
-    grep -q "^egl device 0: " "$out/info_egl" || fail "--gl-info lists no EGL device"
-    grep -q "^egl device .* (used)$" "$out/info_egl" || fail "--gl-info marks no EGL device as used"
+    grep -q "^egl device 0: " "$out/info_egl" && ok || bad "--gl-info lists no EGL device"
+    grep -q "^egl device .* (used)$" "$out/info_egl" && ok || bad "--gl-info marks no EGL device as used"
     expect 2 "HYSTVIZ_EGL_DEVICE='99' is not a device number" \
         env HYSTVIZ_EGL_DEVICE=99 "$anim" animate gamma-sweep-ex3 --gl egl
     HYSTVIZ_EGL_DEVICE=0 "$anim" animate gamma-sweep-ex3 --gl egl -o "$out/dev0" --size 64x64 --frames 0:1 \
-        --quiet && [ -f "$out/dev0/gamma-sweep-ex3/frame_00000.png" ] || fail "HYSTVIZ_EGL_DEVICE=0 failed"
+        --quiet && [ -f "$out/dev0/gamma-sweep-ex3/frame_00000.png" ] && ok || bad "HYSTVIZ_EGL_DEVICE=0 failed"
     # no EGL driver at all: glvnd's libEGL with no vendor library to load
     if __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent "$anim" animate --gl-info --gl egl > /dev/null 2>&1; then
         echo "note: libEGL ignores __EGL_VENDOR_LIBRARY_FILENAMES (not glvnd): no-device case not simulated"
@@ -63,5 +61,4 @@ case " $built " in *" egl "*)
             env __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent "$anim" animate gamma-sweep-ex3 --gl egl
     fi ;;
 esac
-echo "$fails failures"
-[ "$fails" -eq 0 ]
+finish gl_choice

@@ -247,7 +247,7 @@ static void test_video_pipe(void)
     CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid2", "--size", "64x48", "--fps", "10", "--duration", "2",
                   "--video", "mp4", "--quiet", "-j", "2", NULL) == 0, "video run -j 2");
     size_t n1 = 0, n2 = 0;
-    unsigned char *a = slurp("out_vid1/k-cycle-ex2.mp4", &n1), *b = slurp("out_vid2/k-cycle-ex2.mp4", &n2);
+    char *a = hy_test_slurp("out_vid1/k-cycle-ex2.mp4", &n1), *b = hy_test_slurp("out_vid2/k-cycle-ex2.mp4", &n2);
     CHECK(a && n1 == 20 * 64 * 48 * 4, "ffmpeg got %zu bytes, expected %d (20 frames of 64 x 48, 4 bytes a pixel)", n1, 20 * 64 * 48 * 4);
     CHECK(a && b && n1 == n2 && !memcmp(a, b, n1), "piped frames differ between -j 1 and -j 2 (order)");
     free(a);
@@ -258,7 +258,7 @@ static void test_video_pipe(void)
     CHECK(run_cmd("animate", "k-cycle-ex2", "-o", "out_vid3", "--size", "64x48", "--fps", "10", "--duration", "2",
                   "--video", "mp4", "--no-frames", "--quiet", NULL) == 0, "video run --no-frames");
     size_t n3 = 0;
-    unsigned char *c = slurp("out_vid3/k-cycle-ex2.mp4", &n3);
+    char *c = hy_test_slurp("out_vid3/k-cycle-ex2.mp4", &n3);
     CHECK(c && n3 == n1, "--no-frames: ffmpeg got %zu bytes, expected %zu", n3, n1);
     free(c);
     CHECK(stat("out_vid3/k-cycle-ex2", &sb) != 0, "--no-frames wrote a frame directory");
@@ -335,7 +335,7 @@ static void test_silent(void)
     close(saved);
     fclose(f);
     size_t n = 0;
-    free(slurp("out_silent_stderr.txt", &n));
+    free(hy_test_slurp("out_silent_stderr.txt", &n));
     CHECK(rc == 0 && n == 0, "progress output on a non-terminal stderr (%zu bytes)", n);
 }
 
@@ -350,5 +350,5 @@ int main(void)
     test_video_pipe();
     test_rerun();
     test_silent();
-    return fails ? 1 : 0;
+    return hy_test_finish("anim");
 }

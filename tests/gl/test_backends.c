@@ -83,5 +83,5 @@ int main(void)
     }
     hy_gl_free(a);
     hy_gl_free(b);
-    return fails ? 1 : 0;
+    return hy_test_finish("backends");
 }

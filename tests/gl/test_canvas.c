@@ -143,5 +143,5 @@ int main(void)
     free(a);
     free(b);
     hy_gl_free(g);
-    return fails ? 1 : 0;
+    return hy_test_finish("canvas");
 }

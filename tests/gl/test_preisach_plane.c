@@ -200,6 +200,5 @@ int main(void)
     }
     hy_input_free(&in);
     pplane_release(st);
-    printf(fails ? "%d failure(s)\n" : "preisach-plane: all checks passed\n", fails);
-    return fails ? 1 : 0;
+    return hy_test_finish("preisach-plane");
 }

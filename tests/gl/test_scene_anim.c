@@ -247,9 +247,5 @@ int main(void)
     test_frames();
     test_ends();
     test_cache();
-    if (fails)
-        printf("%d check(s) failed\n", fails);
-    else
-        printf("all scene animation checks passed\n");
-    return fails ? 1 : 0;
+    return hy_test_finish("scene_anim");
 }

@@ -55,5 +55,5 @@ int main(void)
     CHECK(st == HY_ENUM && strstr(err.msg, "define.frag.glsl") && strstr(err.msg, "HY_LEVEL"),
           "shader without its define: %d %s", st, st ? err.msg : "");
     hy_gl_free(g);
-    return fails ? 1 : 0;
+    return hy_test_finish("shader");
 }

@@ -10,33 +10,32 @@
 # and the commit says why.  The list holds one machine's layout (its
 # "# machine" line); on another the test is skipped.
 set -u
+. "$(dirname "$0")/../lib.sh"
 lib=$1 prog=$2 list=$3
-command -v nm >/dev/null || { echo "SKIP: nm is not installed"; exit 77; }
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
+command -v nm >/dev/null || skip "nm is not installed"
+timeout 30 "$prog" >"$tmp/layout" || fatal "$prog exited non-zero"
 {
     echo "# libhystviz ABI: exported symbols and the public structs' layout (tests/libhystviz/test_abi.sh)"
     echo "# machine $(uname -m)"
-    timeout 30 "$prog" || { echo "FAIL: $prog exited non-zero" >&2; exit 1; }
+    cat "$tmp/layout"
     nm -D --defined-only "$lib" | awk '$2 == "T" || $2 == "D" || $2 == "B" {print "symbol", $3}' | sort
-} >"$T/now" || exit 1
-grep -q '^symbol hy_version@@HYSTVIZ_0$' "$T/now" ||
-    { echo "FAIL: no hy_version@@HYSTVIZ_0 among the exported symbols: is the version script applied?"; exit 1; }
+} >"$tmp/now" || fatal "cannot write $tmp/now"
+grep -q '^symbol hy_version@@HYSTVIZ_0$' "$tmp/now" ||
+    fatal "no hy_version@@HYSTVIZ_0 among the exported symbols: is the version script applied?"
 if [ "${HY_ABI_UPDATE:-}" = 1 ]; then
-    cp "$T/now" "$list" && echo "ok: wrote $list ($(grep -c '^symbol' "$list") symbols, $(grep -c '^struct' "$list") structs)"
-    exit 0
+    cp "$tmp/now" "$list" || fatal "cannot write $list"
+    ok "wrote $list ($(grep -c '^symbol' "$list") symbols, $(grep -c '^struct' "$list") structs)"
+    finish lib-abi
+    exit
 fi
 want_machine=$(sed -n 's/^# machine //p' "$list")
-if [ "$want_machine" != "$(uname -m)" ]; then
-    echo "SKIP: $list holds the layout on $want_machine, this is $(uname -m)"
-    exit 77
-fi
-if ! diff -u "$list" "$T/now" >"$T/diff"; then
-    cat "$T/diff"
-    echo "FAIL: libhystviz's ABI differs from $list (- committed, + now)."
+[ "$want_machine" = "$(uname -m)" ] || skip "$list holds the layout on $want_machine, this is $(uname -m)"
+if ! diff -u "$list" "$tmp/now" >"$tmp/diff"; then
+    cat "$tmp/diff"
     echo "A struct that grows or a removed symbol breaks programs built against libhystviz.so.0"
     echo "(docs/LIBRARY.md, \"ABI\"). If the change is deliberate and the policy allows it, update the"
     echo "list with:  HY_ABI_UPDATE=1 meson test -C <build> lib-abi   and say why in the commit."
-    exit 1
+    fatal "libhystviz's ABI differs from $list (- committed, + now)."
 fi
-echo "ok: $(grep -c '^symbol' "$list") symbols and $(grep -c '^struct' "$list") struct layouts as in $list"
+ok "$(grep -c '^symbol' "$list") symbols and $(grep -c '^struct' "$list") struct layouts as in $list"
+finish lib-abi

@@ -9,36 +9,36 @@
 # runtime files) is moved to another directory before CMake sees it, so the
 # config must find it from its own place.  Asking for version 1.0 must fail.
 set -u
+. "$(dirname "$0")/../lib.sh"
 build=$1 src=$2 hv=$3
-command -v cmake >/dev/null || { echo "SKIP: cmake is not installed"; exit 77; }
-command -v c++ >/dev/null || { echo "SKIP: no C++ compiler (c++) is installed"; exit 77; }
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
+command -v cmake >/dev/null || skip "cmake is not installed"
+command -v c++ >/dev/null || skip "no C++ compiler (c++) is installed"
+T=$tmp
 timeout 300 meson install -C "$build" --no-rebuild --quiet --tags devel,runtime --destdir "$T/dest" >"$T/install.log" 2>&1 ||
-    { cat "$T/install.log"; echo "FAIL: meson install --tags devel,runtime"; exit 1; }
+    { cat "$T/install.log"; fatal "meson install --tags devel,runtime"; }
 cfg=$(cd "$T/dest" && find . -name hystvizConfig.cmake)
-[ -n "$cfg" ] || { echo "FAIL: no hystvizConfig.cmake installed"; exit 1; }
+[ -n "$cfg" ] || fatal "no hystvizConfig.cmake installed"
 mv "$T/dest" "$T/moved"
 conf_prefix=$(meson introspect "$build" --buildoptions |
     python3 -c 'import json, sys; print(next(o["value"] for o in json.load(sys.stdin) if o["name"] == "prefix"))') ||
-    { echo "FAIL: meson introspect --buildoptions gave no prefix"; exit 1; }
+    fatal "meson introspect --buildoptions gave no prefix"
 prefix=$T/moved$conf_prefix
 libdir=$(dirname "$(dirname "$(dirname "$T/moved/${cfg#./}")")")
-[ -e "$libdir/libhystviz.so.0" ] || { echo "FAIL: no libhystviz.so.0 in $libdir"; exit 1; }
+[ -e "$libdir/libhystviz.so.0" ] || fatal "no libhystviz.so.0 in $libdir"
 timeout 120 cmake -S "$src/tests/libhystviz/cmake" -B "$T/b" -DCMAKE_PREFIX_PATH="$prefix" \
     -DHYSTVIZ_EXAMPLE="$src/docs/examples/minor_loop_area.cpp" >"$T/cmake.log" 2>&1 ||
-    { cat "$T/cmake.log"; echo "FAIL: cmake does not configure against the moved install at $prefix"; exit 1; }
+    { cat "$T/cmake.log"; fatal "cmake does not configure against the moved install at $prefix"; }
 timeout 300 cmake --build "$T/b" >"$T/build.log" 2>&1 ||
-    { cat "$T/build.log"; echo "FAIL: the C++17 example does not build with hystviz::hystviz"; exit 1; }
-got=$(LD_LIBRARY_PATH="$libdir" timeout 60 "$T/b/area") || { echo "FAIL: the C++ example exited non-zero"; exit 1; }
+    { cat "$T/build.log"; fatal "the C++17 example does not build with hystviz::hystviz"; }
+got=$(LD_LIBRARY_PATH="$libdir" timeout 60 "$T/b/area") || fatal "the C++ example exited non-zero"
 want=$(timeout 60 "$hv" loops --sigma0 6 --input bimodal:0,0.5,1,1.5 | awk -F, '$1 == "minor" {print $10; exit}')
-[ -n "$want" ] && [ "$got" = "$want" ] || { echo "FAIL: the C++ example printed '$got', hystviz loops '$want'"; exit 1; }
-echo "ok: find_package(hystviz 0.1) in a moved install; the C++17 example prints $got, as hystviz loops"
+[ -n "$want" ] && [ "$got" = "$want" ] || fatal "the C++ example printed '$got', hystviz loops '$want'"
+ok "find_package(hystviz 0.1) in a moved install; the C++17 example prints $got, as hystviz loops"
 if timeout 120 cmake -S "$src/tests/libhystviz/cmake" -B "$T/b1" -DCMAKE_PREFIX_PATH="$prefix" -DHYSTVIZ_WANT=1.0 \
     -DHYSTVIZ_EXAMPLE="$src/docs/examples/minor_loop_area.cpp" >"$T/cmake1.log" 2>&1; then
-    echo "FAIL: find_package(hystviz 1.0) accepted version $(sed -n 's/^set(PACKAGE_VERSION "\(.*\)")$/\1/p' "$libdir/cmake/hystviz/hystvizConfigVersion.cmake")"
-    exit 1
+    fatal "find_package(hystviz 1.0) accepted version $(sed -n 's/^set(PACKAGE_VERSION "\(.*\)")$/\1/p' "$libdir/cmake/hystviz/hystvizConfigVersion.cmake")"
 fi
 tr -s ' \n' ' ' <"$T/cmake1.log" | grep -q 'compatible with requested version "1.0"' ||
-    { cat "$T/cmake1.log"; echo "FAIL: find_package(hystviz 1.0) failed, but not on the version"; exit 1; }
-echo "ok: find_package(hystviz 1.0) is refused by the version file"
+    { cat "$T/cmake1.log"; fatal "find_package(hystviz 1.0) failed, but not on the version"; }
+ok "find_package(hystviz 1.0) is refused by the version file"
+finish lib-cmake

@@ -7,11 +7,11 @@
 # extern "C" (a C++ name would be mangled and undefined).  The headers are the
 # install list (src/lib/meson.build: lib_public_headers).
 set -u
+. "$(dirname "$0")/../lib.sh"
 lib=$1 tool=$2
 shift 2
-command -v c++ >/dev/null || { echo "SKIP: no C++ compiler (c++) is installed"; exit 77; }
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
+command -v c++ >/dev/null || skip "no C++ compiler (c++) is installed"
+T=$tmp
 inc=()
 n=0
 {
@@ -29,15 +29,15 @@ n=0
     echo "};"
     echo "int main() { std::printf(\"%zu\\n\", sizeof all / sizeof all[0]); return 0; }"
 } >"$T/all.cpp"
-[ "$n" -ge 100 ] || { echo "FAIL: only $n functions found in the headers"; exit 1; }
+[ "$n" -ge 100 ] || fatal "only $n functions found in the headers"
 if ! timeout 120 c++ -std=c++17 -Wall -Wextra -pedantic -Werror "${inc[@]}" "$T/all.cpp" "$lib" \
     -Wl,-rpath,"$(dirname "$lib")" -o "$T/all" 2>"$T/err"; then
     head -40 "$T/err"
     grep -q "undefined reference" "$T/err" &&
-        echo "FAIL: a C++ program does not link: a header above declares functions outside extern \"C\""
-    echo "FAIL: the installed headers do not compile or link as C++17"
-    exit 1
+        bad "a C++ program does not link: a header above declares functions outside extern \"C\""
+    fatal "the installed headers do not compile or link as C++17"
 fi
-got=$(timeout 30 "$T/all") || { echo "FAIL: the C++ program exited non-zero"; exit 1; }
-[ "$got" = "$n" ] || { echo "FAIL: the C++ program saw $got functions, the headers declare $n"; exit 1; }
-echo "ok: $# headers compile as C++17 and all $n functions link unmangled"
+got=$(timeout 30 "$T/all") || fatal "the C++ program exited non-zero"
+[ "$got" = "$n" ] || fatal "the C++ program saw $got functions, the headers declare $n"
+ok "$# headers compile as C++17 and all $n functions link unmangled"
+finish lib-cxx

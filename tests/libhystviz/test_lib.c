@@ -14,17 +14,10 @@
 
 #include "hystviz.h"
 
-static const char *scene;
-static int fails;
+#include "../hy_test.h"
 
-#define CHECK(c, ...)                                                                                                  \
-    do {                                                                                                               \
-        if (!(c)) {                                                                                                    \
-            printf("FAIL: " __VA_ARGS__);                                                                              \
-            printf("\n");                                                                                              \
-            fails++;                                                                                                   \
-        }                                                                                                              \
-    } while (0)
+static const char *scene;
+#define CHECK HY_CHECK /* tests/hy_test.h */
 
 static char *csv_of(double sigma0)
 {
@@ -155,7 +148,5 @@ int main(int argc, char **argv)
     char *js = hy_schema_json();
     CHECK(js && strstr(js, "\"name\":\"sigma0\"") && strstr(js, "\"sections\""), "schema JSON");
     free(js);
-    if (!fails)
-        printf("ok: libhystviz pipeline API\n");
-    return fails ? 1 : 0;
+    return hy_test_finish("lib-api");
 }

@@ -11,43 +11,39 @@
 # /usr/bin/python3's mesonpy, venv or numpy (apt-get install python3-mesonpy
 # python3-venv python3-numpy); FAIL for those when CI=true.
 set -u
+. "$(dirname "$0")/../lib.sh"
 src=$1
 py=/usr/bin/python3
 if ! "$py" -c "import mesonpy, venv, numpy, ensurepip" 2>/dev/null; then
     msg="no python3-mesonpy, python3-venv or python3-numpy for $py (apt-get install python3-mesonpy python3-venv python3-numpy)"
-    [ "${CI:-}" = true ] && { echo "FAIL: $msg"; exit 1; }
-    echo "SKIP: $msg"
-    exit 77
+    [ "${CI:-}" = true ] && fatal "$msg"
+    skip "$msg"
 fi
-T=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-wheel.XXXXXX") || exit 1
-trap 'rm -rf "$T"' EXIT
-fails=0
-ok() { echo "ok: $*"; }
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+T=$tmp
 
 # the tree as a tarball would have it (no build directories, no caches):
 # meson-python writes its native file into the tree it builds
 mkdir "$T/src"
 (cd "$src" && tar cf - --exclude='./build*' --exclude='__pycache__' --exclude='./.git' --exclude='./.mesonpy*' \
     --exclude='./gallery' --exclude='./tests' --exclude='./docs' .) | (cd "$T/src" && tar xf -) ||
-    { echo "FAIL: copying the source tree"; exit 1; }
+    fatal "copying the source tree"
 (cd "$T/src" && find . | sort) >"$T/before"
 unset PYTHONPATH HYSTVIZ_LIB HYSTVIZ_SCENES LD_LIBRARY_PATH
 export PIP_CONFIG_FILE=/dev/null PIP_NO_CACHE_DIR=1 PIP_DISABLE_PIP_VERSION_CHECK=1 HOME="$T/home"
 (cd "$T/src" && timeout 900 "$py" -m pip wheel -q --no-build-isolation --no-deps --no-index -w "$T/wheel" . \
-    --config-settings=compile-args=-j2 >"$T/wheel.log" 2>&1) || { tail -40 "$T/wheel.log"; fail "pip wheel ."; exit 1; }
+    --config-settings=compile-args=-j2 >"$T/wheel.log" 2>&1) || { tail -40 "$T/wheel.log"; fatal "pip wheel ."; }
 # the tree is left as it was but for meson-python's native file (.gitignore'd):
 # no build/, *.egg-info or other leftovers
 left=$( (cd "$T/src" && find . | sort) | comm -13 "$T/before" - | grep -v '^\./\.mesonpy-native-file\.ini$')
 [ -z "$left" ] && ok "pip wheel . leaves nothing in the tree (but .mesonpy-native-file.ini, ignored)" ||
-    fail "pip wheel . left in the tree: $left"
-grep -qx '/.mesonpy-native-file.ini' "$T/src/.gitignore" || fail ".gitignore does not name .mesonpy-native-file.ini"
+    bad "pip wheel . left in the tree: $left"
+grep -qx '/.mesonpy-native-file.ini' "$T/src/.gitignore" || bad ".gitignore does not name .mesonpy-native-file.ini"
 whl=$(ls "$T"/wheel/hystviz-*.whl)
 case "$whl" in
     *-linux_*.whl) ok "pip wheel . made $(basename "$whl") (platform-tagged)" ;;
-    *) fail "wheel not tagged for the platform: $whl" ;;
+    *) bad "wheel not tagged for the platform: $whl" ;;
 esac
-(cd "$T/src" && "$py" - "$whl") <<'PYEOF' && ok "the wheel carries libhystviz.so.0, every module, the scenes and LICENSE" || fail "wheel contents"
+(cd "$T/src" && "$py" - "$whl") <<'PYEOF' && ok "the wheel carries libhystviz.so.0, every module, the scenes and LICENSE" || bad "wheel contents"
 import os, sys, zipfile
 names = set(zipfile.ZipFile(sys.argv[1]).namelist())
 mods = {f"hystviz/{m}" for m in os.listdir("src/python/hystviz") if m.endswith(".py")} if os.path.isdir("src/python/hystviz") else set()
@@ -59,9 +55,9 @@ print("missing:", sorted(missing) or "none", "| LICENSE:", lic)
 sys.exit(0 if not missing and lic else 1)
 PYEOF
 rm -rf "$T/src"  # the source tree out of reach
-"$py" -m venv --system-site-packages "$T/venv" >"$T/venv.log" 2>&1 || { cat "$T/venv.log"; fail "venv"; exit 1; }
+"$py" -m venv --system-site-packages "$T/venv" >"$T/venv.log" 2>&1 || { cat "$T/venv.log"; fatal "venv"; }
 timeout 300 "$T/venv/bin/python" -m pip install -q --no-deps --no-index "$whl" >"$T/pip.log" 2>&1 ||
-    { cat "$T/pip.log"; fail "pip install the wheel"; exit 1; }
+    { cat "$T/pip.log"; fatal "pip install the wheel"; }
 out=$(cd / && timeout 300 "$T/venv/bin/python" - "$T" <<'PYEOF' 2>&1
 import os, sys
 import hystviz
@@ -84,9 +80,9 @@ PYEOF
 )
 echo "$out"
 case "$out" in *"area 0.19910737569481529"*) ok "Fig. 15's minor-loop area from the venv, run from /" ;;
-    *) fail "minor-loop area from the venv" ;; esac
+    *) bad "minor-loop area from the venv" ;; esac
 case "$out" in *"find_library False"*) ok "import hystviz loads no ctypes.util nor subprocess" ;;
-    *) fail "import hystviz imported ctypes.util or subprocess" ;; esac
+    *) bad "import hystviz imported ctypes.util or subprocess" ;; esac
 case "$out" in *"png True svg True"*) ok "render(scene_path('fig15_minor_loop_ex4')) writes a PNG and an SVG" ;;
-    *) fail "render from the venv" ;; esac
-exit $((fails > 0))
+    *) bad "render from the venv" ;; esac
+finish python-wheel

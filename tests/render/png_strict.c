@@ -19,24 +19,7 @@
 
 #include "zstrict.h"
 
-static unsigned char *slurp(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    size_t cap = 1 << 16, len = 0;
-    unsigned char *b = malloc(cap);
-    for (size_t k; b && (k = fread(b + len, 1, cap - len, f)) > 0;)
-        if ((len += k) == cap) {
-            unsigned char *nb = realloc(b, cap *= 2);
-            if (!nb)
-                free(b);
-            b = nb;
-        }
-    fclose(f);
-    *n = len;
-    return b;
-}
+#include "../hy_test.h"
 
 static uint32_t be32(const unsigned char *p) { return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3]; }
 
@@ -72,7 +55,7 @@ static int check_file(const char *path)
 {
     static const unsigned char sig[8] = {137, 'P', 'N', 'G', 13, 10, 26, 10};
     size_t n = 0, zn = 0, rawn = 0;
-    unsigned char *f = slurp(path, &n), *z = NULL, *raw1 = NULL, *raw2 = NULL, *px = NULL, *lp = NULL;
+    unsigned char *f = (unsigned char *)hy_test_slurp(path, &n), *z = NULL, *raw1 = NULL, *raw2 = NULL, *px = NULL, *lp = NULL;
     const char *bad = NULL;
     char why[200] = "";
     uint32_t w = 0, h = 0;

@@ -1,20 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* rcheck.h: the failure counter and CHECK macro shared by the render and GL
- * tests (each test file prints its own summary from `fails`). */
+/* rcheck.h: the render, GL, io and cli tests' name for tests/hy_test.h's
+ * check: CHECK(cond, fmt, ...) counts and says what failed; a test ends with
+ * return hy_test_finish("name"). */
 #ifndef HY_RCHECK_H
 #define HY_RCHECK_H
 
-#include <stdio.h>
+#include "../hy_test.h"
 
-static int fails;
-#define CHECK(c, ...)                                                      \
-    do {                                                                   \
-        if (!(c)) {                                                        \
-            fails++;                                                       \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                    \
-            printf(__VA_ARGS__);                                           \
-            printf("\n");                                                  \
-        }                                                                  \
-    } while (0)
+#define CHECK HY_CHECK
 
 #endif

@@ -285,6 +285,5 @@ int main(void)
     }
 
     cairo_debug_reset_static_data();
-    printf("%s\n", fails ? "FAILED" : "ok");
-    return fails ? 1 : 0;
+    return hy_test_finish("layout");
 }

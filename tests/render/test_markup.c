@@ -5,7 +5,7 @@
 
 #include "hy_markup.h"
 
-static int fails;
+#include "../hy_test.h"
 
 /* Renders runs as "text/script/italic/group" joined by spaces. */
 static void describe(const hy_mrun *r, size_t n, char *out, size_t cap)
@@ -27,16 +27,12 @@ static void expect(const char *src, const char *want)
     size_t n;
     hy_error err;
     char got[2048];
-    if (hy_markup_parse(src, r, HY_MARKUP_MAX, &n, &err)) {
-        printf("FAIL \"%s\": %s\n", src, err.msg);
-        fails++;
+    int rc = hy_markup_parse(src, r, HY_MARKUP_MAX, &n, &err);
+    HY_CHECK(!rc, "\"%s\": %s", src, err.msg);
+    if (rc)
         return;
-    }
     describe(r, n, got, sizeof got);
-    if (strcmp(got, want)) {
-        printf("FAIL \"%s\"\n  got  %s\n  want %s\n", src, got, want);
-        fails++;
-    }
+    HY_CHECK(!strcmp(got, want), "\"%s\"\n  got  %s\n  want %s", src, got, want);
 }
 
 static void expect_error(const char *src, const char *needle)
@@ -44,10 +40,8 @@ static void expect_error(const char *src, const char *needle)
     hy_mrun r[HY_MARKUP_MAX];
     size_t n;
     hy_error err = {0, ""};
-    if (!hy_markup_parse(src, r, HY_MARKUP_MAX, &n, &err) || !strstr(err.msg, needle)) {
-        printf("FAIL \"%s\" should fail mentioning \"%s\" (got \"%s\")\n", src, needle, err.msg);
-        fails++;
-    }
+    HY_CHECK(hy_markup_parse(src, r, HY_MARKUP_MAX, &n, &err) && strstr(err.msg, needle),
+             "\"%s\" should fail mentioning \"%s\" (got \"%s\")", src, needle, err.msg);
 }
 
 /* A fake backend: every byte advances 0.5 em; text calls are counted. */
@@ -98,23 +92,16 @@ int main(void)
     hy_markup_parse("y^*_u", r, HY_MARKUP_MAX, &n, NULL);
     hy_markup_layout(&cv, r, n, 10.0, 1, 0, 0, 0, (hy_rgb){0, 0, 0}, &b);
     double want = 5.0 + 0.8 + 3.5; /* y, italic correction of the superscript, * at 7 pt */
-    if (b.width < want - 1e-9 || b.width > want + 1e-9 || ntext != 3) {
-        printf("FAIL layout y^*_u: width %g (want %g), %d text calls (want 3)\n", b.width, want, ntext);
-        fails++;
-    }
+    HY_CHECK(!(b.width < want - 1e-9 || b.width > want + 1e-9 || ntext != 3),
+             "layout y^*_u: width %g (want %g), %d text calls (want 3)", b.width, want, ntext);
     /* a subscript alone tucks under its italic base: no gap before it (u_{min,2}) */
     hy_markup_parse("u_2", r, HY_MARKUP_MAX, &n, NULL);
     hy_markup_layout(&cv, r, n, 10.0, 0, 0, 0, 0, (hy_rgb){0, 0, 0}, &b);
     want = 5.0 - 0.3 + 3.5;
-    if (b.width < want - 1e-9 || b.width > want + 1e-9) {
-        printf("FAIL layout u_2: width %g (want %g: the subscript starts 0.03 em left of the base's advance)\n",
-               b.width, want);
-        fails++;
-    }
-    if (!(b.ascent > 7.8 && b.descent > 2.4)) {
-        printf("FAIL layout y^*_u: ascent %g descent %g do not include the scripts\n", b.ascent, b.descent);
-        fails++;
-    }
+    HY_CHECK(!(b.width < want - 1e-9 || b.width > want + 1e-9),
+             "layout u_2: width %g (want %g: the subscript starts 0.03 em left of the base's advance)", b.width, want);
+    HY_CHECK(b.ascent > 7.8 && b.descent > 2.4, "layout y^*_u: ascent %g descent %g do not include the scripts",
+             b.ascent, b.descent);
     /* numbers in labels: as a reader writes them */
     const struct { double v; const char *want; } nums[] = {
         {1000, "1000"}, {1e3 + 0.5, "1000"}, {0.25, "0.25"}, {-0.043, "-0.043"}, {6.3341, "6.334"},
@@ -124,11 +111,7 @@ int main(void)
     for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++) {
         char buf[64];
         hy_markup_number(buf, sizeof buf, nums[i].v, 4);
-        if (strcmp(buf, nums[i].want)) {
-            printf("FAIL number %g: \"%s\", want \"%s\"\n", nums[i].v, buf, nums[i].want);
-            fails++;
-        }
+        HY_CHECK(!strcmp(buf, nums[i].want), "number %g: \"%s\", want \"%s\"", nums[i].v, buf, nums[i].want);
     }
-    printf("%s\n", fails ? "FAILED" : "ok");
-    return fails ? 1 : 0;
+    return hy_test_finish("markup");
 }

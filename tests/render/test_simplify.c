@@ -174,6 +174,5 @@ int main(void)
     m = check_curve("line", x, y, big, 0.1, 0);
     CHECK(m == 2, "line: %zu vertices, want its 2 ends", m);
     free(x), free(y);
-    printf("%s\n", fails ? "FAILED" : "all passed");
-    return fails != 0;
+    return hy_test_finish("simplify");
 }

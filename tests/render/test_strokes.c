@@ -191,6 +191,5 @@ int main(void)
     test_dashdot();
     test_round_join();
     test_whole_pixels();
-    printf("%s\n", fails ? "FAILED" : "ok");
-    return fails ? 1 : 0;
+    return hy_test_finish("strokes");
 }

@@ -156,6 +156,5 @@ int main(void)
     hy_ticks_fit(0, 1, 0, 30, 4.0, 10, fake_width, &(double){30.0}, &t);
     CHECK(t.n == 1, "labels 90 pt wide on a 30 pt axis: %d ticks, want 1", t.n);
 
-    printf("%s\n", fails ? "FAILED" : "ok");
-    return fails ? 1 : 0;
+    return hy_test_finish("ticks");
 }

@@ -424,6 +424,6 @@ int main(void)
     CHECK(l1[2] == 1 && !l1[0] && !l1[4], "one symbol: length %d", l1[2]);
     CHECK(l2[0] == 1 && l2[2] == 1 && !l2[1], "two symbols: lengths %d %d", l2[0], l2[2]);
     hy_zfast_free(z);
-    printf("zfast: %d streams inflated and compared, %d failed\n", nstreams, fails);
-    return fails != 0;
+    printf("zfast: %d streams inflated and compared\n", nstreams);
+    return hy_test_finish("zfast");
 }

@@ -10,17 +10,9 @@
 #include "hy_gamma.h"
 #include "hy_workprec.h"
 
-static int fails;
+#include "../hy_test.h"
 
-#define CHECK(cond, ...)                                                  \
-    do {                                                                  \
-        if (!(cond)) {                                                    \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                   \
-            printf(__VA_ARGS__);                                          \
-            printf("\n");                                                 \
-            fails++;                                                      \
-        }                                                                 \
-    } while (0)
+#define CHECK HY_CHECK /* tests/hy_test.h */
 
 static void test_norms(void)
 {
@@ -105,7 +97,5 @@ int main(void)
     test_norms();
     test_problems();
     test_caps();
-    if (!fails)
-        printf("workprec tests passed\n");
-    return fails ? 1 : 0;
+    return hy_test_finish("workprec");
 }

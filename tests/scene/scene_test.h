@@ -28,12 +28,10 @@
                  a_ ? a_ : "(null)", b_);                                        \
     } while (0)
 
-/* The test's exit status: 0, or 1 after saying on stderr how many checks failed. */
+/* The test's exit status (0 or 1) after its summary (hy_test_finish). */
 static inline int st_done(const char *test)
 {
-    if (st_failures)
-        fprintf(stderr, "%s: %d check(s) failed\n", test, st_failures);
-    return st_failures ? 1 : 0;
+    return hy_test_finish(test);
 }
 
 /* Parses text named name; returns the scene or NULL, printing an unexpected error. */

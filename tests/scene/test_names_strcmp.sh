@@ -7,6 +7,8 @@
 # the decoded value with the generated HY_*_<ID> value, or asks the table, instead.
 # Allowed, by file and line text: serve's slider domains (src/serve/serve_util.c, which issue 34
 # item 2 moves into the schema's rows).
+set -u
+. "$(dirname "$0")/../lib.sh"
 root=$1
 names='solid|dashed|dotted|dashdot|circle|square|best|top-left|top-right|bottom-left|bottom-right'
 names="$names|paper|slides|linear|smooth|bimodal|multimodal|triangle|sine|pwl|file|multisine|sweep|data"
@@ -17,8 +19,8 @@ allowed='src/serve/serve_util.c:.*strcmp\(sec, "input"\) && !strcmp\(kind, "bimo
 hits=$(cd "$root" && grep -rnE "$pat" src --include='*.c' --include='*.h' | grep -vE "$allowed")
 if [ -n "$hits" ]; then
     echo "$hits"
-    echo "a strcmp chain on a table's names: compare the decoded value with its HY_*_<ID> (or ask the table)"
-    exit 1
+    bad "a strcmp chain on a table's names (above): compare the decoded value with its HY_*_<ID> (or ask the table)"
+else
+    ok "no strcmp chain on the tables' names under $root/src"
 fi
-echo "names-strcmp: no strcmp chain on the tables' names under $root/src"
-exit 0
+finish names-strcmp

@@ -25,26 +25,6 @@
 
 static const char *SRC, *BLD;
 
-static char *slurp(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *b = malloc((size_t)len + 1);
-    if (b && fread(b, 1, (size_t)len, f) != (size_t)len) {
-        free(b);
-        b = NULL;
-    }
-    if (b)
-        b[len] = '\0';
-    fclose(f);
-    *n = (size_t)len;
-    return b;
-}
-
 static int run_scene(const char *path, char **sets, size_t nsets, const char *dir, const char *formats, hy_scene_run *keep)
 {
     hy_scene_run r;
@@ -152,7 +132,7 @@ static void all_scenes(void)
         char path[2200], text_path[2400];
         snprintf(path, sizeof path, "%s/%s", sdir, e->d_name);
         size_t n;
-        char *text = slurp(path, &n);
+        char *text = hy_test_slurp(path, &n);
         int is_figure = text && strstr(text, "[series") && !strstr(text, "kind = boucwen");
         free(text);
         if (!is_figure)
@@ -168,7 +148,7 @@ static void all_scenes(void)
             snprintf(a, sizeof a, "%s/%s.%s", out1, base, ext[k]);
             snprintf(b, sizeof b, "%s/%s.%s", out2, base, ext[k]);
             size_t na, nb;
-            char *ta = slurp(a, &na), *tb = slurp(b, &nb);
+            char *ta = hy_test_slurp(a, &na), *tb = hy_test_slurp(b, &nb);
             CHECK(ta && tb && na == nb && !memcmp(ta, tb, na), "%s: %s output not byte-identical across runs", base, ext[k]);
             if (k == 0 && ta)
                 CHECK(svg_ok(ta), "%s.svg is not well-formed", base);
@@ -205,7 +185,7 @@ static void compare_reference(const char *scene)
     snprintf(ref, sizeof ref, "%s/tests/reference/scene_%s.png", SRC, scene);
     if (getenv("HY_UPDATE_REFERENCE")) {
         size_t n;
-        char *b = slurp(out, &n);
+        char *b = hy_test_slurp(out, &n);
         FILE *f = fopen(ref, "wb");
         if (b && f)
             fwrite(b, 1, n, f);

@@ -18,22 +18,11 @@ set -u
 hv=$(realpath "$1")
 src=$(realpath "$2")
 client=$(realpath "$3")
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-ok() { echo "ok: $*"; }
+. "$(dirname "$0")/../lib.sh"
+. "$(dirname "$0")/serve_lib.sh"
+need curl python3
 
-command -v curl >/dev/null || { echo "SKIP: curl is not installed"; exit 77; }
-command -v python3 >/dev/null || { echo "SKIP: python3 is not installed"; exit 77; }
-
-T=$(mktemp -d)
-srv=
-bg=()
-cleanup() {
-    [ -n "$srv" ] && kill -9 "$srv" 2>/dev/null
-    for p in "${bg[@]}"; do kill -9 "$p" 2>/dev/null; done
-    rm -rf "$T"
-}
-trap cleanup EXIT
+T=$tmp
 
 mkdir -p "$T/scenes"
 cp "$src"/*.scene "$T/scenes/"
@@ -41,48 +30,16 @@ F=fig15_minor_loop_ex4
 cp "$T/scenes/$F.scene" "$T/scenes/inside.scene"
 printf 'SECRET-OUTSIDE-THE-SCENES-DIRECTORY 0123456789 0123456789 0123456789\n' >"$T/secret.txt"
 printf '1\n2\n3\n' >"$T/numbers.txt"
-cd "$T" || exit 1
+cd "$T" || fatal "cannot cd to $T"
 
-start() { # extra options...
-    : >"$T/serve.out"; : >"$T/serve.err" # emptied first: the job's own >file may come after a wait read the last run's URL
-    "$hv" serve scenes --port 0 "$@" >"$T/serve.out" 2>"$T/serve.err" &
-    srv=$!
-    port=
-    for _ in $(seq 100); do
-        port=$(sed -n 's|.*http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$T/serve.out")
-        [ -n "$port" ] && break
-        kill -0 $srv 2>/dev/null || break
-        sleep 0.1
-    done
-    if [ -z "$port" ]; then
-        kill -9 $srv 2>/dev/null # still running without a URL: the wait below must end
-        wait $srv 2>/dev/null; rc=$?
-        if [ $rc -eq 3 ] && grep -q "libmicrohttpd" "$T/serve.err"; then
-            echo "SKIP: built without libmicrohttpd"
-            exit 77
-        fi
-        echo "FAIL: serve $* printed no URL within 10 s (exit $rc): $(cat "$T/serve.err")"
-        exit 1
-    fi
-    base="http://127.0.0.1:$port"
-}
-stop() { # SIGINT; a sanitizer's report in serve's stderr is a failure
-    [ -n "$srv" ] || return
-    kill -INT $srv 2>/dev/null
-    for _ in $(seq 100); do kill -0 $srv 2>/dev/null || break; sleep 0.1; done
-    kill -9 $srv 2>/dev/null
-    wait $srv 2>/dev/null
-    srv=
-    grep -E -A12 "ERROR: (Address|Leak)Sanitizer|runtime error" "$T/serve.err" && fail "serve: sanitizer report above"
-}
 code() { curl -s -o /dev/null --max-time 20 -w "%{http_code}" "$@"; }
 expect() { # code url [curl options...]
     local want=$1 url=$2; shift 2
     local got; got=$(code "$@" "$base$url")
-    [ "$got" = "$want" ] && ok "$want $url $*" || fail "$url $*: HTTP $got, want $want"
+    [ "$got" = "$want" ] && ok "$want $url $*" || bad "$url $*: HTTP $got, want $want"
 }
 
-start
+serve_start "$hv" serve scenes --port 0
 
 # ---- 2: the check and the override parse KEY=VALUE alike -------------------------------
 for sep in "%20" "%09" "%20%09%20"; do
@@ -92,12 +49,12 @@ for sep in "%20" "%09" "%20%09%20"; do
         if [ "$(cat "$T/code")" = 400 ] && ! grep -q "SECRET" "$T/body"; then
             ok "set=$key$sep=FILE refused (400), nothing of the file"
         else
-            fail "set=$key$sep=FILE: HTTP $(cat "$T/code"), body $(head -c 200 "$T/body")"
+            bad "set=$key$sep=FILE: HTTP $(cat "$T/code"), body $(head -c 200 "$T/body")"
         fi
     done
 done
 curl -s --max-time 20 "$base/api/render?scene=$F.scene&set=input.kind%3Dfile&set=input.file%20%3D$T/numbers.txt&fmt=csv" |
-    grep -q "^input,0,1" && fail "a numeric file came back as CSV" || ok "a numeric file is not read"
+    grep -q "^input,0,1" && bad "a numeric file came back as CSV" || ok "a numeric file is not read"
 # the allow-list: text and [output] and [animation] keys are not a page's to set
 expect 400 "/api/render?scene=$F.scene&set=figure.title%3Dx"
 expect 400 "/api/render?scene=$F.scene&set=output.name%3Dx"
@@ -108,7 +65,7 @@ expect 200 "/api/render?scene=$F.scene&set=model.sigma0%20%3D%203"
 out=$(timeout 120 python3 "$client" race "$T/scenes" "$port" 300 "$T/secret.txt")
 case "$out" in
 "leaked 0 of 300") ok "link race: no outside file in 300 answers" ;;
-*) fail "link race: $out" ;;
+*) bad "link race: $out" ;;
 esac
 rm -f scenes/race.scene scenes/.race0 scenes/.race1
 
@@ -116,14 +73,14 @@ rm -f scenes/race.scene scenes/.race0 scenes/.race1
 timeout 60 python3 "$client" idle "$port" 300 20 >"$T/idle.out" &
 bg+=($!)
 for _ in $(seq 100); do grep -q "^open" "$T/idle.out" && break; sleep 0.1; done
-grep -q "^open 300" "$T/idle.out" || fail "300 idle connections: $(cat "$T/idle.out")"
+grep -q "^open 300" "$T/idle.out" || bad "300 idle connections: $(cat "$T/idle.out")"
 expect 200 "/api/render?scene=$F.scene&page=legit&seq=1" --max-time 10
 kill "${bg[-1]}" 2>/dev/null
 out=$(timeout 60 python3 "$client" events "$port" 40 "p*")
 # 16 from one address (32 in all); the rest 503 with Retry-After; a closed stream frees its slot at once
-[ "$out" = "200 16 503 24 retry 24 reopen 1" ] && ok "40 event streams: $out" || fail "40 event streams: $out"
+[ "$out" = "200 16 503 24 retry 24 reopen 1" ] && ok "40 event streams: $out" || bad "40 event streams: $out"
 out=$(timeout 60 python3 "$client" events "$port" 3 "same")
-[ "$out" = "200 2 503 1 retry 1 reopen 1" ] && ok "3 event streams of one page: $out" || fail "one page's streams: $out"
+[ "$out" = "200 2 503 1 retry 1 reopen 1" ] && ok "3 event streams of one page: $out" || bad "one page's streams: $out"
 expect 200 "/api/render?scene=$F.scene&page=legit&seq=2" --max-time 10
 # an idle connection is closed after serve's 10 s: it waits beside section 6
 # (checked at its end) rather than before it
@@ -134,7 +91,7 @@ idle_pid=$!; bg+=($idle_pid)
 # serve's own budget: 1e7 of work is within `render`'s 1e8, not within serve's 2e6
 curl -s --max-time 30 -o "$T/body" -w "%{http_code}" "$base/api/render?scene=$F.scene&set=compute.points%3D1000000" >"$T/code"
 [ "$(cat "$T/code")" = 422 ] && grep -q "budget" "$T/body" && ok "over serve's budget: 422 naming it" ||
-    fail "points=1e6: HTTP $(cat "$T/code") $(head -c 200 "$T/body")"
+    bad "points=1e6: HTTP $(cat "$T/code") $(head -c 200 "$T/body")"
 expect 403 "/api/render?scene=$F.scene" -H "Sec-Fetch-Site: cross-site"
 expect 403 "/api/render?scene=$F.scene" -H "Sec-Fetch-Site: same-site"
 expect 200 "/api/render?scene=$F.scene" -H "Sec-Fetch-Site: same-origin"
@@ -147,7 +104,7 @@ ms=$((($(date +%s%N) - t0) / 1000000))
 # (the latency target is bench_serve_attack's; here only that it is not the
 # 24 renders' worth of seconds the old server spent)
 [ $ms -lt 8000 ] && ok "after 24 abandoned heavy requests a render took $ms ms" ||
-    fail "after 24 abandoned heavy requests a render took $ms ms"
+    bad "after 24 abandoned heavy requests a render took $ms ms"
 # a render already running when its client goes is stopped at its next step
 # (each gamma solve, each series, before drawing): Fig. 4 at 70,000 points a
 # period is within serve's budget and takes seconds; its client leaves after
@@ -162,7 +119,7 @@ for _ in $(seq 100); do
 done
 [ "$(grep -c "stopped a render whose client had gone" "$T/serve.err")" -gt "$before" ] &&
     ok "a running render whose client left was stopped" ||
-    fail "a running render whose client left was not stopped within 10 s"
+    bad "a running render whose client left was not stopped within 10 s"
 # per-client fairness: 70 clients' worth of heavy page renders (a page id
 # each) from 127.0.0.2 fill every slot and, before, the whole queue, so a
 # page on 127.0.0.1 got 503; now one address waits at most 32 deep and the
@@ -182,14 +139,14 @@ wait $idle_pid 2>/dev/null
 out=$(cat "$T/idle_closed.out")
 case "$out" in
 "closed after "*) ok "an idle connection is $out" ;;
-*) fail "an idle connection: $out" ;;
+*) bad "an idle connection: $out" ;;
 esac
-"$hv" serve scenes --max-work abc 2>/dev/null; [ $? -eq 2 ] && ok "--max-work abc: exit 2" || fail "--max-work abc"
+"$hv" serve scenes --max-work abc 2>/dev/null; [ $? -eq 2 ] && ok "--max-work abc: exit 2" || bad "--max-work abc"
 
 # ---- 7: animate --info: cached, children bounded ---------------------------------------------
 if "$hv" animate --list >/dev/null 2>&1; then
     A=anim_minor_loop_ex4.scene
-    curl -s --max-time 60 "$base/api/scene?scene=$A" | grep -q '"anim":{"frames":[1-9]' || fail "animation info"
+    curl -s --max-time 60 "$base/api/scene?scene=$A" | grep -q '"anim":{"frames":[1-9]' || bad "animation info"
     # the frame worker that answered stays (warm); no other child may start
     warm=$(pgrep -P $srv | wc -l)
     for i in $(seq 20); do curl -s -o /dev/null --max-time 60 "$base/api/scene?scene=$A" & bg+=($!); done
@@ -204,9 +161,9 @@ if "$hv" animate --list >/dev/null 2>&1; then
     done
     wait "${bg[@]:(-20)}" 2>/dev/null
     [ "$most" -eq "$warm" ] && [ "$warm" -le 1 ] && ok "20 requests for a known animation ran no child ($warm warm worker)" ||
-        fail "$most children for a cached --info ($warm warm worker)"
+        bad "$most children for a cached --info ($warm warm worker)"
     zombies=$(ps -o stat= --ppid $srv | grep -c Z)
-    [ "$zombies" -eq 0 ] || fail "$zombies zombie children"
+    [ "$zombies" -eq 0 ] || bad "$zombies zombie children"
 else
     echo "SKIP (7): hystviz-animate was built without OSMesa"
 fi
@@ -214,34 +171,34 @@ fi
 # ---- 11: many query arguments ------------------------------------------------------------------
 many=""; for i in $(seq 1100); do many="$many&set=model.sigma0%3D$i"; done
 got=$(code "$base/api/render?scene=$F.scene$many")
-[ "$got" = 400 ] && ok "1,100 overrides: 400" || fail "1,100 overrides: HTTP $got, want 400"
+[ "$got" = 400 ] && ok "1,100 overrides: 400" || bad "1,100 overrides: HTTP $got, want 400"
 many=""; for i in $(seq 5000); do many="$many&a"; done
 got=$(code "$base/api/render?scene=$F.scene$many")
-[ "$got" = 400 ] && ok "5,000 empty query arguments: 400" || fail "5,000 empty query arguments: HTTP $got, want 400"
+[ "$got" = 400 ] && ok "5,000 empty query arguments: 400" || bad "5,000 empty query arguments: HTTP $got, want 400"
 
 # ---- 9: saving is opt-in ---------------------------------------------------------------------
 curl -s --max-time 10 "$base/" | grep -q 'name="hystviz-token" content=""' && ok "no token in the page without --allow-save" ||
-    fail "the page carries a save token without --allow-save"
+    bad "the page carries a save token without --allow-save"
 expect 403 "/api/save?scene=$F.scene&name=x1" -X POST -H "X-Hystviz-Token: "
-[ ! -e scenes/x1.scene ] || fail "saved without --allow-save"
-stop
+[ ! -e scenes/x1.scene ] || bad "saved without --allow-save"
+serve_stop
 "$hv" serve --help | grep -q -- "--allow-save" && "$hv" serve --help | grep -A3 -- "--public" | grep -q "reads every scene" &&
-    ok "--help names --allow-save and what --public exposes" || fail "--help: --allow-save / --public"
-start --allow-save --max-work 2e7
+    ok "--help names --allow-save and what --public exposes" || bad "--help: --allow-save / --public"
+serve_start "$hv" serve scenes --port 0 --allow-save --max-work 2e7
 # --max-work raises serve's budget: the 1e7 refused above renders now; its
 # 208 MB of CSV are over the output budget of an answer
 expect 200 "/api/render?scene=$F.scene&set=compute.points%3D1000000&fmt=svg" --max-time 60
 curl -s --max-time 60 "$base/api/render?scene=$F.scene&set=compute.points%3D1000000&fmt=csv" | head -c 300 >"$T/body"
 grep -q "output budget" "$T/body" && ok "208 MB of CSV: refused, naming the output budget" ||
-    fail "208 MB of CSV: $(cat "$T/body")"
+    bad "208 MB of CSV: $(cat "$T/body")"
 token=$(curl -s --max-time 10 "$base/" | sed -n 's/.*name="hystviz-token" content="\([0-9a-f]*\)".*/\1/p')
-[ ${#token} -eq 32 ] || fail "--allow-save: no token in the page"
+[ ${#token} -eq 32 ] || bad "--allow-save: no token in the page"
 expect 201 "/api/save?scene=$F.scene&name=r1" -X POST -H "X-Hystviz-Token: $token"
 curl -s --max-time 10 -D "$T/hdr" -o /dev/null -w "%{http_code}" -X POST -H "X-Hystviz-Token: $token" \
     "$base/api/save?scene=$F.scene&name=r2" >"$T/code"
 [ "$(cat "$T/code")" = 429 ] && grep -qi "^retry-after:" "$T/hdr" && ok "a second save within a second: 429 + Retry-After" ||
-    fail "a second save within a second: HTTP $(cat "$T/code")"
-[ ! -e scenes/r2.scene ] || fail "the rate-limited save wrote r2.scene"
+    bad "a second save within a second: HTTP $(cat "$T/code")"
+[ ! -e scenes/r2.scene ] || bad "the rate-limited save wrote r2.scene"
 
 # ---- 11: Ctrl-C during a flood of renders ------------------------------------------------------
 for i in $(seq 40); do
@@ -253,14 +210,13 @@ t0=$(date +%s%N)
 kill -INT $srv
 for _ in $(seq 300); do kill -0 $srv 2>/dev/null || break; sleep 0.05; done
 ms=$((($(date +%s%N) - t0) / 1000000))
-kill -0 $srv 2>/dev/null && fail "serve still running 15 s after SIGINT during 40 renders" ||
+kill -0 $srv 2>/dev/null && bad "serve still running 15 s after SIGINT during 40 renders" ||
     ok "SIGINT during 40 renders: stopped in $ms ms"
 kill -9 $srv 2>/dev/null # (failed above if it was still running): the wait must end
 wait $srv; rc=$?
-[ $rc -eq 0 ] || fail "serve exited $rc after SIGINT"
-stop
+[ $rc -eq 0 ] || bad "serve exited $rc after SIGINT"
+serve_stop
 for p in "${bg[@]}"; do kill -9 "$p" 2>/dev/null; done
 bg=()
 
-[ $fails -eq 0 ] || { echo "$fails failure(s)"; exit 1; }
-echo "all serve attack tests passed"
+finish serve-attack

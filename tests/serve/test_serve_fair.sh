@@ -19,21 +19,11 @@ set -u
 hv=$(realpath "$1")
 src=$(realpath "$2")
 client=$(realpath "$3")
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-ok() { echo "ok: $*"; }
-command -v curl >/dev/null || { echo "SKIP: curl is not installed"; exit 77; }
-command -v python3 >/dev/null || { echo "SKIP: python3 is not installed"; exit 77; }
+. "$(dirname "$0")/../lib.sh"
+. "$(dirname "$0")/serve_lib.sh"
+need curl python3
 
-T=$(mktemp -d)
-srv=
-bg=()
-cleanup() {
-    [ -n "$srv" ] && { kill -9 "$srv" && wait "$srv"; } 2>/dev/null
-    for p in "${bg[@]}"; do { kill -9 "$p" && wait "$p"; } 2>/dev/null; done
-    rm -rf "$T"
-}
-trap cleanup EXIT
+T=$tmp
 mkdir -p "$T/scenes"
 cp "$src"/*.scene "$T/scenes/"
 F=fig15_minor_loop_ex4.scene
@@ -50,29 +40,12 @@ open(sys.argv[1], "w").write("[model]\nkind = preisach\n\n[input]\nkind = multim
     "[series minor]\ndata = minor\n" % ", ".join("%.6g" % e for e in ex))
 PY
 H=preisach_history.scene
-cd "$T" || exit 1
+cd "$T" || fatal "cannot cd to $T"
 
 # one CPU: two render slots (cores + 1), so two heavy pages fill them
 pin=()
 command -v taskset >/dev/null && taskset -c 0 true 2>/dev/null && pin=(taskset -c 0)
-: >"$T/serve.out"; : >"$T/serve.err"
-"${pin[@]}" "$hv" serve scenes --port 0 >"$T/serve.out" 2>"$T/serve.err" &
-srv=$!
-port=
-for _ in $(seq 100); do
-    port=$(sed -n 's|.*http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$T/serve.out")
-    [ -n "$port" ] && break
-    kill -0 $srv 2>/dev/null || break
-    sleep 0.1
-done
-if [ -z "$port" ]; then
-    kill -9 $srv 2>/dev/null
-    wait $srv 2>/dev/null; rc=$?
-    [ $rc -eq 3 ] && grep -q "libmicrohttpd" "$T/serve.err" && { echo "SKIP: built without libmicrohttpd"; exit 77; }
-    echo "FAIL: serve printed no URL within 10 s (exit $rc): $(cat "$T/serve.err")"
-    exit 1
-fi
-base="http://127.0.0.1:$port"
+serve_start "${pin[@]}" "$hv" serve scenes --port 0
 ms_since() { echo $((($(date +%s%N) - $1) / 1000000)); }
 bgcurl() { # outfile url: "CODE SECONDS" into outfile, in the background
     curl -s -o "$1.body" --max-time 120 -w "%{http_code} %{time_total}" "$base$2" >"$1" 2>/dev/null &
@@ -94,25 +67,25 @@ ms=$(ms_since "$t0")
 if [ "$got" = 200 ] && running "$heavy"; then
     ok "Fig. 15 from another page: 200 in $ms ms while the heavy render runs"
 else
-    fail "Fig. 15 from another page: HTTP $got in $ms ms (heavy still running: $(running "$heavy" && echo yes || echo no))"
+    bad "Fig. 15 from another page: HTTP $got in $ms ms (heavy still running: $(running "$heavy" && echo yes || echo no))"
 fi
-[ "$ms" -lt 10000 ] || fail "Fig. 15 beside a heavy render took $ms ms"
+[ "$ms" -lt 10000 ] || bad "Fig. 15 beside a heavy render took $ms ms"
 
 # ---- a newer request of the same page stops the heavy one inside its series --------------
 t0=$(date +%s%N)
 got=$(curl -s -o /dev/null --max-time 30 -w "%{http_code}" "$base/api/render?scene=$F&fmt=json&page=heavy&seq=2")
 ms=$(ms_since "$t0")
 [ "$got" = 200 ] && [ "$ms" -lt 10000 ] && ok "the page's newer request: 200 in $ms ms" ||
-    fail "the page's newer request: HTTP $got in $ms ms (the heavy render was not stopped)"
+    bad "the page's newer request: HTTP $got in $ms ms (the heavy render was not stopped)"
 if waitfile "$T/h1" 10; then
     read -r code secs <"$T/h1"
     [ "$code" = 409 ] && ok "the superseded heavy render answered 409 after $secs s" ||
-        fail "the superseded heavy render: HTTP $code after $secs s"
+        bad "the superseded heavy render: HTTP $code after $secs s"
 else
-    fail "the superseded heavy render still runs 10 s after its page asked again"
+    bad "the superseded heavy render still runs 10 s after its page asked again"
 fi
 grep -q "stopped a render superseded by a newer request of its page" "$T/serve.err" && ok "serve says it stopped a superseded render" ||
-    fail "serve's log does not name the superseded render: $(tail -3 "$T/serve.err")"
+    bad "serve's log does not name the superseded render: $(tail -3 "$T/serve.err")"
 
 # ---- every slot held by other pages' heavy renders: a page with none gets one --------------
 if [ ${#pin[@]} -gt 0 ]; then
@@ -123,9 +96,9 @@ if [ ${#pin[@]} -gt 0 ]; then
     got=$(curl -s -o /dev/null --max-time 30 -w "%{http_code}" "$base/api/render?scene=$F&fmt=json&page=legit&seq=2")
     ms=$(ms_since "$t0")
     [ "$got" = 200 ] && [ "$ms" -lt 10000 ] && ok "both slots held by heavy pages: Fig. 15 in $ms ms" ||
-        fail "both slots held by heavy pages: Fig. 15 HTTP $got in $ms ms"
+        bad "both slots held by heavy pages: Fig. 15 HTTP $got in $ms ms"
     grep -q "stopped a render for another client's turn" "$T/serve.err" && ok "serve says it preempted a render" ||
-        fail "serve's log names no preempted render"
+        bad "serve's log names no preempted render"
     for p in "${bg[@]}"; do { kill -9 "$p" && wait "$p"; } 2>/dev/null; done
 else
     echo "SKIP (preemption): no taskset to pin serve to one CPU"
@@ -137,11 +110,11 @@ bg+=($!)
 for _ in $(seq 100); do grep -q "^open" "$T/streams.out" && break; sleep 0.1; done
 out=$(ATTACK_SOURCE=127.0.0.2 timeout 30 python3 "$client" events "$port" 1 other)
 [ "$out" = "200 1 503 0 retry 0 reopen 1" ] && ok "40 streams held from 127.0.0.1: 127.0.0.2 keeps its stream ($out)" ||
-    fail "40 streams held from 127.0.0.1: 127.0.0.2 got '$out'"
+    bad "40 streams held from 127.0.0.1: 127.0.0.2 got '$out'"
 out=$(timeout 30 python3 "$client" events "$port" 1 again)
 case "$out" in
 "200 0 503 1 retry 1 "*) ok "127.0.0.1 past its cap: 503 with Retry-After ($out)" ;;
-*) fail "127.0.0.1 past its cap: '$out'" ;;
+*) bad "127.0.0.1 past its cap: '$out'" ;;
 esac
 kill "${bg[-1]}" 2>/dev/null
 
@@ -151,18 +124,15 @@ curl -s --max-time 30 -o "$T/body" -w "%{http_code}" \
     "$base/api/render?scene=$F&fmt=png&set=figure.size%3D20in,20in&set=figure.dpi%3D600" >"$T/code"
 ms=$(ms_since "$t0")
 [ "$(cat "$T/code")" = 422 ] && grep -q "memory cap" "$T/body" && ok "a 20 in PNG at 600 dpi: 422 in $ms ms ($(head -c 160 "$T/body"))" ||
-    fail "a 20 in PNG at 600 dpi: HTTP $(cat "$T/code") $(head -c 200 "$T/body" | tr -cd '[:print:]')"
+    bad "a 20 in PNG at 600 dpi: HTTP $(cat "$T/code") $(head -c 200 "$T/body" | tr -cd '[:print:]')"
 got=$(curl -s -o /dev/null --max-time 30 -w "%{http_code}" "$base/api/render?scene=$F&fmt=png")
-[ "$got" = 200 ] && ok "the scene's own PNG: 200" || fail "the scene's own PNG: HTTP $got"
+[ "$got" = 200 ] && ok "the scene's own PNG: 200" || bad "the scene's own PNG: HTTP $got"
 rss=$(awk '/VmHWM/ {print $2}' /proc/$srv/status 2>/dev/null)
 if [ -n "${HYSTVIZ_SLOW_BUILD:-}" ]; then # AddressSanitizer's shadow and quarantine are not serve's memory
     echo "(not asserted in a sanitizer or unoptimised build) serve's peak memory ${rss:-?} kB"
 else
-    [ -n "$rss" ] && [ "$rss" -lt 300000 ] && ok "serve's peak memory ${rss} kB" || fail "serve's peak memory ${rss:-?} kB"
+    [ -n "$rss" ] && [ "$rss" -lt 300000 ] && ok "serve's peak memory ${rss} kB" || bad "serve's peak memory ${rss:-?} kB"
 fi
 
-kill -INT $srv 2>/dev/null
-for _ in $(seq 100); do kill -0 $srv 2>/dev/null || break; sleep 0.1; done
-grep -E -A12 "ERROR: (Address|Leak)Sanitizer|runtime error" "$T/serve.err" && fail "serve: sanitizer report above"
-echo "$fails failure(s)"
-[ $fails -eq 0 ]
+serve_stop
+finish serve-fair

@@ -4,21 +4,21 @@
 # docs/ARCHITECTURE.md "hystviz serve and watch"): no file of src/serve
 # includes a header of src/app, and no file of src/app names an HTTP
 # endpoint (the routes are src/serve/serve_routes.c's table).
+set -u
+. "$(dirname "$0")/../lib.sh"
 root=$1
-fail=0
 n=0
 for f in "$root"/src/serve/*.c "$root"/src/serve/*.h; do
     n=$((n + 1))
     for h in $(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f"); do
-        if [ -e "$root/src/app/$h" ]; then
-            echo "src/serve/${f##*/} includes $h, a header of src/app: serve must not depend on app"
-            fail=1
-        fi
+        [ ! -e "$root/src/app/$h" ] ||
+            bad "src/serve/${f##*/} includes $h, a header of src/app: serve must not depend on app"
     done
 done
+[ "$n" -gt 1 ] && ok "$n file(s) of src/serve checked for headers of src/app" || bad "no files in $root/src/serve"
 if grep -rnE '"/(api/|events|scenes/|app\.js|app\.css|index\.html)' "$root/src/app"; then
-    echo "a file of src/app names an HTTP endpoint: routes belong to src/serve/serve_routes.c"
-    fail=1
+    bad "a file of src/app names an HTTP endpoint (above): routes belong to src/serve/serve_routes.c"
+else
+    ok "src/app names no endpoint"
 fi
-echo "serve floor: $n file(s) of src/serve checked, src/app names no endpoint"
-exit $fail
+finish serve-floor

@@ -7,42 +7,19 @@
 set -u
 hv=$(realpath "$1")
 src=$(realpath "$2")
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-ok() { echo "ok: $*"; }
-
-command -v curl >/dev/null || { echo "SKIP: curl is not installed"; exit 77; }
-command -v python3 >/dev/null || { echo "SKIP: python3 is not installed"; exit 77; }
-. "$(dirname "$0")/../lib/wait.sh"
+. "$(dirname "$0")/../lib.sh"
+. "$(dirname "$0")/serve_lib.sh"
+need curl python3
 curl() { command curl --max-time 60 "$@"; } # every request has a deadline
 
-T=$(mktemp -d)
-srv=
-cleanup() {
-    [ -n "$srv" ] && kill -9 "$srv" 2>/dev/null
-    rm -rf "$T"
-}
-trap cleanup EXIT
-trap 'exit 1' INT TERM
-
+T=$tmp
 mkdir -p "$T/scenes"
 cp "$src/forc_preisach.scene" "$src/style.scene" "$T/scenes/"
-cd "$T" || exit 1
-"$hv" serve scenes --port 0 >"$T/serve.out" 2>"$T/serve.err" &
-srv=$!
-got_port() { port=$(sed -n 's|.*http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$T/serve.out"); [ -n "$port" ] || ! alive $srv; }
-wait_until 30 "URL printed by serve" got_port
-if ! alive $srv; then
-    wait_pid $srv 5 "serve"; rc=$?
-    srv=
-    [ $rc -eq 3 ] && grep -q "libmicrohttpd" "$T/serve.err" && { echo "SKIP: built without libmicrohttpd"; exit 77; }
-    fail "serve exited $rc at start: $(cat "$T/serve.err")"
-    exit 1
-fi
-base="http://127.0.0.1:$port"
+cd "$T" || fatal "cannot cd to $T"
+serve_start "$hv" serve scenes --port 0
 
 curl -s -o "$T/scene.json" "$base/api/scene?scene=forc_preisach.scene"
-python3 - "$T/scene.json" <<'PY' && ok "controls list forc.sf (3) and forc.curves (80) as sliders" || fail "controls: $(head -c 600 "$T/scene.json")"
+python3 - "$T/scene.json" <<'PY' && ok "controls list forc.sf (3) and forc.curves (80) as sliders" || bad "controls: $(head -c 600 "$T/scene.json")"
 import json, sys
 j = json.load(open(sys.argv[1]))
 keys = {c["key"]: c for c in j["controls"]}
@@ -52,18 +29,16 @@ PY
 
 # a changed sf re-renders: serve's CSV is data --set's, and differs from sf = 3's
 code=$(curl -s -o "$T/sf2.csv" -w "%{http_code}" "$base/api/render?scene=forc_preisach.scene&set=forc.sf%3D2&fmt=csv")
-[ "$code" = 200 ] && ok "sf = 2 accepted" || fail "sf = 2: HTTP $code $(head -c 300 "$T/sf2.csv")"
+[ "$code" = 200 ] && ok "sf = 2 accepted" || bad "sf = 2: HTTP $code $(head -c 300 "$T/sf2.csv")"
 curl -s -o "$T/sf3.csv" "$base/api/render?scene=forc_preisach.scene&fmt=csv"
-"$hv" data scenes/forc_preisach.scene --set forc.sf=2 -o "$T/want2.csv" || fail "data --set forc.sf=2"
+"$hv" data scenes/forc_preisach.scene --set forc.sf=2 -o "$T/want2.csv" || bad "data --set forc.sf=2"
 cmp -s "$T/sf2.csv" "$T/want2.csv" && ok "csv for sf = 2 from serve == data --set forc.sf=2" ||
-    fail "csv for sf = 2 differs from data --set"
+    bad "csv for sf = 2 differs from data --set"
 [ -s "$T/sf3.csv" ] && ! cmp -s "$T/sf2.csv" "$T/sf3.csv" && ok "sf = 2 renders another distribution than sf = 3" ||
-    fail "sf = 2 gave the same CSV as sf = 3"
+    bad "sf = 2 gave the same CSV as sf = 3"
 # a value out of the key's range is refused as for any key
 code=$(curl -s -o /dev/null -w "%{http_code}" "$base/api/render?scene=forc_preisach.scene&set=forc.sf%3D0.5&fmt=csv")
-[ "$code" = 422 ] || [ "$code" = 400 ] && ok "sf = 0.5 refused ($code)" || fail "sf = 0.5: HTTP $code"
+[ "$code" = 422 ] || [ "$code" = 400 ] && ok "sf = 0.5 refused ($code)" || bad "sf = 0.5: HTTP $code"
 
-kill -INT $srv
-wait_pid $srv 60 "serve after SIGINT"
-srv=
-[ $fails -eq 0 ]
+serve_stop
+finish serve-forc

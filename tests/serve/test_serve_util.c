@@ -13,16 +13,10 @@
 
 #include "scene_fit.h"
 #include "serve_util.h"
-#include "../tmpdir.h"
+#include "../hy_test.h"
 
-static int fails;
-#define CHECK(c)                                                         \
-    do {                                                                 \
-        if (!(c)) {                                                      \
-            fprintf(stderr, "%s:%d: FAIL: %s\n", __FILE__, __LINE__, #c); \
-            fails++;                                                     \
-        }                                                                \
-    } while (0)
+/* the test's check: tests/hy_test.h's, naming the condition */
+#define CHECK(c) HY_CHECK(c, "%s", #c)
 
 static const char *json(const char *s)
 {
@@ -239,7 +233,5 @@ int main(void)
     rmdir(sub);
     unlink(path);
     rmdir(dir);
-    if (fails)
-        fprintf(stderr, "%d failure(s)\n", fails);
-    return fails != 0;
+    return hy_test_finish("serve-util");
 }
