@@ -213,6 +213,7 @@ class _Section:
         # strings go to the library's --set parser as "section.key=value"
         lines = [f"[{self.section}]", f"kind = {kind}"] + [f"{k} = {_fmt(v)}" for k, v in params.items() if _typed(v)]
         self._text = "\n".join(lines) + "\n"  # the section as scene text, made once
+        self._btext = self._text.encode()  # and as the library reads it (steady_loop's call)
         self._sets = [f"{self.section}.{k}={_set_value(f'{self.section}.{k}', v)}".encode()
                       for k, v in params.items() if not _typed(v)]
 
@@ -576,7 +577,7 @@ def _run(scene: PathLike, enc: Sequence[bytes], max_work: float = 0.0) -> Result
     err = _lib.Error()
     if isinstance(scene, str) and "\n" in scene:
         text = scene.encode()
-        rc = _lib.from_text(b"<python>/scene.scene", text, len(text), arr, len(enc), max_work, ctypes.byref(h),
+        rc = _lib.from_text(_PY_NAME, text, len(text), arr, len(enc), max_work, ctypes.byref(h),
                             ctypes.byref(err))
     else:
         path = _readable(scene)
@@ -675,6 +676,16 @@ def _scene_bytes(model_text: str, inp_text: str, series: str, points: int, cycle
             + series).encode()
 
 
+# steady_loop's hot path: the library call, numpy.empty, the scene name of the
+# package's calls, the least [compute] points (the schema's)
+_steady = _lib.steady_loop
+_empty = np.empty
+_addressof = ctypes.addressof
+_c_char = ctypes.c_char
+_PY_NAME = b"<python>/scene.scene"
+_POINTS_MIN = int(next(k["min"] for k in _SECTIONS["compute"]["keys"] if k["name"] == "points"))
+
+
 def _array(p: Any, n: int) -> Array:
     """A copy of n doubles at the C pointer p (one memmove into a new array;
     np.ctypeslib.as_array costs tens of µs a call)."""
@@ -691,7 +702,7 @@ def _tuy(text: Union[str, bytes], points: int, sets: Sequence[bytes] = ()) -> Tu
     b = text.encode() if isinstance(text, str) else text
     h = ctypes.c_void_p()
     err = _lib.Error()
-    _check(_lib.from_text(b"<python>/scene.scene", b, len(b), _carray(sets) if sets else None, len(sets), 0.0,
+    _check(_lib.from_text(_PY_NAME, b, len(b), _carray(sets) if sets else None, len(sets), 0.0,
                           ctypes.byref(h), ctypes.byref(err)), err)
     try:
         cap = points + 1
@@ -1048,8 +1059,23 @@ def steady_loop(model: Model, input: Input, points: int = 2000) -> Tuple[Array, 
     >>> t.shape, float(y[0]) == float(y[-1])
     ((201,), True)
     """
-    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), "[series y]\ndata = ysteady\n", points), points,
-                _sets_of(model, input))
+    n = int(points) + 1
+    if n <= _POINTS_MIN:
+        raise SceneError(1, f"steady_loop: 'points' in [compute] must be >= {_POINTS_MIN}, got {n - 1}")
+    out = _empty((3, n))
+    a = _addressof(_c_char.from_buffer(out))  # type: ignore[arg-type]  # (a buffer; a third of out.ctypes.data)
+    sets = model._sets + input._sets
+    # err NULL: the message is asked for only where the call failed (the same
+    # call again, as the library is deterministic), so the usual call makes no
+    # hy_error; the GIL is released for the call
+    rc = _steady(_PY_NAME, model._btext, input._btext, _carray(sets) if sets else None, len(sets), n - 1,
+                 a, a + 8 * n, a + 16 * n, None)
+    if rc:
+        err = _lib.Error()
+        _steady(_PY_NAME, model._btext, input._btext, _carray(sets) if sets else None, len(sets), n - 1,
+                None, None, None, ctypes.byref(err))
+        _check(rc, err)
+    return out[0], out[1], out[2]
 
 
 def limit(model: Model, input: Input, points: int = 2000, cycles: int = 1) -> Tuple[Array, Array, Array]:

@@ -4,13 +4,10 @@ computed in C on several threads (libhystviz's hy_sweep_npy; the GIL is
 released during the call), nothing written to disk (docs/STUDIES.md,
 issue 37)."""
 import ctypes
-import io
 import os
 from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union, cast
 
 import numpy as np
-import numpy.lib.format as npy_format
-import numpy.lib.recfunctions as rfn
 
 from . import _lib
 
@@ -153,6 +150,11 @@ def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequen
               ctypes.byref(buf), ctypes.byref(n), ctypes.byref(err))
     if rc:
         raise SweepError("hystviz.sweep: " + err.msg.decode("utf-8", "replace"))
+    # here, not at import: numpy.lib.recfunctions imports numpy.ma, which
+    # `import hystviz` would pay for every time (tests/bench/bench_import.py)
+    import io
+    import numpy.lib.format as npy_format
+    import numpy.lib.recfunctions as rfn
     try:
         raw = (ctypes.c_char * n.value).from_address(buf.value or 0)
         head = memoryview(raw)
