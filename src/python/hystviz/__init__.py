@@ -29,13 +29,18 @@ import functools
 import json
 import math
 import os
-from typing import TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Type, Union
-
 import numpy as np
 
 from . import _lib
 
-if TYPE_CHECKING:  # numpy.typing only for the checker: import hystviz stays fast
+# typing and numpy.typing only for the checker (annotations are not evaluated:
+# `from __future__ import annotations`): `import typing` was half of what
+# `import hystviz` cost beyond NumPy (tests/bench/bench_import.py); mypy
+# takes the name TYPE_CHECKING as true wherever it is defined
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Type, Union
+
     import numpy.typing as npt
     Array = npt.NDArray[Any]
     ArrayLike = npt.ArrayLike

@@ -10,9 +10,14 @@ Where the library is looked up, first found wins:
      leaves it: the dynamic loader's own search, no ldconfig or compiler run
      (ctypes.util.find_library runs both and costs 0.15-0.5 s an import).
 """
+from __future__ import annotations
+
 import ctypes
 import os
-from typing import Any, List
+
+TYPE_CHECKING = False  # typing for the checker only (hystviz/__init__.py says why)
+if TYPE_CHECKING:
+    from typing import Any, List
 
 _here = os.path.dirname(os.path.abspath(__file__))
 SONAME = "libhystviz.so.0"

@@ -3,9 +3,15 @@
 computed in C on several threads (libhystviz's hy_sweep_npy; the GIL is
 released during the call), nothing written to disk (docs/STUDIES.md,
 issue 37)."""
+from __future__ import annotations
+
 import ctypes
 import os
-from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union, cast
+from collections.abc import Mapping
+
+TYPE_CHECKING = False  # typing for the checker only (hystviz/__init__.py says why)
+if TYPE_CHECKING:
+    from typing import Any, Iterable, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -168,6 +174,7 @@ def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequen
         for c in cols:
             if c not in dtype.names:
                 raise SweepError(f"hystviz.sweep: unknown column {c!r} (the columns: {', '.join(dtype.names)})")
-        return cast("np.ndarray[Any, Any]", rfn.repack_fields(data[cols]))
+        packed: np.ndarray[Any, Any] = rfn.repack_fields(data[cols])
+        return packed
     finally:
         _lib.libc.free(buf)
