@@ -115,11 +115,12 @@ with tempfile.TemporaryDirectory() as tmp:
             check(ok, f"steady_loop({mm!r}, {ii!r}, points={pts}) as before: "
                       f"{'refused alike' if isinstance(old, Exception) else 'bit for bit'}")
     check(same >= 24 and refused_same == 6, f"{same} computed cases bit for bit, {refused_same} refused alike")
-    try:
-        hystviz.steady_loop(m, bim, points=1)
-        check(False, "points = 1 refused")
-    except hystviz.SceneError as e:
-        check("'points'" in str(e) and ">= 2" in str(e), f"points = 1 refused: {e}")
+    for bad in (1, -5, 10**7 + 1, 10**15):  # the schema's range 2 to 10^7, checked before any array is made
+        try:
+            hystviz.steady_loop(m, bim, points=bad)
+            check(False, f"points = {bad} refused")
+        except hystviz.SceneError as e:
+            check("'points'" in str(e) and "2 to 10000000" in str(e), f"points = {bad} refused: {e}")
     # the copy retries with the size the library reports when its first guess is short
     t2, u2, y2 = hystviz._tuy(hystviz._scene(m, u, "[series y]\ndata = ysteady\n", 200), 10)
     check(np.array_equal(t2, t) and np.array_equal(u2, uu) and np.array_equal(y2, y),

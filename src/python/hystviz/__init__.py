@@ -682,13 +682,14 @@ def _scene_bytes(model_text: str, inp_text: str, series: str, points: int, cycle
 
 
 # steady_loop's hot path: the library call, numpy.empty, the scene name of the
-# package's calls, the least [compute] points (the schema's)
+# package's calls, the range of [compute] points (the schema's)
 _steady = _lib.steady_loop
 _empty = np.empty
 _addressof = ctypes.addressof
 _c_char = ctypes.c_char
 _PY_NAME = b"<python>/scene.scene"
-_POINTS_MIN = int(next(k["min"] for k in _SECTIONS["compute"]["keys"] if k["name"] == "points"))
+_POINTS_SPEC = next(k for k in _SECTIONS["compute"]["keys"] if k["name"] == "points")
+_POINTS_MIN, _POINTS_MAX = int(_POINTS_SPEC["min"]), int(_POINTS_SPEC["max"])
 
 
 def _array(p: Any, n: int) -> Array:
@@ -1054,7 +1055,8 @@ def steady_loop(model: Model, input: Input, points: int = 2000) -> Tuple[Array, 
     Raises
     ------
     SceneError
-        A key out of its range, or a model and input the library refuses.
+        A key out of its range, points out of [compute] points' range, or a
+        model and input the library refuses.
 
     Examples
     --------
@@ -1065,8 +1067,8 @@ def steady_loop(model: Model, input: Input, points: int = 2000) -> Tuple[Array, 
     ((201,), True)
     """
     n = int(points) + 1
-    if n <= _POINTS_MIN:
-        raise SceneError(1, f"steady_loop: 'points' in [compute] must be >= {_POINTS_MIN}, got {n - 1}")
+    if not _POINTS_MIN < n <= _POINTS_MAX + 1:  # before the arrays are made
+        raise SceneError(1, f"steady_loop: 'points' in [compute] must be {_POINTS_MIN} to {_POINTS_MAX}, got {n - 1}")
     out = _empty((3, n))
     a = _addressof(_c_char.from_buffer(out))  # type: ignore[arg-type]  # (a buffer; a third of out.ctypes.data)
     sets = model._sets + input._sets
