@@ -675,7 +675,7 @@ def _scene_bytes(model_text: str, inp_text: str, series: str, points: int, cycle
                  kind: str = "timeseries") -> bytes:
     """_scene's text, encoded, made once for each combination (a Model's and
     an Input's text is fixed when they are made): a repeated call with the
-    same arguments does no string work (the call-overhead benchmark)."""
+    same arguments does no string work (limit, ygamma, kcycles)."""
     return (model_text + inp_text + f"[compute]\npoints = {int(points)}\ncycles = {int(cycles)}\n"
             + extra + f"[figure]\nkind = {kind}\n" + ("[series u]\ndata = input\n" if kind == "timeseries" else "")
             + series).encode()
@@ -703,8 +703,8 @@ def _array(p: Any, n: int) -> Array:
 def _tuy(text: Union[str, bytes], points: int, sets: Sequence[bytes] = ()) -> Tuple[Array, Array, Array]:
     """(t, u, y) of a _scene: series 0 is the input, series 1 the output, on
     the same grid; straight through the C calls, no Result, one copy of each
-    series into one (3, n) array (the short path of the call-overhead
-    benchmark: a few µs over the C call, tests/bench/bench_python.py)."""
+    series into one (3, n) array (limit, ygamma, kcycles; steady_loop is
+    one call of hy_steady_loop, which does this in C)."""
     b = text.encode() if isinstance(text, str) else text
     h = ctypes.c_void_p()
     err = _lib.Error()
