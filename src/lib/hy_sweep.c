@@ -1026,6 +1026,9 @@ int hy_sweep_npy(const char *path, const char *const *sets, size_t nsets, const 
                  const double *const *values, const size_t *counts, size_t naxes, long shard_k, long shard_n,
                  long jobs, double max_work, unsigned char **npy, size_t *len, hy_error *err)
 {
+    hy_error own; /* err may be NULL; the scene's loading reads back its messages (as hystviz.c's ERR_OWN) */
+    if (!err)
+        err = &own;
     if (npy)
         *npy = NULL;
     if (len)

@@ -19,6 +19,14 @@
 #include "scene_model.h"
 #include "scene_run.h"
 
+/* err may always be NULL (hystviz.h, "Pointers"), but the pipeline reads
+ * back the messages it writes (to prefix file:line:col): an entry point that
+ * runs it gives it one on its own frame when the caller gave none. */
+#define ERR_OWN(err)                                                                                                   \
+    hy_error err##_own;                                                                                                \
+    if (!(err))                                                                                                        \
+    (err) = &err##_own
+
 struct hy_result {
     hy_scene_run run;
     char *name; /* run.path points here */
@@ -49,6 +57,18 @@ static int compute(hy_result *r, hy_result **out, hy_error *err)
     return finish(r, rc, out);
 }
 
+/* The overrides of an entry point fn: sets may be NULL only when nsets is 0,
+ * no sets[i] is NULL; 0, or HY_EINVAL with the message. */
+static int sets_check(const char *fn, const char *const *sets, size_t nsets, hy_error *err)
+{
+    if (!sets && nsets)
+        return hy_error_set(err, HY_EINVAL, "%s: sets is NULL but nsets is %zu", fn, nsets);
+    for (size_t i = 0; i < nsets; i++)
+        if (!sets[i])
+            return hy_error_set(err, HY_EINVAL, "%s: override sets[%zu] is NULL", fn, i);
+    return HY_OK;
+}
+
 /* The arguments every entry point that makes a result checks (hystviz.h,
  * "Pointers"): 0, or HY_EINVAL with the message. */
 static int args_check(const char *what, const void *src, const char *const *sets, size_t nsets, double max_work,
@@ -61,11 +81,9 @@ static int args_check(const char *what, const void *src, const char *const *sets
     if (!src)
         return hy_error_set(err, HY_EINVAL, "hy_result_from_%s: no scene %s (NULL)", what,
                             strcmp(what, "file") ? "text" : "path");
-    if (!sets && nsets)
-        return hy_error_set(err, HY_EINVAL, "hy_result_from_%s: sets is NULL but nsets is %zu", what, nsets);
-    for (size_t i = 0; i < nsets; i++)
-        if (!sets[i])
-            return hy_error_set(err, HY_EINVAL, "hy_result_from_%s: override sets[%zu] is NULL", what, i);
+    int rc = sets_check(strcmp(what, "file") ? "hy_result_from_text" : "hy_result_from_file", sets, nsets, err);
+    if (rc)
+        return rc;
     if (!isfinite(max_work))
         return hy_error_set(err, HY_EINVAL, "hy_result_from_%s: the work budget max_work must be a finite number "
                             "(<= 0: the default), got %g", what, max_work);
@@ -95,6 +113,7 @@ static hy_scene_policy policy(double max_work)
 int hy_result_from_text(const char *name, const char *text, size_t len, const char *const *sets, size_t nsets,
                         double max_work, hy_result **out, hy_error *err)
 {
+    ERR_OWN(err);
     int bad = args_check("text", text, sets, nsets, max_work, out, err);
     if (bad)
         return bad;
@@ -109,6 +128,7 @@ int hy_result_from_text(const char *name, const char *text, size_t len, const ch
 int hy_result_from_file(const char *path, const char *const *sets, size_t nsets, double max_work, hy_result **out,
                         hy_error *err)
 {
+    ERR_OWN(err);
     int bad = args_check("file", path, sets, nsets, max_work, out, err);
     if (bad)
         return bad;
@@ -194,6 +214,7 @@ const hy_loops *hy_result_loops(const hy_result *r)
 
 int hy_result_render(const hy_result *r, const char *format, unsigned char **bytes, size_t *len, hy_error *err)
 {
+    ERR_OWN(err);
     if (bytes)
         *bytes = NULL;
     if (len)
@@ -214,6 +235,7 @@ int hy_result_render(const hy_result *r, const char *format, unsigned char **byt
 
 int hy_result_csv(const hy_result *r, char **text, size_t *len, hy_error *err)
 {
+    ERR_OWN(err);
     if (text)
         *text = NULL;
     if (len)
@@ -236,6 +258,55 @@ int hy_boucwen_run(const double *u, size_t n, double fs, double *y, hy_error *er
     if (!(fs > 0) || !isfinite(fs))
         return hy_error_set(err, HY_EINVAL, "fs must be a positive number of Hz, got %g", fs);
     return hy_boucwen_synth(&p, &o, fs, 1, 1, u, n, y, err);
+}
+
+/* The scene of hy_steady_loop after its two sections: one period at points
+ * samples, the input and y° as the series 0 and 1 of a time series. */
+#define STEADY_TAIL                                                                                                    \
+    "[compute]\npoints = %zu\ncycles = 1\n[figure]\nkind = timeseries\n[series u]\ndata = input\n"                     \
+    "[series y]\ndata = ysteady\n"
+
+int hy_steady_loop(const char *name, const char *model, const char *input, const char *const *sets, size_t nsets,
+                   size_t points, double *t, double *u, double *y, hy_error *err)
+{
+    if (!model || !input)
+        return hy_error_set(err, HY_EINVAL, "hy_steady_loop: no [%s] text (NULL)", model ? "input" : "model");
+    int bad = sets_check("hy_steady_loop", sets, nsets, err);
+    if (bad)
+        return bad;
+    /* model, a line break if it has none at its end, input, one, the tail */
+    size_t lm = strlen(model), li = strlen(input);
+    size_t cap = lm + li + 2 + sizeof STEADY_TAIL + 20; /* %zu: at most 20 digits */
+    char *text = malloc(cap), *p = text;
+    if (!text)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    memcpy(p, model, lm);
+    p += lm;
+    if (lm && model[lm - 1] != '\n')
+        *p++ = '\n';
+    memcpy(p, input, li);
+    p += li;
+    if (li && input[li - 1] != '\n')
+        *p++ = '\n';
+    size_t head = (size_t)(p - text);
+    int tail = snprintf(p, cap - head, STEADY_TAIL, points);
+    hy_result *r = NULL;
+    int rc = tail < 0 ? hy_error_set(err, HY_EINVAL, "hy_steady_loop: cannot write the scene")
+                      : hy_result_from_text(name, text, head + (size_t)tail, sets, nsets, 0, &r, err);
+    free(text);
+    if (rc)
+        return rc;
+    /* the input's and y°'s series are sampled on the one grid of points + 1 (src/pipeline/scene_run.c) */
+    size_t n = points + 1;
+    if (hy_result_nseries(r) != 2 || hy_result_series_copy(r, 0, NULL, NULL, 0) != n ||
+        hy_result_series_copy(r, 1, NULL, NULL, 0) != n)
+        rc = hy_error_set(err, HY_ENUM, "hy_steady_loop: the input and y° are not sampled on %zu points", n);
+    else {
+        hy_result_series_copy(r, 0, t, u, n);
+        hy_result_series_copy(r, 1, NULL, y, n);
+    }
+    hy_result_free(r);
+    return rc;
 }
 
 int hy_write_file(const char *path, const void *data, size_t len, hy_error *err)
@@ -408,6 +479,7 @@ struct hy_scene_fitted {
 int hy_fit_scene(const char *path, const char *const *free_keys, size_t nfree, const char *const *data, size_t ndata,
                  size_t starts, unsigned long long seed, int jobs, hy_scene_fitted **out, hy_error *err)
 {
+    ERR_OWN(err);
     if (out)
         *out = NULL;
     if (!out)

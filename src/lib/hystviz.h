@@ -151,6 +151,26 @@ int hy_result_render(const hy_result *r, const char *format, unsigned char **byt
  * r NULL is an error. */
 int hy_result_csv(const hy_result *r, char **text, size_t *len, hy_error *err);
 
+/* The steady state y° of a model under a periodic input over one period
+ * (docs/SCENES.md, data = ysteady): time t (s), the input u and the output
+ * y at the points + 1 samples t_i = i T / points, both ends included, into
+ * arrays of points + 1 doubles the caller owns; bit for bit what `hystviz
+ * data` prints for the scene of the two sections with [compute] points =
+ * points and the series data = input and data = ysteady, and what the Python
+ * package's steady_loop returns (it is this call).  model and input are the
+ * scene text of the [model] and [input] sections, each from its header line
+ * ("[model]\nkind = lugre\nsigma0 = 6\n"); the nsets overrides
+ * "section.key=value" apply after them; name as for hy_result_from_text.
+ * points is checked as the scene's [compute] points (its range in
+ * docs/SCENES.md).  Errors: HY_EINVAL with file:line:col for a key, a value
+ * or a points the scene refuses, any status of hy_result_from_text; on error
+ * t, u and y are not written.
+ * Pointers: name may be NULL ("<scene>"); model and input must not be NULL;
+ * sets may be NULL only when nsets is 0, and each sets[i] must not be NULL;
+ * t, u and y may each be NULL (that array is not written). */
+int hy_steady_loop(const char *name, const char *model, const char *input, const char *const *sets, size_t nsets,
+                   size_t points, double *t, double *u, double *y, hy_error *err);
+
 /* Writes the len bytes at data to path through hystviz's one output writer
  * (hy_out, as every file `hystviz` writes): a temporary beside the target
  * made with O_EXCL under a random name, renamed onto path when complete, so

@@ -36,19 +36,29 @@ static int prepare_defaults(hy_scene *s, hy_error *err)
     s->defaults = calloc(total, sizeof *s->defaults);
     if (!s->defaults)
         return hy_error_set(err, HY_ENOMEM, "out of memory preparing scene defaults");
-    for (size_t i = 0; i < nsec; i++)
+    for (size_t i = 0; i < nsec; i++) {
+        /* "[name]" once a section, by hand: this runs for every scene made
+           (hy_steady_loop's every call), and printf is slow where a printf
+           hook is registered (libquadmath, loaded with NumPy) */
+        char where[64];
+        size_t l = 0;
+        while (sec[i].name[l] && l < sizeof where - 3)
+            l++;
+        where[0] = '[';
+        memcpy(where + 1, sec[i].name, l);
+        memcpy(where + 1 + l, "]", 2);
         for (size_t j = 0; j < sec[i].nkeys; j++) {
             const hy_scene_key_spec *k = &sec[i].keys[j];
-            char msg[256], where[64];
+            char msg[256];
             int col = 0;
             if (!k->def)
                 continue;
-            snprintf(where, sizeof where, "[%s]", sec[i].name);
             if (hy__value_parse(k, where, NULL, k->def, strlen(k->def), 1,
                                 &s->defaults[s->defoff[i] + j], &col, msg, sizeof msg))
                 return hy_error_set(err, HY_EINVAL, "schema default of %s.%s is invalid: %s",
                                     sec[i].name, k->name, msg);
         }
+    }
     return HY_OK;
 }
 

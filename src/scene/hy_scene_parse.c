@@ -129,14 +129,20 @@ static const seen *find_seen(const fstate *fs, size_t sec, int key)
     return x->sec ? x : NULL;
 }
 
+/* "[section]" or "[section NAME]" into buf (n >= 2 bytes, cut to fit, the
+ * ']' kept).  By hand, not snprintf: it runs for every key of every scene
+ * (each hy_steady_loop call), and printf is slow in a process where a printf
+ * hook is registered (libquadmath, which NumPy loads). */
 static void section_label(const hy_scene *s, size_t si, char *buf, size_t n)
 {
     const hy__section *x = &s->secs[si];
-    const char *name = hy_scene_schema(NULL)[x->spec].name;
-    if (x->name)
-        snprintf(buf, n, "[%s %s]", name, x->name);
-    else
-        snprintf(buf, n, "[%s]", name);
+    const char *parts[4] = {"[", hy_scene_schema(NULL)[x->spec].name, x->name ? " " : "", x->name ? x->name : ""};
+    size_t k = 0;
+    for (int i = 0; i < 4; i++)
+        for (const char *p = parts[i]; *p && k + 2 < n; p++)
+            buf[k++] = *p;
+    buf[k++] = ']';
+    buf[k] = '\0';
 }
 
 static int is_ident(int ch)

@@ -88,7 +88,7 @@ if command -v man >/dev/null; then
     (cd / && MANPATH="$P/share/man" timeout 60 man -P cat hystviz-sweep 2>/dev/null) | grep -q "hystviz-sweep" &&
         ok "man hystviz-sweep opens the installed page" || bad "man hystviz-sweep"
     # libhystviz's reference: a page per function (tools/gen_ref.py)
-    for f in hy_steady_init hy_loops_find hy_result_from_file; do
+    for f in hy_steady_init hy_loops_find hy_result_from_file hy_steady_loop; do
         (cd / && MANPATH="$P/share/man" timeout 60 man -P cat "$f" 2>/dev/null) | grep -q "^SYNOPSIS" &&
             ok "man $f opens the installed page" || bad "man $f"
     done

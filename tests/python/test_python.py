@@ -73,6 +73,54 @@ with tempfile.TemporaryDirectory() as tmp:
                      ("kcycles", lambda: hystviz.kcycles(m, u, 2, points=100))):
         tt, _, yy = fn()
         check(tt.size == 101 and np.all(np.isfinite(tt)) and np.all(np.isfinite(yy)), f"{name}: 101 finite samples")
+    # steady_loop is one call of hy_steady_loop (issue 35): bit for bit what
+    # its previous implementation returned, the scene of the same sections
+    # through hy_result_from_text (_tuy over _scene_bytes, which limit, ygamma
+    # and kcycles still use): exact equality, as both must be the one
+    # computation of the library; every model kind with a steady state,
+    # inputs of every shape, a string key (input file), point counts from
+    # the least the schema allows; a refused one raises the same SceneError
+    upath2 = os.path.join(tmp, "u2.csv")
+    with open(upath2, "w") as f:
+        f.write("0,0\n0.5,1\n1,0.25\n1.5,0.75\n2,0\n")
+    bim = hystviz.Input("bimodal", umin1=0, umin2=0.5, umax1=1, umax2=1.5)
+    cases = [(m, bim), (hystviz.Model("lugre", sigma0=1e5), hystviz.Input("sine", amp=2)),
+             (hystviz.Model("dahl", rho=3, fc=0.7), hystviz.Input("multimodal", extrema=[0, 1, 0.3, 0.8])),
+             (hystviz.Model("dahl-filter", rho=2, fc=1, tau=0.3), hystviz.Input("triangle")),
+             (hystviz.Model("jiles-atherton", ja_ms=1.6e6, ja_a=1100, ja_k=400, ja_c=0.2, ja_alpha=1.6e-3),
+              hystviz.Input("bimodal", umin1=-1500, umin2=-1100, umax1=500, umax2=1500, t=[1, 2.2, 3.2, 5],
+                            shape="cosine")),
+             (hystviz.Model("preisach"), bim), (hystviz.Model("preisach"), hystviz.Input("file", file=upath2)),
+             (hystviz.Model("boucwen-operator", bw_beta=1, bw_gamma=0.5, delta=0.5), hystviz.Input("sine")),
+             (hystviz.Model("play", play_r=0.2), hystviz.Input("file", file=upath2)),
+             (hystviz.Model("lugre", sigma0=-1), bim), (m, hystviz.Input("multisine"))]
+    same = refused_same = 0
+    for mm, ii in cases:
+        for pts in (2, 37, 200):
+            try:
+                new = hystviz.steady_loop(mm, ii, points=pts)
+            except hystviz.SceneError as e:
+                new = e
+            try:
+                old = hystviz._tuy(hystviz._scene_bytes(mm.scene_text(), ii.scene_text(), "[series y]\ndata = ysteady\n",
+                                                        pts), pts, hystviz._sets_of(mm, ii))
+            except hystviz.SceneError as e:
+                old = e
+            if isinstance(old, Exception) or isinstance(new, Exception):
+                ok = type(old) is type(new) and str(old) == str(new) and old.code == new.code
+                refused_same += ok
+            else:
+                ok = all(a.shape == (pts + 1,) and a.tobytes() == b.tobytes() for a, b in zip(new, old))
+                same += ok
+            check(ok, f"steady_loop({mm!r}, {ii!r}, points={pts}) as before: "
+                      f"{'refused alike' if isinstance(old, Exception) else 'bit for bit'}")
+    check(same >= 24 and refused_same == 6, f"{same} computed cases bit for bit, {refused_same} refused alike")
+    for bad in (1, -5, 10**7 + 1, 10**15):  # the schema's range 2 to 10^7, checked before any array is made
+        try:
+            hystviz.steady_loop(m, bim, points=bad)
+            check(False, f"points = {bad} refused")
+        except hystviz.SceneError as e:
+            check("'points'" in str(e) and "2 to 10000000" in str(e), f"points = {bad} refused: {e}")
     # the copy retries with the size the library reports when its first guess is short
     t2, u2, y2 = hystviz._tuy(hystviz._scene(m, u, "[series y]\ndata = ysteady\n", 200), 10)
     check(np.array_equal(t2, t) and np.array_equal(u2, uu) and np.array_equal(y2, y),

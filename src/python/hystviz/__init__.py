@@ -29,13 +29,18 @@ import functools
 import json
 import math
 import os
-from typing import TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Type, Union
-
 import numpy as np
 
 from . import _lib
 
-if TYPE_CHECKING:  # numpy.typing only for the checker: import hystviz stays fast
+# typing and numpy.typing only for the checker (annotations are not evaluated:
+# `from __future__ import annotations`): `import typing` was half of what
+# `import hystviz` cost beyond NumPy (tests/bench/bench_import.py); mypy
+# takes the name TYPE_CHECKING as true wherever it is defined
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Type, Union
+
     import numpy.typing as npt
     Array = npt.NDArray[Any]
     ArrayLike = npt.ArrayLike
@@ -213,6 +218,7 @@ class _Section:
         # strings go to the library's --set parser as "section.key=value"
         lines = [f"[{self.section}]", f"kind = {kind}"] + [f"{k} = {_fmt(v)}" for k, v in params.items() if _typed(v)]
         self._text = "\n".join(lines) + "\n"  # the section as scene text, made once
+        self._btext = self._text.encode()  # and as the library reads it (steady_loop's call)
         self._sets = [f"{self.section}.{k}={_set_value(f'{self.section}.{k}', v)}".encode()
                       for k, v in params.items() if not _typed(v)]
 
@@ -576,7 +582,7 @@ def _run(scene: PathLike, enc: Sequence[bytes], max_work: float = 0.0) -> Result
     err = _lib.Error()
     if isinstance(scene, str) and "\n" in scene:
         text = scene.encode()
-        rc = _lib.from_text(b"<python>/scene.scene", text, len(text), arr, len(enc), max_work, ctypes.byref(h),
+        rc = _lib.from_text(_PY_NAME, text, len(text), arr, len(enc), max_work, ctypes.byref(h),
                             ctypes.byref(err))
     else:
         path = _readable(scene)
@@ -669,10 +675,21 @@ def _scene_bytes(model_text: str, inp_text: str, series: str, points: int, cycle
                  kind: str = "timeseries") -> bytes:
     """_scene's text, encoded, made once for each combination (a Model's and
     an Input's text is fixed when they are made): a repeated call with the
-    same arguments does no string work (the call-overhead benchmark)."""
+    same arguments does no string work (limit, ygamma, kcycles)."""
     return (model_text + inp_text + f"[compute]\npoints = {int(points)}\ncycles = {int(cycles)}\n"
             + extra + f"[figure]\nkind = {kind}\n" + ("[series u]\ndata = input\n" if kind == "timeseries" else "")
             + series).encode()
+
+
+# steady_loop's hot path: the library call, numpy.empty, the scene name of the
+# package's calls, the range of [compute] points (the schema's)
+_steady = _lib.steady_loop
+_empty = np.empty
+_addressof = ctypes.addressof
+_c_char = ctypes.c_char
+_PY_NAME = b"<python>/scene.scene"
+_POINTS_SPEC = next(k for k in _SECTIONS["compute"]["keys"] if k["name"] == "points")
+_POINTS_MIN, _POINTS_MAX = int(_POINTS_SPEC["min"]), int(_POINTS_SPEC["max"])
 
 
 def _array(p: Any, n: int) -> Array:
@@ -686,12 +703,12 @@ def _array(p: Any, n: int) -> Array:
 def _tuy(text: Union[str, bytes], points: int, sets: Sequence[bytes] = ()) -> Tuple[Array, Array, Array]:
     """(t, u, y) of a _scene: series 0 is the input, series 1 the output, on
     the same grid; straight through the C calls, no Result, one copy of each
-    series into one (3, n) array (the short path of the call-overhead
-    benchmark: a few µs over the C call, tests/bench/bench_python.py)."""
+    series into one (3, n) array (limit, ygamma, kcycles; steady_loop is
+    one call of hy_steady_loop, which does this in C)."""
     b = text.encode() if isinstance(text, str) else text
     h = ctypes.c_void_p()
     err = _lib.Error()
-    _check(_lib.from_text(b"<python>/scene.scene", b, len(b), _carray(sets) if sets else None, len(sets), 0.0,
+    _check(_lib.from_text(_PY_NAME, b, len(b), _carray(sets) if sets else None, len(sets), 0.0,
                           ctypes.byref(h), ctypes.byref(err)), err)
     try:
         cap = points + 1
@@ -1038,7 +1055,8 @@ def steady_loop(model: Model, input: Input, points: int = 2000) -> Tuple[Array, 
     Raises
     ------
     SceneError
-        A key out of its range, or a model and input the library refuses.
+        A key out of its range, points out of [compute] points' range, or a
+        model and input the library refuses.
 
     Examples
     --------
@@ -1048,8 +1066,23 @@ def steady_loop(model: Model, input: Input, points: int = 2000) -> Tuple[Array, 
     >>> t.shape, float(y[0]) == float(y[-1])
     ((201,), True)
     """
-    return _tuy(_scene_bytes(model.scene_text(), input.scene_text(), "[series y]\ndata = ysteady\n", points), points,
-                _sets_of(model, input))
+    n = int(points) + 1
+    if not _POINTS_MIN < n <= _POINTS_MAX + 1:  # before the arrays are made
+        raise SceneError(1, f"steady_loop: 'points' in [compute] must be {_POINTS_MIN} to {_POINTS_MAX}, got {n - 1}")
+    out = _empty((3, n))
+    a = _addressof(_c_char.from_buffer(out))  # type: ignore[arg-type]  # (a buffer; a third of out.ctypes.data)
+    sets = model._sets + input._sets
+    # err NULL: the message is asked for only where the call failed (the same
+    # call again, as the library is deterministic), so the usual call makes no
+    # hy_error; the GIL is released for the call
+    rc = _steady(_PY_NAME, model._btext, input._btext, _carray(sets) if sets else None, len(sets), n - 1,
+                 a, a + 8 * n, a + 16 * n, None)
+    if rc:
+        err = _lib.Error()
+        _steady(_PY_NAME, model._btext, input._btext, _carray(sets) if sets else None, len(sets), n - 1,
+                None, None, None, ctypes.byref(err))
+        _check(rc, err)
+    return out[0], out[1], out[2]
 
 
 def limit(model: Model, input: Input, points: int = 2000, cycles: int = 1) -> Tuple[Array, Array, Array]:

@@ -10,9 +10,14 @@ Where the library is looked up, first found wins:
      leaves it: the dynamic loader's own search, no ldconfig or compiler run
      (ctypes.util.find_library runs both and costs 0.15-0.5 s an import).
 """
+from __future__ import annotations
+
 import ctypes
 import os
-from typing import Any, List
+
+TYPE_CHECKING = False  # typing for the checker only (hystviz/__init__.py says why)
+if TYPE_CHECKING:
+    from typing import Any, List
 
 _here = os.path.dirname(os.path.abspath(__file__))
 SONAME = "libhystviz.so.0"
@@ -101,6 +106,10 @@ render = _sig("hy_result_render", ctypes.c_int, _vp, ctypes.c_char_p, ctypes.POI
 csv = _sig("hy_result_csv", ctypes.c_int, _vp, ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(_sz), _E)
 write_file = _sig("hy_write_file", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, _sz, _E)
 schema_json = _sig("hy_schema_json", ctypes.c_void_p)
+# hy_steady_loop: the arrays as addresses (c_void_p takes a numpy array's int
+# address as it is, no pointer object made per call)
+steady_loop = _sig("hy_steady_loop", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p,
+                   ctypes.POINTER(ctypes.c_char_p), _sz, _sz, _vp, _vp, _vp, _E)
 boucwen_run = _sig("hy_boucwen_run", ctypes.c_int, _dp, _sz, ctypes.c_double, _dp, _E)
 fit_scene = _sig("hy_fit_scene", ctypes.c_int, ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p), _sz,
                  ctypes.POINTER(ctypes.c_char_p), _sz, _sz, ctypes.c_ulonglong, ctypes.c_int,

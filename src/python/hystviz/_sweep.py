@@ -3,14 +3,17 @@
 computed in C on several threads (libhystviz's hy_sweep_npy; the GIL is
 released during the call), nothing written to disk (docs/STUDIES.md,
 issue 37)."""
+from __future__ import annotations
+
 import ctypes
-import io
 import os
-from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union, cast
+from collections.abc import Mapping
+
+TYPE_CHECKING = False  # typing for the checker only (hystviz/__init__.py says why)
+if TYPE_CHECKING:
+    from typing import Any, Iterable, Optional, Sequence, Tuple, Union
 
 import numpy as np
-import numpy.lib.format as npy_format
-import numpy.lib.recfunctions as rfn
 
 from . import _lib
 
@@ -153,6 +156,11 @@ def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequen
               ctypes.byref(buf), ctypes.byref(n), ctypes.byref(err))
     if rc:
         raise SweepError("hystviz.sweep: " + err.msg.decode("utf-8", "replace"))
+    # here, not at import: numpy.lib.recfunctions imports numpy.ma, which
+    # `import hystviz` would pay for every time (tests/bench/bench_import.py)
+    import io
+    import numpy.lib.format as npy_format
+    import numpy.lib.recfunctions as rfn
     try:
         raw = (ctypes.c_char * n.value).from_address(buf.value or 0)
         head = memoryview(raw)
@@ -166,6 +174,7 @@ def sweep(scene: Union[str, "os.PathLike[str]"], grid: Mapping[str, Union[Sequen
         for c in cols:
             if c not in dtype.names:
                 raise SweepError(f"hystviz.sweep: unknown column {c!r} (the columns: {', '.join(dtype.names)})")
-        return cast("np.ndarray[Any, Any]", rfn.repack_fields(data[cols]))
+        packed: np.ndarray[Any, Any] = rfn.repack_fields(data[cols])
+        return packed
     finally:
         _lib.libc.free(buf)

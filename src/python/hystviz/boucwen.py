@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import ctypes
-from typing import TYPE_CHECKING, Sequence, Union
 
 import numpy as np
 
 from . import _lib
 
+TYPE_CHECKING = False  # typing for the checker only (hystviz/__init__.py says why)
 if TYPE_CHECKING:
+    from typing import Sequence, Union
+
     import numpy.typing as npt
 
 
