@@ -70,7 +70,7 @@ static double steady_y0(const hy_input *in, double sigma0, double g0, double a)
     return -sigma0 * sum / one_minus_A;
 }
 
-int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_error *err)
+int hy_steady_init_buf(hy_steady *st, const hy_model *m, const hy_input *in, double *y_run, hy_error *err)
 {
     int rc = hy_model_validate(m, err);
     if (rc)
@@ -79,12 +79,11 @@ int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_erro
     st->sigma0 = m->sigma0;
     st->g0 = hy_model_g0(m);
     st->a = m->sigma0 / st->g0;
+    st->y_run = NULL;
     if (!isfinite(st->a) || !(st->a > 0))
         return hy_error_set(err, HY_EINVAL, "sigma0/g(0) = %g/%g is not a finite positive number", m->sigma0, st->g0);
     st->contraction = exp(-st->a * in->rho_T);
-    st->y_run = malloc((in->nruns + 1) * sizeof *st->y_run);
-    if (!st->y_run)
-        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    st->y_run = y_run;
     double y = steady_y0(in, st->sigma0, st->g0, st->a);
     for (size_t i = 0; i < in->nruns; i++) {
         const hy_run *r = &in->runs[i];
@@ -93,6 +92,22 @@ int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_erro
     }
     st->y_run[in->nruns] = st->y_run[0]; /* y°(T) = y°(0) (Theorem 2(b)) */
     return HY_OK;
+}
+
+int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_error *err)
+{
+    double *y_run = malloc((in->nruns + 1) * sizeof *y_run);
+    if (!y_run) {
+        st->y_run = NULL;
+        int rc = hy_model_validate(m, err); /* a bad model is named first, as ever */
+        return rc ? rc : hy_error_set(err, HY_ENOMEM, "out of memory");
+    }
+    int rc = hy_steady_init_buf(st, m, in, y_run, err);
+    if (rc) {
+        free(y_run);
+        st->y_run = NULL;
+    }
+    return rc;
 }
 
 void hy_steady_free(hy_steady *st)
