@@ -6,14 +6,16 @@
 #include <math.h>
 #include <stdlib.h>
 
-double hy_phi1(double x)
+/* φ1(x) and φ2(x) from e = expm1(-x), which each reads only where it needs
+ * it (φ1: x >= 1e-8, φ2: x >= 0.5): one expm1 serves both. */
+static double phi1_e(double x, double e)
 {
     if (x < 1e-8)
         return 1 - 0.5 * x;
-    return -expm1(-x) / x;
+    return -e / x;
 }
 
-double hy_phi2(double x)
+static double phi2_e(double x, double e)
 {
     if (x < 0.5) { /* Σ (-x)^n/(n+2)!, 18 terms: error < 0.5^18/20! */
         double term = 0.5, sum = 0.5;
@@ -23,7 +25,23 @@ double hy_phi2(double x)
         }
         return sum;
     }
-    return (x + expm1(-x)) / (x * x);
+    return (x + e) / (x * x);
+}
+
+/* expm1(-x) where φ1 or φ2 of x reads it, else 0 (not read) */
+static double phi_e(double x)
+{
+    return x < 1e-8 ? 0 : expm1(-x);
+}
+
+double hy_phi1(double x)
+{
+    return phi1_e(x, phi_e(x));
+}
+
+double hy_phi2(double x)
+{
+    return phi2_e(x, x < 0.5 ? 0 : expm1(-x));
 }
 
 double hy_limit_step(double a, double g0, double y, int s, double d)
@@ -35,13 +53,13 @@ double hy_limit_step(double a, double g0, double y, int s, double d)
 double hy_limit_step_area(double a, double g0, double y, int s, double d)
 {
     /* ∫_0^d (e^{-ar} y + s g0 (1 - e^{-ar})) s dr = s y d φ1(ad) + a g0 d² φ2(ad) */
-    double x = a * d, q = (a * g0) * d * d;
+    double x = a * d, q = (a * g0) * d * d, e = phi_e(x); /* φ1 and φ2 share it */
     if (isfinite(q) && x < 1e150)
-        return s * y * d * hy_phi1(x) + q * hy_phi2(x);
+        return s * y * d * phi1_e(x, e) + q * phi2_e(x, e);
     /* scaled where a g0 d² or x² (inside φ2) overflows although the area
      * fits (runs of 1e200 and more): a d² φ2(x) = d · x φ2(x) = d (1 - φ1(x)) */
-    double xphi2 = x < 0.5 ? x * hy_phi2(x) : 1 - hy_phi1(x);
-    return s * y * d * hy_phi1(x) + g0 * (d * xphi2);
+    double xphi2 = x < 0.5 ? x * phi2_e(x, e) : 1 - phi1_e(x, e);
+    return s * y * d * phi1_e(x, e) + g0 * (d * xphi2);
 }
 
 /* y°(0) = B/(1 - A) for the affine period map y ↦ A y + B.
