@@ -2,8 +2,10 @@
 /* hy_sweep.c: the engine of `hystviz sweep` (hy_sweep.h): a parameter grid's
  * points computed by a pool of threads, each point exactly as `hystviz render
  * SCENE --set KEY=VALUE ...` computes it, its row (CSV) or record (.npy,
- * docs/STUDIES.md) written in point order; and hy_sweep_npy (hystviz.h), the
- * same study's .npy in memory. */
+ * docs/STUDIES.md) written in point order, a table-only point of a Dahl/LuGre
+ * scene with a bimodal input by the closed-form kernel (Theorem 2's steady
+ * state and Theorem A(b)'s loops without the scene pipeline, the same
+ * bytes); and hy_sweep_npy (hystviz.h), the same study's .npy in memory. */
 #include "hy_sweep.h"
 
 #include <errno.h>
