@@ -101,19 +101,13 @@ static int excursion_too_small(const double *e, size_t n, size_t *big, size_t *s
     return wmin < HY_EXCURSION_MIN_REL * *scale;
 }
 
-/* Computes ρ at every piece start, the runs, T and ρ_T; takes ownership of pcs. */
-static int finish(hy_input *in, hy_piece *pcs, size_t n, hy_error *err)
+/* ρ at every piece start, the runs (into runs, room for n), T and ρ_T of the
+ * n > 0 pieces pcs, which in then points to; 0, or -1 when the input does not
+ * rise and fall within its period (in's other fields unspecified). */
+static int finish_runs(hy_input *in, hy_piece *pcs, hy_run *runs, size_t n)
 {
     memset(in, 0, sizeof *in);
-    if (n == 0) {
-        free(pcs);
-        return hy_error_set(err, HY_EINVAL, "input has no pieces");
-    }
-    in->runs = malloc(n * sizeof *in->runs);
-    if (!in->runs) {
-        free(pcs);
-        return hy_error_set(err, HY_ENOMEM, "out of memory for input runs");
-    }
+    in->runs = runs;
     in->pieces = pcs;
     in->npieces = n;
     in->all_linear = 1;
@@ -144,10 +138,27 @@ static int finish(hy_input *in, hy_piece *pcs, size_t n, hy_error *err)
     }
     in->period = pcs[n - 1].t1;
     in->rho_T = rho;
-    if (in->nruns < 2 || !(rho > 0) || !isfinite(rho)) {
+    return in->nruns < 2 || !(rho > 0) || !isfinite(rho) ? -1 : 0;
+}
+
+#define NO_RISE_FALL "input must rise and fall within its period (a periodic input needs at least two monotone runs with finite variation)"
+
+/* Computes ρ at every piece start, the runs, T and ρ_T; takes ownership of pcs. */
+static int finish(hy_input *in, hy_piece *pcs, size_t n, hy_error *err)
+{
+    memset(in, 0, sizeof *in);
+    if (n == 0) {
+        free(pcs);
+        return hy_error_set(err, HY_EINVAL, "input has no pieces");
+    }
+    hy_run *runs = malloc(n * sizeof *runs);
+    if (!runs) {
+        free(pcs);
+        return hy_error_set(err, HY_ENOMEM, "out of memory for input runs");
+    }
+    if (finish_runs(in, pcs, runs, n)) {
         hy_input_free(in);
-        return hy_error_set(err, HY_EINVAL,
-                            "input must rise and fall within its period (a periodic input needs at least two monotone runs with finite variation)");
+        return hy_error_set(err, HY_EINVAL, NO_RISE_FALL);
     }
     return HY_OK;
 }
@@ -254,8 +265,10 @@ int hy_input_multimodal(hy_input *in, const double *e, size_t n, const double *t
     return rc;
 }
 
-int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, double umax2,
-                     const double t[4], int shape, hy_error *err)
+/* The four pieces of a bimodal input (hy_input_bimodal's checks, in its
+ * order) into p. */
+static int bimodal_pieces(hy_piece p[4], double umin1, double umin2, double umax1, double umax2, const double t[4],
+                          int shape, hy_error *err)
 {
     const double v[4] = {umin1, umin2, umax1, umax2};
     const char *nm[4] = {"u_min,1", "u_min,2", "u_max,1", "u_max,2"};
@@ -294,9 +307,6 @@ int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, dou
                             "double precision",
                             en[big], e[big], scale, en[small], en[(small + 1) % 4],
                             fabs(e[(small + 1) % 4] - e[small]), HY_EXCURSION_MIN_REL);
-    hy_piece *p = malloc(4 * sizeof *p);
-    if (!p)
-        return hy_error_set(err, HY_ENOMEM, "out of memory");
     double tc = 0;
     for (int i = 0; i < 4; i++) {
         double a = e[i], b = e[(i + 1) % 4];
@@ -307,9 +317,33 @@ int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, dou
             piece_linear(&p[i], tc, t1, a, b);
         tc = t1;
     }
-    int rc = finish(in, p, 4, err);
+    return HY_OK;
+}
+
+int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, double umax2,
+                     const double t[4], int shape, hy_error *err)
+{
+    memset(in, 0, sizeof *in);
+    hy_piece *p = malloc(4 * sizeof *p);
+    if (!p)
+        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    int rc = bimodal_pieces(p, umin1, umin2, umax1, umax2, t, shape, err);
+    if (rc) {
+        free(p);
+        return rc;
+    }
+    rc = finish(in, p, 4, err);
     if (!rc)
         snprintf(in->desc, sizeof in->desc, "bimodal input (%g, %g, %g, %g)", umin1, umin2, umax1, umax2);
+    return rc;
+}
+
+int hy_input_bimodal_buf(hy_input *in, hy_piece pieces[4], hy_run runs[4], double umin1, double umin2, double umax1,
+                         double umax2, const double t[4], int shape, hy_error *err)
+{
+    int rc = bimodal_pieces(pieces, umin1, umin2, umax1, umax2, t, shape, err);
+    if (!rc && finish_runs(in, pieces, runs, 4))
+        rc = hy_error_set(err, HY_EINVAL, NO_RISE_FALL);
     return rc;
 }
 

@@ -63,6 +63,11 @@ int hy_input_pwl(hy_input *in, const double *t, const double *u, size_t n, hy_er
 int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, double umax2,
                      const double t[4], int shape, hy_error *err);
 
+/* As hy_input_bimodal, into the caller's pieces and runs (in points to them:
+ * do not hy_input_free in), with no allocation and an empty desc; the same
+ * pieces, runs, T and ρ_T (hystviz sweep's closed-form kernel). */
+int hy_input_bimodal_buf(hy_input *in, hy_piece pieces[4], hy_run runs[4], double umin1, double umin2, double umax1,
+                         double umax2, const double t[4], int shape, hy_error *err);
 /* Multimodal input through the alternating extrema e[0..n-1] (e[0] repeated at
  * the period's end), reached at times tm[1..n] (tm == NULL: slopes ±1; tm[0] = 0). */
 int hy_input_multimodal(hy_input *in, const double *e, size_t n, const double *tm,

@@ -6,14 +6,16 @@
 #include <math.h>
 #include <stdlib.h>
 
-double hy_phi1(double x)
+/* φ1(x) and φ2(x) from e = expm1(-x), which each reads only where it needs
+ * it (φ1: x >= 1e-8, φ2: x >= 0.5): one expm1 serves both. */
+static double phi1_e(double x, double e)
 {
     if (x < 1e-8)
         return 1 - 0.5 * x;
-    return -expm1(-x) / x;
+    return -e / x;
 }
 
-double hy_phi2(double x)
+static double phi2_e(double x, double e)
 {
     if (x < 0.5) { /* Σ (-x)^n/(n+2)!, 18 terms: error < 0.5^18/20! */
         double term = 0.5, sum = 0.5;
@@ -23,7 +25,23 @@ double hy_phi2(double x)
         }
         return sum;
     }
-    return (x + expm1(-x)) / (x * x);
+    return (x + e) / (x * x);
+}
+
+/* expm1(-x) where φ1 or φ2 of x reads it, else 0 (not read) */
+static double phi_e(double x)
+{
+    return x < 1e-8 ? 0 : expm1(-x);
+}
+
+double hy_phi1(double x)
+{
+    return phi1_e(x, phi_e(x));
+}
+
+double hy_phi2(double x)
+{
+    return phi2_e(x, x < 0.5 ? 0 : expm1(-x));
 }
 
 double hy_limit_step(double a, double g0, double y, int s, double d)
@@ -35,13 +53,13 @@ double hy_limit_step(double a, double g0, double y, int s, double d)
 double hy_limit_step_area(double a, double g0, double y, int s, double d)
 {
     /* ∫_0^d (e^{-ar} y + s g0 (1 - e^{-ar})) s dr = s y d φ1(ad) + a g0 d² φ2(ad) */
-    double x = a * d, q = (a * g0) * d * d;
+    double x = a * d, q = (a * g0) * d * d, e = phi_e(x); /* φ1 and φ2 share it */
     if (isfinite(q) && x < 1e150)
-        return s * y * d * hy_phi1(x) + q * hy_phi2(x);
+        return s * y * d * phi1_e(x, e) + q * phi2_e(x, e);
     /* scaled where a g0 d² or x² (inside φ2) overflows although the area
      * fits (runs of 1e200 and more): a d² φ2(x) = d · x φ2(x) = d (1 - φ1(x)) */
-    double xphi2 = x < 0.5 ? x * hy_phi2(x) : 1 - hy_phi1(x);
-    return s * y * d * hy_phi1(x) + g0 * (d * xphi2);
+    double xphi2 = x < 0.5 ? x * phi2_e(x, e) : 1 - phi1_e(x, e);
+    return s * y * d * phi1_e(x, e) + g0 * (d * xphi2);
 }
 
 /* y°(0) = B/(1 - A) for the affine period map y ↦ A y + B.
@@ -70,7 +88,7 @@ static double steady_y0(const hy_input *in, double sigma0, double g0, double a)
     return -sigma0 * sum / one_minus_A;
 }
 
-int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_error *err)
+int hy_steady_init_buf(hy_steady *st, const hy_model *m, const hy_input *in, double *y_run, hy_error *err)
 {
     int rc = hy_model_validate(m, err);
     if (rc)
@@ -79,12 +97,11 @@ int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_erro
     st->sigma0 = m->sigma0;
     st->g0 = hy_model_g0(m);
     st->a = m->sigma0 / st->g0;
+    st->y_run = NULL;
     if (!isfinite(st->a) || !(st->a > 0))
         return hy_error_set(err, HY_EINVAL, "sigma0/g(0) = %g/%g is not a finite positive number", m->sigma0, st->g0);
     st->contraction = exp(-st->a * in->rho_T);
-    st->y_run = malloc((in->nruns + 1) * sizeof *st->y_run);
-    if (!st->y_run)
-        return hy_error_set(err, HY_ENOMEM, "out of memory");
+    st->y_run = y_run;
     double y = steady_y0(in, st->sigma0, st->g0, st->a);
     for (size_t i = 0; i < in->nruns; i++) {
         const hy_run *r = &in->runs[i];
@@ -93,6 +110,22 @@ int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_erro
     }
     st->y_run[in->nruns] = st->y_run[0]; /* y°(T) = y°(0) (Theorem 2(b)) */
     return HY_OK;
+}
+
+int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_error *err)
+{
+    double *y_run = malloc((in->nruns + 1) * sizeof *y_run);
+    if (!y_run) {
+        st->y_run = NULL;
+        int rc = hy_model_validate(m, err); /* a bad model is named first, as ever */
+        return rc ? rc : hy_error_set(err, HY_ENOMEM, "out of memory");
+    }
+    int rc = hy_steady_init_buf(st, m, in, y_run, err);
+    if (rc) {
+        free(y_run);
+        st->y_run = NULL;
+    }
+    return rc;
 }
 
 void hy_steady_free(hy_steady *st)

@@ -46,6 +46,10 @@ typedef struct hy_steady {
 /* Computes y° at every extremum of the input (fixed point of the period map).
  * Returns HY_OK, HY_EINVAL (bad model) or HY_ENOMEM. */
 int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_error *err);
+/* As hy_steady_init, y° written into y_run (nruns + 1 doubles, the caller's:
+ * st->y_run points there; do not hy_steady_free st): no allocation, the same
+ * numbers (hystviz sweep's closed-form kernel).  HY_OK or HY_EINVAL. */
+int hy_steady_init_buf(hy_steady *st, const hy_model *m, const hy_input *in, double *y_run, hy_error *err);
 /* Frees the steady state's table (st may be NULL; a second call is harmless). */
 void hy_steady_free(hy_steady *st);
 

@@ -84,13 +84,11 @@ double hy_steady_area(const hy_steady *st, double rho0, double rho1)
     return acc.sum;
 }
 
-/* Turning points of one period starting at the global maximum, closed by it. */
-static tp *turning_points(const hy_input *in, size_t *count)
+/* Turning points of one period starting at the global maximum, closed by it:
+ * into seq (room for nruns + 1), raw (nruns) the scratch; their count. */
+static size_t turning_points(const hy_input *in, tp *raw, tp *seq)
 {
     size_t n = in->nruns;
-    tp *raw = malloc((n + 1) * sizeof *raw);
-    if (!raw)
-        return NULL;
     size_t m = 0;
     for (size_t i = 0; i < n; i++) { /* extremum at the start of run i */
         const hy_run *prev = &in->runs[(i + n - 1) % n], *cur = &in->runs[i];
@@ -105,19 +103,37 @@ static tp *turning_points(const hy_input *in, size_t *count)
     for (size_t i = 1; i < m; i++)
         if (raw[i].u > raw[imax].u)
             imax = i;
-    tp *seq = malloc((m + 1) * sizeof *seq);
-    if (!seq) {
-        free(raw);
-        return NULL;
-    }
     for (size_t i = 0; i <= m; i++) {
         size_t j = (imax + i) % m;
         seq[i] = raw[j];
         seq[i].rho += (double)((imax + i) / m) * in->rho_T;
     }
-    free(raw);
-    *count = m + 1;
-    return seq;
+    return m + 1;
+}
+
+/* The scratch of find for an input of nruns runs: turning points (raw and
+ * the sequence), the rainflow stack, the loops found, then (with a caller's
+ * buffer) the minor loops; each part aligned for a double. */
+typedef struct find_parts { size_t raw, seq, stack, loops, minor, total; } find_parts;
+
+static find_parts find_layout(size_t nruns)
+{
+    find_parts p;
+    size_t n = nruns + 1, at = 0;
+#define HY_PART(field, bytes) (p.field = at, at += ((bytes) + 15) / 16 * 16)
+    HY_PART(raw, (nruns ? nruns : 1) * sizeof(tp));
+    HY_PART(seq, n * sizeof(tp));
+    HY_PART(stack, n * sizeof(size_t));
+    HY_PART(loops, n * sizeof(hy_loop));
+    HY_PART(minor, n * sizeof(hy_loop));
+#undef HY_PART
+    p.total = at;
+    return p;
+}
+
+size_t hy_loops_work_size(size_t nruns)
+{
+    return find_layout(nruns).total;
 }
 
 /* First ϱ after q where the path seq[q..] returns to value u (inclusive). */
@@ -200,20 +216,20 @@ static void nest_loops(hy_loops *out, size_t *stack)
 }
 
 /* The rainflow pairing of in's turning points; with st, the areas and the
- * y° values of the loops too (else areas 0, y NaN). */
-static int find(const hy_input *in, const hy_steady *st, hy_loops *out, hy_error *err)
+ * y° values of the loops too (else areas 0, y NaN).  work: the caller's
+ * hy_loops_work_size(in->nruns) bytes (out->minor then lies in it), or NULL
+ * (allocated here, out->minor malloc'd). */
+static int find(const hy_input *in, const hy_steady *st, hy_loops *out, void *work, hy_error *err)
 {
     memset(out, 0, sizeof *out);
-    size_t n = 0;
-    tp *seq = turning_points(in, &n);
-    size_t *stack = malloc(n * sizeof *stack);
-    hy_loop *loops = malloc(n * sizeof *loops);
-    if (!seq || !stack || !loops) {
-        free(seq);
-        free(stack);
-        free(loops);
+    find_parts fp = find_layout(in->nruns);
+    char *w = work ? work : malloc(fp.total);
+    if (!w)
         return hy_error_set(err, HY_ENOMEM, "out of memory for loop detection");
-    }
+    tp *seq = (tp *)(void *)(w + fp.seq);
+    size_t n = turning_points(in, (tp *)(void *)(w + fp.raw), seq);
+    size_t *stack = (size_t *)(void *)(w + fp.stack);
+    hy_loop *loops = (hy_loop *)(void *)(w + fp.loops);
     size_t sp = 0, nl = 0;
     for (size_t i = 0; i < n; i++) {
         stack[sp++] = i;
@@ -248,11 +264,9 @@ static int find(const hy_input *in, const hy_steady *st, hy_loops *out, hy_error
     }
     out->major = loops[imaj];
     out->nminor = nl - 1;
-    out->minor = malloc((nl ? nl : 1) * sizeof *out->minor);
+    out->minor = work ? (hy_loop *)(void *)(w + fp.minor) : malloc((nl ? nl : 1) * sizeof *out->minor);
     if (!out->minor) {
-        free(seq);
-        free(stack);
-        free(loops);
+        free(w);
         return hy_error_set(err, HY_ENOMEM, "out of memory for loops");
     }
     for (size_t i = 0, k = 0; i < nl; i++)
@@ -269,20 +283,24 @@ static int find(const hy_input *in, const hy_steady *st, hy_loops *out, hy_error
     qsort(out->minor, out->nminor, sizeof *out->minor, cmp_loop);
     nest_loops(out, stack);
     out->area_period = st ? hy_steady_area(st, 0, in->rho_T) : NAN;
-    free(seq);
-    free(stack);
-    free(loops);
+    if (!work)
+        free(w);
     return HY_OK;
 }
 
 int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
 {
-    return find(st->in, st, out, err);
+    return find(st->in, st, out, NULL, err);
+}
+
+int hy_loops_find_buf(const hy_steady *st, hy_loops *out, void *work, hy_error *err)
+{
+    return find(st->in, st, out, work, err);
 }
 
 int hy_loops_pair(const hy_input *in, hy_loops *out, hy_error *err)
 {
-    return find(in, NULL, out, err);
+    return find(in, NULL, out, NULL, err);
 }
 
 int hy_loops_nest(hy_loops *out, hy_error *err)

@@ -47,6 +47,13 @@ typedef struct hy_loops {
 
 /* Finds the loops of the steady state; HY_ENOMEM on allocation failure. */
 int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err);
+/* The bytes of scratch hy_loops_find_buf needs for an input of nruns runs. */
+size_t hy_loops_work_size(size_t nruns);
+/* As hy_loops_find, in the caller's work (hy_loops_work_size(st->in->nruns)
+ * bytes, aligned as malloc's; out->minor points into it: do not
+ * hy_loops_free out): no allocation, the same loops (hystviz sweep's
+ * closed-form kernel).  HY_OK. */
+int hy_loops_find_buf(const hy_steady *st, hy_loops *out, void *work, hy_error *err);
 /* Frees the minor loops of l and empties it (l may be NULL; a second call is
  * harmless). */
 void hy_loops_free(hy_loops *l);

@@ -2,8 +2,10 @@
 /* hy_sweep.c: the engine of `hystviz sweep` (hy_sweep.h): a parameter grid's
  * points computed by a pool of threads, each point exactly as `hystviz render
  * SCENE --set KEY=VALUE ...` computes it, its row (CSV) or record (.npy,
- * docs/STUDIES.md) written in point order; and hy_sweep_npy (hystviz.h), the
- * same study's .npy in memory. */
+ * docs/STUDIES.md) written in point order, a table-only point of a Dahl/LuGre
+ * scene with a bimodal input by the closed-form kernel (Theorem 2's steady
+ * state and Theorem A(b)'s loops without the scene pipeline, the same
+ * bytes); and hy_sweep_npy (hystviz.h), the same study's .npy in memory. */
 #include "hy_sweep.h"
 
 #include <errno.h>
@@ -16,6 +18,7 @@
 #include "hy_config.h"
 #include "hy_dtoa.h"
 #include "hystviz.h"
+#include "scene_model.h"
 #include "scene_run.h"
 
 
@@ -477,6 +480,7 @@ typedef struct point_buf {
     struct typed_axis *ta;
     hy_scene_doc work; /* base with the typed axes' fields of the last point */
     int validated;     /* a point loaded from work: its placeholders were checked */
+    struct closed_kernel *ck; /* the closed-form kernel, where it applies (closed_setup) */
 } point_buf;
 
 /* The worker's scene: parsed under the policy, the user's --set applied,
@@ -626,14 +630,138 @@ static void typed_free(const hy_sweep_opts *o, point_buf *pb)
     free(pb->ta);
 }
 
+/* ---- the closed-form kernel (issue 37) ------------------------------- */
+
+/* A table-only point of a Dahl/LuGre scene with a bimodal input whose series
+ * need only the steady state and its loops (Theorem 2, Theorem A(b); no γ
+ * solve, no measured data) is computed without the scene pipeline: the
+ * grid's values are written into one decoded scene (typed_write), and the
+ * very functions the pipeline calls (hy_scene_run_build_model,
+ * hy_input_bimodal_buf, hy_steady_init_buf, hy_loops_find_buf, the plan's
+ * checks) run on storage kept between points: no allocation, no scene copy,
+ * no text per point, the same doubles.  Points in the error sample, and any
+ * point one of those functions refuses, go the generic way (which measures,
+ * or words the refusal).  HYSTVIZ_SWEEP_GENERIC=1 turns the kernel off
+ * (tests/cli/test_sweep_kernel.sh compares the two byte for byte). */
+typedef struct closed_kernel {
+    hy_scene_run r;        /* doc: the decoded scene with the point's values; model,
+                            * input, steady, loops: the point's; nothing else set */
+    hy_piece pieces[4];
+    hy_run runs[4];
+    double y_run[5];
+    void *work;            /* hy_loops_work_size(4) bytes */
+    int shape;             /* [input] shape, HY_SHAPE_* */
+    int need_steady, need_loops, want_minor, want_major;
+} closed_kernel;
+
+/* Whether series data d is one the kernel computes nothing for (its table
+ * columns come from the steady state and loops alone). */
+static int closed_data(int d)
+{
+    return d == HY_DATA_INPUT || d == HY_DATA_PSI || d == HY_DATA_G || d == HY_DATA_YSTAR || d == HY_DATA_YSTEADY ||
+           d == HY_DATA_YK || d == HY_DATA_MINOR || d == HY_DATA_MAJOR;
+}
+
+/* The kernel for this worker, or NULL where the scene is not one it computes
+ * (decided once, on the scene's point-0 run loaded the generic way). */
+static closed_kernel *closed_setup(const hy_sweep_opts *o, point_buf *pb)
+{
+    const char *off = getenv("HYSTVIZ_SWEEP_GENERIC");
+    if (!pb->typed || o->times || (off && *off && strcmp(off, "0")))
+        return NULL;
+    hy_scene_run r0;
+    hy_error e = {0};
+    if (hy_scene_run_load_doc(&r0, pb->scene, &pb->work, 0, o->scene, hy_scene_policy_budget(&o->pol), &e))
+        return NULL;
+    int ok = r0.mtype->compute == hy_scene_friction_compute && r0.figure_kind != FIG_FORC && !r0.npanels &&
+             !r0.ndata && !r0.drive && r0.doc.input.kind == HY_INPUT_BIMODAL;
+    for (size_t k = 0; ok && k < r0.doc.nseries; k++)
+        ok = closed_data(r0.doc.series[k].data);
+    closed_kernel *ck = ok ? calloc(1, sizeof *ck) : NULL;
+    if (ck && !(ck->work = malloc(hy_loops_work_size(4)))) {
+        free(ck);
+        ck = NULL;
+    }
+    if (ck) {
+        ck->r.doc = pb->work; /* its arrays are the worker's base doc's: never freed through r */
+        ck->r.path = o->scene;
+        ck->r.scene = pb->scene;
+        ck->r.budget = hy_scene_policy_budget(&o->pol);
+        ck->r.mtype = r0.mtype;
+        ck->r.figure_kind = r0.figure_kind;
+        ck->r.numbers_only = ck->r.no_verify = 1;
+        ck->shape = hy_scene_input_shape(&r0.doc.input);
+        hy_scene_friction_needs(&r0.doc, &ck->need_steady, &ck->need_loops);
+        for (size_t k = 0; k < r0.doc.nseries; k++) {
+            ck->want_minor |= r0.doc.series[k].data == HY_DATA_MINOR;
+            ck->want_major |= r0.doc.series[k].data == HY_DATA_MAJOR;
+        }
+    }
+    hy_scene_run_free(&r0);
+    return ck;
+}
+
+static void closed_free(closed_kernel *ck)
+{
+    if (ck)
+        free(ck->work);
+    free(ck);
+}
+
+/* Point i by the kernel into ck->r: 0, or -1 where the generic way must
+ * compute it (the error sample, a value some step refuses). */
+static int closed_point(const hy_sweep_study *s, point_buf *pb, size_t i)
+{
+    const hy_sweep_opts *o = s->o;
+    closed_kernel *ck = pb->ck;
+    hy_scene_run *r = &ck->r;
+    hy_error e;
+    if (i % (size_t)o->verify_every == 0)
+        return -1;
+    for (size_t a = 0; a < o->grid.naxes; a++)
+        typed_write(&r->doc, &pb->ta[a], hy_grid_coord(&o->grid, i, a));
+    const hy_decl_input *d = &r->doc.input;
+    r->have_steady = r->have_loops = 0;
+    if (hy_scene_run_build_model(r, &e) ||
+        hy_input_bimodal_buf(&r->input, ck->pieces, ck->runs, d->umin1, d->umin2, d->umax1, d->umax2,
+                             hy_scene_bimodal_t(d), ck->shape, &e))
+        return -1;
+    double work, t0, t1, a[64], b[64];
+    size_t npts, per;
+    long cycles;
+    if (hy_scene_run_estimate(r, &work, NULL, 0, &e) || work > (r->budget > 0 ? r->budget : HY_SCENE_WORK_DEFAULT) ||
+        hy_scene_run_grid(r, &t0, &t1, &npts, &per, &cycles, &e))
+        return -1;
+    if (ck->need_steady && hy_steady_init_buf(&r->steady, &r->model, &r->input, ck->y_run, &e))
+        return -1;
+    r->have_steady = ck->need_steady;
+    if (ck->need_loops && hy_loops_find_buf(&r->steady, &r->loops, ck->work, &e))
+        return -1;
+    r->have_loops = ck->need_loops;
+    if ((ck->want_minor && hy_scene_loop_intervals(r, 0, a, b, 64) < 0) ||
+        (ck->want_major && hy_scene_loop_intervals(r, 1, a, b, 64) < 0))
+        return -1;
+    return 0;
+}
+
 /* Loads, computes and writes point i; appends its row to out and counts
  * its status into *kind (0 ok, 1 invalid, 2 failed). */
-static void run_point(const hy_sweep_study *s, point_buf *pb, size_t i, int *kind, rowbuf *out)
+static void run_point(const hy_sweep_study *s, point_buf *pb, size_t i, int *kind, int *closed, rowbuf *out)
 {
     const hy_sweep_opts *o = s->o;
     const hy_grid *g = &o->grid;
     char name[256];
     point_name(s, i, name, sizeof name);
+    *closed = 0;
+    if (pb->ck && !pb->scene_rc && !closed_point(s, pb, i)) {
+        *kind = 0;
+        *closed = 1;
+        if (o->npy)
+            write_record(s, out, i, name, &pb->ck->r, 0, "");
+        else
+            write_row(s, out, i, name, &pb->ck->r, "ok", "");
+        return;
+    }
     size_t used = 0, nsets = 0;
     for (size_t a = 0; a < g->naxes && !pb->typed; a++) {
         pb->sets[nsets++] = pb->text + used;
@@ -713,6 +841,7 @@ static void *worker(void *arg)
     pb.log = fopen("/dev/null", "w");
     worker_scene(o, &pb);
     typed_setup(o, &pb);
+    pb.ck = closed_setup(o, &pb);
     pthread_mutex_lock(&s->mu);
     if (!pb.sets || !pb.text)
         s->io_error = 1;
@@ -724,11 +853,12 @@ static void *worker(void *arg)
         size_t j = s->next++;
         pthread_mutex_unlock(&s->mu);
         size_t i = o->sharded ? (size_t)o->shard_k + j * (size_t)o->shard_n : j;
-        int kind;
+        int kind, closed;
         rowbuf *row = &s->slots[j % s->window]; /* row j - window is written: the slot is this worker's */
         row->len = 0;
-        run_point(s, &pb, i, &kind, row);
+        run_point(s, &pb, i, &kind, &closed, row);
         pthread_mutex_lock(&s->mu);
+        s->nclosed += (size_t)closed;
         if (row->err)
             s->io_error = 1;
         *(kind == 0 ? &s->nok : kind == 1 ? &s->ninvalid : &s->nfailed) += 1;
@@ -746,6 +876,7 @@ static void *worker(void *arg)
     pthread_mutex_unlock(&s->mu);
     free(pb.sets);
     free(pb.text);
+    closed_free(pb.ck);
     typed_free(o, &pb);
     if (pb.have_base)
         hy_scene_doc_free(&pb.base);

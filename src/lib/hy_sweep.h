@@ -68,6 +68,8 @@ typedef struct hy_sweep_study {
     struct rowbuf *slots; /* the window's rows, formatted in place, reused     */
     unsigned char *ready; /* ... and which of them are done                   */
     size_t nok, ninvalid, nfailed;
+    size_t nclosed;       /* of the ok points: how many the closed-form kernel
+                           * computed (hy_sweep.c; the rest: the pipeline)   */
     int io_error;
 } hy_sweep_study;
 

@@ -101,6 +101,15 @@ enum { HY_FIGURE_KINDS(HY__FIG_ID) };
 int hy_scene_run_build_model(hy_scene_run *r, hy_error *err);
 /* The scene's [input] as r->input (every input hystviz has). */
 int hy_scene_run_build_input(hy_scene_run *r, hy_error *err);
+/* The bimodal input's t1..t4 where [input] t gives them, else NULL (slopes
+ * ±1), and the shape ([input] shape: HY_SHAPE_*), as build_input reads them. */
+const double *hy_scene_bimodal_t(const hy_decl_input *d);
+int hy_scene_input_shape(const hy_decl_input *d);
+/* What a Dahl/LuGre run computes besides its series' own curves: the steady
+ * state (ystar, ysteady, yk, loops, placeholders) and the loops (minor,
+ * major, placeholders); the plan's rule, shared with hystviz sweep's
+ * closed-form kernel. */
+void hy_scene_friction_needs(const hy_scene_doc *doc, int *need_steady, int *need_loops);
 /* HY_DATA_* of a decoded series' data into *data; -1 when it has none. */
 int hy_scene_series_data(const hy_decl_series *ds, int *data);
 /* The series data names, indexed by HY_DATA_*. */

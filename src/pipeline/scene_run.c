@@ -115,17 +115,26 @@ static int file_input(hy_scene_run *r, hy_error *err)
     return HY_OK;
 }
 
+const double *hy_scene_bimodal_t(const hy_decl_input *d)
+{
+    return hy_decl_got(&d->h, offsetof(hy_decl_input, t)) >= 0 && d->t.n == 4 ? d->t.v : NULL;
+}
+
+int hy_scene_input_shape(const hy_decl_input *d)
+{
+    return strcmp(hy_decl_enum_text(&d->h, offsetof(hy_decl_input, shape), d->shape), "cosine") ? HY_SHAPE_LINEAR
+                                                                                                 : HY_SHAPE_COSINE;
+}
+
 int hy_scene_run_build_input(hy_scene_run *r, hy_error *err)
 {
     static const char *const keys[] = {"umin1", "umin2", "umax1", "umax2", "extrema", "times", "amp", "period",
                                        "offset", "points", "file", NULL};
     const hy_decl_input *d = &r->doc.input;
     const hy_decl_head *h = &d->h;
-    const char *shape_s = hy_decl_enum_text(h, offsetof(hy_decl_input, shape), d->shape);
-    int shape = strcmp(shape_s, "cosine") ? HY_SHAPE_LINEAR : HY_SHAPE_COSINE, rc;
+    int shape = hy_scene_input_shape(d), rc;
     if (d->kind == HY_INPUT_BIMODAL) {
-        int have_t = hy_decl_got(h, offsetof(hy_decl_input, t)) >= 0 && d->t.n == 4;
-        rc = hy_input_bimodal(&r->input, d->umin1, d->umin2, d->umax1, d->umax2, have_t ? d->t.v : NULL, shape, err);
+        rc = hy_input_bimodal(&r->input, d->umin1, d->umin2, d->umax1, d->umax2, hy_scene_bimodal_t(d), shape, err);
         if (rc && strstr(err->msg, "t1 < t2"))
             return hy_decl_error(h, offsetof(hy_decl_input, t), err, rc, "%s", err->msg);
     } else if (d->kind == HY_INPUT_MULTIMODAL) {
@@ -555,6 +564,21 @@ int hy_scene_run_grid(const hy_scene_run *r, double *t0, double *t1, size_t *npt
 }
 
 /* Decides the grid and the shared computations; solves each distinct γ once. */
+void hy_scene_friction_needs(const hy_scene_doc *doc, int *need_steady, int *need_loops)
+{
+    *need_steady = *need_loops = 0;
+    for (size_t i = 0; i < doc->nseries; i++) {
+        int d = doc->series[i].data;
+        if (d == HY_DATA_YSTAR || d == HY_DATA_YSTEADY || d == HY_DATA_YK)
+            *need_steady = 1;
+        if (d == HY_DATA_MINOR || d == HY_DATA_MAJOR)
+            *need_steady = *need_loops = 1;
+    }
+    for (size_t i = 0; i < doc->nannotation; i++)
+        if (doc->annotation[i].text && hy_scene_text_has_placeholder(doc->annotation[i].text))
+            *need_steady = *need_loops = 1;
+}
+
 static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
 {
     int grc = hy_scene_run_grid(r, &p->t0, &p->t1, &p->npts, &p->per_period, &p->cycles, err);
@@ -566,25 +590,19 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
         return hy_error_set(err, HY_ENOMEM, "out of memory");
     /* the time grid: for y_γ solves and for u and y* over the time span (the
        table-only path outside the error sample samples no curve) */
-    int need_steady = 0, need_loops = 0, need_grid = 0;
+    int need_steady, need_loops, need_grid = 0;
+    hy_scene_friction_needs(&r->doc, &need_steady, &need_loops);
     for (size_t i = 0; i < ns; i++) { /* data, gamma and k checked by load (check_friction_series) */
         const hy_decl_series *ds = &r->doc.series[i];
         int d = ds->data;
-        if (d == HY_DATA_YSTAR || d == HY_DATA_YSTEADY || d == HY_DATA_YK)
-            need_steady = 1;
         if ((d == HY_DATA_INPUT || d == HY_DATA_YSTAR) && !(r->numbers_only && r->no_verify))
             need_grid = 1;
-        if (d == HY_DATA_MINOR || d == HY_DATA_MAJOR)
-            need_steady = need_loops = 1;
         if (d == HY_DATA_YGAMMA || d == HY_DATA_TRANSIENT) {
             if (!find_solve(p, ds->gamma))
                 p->solves[p->nsolves++].gamma = ds->gamma;
             need_grid = 1;
         }
     }
-    for (size_t i = 0; i < r->doc.nannotation; i++)
-        if (r->doc.annotation[i].text && hy_scene_text_has_placeholder(r->doc.annotation[i].text))
-            need_steady = need_loops = 1;
     int crc = check_solves(r, p, err);
     if (crc)
         return crc;
