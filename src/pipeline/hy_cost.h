@@ -38,9 +38,9 @@
 #define HY_COST_KINDS(X)                                                                                               \
     X(POINT, "point", 2.32, "a grid point of a Dahl/LuGre solve or a sample of one of its series")                     \
     X(NEWMARK, "newmark", 1.25, "a Newmark step of Bouc-Wen or a sample of one of its series")                        \
-    X(JILES, "jiles", 26.9, "a move of the Jiles-Atherton model (a series sample or a turning point fed)")            \
-    X(PREISACH, "preisach", 136.0, "a move of the Preisach model (a series sample or a turning point fed)")           \
-    X(PLAY, "play", 1.2, "a move of the play or Bouc-Wen operator (a series sample or a turning point fed)")          \
+    X(JILES, "ja-move", 26.9, "a move of the Jiles-Atherton model (a series sample or a turning point fed)")            \
+    X(PREISACH, "preisach-move", 136.0, "a move of the Preisach model (a series sample or a turning point fed)")           \
+    X(PLAY, "play-move", 1.2, "a move of the play or Bouc-Wen operator (a series sample or a turning point fed)")          \
     X(FORC, "forc", 154.0, "a FORC point times its regression's weight")                                             \
     X(ANNOTATION, "annotation", 15600.0, "an annotation placed")                                                      \
     X(PIXEL, "pixel", 0.157, "a pixel of a PNG raster drawn")
