@@ -25,7 +25,8 @@
 #include <stddef.h>
 
 /* A unit of work: 100 ns of CPU (the budgets' meaning before issue 36:
- * render's 1e8 about 10 s, serve's 2e6 about 0.2 s). */
+ * render's 1e8 about 10 s; serve's 5e6 about 0.5 s, every gallery figure
+ * but the Bouc-Wen sinc study's 1.6e7 (five_models_minor_loops: 3.2e6)). */
 #define HY_COST_UNITS_PER_S 1e7
 
 /* X(ID, name, weight in units per count, what one count is).  The weights:

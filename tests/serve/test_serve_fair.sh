@@ -56,7 +56,11 @@ cd "$T" || exit 1
 pin=()
 command -v taskset >/dev/null && taskset -c 0 true 2>/dev/null && pin=(taskset -c 0)
 : >"$T/serve.out"; : >"$T/serve.err"
-"${pin[@]}" "$hv" serve scenes --port 0 >"$T/serve.out" 2>"$T/serve.err" &
+# the heavy scenes are over serve's default budget since the cost model
+# (1,200 nested extrema: 1.3e8 units, issue 36 item 1; cost-model checks
+# that): this test is of what serve does while such renders run, so they
+# run under a budget raised for them
+"${pin[@]}" "$hv" serve scenes --port 0 --max-work 1e12 >"$T/serve.out" 2>"$T/serve.err" &
 srv=$!
 port=
 for _ in $(seq 100); do
