@@ -99,9 +99,10 @@ static int print_work(hy_scene_run *run, const char *scene)
     return 0;
 }
 
-/* `render`: one scene's figure in every format, all or none. */
+/* `render`: one scene's figure in every format, all or none (only_work:
+ * its estimate only, print_work). */
 static int render_one(const char *scene, const char *out, const char *formats, char **sets, size_t nsets,
-                      const hy_scene_policy *pol, int verbose)
+                      const hy_scene_policy *pol, int verbose, int only_work)
 {
     hy_scene_run run;
     hy_error err = {0};
@@ -111,7 +112,7 @@ static int render_one(const char *scene, const char *out, const char *formats, c
     char written[8192] = "";
     run.figure_only = 1; /* figures only (`data` writes the points) */
     run.formats = formats; /* a PNG's raster is work */
-    if (verbose < 0)
+    if (only_work)
         st = print_work(&run, scene);
     else if (!(st = compute(&run, verbose))) {
         if (hy_scene_run_write(&run, out, formats, written, sizeof written, &err)) {
@@ -160,7 +161,7 @@ int hy_cmd_render(int argc, char **argv)
 {
     int is_data = !strcmp(argv[0], "data");
     const char *out = NULL, *formats = NULL;
-    int verbose = 0;
+    int verbose = 0, only_work = 0;
     char **sets = calloc((size_t)argc, sizeof *sets), **scenes = calloc((size_t)argc, sizeof *scenes);
     const char **dirs = calloc((size_t)argc, sizeof *dirs);
     hy_scene_policy pol = hy_scene_policy_default();
@@ -185,9 +186,9 @@ int hy_cmd_render(int argc, char **argv)
         else if (id == OPT_FORMAT)
             formats = p.val;
         else if (id == OPT_VERBOSE)
-            verbose = verbose < 0 ? verbose : 1;
+            verbose = 1;
         else if (id == OPT_PRINT_WORK)
-            verbose = -1; /* render_one: estimate only */
+            only_work = 1;
         else if (id == CLI_ARG)
             scenes[nscenes++] = (char *)p.val;
         else if (cli_policy_take(&pol, dirs, argv[0], id, p.val) < 0)
@@ -210,7 +211,7 @@ int hy_cmd_render(int argc, char **argv)
         hy_out_sweep(out); /* temporaries of killed runs */
     for (size_t k = 0; k < nscenes && !rc; k++) {
         int st = is_data ? render_data(scenes[k], out, sets, nsets, &pol, verbose)
-                         : render_one(scenes[k], out, formats, sets, nsets, &pol, verbose);
+                         : render_one(scenes[k], out, formats, sets, nsets, &pol, verbose, only_work);
         failed = worse(failed, st);
     }
     free(sets);

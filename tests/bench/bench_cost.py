@@ -123,7 +123,9 @@ def estimate(hv, path, args, timeout=120):
     m = re.search(r"work (\S+) units, about \S+ s of CPU \((\S+) units a second\)", p.stdout)
     if not m or float(m.group(2)) != UNITS_PER_S:
         raise RuntimeError("%s: unexpected --print-work output: %s" % (path, p.stdout))
-    counts = {k: float(c) for k, c in re.findall(r"(?m)^  (\w+) +(\S+) x ", p.stdout)}
+    counts = {k: float(c) for k, c in re.findall(r"(?m)^  ([\w-]+) +(\S+) x ", p.stdout)}
+    if not counts:
+        raise RuntimeError("%s: --print-work listed no kind of work: %s" % (path, p.stdout))
     return float(m.group(1)), counts
 
 
@@ -218,14 +220,6 @@ def main():
             done.append(r)
             print("%-20s %12.4g %10.3g %10.3g %7.2f" % (r["name"], r["est"], r["est"] / UNITS_PER_S, r["cpu"],
                                                        r["est"] / UNITS_PER_S / r["cpu"]))
-        kinds = sorted({k for r in done for k in r["counts"]})
-        if done:
-            w, factor = fit(done, kinds)
-            print("fitted weights (units a count, %g units a second; least squares of log CPU time):" % UNITS_PER_S)
-            for k, v in sorted(w.items()):
-                print("  %-12s %.4g" % (k, v))
-            print("with them the estimate is within a factor %.2f of the measured time on every case (worst)"
-                  % float(np.max(factor)))
         if a.out:
             with open(a.out, "w") as fh:
                 fh.write("# written by tests/bench/bench_cost.py (%s)\n# %s; load average per round: %s\n"
@@ -234,6 +228,14 @@ def main():
                 for r in done:
                     fh.write("%s %d %.4g %.6g %d\n" % (r["name"], 1 if r["check"] else 0, r["cpu"], r["est"],
                                                        len(r["times"])))
+        kinds = sorted({k for r in done for k in r["counts"]})
+        if done:
+            w, factor = fit(done, kinds)
+            print("fitted weights (units a count, %g units a second; least squares of log CPU time):" % UNITS_PER_S)
+            for k, v in sorted(w.items()):
+                print("  %-12s %.4g" % (k, v))
+            print("with them the estimate is within a factor %.2f of the measured time on every case (worst)"
+                  % float(np.max(factor)))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 

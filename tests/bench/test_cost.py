@@ -6,7 +6,8 @@ written there by tests/bench/bench_cost.py with their machine and load,
 the scene is written again (bench_cost.py --write-scene: the same
 generator) and its estimate read from hystviz's refusal at --max-work 1
 ("the scene asks for about N units of work", the number every budget check
-compares); the estimate / HY_COST_UNITS_PER_S must be within a factor 3 of
+compares; `render --print-work` must say the same and write nothing); the
+estimate / HY_COST_UNITS_PER_S must be within a factor 3 of
 the recorded CPU seconds.  Factor 3: the issue's stated tolerance for a
 model of counts x weights fitted across unlike cases and machines' loads.
 
@@ -63,6 +64,14 @@ def main():
                 bad += 1
                 continue
             est_s = float(m.group(1)) / bench_cost.UNITS_PER_S
+            # --print-work: the same estimate (to the refusal's 3 digits), nothing computed or written
+            q = subprocess.run([hv, "render", path, "--print-work", "-o", d] + known[name][2],
+                               capture_output=True, text=True, timeout=60)
+            w = re.search(r"work (\S+) units", q.stdout)
+            if q.returncode != 0 or not w or abs(float(w.group(1)) / float(m.group(1)) - 1) > 5e-3:
+                print("FAIL %s: --print-work (exit %d) does not say the refusal's %s units: %s"
+                      % (name, q.returncode, m.group(1), q.stdout.strip() or q.stderr.strip()))
+                bad += 1
             ratio = est_s / cpu
             ok = 1 / FACTOR <= ratio <= FACTOR
             bad += not ok
