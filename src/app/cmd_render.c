@@ -8,21 +8,24 @@
 #include <string.h>
 
 #include "cli_util.h"
+#include "hy_cost.h"
 #include "hy_out.h"
 #include "scene_run.h"
 
 static const char render_usage[] =
     "usage: hystviz render SCENE... [-o DIR] [--set SECTION.KEY=VALUE]... [--format svg,pdf,png] [-v]\n"
-    "                      [--include-dir DIR]... [--max-work N]\n"
+    "                      [--include-dir DIR]... [--max-work N] [--print-work]\n"
     "       hystviz data SCENE [--set SECTION.KEY=VALUE]... [-o FILE] [--include-dir DIR]... [--max-work N]\n"
     "\n"
     "render draws each scene file (docs/SCENES.md) into DIR (default: the scene's\n"
     "[output] dir, relative to the scene's directory) as NAME.svg/.pdf/.png: all of\n"
     "a figure's files or none of them.\n"
     "data prints every series the scene draws as CSV 'series,x,y' (%.17g).\n"
+    "--print-work prints each scene's work estimate, kind by kind, and computes\n"
+    "nothing (docs/SCENES.md, \"Work budget\").\n"
     "\n";
 
-enum { OPT_OUT = CLI_FIRST, OPT_SET, OPT_FORMAT, OPT_VERBOSE };
+enum { OPT_OUT = CLI_FIRST, OPT_SET, OPT_FORMAT, OPT_VERBOSE, OPT_PRINT_WORK };
 static const cli_opt render_opts[] = {
     {"output", 'o', "DIR|FILE", "output directory (render) or CSV file (data)", OPT_OUT, 0, NULL, NULL, NULL},
     {"set", 0, "S.K=V", "override a scene key, e.g. --set model.sigma0=1\n"
@@ -30,6 +33,8 @@ static const cli_opt render_opts[] = {
     {"format", 0, "LIST", "formats to write instead of the scene's", OPT_FORMAT, 0, NULL, "render", NULL},
     {"verbose", 'v', NULL, "print the plan, each step's time and each series' error\n"
      "against the exact answer where one exists", OPT_VERBOSE, 0, NULL, NULL, NULL},
+    {"print-work", 0, NULL, "print the work estimate (units, seconds, each kind's\n"
+     "count and weight) and compute nothing", OPT_PRINT_WORK, 0, NULL, "render", NULL},
     {.group = cli_policy_opts},
     {0},
 };
@@ -69,9 +74,35 @@ static int compute(hy_scene_run *run, int verbose)
     return 0;
 }
 
-/* `render`: one scene's figure in every format, all or none. */
+/* `render --print-work`: the scene's estimate on stdout, kind by kind
+ * (hy_cost.h), nothing computed; the exit status. */
+static int print_work(hy_scene_run *run, const char *scene)
+{
+    double counts[HY_COST_COUNT] = {0}, work;
+    hy_error err = {0};
+    char what[200] = "";
+    run->cost_counts = counts;
+    int rc = hy_scene_run_estimate(run, &work, what, sizeof what, &err);
+    run->cost_counts = NULL;
+    if (rc) {
+        fprintf(stderr, "hystviz: %s\n", err.msg);
+        return cli_exit_status(err.code);
+    }
+    double budget = run->budget > 0 ? run->budget : HY_SCENE_WORK_DEFAULT;
+    printf("%s: work %.6g units, about %.3g s of CPU (%.3g units a second), budget %.3g (%s)\n", scene, work,
+           work / HY_COST_UNITS_PER_S, HY_COST_UNITS_PER_S, budget, work > budget ? "over: refused" : "within");
+    printf("  %s\n", what);
+    for (int k = 0; k < HY_COST_COUNT; k++)
+        if (counts[k] > 0)
+            printf("  %-10s %14.6g x %-8.4g = %.6g units\n", hy_cost_name(k), counts[k], hy_cost_weight(k),
+                   counts[k] * hy_cost_weight(k));
+    return 0;
+}
+
+/* `render`: one scene's figure in every format, all or none (only_work:
+ * its estimate only, print_work). */
 static int render_one(const char *scene, const char *out, const char *formats, char **sets, size_t nsets,
-                      const hy_scene_policy *pol, int verbose)
+                      const hy_scene_policy *pol, int verbose, int only_work)
 {
     hy_scene_run run;
     hy_error err = {0};
@@ -80,7 +111,10 @@ static int render_one(const char *scene, const char *out, const char *formats, c
         return st;
     char written[8192] = "";
     run.figure_only = 1; /* figures only (`data` writes the points) */
-    if (!(st = compute(&run, verbose))) {
+    run.formats = formats; /* a PNG's raster is work */
+    if (only_work)
+        st = print_work(&run, scene);
+    else if (!(st = compute(&run, verbose))) {
         if (hy_scene_run_write(&run, out, formats, written, sizeof written, &err)) {
             /* errors of the scene's [output] dir already start with file:line:col */
             if (!strncmp(err.msg, scene, strlen(scene)))
@@ -127,7 +161,7 @@ int hy_cmd_render(int argc, char **argv)
 {
     int is_data = !strcmp(argv[0], "data");
     const char *out = NULL, *formats = NULL;
-    int verbose = 0;
+    int verbose = 0, only_work = 0;
     char **sets = calloc((size_t)argc, sizeof *sets), **scenes = calloc((size_t)argc, sizeof *scenes);
     const char **dirs = calloc((size_t)argc, sizeof *dirs);
     hy_scene_policy pol = hy_scene_policy_default();
@@ -153,6 +187,8 @@ int hy_cmd_render(int argc, char **argv)
             formats = p.val;
         else if (id == OPT_VERBOSE)
             verbose = 1;
+        else if (id == OPT_PRINT_WORK)
+            only_work = 1;
         else if (id == CLI_ARG)
             scenes[nscenes++] = (char *)p.val;
         else if (cli_policy_take(&pol, dirs, argv[0], id, p.val) < 0)
@@ -175,7 +211,7 @@ int hy_cmd_render(int argc, char **argv)
         hy_out_sweep(out); /* temporaries of killed runs */
     for (size_t k = 0; k < nscenes && !rc; k++) {
         int st = is_data ? render_data(scenes[k], out, sets, nsets, &pol, verbose)
-                         : render_one(scenes[k], out, formats, sets, nsets, &pol, verbose);
+                         : render_one(scenes[k], out, formats, sets, nsets, &pol, verbose, only_work);
         failed = worse(failed, st);
     }
     free(sets);

@@ -51,8 +51,8 @@ static const cli_opt serve_opts[] = {
      "and makes this machine render figures (CPU and memory within the\n"
      "budgets below); with --allow-save also writes new scenes into DIR", OPT_PUBLIC, 0, NULL, NULL, NULL},
     {"open", 0, NULL, "open the page in the desktop's browser (xdg-open)", OPT_OPEN, 0, NULL, NULL, NULL},
-    {"max-work", 0, "W", "work budget of one render (default 2e6, 50 times the largest\n"
-     "gallery figure; `hystviz render` allows 1e8):\n"
+    {"max-work", 0, "W", "work budget of one render (default 5e6, about 0.5 s [bench cost]\n"
+     "of CPU, docs/SCENES.md; `hystviz render` allows 1e8):\n"
      "a page's request for more is refused before computing (422);\n"
      "a fit (the page's fit button) stops past W measured points\n"
      "summed over its model evaluations (422)", OPT_MAX_WORK, 0, NULL, NULL, NULL},

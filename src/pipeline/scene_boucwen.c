@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "hy_boucwen.h"
+#include "hy_cost.h"
 #include "hy_signal.h"
 
 enum { IN_SINE, IN_MULTISINE, IN_SWEEP };
@@ -706,9 +707,9 @@ static int bw_estimate(const hy_scene_run *r, double *work, char *what, size_t s
 {
     size_t na = r->doc.nannotation;
     int rc = hy_scene_boucwen_work(r, work, err);
-    *work += (double)na * HY_PLACE_SPOTS;
+    *work = hy_cost(r->cost_counts, HY_COST_NEWMARK, *work) + hy_cost(r->cost_counts, HY_COST_ANNOTATION, (double)na);
     if (what && size)
-        snprintf(what, size, "Newmark steps and series samples, %zu annotations x %d spots", na, HY_PLACE_SPOTS);
+        snprintf(what, size, "Newmark steps and series samples, %zu annotations", na);
     return rc;
 }
 

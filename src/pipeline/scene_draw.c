@@ -640,6 +640,22 @@ int hy_scene_run_check_output(const hy_scene_run *r, const char *formats, hy_err
     return rc;
 }
 
+double hy_scene_run_png_pixels(const hy_scene_run *r)
+{
+    int fmt[HY_FORMAT_COUNT];
+    size_t nf;
+    hy_error err = {0};
+    hy_figure f;
+    memset(&f, 0, sizeof f);
+    figure_size(&r->doc.figure, &f);
+    if (run_formats(&r->doc, r->formats, fmt, &nf, &err))
+        return 0; /* refused by hy_scene_run_check_output */
+    for (size_t i = 0; i < nf; i++)
+        if (fmt[i] == HY_FORMAT_PNG)
+            return hy_figure_png_pixels(&f);
+    return 0;
+}
+
 /* Writes every format to a temporary, then renames them all: all or none. */
 static int write_all(const hy_figure *fig, char paths[][4400], const int *fmt, size_t nf, hy_error *err)
 {

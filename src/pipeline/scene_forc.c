@@ -12,6 +12,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "hy_cost.h"
 #include "hy_forc.h"
 #include "hy_forc_plot.h"
 #include "hy_limit.h"
@@ -169,7 +170,8 @@ int hy_scene_forc_estimate(const hy_scene_run *r, double *work, char *what, size
     const hy_decl_forc *f = decl(r);
     double n = has_file(r) ? (double)r->forc->d.npoints : 0.5 * (double)f->curves * (double)f->curves;
     double sf = f->sc1 > 0 ? fmax(f->sc0, f->sc1) : f->sf;
-    *work = n * (1 + 0.01 * (2 * sf + 1) * (2 * sf + 1)); /* the moves, and the regression's dot products */
+    /* the moves, and the regression's dot products */
+    *work = hy_cost(r->cost_counts, HY_COST_FORC, n * (1 + 0.01 * (2 * sf + 1) * (2 * sf + 1)));
     if (what && size)
         snprintf(what, size, "%.0f FORC points, SF %g", n, sf);
     return HY_OK;

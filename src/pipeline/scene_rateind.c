@@ -13,6 +13,7 @@
  * for HY_RI_AREA_YDU models, so that dissipation is > 0): from the path
  * integral ∫ y du the model tracks (HY_RI_PATH_AREA), else from its
  * closed-form loop area where minor loops close (HY_RI_RETURN_POINT). */
+#include "hy_cost.h"
 #include "scene_model.h"
 #include "scene_run.h"
 
@@ -89,8 +90,52 @@ int hy_scene_rateind_load(hy_scene_run *r, hy_error *err)
     return rc;
 }
 
-/* Model moves of one series before computing (as the friction models count
- * points): the grid, one period, or one period per loop. */
+/* The cost kind of a rate-independent model's moves (hy_cost.h). */
+static int move_kind(const hy_scene_model *mt)
+{
+    return mt == &hy_scene_model_jiles ? HY_COST_JILES : mt == &hy_scene_model_preisach ? HY_COST_PREISACH : HY_COST_PLAY;
+}
+
+/* The turning points find_loops feeds the model to measure every loop,
+ * from the input's extrema alone (no model evaluated, O(nruns)): the
+ * memory stack of the extrema over two periods, where an extremum wipes
+ * out each pair of earlier ones whose range it covers (a loop closes);
+ * measure_loop feeds the runs from the period's start to a loop's close,
+ * so a loop costs its close's index.  1,200 nested extrema close all their
+ * 600 loops at the period's end: 600 x 1,200 moves (issue 36 item 1). */
+static double loop_feeds(const hy_input *in)
+{
+    size_t n = in->nruns, top = 0;
+    double *s = malloc((2 * n + 2) * sizeof *s), feeds = (double)n; /* the major loop: one period */
+    size_t *at = malloc((2 * n + 2) * sizeof *at);
+    if (!s || !at) { /* no memory for the profile: the worst case, every loop at the period's end */
+        free(s);
+        free(at);
+        return (double)n * (double)n;
+    }
+    s[top] = n ? in->runs[0].u0 : 0, at[top++] = 0;
+    for (size_t j = 0; j < 2 * n; j++) {
+        double v = in->runs[j % n].u1;
+        while (top >= 2 && fabs(v - s[top - 1]) >= fabs(s[top - 1] - s[top - 2])) {
+            if (top == 2) { /* the start is not a loop's: the first reversal takes its place */
+                s[0] = s[1], at[0] = at[1], top = 1;
+                break;
+            }
+            if (at[top - 2] < n) /* a loop opened in the first period closes at j */
+                feeds += (double)(j + 1);
+            top -= 2;
+        }
+        s[top] = v, at[top++] = j + 1;
+    }
+    free(s);
+    free(at);
+    return feeds;
+}
+
+/* Model moves before computing (as the friction models count points): each
+ * series' samples (the grid, one period, or one period per loop drawn, each
+ * from the periodic state through the input's runs); the settling periods
+ * and the loops' turning points (loop_feeds) where loops are measured. */
 int hy_scene_rateind_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
     double t0, t1;
@@ -99,18 +144,25 @@ int hy_scene_rateind_estimate(const hy_scene_run *r, double *work, char *what, s
     int rc = hy_scene_run_grid(r, &t0, &t1, &npts, &per, &cycles, err);
     if (rc)
         return rc;
-    double loops = fmin(64.0, fmax(1.0, (double)r->input.nruns)), sum = 0;
+    double nruns = (double)r->input.nruns, loops = fmin(64.0, fmax(1.0, nruns)), sum = 0, history = 0;
+    int need_loops = 0;
     for (size_t i = 0; i < ns; i++) {
         int d = HY_DATA_INPUT;
         hy_scene_series_data(&r->doc.series[i], &d);
-        sum += d == HY_DATA_MINOR || d == HY_DATA_MAJOR ? ((double)per + 1) * loops
+        need_loops |= d == HY_DATA_MINOR || d == HY_DATA_MAJOR;
+        sum += d == HY_DATA_MINOR || d == HY_DATA_MAJOR ? ((double)per + 1 + nruns) * loops
                : d == HY_DATA_YSTEADY || d == HY_DATA_YK || d == HY_DATA_PSI ? (double)per + 1
                                                                                : (double)npts;
     }
-    *work = sum + (double)na * HY_PLACE_SPOTS;
+    for (size_t i = 0; i < na; i++)
+        need_loops |= r->doc.annotation[i].text && hy_scene_text_has_placeholder(r->doc.annotation[i].text);
+    if (need_loops)
+        history = 2 * nruns + loop_feeds(&r->input); /* settling (return-point memory: a period or two) */
+    *work = hy_cost(r->cost_counts, move_kind(r->mtype), sum + history) +
+            hy_cost(r->cost_counts, HY_COST_ANNOTATION, (double)na);
     if (what && size)
-        snprintf(what, size, "%zu series of a %s model over %zu points (%zu per period), %zu annotations x %d spots",
-                 ns, r->mtype->name, npts, per, na, HY_PLACE_SPOTS);
+        snprintf(what, size, "%zu series of a %s model over %zu points (%zu per period), %.0f moves measuring loops "
+                 "of %zu extrema, %zu annotations", ns, r->mtype->name, npts, per, history, r->input.nruns, na);
     return HY_OK;
 }
 

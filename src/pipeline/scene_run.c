@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "hy_cost.h"
 #include "hy_gamma.h"
 #include "hy_ode.h"
 #include "hy_plot.h"
@@ -1137,18 +1138,28 @@ static double series_points(const hy_scene_run *r, int d, double npts, double pe
     }
 }
 
-int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
+/* The models' work of r and of its panels, in units (hy_cost.h). */
+static int estimate_models(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
     *work = 0;
     int rc = r->figure_kind == FIG_FORC ? hy_scene_forc_estimate(r, work, what, size, err)
                                         : r->mtype->estimate(r, work, what, size, err);
     for (size_t i = 0; !rc && i < r->npanels; i++) { /* a [panel] figure: its panels' work too */
         double w;
-        rc = hy_scene_run_estimate(&r->panels[i], &w, NULL, 0, err);
+        r->panels[i].cost_counts = r->cost_counts;
+        rc = estimate_models(&r->panels[i], &w, NULL, 0, err);
         *work += w;
         if (what && size && i == 0)
             snprintf(what, size, "%zu panels", r->npanels);
     }
+    return rc;
+}
+
+int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
+{
+    int rc = estimate_models(r, work, what, size, err);
+    if (!rc) /* the PNG's raster, once for the figure */
+        *work += hy_cost(r->cost_counts, HY_COST_PIXEL, hy_scene_run_png_pixels(r));
     return rc;
 }
 
@@ -1157,9 +1168,7 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
 int hy_scene_friction_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
     const hy_decl_compute *dc = &r->doc.compute;
-    /* placing an annotation tries up to HY_PLACE_SPOTS spots (issue 20 item 8) */
     size_t na = r->doc.nannotation;
-    double place = (double)na * HY_PLACE_SPOTS;
     long pts = dc->points, cycles = dc->cycles;
     double T = r->input.period, periods = (double)cycles;
     if (hy_decl_got(&dc->h, offsetof(hy_decl_compute, tspan)) == HY_SCENE_SET)
@@ -1183,10 +1192,11 @@ int hy_scene_friction_estimate(const hy_scene_run *r, double *work, char *what, 
         }
     }
     free(gam);
-    *work = (double)ng * npts + pointsum + place;
+    *work = hy_cost(r->cost_counts, HY_COST_POINT, (double)ng * npts + pointsum) +
+            hy_cost(r->cost_counts, HY_COST_ANNOTATION, (double)na);
     if (what && size)
         snprintf(what, size, "%zu series, %zu distinct gamma solves over %.0f points (%ld per period, %g periods), "
-                 "%zu annotations x %d spots", ns, ng, npts, pts, fmax(1.0, periods), na, HY_PLACE_SPOTS);
+                 "%zu annotations", ns, ng, npts, pts, fmax(1.0, periods), na);
     return HY_OK;
 }
 

@@ -103,6 +103,10 @@ int hy_scene_run_write(const hy_scene_run *r, const char *dir, const char *forma
  * with a message naming the scene file. */
 int hy_scene_run_check_output(const hy_scene_run *r, const char *formats, hy_error *err);
 
+/* The pixels of the PNG raster the figure is drawn on when r->formats (or,
+ * NULL, the scene's [output] formats) include png; else 0. */
+double hy_scene_run_png_pixels(const hy_scene_run *r);
+
 /* Parses a comma-separated format list ("svg,png") into HY_FORMAT_* values
  * (duplicates dropped); HY_EINVAL naming an unknown one or an empty list. */
 int hy_scene_formats_parse(const char *list, int fmt[HY_FORMAT_COUNT], size_t *n, hy_error *err);

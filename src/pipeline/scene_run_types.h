@@ -102,6 +102,11 @@ typedef struct hy_scene_run {
     char plan[2048];          /* the plan, one step a line (render -v)            */
     double budget;            /* work budget (hy_scene_policy, --max-work)        */
     double work;              /* the estimate of the last compute                 */
+    double *cost_counts;      /* NULL, or HY_COST_COUNT counts the estimate adds
+                               * each kind of work to (hy_cost.h; --print-work)  */
+    const char *formats;      /* set before compute: the formats the figure will
+                               * be written in ("svg,png"; NULL: the scene's
+                               * [output] formats): a PNG's pixels count as work */
     int numbers_only;         /* set before compute: u, ψ and g are not sampled
                                * (n = 0; the table-only path of hystviz sweep);
                                * the closed forms are, so their measured error

@@ -293,6 +293,13 @@ int hy_format_from_path(const char *path)
     return -1;
 }
 
+double hy_figure_png_pixels(const hy_figure *f)
+{
+    double W, H, dpi;
+    hy__figure_size(f, &W, &H, &dpi);
+    return (double)hy_pt_to_px(W, dpi) * (double)hy_pt_to_px(H, dpi);
+}
+
 int hy_figure_check(const hy_figure *f, int format, hy_error *err)
 {
     if (!f)

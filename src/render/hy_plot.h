@@ -210,6 +210,8 @@ int hy_figure_text_hits(const hy_figure *f, const hy_canvas *cv, int index, doub
  * why: an unknown format, or a PNG over the limits above (e.g. 40 x 40 in at
  * 2400 dpi).  Cheap: lets a caller refuse before computing anything. */
 int hy_figure_check(const hy_figure *f, int format, hy_error *err);
+/* The pixels of f's PNG raster (its size at its dpi, whole pixels). */
+double hy_figure_png_pixels(const hy_figure *f);
 
 /* Renders f as HY_FORMAT_SVG, _PDF or _PNG into path through the output
  * writer (hy_out.h): a temporary file in the same directory renamed on

@@ -20,7 +20,7 @@
 #include "hy_scene_policy.h"
 
 #define HY_SERVE_INCLUDE_DIRS 16     /* --include-dir, at most */
-#define HY_SERVE_WORK_DEFAULT 2e6    /* serve's work budget per render (--max-work raises it) */
+#define HY_SERVE_WORK_DEFAULT 5e6    /* serve's work budget per render, about 0.5 s of CPU (hy_cost.h; --max-work) */
 #define HY_SERVE_PORT_DEFAULT 8017
 
 typedef struct hy_serve_opts {

@@ -153,6 +153,7 @@ static int render_run(render_job *j, char *text, size_t tl)
         j->run.cancel_ctx = &j->watch;
         /* a figure, not its points (csv, json with hover) */
         j->run.figure_only = j->format != FMT_CSV && !hover(a);
+        j->run.formats = j->format == HY_FORMAT_PNG ? "png" : "svg"; /* the work counts a PNG's pixels */
     }
     if (!rc && (rc = hy_scene_run_compute(&j->run, NULL, &j->err))) {
         hy_scene_run_free(&j->run);

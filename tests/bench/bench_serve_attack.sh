@@ -25,8 +25,9 @@ mkdir -p "$T/scenes"
 cp "$src"/*.scene "$T/scenes/"
 cp "$T/scenes/fig15_minor_loop_ex4.scene" "$T/scenes/inside.scene"
 # issue 36's heavy scenes: 600 nested minor loops for Preisach's staircase,
-# and Fig. 15 with 1,370 annotations asking for one place (1,380 pass serve's
-# work budget of 2e6 now that annotations count)
+# and Fig. 15 with 1,370 annotations asking for one place (before the cost
+# model, 1,380 passed serve's work budget of 2e6; at 15,600 units an
+# annotation both are now refused by serve's 5e6)
 python3 - "$T/scenes" <<'PY'
 import sys
 d = sys.argv[1]

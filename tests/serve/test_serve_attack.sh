@@ -88,7 +88,7 @@ timeout 40 python3 "$client" idle_closed "$port" 30 >"$T/idle_closed.out" &
 idle_pid=$!; bg+=($idle_pid)
 
 # ---- 6: budgets, other sites, clients that went away -------------------------------------
-# serve's own budget: 1e7 of work is within `render`'s 1e8, not within serve's 2e6
+# serve's own budget: 2.3e7 of work (a million points) is within `render`'s 1e8, not within serve's 5e6
 curl -s --max-time 30 -o "$T/body" -w "%{http_code}" "$base/api/render?scene=$F.scene&set=compute.points%3D1000000" >"$T/code"
 [ "$(cat "$T/code")" = 422 ] && grep -q "budget" "$T/body" && ok "over serve's budget: 422 naming it" ||
     bad "points=1e6: HTTP $(cat "$T/code") $(head -c 200 "$T/body")"
@@ -184,8 +184,8 @@ expect 403 "/api/save?scene=$F.scene&name=x1" -X POST -H "X-Hystviz-Token: "
 serve_stop
 "$hv" serve --help | grep -q -- "--allow-save" && "$hv" serve --help | grep -A3 -- "--public" | grep -q "reads every scene" &&
     ok "--help names --allow-save and what --public exposes" || bad "--help: --allow-save / --public"
-serve_start "$hv" serve scenes --port 0 --allow-save --max-work 2e7
-# --max-work raises serve's budget: the 1e7 refused above renders now; its
+serve_start "$hv" serve scenes --port 0 --allow-save --max-work 5e7
+# --max-work raises serve's budget: the 2.3e7 refused above renders now; its
 # 208 MB of CSV are over the output budget of an answer
 expect 200 "/api/render?scene=$F.scene&set=compute.points%3D1000000&fmt=svg" --max-time 60
 curl -s --max-time 60 "$base/api/render?scene=$F.scene&set=compute.points%3D1000000&fmt=csv" | head -c 300 >"$T/body"
