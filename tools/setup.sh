@@ -16,6 +16,8 @@
 #   sh tools/setup.sh fuzz MIN zfast  the same for hy_zfast, the PNG frames' deflate encoder
 #                               (fuzz_zfast: images against zlib and a strict inflater);
 #                               build-fuzz/zfast-corpus/, build-fuzz/zfast-crashes/
+#   sh tools/setup.sh fuzz MIN readers  the same for the data file readers ([data]'s table,
+#                               FORC files, Preisach density files: fuzz_readers)
 # With CI=true the build uses -Dwerror=true.
 set -eu
 cd "$(dirname "$0")/.."
@@ -200,7 +202,7 @@ fuzz)
     minutes=${2:-10}
     case "$minutes" in ''|*[!0-9]*) echo "setup: fuzz MINUTES takes a whole number of minutes" >&2; exit 2;; esac
     target=${3:-scene}
-    case "$target" in scene|zfast) ;; *) echo "setup: fuzz MINUTES [scene|zfast]" >&2; exit 2;; esac
+    case "$target" in scene|zfast|readers) ;; *) echo "setup: fuzz MINUTES [scene|zfast|readers]" >&2; exit 2;; esac
     # clang: libFuzzer instruments every library (coverage), ASan + UBSan with
     # float-cast-overflow abort at the first report; only the fuzz target is built
     fuzz_cflags="-fsanitize=fuzzer-no-link,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer"
@@ -210,24 +212,35 @@ fuzz)
         CC=clang meson setup build-fuzz -Dfuzz=true -Dgl=disabled -Db_sanitize=address,undefined \
             -Db_lundef=false -Dc_args="$fuzz_cflags" >/dev/null
     fi
-    if [ "$target" = zfast ]; then
-        # hy_zfast: an image from each input (tests/fuzz/zfast_harness.h), up to 2^16 pixels
-        meson compile -C build-fuzz fuzz_zfast
-        mkdir -p build-fuzz/zfast-corpus build-fuzz/zfast-crashes
-        before=$(ls build-fuzz/zfast-crashes | wc -l)
+    # fuzz_report NAME LOG CORPUS CRASHES BEFORE START: what the round did
+    fuzz_report() {
+        last=$(grep -E '^#[0-9]+: cov:' "$2" | tail -n 1)
+        echo "fuzz $1: ran $(($(date +%s) - $6)) s of $minutes min, log $2"
+        echo "fuzz $1: last status: ${last:-none (see the log)}"
+        echo "fuzz $1: executions $(echo "$last" | sed -n 's/^#\([0-9]*\):.*/\1/p'), coverage: edges (cov) $(echo "$last" |
+            sed -n 's/.* cov: \([0-9]*\).*/\1/p'), features (ft) $(echo "$last" | sed -n 's/.* ft: \([0-9]*\).*/\1/p'),"\
+            "corpus $(ls "$3" | wc -l) files"
+        after=$(ls "$4" | wc -l)
+        echo "fuzz $1: findings: $((after - $5)) new in $4/ ($after in all)"
+        ls -t "$4" | head -n $((after - $5)) | sed "s|^|  $4/|"
+    }
+    if [ "$target" != scene ]; then
+        # zfast: an image from each input (tests/fuzz/zfast_harness.h), up to 2^16 pixels;
+        # readers: byte 0 picks [data]'s table, a FORC or a density file, the rest is its text
+        # (tests/fuzz/readers_harness.h); seeds tests/fuzz/TARGET-corpus, TARGET-repro
+        maxlen=16384
+        [ "$target" = readers ] && maxlen=65537
+        meson compile -C build-fuzz fuzz_$target
+        mkdir -p build-fuzz/$target-corpus build-fuzz/$target-crashes
+        before=$(ls build-fuzz/$target-crashes | wc -l)
         start=$(date +%s)
         ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
-        build-fuzz/tests/fuzz/fuzz_zfast -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
-            -max_total_time=$((minutes * 60)) -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
-            -artifact_prefix=build-fuzz/zfast-crashes/ \
-            build-fuzz/zfast-corpus tests/fuzz/zfast-corpus tests/fuzz/zfast-repro >build-fuzz/zfast.log 2>&1 || true
-        last=$(grep -E '^#[0-9]+: cov:' build-fuzz/zfast.log | tail -n 1)
-        echo "fuzz zfast: ran $(($(date +%s) - start)) s of $minutes min, log build-fuzz/zfast.log"
-        echo "fuzz zfast: last status: ${last:-none (see the log)}"
-        after=$(ls build-fuzz/zfast-crashes | wc -l)
-        echo "fuzz zfast: findings: $((after - before)) new in build-fuzz/zfast-crashes/ ($after in all)"
-        ls -t build-fuzz/zfast-crashes | head -n $((after - before)) | sed 's|^|  build-fuzz/zfast-crashes/|'
-        echo "fuzz zfast: replay one: build-fuzz/tests/fuzz/fuzz_zfast FILE (or build/tests/fuzz/zfast_replay DIR)"
+        build-fuzz/tests/fuzz/fuzz_$target -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+            -max_total_time=$((minutes * 60)) -timeout=10 -rss_limit_mb=2048 -max_len=$maxlen \
+            -artifact_prefix=build-fuzz/$target-crashes/ \
+            build-fuzz/$target-corpus tests/fuzz/$target-corpus tests/fuzz/$target-repro >build-fuzz/$target.log 2>&1 || true
+        fuzz_report $target build-fuzz/$target.log build-fuzz/$target-corpus build-fuzz/$target-crashes "$before" "$start"
+        echo "fuzz $target: replay one: build-fuzz/tests/fuzz/fuzz_$target FILE (or build/tests/fuzz/${target}_replay DIR)"
         exit 0
     fi
     meson compile -C build-fuzz fuzz_scene fuzz_dict
@@ -241,19 +254,11 @@ fuzz)
         -max_total_time=$((minutes * 60)) -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
         -dict=build-fuzz/scene.dict -artifact_prefix=build-fuzz/fuzz-crashes/ \
         build-fuzz/fuzz-corpus tests/fuzz/corpus tests/fuzz/repro >build-fuzz/fuzz.log 2>&1 || true
-    last=$(grep -E '^#[0-9]+: cov:' build-fuzz/fuzz.log | tail -n 1)
-    echo "fuzz: ran $(($(date +%s) - start)) s of $minutes min, log build-fuzz/fuzz.log"
-    echo "fuzz: last status: ${last:-none (see the log)}"
-    echo "fuzz: executions $(echo "$last" | sed -n 's/^#\([0-9]*\):.*/\1/p'), coverage: edges (cov) $(echo "$last" |
-        sed -n 's/.* cov: \([0-9]*\).*/\1/p'), features (ft) $(echo "$last" | sed -n 's/.* ft: \([0-9]*\).*/\1/p'),"\
-        "corpus $(ls build-fuzz/fuzz-corpus | wc -l) files"
-    after=$(ls build-fuzz/fuzz-crashes | wc -l)
-    echo "fuzz: findings: $((after - before)) new in build-fuzz/fuzz-crashes/ ($after in all)"
-    ls -t build-fuzz/fuzz-crashes | head -n $((after - before)) | sed 's|^|  build-fuzz/fuzz-crashes/|'
-    echo "fuzz: replay one: build-fuzz/tests/fuzz/fuzz_scene FILE (or build/tests/fuzz/fuzz_replay -v FILE)"
+    fuzz_report scene build-fuzz/fuzz.log build-fuzz/fuzz-corpus build-fuzz/fuzz-crashes "$before" "$start"
+    echo "fuzz scene: replay one: build-fuzz/tests/fuzz/fuzz_scene FILE (or build/tests/fuzz/fuzz_replay -v FILE)"
     ;;
 *)
-    echo "usage: sh tools/setup.sh gallery|test|bench|fuzz [MINUTES [scene|zfast]]" >&2
+    echo "usage: sh tools/setup.sh gallery|test|bench|fuzz [MINUTES [scene|zfast|readers]]" >&2
     exit 2
     ;;
 esac
