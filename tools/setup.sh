@@ -36,8 +36,9 @@ pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # docs/STUDIES.md: tests/python/test_dask.py); cmake and g++ (a CMake project
 # and a C++17 program against the installed library: tests/libhystviz/test_cmake.sh);
 # python3-mesonpy and python3-venv (pip wheel . into a venv), mypy (mypy
-# --strict) and python3-matplotlib (hystviz.plot's example)
-case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-distributed python3-pip python3-wheel python3-mesonpy python3-venv mypy python3-matplotlib chromium pngcheck python3-pil slurm-wlm munge iproute2 cmake g++" ;; bench) pkgs="$pkgs curl bash python3 chromium pngcheck python3-pil python3-matplotlib python3-numpy python3-scipy" ;; esac
+# --strict) and python3-matplotlib (hystviz.plot's example); ccache (the five
+# build directories of the run share their compilations: see "test)" below)
+case "$what" in test) pkgs="$pkgs ccache curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-distributed python3-pip python3-wheel python3-mesonpy python3-venv mypy python3-matplotlib chromium pngcheck python3-pil slurm-wlm munge iproute2 cmake g++" ;; bench) pkgs="$pkgs curl bash python3 chromium pngcheck python3-pil python3-matplotlib python3-numpy python3-scipy" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"
@@ -129,7 +130,8 @@ dist_check() {
 # little, the CPU time over 2 cores is the time it would take on 2 quiet ones
 t_start=$(date +%s); t_stage=$t_start
 t_times=$(mktemp "${TMPDIR:-/tmp}/hystviz-times.XXXXXX")
-trap 'rm -f "$t_times"' EXIT
+ccache_dir=""
+trap 'rm -f "$t_times"; [ -z "$ccache_dir" ] || rm -rf "$ccache_dir"' EXIT
 cpu_s() { # the children's user + sys seconds, from the shell's own `times` (no subshell: it would count none)
     awk 'NR == 2 { s = 0; for (i = 1; i <= 2; i++) { split($i, a, "m"); s += a[1] * 60 + a[2] } printf "%.0f", s }' "$t_times"
 }
@@ -147,52 +149,105 @@ gallery)
     ./build/src/app/hystviz gallery
     ;;
 test)
+    # ccache within this run only (issue 36 item 7): build-osmesa, -egl, -nogl
+    # and the dist tarball's build compile most of build/'s sources with the
+    # same flags (meson uses ccache when it finds it; the command lines name
+    # the sources relative to the build directory, so with the directory left
+    # out of the hash they hit across build directories).  Its own cache in
+    # $TMPDIR, removed at exit: nothing under ~/.cache, nothing from another run
+    if command -v ccache >/dev/null 2>&1; then
+        ccache_dir=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-ccache.XXXXXX")
+        export CCACHE_DIR="$ccache_dir" CCACHE_NOHASHDIR=1 CCACHE_BASEDIR="$PWD"
+    fi
     configure build
     stage "building build/"
-    run_tests build
-    stage "the tests in build/"
+    # build/'s tests leave a core idle about a third of the time (serial tests,
+    # waits on servers and browsers): meanwhile, in the background, the Slurm
+    # example (mostly waiting on its daemons) and, at the lowest priority so the
+    # tests keep their CPU, the builds of build-osmesa, -egl, -nogl and -san
+    # (their tests run below, after these).  Each job's output is shown when
+    # it ends, its exit status counted.
+    bg_log=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-bg.XXXXXX")
     # the README's Slurm example on a real single-node Slurm of its own
     # (tools/cluster/slurm-local.sh); once, not per build configuration
-    sh tests/cli/test_slurm.sh build/src/app/hystviz .
-    stage "the Slurm example"
-    # each GL backend alone (build/ has both: its gl suite ran on each, and
-    # compared their frames); -Dgl=egl is the machine without OSMesa; only
-    # what the gl suite runs is built
+    sh tests/cli/test_slurm.sh build/src/app/hystviz . >"$bg_log/slurm" 2>&1 &
+    bg_slurm=$!
+    (
+        set -e
+        # this subshell and what it starts at the lowest priority ($$ is the
+        # parent's pid in a subshell: sh -c's parent is this one)
+        renice -n 19 -p "$(exec sh -c 'echo $PPID')" >/dev/null
+        # each GL backend alone (build/ has both: its gl suite ran on each, and
+        # compared their frames); -Dgl=egl is the machine without OSMesa; only
+        # what the gl suite runs is built
+        for gl in osmesa egl; do
+            configure_for build-$gl gl -Dgl=$gl
+        done
+        # the build without GL and libmicrohttpd: only what its suites run
+        configure_for build-nogl "gl serve config" -Dgl=disabled -Dmicrohttpd=disabled
+        # GCC's -fsanitize=undefined leaves out float-cast-overflow (a double too large
+        # for the integer it is converted to); it is added, and made fatal, here.
+        # -O1, as ASan's documentation advises for speed; -g keeps the stacks readable;
+        # only what its tests run is built (not the benchmarks, man pages, ...)
+        san="-fsanitize=float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
+        configure_for build-san "!check !no-san" -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug \
+            -Doptimization=1 -Dc_args="$san" -Dc_link_args="$san"
+    ) >"$bg_log/builds" 2>&1 </dev/null &
+    bg_builds=$!
+    st=0
+    run_tests build || st=$?
+    bg_st=0
+    wait "$bg_slurm" || bg_st=$?
+    echo "setup: the Slurm example (run beside build/'s tests):"
+    cat "$bg_log/slurm"
+    [ "$bg_st" -eq 0 ] || { echo "setup: the Slurm example failed (exit $bg_st)" >&2; st=1; }
+    bg_st=0
+    wait "$bg_builds" || bg_st=$?
+    echo "setup: building build-osmesa, build-egl, build-nogl and build-san (beside build/'s tests):"
+    tail -n 40 "$bg_log/builds"
+    [ "$bg_st" -eq 0 ] || { echo "setup: building them failed (exit $bg_st; the whole log above was cut to 40 lines)" >&2; st=1; }
+    rm -rf "$bg_log"
+    [ "$st" -eq 0 ] || exit "$st"
+    stage "the tests in build/, beside them the Slurm example and building build-osmesa, -egl, -nogl, -san"
+    # the gl suite on each GL backend alone (built above)
     for gl in osmesa egl; do
-        configure_for build-$gl gl -Dgl=$gl
         run_tests build-$gl --no-rebuild --suite gl
-        stage "build-$gl (building, its gl suite)"
+        stage "build-$gl (its gl suite)"
     done
     # the build without GL and libmicrohttpd: cairo figures work, GL tests
     # report SKIP, serve exits 3 naming what is missing.  Only the suites whose
     # code depends on the configuration run again (gl, serve, and the tests
     # tagged 'config': tests/meson.build); the rest ran in build/
-    configure_for build-nogl "gl serve config" -Dgl=disabled -Dmicrohttpd=disabled
     run_tests build-nogl --no-rebuild --suite gl --suite serve --suite config
-    stage "build-nogl (building, its gl, serve and config suites)"
-    # GCC's -fsanitize=undefined leaves out float-cast-overflow (a double too large
-    # for the integer it is converted to); it is added, and made fatal, here
-    san="-fsanitize=float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
-    # -O1, as ASan's documentation advises for speed; -g keeps the stacks readable
-    # only what its tests run is built (not the benchmarks, man pages, ...)
-    configure_for build-san "!check !no-san" -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug \
-        -Doptimization=1 -Dc_args="$san" -Dc_link_args="$san"
-    stage "building build-san/"
+    stage "build-nogl (its gl, serve and config suites)"
+    # beside them, at the lowest priority, the release tarball passes its own
+    # tests (issue 35 item 5): `meson dist` makes it from git (--no-tests: its
+    # own check rebuilds everything and runs every test, too long for the
+    # budget); it is unpacked outside any checkout, built for the tests of
+    # suite 'dist' only and those run: the licence lines without git, the build
+    # tree's files against a decoy install, the library's symbols, ABI,
+    # reference and pipeline
+    bg_log=$(mktemp "${TMPDIR:-/tmp}/hystviz-dist-log.XXXXXX")
+    (renice -n 19 -p "$(exec sh -c 'echo $PPID')" >/dev/null; dist_check) >"$bg_log" 2>&1 </dev/null &
+    bg_dist=$!
     # every suite again under ASan + UBSan but the full check and the tests
     # tagged no-san (tests/meson.build: their C paths run here in other tests)
     # (fontconfig keeps a process-lifetime cache: suppressed in tests/render/lsan.supp)
     export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
         LSAN_OPTIONS=suppressions="$PWD/tests/render/lsan.supp"
-    run_tests build-san --no-rebuild --no-suite check --no-suite no-san
-    stage "the tests in build-san/"
-    # the release tarball passes its own tests (issue 35 item 5): `meson dist`
-    # makes it from git (--no-tests: its own check rebuilds everything and
-    # runs every test, too long for the budget); it is unpacked outside any
-    # checkout, built for the tests of suite 'dist' only and those run: the
-    # licence lines without git, the build tree's files against a decoy
-    # install, the library's symbols, ABI, reference and pipeline
-    dist_check
-    stage "the dist tarball (building, its dist suite)"
+    st=0
+    run_tests build-san --no-rebuild --no-suite check --no-suite no-san || st=$?
+    bg_st=0
+    wait "$bg_dist" || bg_st=$?
+    echo "setup: the dist tarball (run beside build-san/'s tests):"
+    cat "$bg_log"
+    rm -f "$bg_log"
+    [ "$bg_st" -eq 0 ] || { echo "setup: the dist tarball failed (exit $bg_st)" >&2; st=1; }
+    [ "$st" -eq 0 ] || exit "$st"
+    if [ -n "$ccache_dir" ]; then
+        echo "setup: ccache of this run: $(ccache -s | grep -E '^ *(Hits|Misses):' | head -n 2 | tr -s ' ' | tr '\n' ' ')"
+    fi
+    stage "the tests in build-san/, beside them the dist tarball (building, its dist suite)"
     ;;
 bench)
     configure build
