@@ -169,7 +169,14 @@ static int column(const reader *rd, const header *h, size_t ncols, const char *c
         for (size_t i = 0; rd->quote && i < h->f.n && o < sizeof what; i++) {
             char nm[100];
             hy_file_shown(h->s + h->f.at[i], h->f.len[i], 40, nm, sizeof nm);
-            o += (size_t)snprintf(what + o, sizeof what - o, "%s%s", i ? ", " : "; it names ", nm);
+            /* quoted: a name may hold ", " or end in ':' (the list would be ambiguous);
+               a name that does not fit whole is left out, said by "..." */
+            const char *sep = i ? ", " : "; it names ";
+            if (o + strlen(sep) + strlen(nm) + 2 + sizeof ", ..." > sizeof what) {
+                snprintf(what + o, sizeof what - o, ", ...");
+                break;
+            }
+            o += (size_t)snprintf(what + o, sizeof what - o, "%s'%s'", sep, nm);
         }
         if (!rd->quote && o < sizeof what)
             snprintf(what + o, sizeof what - o, " of %zu columns", h->f.n);
