@@ -5,19 +5,13 @@
  * invariant aborts with its reason.  Built only with -Dfuzz=true;
  * `sh tools/setup.sh fuzz MINUTES readers` builds and runs it. */
 #include <stdint.h>
-#include <stdio.h>
-#include <stdlib.h>
 
 #include "readers_harness.h"
+#include "replay_dirs.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char why[300];
-    if (readers_fuzz_one(data, size, why, sizeof why)) {
-        fprintf(stderr, "fuzz_readers: %s\n", why);
-        abort();
-    }
-    return 0;
+    return fuzz_bytes_one("fuzz_readers", readers_fuzz_one, data, size);
 }

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* replay_dirs.c: every file of some directories through a fuzz harness (replay_dirs.h). */
+/* replay_dirs.c: one input, or every file of some directories, through a fuzz harness (replay_dirs.h). */
 #include "replay_dirs.h"
 
 #include <dirent.h>
@@ -45,4 +45,14 @@ int replay_dirs(int argc, char **argv, const char *prog, replay_one_fn one)
     }
     printf("%s: %d inputs, %d passed, %d failed\n", prog, n, n - bad, bad);
     return bad || !n;
+}
+
+int fuzz_bytes_one(const char *prog, replay_one_fn one, const uint8_t *data, size_t size)
+{
+    char why[300];
+    if (one(data, size, why, sizeof why)) {
+        fprintf(stderr, "%s: %s\n", prog, why);
+        abort();
+    }
+    return 0;
 }
