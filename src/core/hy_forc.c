@@ -216,8 +216,10 @@ static const char *why_not_num(const char *p, const char *e)
 {
     if (p >= e)
         return "a number is missing";
-    if (e - p >= 3 && (!strncasecmp(p, "nan", 3) || !strncasecmp(p, "inf", 3) || !strncasecmp(p + 1, "nan", 3) ||
-                       !strncasecmp(p + 1, "inf", 3)))
+    /* past a sign; strncasecmp may read all 3 bytes, so 3 must lie before e
+       (a token "+na" at the end of the text was read one byte past it) */
+    const char *q = e - p >= 4 && (*p == '+' || *p == '-') ? p + 1 : p;
+    if (e - q >= 3 && (!strncasecmp(q, "nan", 3) || !strncasecmp(q, "inf", 3)))
         return "NaN or infinity is not a measurement";
     return "expected a number";
 }
