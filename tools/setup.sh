@@ -28,6 +28,8 @@ pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev libde
 pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # the fuzzer needs clang and its runtime libraries (libFuzzer, ASan, UBSan)
 [ "$what" = fuzz ] && pkgs="$pkgs clang libclang-rt-dev"
+# the test command's build directories share their compilations through ccache (see "test)" below)
+[ "$what" = test ] && pkgs="$pkgs ccache"
 # what the tests need besides: curl and bash (serve over HTTP), python3 and
 # chromium (the page in a real browser, headless); slurm-wlm, munge and
 # iproute2 (a single-node Slurm on loopback: tests/cli/test_slurm.sh);
@@ -36,9 +38,8 @@ pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # docs/STUDIES.md: tests/python/test_dask.py); cmake and g++ (a CMake project
 # and a C++17 program against the installed library: tests/libhystviz/test_cmake.sh);
 # python3-mesonpy and python3-venv (pip wheel . into a venv), mypy (mypy
-# --strict) and python3-matplotlib (hystviz.plot's example); ccache (the five
-# build directories of the run share their compilations: see "test)" below)
-case "$what" in test) pkgs="$pkgs ccache curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-distributed python3-pip python3-wheel python3-mesonpy python3-venv mypy python3-matplotlib chromium pngcheck python3-pil slurm-wlm munge iproute2 cmake g++" ;; bench) pkgs="$pkgs curl bash python3 chromium pngcheck python3-pil python3-matplotlib python3-numpy python3-scipy" ;; esac
+# --strict) and python3-matplotlib (hystviz.plot's example)
+case "$what" in test) pkgs="$pkgs curl bash python3 python3-numpy python3-nbclient python3-ipykernel python3-distributed python3-pip python3-wheel python3-mesonpy python3-venv mypy python3-matplotlib chromium pngcheck python3-pil slurm-wlm munge iproute2 cmake g++" ;; bench) pkgs="$pkgs curl bash python3 chromium pngcheck python3-pil python3-matplotlib python3-numpy python3-scipy" ;; esac
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"
