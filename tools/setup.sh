@@ -16,6 +16,8 @@
 #   sh tools/setup.sh fuzz MIN zfast  the same for hy_zfast, the PNG frames' deflate encoder
 #                               (fuzz_zfast: images against zlib and a strict inflater);
 #                               build-fuzz/zfast-corpus/, build-fuzz/zfast-crashes/
+#   sh tools/setup.sh fuzz MIN readers  the same for the data file readers ([data]'s table,
+#                               FORC files, Preisach density files: fuzz_readers)
 # With CI=true the build uses -Dwerror=true.
 set -eu
 cd "$(dirname "$0")/.."
@@ -26,6 +28,8 @@ pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev libde
 pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # the fuzzer needs clang and its runtime libraries (libFuzzer, ASan, UBSan)
 [ "$what" = fuzz ] && pkgs="$pkgs clang libclang-rt-dev"
+# the test command's build directories share their compilations through ccache (see "test)" below)
+[ "$what" = test ] && pkgs="$pkgs ccache"
 # what the tests need besides: curl and bash (serve over HTTP), python3 and
 # chromium (the page in a real browser, headless); slurm-wlm, munge and
 # iproute2 (a single-node Slurm on loopback: tests/cli/test_slurm.sh);
@@ -128,7 +132,8 @@ dist_check() {
 # little, the CPU time over 2 cores is the time it would take on 2 quiet ones
 t_start=$(date +%s); t_stage=$t_start
 t_times=$(mktemp "${TMPDIR:-/tmp}/hystviz-times.XXXXXX")
-trap 'rm -f "$t_times"' EXIT
+ccache_dir=""
+trap 'rm -f "$t_times"; [ -z "$ccache_dir" ] || rm -rf "$ccache_dir"' EXIT
 cpu_s() { # the children's user + sys seconds, from the shell's own `times` (no subshell: it would count none)
     awk 'NR == 2 { s = 0; for (i = 1; i <= 2; i++) { split($i, a, "m"); s += a[1] * 60 + a[2] } printf "%.0f", s }' "$t_times"
 }
@@ -146,52 +151,105 @@ gallery)
     ./build/src/app/hystviz gallery
     ;;
 test)
+    # ccache within this run only (issue 36 item 7): build-osmesa, -egl, -nogl
+    # and the dist tarball's build compile most of build/'s sources with the
+    # same flags (meson uses ccache when it finds it; the command lines name
+    # the sources relative to the build directory, so with the directory left
+    # out of the hash they hit across build directories).  Its own cache in
+    # $TMPDIR, removed at exit: nothing under ~/.cache, nothing from another run
+    if command -v ccache >/dev/null 2>&1; then
+        ccache_dir=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-ccache.XXXXXX")
+        export CCACHE_DIR="$ccache_dir" CCACHE_NOHASHDIR=1 CCACHE_BASEDIR="$PWD"
+    fi
     configure build
     stage "building build/"
-    run_tests build
-    stage "the tests in build/"
+    # build/'s tests leave a core idle about a third of the time (serial tests,
+    # waits on servers and browsers): meanwhile, in the background, the Slurm
+    # example (mostly waiting on its daemons) and, at the lowest priority so the
+    # tests keep their CPU, the builds of build-osmesa, -egl, -nogl and -san
+    # (their tests run below, after these).  Each job's output is shown when
+    # it ends, its exit status counted.
+    bg_log=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-bg.XXXXXX")
     # the README's Slurm example on a real single-node Slurm of its own
     # (tools/cluster/slurm-local.sh); once, not per build configuration
-    sh tests/cli/test_slurm.sh build/src/app/hystviz .
-    stage "the Slurm example"
-    # each GL backend alone (build/ has both: its gl suite ran on each, and
-    # compared their frames); -Dgl=egl is the machine without OSMesa; only
-    # what the gl suite runs is built
+    sh tests/cli/test_slurm.sh build/src/app/hystviz . >"$bg_log/slurm" 2>&1 &
+    bg_slurm=$!
+    (
+        set -e
+        # this subshell and what it starts at the lowest priority ($$ is the
+        # parent's pid in a subshell: sh -c's parent is this one)
+        renice -n 19 -p "$(exec sh -c 'echo $PPID')" >/dev/null
+        # each GL backend alone (build/ has both: its gl suite ran on each, and
+        # compared their frames); -Dgl=egl is the machine without OSMesa; only
+        # what the gl suite runs is built
+        for gl in osmesa egl; do
+            configure_for build-$gl gl -Dgl=$gl
+        done
+        # the build without GL and libmicrohttpd: only what its suites run
+        configure_for build-nogl "gl serve config" -Dgl=disabled -Dmicrohttpd=disabled
+        # GCC's -fsanitize=undefined leaves out float-cast-overflow (a double too large
+        # for the integer it is converted to); it is added, and made fatal, here.
+        # -O1, as ASan's documentation advises for speed; -g keeps the stacks readable;
+        # only what its tests run is built (not the benchmarks, man pages, ...)
+        san="-fsanitize=float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
+        configure_for build-san "!check !no-san" -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug \
+            -Doptimization=1 -Dc_args="$san" -Dc_link_args="$san"
+    ) >"$bg_log/builds" 2>&1 </dev/null &
+    bg_builds=$!
+    st=0
+    run_tests build || st=$?
+    bg_st=0
+    wait "$bg_slurm" || bg_st=$?
+    echo "setup: the Slurm example (run beside build/'s tests):"
+    cat "$bg_log/slurm"
+    [ "$bg_st" -eq 0 ] || { echo "setup: the Slurm example failed (exit $bg_st)" >&2; st=1; }
+    bg_st=0
+    wait "$bg_builds" || bg_st=$?
+    echo "setup: building build-osmesa, build-egl, build-nogl and build-san (beside build/'s tests):"
+    tail -n 40 "$bg_log/builds"
+    [ "$bg_st" -eq 0 ] || { echo "setup: building them failed (exit $bg_st; the whole log above was cut to 40 lines)" >&2; st=1; }
+    rm -rf "$bg_log"
+    [ "$st" -eq 0 ] || exit "$st"
+    stage "the tests in build/, beside them the Slurm example and building build-osmesa, -egl, -nogl, -san"
+    # the gl suite on each GL backend alone (built above)
     for gl in osmesa egl; do
-        configure_for build-$gl gl -Dgl=$gl
         run_tests build-$gl --no-rebuild --suite gl
-        stage "build-$gl (building, its gl suite)"
+        stage "build-$gl (its gl suite)"
     done
     # the build without GL and libmicrohttpd: cairo figures work, GL tests
     # report SKIP, serve exits 3 naming what is missing.  Only the suites whose
     # code depends on the configuration run again (gl, serve, and the tests
     # tagged 'config': tests/meson.build); the rest ran in build/
-    configure_for build-nogl "gl serve config" -Dgl=disabled -Dmicrohttpd=disabled
     run_tests build-nogl --no-rebuild --suite gl --suite serve --suite config
-    stage "build-nogl (building, its gl, serve and config suites)"
-    # GCC's -fsanitize=undefined leaves out float-cast-overflow (a double too large
-    # for the integer it is converted to); it is added, and made fatal, here
-    san="-fsanitize=float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow"
-    # -O1, as ASan's documentation advises for speed; -g keeps the stacks readable
-    # only what its tests run is built (not the benchmarks, man pages, ...)
-    configure_for build-san "!check !no-san" -Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debug \
-        -Doptimization=1 -Dc_args="$san" -Dc_link_args="$san"
-    stage "building build-san/"
+    stage "build-nogl (its gl, serve and config suites)"
+    # beside them, at the lowest priority, the release tarball passes its own
+    # tests (issue 35 item 5): `meson dist` makes it from git (--no-tests: its
+    # own check rebuilds everything and runs every test, too long for the
+    # budget); it is unpacked outside any checkout, built for the tests of
+    # suite 'dist' only and those run: the licence lines without git, the build
+    # tree's files against a decoy install, the library's symbols, ABI,
+    # reference and pipeline
+    bg_log=$(mktemp "${TMPDIR:-/tmp}/hystviz-dist-log.XXXXXX")
+    (renice -n 19 -p "$(exec sh -c 'echo $PPID')" >/dev/null; dist_check) >"$bg_log" 2>&1 </dev/null &
+    bg_dist=$!
     # every suite again under ASan + UBSan but the full check and the tests
     # tagged no-san (tests/meson.build: their C paths run here in other tests)
     # (fontconfig keeps a process-lifetime cache: suppressed in tests/render/lsan.supp)
     export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
         LSAN_OPTIONS=suppressions="$PWD/tests/render/lsan.supp"
-    run_tests build-san --no-rebuild --no-suite check --no-suite no-san
-    stage "the tests in build-san/"
-    # the release tarball passes its own tests (issue 35 item 5): `meson dist`
-    # makes it from git (--no-tests: its own check rebuilds everything and
-    # runs every test, too long for the budget); it is unpacked outside any
-    # checkout, built for the tests of suite 'dist' only and those run: the
-    # licence lines without git, the build tree's files against a decoy
-    # install, the library's symbols, ABI, reference and pipeline
-    dist_check
-    stage "the dist tarball (building, its dist suite)"
+    st=0
+    run_tests build-san --no-rebuild --no-suite check --no-suite no-san || st=$?
+    bg_st=0
+    wait "$bg_dist" || bg_st=$?
+    echo "setup: the dist tarball (run beside build-san/'s tests):"
+    cat "$bg_log"
+    rm -f "$bg_log"
+    [ "$bg_st" -eq 0 ] || { echo "setup: the dist tarball failed (exit $bg_st)" >&2; st=1; }
+    [ "$st" -eq 0 ] || exit "$st"
+    if [ -n "$ccache_dir" ]; then
+        echo "setup: ccache of this run: $(ccache -s | grep -E '^ *(Hits|Misses):' | head -n 2 | tr -s ' ' | tr '\n' ' ')"
+    fi
+    stage "the tests in build-san/, beside them the dist tarball (building, its dist suite)"
     ;;
 bench)
     configure build
@@ -201,7 +259,7 @@ fuzz)
     minutes=${2:-10}
     case "$minutes" in ''|*[!0-9]*) echo "setup: fuzz MINUTES takes a whole number of minutes" >&2; exit 2;; esac
     target=${3:-scene}
-    case "$target" in scene|zfast) ;; *) echo "setup: fuzz MINUTES [scene|zfast]" >&2; exit 2;; esac
+    case "$target" in scene|zfast|readers) ;; *) echo "setup: fuzz MINUTES [scene|zfast|readers]" >&2; exit 2;; esac
     # clang: libFuzzer instruments every library (coverage), ASan + UBSan with
     # float-cast-overflow abort at the first report; only the fuzz target is built
     fuzz_cflags="-fsanitize=fuzzer-no-link,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer"
@@ -211,24 +269,35 @@ fuzz)
         CC=clang meson setup build-fuzz -Dfuzz=true -Dgl=disabled -Db_sanitize=address,undefined \
             -Db_lundef=false -Dc_args="$fuzz_cflags" >/dev/null
     fi
-    if [ "$target" = zfast ]; then
-        # hy_zfast: an image from each input (tests/fuzz/zfast_harness.h), up to 2^16 pixels
-        meson compile -C build-fuzz fuzz_zfast
-        mkdir -p build-fuzz/zfast-corpus build-fuzz/zfast-crashes
-        before=$(ls build-fuzz/zfast-crashes | wc -l)
+    # fuzz_report NAME LOG CORPUS CRASHES BEFORE START: what the round did
+    fuzz_report() {
+        last=$(grep -E '^#[0-9]+: cov:' "$2" | tail -n 1)
+        echo "fuzz $1: ran $(($(date +%s) - $6)) s of $minutes min, log $2"
+        echo "fuzz $1: last status: ${last:-none (see the log)}"
+        echo "fuzz $1: executions $(echo "$last" | sed -n 's/^#\([0-9]*\):.*/\1/p'), coverage: edges (cov) $(echo "$last" |
+            sed -n 's/.* cov: \([0-9]*\).*/\1/p'), features (ft) $(echo "$last" | sed -n 's/.* ft: \([0-9]*\).*/\1/p'),"\
+            "corpus $(ls "$3" | wc -l) files"
+        after=$(ls "$4" | wc -l)
+        echo "fuzz $1: findings: $((after - $5)) new in $4/ ($after in all)"
+        ls -t "$4" | head -n $((after - $5)) | sed "s|^|  $4/|"
+    }
+    if [ "$target" != scene ]; then
+        # zfast: an image from each input (tests/fuzz/zfast_harness.h), up to 2^16 pixels;
+        # readers: byte 0 picks [data]'s table, a FORC or a density file, the rest is its text
+        # (tests/fuzz/readers_harness.h); seeds tests/fuzz/TARGET-corpus, TARGET-repro
+        maxlen=16384
+        [ "$target" = readers ] && maxlen=65537
+        meson compile -C build-fuzz fuzz_$target
+        mkdir -p build-fuzz/$target-corpus build-fuzz/$target-crashes
+        before=$(ls build-fuzz/$target-crashes | wc -l)
         start=$(date +%s)
         ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
-        build-fuzz/tests/fuzz/fuzz_zfast -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
-            -max_total_time=$((minutes * 60)) -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
-            -artifact_prefix=build-fuzz/zfast-crashes/ \
-            build-fuzz/zfast-corpus tests/fuzz/zfast-corpus tests/fuzz/zfast-repro >build-fuzz/zfast.log 2>&1 || true
-        last=$(grep -E '^#[0-9]+: cov:' build-fuzz/zfast.log | tail -n 1)
-        echo "fuzz zfast: ran $(($(date +%s) - start)) s of $minutes min, log build-fuzz/zfast.log"
-        echo "fuzz zfast: last status: ${last:-none (see the log)}"
-        after=$(ls build-fuzz/zfast-crashes | wc -l)
-        echo "fuzz zfast: findings: $((after - before)) new in build-fuzz/zfast-crashes/ ($after in all)"
-        ls -t build-fuzz/zfast-crashes | head -n $((after - before)) | sed 's|^|  build-fuzz/zfast-crashes/|'
-        echo "fuzz zfast: replay one: build-fuzz/tests/fuzz/fuzz_zfast FILE (or build/tests/fuzz/zfast_replay DIR)"
+        build-fuzz/tests/fuzz/fuzz_$target -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+            -max_total_time=$((minutes * 60)) -timeout=10 -rss_limit_mb=2048 -max_len=$maxlen \
+            -artifact_prefix=build-fuzz/$target-crashes/ \
+            build-fuzz/$target-corpus tests/fuzz/$target-corpus tests/fuzz/$target-repro >build-fuzz/$target.log 2>&1 || true
+        fuzz_report $target build-fuzz/$target.log build-fuzz/$target-corpus build-fuzz/$target-crashes "$before" "$start"
+        echo "fuzz $target: replay one: build-fuzz/tests/fuzz/fuzz_$target FILE (or build/tests/fuzz/${target}_replay DIR)"
         exit 0
     fi
     meson compile -C build-fuzz fuzz_scene fuzz_dict
@@ -242,19 +311,11 @@ fuzz)
         -max_total_time=$((minutes * 60)) -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
         -dict=build-fuzz/scene.dict -artifact_prefix=build-fuzz/fuzz-crashes/ \
         build-fuzz/fuzz-corpus tests/fuzz/corpus tests/fuzz/repro >build-fuzz/fuzz.log 2>&1 || true
-    last=$(grep -E '^#[0-9]+: cov:' build-fuzz/fuzz.log | tail -n 1)
-    echo "fuzz: ran $(($(date +%s) - start)) s of $minutes min, log build-fuzz/fuzz.log"
-    echo "fuzz: last status: ${last:-none (see the log)}"
-    echo "fuzz: executions $(echo "$last" | sed -n 's/^#\([0-9]*\):.*/\1/p'), coverage: edges (cov) $(echo "$last" |
-        sed -n 's/.* cov: \([0-9]*\).*/\1/p'), features (ft) $(echo "$last" | sed -n 's/.* ft: \([0-9]*\).*/\1/p'),"\
-        "corpus $(ls build-fuzz/fuzz-corpus | wc -l) files"
-    after=$(ls build-fuzz/fuzz-crashes | wc -l)
-    echo "fuzz: findings: $((after - before)) new in build-fuzz/fuzz-crashes/ ($after in all)"
-    ls -t build-fuzz/fuzz-crashes | head -n $((after - before)) | sed 's|^|  build-fuzz/fuzz-crashes/|'
-    echo "fuzz: replay one: build-fuzz/tests/fuzz/fuzz_scene FILE (or build/tests/fuzz/fuzz_replay -v FILE)"
+    fuzz_report scene build-fuzz/fuzz.log build-fuzz/fuzz-corpus build-fuzz/fuzz-crashes "$before" "$start"
+    echo "fuzz scene: replay one: build-fuzz/tests/fuzz/fuzz_scene FILE (or build/tests/fuzz/fuzz_replay -v FILE)"
     ;;
 *)
-    echo "usage: sh tools/setup.sh gallery|test|bench|fuzz [MINUTES [scene|zfast]]" >&2
+    echo "usage: sh tools/setup.sh gallery|test|bench|fuzz [MINUTES [scene|zfast|readers]]" >&2
     exit 2
     ;;
 esac

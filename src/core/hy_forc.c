@@ -27,6 +27,12 @@ void hy_forc_data_free(hy_forc_data *d)
     memset(d, 0, sizeof *d);
 }
 
+/* The refusal of a NULL where the header says it must not be (HY_EINVAL). */
+static int null_arg(hy_error *err, const char *fn, const char *what)
+{
+    return hy_error_set(err, HY_EINVAL, "%s: %s must not be NULL", fn, what);
+}
+
 static void data_init(hy_forc_data *d)
 {
     memset(d, 0, sizeof *d);
@@ -81,7 +87,11 @@ static int push_curve(builder *b, double ha, size_t first, size_t line)
 int hy_forc_data_set(hy_forc_data *d, size_t ncurves, const double *ha, const size_t *n, const double *hb,
                      const double *m, hy_error *err)
 {
+    if (!d)
+        return null_arg(err, "hy_forc_data_set", "d");
     data_init(d);
+    if (!ha || !n || !hb || !m)
+        return null_arg(err, "hy_forc_data_set", !ha ? "ha" : !n ? "n" : !hb ? "hb" : "m");
     if (ncurves < 1 || ncurves > HY_FORC_MAX_CURVES)
         return hy_error_set(err, HY_EINVAL, "FORC data: %zu curves (1 to %u)", ncurves, HY_FORC_MAX_CURVES);
     size_t total = 0;
@@ -206,8 +216,10 @@ static const char *why_not_num(const char *p, const char *e)
 {
     if (p >= e)
         return "a number is missing";
-    if (e - p >= 3 && (!strncasecmp(p, "nan", 3) || !strncasecmp(p, "inf", 3) || !strncasecmp(p + 1, "nan", 3) ||
-                       !strncasecmp(p + 1, "inf", 3)))
+    /* past a sign; strncasecmp may read all 3 bytes, so 3 must lie before e
+       (a token "+na" at the end of the text was read one byte past it) */
+    const char *q = e - p >= 4 && (*p == '+' || *p == '-') ? p + 1 : p;
+    if (e - q >= 3 && (!strncasecmp(q, "nan", 3) || !strncasecmp(q, "inf", 3)))
         return "NaN or infinity is not a measurement";
     return "expected a number";
 }
@@ -502,7 +514,13 @@ static int mm_read(hy_forc_data *d, scan *s, hy_error *err)
 static int read_with(int (*reader)(hy_forc_data *, scan *, hy_error *), hy_forc_data *d, const char *text,
                      size_t len, const char *name, hy_error *err)
 {
+    if (!d)
+        return null_arg(err, "hy_forc_read", "d");
     data_init(d);
+    if (!text && len)
+        return null_arg(err, "hy_forc_read", "text (len is not 0)");
+    if (!text)
+        text = ""; /* len 0 */
     scan s = {text, text + len, name ? name : "FORC file", 0, text, text};
     int rc = reader(d, &s, err);
     if (rc)
@@ -567,7 +585,7 @@ int hy_forc_read_csv(hy_forc_data *d, const char *text, size_t len, const char *
 
 int hy_forc_read(hy_forc_data *d, const char *text, size_t len, const char *name, hy_error *err)
 {
-    if (len >= 8 && !memcmp(text, "MicroMag", 8))
+    if (text && len >= 8 && !memcmp(text, "MicroMag", 8))
         return hy_forc_read_micromag(d, text, len, name, err);
     return hy_forc_read_csv(d, text, len, name, err);
 }
@@ -576,6 +594,8 @@ int hy_forc_read(hy_forc_data *d, const char *text, size_t len, const char *name
 
 int hy_forc_drift(hy_forc_data *d, hy_error *err)
 {
+    if (!d)
+        return null_arg(err, "hy_forc_drift", "d");
     if (!d->ncurves)
         return hy_error_set(err, HY_EINVAL, "drift correction: no curves");
     double ref = d->curve[0].cal_m;
@@ -624,6 +644,14 @@ static double median_pos(double *v, size_t n)
 
 void hy_forc_steps(const hy_forc_data *d, double *da, double *db)
 {
+    double sa, sb;
+    if (!da)
+        da = &sa;
+    if (!db)
+        db = &sb;
+    *da = *db = 0;
+    if (!d)
+        return;
     size_t n = d->npoints > d->ncurves ? d->npoints : d->ncurves;
     double *v = malloc((n + 1) * sizeof *v);
     *da = *db = 0;
@@ -660,6 +688,14 @@ void hy_forc_grid_free(hy_forc_grid *g)
 
 void hy_forc_grid_auto(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_grid *g)
 {
+    if (!g)
+        return;
+    hy_forc_data none = {0};
+    hy_forc_opts dflt = hy_forc_defaults();
+    if (!d)
+        d = &none;
+    if (!o)
+        o = &dflt;
     double da = o->da, db = o->db, sa, sb;
     hy_forc_steps(d, &sa, &sb);
     if (!(da > 0))
@@ -981,6 +1017,8 @@ static int check_opts(const hy_forc_data *d, const hy_forc_opts *o, const hy_for
 
 int hy_forc_rho(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_grid *g, size_t *nfit, hy_error *err)
 {
+    if (!d || !o || !g)
+        return null_arg(err, "hy_forc_rho", !d ? "d" : !o ? "o" : "g");
     double da = o->da, db = o->db, sa = 0, sb = 0;
     if (!(da > 0) || !(db > 0))
         hy_forc_steps(d, &sa, &sb);
@@ -1045,7 +1083,11 @@ int hy_forc_rho(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_grid *g, s
 int hy_forc_protocol_run(hy_forc_data *d, const hy_forc_protocol *pr, hy_rateind_fn fn, void *ctx,
                          hy_error *err)
 {
+    if (!d)
+        return null_arg(err, "hy_forc_protocol_run", "d");
     data_init(d);
+    if (!pr || !fn)
+        return null_arg(err, "hy_forc_protocol_run", !pr ? "pr" : "fn");
     size_t nc = pr->ncurves;
     if (nc < 2 || nc > HY_FORC_MAX_CURVES)
         return hy_error_set(err, HY_EINVAL, "FORC protocol: %zu curves (2 to %u)", nc, HY_FORC_MAX_CURVES);
@@ -1093,7 +1135,11 @@ static int preisach_fn(void *ctx, double u, double *y, hy_error *err)
 
 int hy_forc_preisach(hy_forc_data *d, const hy_forc_protocol *pr, const hy_preisach *p, hy_error *err)
 {
+    if (!d)
+        return null_arg(err, "hy_forc_preisach", "d");
     data_init(d);
+    if (!pr || !p)
+        return null_arg(err, "hy_forc_preisach", !pr ? "pr" : "p");
     if (!isfinite(pr->hsat))
         return hy_error_set(err, HY_EINVAL, "FORC protocol: hsat is not finite");
     hy_preisach_mem mem;

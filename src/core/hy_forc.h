@@ -21,6 +21,10 @@
  * on a regular grid.  Errors: HY_EINVAL with "name:line:col: what" for
  * a refused file, HY_ENOMEM, HY_ENUM.  hy_forc_data and hy_forc_grid own
  * their arrays (free them with their _free, also after a failed call).
+ *
+ * Pointers: err may always be NULL (no message).  A pointer each function
+ * below says must not be NULL gives HY_EINVAL and the message "FUNCTION: X
+ * must not be NULL" (a void function: nothing done), never a crash.
  */
 #ifndef HY_FORC_H
 #define HY_FORC_H
@@ -76,7 +80,9 @@ typedef struct hy_forc_data {
  * is not a number or N/A, unknown units, a data line that is not two finite
  * numbers, a curve whose fields do not ascend, fewer (or more) curves than
  * NCrv or data lines than NData, a missing end line when neither count is
- * given, and anything past the caps above. */
+ * given, and anything past the caps above.
+ * Pointers (the three readers): d must not be NULL; text may be NULL only
+ * when len is 0; name may be NULL ("FORC file"). */
 int hy_forc_read_micromag(hy_forc_data *d, const char *text, size_t len, const char *name, hy_error *err);
 
 /* Reads CSV rows "H_a,H_b,M" (comma, semicolon, tab or spaces between; a
@@ -88,7 +94,8 @@ int hy_forc_read_csv(hy_forc_data *d, const char *text, size_t len, const char *
 int hy_forc_read(hy_forc_data *d, const char *text, size_t len, const char *name, hy_error *err);
 
 /* A data set from arrays: curve i has reversal field ha[i] and n[i] points
- * hb[..], m[..] (all curves' points one after the other), no calibration. */
+ * hb[..], m[..] (all curves' points one after the other), no calibration.
+ * d, ha, n, hb and m must not be NULL. */
 int hy_forc_data_set(hy_forc_data *d, size_t ncurves, const double *ha, const size_t *n, const double *hb,
                      const double *m, hy_error *err);
 
@@ -98,11 +105,13 @@ void hy_forc_data_free(hy_forc_data *d);
 
 /* Drift correction: multiplies every curve's M by cal_m(first curve) /
  * cal_m(curve).  HY_EINVAL when a curve has no calibration point or one is
- * not positive in magnitude (the ratio would be meaningless). */
+ * not positive in magnitude (the ratio would be meaningless).  d must not be
+ * NULL. */
 int hy_forc_drift(hy_forc_data *d, hy_error *err);
 
 /* The typical field steps of the data: median spacing of H_b within curves
- * (*db) and of the sorted distinct H_a (*da); 0 when there are none. */
+ * (*db) and of the sorted distinct H_a (*da); 0 when there are none.  d may
+ * be NULL (no data: both 0); da and db may be NULL (not written). */
 void hy_forc_steps(const hy_forc_data *d, double *da, double *db);
 
 /* ---- the distribution ---------------------------------------------------- */
@@ -132,12 +141,14 @@ typedef struct hy_forc_grid {
 } hy_forc_grid;
 
 /* The grid over the data's H_c >= 0 and H_u ranges, one node per field step
- * (at most 1000 a side); rho NULL. */
+ * (at most 1000 a side); rho NULL.  d may be NULL (no data: a 2 x 2 grid at
+ * 0 with step 1), o may be NULL (hy_forc_defaults); g NULL: nothing done. */
 void hy_forc_grid_auto(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_grid *g);
 
 /* Fills g->rho (allocated here).  HY_EINVAL for bad options or a grid with
  * fewer than 1 or more than 4e6 nodes, data with fewer than 2 curves;
- * HY_ENOMEM.  Also reports the fitted nodes in *nfit (may be NULL). */
+ * HY_ENOMEM.  Also reports the fitted nodes in *nfit (may be NULL).  d, o
+ * and g must not be NULL. */
 int hy_forc_rho(const hy_forc_data *d, const hy_forc_opts *o, hy_forc_grid *g, size_t *nfit, hy_error *err);
 
 /* Frees g->rho (g may be NULL; a second call is harmless). */
@@ -155,13 +166,15 @@ typedef struct hy_forc_protocol {
 } hy_forc_protocol;
 
 /* Runs the protocol on any rate-independent model through fn (hy_rateind.h:
- * moves the model in ctx monotonically to u and gives its output) into d. */
+ * moves the model in ctx monotonically to u and gives its output) into d.
+ * d, pr and fn must not be NULL; ctx may be NULL (handed to fn as it is). */
 int hy_forc_protocol_run(hy_forc_data *d, const hy_forc_protocol *pr, hy_rateind_fn fn, void *ctx,
                          hy_error *err);
 
 /* The protocol on the classical Preisach model p (hy_preisach_mem from
  * saturation at hsat): M(H_a, H_b) = y_s − 2E(+∞, H_a) + 2E(H_b, H_a), whose
- * FORC distribution is the density μ(α = H_b, β = H_a). */
+ * FORC distribution is the density μ(α = H_b, β = H_a).  d, pr and p must
+ * not be NULL. */
 int hy_forc_preisach(hy_forc_data *d, const hy_forc_protocol *pr, const hy_preisach *p, hy_error *err);
 
 #ifdef __cplusplus

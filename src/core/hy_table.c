@@ -169,7 +169,14 @@ static int column(const reader *rd, const header *h, size_t ncols, const char *c
         for (size_t i = 0; rd->quote && i < h->f.n && o < sizeof what; i++) {
             char nm[100];
             hy_file_shown(h->s + h->f.at[i], h->f.len[i], 40, nm, sizeof nm);
-            o += (size_t)snprintf(what + o, sizeof what - o, "%s%s", i ? ", " : "; it names ", nm);
+            /* quoted: a name may hold ", " or end in ':' (the list would be ambiguous);
+               a name that does not fit whole is left out, said by "..." */
+            const char *sep = i ? ", " : "; it names ";
+            if (o + strlen(sep) + strlen(nm) + 2 + sizeof ", ..." > sizeof what) {
+                snprintf(what + o, sizeof what - o, ", ...");
+                break;
+            }
+            o += (size_t)snprintf(what + o, sizeof what - o, "%s'%s'", sep, nm);
         }
         if (!rd->quote && o < sizeof what)
             snprintf(what + o, sizeof what - o, " of %zu columns", h->f.n);
@@ -347,7 +354,19 @@ static int one_line(state *st, const char *s, size_t len)
 int hy_table_parse(const char *text, size_t len, const char *name, const hy_table_spec *spec, int quote,
                    hy_table *out, hy_error *err)
 {
-    memset(out, 0, sizeof *out);
+    if (out)
+        memset(out, 0, sizeof *out);
+    const char *null = !out                                                  ? "out"
+                       : !spec                                               ? "spec"
+                       : !spec->col[HY_TABLE_U] || !spec->col[HY_TABLE_Y]    ? "spec's u and y columns"
+                       : !text && len                                        ? "text (len is not 0)"
+                                                                             : NULL;
+    if (null)
+        return hy_error_set(err, HY_EINVAL, "hy_table_parse: %s must not be NULL", null);
+    if (!text)
+        text = ""; /* len 0 */
+    if (!name)
+        name = "data file";
     state st;
     memset(&st, 0, sizeof st);
     st.rd = (reader){name, quote, err, 1};
@@ -400,6 +419,8 @@ int hy_table_parse(const char *text, size_t len, const char *name, const hy_tabl
 
 void hy_table_free(hy_table *t)
 {
+    if (!t)
+        return;
     free(t->u);
     free(t->y);
     free(t->t);
@@ -412,6 +433,8 @@ double hy_table_area(const double *u, const double *y, size_t n)
 {
     if (n < 3)
         return 0;
+    if (!u || !y)
+        return NAN;
     double s = 0;
     for (size_t i = 1; i + 1 < n; i++) /* the edges from and to point 0 vanish relative to it */
         s += (u[i] - u[0]) * (y[i + 1] - y[0]) - (u[i + 1] - u[0]) * (y[i] - y[0]);

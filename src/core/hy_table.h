@@ -62,19 +62,22 @@ typedef struct hy_table {
  * field of every row must be a finite decimal number.  Errors (HY_EINVAL,
  * HY_ENOMEM) write "name:line:col: what"; quote 0 (a file a scene named)
  * keeps the file's bytes out of the message, 1 may name its header's
- * columns.  On error out holds nothing. */
+ * columns.  On error out holds nothing.
+ * Pointers: text may be NULL only when len is 0; name may be NULL ("data
+ * file"); spec, each spec->col[HY_TABLE_U] and spec->col[HY_TABLE_Y], and out
+ * must not be NULL (HY_EINVAL, nothing read; out, when not NULL, zeroed). */
 int hy_table_parse(const char *text, size_t len, const char *name, const hy_table_spec *spec, int quote,
                    hy_table *out, hy_error *err);
 
-/* Frees t's columns and records and zeroes it (t must not be NULL; a second
- * call is harmless). */
+/* Frees t's columns and records and zeroes it (t may be NULL: nothing done;
+ * a second call is harmless). */
 void hy_table_free(hy_table *t);
 
 /* The signed area of the closed polygon (u[i], y[i]), i < n, the last point
  * joined to the first: (1/2) sum (u_i y_{i+1} - u_{i+1} y_i) = ∮ u dy = -∮ y du,
  * positive for a counter-clockwise loop in the (u, y) plane (a B(H) loop).
  * Coordinates are taken relative to the first point (no cancellation in the
- * sum); 0 for n < 3. */
+ * sum); 0 for n < 3.  u and y may be NULL only when n < 3 (else NaN). */
 double hy_table_area(const double *u, const double *y, size_t n);
 
 #ifdef __cplusplus

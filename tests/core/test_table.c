@@ -84,7 +84,7 @@ static void bad_inputs(void)
         hy_table_parse(s, strlen(s), "d.csv", &h, 0, &t, &err);
         CHECK(!strstr(err.msg, "secret"), "quoted a scene's file: %s", err.msg);
         hy_table_parse(s, strlen(s), "d.csv", &h, 1, &t, &err);
-        CHECK(strstr(err.msg, "it names secret, y") != NULL, "the user's header not listed: %s", err.msg);
+        CHECK(strstr(err.msg, "it names 'secret', 'y'") != NULL, "the user's header not listed: %s", err.msg);
     }
 }
 

@@ -4,19 +4,13 @@
  * inflater; a failure aborts with its reason.  Built only with -Dfuzz=true;
  * `sh tools/setup.sh fuzz MINUTES zfast` builds and runs it. */
 #include <stdint.h>
-#include <stdio.h>
-#include <stdlib.h>
 
 #include "zfast_harness.h"
+#include "replay_dirs.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char why[300];
-    if (zfast_fuzz_one(data, size, why, sizeof why)) {
-        fprintf(stderr, "fuzz_zfast: %s\n", why);
-        abort();
-    }
-    return 0;
+    return fuzz_bytes_one("fuzz_zfast", zfast_fuzz_one, data, size);
 }

@@ -5,7 +5,9 @@
  * one it says may be NULL gives what it says; a non-finite work budget is
  * refused (INFINITY silently disabled the budget); hy_write_file writes
  * through the output writer (whole file, a link out refused).  Run in the
- * sanitizer build too (suite lib): an out-of-bounds or NULL access fails. */
+ * sanitizer build too (suite lib): an out-of-bounds or NULL access fails.
+ * Of the installed core headers, the readers' (hy_table.h, hy_forc.h) are
+ * held to the same: each pointer argument NULL in turn. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -15,6 +17,8 @@
 #include <unistd.h>
 
 #include "hystviz.h"
+#include "hy_forc.h"
+#include "hy_table.h"
 #include "../core/tutil.h"
 #include "../tmpdir.h"
 
@@ -66,6 +70,81 @@ static void makers(void)
     rc = hy_result_from_text("t", scene, sizeof scene - 1, sets, 1, -5, &r, NULL); /* err NULL, <= 0: default budget */
     CHECK(!rc && r, "err NULL with a good scene: %d", rc);
     hy_result_free(r);
+}
+
+/* hy_table.h and hy_forc.h: each pointer the header says must not be NULL
+ * refused with HY_EINVAL naming it; each it says may be NULL does what it says. */
+static void core_readers(void)
+{
+    hy_error err;
+    const char csv[] = "u,y\n0,0\n1,1\n0,1\n";
+    hy_table_spec sp = {{"u", "y", NULL, NULL}, {1, 1, 1}}, half = {{"u", NULL, NULL, NULL}, {1, 1, 1}};
+    hy_table tb;
+    REFUSED(hy_table_parse(csv, sizeof csv - 1, "d.csv", &sp, 1, NULL, &err), err, "out must not be NULL");
+    REFUSED(hy_table_parse(csv, sizeof csv - 1, "d.csv", NULL, 1, &tb, &err), err, "spec must not be NULL");
+    CHECK(tb.n == 0 && tb.u == NULL, "hy_table_parse: out zeroed on a refusal");
+    REFUSED(hy_table_parse(csv, sizeof csv - 1, "d.csv", &half, 1, &tb, &err), err, "u and y columns");
+    REFUSED(hy_table_parse(NULL, 5, "d.csv", &sp, 1, &tb, &err), err, "text (len is not 0) must not be NULL");
+    CHECK(hy_table_parse(NULL, 0, "d.csv", &sp, 1, &tb, &err) == HY_EINVAL && strstr(err.msg, "d.csv:"),
+          "hy_table_parse: NULL text of length 0 is an empty file: %s", err.msg);
+    CHECK(hy_table_parse(csv, sizeof csv - 1, NULL, &sp, 1, &tb, NULL) == 0 && tb.n == 3, "hy_table_parse: name NULL");
+    /* the triangle (0,0) (1,1) (0,1): counter-clockwise, area 1/2 exactly */
+    CHECK(hy_table_area(tb.u, tb.y, tb.n) == 0.5, "hy_table_area of the table");
+    hy_table_free(&tb);
+    hy_table_free(&tb);
+    hy_table_free(NULL);
+    CHECK(isnan(hy_table_area(NULL, tb.y, 3)) && isnan(hy_table_area(tb.u, NULL, 3)) &&
+              hy_table_area(NULL, NULL, 2) == 0, "hy_table_area with NULL columns");
+
+    hy_forc_data d;
+    const char forc[] = "Ha,Hb,M\n-1,-1,-1\n-1,0,0\n-1,1,1\n0,0,0.5\n0,1,1\n";
+    REFUSED(hy_forc_read(NULL, forc, sizeof forc - 1, "f.csv", &err), err, "d must not be NULL");
+    REFUSED(hy_forc_read_csv(NULL, forc, sizeof forc - 1, "f.csv", &err), err, "d must not be NULL");
+    REFUSED(hy_forc_read_micromag(NULL, forc, sizeof forc - 1, "f.csv", &err), err, "d must not be NULL");
+    REFUSED(hy_forc_read(&d, NULL, 9, "f.csv", &err), err, "text (len is not 0) must not be NULL");
+    REFUSED(hy_forc_read_micromag(&d, NULL, 9, "f.csv", &err), err, "text (len is not 0) must not be NULL");
+    CHECK(hy_forc_read(&d, NULL, 0, "f.csv", &err) != 0 && d.ncurves == 0, "hy_forc_read: NULL text of length 0");
+    hy_forc_data_free(&d);
+    CHECK(hy_forc_read(&d, forc, sizeof forc - 1, NULL, NULL) == 0 && d.ncurves == 2 && d.npoints == 5,
+          "hy_forc_read: name NULL, err NULL");
+    double da = -1, db = -1;
+    hy_forc_steps(&d, &da, NULL);
+    hy_forc_steps(&d, NULL, &db);
+    CHECK(da == 1 && db == 1, "hy_forc_steps with one of da, db NULL: %g %g", da, db);
+    hy_forc_steps(NULL, &da, &db);
+    CHECK(da == 0 && db == 0, "hy_forc_steps(NULL)");
+    hy_forc_opts o = hy_forc_defaults();
+    hy_forc_grid g;
+    hy_forc_grid_auto(NULL, NULL, &g);
+    CHECK(g.nc == 2 && g.nu == 2 && g.hc0 == 0 && g.hc1 == 1 && g.hu0 == 0 && g.hu1 == 1 && !g.rho,
+          "hy_forc_grid_auto(NULL, NULL, g): the 2 x 2 grid at 0, step 1");
+    hy_forc_grid_auto(&d, &o, NULL);
+    hy_forc_grid_auto(&d, &o, &g);
+    REFUSED(hy_forc_rho(NULL, &o, &g, NULL, &err), err, "hy_forc_rho: d must not be NULL");
+    REFUSED(hy_forc_rho(&d, NULL, &g, NULL, &err), err, "hy_forc_rho: o must not be NULL");
+    REFUSED(hy_forc_rho(&d, &o, NULL, NULL, &err), err, "hy_forc_rho: g must not be NULL");
+    hy_forc_grid_free(&g);
+    hy_forc_grid_free(NULL);
+    REFUSED(hy_forc_drift(NULL, &err), err, "hy_forc_drift: d must not be NULL");
+    hy_forc_data_free(&d);
+    hy_forc_data_free(NULL);
+    double ha[] = {0}, hb[] = {0, 1}, m[] = {0, 1};
+    size_t n[] = {2};
+    REFUSED(hy_forc_data_set(NULL, 1, ha, n, hb, m, &err), err, "hy_forc_data_set: d must not be NULL");
+    REFUSED(hy_forc_data_set(&d, 1, NULL, n, hb, m, &err), err, "ha must not be NULL");
+    REFUSED(hy_forc_data_set(&d, 1, ha, NULL, hb, m, &err), err, "n must not be NULL");
+    REFUSED(hy_forc_data_set(&d, 1, ha, n, NULL, m, &err), err, "hb must not be NULL");
+    REFUSED(hy_forc_data_set(&d, 1, ha, n, hb, NULL, &err), err, "m must not be NULL");
+    hy_forc_data_free(&d);
+    hy_forc_protocol pr = {2, -1, 1, 1, 3};
+    REFUSED(hy_forc_protocol_run(NULL, &pr, NULL, NULL, &err), err, "hy_forc_protocol_run: d must not be NULL");
+    REFUSED(hy_forc_protocol_run(&d, NULL, NULL, NULL, &err), err, "pr must not be NULL");
+    REFUSED(hy_forc_protocol_run(&d, &pr, NULL, NULL, &err), err, "fn must not be NULL");
+    hy_forc_data_free(&d);
+    REFUSED(hy_forc_preisach(NULL, &pr, NULL, &err), err, "hy_forc_preisach: d must not be NULL");
+    REFUSED(hy_forc_preisach(&d, NULL, NULL, &err), err, "pr must not be NULL");
+    REFUSED(hy_forc_preisach(&d, &pr, NULL, &err), err, "p must not be NULL");
+    hy_forc_data_free(&d);
 }
 
 static void readers(hy_result *r)
@@ -313,6 +392,7 @@ static void steady(void)
 
 int main(void)
 {
+    core_readers();
     makers();
     hy_result *r = good();
     if (r) {
