@@ -343,6 +343,10 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
             rc = ja_fail(&c, st, x, err);
             break;
         }
+        /* GSL's step can land one ulp past H (t0 + h rounded): the stretch
+         * is done there; went on, the next step would point back at H */
+        if (c.delta * (H - x) < 0)
+            x = H;
         double g = guard_g(&c, x, y[0]);
         if ((c.guard && g > 0) || (!c.guard && g < -GUARD_TOL)) {
             st = locate_switch(sv, &sys, &c, x0, y0, x - x0, &x, y, &tries);
@@ -350,6 +354,9 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
                 rc = ja_fail(&c, st, x, err);
                 break;
             }
+            /* x0 + hi may round one ulp past H likewise */
+            if (c.delta * (H - x) < 0)
+                x = H;
             c.guard = !c.guard;
             steps += sv->ev->count;
             fails += sv->ev->failed_steps;

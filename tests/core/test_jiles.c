@@ -502,6 +502,25 @@ static void test_input_scale(void)
     CHECK_MSG(hy_jiles_apply(&j, &s, 1500, NULL, &err), err, HY_EINVAL, "more than 1000000 steps");
 }
 
+/* A stretch whose last GSL step lands one ulp past its end H (t0 + h
+ * rounded: from H = 1 down to 0.2 on the 1986 parameters, the default
+ * bimodal input's extrema) ends there; it used to take one more step that
+ * pointed back at H, which GSL refuses ("step direction must match interval
+ * direction": with GSL's default handler, as in a Python process, an abort). */
+static void test_stretch_end_rounding(void)
+{
+    hy_jiles j;
+    hy_error err = {0};
+    hy_jiles_init(&j, ja86[0], ja86[1], ja86[2], ja86[3], ja86[4], &err);
+    hy_jiles_state s;
+    hy_jiles_state_init(&j, &s, 0.0);
+    int rc = HY_OK;
+    for (int i = 0; i < 400 && !rc; i++)
+        rc = hy_jiles_apply(&j, &s, i % 2 ? 0.2 : 1.0, NULL, &err);
+    CHECK(rc == HY_OK, "200 cycles between H = 1 and 0.2 A/m: %s", err.msg);
+    CHECK(s.H == 0.2, "the last stretch ends at H = 0.2 exactly (H = %.17g)", s.H);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -513,5 +532,6 @@ int main(void)
     test_dmdh_points();
     test_jtd1992_loop();
     test_input_scale();
+    test_stretch_end_rounding();
     return tu_finish("jiles");
 }
