@@ -403,13 +403,13 @@ static void refusals(void)
             "bad.scene:3:1: 'ja_ms' is not a parameter of a preisach model (its keys: pr_density, pr_hc, pr_width, "
             "pr_ys, pr_start, pr_support, pr_hs, pr_file)");
     refused("[model]\nkind = preisach\n[figure]\nkind = g\n[series a]\ndata = g\n", 1,
-            "data = g is the friction function g(v) of Dahl and LuGre; a preisach model has none");
+            "bad.scene:6:1: data = g needs [model] kind = dahl, lugre or dahl-filter (this model is preisach)");
     refused("[model]\nkind = lugre\n[series a]\ndata = ysteady\nquantity = magnetisation\n", 1,
             "bad.scene:5:1: a lugre model draws quantity output, not magnetisation");
     refused("[model]\nkind = preisach\npr_hc = 1e6\npr_width = 1e-7\n[series a]\ndata = input\n", 1,
             "bad.scene:4:1: pr_width: Preisach alpha (up-switching field) width sigma = 1e-07 is below 1e-12");
     refused("[model]\nkind = preisach\n[input]\nkind = multisine\n[series a]\ndata = input\n", 1,
-            "input kind multisine is a force for [model] kind = boucwen, not for preisach");
+            "bad.scene:4:1: [input] kind = multisine needs [model] kind = boucwen (this model is preisach)");
     refused("[model]\nkind = jiles-atherton\nja_variant = jtd1986\n[series a]\ndata = input\n", 1,
             "bad.scene:3:14: 'ja_variant' in [model] must be one of jiles1986, jtd1992");
     refused("[model]\nkind = preisach\npr_support = triangle\npr_hs = 0\n[series a]\ndata = input\n", 1,
