@@ -86,8 +86,8 @@ static const char *const qualities[] = {HY_QUALITY_PRESETS(QUALITY_NAME) NULL};
 static const hy_scene_key_spec model_keys[] = {
     F(kind, HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, HY_MODEL_DEFAULT,
       "hysteresis model: Dahl, LuGre (Eq. 3), the Example-1 filter system, the Bouc-Wen benchmark oscillator, "
-      "Jiles-Atherton (ferromagnetic, input H in A/m, output B in T), classical Preisach, or the Bouc-Wen "
-      "hysteresis operator (Eq. 3 of the benchmark driven by u)"),
+      "Jiles-Atherton (ferromagnetic, input H in A/m, output B in T), classical Preisach, the Bouc-Wen "
+      "hysteresis operator (Eq. 3 of the benchmark driven by u), the play operator, or the Duhem model"),
     FQ("σ_0", NULL, sigma0, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
     FQ("σ_1", NULL, sigma1, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
     FQ("σ_2", NULL, sigma2, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
