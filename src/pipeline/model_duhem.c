@@ -38,7 +38,6 @@ HY_MODEL_ROWS(duhem, duhem_par,
 
 #ifndef HY_MODEL_ROWS_ONLY /* the stages (the pipeline's compile of this file) */
 #include <math.h>
-#include <string.h>
 
 #include "scene_model.h"
 
@@ -90,29 +89,13 @@ static int duhem_apply(const void *par, void *st, double u, double out[HY_RI_NOU
     return HY_OK;
 }
 
-static int duhem_copy(const void *par, void *dst, const void *src, hy_error *err)
-{
-    (void)par;
-    (void)err;
-    memcpy(dst, src, sizeof(duhem_state));
-    return HY_OK;
-}
-
 static const hy_rateind_type duhem_type = {"duhem", sizeof(duhem_state), HY_RI_PATH_AREA, duhem_init, duhem_apply,
-                                           duhem_copy, NULL, NULL};
-
-static int duhem_read(const hy_scene *s, const hy_decl_model *m, void *par, hy_error *err)
-{
-    (void)s;
-    (void)err; /* alpha > 0, a, b, y0 finite: the rows' ranges */
-    memcpy(par, m->par, sizeof(duhem_par));
-    return HY_OK;
-}
+                                           NULL, NULL, NULL};
 
 const hy_scene_model hy_scene_model_duhem = {
     "duhem", NULL, quantities, NULL, NULL,
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_EXACT_STEP,
     "the output y and the path integral of y du (exact: exponential approach to a u -/+ (a - b) / alpha)",
     hy_scene_rateind_load, hy_scene_rateind_estimate, hy_scene_rateind_compute, &duhem_type, sizeof(duhem_par),
-    duhem_read, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH};
+    NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH};
 #endif

@@ -52,6 +52,15 @@ const char *hy_scene_model_param(const hy_scene_model *mt, size_t i)
     return NULL;
 }
 
+int hy_scene_model_read(const hy_scene_model *mt, const hy_scene *s, const hy_decl_model *m, void *par,
+                        hy_error *err)
+{
+    if (mt->read)
+        return mt->read(s, m, par, err);
+    memcpy(par, m->par, mt->ri_par_size);
+    return HY_OK;
+}
+
 int hy_scene_model_has_key(const hy_scene_model *mt, const char *key)
 {
     if (!strcmp(key, "kind"))

@@ -58,7 +58,9 @@ typedef struct hy_scene_model {
     const hy_rateind_type *ri;
     size_t ri_par_size;
     /* from the decoded [model] of scene s (files its keys name are read
-       through s's file policy); on error par owns nothing */
+       through s's file policy); on error par owns nothing.  NULL: par is its
+       rows' struct at m->par, copied whole (the rows' ranges check it):
+       hy_scene_model_read */
     int (*read)(const hy_scene *s, const hy_decl_model *m, void *par, hy_error *err);
     /* how the core's messages name key i (hy_scene_model_param; NULL: no relocation) */
     const char *const *core_names;
@@ -98,6 +100,9 @@ const hy_scene_model *hy_scene_model_of(const hy_decl_model *m);
 /* The i-th [model] key the model reads (its params, else its own rows in
  * the schema's order), or NULL past the last. */
 const char *hy_scene_model_param(const hy_scene_model *mt, size_t i);
+/* mt->read, or its rows' struct copied whole where mt has no read. */
+int hy_scene_model_read(const hy_scene_model *mt, const hy_scene *s, const hy_decl_model *m, void *par,
+                        hy_error *err);
 /* Whether key is one of the model's [model] keys (kind included). */
 int hy_scene_model_has_key(const hy_scene_model *mt, const char *key);
 /* Refuses (HY_EINVAL at the line) what r's model r->mtype does not accept,

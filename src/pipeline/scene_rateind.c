@@ -52,7 +52,7 @@ int hy_scene_rateind_load(hy_scene_run *r, hy_error *err)
     if (!(r->ri_par = calloc(1, r->mtype->ri_par_size)))
         rc = hy_error_set(err, HY_ENOMEM, "out of memory");
     if (!rc)
-        rc = r->mtype->read(r->scene, &r->doc.model, r->ri_par, err);
+        rc = hy_scene_model_read(r->mtype, r->scene, &r->doc.model, r->ri_par, err);
     if (!rc)
         rc = hy_scene_run_build_input(r, err);
     if (!rc)

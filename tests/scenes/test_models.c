@@ -71,7 +71,9 @@ static void table_matches_schema(void)
     for (; hy_scene_models[nt]; nt++) {
         const hy_scene_model *mt = hy_scene_models[nt];
         CHECK(mt->load && mt->estimate && mt->compute, "%s: a stage is missing", mt->name);
-        CHECK(!mt->ri || (mt->read && mt->ri_par_size), "%s: a rate-independent entry needs read", mt->name);
+        /* read NULL: its own rows' struct is its parameters (hy_scene_model_read); shared keys need read */
+        CHECK(!mt->ri || (mt->ri_par_size && (mt->read || !mt->params)),
+              "%s: a rate-independent entry needs its parameters' size, and read unless its own rows are them", mt->name);
         const char *p;
         size_t np = 0;
         for (; (p = hy_scene_model_param(mt, np)); np++)
