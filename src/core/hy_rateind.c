@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Time at which run r of period k ends, and its value. */
 static double run_end_time(const hy_input *in, size_t r, double k)
@@ -89,7 +90,11 @@ int hy_rateind_clone(hy_rateind *dst, const hy_rateind *src, hy_error *err)
     dst->st = calloc(1, src->type->state_size ? src->type->state_size : 1);
     if (!dst->st)
         return hy_error_set(err, HY_ENOMEM, "out of memory for a %s state", src->type->name);
-    int rc = src->type->copy(src->par, dst->st, src->st, err);
+    int rc = HY_OK;
+    if (src->type->copy)
+        rc = src->type->copy(src->par, dst->st, src->st, err);
+    else /* plain bytes */
+        memcpy(dst->st, src->st, src->type->state_size);
     if (rc) {
         free(dst->st);
         dst->st = NULL;

@@ -93,7 +93,8 @@ typedef struct hy_rateind_type {
     /* moves the input monotonically to u; on error the state is unchanged or
      * at the last good step (the type says which) */
     int (*apply)(const void *par, void *st, double u, double out[HY_RI_NOUT], hy_error *err);
-    /* dst (uninitialised) becomes a copy of src */
+    /* dst (uninitialised) becomes a copy of src; NULL: the state is plain
+     * bytes (no pointers), copied whole */
     int (*copy)(const void *par, void *dst, const void *src, hy_error *err);
     void (*free)(void *st);   /* NULL: nothing to free */
     /* ∮ u dy of the closed loop between reversal values lo < hi (closed-form

@@ -4,8 +4,8 @@
  * A scene's work estimate is Σ weight[kind] × count[kind] over the kinds of
  * work below, in units; HY_COST_UNITS_PER_S units are one second of CPU on
  * the machine that calibrated the weights.  Every estimate function of the
- * pipeline (scene_run.c's friction estimate and the raster, scene_rateind.c,
- * scene_boucwen.c, scene_forc.c) counts through hy_cost():
+ * pipeline (model_friction.c, scene_run.c's raster, scene_rateind.c,
+ * model_boucwen.c, scene_forc.c) counts through hy_cost():
  *
  *     *work = hy_cost(r->cost_counts, HY_COST_PREISACH, moves)
  *           + hy_cost(r->cost_counts, HY_COST_ANNOTATION, (double)na);

@@ -19,11 +19,22 @@
 /* Step ends kept for err_steps (16 MiB); past it, the first TRACE_CAP. */
 #define TRACE_CAP ((size_t)1 << 20)
 
+/* The named problems, one line each: X(name, init, exact), init filling the
+ * problem (quick: a cheaper reference), exact 1 where the reference is then
+ * the exact exponential formula (hy_wp_exact_ld). */
+#define WP_NAMED(X)                  \
+    X("ex1", init_ex1, 0)            \
+    X("lugre-stiff", init_stiff, 1)  \
+    X("boucwen", init_boucwen, 0)    \
+    X("jiles", init_jiles, 0)
+
+#define WP_NAME(name, init, exact) name,
 static const char *const problem_names[] = {
     "ex2-g1", "ex2-g10", "ex2-g100", "ex2-g1e4",
     "ex3-g1", "ex3-g10", "ex3-g100", "ex3-g1e4",
-    "ex1", "lugre-stiff", "boucwen", "jiles", NULL,
+    WP_NAMED(WP_NAME) NULL,
 };
+#undef WP_NAME
 
 hy_wp_cfg hy_wp_cfg_defaults(void)
 {
@@ -100,8 +111,9 @@ static int init_example(hy_wp_problem *p, int ex, double gamma, hy_error *err)
 }
 
 /* Stiff LuGre (Åström & Canudas de Wit 2008), 0.1 mm bimodal input at 1 mm/s. */
-static int init_stiff(hy_wp_problem *p, hy_error *err)
+static int init_stiff(hy_wp_problem *p, int quick, hy_error *err)
 {
+    (void)quick;
     hy_model_lugre_init(&p->model, 1e5, sqrt(1e5), 1, 1.5, 1e-3, 2);
     const double tm[4] = {0.1, 0.18, 0.31, 0.46};
     int rc = hy_input_bimodal(&p->input, 0, 0.2e-4, 1e-4, 1.5e-4, tm, HY_SHAPE_LINEAR, err);
@@ -234,24 +246,32 @@ int hy_wp_problem_init(hy_wp_problem *p, const char *name, int quick, hy_error *
 {
     memset(p, 0, sizeof *p);
     snprintf(p->name, sizeof p->name, "%s", name);
+#define WP_ROW(name, init, exact) {name, init, exact},
+    static const struct {
+        const char *name;
+        int (*init)(hy_wp_problem *p, int quick, hy_error *err);
+        int exact;
+    } named[] = {WP_NAMED(WP_ROW)};
+#undef WP_ROW
     int rc;
+    size_t i = 0, n = sizeof named / sizeof *named;
+    while (i < n && strcmp(named[i].name, name))
+        i++;
     if (!strncmp(name, "ex2-g", 5) || !strncmp(name, "ex3-g", 5)) {
         char *end;
         double g = strtod(name + 5, &end);
         if (*end || !(g > 0))
             return hy_error_set(err, HY_EINVAL, "problem '%s': bad gamma", name);
         rc = init_example(p, name[2] - '0', g, err);
-    } else if (!strcmp(name, "lugre-stiff")) {
-        rc = init_stiff(p, err);
-    } else if (!strcmp(name, "ex1")) {
-        return init_ex1(p, quick, err);
-    } else if (!strcmp(name, "boucwen")) {
-        return init_boucwen(p, quick, err);
-    } else if (!strcmp(name, "jiles")) {
-        return init_jiles(p, quick, err);
+    } else if (i < n) {
+        rc = named[i].init(p, quick, err);
+        if (!named[i].exact)
+            return rc;
     } else {
-        return hy_error_set(err, HY_EINVAL,
-                            "unknown problem '%s' (ex2-gG, ex3-gG, ex1, lugre-stiff, boucwen, jiles)", name);
+        char list[128] = "ex2-gG, ex3-gG";
+        for (i = 0; i < n; i++)
+            snprintf(list + strlen(list), sizeof list - strlen(list), ", %s", named[i].name);
+        return hy_error_set(err, HY_EINVAL, "unknown problem '%s' (%s)", name, list);
     }
     if (rc)
         return rc == HY_ENOMEM ? hy_error_set(err, rc, "out of memory") : rc;

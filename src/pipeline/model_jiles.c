@@ -120,6 +120,7 @@ static int ja_load(hy_scene_run *r, hy_error *err)
 
 static int ja_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
+    ((hy_jiles *)r->ri_par)->cancel = hy_scene_run_cancel_hook(r); /* every 64 GSL steps of one move too */
     return at_input(r, hy_scene_rateind_compute(r, log, err), err);
 }
 
@@ -127,5 +128,5 @@ const hy_scene_model hy_scene_model_jiles = {
     "jiles-atherton", NULL, quantities, "H (A/m)", "B (T)",
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_GSL,
     "H, M and the path integral of B dH (GSL rk8pd in H, restarted at every reversal)", ja_load,
-    hy_scene_rateind_estimate, ja_compute, &ja_type, sizeof(hy_jiles), ja_read, core_names, NULL};
+    hy_scene_rateind_estimate, ja_compute, &ja_type, sizeof(hy_jiles), ja_read, core_names, NULL, HY_INPUT_OTHERS, HY_DATA_PATH};
 #endif

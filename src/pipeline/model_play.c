@@ -30,7 +30,6 @@ HY_MODEL_ROWS(play, play_par,
 
 #ifndef HY_MODEL_ROWS_ONLY /* the stages (the pipeline's compile of this file) */
 #include <math.h>
-#include <string.h>
 
 #include "scene_model.h"
 
@@ -93,29 +92,13 @@ static int play_apply(const void *par, void *st, double u, double out[HY_RI_NOUT
     return HY_OK;
 }
 
-static int play_copy(const void *par, void *dst, const void *src, hy_error *err)
-{
-    (void)par;
-    (void)err;
-    memcpy(dst, src, sizeof(play_state));
-    return HY_OK;
-}
-
 static const hy_rateind_type play_type = {"play", sizeof(play_state), HY_RI_PATH_AREA, play_init, play_apply,
-                                          play_copy, NULL, NULL};
-
-static int play_read(const hy_scene *s, const hy_decl_model *m, void *par, hy_error *err)
-{
-    (void)s;
-    (void)err; /* r > 0 and y0 finite: the rows' ranges */
-    memcpy(par, m->par, sizeof(play_par));
-    return HY_OK;
-}
+                                          NULL, NULL, NULL};
 
 const hy_scene_model hy_scene_model_play = {
     "play", NULL, quantities, NULL, NULL,
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_EXACT_STEP,
     "the output y and the path integral of y du (exact: constant, then dragged at distance r)",
     hy_scene_rateind_load, hy_scene_rateind_estimate, hy_scene_rateind_compute, &play_type, sizeof(play_par),
-    play_read, NULL, NULL};
+    NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH};
 #endif

@@ -296,7 +296,7 @@ int hy_scene_run_set_model(hy_scene_run *r, char *const *sets, size_t nsets, hy_
             r->doc.model = keep;
             r->model = old;
         }
-    } else if (!rc && !(rc = r->mtype->read(r->scene, &d.model, par, err))) { /* checked: only then the run's */
+    } else if (!rc && !(rc = hy_scene_model_read(r->mtype, r->scene, &d.model, par, err))) { /* checked: only then the run's */
         r->doc.model = d.model;
         hy_scene_model_par_free(r->mtype, r->ri_par); /* the new parameters own what read allocated */
         memcpy(r->ri_par, par, r->mtype->ri_par_size);

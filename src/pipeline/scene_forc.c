@@ -155,7 +155,7 @@ int hy_scene_forc_load(hy_scene_run *r, hy_error *err)
     if (mt->ri) {
         if (!(r->ri_par = calloc(1, mt->ri_par_size)))
             return hy_error_set(err, HY_ENOMEM, "out of memory");
-        return mt->read(r->scene, &r->doc.model, r->ri_par, err);
+        return hy_scene_model_read(mt, r->scene, &r->doc.model, r->ri_par, err);
     }
     if (mt->caps & HY_CAP_YSTAR) /* Dahl, LuGre, the filter system: their limit y*_u */
         return hy_scene_run_build_model(r, err);

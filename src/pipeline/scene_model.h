@@ -58,13 +58,28 @@ typedef struct hy_scene_model {
     const hy_rateind_type *ri;
     size_t ri_par_size;
     /* from the decoded [model] of scene s (files its keys name are read
-       through s's file policy); on error par owns nothing */
+       through s's file policy); on error par owns nothing.  NULL: par is its
+       rows' struct at m->par, copied whole (the rows' ranges check it):
+       hy_scene_model_read */
     int (*read)(const hy_scene *s, const hy_decl_model *m, void *par, hy_error *err);
     /* how the core's messages name key i (hy_scene_model_param; NULL: no relocation) */
     const char *const *core_names;
     /* frees what read allocated in par (not par itself); NULL: nothing */
     void (*par_free)(void *par);
+    /* what it accepts, beyond its [model] keys (hy_scene_model_accepts
+     * refuses the rest): the [input] kinds whose takers (HY_INPUT_KINDS'
+     * column) meet this mask, and the series data of bits 1u << HY_DATA_* */
+    unsigned inputs;
+    unsigned data;
 } hy_scene_model;
+
+/* Series data masks for the table's data column: every data kind, and the
+ * series of a model driven along the input's path (seed 000's figures, the
+ * data's own; not g, the friction function, nor a data kind of a model's
+ * own, HY_DATA_BOUCWEN). */
+#define HY__DATA_BIT(id, name) | 1u << HY_DATA_##id
+#define HY_DATA_ALL (0u HY_SERIES_DATA(HY__DATA_BIT))
+#define HY_DATA_PATH (HY_DATA_ALL & ~(1u << HY_DATA_G | 1u << HY_DATA_BOUCWEN))
 
 /* Each model file's entry: hy_scene_model_dahl, ..._jiles, ..._preisach. */
 #define HY_SCENE_MODEL_DECL(id, name) extern const hy_scene_model hy_scene_model_##id;
@@ -85,10 +100,18 @@ const hy_scene_model *hy_scene_model_of(const hy_decl_model *m);
 /* The i-th [model] key the model reads (its params, else its own rows in
  * the schema's order), or NULL past the last. */
 const char *hy_scene_model_param(const hy_scene_model *mt, size_t i);
+/* mt->read, or its rows' struct copied whole where mt has no read. */
+int hy_scene_model_read(const hy_scene_model *mt, const hy_scene *s, const hy_decl_model *m, void *par,
+                        hy_error *err);
 /* Whether key is one of the model's [model] keys (kind included). */
 int hy_scene_model_has_key(const hy_scene_model *mt, const char *key);
+/* Refuses (HY_EINVAL at the line) what r's model r->mtype does not accept,
+ * from its table entry: an [input] kind it does not take, a series data it
+ * does not draw (naming the models that do, or what it accepts where that is
+ * the shorter list), a [model] key it does not read. */
+int hy_scene_model_accepts(const hy_scene_run *r, hy_error *err);
 
-/* ---- shared by the model files (scene_run.c, scene_rateind.c) ---- */
+/* ---- shared by the model files (the generic driver scene_run.c, scene_rateind.c, model_friction.c) ---- */
 
 /* The figure kinds FIG_ID, the index of the schema's figure kind list
  * (both from HY_FIGURE_KINDS). */
@@ -99,6 +122,9 @@ enum { HY_FIGURE_KINDS(HY__FIG_ID) };
 /* The Dahl/LuGre/filter model of the decoded [model] as r->model, checked
  * (HY_EINVAL at the key a message names). */
 int hy_scene_run_build_model(hy_scene_run *r, hy_error *err);
+/* Re-raises a core message (err->msg, err->code) at the scene location of
+ * the key of keys (NULL-ended) it starts with, else at [section]. */
+int hy_scene_located(const hy_decl_head *h, const char *const *keys, hy_error *err);
 /* The scene's [input] as r->input (every input hystviz has). */
 int hy_scene_run_build_input(hy_scene_run *r, hy_error *err);
 /* The bimodal input's t1..t4 where [input] t gives them, else NULL (slopes
@@ -148,7 +174,7 @@ int hy_scene_too_narrow(const hy_scene_run *r, hy_error *err);
 /* HY_EINVAL at the series' data when it cannot be drawn in the figure's kind. */
 int hy_scene_check_series_kind(const hy_scene_run *r, const hy_run_series *se, hy_error *err);
 
-/* The Dahl/LuGre stages (scene_run.c) and the rate-independent ones
+/* The Dahl/LuGre stages (model_friction.c) and the rate-independent ones
  * (scene_rateind.c), for the model files' table entries. */
 int hy_scene_friction_load(hy_scene_run *r, hy_error *err);
 int hy_scene_friction_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err);

@@ -22,8 +22,6 @@
 #include <string.h>
 #include <time.h>
 
-#include "hy_jiles.h"
-#include "scene_boucwen.h"
 
 #define SETTLE_TOL 1e-12    /* relative change of y per period counted as periodic */
 #define SETTLE_MAX 5000     /* periods driven at most before refusing              */
@@ -33,27 +31,6 @@ static double now(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* Keys of [model] written that this model does not read. */
-static int foreign_keys(const hy_scene_run *r, hy_error *err)
-{
-    size_t nsec;
-    const hy_scene_section_spec *spec = hy_scene_schema(&nsec);
-    const hy_scene_section_spec *ms = &spec[hy_scene_schema_section("model")];
-    const hy_decl_head *h = &r->doc.model.h;
-    for (size_t j = 0; j < ms->nkeys && j < HY_SCENE_KEYS_MAX; j++) {
-        const char *key = ms->keys[j].name;
-        if (h->at[j].set && !hy_scene_model_has_key(r->mtype, key)) {
-            char list[256] = "";
-            const char *p;
-            for (size_t i = 0; (p = hy_scene_model_param(r->mtype, i)); i++)
-                snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", p);
-            return hy_decl_error_row(h, j, err, HY_EINVAL, "'%s' is not a parameter of a %s model (its keys: %s)",
-                                     key, r->mtype->name, list);
-        }
-    }
-    return HY_OK;
 }
 
 /* Series a rate-independent model draws; gamma is not needed (y_γ = y*). */
@@ -66,23 +43,17 @@ static int check_series(const hy_scene_run *r, hy_error *err)
             return hy_decl_error(&ds->h, HY_DECL_HEAD, err, HY_EINVAL,
                                  "series '%s' needs 'data = ...' (input, psi, ystar, ysteady, ygamma, yk, "
                                  "transient, minor, major)", ds->h.name);
-        if (d == HY_DATA_G)
-            return hy_decl_error(&ds->h, offsetof(hy_decl_series, data), err, HY_EINVAL,
-                                 "data = g is the friction function g(v) of Dahl and LuGre; a %s model has none",
-                                 r->mtype->name);
     }
     return HY_OK;
 }
 
 int hy_scene_rateind_load(hy_scene_run *r, hy_error *err)
 {
-    int rc = hy_scene_boucwen_load(r, err); /* refuses the Bouc-Wen-only parts */
-    if (!rc)
-        rc = foreign_keys(r, err);
-    if (!rc && !(r->ri_par = calloc(1, r->mtype->ri_par_size)))
+    int rc = HY_OK; /* what the model does not accept: refused before (hy_scene_model_accepts) */
+    if (!(r->ri_par = calloc(1, r->mtype->ri_par_size)))
         rc = hy_error_set(err, HY_ENOMEM, "out of memory");
     if (!rc)
-        rc = r->mtype->read(r->scene, &r->doc.model, r->ri_par, err);
+        rc = hy_scene_model_read(r->mtype, r->scene, &r->doc.model, r->ri_par, err);
     if (!rc)
         rc = hy_scene_run_build_input(r, err);
     if (!rc)
@@ -456,9 +427,8 @@ int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err)
     if (!rc) {
         rc = at_model(r, hy_rateind_alloc(&p.init, r->mtype->ri, r->ri_par, hy_input_u(&r->input, 0), err), err);
         p.have_init = !rc;
-        p.init.cancel = hy_scene_run_cancel_hook(r); /* its clones too: every move inside a series */
-        if (r->mtype == &hy_scene_model_jiles) /* and every 64 GSL steps of one move */
-            ((hy_jiles *)r->ri_par)->cancel = p.init.cancel;
+        p.init.cancel = hy_scene_run_cancel_hook(r); /* its clones too: every move inside a series (a model's
+                                                         own steps: its compute stage, as model_jiles.c's) */
     }
     if (!rc && need_steady)
         rc = need_steady_state(r, &p, err);

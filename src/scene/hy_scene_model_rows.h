@@ -49,7 +49,8 @@ typedef struct hy_model_rows {
 #define HY_ROW_(sym, unit, key, field, kind, enums, flags, lo, hi, nmin, nmax, def, doc)                       \
     {                                                                                                         \
         #key, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit,                                    \
-            offsetof(hy_decl_model, par) + offsetof(PAR, field), HY_CTYPE_OF(((PAR *)0)->field), NULL         \
+            offsetof(hy_decl_model, par) + offsetof(PAR, field), HY_CTYPE_OF(((PAR *)0)->field), NULL,        \
+            HY_SCENE_NO_DOMAIN                                                                                \
     }
 
 #ifdef HY_MODEL_ROWS_ONLY

@@ -433,7 +433,7 @@ done:
 static int parse_include(pctx *c, fstate *fs, const char *ls, const char *p, const char *end)
 {
     static const hy_scene_key_spec inc = {"include", HY_KIND_STRING, NULL, 0, 0, 0, 0, 0,
-                                          NULL, NULL, NULL, NULL, 0, 0, NULL};
+                                          NULL, NULL, NULL, NULL, 0, 0, NULL, HY_SCENE_NO_DOMAIN};
     char msg[400];
     int ecol = 0, col;
     hy__value v;

@@ -20,23 +20,37 @@
 #define NOLIM 0u, 0.0, 0.0
 #define POS (HY_SPEC_MIN | HY_SPEC_MIN_EXCL), 0.0, 0.0
 #define NONNEG HY_SPEC_MIN, 0.0, 0.0
+#define POS_G (HY_SPEC_MIN | HY_SPEC_MIN_EXCL | HY_SPEC_G), 0.0, 0.0 /* POS, and read by g(v) */
 #define K(...) K_(__VA_ARGS__)
 #define K_(name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, 0, HY_CTYPE_NONE, NULL }
+    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, 0, HY_CTYPE_NONE, NULL, HY_SCENE_NO_DOMAIN }
 /* KQ: a quantity's key, its symbol and unit first (see hy_scene_key_spec). */
 #define KQ(sym, unit, ...) KQ_(sym, unit, __VA_ARGS__)
 #define KQ_(sym, unit, name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, 0, HY_CTYPE_NONE, NULL }
+    { name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, 0, HY_CTYPE_NONE, NULL, HY_SCENE_NO_DOMAIN }
 /* F and FQ: as K and KQ for a key that hy_scene_decode writes into the field
  * of the same name of the section's struct SECT (hy_scene_decl.h): the row
  * records the field's offset and C type, so the name is written once. */
 #define FIELD_OF(name) offsetof(SECT, name), HY_CTYPE_OF(((SECT *)0)->name)
 #define F(...) F_(__VA_ARGS__)
 #define F_(name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, FIELD_OF(name), NULL }
+    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, NULL, NULL, FIELD_OF(name), NULL, HY_SCENE_NO_DOMAIN }
 #define FQ(sym, unit, ...) FQ_(sym, unit, __VA_ARGS__)
 #define FQ_(sym, unit, name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
-    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, FIELD_OF(name), NULL }
+    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, FIELD_OF(name), NULL, HY_SCENE_NO_DOMAIN }
+/* FQD: FQ with the key's slider domain (hy_scene_domain): FQD((kind, takers,
+ * above, below, per, lo, hi, work), sym, unit, ...). */
+#define DOMAIN_OF(kind, takers, above, below, per, lo, hi, work) { kind, takers, above, below, per, lo, hi, work }
+#define FQD(dom, sym, unit, ...) FQD_(dom, sym, unit, __VA_ARGS__)
+#define FQD_(dom, sym, unit, name, kind, enums, flags, lo, hi, nmin, nmax, def, doc) \
+    { #name, kind, enums, flags, lo, hi, nmin, nmax, def, doc, sym, unit, FIELD_OF(name), NULL, DOMAIN_OF dom }
+/* The domains' conditions: a bimodal input's order (Definition 1: u_min,1 <=
+ * u_min,2 < u_max,1 <= u_max,2), a triangle's min < max; a force's sine
+ * (HY_INPUT_BOUCWEN: Newmark's period x fs whole samples); work alone. */
+#define BIMODAL(above, below) ("bimodal", 0u, above, below, NULL, 0.0, 0.0, 0)
+#define TRIANGLE(above, below) ("triangle", 0u, above, below, NULL, 0.0, 0.0, 0)
+#define FORCE_SINE(per) ("sine", HY_INPUT_BOUCWEN, NULL, NULL, per, 0.0, 0.0, 1)
+#define WORK (NULL, 0u, NULL, NULL, NULL, 0.0, 0.0, 1)
 #define NKEYS(a) (sizeof(a) / sizeof((a)[0]))
 
 #define MODEL_NAME(id, name) name,
@@ -70,19 +84,19 @@ static const char *const qualities[] = {HY_QUALITY_PRESETS(QUALITY_NAME) NULL};
 
 #define SECT hy_decl_model
 static const hy_scene_key_spec model_keys[] = {
-    F(kind, HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, "lugre",
+    F(kind, HY_KIND_ENUM, model_kinds, NOLIM, 0, 0, HY_MODEL_DEFAULT,
       "hysteresis model: Dahl, LuGre (Eq. 3), the Example-1 filter system, the Bouc-Wen benchmark oscillator, "
-      "Jiles-Atherton (ferromagnetic, input H in A/m, output B in T), classical Preisach, or the Bouc-Wen "
-      "hysteresis operator (Eq. 3 of the benchmark driven by u)"),
+      "Jiles-Atherton (ferromagnetic, input H in A/m, output B in T), classical Preisach, the Bouc-Wen "
+      "hysteresis operator (Eq. 3 of the benchmark driven by u), the play operator, or the Duhem model"),
     FQ("σ_0", NULL, sigma0, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "bristle stiffness sigma0 of Eq. (3)"),
     FQ("σ_1", NULL, sigma1, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "1", "micro-damping sigma1 of Eq. (3) (LuGre)"),
     FQ("σ_2", NULL, sigma2, HY_KIND_NUMBER, NULL, NONNEG, 0, 0, "0",
       "viscous friction sigma2; f(v) = sigma2 v (the paper takes f = 0)"),
-    FQ("F_c", NULL, fc, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Coulomb friction force Fc"),
-    FQ("F_s", NULL, fs, HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "stiction force Fs"),
-    FQ("v_s", NULL, vs, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck velocity vs"),
-    FQ("β", NULL, beta, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "Stribeck exponent beta of g(v)"),
-    FQ("ρ", NULL, rho, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "constant g of the Dahl model"),
+    FQ("F_c", NULL, fc, HY_KIND_NUMBER, NULL, POS_G, 0, 0, "1", "Coulomb friction force Fc"),
+    FQ("F_s", NULL, fs, HY_KIND_NUMBER, NULL, POS_G, 0, 0, "2", "stiction force Fs"),
+    FQ("v_s", NULL, vs, HY_KIND_NUMBER, NULL, POS_G, 0, 0, "1", "Stribeck velocity vs"),
+    FQ("β", NULL, beta, HY_KIND_NUMBER, NULL, POS_G, 0, 0, "1", "Stribeck exponent beta of g(v)"),
+    FQ("ρ", NULL, rho, HY_KIND_NUMBER, NULL, POS_G, 0, 0, "1", "constant g of the Dahl model"),
     FQ("x_0", NULL, x0, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "initial state x(0)"),
     FQ("τ", NULL, tau, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "time constant of the dahl-filter system"),
     FQ("m_L", "kg", m, HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "boucwen: mass m_L in kg (Table 1)"),
@@ -94,7 +108,8 @@ static const hy_scene_key_spec model_keys[] = {
       "boucwen, boucwen-operator: beta of Eq. (3) in 1/m^nu; 0 gives the linear oscillator of Fig. 1(b)"),
     FQ("γ", NULL, bw_gamma, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.8", "boucwen, boucwen-operator: gamma of Eq. (3)"),
     FQ("δ", NULL, delta, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "-1.1", "boucwen, boucwen-operator: delta of Eq. (3)"),
-    FQ("ν", NULL, nu, HY_KIND_NUMBER, NULL, POS, 0, 0, "1", "boucwen, boucwen-operator (1 only): exponent nu of Eq. (3)"),
+    FQD((NULL, HY_INPUT_BOUCWEN, NULL, NULL, NULL, 0.5, 2.0, 0), "ν", NULL, nu, HY_KIND_NUMBER, NULL, POS, 0, 0, "1",
+        "boucwen, boucwen-operator (1 only): exponent nu of Eq. (3)"),
 };
 #undef SECT
 
@@ -102,10 +117,10 @@ static const hy_scene_key_spec model_keys[] = {
 static const hy_scene_key_spec input_keys[] = {
     F(kind, HY_KIND_ENUM, input_kinds, NOLIM, 0, 0, "bimodal",
       "input family: bimodal (Eq. 10), multimodal, triangle, sine, pwl, samples from a file; boucwen models take sine, multisine or sweep"),
-    FQ("u_{min,1}", NULL, umin1, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "bimodal input: first minimum u_min,1"),
-    FQ("u_{min,2}", NULL, umin2, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.2", "bimodal input: second minimum u_min,2"),
-    FQ("u_{max,1}", NULL, umax1, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "bimodal input: first maximum u_max,1"),
-    FQ("u_{max,2}", NULL, umax2, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1.5", "bimodal input: second maximum u_max,2"),
+    FQD(BIMODAL(NULL, "input.umin2"), "u_{min,1}", NULL, umin1, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "bimodal input: first minimum u_min,1"),
+    FQD(BIMODAL("input.umin1", "input.umax1"), "u_{min,2}", NULL, umin2, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0.2", "bimodal input: second minimum u_min,2"),
+    FQD(BIMODAL("input.umin2", "input.umax2"), "u_{max,1}", NULL, umax1, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1", "bimodal input: first maximum u_max,1"),
+    FQD(BIMODAL("input.umax1", NULL), "u_{max,2}", NULL, umax2, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "1.5", "bimodal input: second maximum u_max,2"),
     F(t, HY_KIND_NUMBER_LIST, NULL, NONNEG, 4, 4, NULL,
       "bimodal input: times t1, t2, t3, t4 of the extrema (default: normalised, t = rho)"),
     F(shape, HY_KIND_ENUM, input_shapes, NOLIM, 0, 0, "linear",
@@ -118,18 +133,18 @@ static const hy_scene_key_spec input_keys[] = {
       "triangle or sine input: amplitude (a force in N for a boucwen model); sweep input: force in N, default 40 "
       "(the paper's sweep, as `hystviz boucwen data --signal sweep`)"),
     FQ("u_0", NULL, offset, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, "0", "triangle or sine input: mean value"),
-    FQ("T", "s", period, HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "triangle or sine input: period T"),
-    FQ("u_{min}", NULL, min, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    FQD(FORCE_SINE("input.fs"), "T", "s", period, HY_KIND_NUMBER, NULL, POS, 0, 0, "2", "triangle or sine input: period T"),
+    FQD(TRIANGLE(NULL, "input.max"), "u_{min}", NULL, min, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "triangle input: minimum (instead of amp and offset)"),
-    FQ("u_{max}", NULL, max, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
+    FQD(TRIANGLE("input.min", NULL), "u_{max}", NULL, max, HY_KIND_NUMBER, NULL, NOLIM, 0, 0, NULL,
       "triangle input: maximum (instead of amp and offset)"),
     F(points, HY_KIND_NUMBER_LIST, NULL, HY_SPEC_EVEN, 0, 0, 4, 0, NULL,
       "pwl input: one period as t0, u0, t1, u1, ..."),
     F(file, HY_KIND_PATH, NULL, NOLIM, 0, 0, NULL,
       "file input: two-column text file t u, relative to the scene file"),
-    FQ("f_s", "Hz", fs, HY_KIND_NUMBER, NULL, POS, 0, 0, "750",
+    FQD(FORCE_SINE("input.period"), "f_s", "Hz", fs, HY_KIND_NUMBER, NULL, POS, 0, 0, "750",
       "boucwen inputs: working sampling rate in Hz (the figures' samples; a sine needs period x fs whole)"),
-    FQ("N", NULL, samples, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 64, 10000000, 0, 0, "8192",
+    FQD(WORK, "N", NULL, samples, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 64, 10000000, 0, 0, "8192",
       "multisine input: samples per period at fs (frequency resolution fs / samples)"),
     F(band, HY_KIND_PAIR, NULL, NOLIM, 0, 0, "5, 150",
       "multisine input: excited band in Hz; sweep input: start and end frequency in Hz, default 20, 50 (the paper's)"),
@@ -154,7 +169,7 @@ static const hy_scene_key_spec compute_keys[] = {
       "time scales gamma for y_gamma (Figs. 4, 7, 11)"),
     F(k, HY_KIND_INTEGER_LIST, NULL, NONNEG, 1, 0, "0, 1, 2, 3",
       "periods k for `y*_{u,k}` (Figs. 8, 12, 13)"),
-    FQ("periods", NULL, cycles, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 100000, 0, 0, "1",
+    FQD(WORK, "periods", NULL, cycles, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 100000, 0, 0, "1",
       "number of input periods simulated"),
     F(solver, HY_KIND_ENUM, solvers, NOLIM, 0, 0, "exact",
       "integrator: exact (piecewise exponential) or a GSL odeiv2 stepper"),
@@ -163,11 +178,11 @@ static const hy_scene_key_spec compute_keys[] = {
     FQ("atol", NULL, atol, HY_KIND_NUMBER, NULL, POS, 0, 0, "1e-10", "absolute tolerance of adaptive solvers"),
     F(tspan, HY_KIND_PAIR, NULL, NOLIM, 0, 0, NULL,
       "time interval computed and drawn (default: the periods simulated)"),
-    FQ("points", "per period", points, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 10000000, 0, 0, "2000",
+    FQD(WORK, "points", "per period", points, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 2, 10000000, 0, 0, "2000",
       "output samples per input period (a curve over the time span has points x periods)"),
-    FQ("settle", "periods", settle, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 0, 100000, 0, 0, "0",
+    FQD(WORK, "settle", "periods", settle, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 0, 100000, 0, 0, "0",
       "boucwen: input periods integrated from rest and discarded before the 'cycles' drawn"),
-    FQ("upsample", NULL, upsample, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 1000, 0, 0, "20",
+    FQD(WORK, "upsample", NULL, upsample, HY_KIND_INTEGER, NULL, HY_SPEC_MIN | HY_SPEC_MAX, 1, 1000, 0, 0, "20",
       "boucwen: Newmark integration rate as a multiple of the input's fs (15000 Hz = 20 x 750 Hz)"),
     F(decimate, HY_KIND_ENUM, decimations, NOLIM, 0, 0, "staged",
       "boucwen: back to fs like MATLAB decimate(y, r, 'fir') in prime-factor stages or one stage, or none (keep fs x upsample)"),

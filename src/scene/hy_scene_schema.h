@@ -55,7 +55,7 @@
 
 /* What a [series] quantity draws, one line per quantity: X(ID, "name", bw),
  * bw 1 where the Bouc-Wen benchmark draws it.  The schema's quantity list,
- * scene_boucwen.c's Q_ID values and its model's list of quantities are
+ * model_boucwen.c's Q_ID values and its model's list of quantities are
  * generated from it. */
 #define HY_SERIES_QUANTITIES(X)                  \
     X(OUTPUT, "output", 1)                       \
@@ -73,7 +73,8 @@
  * oscillator, HY_INPUT_ALL every model, HY_INPUT_BOUCWEN the Bouc-Wen
  * oscillator alone (a force).  The schema's [input] kind list, the
  * HY_INPUT_<ID> values (the index decode gives) and the pipeline's dispatch
- * on them (scene_run.c, scene_boucwen.c) are generated from it. */
+ * on them (scene_run.c, model_boucwen.c) and each model table
+ * entry's inputs column (scene_model.h) are generated from it. */
 #define HY_INPUT_OTHERS 1
 #define HY_INPUT_ALL 3
 #define HY_INPUT_BOUCWEN 2

@@ -69,7 +69,9 @@ enum {
     HY_SPEC_MAX = 1u << 1,      /* value <= max (or < max with MAX_EXCL)   */
     HY_SPEC_MIN_EXCL = 1u << 2,
     HY_SPEC_MAX_EXCL = 1u << 3,
-    HY_SPEC_EVEN = 1u << 4      /* a list must hold an even count (pairs)  */
+    HY_SPEC_EVEN = 1u << 4,     /* a list must hold an even count (pairs)  */
+    HY_SPEC_G = 1u << 5         /* a [model] key of the friction function
+                                   g(v), read for data = g (HY_READS_G)    */
 };
 
 /* One key: its name, kind, allowed identifiers (NULL-terminated, for ENUM and
@@ -83,6 +85,24 @@ enum {
  * struct and that field's C type (HY_CTYPE_*; 0: the key is not decoded);
  * for a [model] key that one model declares in its own file
  * (hy_scene_model_rows.h), that model's kind (NULL: any kind's key). */
+/* A number key's domain given the other keys, for serve's sliders (all zero:
+ * none): where the scene's model takes inputs whose takers meet takers (the
+ * model table's inputs column; 0: every model), the slider keeps strictly
+ * above the value of key above and below that of below ("section.key") and,
+ * with per (the other factor), on whole multiples of 1 / its value, these
+ * three where [input] kind is kind (NULL: any); within [lo, hi] where lo < hi
+ * (where the computation is known to work); work: the work estimate grows at
+ * most in proportion to the key (the page keeps it below value x budget /
+ * work). */
+typedef struct hy_scene_domain {
+    const char *kind;
+    unsigned takers;
+    const char *above, *below, *per;
+    double lo, hi;
+    int work;
+} hy_scene_domain;
+#define HY_SCENE_NO_DOMAIN {NULL, 0u, NULL, NULL, NULL, 0.0, 0.0, 0}
+
 typedef struct hy_scene_key_spec {
     const char *name;
     hy_scene_kind kind;
@@ -97,6 +117,7 @@ typedef struct hy_scene_key_spec {
     size_t field;
     int ctype;
     const char *model;
+    hy_scene_domain dom;
 } hy_scene_key_spec;
 
 /* One section: [name] or, when takes_name, [name LABEL]; repeatable sections

@@ -218,53 +218,17 @@ static int wanted(const char *sec, const char *kind, const char *key)
     return 0;
 }
 
-/* Whether the computation reads the key (reads: hy_scene_reads' bits): the
- * model only when a series needs its dynamics, or its g(v) (Fc, Fs, vs,
- * beta; rho and Fc of Dahl) for data = g; the input unless only g is drawn. */
-static int is_read(const char *sec, const char *key, unsigned reads)
+/* Whether the computation reads key k of section sec (reads: hy_scene_reads'
+ * bits): the model only when a series needs its dynamics, or the keys of its
+ * g(v) (rows flagged HY_SPEC_G) for data = g; the input unless only g is drawn. */
+static int is_read(const char *sec, const hy_scene_key_spec *k, unsigned reads)
 {
-    static const char *const g_keys[] = {"fc", "fs", "vs", "beta", "rho", NULL};
     if (!strcmp(sec, "input"))
         return (reads & HY_READS_INPUT) != 0;
     if (strcmp(sec, "model") || (reads & HY_READS_MODEL))
         return 1;
-    for (size_t i = 0; (reads & HY_READS_G) && g_keys[i]; i++)
-        if (!strcmp(g_keys[i], key))
-            return 1;
-    return 0;
+    return (reads & HY_READS_G) && (k->flags & HY_SPEC_G);
 }
-
-/* The values one key may take given the others (the checks of hy_input.c's
- * bimodal input, Definition 1: u_min,1 <= u_min,2 < u_max,1 <= u_max,2;
- * triangle min < max; scene_boucwen.c's sine: period x fs whole): a slider
- * keeps strictly between "above" and "below" and, with "per", on whole
- * multiples of 1 / per (per: the other factor).  lo < hi: the slider's range
- * cut to [lo, hi] (where the computation is known to work: Newton's iteration
- * of the Bouc-Wen benchmark fails beyond about nu = 2 at its forces).  work:
- * the work estimate grows at most in proportion to the key, so the page keeps
- * the slider below value x budget / work (the render reports both).  kind:
- * the input kind ("" any); model: the model kind ("" any). */
-static const struct {
-    const char *sec, *kind, *model, *key, *above, *below, *per;
-    double lo, hi;
-    int work;
-} domains[] = {
-    {"input", "bimodal", "", "umin1", NULL, "input.umin2", NULL, 0, 0, 0},
-    {"input", "bimodal", "", "umin2", "input.umin1", "input.umax1", NULL, 0, 0, 0},
-    {"input", "bimodal", "", "umax1", "input.umin2", "input.umax2", NULL, 0, 0, 0},
-    {"input", "bimodal", "", "umax2", "input.umax1", NULL, NULL, 0, 0, 0},
-    {"input", "triangle", "", "min", NULL, "input.max", NULL, 0, 0, 0},
-    {"input", "triangle", "", "max", "input.min", NULL, NULL, 0, 0, 0},
-    {"input", "sine", "boucwen", "period", NULL, NULL, "input.fs", 0, 0, 1},
-    {"input", "sine", "boucwen", "fs", NULL, NULL, "input.period", 0, 0, 1},
-    {"input", "", "boucwen", "fs", NULL, NULL, NULL, 0, 0, 1},
-    {"input", "", "", "samples", NULL, NULL, NULL, 0, 0, 1},
-    {"model", "", "boucwen", "nu", NULL, NULL, NULL, 0.5, 2, 0},
-    {"compute", "", "", "cycles", NULL, NULL, NULL, 0, 0, 1},
-    {"compute", "", "", "settle", NULL, NULL, NULL, 0, 0, 1},
-    {"compute", "", "", "upsample", NULL, NULL, NULL, 0, 0, 1},
-    {"compute", "", "", "points", NULL, NULL, NULL, 0, 0, 1},
-};
 
 /* One control of value v: of key k of [sec label], or with param (the name
  * of a [param NAME] that the key reads, and others with it) of that
@@ -273,16 +237,17 @@ static void control(sv_buf *b, int *first, double v, const hy_scene_key_spec *k,
                     int set, const char *model, const char *input, int main, const char *param)
 {
     double lo, hi;
-    int lg, d = -1;
+    int lg;
     hy_scene_key_range(k, v, &lo, &hi, &lg); /* the fitter's bounds too */
-    for (size_t i = 0; i < sizeof domains / sizeof domains[0] && d < 0 && !param; i++)
-        if (!strcmp(domains[i].sec, sec) && !strcmp(domains[i].key, k->name) &&
-            (!domains[i].kind[0] || !strcmp(domains[i].kind, input)) &&
-            (!domains[i].model[0] || !strcmp(domains[i].model, model)))
-            d = (int)i;
-    if (d >= 0 && domains[d].lo < domains[d].hi && domains[d].lo <= v && v <= domains[d].hi) {
-        lo = lo > domains[d].lo ? lo : domains[d].lo;
-        hi = hi < domains[d].hi ? hi : domains[d].hi;
+    /* the key's domain given the others (its schema row; a parameter's: none) */
+    const hy_scene_model *mt = hy_scene_model_find(model);
+    const hy_scene_domain *dm = param ? NULL : &k->dom;
+    if (dm && dm->takers && !(mt && (mt->inputs & dm->takers)))
+        dm = NULL;
+    int order = dm && (!dm->kind || !strcmp(dm->kind, input));
+    if (dm && dm->lo < dm->hi && dm->lo <= v && v <= dm->hi) {
+        lo = lo > dm->lo ? lo : dm->lo;
+        hi = hi < dm->hi ? hi : dm->hi;
         lg = lo > 0 && hi / lo >= 50;
     }
     char range[64];
@@ -318,16 +283,16 @@ static void control(sv_buf *b, int *first, double v, const hy_scene_key_spec *k,
     sv_puts(b, ",\"unit\":");
     sv_json(b, k->unit ? k->unit : "");
     sv_printf(b, ",\"main\":%d", main);
-    if (d >= 0) {
-        const char *const part[3][2] = {{"above", domains[d].above}, {"below", domains[d].below}, {"per", domains[d].per}};
+    if (order) {
+        const char *const part[3][2] = {{"above", dm->above}, {"below", dm->below}, {"per", dm->per}};
         for (int j = 0; j < 3; j++)
             if (part[j][1]) {
                 sv_printf(b, ",\"%s\":", part[j][0]);
                 sv_json(b, part[j][1]);
             }
-        if (domains[d].work)
-            sv_puts(b, ",\"work\":true");
     }
+    if (dm && dm->work)
+        sv_puts(b, ",\"work\":true");
     sv_puts(b, "}");
 }
 
@@ -367,7 +332,7 @@ void sv_controls_json(sv_buf *b, const hy_scene *s, const hy_scene_doc *d, unsig
             const char *label = ss->takes_name ? h->name : NULL;
             for (size_t j = 0; j < ss->nkeys && j < HY_SCENE_KEYS_MAX; j++) {
                 const hy_scene_key_spec *k = &ss->keys[j];
-                if ((k->kind != HY_KIND_NUMBER && k->kind != HY_KIND_INTEGER) || !is_read(secs[i], k->name, reads))
+                if ((k->kind != HY_KIND_NUMBER && k->kind != HY_KIND_INTEGER) || !is_read(secs[i], k, reads))
                     continue;
                 double v = 0;
                 int got = hy_decl_num(h, k->name, &v);

@@ -237,7 +237,7 @@ static void test_refused(void)
         "'quantity' in [series y] must be one of output, input");
     BAD("[input]\nkind = bimodal\n", "4:1", "a boucwen model takes [input] kind = sine, multisine or sweep");
     BAD("[input]\nkind = sine\nperiod = 1.0001\n", "5:1", "whole number");
-    BAD("[input]\nkind = sine\nperiod = 1\n[series y]\ndata = ystar\n", "7:1", "'data = boucwen' series");
+    BAD("[input]\nkind = sine\nperiod = 1\n[series y]\ndata = ystar\n", "7:1", "a boucwen model draws data = boucwen, not ystar");
     BAD("[input]\nkind = sine\nperiod = 1\n[series y]\ndata = boucwen\nquantity = transient-db\n", "8:1",
         "cycles >= 2");
     BAD("[input]\nkind = sweep\nband = 20, 50\n[series s]\ndata = boucwen\nquantity = spectrum\n", "8:1",

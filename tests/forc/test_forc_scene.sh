@@ -44,7 +44,7 @@ grep -q 'FORC preisach: 60 curves' "$tmp/err" && ok || bad "-v: $(cat "$tmp/err"
 grep -q 'id="image1"' "$tmp/out/pr.svg" && grep -q 'id="surface1"' "$tmp/out/pr.svg" && ok || bad "svg ids not renumbered"
 
 # every rate-independent model of the table, and the y*_u limit of Dahl and LuGre
-for m in "preisach" "play" "boucwen-operator" "dahl" "lugre" "dahl-filter"; do
+for m in "preisach" "play" "duhem" "boucwen-operator" "dahl" "lugre" "dahl-filter"; do
     extra=""
     [ "$m" = boucwen-operator ] && extra="delta = 0.2\n" # the default -1.1 has no saturation (gamma + delta < 0)
     printf "[model]\nkind = %s\n$extra[forc]\nrange = -1, 1\ncurves = 20\n[figure]\nkind = forc\n" "$m" > "$tmp/s/m_$m.scene"

@@ -17,7 +17,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "scene_boucwen.h"
+#include "scene_model.h"
 #include "scene_run.h"
 
 /* ---- the sandbox --------------------------------------------------------- */
@@ -484,7 +484,7 @@ static double integer(const hy_scene *s, const char *sec, const char *key, long 
 static int within_cap(const hy_scene_run *r)
 {
     const hy_scene *s = r->scene;
-    if (hy_scene_is_boucwen(&r->doc)) {
+    if (r->mtype == &hy_scene_model_boucwen) {
         int idx = 0;
         const char *kind = "sine", *dec = "staged";
         hy_scene_get_enum(s, "input", NULL, "kind", &idx, &kind);

@@ -1,9 +1,19 @@
 /* SPDX-License-Identifier: MIT */
-/* scene_boucwen.c: Bouc-Wen scenes (seeds/001, Figs. 1-2): Table 1 from [model], a
+/* model_boucwen.c: Bouc-Wen scenes (seeds/001, Figs. 1-2): Table 1 from [model], a
  * sine, multisine or sweep force, Newmark at fs x upsample (Eqs. 1-5), MATLAB-style
- * decimation back to fs (Section 4), then the series y, u, |y| dB, transient dB, spectrum. */
-#include "scene_boucwen.h"
+ * decimation back to fs (Section 4), then the series y, u, |y| dB, transient dB, spectrum.
+ *
+ * The boucwen model's stages and table entry (its line in the model table of
+ * src/pipeline/meson.build): its [model] holds Table 1 (m, c, k, alpha,
+ * bw_beta, bw_gamma, delta, nu), its [input] is a force (sine, multisine or
+ * sweep at a working rate fs: the entry's inputs), and its series are
+ * `data = boucwen` with a `quantity` (output y in mm, input u in N, output and
+ * transient in dB, spectrum).  The output is integrated by Newmark at fs x
+ * upsample and decimated back to fs like the benchmark, then stored as
+ * hy_run_series that scene_draw.c draws unchanged.  Every error names
+ * file:line:col of the key at fault (docs/SCENES.md). */
 #include "scene_model.h"
+#include "scene_run.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -82,11 +92,6 @@ static size_t first_set(const hy_decl_head *h, const char *const *keys)
 static int relocate(const hy_decl_head *h, size_t off, hy_error *err, int code, const char *what)
 {
     return hy_decl_error(h, off, err, code, "%s%s", what, err->msg);
-}
-
-int hy_scene_is_boucwen(const hy_scene_doc *d)
-{
-    return !strcmp(ENUM_TEXT(&d->model, hy_decl_model, kind), "boucwen");
 }
 
 /* Table 1 from [model]; the schema has checked each value's own range. */
@@ -294,22 +299,8 @@ static int read_setup(const hy_scene_run *r, bw_setup *b, hy_error *err)
     return rc;
 }
 
-/* Other models: the boucwen-only input kinds and series are refused here, by name. */
-static int refuse_boucwen_parts(const hy_scene_doc *d, hy_error *err)
-{
-    const char *kind = ENUM_TEXT(&d->input, hy_decl_input, kind);
-    const char *model = ENUM_TEXT(&d->model, hy_decl_model, kind);
-    if (hy_input_kind_takers(d->input.kind) == HY_INPUT_BOUCWEN)
-        return hy_decl_error(&d->input.h, IN(kind), err, HY_EINVAL,
-                             "input kind %s is a force for [model] kind = boucwen, not for %s", kind, model);
-    for (size_t i = 0; i < d->nseries; i++)
-        if (hy_decl_got(&d->series[i].h, SE(data)) >= 0 && d->series[i].data == HY_DATA_BOUCWEN)
-            return hy_decl_error(&d->series[i].h, SE(data), err, HY_EINVAL,
-                                 "data = boucwen needs [model] kind = boucwen (this model is %s)", model);
-    return HY_OK;
-}
-
-int hy_scene_boucwen_work(const hy_scene_run *r, double *work, hy_error *err)
+/* The work estimate (Newmark steps plus series samples), from the setup alone. */
+static int boucwen_work(const hy_scene_run *r, double *work, hy_error *err)
 {
     bw_setup b;
     int rc = read_setup(r, &b, err);
@@ -317,10 +308,10 @@ int hy_scene_boucwen_work(const hy_scene_run *r, double *work, hy_error *err)
     return rc;
 }
 
-int hy_scene_boucwen_load(hy_scene_run *r, hy_error *err)
+/* Checks the scene before anything is computed: parameters, input, compute
+ * keys, figure kind and every series (errors at the key's location). */
+static int boucwen_load(hy_scene_run *r, hy_error *err)
 {
-    if (!hy_scene_is_boucwen(&r->doc))
-        return refuse_boucwen_parts(&r->doc, err);
     bw_setup b;
     return read_setup(r, &b, err);
 }
@@ -659,7 +650,10 @@ static void plan_text(hy_scene_run *r, const bw_setup *b, const bw_record *rec)
              1e3 * rec->sim_seconds);
 }
 
-int hy_scene_boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
+/* Computes every series into r->series (x: t in s, or u in N in loop figures,
+ * or f in Hz for spectra), logging the plan and timings to log (may be NULL);
+ * on error the series computed so far stay in r for hy_scene_run_free. */
+static int boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
     double t_start = now();
     bw_setup b;
@@ -706,7 +700,7 @@ static const char *const bw_keys[] = {"m", "c", "k", "alpha", "bw_beta", "bw_gam
 static int bw_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err)
 {
     size_t na = r->doc.nannotation;
-    int rc = hy_scene_boucwen_work(r, work, err);
+    int rc = boucwen_work(r, work, err);
     *work = hy_cost(r->cost_counts, HY_COST_NEWMARK, *work) + hy_cost(r->cost_counts, HY_COST_ANNOTATION, (double)na);
     if (what && size)
         snprintf(what, size, "Newmark steps and series samples, %zu annotations", na);
@@ -715,5 +709,5 @@ static int bw_estimate(const hy_scene_run *r, double *work, char *what, size_t s
 
 const hy_scene_model hy_scene_model_boucwen = {
     "boucwen", bw_keys, quantity_names, NULL, NULL, 0,
-    "displacement, velocity and the hysteretic z (Newmark)", hy_scene_boucwen_load, bw_estimate,
-    hy_scene_boucwen_compute, NULL, 0, NULL, NULL, NULL};
+    "displacement, velocity and the hysteretic z (Newmark)", boucwen_load, bw_estimate,
+    boucwen_compute, NULL, 0, NULL, NULL, NULL, HY_INPUT_BOUCWEN, 1u << HY_DATA_BOUCWEN};
