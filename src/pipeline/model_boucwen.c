@@ -710,4 +710,4 @@ static int bw_estimate(const hy_scene_run *r, double *work, char *what, size_t s
 const hy_scene_model hy_scene_model_boucwen = {
     "boucwen", bw_keys, quantity_names, NULL, NULL, 0,
     "displacement, velocity and the hysteretic z (Newmark)", boucwen_load, bw_estimate,
-    boucwen_compute, NULL, 0, NULL, NULL, NULL, HY_INPUT_BOUCWEN, 1u << HY_DATA_BOUCWEN};
+    boucwen_compute, NULL, 0, NULL, NULL, NULL, HY_INPUT_BOUCWEN, 1u << HY_DATA_BOUCWEN, HY_COST_NEWMARK};

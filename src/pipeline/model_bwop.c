@@ -18,6 +18,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "hy_cost.h"
 #include "scene_model.h"
 
 typedef struct bwop {
@@ -157,4 +158,4 @@ const hy_scene_model hy_scene_model_bwop = {
     "boucwen-operator", keys, quantities, NULL, NULL,
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_EXACT_STEP,
     "z and the path integral of z du (exact piecewise-exponential steps)", hy_scene_rateind_load,
-    hy_scene_rateind_estimate, hy_scene_rateind_compute, &op_type, sizeof(bwop), op_read, core_names, NULL, HY_INPUT_OTHERS, HY_DATA_PATH};
+    hy_scene_rateind_estimate, hy_scene_rateind_compute, &op_type, sizeof(bwop), op_read, core_names, NULL, HY_INPUT_OTHERS, HY_DATA_PATH, HY_COST_PLAY};

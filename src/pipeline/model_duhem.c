@@ -19,6 +19,7 @@
  * table entry are this file; its table line is in src/pipeline/meson.build. */
 #include <stddef.h>
 
+#include "hy_cost.h"
 #include "hy_scene_model_rows.h"
 
 /* The [model] keys. */
@@ -97,5 +98,5 @@ const hy_scene_model hy_scene_model_duhem = {
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_EXACT_STEP,
     "the output y and the path integral of y du (exact: exponential approach to a u -/+ (a - b) / alpha)",
     hy_scene_rateind_load, hy_scene_rateind_estimate, hy_scene_rateind_compute, &duhem_type, sizeof(duhem_par),
-    NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH};
+    NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH, HY_COST_PLAY};
 #endif

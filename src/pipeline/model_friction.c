@@ -793,14 +793,14 @@ static const char *const filter_keys[] = {"rho", "fc", "tau", "x0", NULL};
 const hy_scene_model hy_scene_model_dahl = {
     "dahl", dahl_keys, output_only, NULL, NULL, FRICTION_CAPS | HY_CAP_CLOSED_MINOR | HY_CAP_RATE_INDEPENDENT,
     "the bristle state z (y = Fc w)", hy_scene_friction_load, hy_scene_friction_estimate, hy_scene_friction_compute,
-    NULL, 0, NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH | 1u << HY_DATA_G};
+    NULL, 0, NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH | 1u << HY_DATA_G, HY_COST_POINT};
 
 const hy_scene_model hy_scene_model_lugre = {
     "lugre", lugre_keys, output_only, NULL, NULL, FRICTION_CAPS | HY_CAP_CLOSED_MINOR,
     "the bristle deflection z", hy_scene_friction_load, hy_scene_friction_estimate, hy_scene_friction_compute,
-    NULL, 0, NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH | 1u << HY_DATA_G};
+    NULL, 0, NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH | 1u << HY_DATA_G, HY_COST_POINT};
 
 const hy_scene_model hy_scene_model_dahl_filter = {
     "dahl-filter", filter_keys, output_only, NULL, NULL, FRICTION_CAPS,
     "the Dahl state and the filter output", hy_scene_friction_load, hy_scene_friction_estimate,
-    hy_scene_friction_compute, NULL, 0, NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH | 1u << HY_DATA_G};
+    hy_scene_friction_compute, NULL, 0, NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH | 1u << HY_DATA_G, HY_COST_POINT};

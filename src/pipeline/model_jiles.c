@@ -8,6 +8,7 @@
  * numbers show it, else when the step budget runs out. */
 #include <stddef.h>
 
+#include "hy_cost.h"
 #include "hy_jiles.h"
 #include "hy_scene_model_rows.h"
 
@@ -128,5 +129,5 @@ const hy_scene_model hy_scene_model_jiles = {
     "jiles-atherton", NULL, quantities, "H (A/m)", "B (T)",
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_GSL,
     "H, M and the path integral of B dH (GSL rk8pd in H, restarted at every reversal)", ja_load,
-    hy_scene_rateind_estimate, ja_compute, &ja_type, sizeof(hy_jiles), ja_read, core_names, NULL, HY_INPUT_OTHERS, HY_DATA_PATH};
+    hy_scene_rateind_estimate, ja_compute, &ja_type, sizeof(hy_jiles), ja_read, core_names, NULL, HY_INPUT_OTHERS, HY_DATA_PATH, HY_COST_JILES};
 #endif

@@ -14,6 +14,7 @@
  * table entry are this file; its table line is in src/pipeline/meson.build. */
 #include <stddef.h>
 
+#include "hy_cost.h"
 #include "hy_scene_model_rows.h"
 
 /* The [model] keys. */
@@ -100,5 +101,5 @@ const hy_scene_model hy_scene_model_play = {
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_ENERGY | HY_CAP_RATE_INDEPENDENT | HY_CAP_EXACT_STEP,
     "the output y and the path integral of y du (exact: constant, then dragged at distance r)",
     hy_scene_rateind_load, hy_scene_rateind_estimate, hy_scene_rateind_compute, &play_type, sizeof(play_par),
-    NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH};
+    NULL, NULL, NULL, HY_INPUT_OTHERS, HY_DATA_PATH, HY_COST_PLAY};
 #endif

@@ -6,6 +6,7 @@
  * from negative or positive saturation or the demagnetised state. */
 #include <stddef.h>
 
+#include "hy_cost.h"
 #include "hy_preisach.h"
 #include "hy_scene_model_rows.h"
 
@@ -182,5 +183,5 @@ const hy_scene_model hy_scene_model_preisach = {
     HY_CAP_STEADY | HY_CAP_YSTAR | HY_CAP_CLOSED_MINOR | HY_CAP_ENERGY | HY_CAP_RETURN_POINT |
         HY_CAP_RATE_INDEPENDENT | HY_CAP_EXACT_STEP,
     "the staircase of the input's dominant extrema (wiping-out)", hy_scene_rateind_load, hy_scene_rateind_estimate,
-    hy_scene_rateind_compute, &pr_type, sizeof(hy_preisach), pr_read, core_names, pr_par_free, HY_INPUT_OTHERS, HY_DATA_PATH};
+    hy_scene_rateind_compute, &pr_type, sizeof(hy_preisach), pr_read, core_names, pr_par_free, HY_INPUT_OTHERS, HY_DATA_PATH, HY_COST_PREISACH};
 #endif

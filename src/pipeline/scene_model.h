@@ -71,6 +71,9 @@ typedef struct hy_scene_model {
      * column) meet this mask, and the series data of bits 1u << HY_DATA_* */
     unsigned inputs;
     unsigned data;
+    /* the cost kind of one of its steps (HY_COST_*, hy_cost.h): a
+     * rate-independent model's estimate counts its moves at that weight */
+    int cost_move;
 } hy_scene_model;
 
 /* Series data masks for the table's data column: every data kind, and the

@@ -61,10 +61,11 @@ int hy_scene_rateind_load(hy_scene_run *r, hy_error *err)
     return rc;
 }
 
-/* The cost kind of a rate-independent model's moves (hy_cost.h). */
+/* The cost kind of a rate-independent model's moves (hy_cost.h): its table
+ * entry's column. */
 static int move_kind(const hy_scene_model *mt)
 {
-    return mt == &hy_scene_model_jiles ? HY_COST_JILES : mt == &hy_scene_model_preisach ? HY_COST_PREISACH : HY_COST_PLAY;
+    return mt->cost_move;
 }
 
 /* The turning points find_loops feeds the model to measure every loop,
