@@ -90,6 +90,46 @@ static int expand(const hy_scene_run *r, const hy_decl_annotation *a, char *out,
     return expand_text(r, a->text ? a->text : "", &a->h, offsetof(hy_decl_annotation, text), 0, out, size, err);
 }
 
+/* The value of placeholder key in r (NaN: none such); *turn is set for
+ * minorN.turn, whose value is the loop's area (shown as its orientation). */
+static double placeholder_value(const hy_scene_run *r, const char *key, int *turn)
+{
+    double v = NAN;
+    unsigned idx;
+    char field[16];
+    const char *dot;
+    const hy_loops *L = &r->loops;
+    if (!strcmp(key, "major.area") || !strcmp(key, "energy"))
+        v = L->area_period;
+    else if (!strcmp(key, "major.own"))
+        v = L->major.own_area;
+    else if (!strcmp(key, "nminor"))
+        v = (double)L->nminor;
+    else if (sscanf(key, "minor%u.%15s", &idx, field) == 2 && idx >= 1 && idx <= L->nminor) {
+        const hy_loop *m = &L->minor[idx - 1];
+        *turn = !strcmp(field, "turn");
+        v = !strcmp(field, "area") || *turn ? m->area : !strcmp(field, "own") ? m->own_area : !strcmp(field, "ystart") ? m->y_start
+            : !strcmp(field, "yclose") ? m->y_close : !strcmp(field, "gap") ? m->y_close - m->y_start : NAN;
+    } else if ((dot = strrchr(key, '.')) != NULL) { /* SERIES.gamma, SERIES.dist */
+        for (size_t i = 0; i < r->nseries; i++) {
+            const hy_run_series *se = &r->series[i];
+            if (strlen(se->name) != (size_t)(dot - key) || strncmp(se->name, key, (size_t)(dot - key)))
+                continue;
+            int yg = se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT;
+            v = !yg ? hy_scene_data_value(r, se, dot + 1) /* data = measured, modelled: area, rms */
+                    : !strcmp(dot + 1, "gamma") ? se->gamma : !strcmp(dot + 1, "dist") ? se->dist : NAN;
+        }
+        if (isnan(v) && dot - key < 16) { /* SECTION.key: a numeric key, set or default */
+            char sect[16];
+            snprintf(sect, sizeof sect, "%.*s", (int)(dot - key), key);
+            double x;
+            if (!hy_scene_doc_num(&r->doc, sect, dot + 1, &x))
+                v = x;
+        }
+    }
+    return v;
+}
+
 /* expand's work on text (errors at field off of h).  series_only (a legend
  * label): only the SERIES.* placeholders are filled, every other brace kept
  * as written for hy_scene_expand's {section.key}. */
@@ -131,40 +171,9 @@ static int expand_text(const hy_scene_run *r, const char *text, const hy_decl_he
             c = e + 1;
             continue;
         }
-        double v = NAN;
-        int turn = 0;   /* minorN.turn: the loop's net orientation in words */
-        unsigned idx;
-        char field[16];
-        const char *dot;
+        int turn = 0; /* minorN.turn: the loop's net orientation in words */
+        double v = placeholder_value(r, key, &turn);
         const hy_loops *L = &r->loops;
-        if (!strcmp(key, "major.area") || !strcmp(key, "energy"))
-            v = L->area_period;
-        else if (!strcmp(key, "major.own"))
-            v = L->major.own_area;
-        else if (!strcmp(key, "nminor"))
-            v = (double)L->nminor;
-        else if (sscanf(key, "minor%u.%15s", &idx, field) == 2 && idx >= 1 && idx <= L->nminor) {
-            const hy_loop *m = &L->minor[idx - 1];
-            turn = !strcmp(field, "turn");
-            v = !strcmp(field, "area") || turn ? m->area : !strcmp(field, "own") ? m->own_area : !strcmp(field, "ystart") ? m->y_start
-                : !strcmp(field, "yclose") ? m->y_close : !strcmp(field, "gap") ? m->y_close - m->y_start : NAN;
-        } else if ((dot = strrchr(key, '.')) != NULL) { /* SERIES.gamma, SERIES.dist */
-            for (size_t i = 0; i < r->nseries; i++) {
-                const hy_run_series *se = &r->series[i];
-                if (strlen(se->name) != (size_t)(dot - key) || strncmp(se->name, key, (size_t)(dot - key)))
-                    continue;
-                int yg = se->data == HY_DATA_YGAMMA || se->data == HY_DATA_TRANSIENT;
-                v = !yg ? hy_scene_data_value(r, se, dot + 1) /* data = measured, modelled: area, rms */
-                        : !strcmp(dot + 1, "gamma") ? se->gamma : !strcmp(dot + 1, "dist") ? se->dist : NAN;
-            }
-            if (isnan(v) && dot - key < 16) { /* SECTION.key: a numeric key, set or default */
-                char sect[16];
-                snprintf(sect, sizeof sect, "%.*s", (int)(dot - key), key);
-                double x;
-                if (!hy_scene_doc_num(&r->doc, sect, dot + 1, &x))
-                    v = x;
-            }
-        }
         if (isnan(v))
             return hy_decl_error(h, off, err, HY_EINVAL,
                                  "unknown placeholder {%s} (major.area, major.own, energy, nminor, minorN.area, minorN.turn, minorN.own, minorN.ystart, minorN.yclose, minorN.gap; this input has %zu minor loops; SERIES.gamma, SERIES.dist of a ygamma or transient series; SERIES.area of a measured or modelled series of one record, SERIES.rms of a modelled one; SECTION.key of a numeric key)",
