@@ -20,6 +20,7 @@
 
 #include "cli_opt.h"
 #include "dirwatch.h"
+#include "hy_os.h"
 #include "scene_run.h"
 
 static const char watch_usage[] =
@@ -56,13 +57,6 @@ static void stamp(char *buf, size_t n)
     strftime(buf, n, "%H:%M:%S", &tm);
 }
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Renders w if its text (with includes and overrides) changed since the last
  * attempt, or always with force; prints one line. */
 static void render_one(watched *w, char *const *sets, size_t nsets, const char *out, const char *formats, int force)
@@ -70,7 +64,7 @@ static void render_one(watched *w, char *const *sets, size_t nsets, const char *
     char ts[16];
     hy_error err = {0};
     hy_scene_run run;
-    double t0 = now();
+    double t0 = hy_now();
     stamp(ts, sizeof ts);
     /* a cheap parse first: unchanged text is not rendered again */
     hy_scene *probe = NULL;
@@ -94,7 +88,7 @@ static void render_one(watched *w, char *const *sets, size_t nsets, const char *
     rc = hy_scene_run_compute(&run, NULL, &err);
     if (!rc)
         rc = hy_scene_run_write(&run, out, formats, written, sizeof written, &err);
-    double dt = now() - t0;
+    double dt = hy_now() - t0;
     if (rc)
         printf("%s %s: error: %s\n", ts, w->path, err.msg);
     else {
