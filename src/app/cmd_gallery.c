@@ -27,6 +27,7 @@
 #include "anim_names.h"
 #include "cli_util.h"
 #include "export_anim.h"
+#include "hy_child.h"
 #include "hy_file.h"
 #include "hy_grid.h"
 #include "hy_jobs.h"
@@ -615,8 +616,6 @@ static int run_pool(const opts *o, job *jobs, size_t n)
  * rendered by hystviz-animate into builtin_NAME.png.  The frame is rendered
  * when the file is missing or with --force; where hystviz-animate cannot
  * render (built without GL) the gallery says so in one line and goes on. */
-extern char **environ;
-
 #define BUILTINS_FILE "gallery-builtins"
 #define BUILTINS_MAX 16
 #define BUILTINS_BYTES 16384 /* 16 lines of at most 254 characters, comments besides */
@@ -743,19 +742,12 @@ static int builtins_read(const char *dir, builtin *b, size_t *n)
 static int poster_run(char *const *argv, const char *err, char *why, size_t size)
 {
     posix_spawn_file_actions_t fa;
-    posix_spawnattr_t at;
-    sigset_t none;
-    sigemptyset(&none);
     posix_spawn_file_actions_init(&fa);
-    posix_spawnattr_init(&at);
-    posix_spawnattr_setsigmask(&at, &none);
-    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK);
     posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&fa, 2, err, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     pid_t pid;
-    int sp = posix_spawn(&pid, argv[0], &fa, &at, argv, environ);
+    int sp = hy_child_spawn(&pid, argv, &fa);
     posix_spawn_file_actions_destroy(&fa);
-    posix_spawnattr_destroy(&at);
     if (sp) {
         snprintf(why, size, "cannot run %s: %s", argv[0], strerror(sp));
         return -1;
