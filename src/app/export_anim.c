@@ -365,12 +365,8 @@ int exp_anim_run(const exp_anim_opts *o)
     int rc = render_frames(o, prog, &fr);
     if (!rc)
         rc = write_page(o, &fr, hy_out_file(&out));
-    if (rc)
-        hy_out_abort(&out);
-    else if (hy_out_commit(&out, &err)) {
-        fprintf(stderr, "hystviz export: %s\n", err.msg);
-        rc = 1;
-    } else if (!o->quiet)
+    rc = exp_out_finish(&out, rc);
+    if (!rc && !o->quiet)
         fprintf(stderr, "export: %s, %ld frames at %.6g fps (%zu distinct) %dx%d; %s\n", o->name, fr.n, fr.fps,
                 fr.ndistinct, fr.width, fr.height, o->out);
     frames_free(&fr);
