@@ -724,10 +724,8 @@ int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
         fprintf(log, "%s: plan\n%s", r->path, r->plan);
         for (size_t i = 0; i < ns; i++) {
             const hy_run_series *se = &r->series[i];
-            if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
-                continue; /* their own lines: hy_scene_data_log */
-            fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms", se->name, hy_scene_data_name(se->data), se->n,
-                    1e3 * se->seconds);
+            if (!hy_scene_series_log(se, log))
+                continue;
             if (se->grid_n)
                 fprintf(log, " (drawn: %s of the grid's %zu)", se->n ? "the points its curvature needs" : "its mark only",
                         se->grid_n);

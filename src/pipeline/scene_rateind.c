@@ -387,13 +387,9 @@ static void log_run(const hy_scene_run *r, const ri_plan *p, FILE *log)
             r->path, r->mtype->name);
     if (p->have_steady)
         fprintf(log, "  periodic after %d periods (output change <= %g of its range)\n", r->ri_periods, SETTLE_TOL);
-    for (size_t i = 0; i < r->nseries; i++) {
-        const hy_run_series *se = &r->series[i];
-        if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
-            continue; /* their own lines: hy_scene_data_log */
-        fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms\n", se->name, hy_scene_data_name(se->data), se->n,
-                1e3 * se->seconds);
-    }
+    for (size_t i = 0; i < r->nseries; i++)
+        if (hy_scene_series_log(&r->series[i], log))
+            fputc('\n', log);
     if (r->have_loops)
         fprintf(log, "  %zu minor loops; energy per cycle %.10g\n", r->loops.nminor, r->loops.area_period);
     fprintf(log, "  compute total %.3f ms (work estimate %.3g)\n", 1e3 * r->seconds_compute, r->work);
