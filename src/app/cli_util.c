@@ -174,6 +174,19 @@ int cli_policy_take(hy_scene_policy *pol, const char **dirs, const char *cmd, in
     return 1;
 }
 
+int cli_outputs_take(cli_outputs *o, int id, const char *v)
+{
+    if (id == CLI_OUT)
+        o->out = v;
+    else if (id == CLI_SET)
+        o->sets[o->nsets++] = (char *)v;
+    else if (id == CLI_FORMAT)
+        o->formats = v;
+    else
+        return 0;
+    return 1;
+}
+
 /* The default of -j as --help states it (here) or a manual page (doc). */
 static const char *jobs_more(char *buf, size_t size, int doc)
 {

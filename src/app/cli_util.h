@@ -52,6 +52,19 @@ int cli_stdout_status(const char *cmd, int rc);
 extern const cli_opt cli_policy_opts[];
 int cli_policy_take(hy_scene_policy *pol, const char **dirs, const char *cmd, int id, const char *v);
 
+/* What a command that renders scene files takes alike (render, data, watch):
+ * --output (id CLI_OUT), --set, repeatable (CLI_SET; sets has room for one
+ * per argument) and --format (CLI_FORMAT); each command's table says what
+ * they mean for it. */
+enum { CLI_OUT = 1300, CLI_SET, CLI_FORMAT };
+typedef struct cli_outputs {
+    const char *out, *formats; /* NULL: not given */
+    char **sets;
+    size_t nsets;
+} cli_outputs;
+/* Takes option id with value v: 1 if it was one of them, 0 if not. */
+int cli_outputs_take(cli_outputs *o, int id, const char *v);
+
 /* -j, --jobs N (id CLI_JOBS), its help describing the default (hy_jobs). */
 extern const cli_opt cli_jobs_opts[];
 
