@@ -143,6 +143,19 @@ int cli_stdout_status(const char *cmd, int rc)
     return rc;
 }
 
+int cli_program_run(char *name, int (*cmd)(int, char **), int argc, char **argv)
+{
+    if (argc < 2) {
+        char *args[] = {name, NULL};
+        return cli_stdout_status(name, cmd(1, args));
+    }
+    if (argv[1][0] == '-') {
+        argv[0] = name;
+        return cli_stdout_status(name, cmd(argc, argv));
+    }
+    return cli_stdout_status(name, cmd(argc - 1, argv + 1));
+}
+
 const cli_opt cli_policy_opts[] = {
     {"include-dir", 0, "DIR", "a directory scenes may include from (and read input files\n"
      "below), besides their own; repeatable", CLI_INCLUDE_DIR, 0, NULL, NULL, NULL},

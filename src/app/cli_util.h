@@ -45,6 +45,14 @@ int cli_exit_status(int code);
  * 1, else rc.  Every command's last step (main). */
 int cli_stdout_status(const char *cmd, int rc);
 
+/* The rest of main in a program that runs one command (hystviz-animate,
+ * hystviz-serve; argv as after "hystviz"): the command cmd named name on
+ * argv[1..] (none: no arguments), or on argv with argv[0] = name when
+ * argv[1] is an option (--help, --version: the command's own, as every
+ * command answers them); its status through cli_stdout_status.  name must
+ * outlive the call (it becomes argv[0]). */
+int cli_program_run(char *name, int (*cmd)(int, char **), int argc, char **argv);
+
 /* Scene policy options (the table cli_policy_opts): --include-dir DIR
  * (repeatable; dirs has room for one per argument) and --max-work N.  Takes
  * option id with value v: 1 if it was one, 0 if not, -1 on error (message
