@@ -18,13 +18,5 @@ int main(int argc, char **argv)
         pthread_sigmask(SIG_UNBLOCK, &stop, NULL);
     gsl_set_error_handler_off();
     static char name[] = "animate";
-    if (argc < 2) {
-        static char *args[] = {name, NULL};
-        return cli_stdout_status("animate", hy_cmd_animate(1, args));
-    }
-    if (argv[1][0] == '-') { /* `hystviz-animate --version`, `--help`: animate's own, as every command answers them */
-        argv[0] = name;
-        return cli_stdout_status("animate", hy_cmd_animate(argc, argv));
-    }
-    return cli_stdout_status("animate", hy_cmd_animate(argc - 1, argv + 1));
+    return cli_program_run(name, hy_cmd_animate, argc, argv);
 }

@@ -143,6 +143,19 @@ int cli_stdout_status(const char *cmd, int rc)
     return rc;
 }
 
+int cli_program_run(char *name, int (*cmd)(int, char **), int argc, char **argv)
+{
+    if (argc < 2) {
+        char *args[] = {name, NULL};
+        return cli_stdout_status(name, cmd(1, args));
+    }
+    if (argv[1][0] == '-') {
+        argv[0] = name;
+        return cli_stdout_status(name, cmd(argc, argv));
+    }
+    return cli_stdout_status(name, cmd(argc - 1, argv + 1));
+}
+
 const cli_opt cli_policy_opts[] = {
     {"include-dir", 0, "DIR", "a directory scenes may include from (and read input files\n"
      "below), besides their own; repeatable", CLI_INCLUDE_DIR, 0, NULL, NULL, NULL},
@@ -171,6 +184,19 @@ int cli_policy_take(hy_scene_policy *pol, const char **dirs, const char *cmd, in
         return -1;
     }
     pol->max_work = w;
+    return 1;
+}
+
+int cli_outputs_take(cli_outputs *o, int id, const char *v)
+{
+    if (id == CLI_OUT)
+        o->out = v;
+    else if (id == CLI_SET)
+        o->sets[o->nsets++] = (char *)v;
+    else if (id == CLI_FORMAT)
+        o->formats = v;
+    else
+        return 0;
     return 1;
 }
 

@@ -45,12 +45,33 @@ int cli_exit_status(int code);
  * 1, else rc.  Every command's last step (main). */
 int cli_stdout_status(const char *cmd, int rc);
 
+/* The rest of main in a program that runs one command (hystviz-animate,
+ * hystviz-serve; argv as after "hystviz"): the command cmd named name on
+ * argv[1..] (none: no arguments), or on argv with argv[0] = name when
+ * argv[1] is an option (--help, --version: the command's own, as every
+ * command answers them); its status through cli_stdout_status.  name must
+ * outlive the call (it becomes argv[0]). */
+int cli_program_run(char *name, int (*cmd)(int, char **), int argc, char **argv);
+
 /* Scene policy options (the table cli_policy_opts): --include-dir DIR
  * (repeatable; dirs has room for one per argument) and --max-work N.  Takes
  * option id with value v: 1 if it was one, 0 if not, -1 on error (message
  * printed, prefixed with "hystviz cmd"). */
 extern const cli_opt cli_policy_opts[];
 int cli_policy_take(hy_scene_policy *pol, const char **dirs, const char *cmd, int id, const char *v);
+
+/* What a command that renders scene files takes alike (render, data, watch):
+ * --output (id CLI_OUT), --set, repeatable (CLI_SET; sets has room for one
+ * per argument) and --format (CLI_FORMAT); each command's table says what
+ * they mean for it. */
+enum { CLI_OUT = 1300, CLI_SET, CLI_FORMAT };
+typedef struct cli_outputs {
+    const char *out, *formats; /* NULL: not given */
+    char **sets;
+    size_t nsets;
+} cli_outputs;
+/* Takes option id with value v: 1 if it was one of them, 0 if not. */
+int cli_outputs_take(cli_outputs *o, int id, const char *v);
 
 /* -j, --jobs N (id CLI_JOBS), its help describing the default (hy_jobs). */
 extern const cli_opt cli_jobs_opts[];

@@ -152,37 +152,28 @@ static int ex3_input(hy_input *in, double amp)
     return hy_input_bimodal(in, 0, 0.2 * amp, amp, 1.5 * amp, NULL, HY_SHAPE_LINEAR, NULL);
 }
 
-static void cases_sigma0(cctx *cx)
+/* The steady state on Example 3's input for LuGre along one parameter:
+ * sigma0 (sigma1 = Fc = vs = beta = 1, Fs = 2), or g(0) = Fc = Fs (sigma0 =
+ * 1, sigma1 = 0) when g0. */
+static void cases_steady(cctx *cx, int g0)
 {
-    const double full[] = {1e-3, 1, 1e3, 1e6, 1e9, 1e12}, quick[] = {1e-3, 1e5, 1e12};
+    static const double s0_full[] = {1e-3, 1, 1e3, 1e6, 1e9, 1e12}, s0_quick[] = {1e-3, 1e5, 1e12};
+    static const double g0_full[] = {1e-12, 1e-6, 1e-3, 1, 1e3, 1e6}, g0_quick[] = {1e-12, 1, 1e6};
+    const double *v = g0 ? (cx->quick ? g0_quick : g0_full) : (cx->quick ? s0_quick : s0_full);
     int n = cx->quick ? 3 : 6;
     hy_input in;
     ex3_input(&in, 1);
     for (int i = 0; i < n; i++) {
-        double s0 = cx->quick ? quick[i] : full[i];
         ccase c;
-        case_start(&c, "steady sigma0", 1e-12);
-        snprintf(c.params, sizeof c.params, "sigma0=%g Fc=1 Fs=2 ex3 input", s0);
         hy_model m;
-        hy_model_lugre_init(&m, s0, 1, 1, 2, 1, 1);
-        case_end(cx, &c, check_steady(&m, &in, 2001, &c));
-    }
-    hy_input_free(&in);
-}
-
-static void cases_g0(cctx *cx)
-{
-    const double full[] = {1e-12, 1e-6, 1e-3, 1, 1e3, 1e6}, quick[] = {1e-12, 1, 1e6};
-    int n = cx->quick ? 3 : 6;
-    hy_input in;
-    ex3_input(&in, 1);
-    for (int i = 0; i < n; i++) {
-        double g0 = cx->quick ? quick[i] : full[i];
-        ccase c;
-        case_start(&c, "steady g(0)", 1e-12);
-        snprintf(c.params, sizeof c.params, "g0=%g sigma0=1 ex3 input", g0);
-        hy_model m;
-        hy_model_lugre_init(&m, 1, 0, g0, g0, 1, 1);
+        case_start(&c, g0 ? "steady g(0)" : "steady sigma0", 1e-12);
+        if (g0) {
+            snprintf(c.params, sizeof c.params, "g0=%g sigma0=1 ex3 input", v[i]);
+            hy_model_lugre_init(&m, 1, 0, v[i], v[i], 1, 1);
+        } else {
+            snprintf(c.params, sizeof c.params, "sigma0=%g Fc=1 Fs=2 ex3 input", v[i]);
+            hy_model_lugre_init(&m, v[i], 1, 1, 2, 1, 1);
+        }
         case_end(cx, &c, check_steady(&m, &in, 2001, &c));
     }
     hy_input_free(&in);
@@ -626,8 +617,8 @@ int hy_cmd_check(int argc, char **argv)
     }
     double t0 = hy_wp_now();
     printf("%-24s %-44s %-9s %9s %8s %8s\n", "case", "parameters", "result", "error", "bound", "time_s");
-    cases_sigma0(&cx);
-    cases_g0(&cx);
+    cases_steady(&cx, 0);
+    cases_steady(&cx, 1);
     cases_amplitude(&cx);
     cases_gamma(&cx);
     cases_cycles(&cx);

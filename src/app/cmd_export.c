@@ -548,10 +548,8 @@ static int write_page(page_ctx *c, const char *meta, hy_out *out, int quiet)
     }
     char path[4200];
     snprintf(path, sizeof path, "%s", out->path);
-    if (hy_out_commit(out, &err)) {
-        fprintf(stderr, "hystviz export: %s\n", err.msg);
+    if (exp_out_finish(out, 0))
         return 1;
-    }
     if (!quiet)
         fprintf(stderr, "export: %zu points, %zu refused by the scene (shown as such); %s\n", n, nref, path);
     return 0;
@@ -643,12 +641,8 @@ static int export_run(const export_opts *o)
         free(head);
         if (!rc)
             rc = render_all(o, hy_shard_count(npoints, o->shard_k, o->shard_n), take_shard, f);
-        if (rc)
-            hy_out_abort(&out);
-        else if (hy_out_commit(&out, &err)) {
-            fprintf(stderr, "hystviz export: %s\n", err.msg);
-            rc = 1;
-        } else if (!o->quiet)
+        rc = exp_out_finish(&out, rc);
+        if (!rc && !o->quiet)
             fprintf(stderr, "export: shard %ld/%ld, %zu of %zu points; %s\n", o->shard_k, o->shard_n,
                     hy_shard_count(npoints, o->shard_k, o->shard_n), npoints, path);
         free(meta);

@@ -13,6 +13,7 @@
 #include "cmd_boucwen.h"
 #include "hy_bwfit.h"
 #include "hy_jobs.h"
+#include "hy_os.h"
 #include "hy_out.h"
 #include "hy_plot.h"
 #include "hy_signal.h"
@@ -124,13 +125,6 @@ typedef struct fopts {
     size_t nsets;
 } fopts;
 
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 typedef struct prog {
     double t0;
     pthread_mutex_t mu;
@@ -144,10 +138,10 @@ static void progress(const hy_fit_progress *pr, void *ctx)
     if (pr->done)
         fprintf(stderr, "hystviz fit: start %zu/%zu %s after %zu iterations, RSS %.6g%s (%zu evaluations, %.1f s)\n",
                 pr->start + 1, pr->nstarts, pr->status ? "failed" : "ended", pr->iter, pr->rss, pg->unit, pr->nevals,
-                now() - pg->t0);
+                hy_now() - pg->t0);
     else
         fprintf(stderr, "hystviz fit: start %zu/%zu iteration %zu: RSS %.6g%s (%zu evaluations, %.1f s)\n",
-                pr->start + 1, pr->nstarts, pr->iter, pr->rss, pg->unit, pr->nevals, now() - pg->t0);
+                pr->start + 1, pr->nstarts, pr->iter, pr->rss, pg->unit, pr->nevals, hy_now() - pg->t0);
     pthread_mutex_unlock(&pg->mu);
 }
 
@@ -299,7 +293,7 @@ static void check_all_eight(const fopts *o, const hy_bwfit_train *tr, const hy_f
 
 static int boucwen(fopts *o)
 {
-    double t0 = now();
+    double t0 = hy_now();
     double *uv = NULL, *yv = NULL;
     size_t nu_, ny_;
     /* the test files are located (not read) first, so that a missing one
@@ -332,13 +326,13 @@ static int boucwen(fopts *o)
            o->bw.fit_nu ? "" : " (nu fixed at 1)", o->bw.fit.starts);
     fflush(stdout);
     hy_fit_result res;
-    double tf = now();
+    double tf = hy_now();
     if (hy_bwfit_run(&o->bw, &tr, NULL, &res, &err)) {
         fprintf(stderr, "hystviz fit: %s\n", err.msg);
         hy_bwfit_train_free(&tr);
         return CLI_FAILED;
     }
-    double fit_s = now() - tf;
+    double fit_s = hy_now() - tf;
     hy_fit_problem shown = {res.n, p, prm, NULL, NULL, NULL, NULL};
     printf("\n");
     hy_fit_report(stdout, &shown, &res);
@@ -366,7 +360,7 @@ static int boucwen(fopts *o)
         printf("  sine sweep (validation-sweep, fitted vs Table 1's model)  %.3e m\n", e_sw);
         printf("  best published black-box model (PNLSS, 217 parameters)   1.21e-05 m\n");
         printf("time: fit %.1f s wall (%zu model evaluations, %zu iterations, -j %d), whole command %.1f s\n", fit_s,
-               res.nevals, res.iter, o->bw.fit.jobs, now() - t0);
+               res.nevals, res.iter, o->bw.fit.jobs, hy_now() - t0);
     }
     free(uv);
     free(yv);
@@ -461,7 +455,7 @@ static int hy_cmd_fit_scene(fopts *o)
         return bad("%s: --free KEY,... names the [model] keys to fit", o->scene);
     if (o->resid && hy_format_from_path(o->resid) < 0)
         return bad("--residuals '%s': the name must end in .svg, .png or .pdf", o->resid);
-    double t0 = now();
+    double t0 = hy_now();
     hy_scene_fit_opts so;
     hy_scene_fit_opts_default(&so);
     const char *keys[MAX_KEYS], *data[MAX_DATA];
@@ -488,7 +482,7 @@ static int hy_cmd_fit_scene(fopts *o)
         fprintf(stderr, "hystviz fit: %s\n", err.msg);
         return rc == HY_ENUM ? CLI_FAILED : cli_exit_status(rc);
     }
-    print_fit(o, &f, now() - t0);
+    print_fit(o, &f, hy_now() - t0);
     rc = o->out ? write_fitted(&f, o->out, &o->pol, &err) : HY_OK;
     if (!rc && o->resid)
         rc = write_residuals(&f, o->resid, &err);

@@ -27,9 +27,11 @@
 #include "anim_names.h"
 #include "cli_util.h"
 #include "export_anim.h"
+#include "hy_child.h"
 #include "hy_file.h"
 #include "hy_grid.h"
 #include "hy_jobs.h"
+#include "hy_os.h"
 #include "hy_out.h"
 #include "scene_run.h"
 
@@ -118,30 +120,11 @@ typedef struct pool {
     pthread_mutex_t mu;
 } pool;
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static char *dupstr(const char *s)
 {
     size_t n = strlen(s) + 1;
     char *d = malloc(n);
     return d ? memcpy(d, s, n) : NULL;
-}
-
-static char *join(const char *dir, const char *file)
-{
-    size_t a = strlen(dir), b = strlen(file);
-    char *p = malloc(a + b + 2);
-    if (p) {
-        memcpy(p, dir, a);
-        p[a] = '/';
-        memcpy(p + a + 1, file, b + 1);
-    }
-    return p;
 }
 
 static void entry_free(entry *e)
@@ -418,7 +401,7 @@ static int outputs_exist(const char *dir, const entry *e)
 {
     int ok = e->nout > 0;
     for (size_t i = 0; i < e->nout && ok; i++) {
-        char *p = join(dir, e->outputs[i]);
+        char *p = hy_path_join(dir, e->outputs[i]);
         struct stat st;
         ok = p && stat(p, &st) == 0 && S_ISREG(st.st_mode);
         free(p);
@@ -487,7 +470,7 @@ static int write_csv(const hy_scene_run *r, const char *dir, const char *name, h
 {
     char file[300];
     snprintf(file, sizeof file, "%s.csv", name);
-    char *path = join(dir, file);
+    char *path = hy_path_join(dir, file);
     hy_out o;
     int rc = path ? hy_out_open(&o, path, 0, err) : hy_error_set(err, HY_ENOMEM, "out of memory");
     if (!rc) {
@@ -535,7 +518,7 @@ static int entry_of_run(entry *e, const job *j, const hy_scene_run *r, const cha
 /* Loads, computes and writes one scene into the gallery dir; fills j. */
 static void render_one(const opts *o, job *j)
 {
-    double t0 = now();
+    double t0 = hy_now();
     char *logbuf = NULL;
     size_t loglen = 0;
     FILE *log = open_memstream(&logbuf, &loglen); /* asks compute to measure every error it can */
@@ -551,7 +534,7 @@ static void render_one(const opts *o, job *j)
             rc = hy_scene_run_write(&run, o->out, NULL, written, sizeof written, &err);
         if (!rc && o->data)
             rc = write_csv(&run, o->out, j->name, &err);
-        if (!rc && entry_of_run(&j->now, j, &run, written, o->data, now() - t0))
+        if (!rc && entry_of_run(&j->now, j, &run, written, o->data, hy_now() - t0))
             rc = hy_error_set(&err, HY_ENOMEM, "out of memory");
         hy_scene_run_free(&run);
     }
@@ -576,9 +559,9 @@ static void *worker(void *arg)
         if (k == SIZE_MAX)
             return NULL;
         job *j = &p->jobs[k];
-        double t0 = now();
+        double t0 = hy_now();
         render_one(p->o, j);
-        double dt = now() - t0;
+        double dt = hy_now() - t0;
         char what[32] = "failed";
         if (j->state != J_FAILED)
             snprintf(what, sizeof what, "%.3f s", dt);
@@ -633,8 +616,6 @@ static int run_pool(const opts *o, job *jobs, size_t n)
  * rendered by hystviz-animate into builtin_NAME.png.  The frame is rendered
  * when the file is missing or with --force; where hystviz-animate cannot
  * render (built without GL) the gallery says so in one line and goes on. */
-extern char **environ;
-
 #define BUILTINS_FILE "gallery-builtins"
 #define BUILTINS_MAX 16
 #define BUILTINS_BYTES 16384 /* 16 lines of at most 254 characters, comments besides */
@@ -684,7 +665,7 @@ static int builtins_load(const char *dir, const char *path, char **buf, size_t *
 static int builtins_read(const char *dir, builtin *b, size_t *n)
 {
     *n = 0;
-    char *path = join(dir, BUILTINS_FILE), *text = NULL;
+    char *path = hy_path_join(dir, BUILTINS_FILE), *text = NULL;
     size_t size = 0;
     if (!path)
         return 2;
@@ -761,25 +742,18 @@ static int builtins_read(const char *dir, builtin *b, size_t *n)
 static int poster_run(char *const *argv, const char *err, char *why, size_t size)
 {
     posix_spawn_file_actions_t fa;
-    posix_spawnattr_t at;
-    sigset_t none;
-    sigemptyset(&none);
     posix_spawn_file_actions_init(&fa);
-    posix_spawnattr_init(&at);
-    posix_spawnattr_setsigmask(&at, &none);
-    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK);
     posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&fa, 2, err, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     pid_t pid;
-    int sp = posix_spawn(&pid, argv[0], &fa, &at, argv, environ);
+    int sp = hy_child_spawn(&pid, argv, &fa);
     posix_spawn_file_actions_destroy(&fa);
-    posix_spawnattr_destroy(&at);
     if (sp) {
         snprintf(why, size, "cannot run %s: %s", argv[0], strerror(sp));
         return -1;
     }
     int status = 0;
-    double t0 = now();
+    double t0 = hy_now();
     for (;;) {
         pid_t w = waitpid(pid, &status, WNOHANG);
         if (w == pid)
@@ -788,7 +762,7 @@ static int poster_run(char *const *argv, const char *err, char *why, size_t size
             snprintf(why, size, "lost %s: %s", argv[0], strerror(errno));
             return -1;
         }
-        if (now() - t0 > POSTER_TIMEOUT_S) {
+        if (hy_now() - t0 > POSTER_TIMEOUT_S) {
             kill(pid, SIGKILL);
             while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
                 ;
@@ -972,7 +946,7 @@ static char *svg_desc(const char *dir, const entry *e)
         size_t n = strlen(t), len = 0;
         if (n < 5 || strcmp(t + n - 4, ".svg"))
             continue;
-        char *p = join(dir, t), *text = p ? read_text(p, &len) : NULL;
+        char *p = hy_path_join(dir, t), *text = p ? read_text(p, &len) : NULL;
         const char *a = text ? strstr(text, "<desc>") : NULL, *b = a ? strstr(a, "</desc>") : NULL;
         if (b && (desc = malloc((size_t)(b - a))))
             snprintf(desc, (size_t)(b - a), "%.*s", (int)(b - a - 6), a + 6);
@@ -995,7 +969,7 @@ static void index_thumb(FILE *f, const char *dir, const entry *e)
             img = t;
     }
     unsigned w = 0, h = 0;
-    char *p = img ? join(dir, img) : NULL;
+    char *p = img ? hy_path_join(dir, img) : NULL;
     if (p && image_size(p, !strcmp(img + strlen(img) - 4, ".svg"), &w, &h)) {
         unsigned tw = 400, th = (unsigned)lround(400.0 * h / w);
         fputs("<a href=\"", f);
@@ -1171,7 +1145,7 @@ static void index_builtin(FILE *f, const opts *o, const builtin *b)
     char img[128], *p = NULL;
     unsigned w = 0, h = 0;
     snprintf(img, sizeof img, "builtin_%.63s.png", b->name);
-    if (b->have && (p = join(o->out, img)) && image_size(p, 0, &w, &h) && w) {
+    if (b->have && (p = hy_path_join(o->out, img)) && image_size(p, 0, &w, &h) && w) {
         unsigned th = (unsigned)lround(400.0 * h / w);
         fprintf(f, "<a href=\"%s\"><img src=\"%s\" width=\"400\" height=\"%u\" alt=\"Frame %ld of the built-in "
                    "animation %s\" /></a>\n", img, img, th ? th : 1, b->frame, b->name);
@@ -1184,7 +1158,7 @@ static void index_builtin(FILE *f, const opts *o, const builtin *b)
 static int index_write(const opts *o, const job *jobs, size_t n, const builtin *b, size_t nb, const size_t count[5],
                        double total, hy_error *err)
 {
-    char *path = join(o->out, "index.html");
+    char *path = hy_path_join(o->out, "index.html");
     hy_out out;
     if (!path || hy_out_open(&out, path, 0, err)) {
         if (!path)
@@ -1325,7 +1299,7 @@ static void remove_unclaimed(const opts *o, const job *jobs, size_t n, const ent
         int claimed = strchr(t, '/') != NULL;
         for (size_t k = 0; k < n && !claimed; k++)
             claimed = jobs[k].have_now && entry_has(&jobs[k].now, t);
-        char *p = claimed ? NULL : join(o->out, t);
+        char *p = claimed ? NULL : hy_path_join(o->out, t);
         if (p)
             unlink(p);
         free(p);
@@ -1395,7 +1369,7 @@ static int shard_write(const opts *o, const job *jobs, size_t n, hy_error *err)
 {
     char name[96];
     snprintf(name, sizeof name, ".manifest.shard-%ld-of-%ld", o->shard_k, o->shard_n);
-    char *path = join(o->out, name);
+    char *path = hy_path_join(o->out, name);
     hy_out out;
     if (!path) {
         hy_error_set(err, HY_ENOMEM, "out of memory");
@@ -1487,7 +1461,7 @@ static int shard_read(const opts *o, job *jobs, size_t n, long k, long nsh, unsi
 {
     char name[96];
     snprintf(name, sizeof name, ".manifest.shard-%ld-of-%ld", k, nsh);
-    char *path = join(o->out, name), *line = NULL;
+    char *path = hy_path_join(o->out, name), *line = NULL;
     FILE *f = path ? fopen(path, "r") : NULL;
     size_t lsz = 0, nfig, fig;
     uint64_t key = figures_key(jobs, n, &nfig), h;
@@ -1569,7 +1543,7 @@ static void shard_remove(const opts *o)
     long k, n;
     for (struct dirent *de; d && (de = readdir(d));)
         if (shard_file(de->d_name, &k, &n)) {
-            char *p = join(o->out, de->d_name);
+            char *p = hy_path_join(o->out, de->d_name);
             if (p)
                 unlink(p);
             free(p);
@@ -1598,7 +1572,7 @@ static int bad_names(const opts *o, const job *jobs, size_t n)
 /* Plans, renders, writes the manifest and the index; returns the exit status. */
 static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman, builtin *b, size_t nb)
 {
-    double t0 = now();
+    double t0 = hy_now();
     if (bad_names(o, jobs, n))
         return 2;
     for (size_t i = 0; i < n; i++)
@@ -1637,12 +1611,12 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman, 
         }
         if (!o->quiet)
             fprintf(stderr, "gallery shard %ld/%ld: %zu rendered, %zu unchanged, %zu failed in %.2f s\n", o->shard_k,
-                    o->shard_n, count[J_RENDERED], count[J_UNCHANGED], count[J_FAILED], now() - t0);
+                    o->shard_n, count[J_RENDERED], count[J_UNCHANGED], count[J_FAILED], hy_now() - t0);
         return rc;
     }
     remove_stale(o, jobs, n);
     remove_deleted(o, jobs, n, man, nman);
-    char *mpath = join(o->out, ".manifest");
+    char *mpath = hy_path_join(o->out, ".manifest");
     hy_error err = {0};
     int written = 1;
     if (!mpath || manifest_write(mpath, jobs, n, &err)) {
@@ -1653,7 +1627,7 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman, 
     free(mpath);
     if (posters(o, b, nb))
         rc = 1;
-    double total = now() - t0;
+    double total = hy_now() - t0;
     if (index_write(o, jobs, n, b, nb, count, total, &err)) {
         fprintf(stderr, "hystviz gallery: %s\n", err.msg);
         rc = 1;
@@ -1663,7 +1637,7 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman, 
         shard_remove(o); /* joined: the records are now .manifest and index.html */
     if (!o->quiet)
         fprintf(stderr, "gallery: %zu rendered, %zu unchanged, %zu failed in %.2f s\n", count[J_RENDERED],
-                count[J_UNCHANGED], count[J_FAILED], now() - t0);
+                count[J_UNCHANGED], count[J_FAILED], hy_now() - t0);
     return rc;
 }
 
@@ -1674,7 +1648,7 @@ static int gallery(const opts *o, job *jobs, size_t n, entry *man, size_t nman, 
  * The lock goes with the process, also when it is killed.  -1: printed. */
 static int lock_gallery(const opts *o)
 {
-    char *path = join(o->out, ".lock");
+    char *path = hy_path_join(o->out, ".lock");
     int fd = path ? open(path, O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666) : -1;
     int op = o->shard_n ? LOCK_SH : LOCK_EX; /* shards write disjoint files: they share the directory */
     if (fd >= 0 && flock(fd, op | LOCK_NB) && errno == EWOULDBLOCK) {
@@ -1716,13 +1690,13 @@ int hy_cmd_gallery(int argc, char **argv)
         rc = 1;
     else
         hy_out_sweep(o.out); /* temporaries of killed runs (their locks are free) */
-    char *mpath = join(o.out, ".manifest");
+    char *mpath = hy_path_join(o.out, ".manifest");
     entry *man = mpath && !rc ? manifest_read(mpath, &nman) : NULL;
     free(mpath);
     job *jobs = calloc(n ? n : 1, sizeof *jobs);
     for (size_t i = 0; jobs && i < n; i++) {
         jobs[i].file = names[i];
-        if (!(jobs[i].path = join(o.scenes, names[i])))
+        if (!(jobs[i].path = hy_path_join(o.scenes, names[i])))
             rc = 2;
     }
     if (!jobs)

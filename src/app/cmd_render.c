@@ -25,12 +25,12 @@ static const char render_usage[] =
     "nothing (docs/SCENES.md, \"Work budget\").\n"
     "\n";
 
-enum { OPT_OUT = CLI_FIRST, OPT_SET, OPT_FORMAT, OPT_VERBOSE, OPT_PRINT_WORK };
+enum { OPT_VERBOSE = CLI_FIRST, OPT_PRINT_WORK };
 static const cli_opt render_opts[] = {
-    {"output", 'o', "DIR|FILE", "output directory (render) or CSV file (data)", OPT_OUT, 0, NULL, NULL, NULL},
+    {"output", 'o', "DIR|FILE", "output directory (render) or CSV file (data)", CLI_OUT, 0, NULL, NULL, NULL},
     {"set", 0, "S.K=V", "override a scene key, e.g. --set model.sigma0=1\n"
-     "or --set series.ystar.style=dashed; repeatable", OPT_SET, CLI_SCENE_KEY, NULL, NULL, NULL},
-    {"format", 0, "LIST", "formats to write instead of the scene's", OPT_FORMAT, 0, NULL, "render", NULL},
+     "or --set series.ystar.style=dashed; repeatable", CLI_SET, CLI_SCENE_KEY, NULL, NULL, NULL},
+    {"format", 0, "LIST", "formats to write instead of the scene's", CLI_FORMAT, 0, NULL, "render", NULL},
     {"verbose", 'v', NULL, "print the plan, each step's time and each series' error\n"
      "against the exact answer where one exists", OPT_VERBOSE, 0, NULL, NULL, NULL},
     {"print-work", 0, NULL, "print the work estimate (units, seconds, each kind's\n"
@@ -160,14 +160,14 @@ static int render_data(const char *scene, const char *out, char **sets, size_t n
 int hy_cmd_render(int argc, char **argv)
 {
     int is_data = !strcmp(argv[0], "data");
-    const char *out = NULL, *formats = NULL;
     int verbose = 0, only_work = 0;
-    char **sets = calloc((size_t)argc, sizeof *sets), **scenes = calloc((size_t)argc, sizeof *scenes);
+    cli_outputs o = {.sets = calloc((size_t)argc, sizeof(char *))};
+    char **scenes = calloc((size_t)argc, sizeof *scenes);
     const char **dirs = calloc((size_t)argc, sizeof *dirs);
     hy_scene_policy pol = hy_scene_policy_default();
-    size_t nsets = 0, nscenes = 0;
-    if (!sets || !scenes || !dirs) {
-        free(sets);
+    size_t nscenes = 0;
+    if (!o.sets || !scenes || !dirs) {
+        free(o.sets);
         free(scenes);
         free(dirs);
         fprintf(stderr, "hystviz %s: out of memory\n", argv[0]);
@@ -179,12 +179,8 @@ int hy_cmd_render(int argc, char **argv)
     for (int id; !rc && (id = cli_next(&p)) != CLI_END;) {
         if (id == CLI_STOP || id == CLI_ERROR)
             rc = id == CLI_STOP ? -1 : 2;
-        else if (id == OPT_OUT)
-            out = p.val;
-        else if (id == OPT_SET)
-            sets[nsets++] = (char *)p.val;
-        else if (id == OPT_FORMAT)
-            formats = p.val;
+        else if (cli_outputs_take(&o, id, p.val))
+            continue;
         else if (id == OPT_VERBOSE)
             verbose = 1;
         else if (id == OPT_PRINT_WORK)
@@ -202,19 +198,19 @@ int hy_cmd_render(int argc, char **argv)
     int fmt[HY_FORMAT_COUNT];
     size_t nfmt;
     hy_error err = {0};
-    if (!rc && formats && hy_scene_formats_parse(formats, fmt, &nfmt, &err)) {
+    if (!rc && o.formats && hy_scene_formats_parse(o.formats, fmt, &nfmt, &err)) {
         fprintf(stderr, "hystviz %s: %s\n", argv[0], err.msg);
         rc = 2;
     }
     gsl_set_error_handler_off();
-    if (!rc && out && !is_data)
-        hy_out_sweep(out); /* temporaries of killed runs */
+    if (!rc && o.out && !is_data)
+        hy_out_sweep(o.out); /* temporaries of killed runs */
     for (size_t k = 0; k < nscenes && !rc; k++) {
-        int st = is_data ? render_data(scenes[k], out, sets, nsets, &pol, verbose)
-                         : render_one(scenes[k], out, formats, sets, nsets, &pol, verbose, only_work);
+        int st = is_data ? render_data(scenes[k], o.out, o.sets, o.nsets, &pol, verbose)
+                         : render_one(scenes[k], o.out, o.formats, o.sets, o.nsets, &pol, verbose, only_work);
         failed = worse(failed, st);
     }
-    free(sets);
+    free(o.sets);
     free(scenes);
     free(dirs);
     return rc < 0 ? 0 : rc ? rc : failed;

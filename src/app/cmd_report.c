@@ -6,6 +6,7 @@
 
 #include "cli_util.h"
 #include "hy_ode.h"
+#include "hy_os.h"
 #include "hy_out.h"
 #include "hy_plot.h"
 #include "hy_workprec.h"
@@ -141,14 +142,10 @@ static double run_err(const hy_wp_run *r)
 
 static int push_run(runlist *L, const hy_wp_run *r)
 {
-    if (L->n == L->cap) {
-        size_t cap = L->cap ? 2 * L->cap : 256;
-        hy_wp_run *p = realloc(L->r, cap * sizeof *p);
-        if (!p)
-            return -1;
-        L->r = p;
-        L->cap = cap;
-    }
+    hy_wp_run *p = hy_grow(L->r, L->n, &L->cap, sizeof *p, 256);
+    if (!p)
+        return -1;
+    L->r = p;
     L->r[L->n++] = *r;
     return 0;
 }

@@ -24,6 +24,7 @@
 #include "hy_dtoa.h"
 #include "hy_grid.h"
 #include "hy_jobs.h"
+#include "hy_os.h"
 #include "hy_out.h"
 #include "hy_sweep.h"
 #include "scene_run.h"
@@ -104,13 +105,6 @@ static const cli_opt sweep_opts_table[] = {
     {0},
 };
 static const cli_cmd sweep_cli = {"sweep", sweep_help, sweep_tail, "SCENE", sweep_opts_table};
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 
 /* ---- options ---------------------------------------------------------- */
@@ -349,7 +343,7 @@ static int sweep(const hy_sweep_opts *o)
         fwrite(npy_head, 1, npy_hl, s.table); /* a short write shows in the commit's check */
     else
         hy_sweep_write_header(&s, s.table);
-    double t0 = now();
+    double t0 = hy_now();
     tzset(); /* cairo's PDF writer reads the time zone: set it up before the threads */
     if (hy_sweep_run_pool(&s))
         s.io_error = 1;
@@ -366,7 +360,7 @@ static int sweep(const hy_sweep_opts *o)
         if (o->sharded)
             fprintf(stderr, " (shard %ld/%ld)", o->shard_k, o->shard_n);
         fprintf(stderr, ": %zu ok (%zu by the closed-form kernel), %zu invalid, %zu failed in %.2f s; %s\n", s.nok,
-                s.nclosed, s.ninvalid, s.nfailed, now() - t0, rc ? "no table written" : s.table_path);
+                s.nclosed, s.ninvalid, s.nfailed, hy_now() - t0, rc ? "no table written" : s.table_path);
     }
     if (!rc && o->plot && !o->sharded) {
         hy_error perr = {0};

@@ -19,7 +19,9 @@
 #include <unistd.h>
 
 #include "cli_opt.h"
+#include "cli_util.h"
 #include "dirwatch.h"
+#include "hy_os.h"
 #include "scene_run.h"
 
 static const char watch_usage[] =
@@ -32,11 +34,10 @@ static const char watch_usage[] =
     "answer; or the scene's error (the last good files stay, watching goes on).\n"
     "\n";
 
-enum { OPT_OUT = CLI_FIRST, OPT_SET, OPT_FORMAT };
 static const cli_opt watch_opts[] = {
-    {"output", 'o', "DIR", "output directory (default: each scene's [output] dir)", OPT_OUT, 0, NULL, NULL, NULL},
-    {"set", 0, "S.K=V", "override a scene key (as render); repeatable", OPT_SET, CLI_SCENE_KEY, NULL, NULL, NULL},
-    {"format", 0, "LIST", "formats to write instead of the scene's", OPT_FORMAT, 0, NULL, NULL, NULL},
+    {"output", 'o', "DIR", "output directory (default: each scene's [output] dir)", CLI_OUT, 0, NULL, NULL, NULL},
+    {"set", 0, "S.K=V", "override a scene key (as render); repeatable", CLI_SET, CLI_SCENE_KEY, NULL, NULL, NULL},
+    {"format", 0, "LIST", "formats to write instead of the scene's", CLI_FORMAT, 0, NULL, NULL, NULL},
     {0},
 };
 static const cli_cmd watch_cli = {"watch", watch_usage,
@@ -56,13 +57,6 @@ static void stamp(char *buf, size_t n)
     strftime(buf, n, "%H:%M:%S", &tm);
 }
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Renders w if its text (with includes and overrides) changed since the last
  * attempt, or always with force; prints one line. */
 static void render_one(watched *w, char *const *sets, size_t nsets, const char *out, const char *formats, int force)
@@ -70,7 +64,7 @@ static void render_one(watched *w, char *const *sets, size_t nsets, const char *
     char ts[16];
     hy_error err = {0};
     hy_scene_run run;
-    double t0 = now();
+    double t0 = hy_now();
     stamp(ts, sizeof ts);
     /* a cheap parse first: unchanged text is not rendered again */
     hy_scene *probe = NULL;
@@ -94,7 +88,7 @@ static void render_one(watched *w, char *const *sets, size_t nsets, const char *
     rc = hy_scene_run_compute(&run, NULL, &err);
     if (!rc)
         rc = hy_scene_run_write(&run, out, formats, written, sizeof written, &err);
-    double dt = now() - t0;
+    double dt = hy_now() - t0;
     if (rc)
         printf("%s %s: error: %s\n", ts, w->path, err.msg);
     else {
@@ -173,12 +167,11 @@ static int stop_fd(sigset_t *stop)
 
 int hy_cmd_watch(int argc, char **argv)
 {
-    const char *out = NULL, *formats = NULL;
-    char **sets = calloc((size_t)argc, sizeof *sets);
+    cli_outputs o = {.sets = calloc((size_t)argc, sizeof(char *))};
     watched *ws = calloc((size_t)argc, sizeof *ws);
-    size_t nsets = 0, nw = 0;
-    if (!sets || !ws) {
-        free(sets);
+    size_t nw = 0;
+    if (!o.sets || !ws) {
+        free(o.sets);
         free(ws);
         fprintf(stderr, "hystviz watch: out of memory\n");
         return 1;
@@ -188,18 +181,12 @@ int hy_cmd_watch(int argc, char **argv)
     cli_parser_init(&p, &watch_cli, argc, argv, 1);
     for (int id; !rc && (id = cli_next(&p)) != CLI_END;) {
         if (id == CLI_STOP) {
-            free(sets);
+            free(o.sets);
             free(ws);
             return 0;
         } else if (id == CLI_ERROR)
             rc = 2;
-        else if (id == OPT_OUT)
-            out = p.val;
-        else if (id == OPT_SET)
-            sets[nsets++] = (char *)p.val;
-        else if (id == OPT_FORMAT)
-            formats = p.val;
-        else
+        else if (!cli_outputs_take(&o, id, p.val))
             ws[nw++].path = p.val;
     }
     if (!rc && !nw) {
@@ -227,7 +214,7 @@ int hy_cmd_watch(int argc, char **argv)
         /* Ctrl-C ends the wait, never a write: no partial file */
         fprintf(stderr, "hystviz watch: watching %zu scene%s (Ctrl-C stops)\n", nw, nw == 1 ? "" : "s");
         for (size_t i = 0; i < nw && !stop_pending(&stop); i++)
-            render_one(&ws[i], sets, nsets, out, formats, 1);
+            render_one(&ws[i], o.sets, o.nsets, o.out, o.formats, 1);
         char names[4096];
         for (;;) {
             int r = hy_dirwatch_wait(w, sfd, -1, names, sizeof names, &err);
@@ -238,7 +225,7 @@ int hy_cmd_watch(int argc, char **argv)
             if (r <= 0)
                 break;
             for (size_t i = 0; i < nw; i++)
-                render_one(&ws[i], sets, nsets, out, formats, 0);
+                render_one(&ws[i], o.sets, o.nsets, o.out, o.formats, 0);
         }
     }
     hy_dirwatch_close(w);
@@ -247,7 +234,7 @@ int hy_cmd_watch(int argc, char **argv)
     for (size_t i = 0; i < nd; i++)
         free(dirs[i]);
     free(dirs);
-    free(sets);
+    free(o.sets);
     free(ws);
     return rc;
 }

@@ -18,10 +18,10 @@
 #include <unistd.h>
 
 #include "export_page.h"
+#include "hy_child.h"
 #include "hy_file.h"
 #include "hy_out.h"
 
-extern char **environ;
 extern const char hy_export_anim_html[];
 extern const size_t hy_export_anim_html_len;
 
@@ -75,36 +75,20 @@ static int run(char *const *argv, char *out, size_t size)
         return -1;
     }
     posix_spawn_file_actions_t fa;
-    posix_spawnattr_t at;
-    sigset_t none;
-    sigemptyset(&none);
     posix_spawn_file_actions_init(&fa);
-    posix_spawnattr_init(&at);
-    posix_spawnattr_setsigmask(&at, &none);
-    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK);
     if (out) {
         posix_spawn_file_actions_adddup2(&fa, fd[1], 1);
         posix_spawn_file_actions_addclose(&fa, fd[0]);
     } else
         posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
     pid_t pid;
-    int sp = posix_spawn(&pid, argv[0], &fa, &at, argv, environ);
+    int sp = hy_child_spawn(&pid, argv, &fa);
     posix_spawn_file_actions_destroy(&fa);
-    posix_spawnattr_destroy(&at);
     size_t n = 0;
     if (out) {
         close(fd[1]);
-        for (;;) {
-            char tmp[1024];
-            ssize_t r = sp ? 0 : read(fd[0], tmp, sizeof tmp);
-            if (r < 0 && errno == EINTR)
-                continue;
-            if (r <= 0)
-                break;
-            size_t k = (size_t)r < size - 1 - n ? (size_t)r : size - 1 - n;
-            memcpy(out + n, tmp, k);
-            n += k;
-        }
+        while (!sp && hy_child_read(fd[0], out, size, &n) > 0)
+            ;
         close(fd[0]);
         out[n] = '\0';
     }
@@ -381,12 +365,8 @@ int exp_anim_run(const exp_anim_opts *o)
     int rc = render_frames(o, prog, &fr);
     if (!rc)
         rc = write_page(o, &fr, hy_out_file(&out));
-    if (rc)
-        hy_out_abort(&out);
-    else if (hy_out_commit(&out, &err)) {
-        fprintf(stderr, "hystviz export: %s\n", err.msg);
-        rc = 1;
-    } else if (!o->quiet)
+    rc = exp_out_finish(&out, rc);
+    if (!rc && !o->quiet)
         fprintf(stderr, "export: %s, %ld frames at %.6g fps (%zu distinct) %dx%d; %s\n", o->name, fr.n, fr.fps,
                 fr.ndistinct, fr.width, fr.height, o->out);
     frames_free(&fr);

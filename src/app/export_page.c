@@ -386,3 +386,15 @@ int exp_page_write(exp_page *pg, const char *meta_json, FILE *f, hy_error *err)
     free(gz);
     return HY_OK;
 }
+
+int exp_out_finish(hy_out *out, int rc)
+{
+    hy_error err = {0};
+    if (rc)
+        hy_out_abort(out);
+    else if (hy_out_commit(out, &err)) {
+        fprintf(stderr, "hystviz export: %s\n", err.msg);
+        rc = 1;
+    }
+    return rc;
+}

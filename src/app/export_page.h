@@ -41,6 +41,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "hy_out.h"
 #include "hy_status.h"
 
 typedef struct exp_page exp_page;
@@ -74,5 +75,10 @@ int exp_gzip(const void *data, size_t n, unsigned char **out, size_t *outlen, hy
 
 /* Writes n bytes as base64, in lines of 76 characters. */
 void exp_base64(FILE *f, const unsigned char *s, size_t n);
+
+/* Ends an export's output: aborts it when rc (what writing it returned) is
+ * not 0, else commits it.  Returns rc, or 1 when the commit fails (its
+ * message printed as "hystviz export: ..."). */
+int exp_out_finish(hy_out *out, int rc);
 
 #endif

@@ -20,13 +20,5 @@ int main(int argc, char **argv)
     gsl_set_error_handler_off();
     sv_malloc_tune(); /* freed render memory is reused, not faulted in again */
     static char name[] = "serve";
-    if (argc < 2) {
-        static char *args[] = {name, NULL};
-        return cli_stdout_status("serve", hy_cmd_serve(1, args));
-    }
-    if (argv[1][0] == '-') { /* `hystviz-serve --version`, `--help`: serve's own, as every command answers them */
-        argv[0] = name;
-        return cli_stdout_status("serve", hy_cmd_serve(argc, argv));
-    }
-    return cli_stdout_status("serve", hy_cmd_serve(argc - 1, argv + 1));
+    return cli_program_run(name, hy_cmd_serve, argc, argv);
 }

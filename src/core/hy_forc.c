@@ -15,6 +15,8 @@
 #include <string.h>
 #include <strings.h>
 
+#include "hy_os.h"
+
 /* ---- data set -------------------------------------------------------------- */
 
 void hy_forc_data_free(hy_forc_data *d)
@@ -72,14 +74,10 @@ static int push_point(builder *b, double hb, double m)
 static int push_curve(builder *b, double ha, size_t first, size_t line)
 {
     hy_forc_data *d = b->d;
-    if (d->ncurves == b->ccap) {
-        size_t cap = b->ccap ? 2 * b->ccap : 64;
-        hy_forc_curve *c = realloc(d->curve, cap * sizeof *c);
-        if (!c)
-            return HY_ENOMEM;
-        d->curve = c;
-        b->ccap = cap;
-    }
+    hy_forc_curve *c = hy_grow(d->curve, d->ncurves, &b->ccap, sizeof *c, 64);
+    if (!c)
+        return HY_ENOMEM;
+    d->curve = c;
     d->curve[d->ncurves++] = (hy_forc_curve){ha, first, d->npoints - first, NAN, NAN, line};
     return HY_OK;
 }

@@ -4,6 +4,7 @@
 #include "hy_input.h"
 
 #include "hy_file.h"
+#include "hy_os.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -529,13 +530,12 @@ int hy_input_text(hy_input *in, const char *text, size_t len, const char *name, 
 
 int hy_input_file(hy_input *in, const char *path, hy_error *err)
 {
-    char *buf, why[200];
+    char *buf;
     size_t len;
-    int e = hy_file_read(path, HY_INPUT_FILE_MAX, &buf, &len, NULL, why, sizeof why);
-    if (e)
-        return hy_error_set(err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
-                            "%s: cannot open input file: %s", path, why);
-    int rc = hy_input_text(in, buf, len, path, 1, err);
+    int rc = hy_file_load(path, HY_INPUT_FILE_MAX, &buf, &len, "cannot open input file", err);
+    if (rc)
+        return rc;
+    rc = hy_input_text(in, buf, len, path, 1, err);
     free(buf);
     return rc;
 }

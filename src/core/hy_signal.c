@@ -6,6 +6,7 @@
 
 #include "hy_file.h"
 #include "hy_input.h"
+#include "hy_os.h"
 
 #include <errno.h>
 #include <float.h>
@@ -434,20 +435,19 @@ static int read_lines(FILE *f, const char *path, time_col *tc, double **u,
 int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
                    hy_error *err)
 {
-    char *text, why[200];
+    char *text;
     size_t len;
-    int e = hy_file_read(path, HY_INPUT_FILE_MAX, &text, &len, NULL, why, sizeof why);
-    if (e)
-        return hy_error_set(err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
-                            "%s: cannot open: %s", path, why);
+    int rc = hy_file_load(path, HY_INPUT_FILE_MAX, &text, &len, "cannot open", err);
+    if (rc)
+        return rc;
     FILE *f = len ? fmemopen(text, len, "r") : NULL; /* the checked bytes, read as a stream */
     time_col tc = {0};
     double *v = NULL, dt = 0;
     size_t nv = 0;
     int ncol = 0;
-    int rc = f ? read_lines(f, path, &tc, &v, &nv, &ncol, err)
-               : len ? hy_error_set(err, HY_ENOMEM, "%s: out of memory", path)
-                     : hy_error_set(err, HY_EINVAL, "%s:0: no samples (empty file)", path);
+    rc = f ? read_lines(f, path, &tc, &v, &nv, &ncol, err)
+           : len ? hy_error_set(err, HY_ENOMEM, "%s: out of memory", path)
+                 : hy_error_set(err, HY_EINVAL, "%s:0: no samples (empty file)", path);
     if (f)
         fclose(f);
     free(text);

@@ -26,16 +26,6 @@ void hy_grid_format(double v, char *buf, size_t size)
     }
 }
 
-static char *dupn(const char *s, size_t n)
-{
-    char *d = malloc(n + 1);
-    if (d) {
-        memcpy(d, s, n);
-        d[n] = '\0';
-    }
-    return d;
-}
-
 static void free_values(char **v, size_t n)
 {
     for (size_t i = 0; v && i < n; i++)
@@ -95,7 +85,7 @@ static int parse_range(const char *arg, const char *spec, char ***out, size_t *n
         }
         char buf[40];
         hy_grid_format(x, buf, sizeof buf);
-        if (!(v[i] = dupn(buf, strlen(buf)))) {
+        if (!(v[i] = strdup(buf))) {
             free_values(v, i);
             return hy_error_set(err, HY_ENOMEM, "out of memory");
         }
@@ -130,7 +120,7 @@ static int parse_list(const char *arg, const char *spec, char ***out, size_t *no
             free_values(v, i);
             return hy_error_set(err, HY_EINVAL, "--grid %s: value %zu of the list is empty", arg, i + 1);
         }
-        if (!(v[i] = dupn(b, (size_t)(t - b)))) {
+        if (!(v[i] = strndup(b, (size_t)(t - b)))) {
             free_values(v, i);
             return hy_error_set(err, HY_ENOMEM, "out of memory");
         }
@@ -161,7 +151,7 @@ int hy_grid_add(hy_grid *g, const char *arg, hy_error *err)
         return hy_error_set(err, HY_EINVAL, "--grid %s: the grid would have more than %lu points", arg, HY_GRID_MAX_POINTS);
     }
     hy_grid_axis *axes = realloc(g->axes, (g->naxes + 1) * sizeof *axes);
-    char *key = dupn(arg, klen), *sp = dupn(spec, strlen(spec));
+    char *key = strndup(arg, klen), *sp = strdup(spec);
     if (!axes || !key || !sp) {
         if (axes)
             g->axes = axes;

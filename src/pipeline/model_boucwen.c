@@ -22,6 +22,7 @@
 
 #include "hy_boucwen.h"
 #include "hy_cost.h"
+#include "hy_os.h"
 #include "hy_signal.h"
 
 enum { IN_SINE, IN_MULTISINE, IN_SWEEP };
@@ -62,13 +63,6 @@ typedef struct bw_setup {
     double work;          /* Newmark steps + series samples (the work budget) */
     const hy_cancel *cancel; /* asked between blocks of Newmark steps (NULL: never) */
 } bw_setup;
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 #define IN(f) offsetof(hy_decl_input, f)
 #define CO(f) offsetof(hy_decl_compute, f)
@@ -447,7 +441,7 @@ static int make_record(const hy_scene_doc *d, const bw_setup *b, bw_record *rec,
         rec->u[i] = u[(sweep ? i : i % nout) * step];
     }
     if (b->need_output || b->need_sinc) {
-        double t0 = now();
+        double t0 = hy_now();
         rc = b->need_output ? simulate(b, u, nu, yall, err) : HY_OK;
         if (rc)
             rc = relocate(&d->model.h, HY_DECL_HEAD, err, rc, "Bouc-Wen integration failed: ");
@@ -465,7 +459,7 @@ static int make_record(const hy_scene_doc *d, const bw_setup *b, bw_record *rec,
         if (!rc && b->noise > 0 && rec->ysinc) /* the same noise: the routes' difference stays noiseless */
             rc = hy_signal_add_noise(rec->ysinc, nkeep, b->noise, rec->fs_out / 2, rec->fs_out,
                                      b->seed ^ 0x6e6f697365ULL, err);
-        rec->sim_seconds = now() - t0;
+        rec->sim_seconds = hy_now() - t0;
     }
     free(u);
     free(yall);
@@ -655,7 +649,7 @@ static void plan_text(hy_scene_run *r, const bw_setup *b, const bw_record *rec)
  * on error the series computed so far stay in r for hy_scene_run_free. */
 static int boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
-    double t_start = now();
+    double t_start = hy_now();
     bw_setup b;
     bw_record rec = {0};
     int rc = read_setup(r, &b, err);
@@ -676,17 +670,17 @@ static int boucwen_compute(hy_scene_run *r, FILE *log, hy_error *err)
     if (!rc)
         rc = make_record(&r->doc, &b, &rec, err);
     for (size_t i = 0; i < ns && !rc; i++) {
-        double t0 = now();
+        double t0 = hy_now();
         if (!(rc = hy_scene_run_check_cancel(r, err)))
             rc = fill_series(r, &b, &rec, &r->series[i], err);
         if (!rc)
             place_marker(&rec, &r->series[i]);
-        r->series[i].seconds = now() - t0;
+        r->series[i].seconds = hy_now() - t0;
     }
     if (!rc)
         plan_text(r, &b, &rec);
     record_free(&rec);
-    r->seconds_compute = now() - t_start;
+    r->seconds_compute = hy_now() - t_start;
     if (!rc && log)
         log_run(r, log);
     return rc;

@@ -16,14 +16,8 @@
 #include "hy_cost.h"
 #include "hy_gamma.h"
 #include "hy_ode.h"
+#include "hy_os.h"
 #include "scene_verify.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 int hy_scene_run_build_model(hy_scene_run *r, hy_error *err)
 {
@@ -121,12 +115,12 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
     if (!g->y)
         return hy_error_set(err, HY_ENOMEM, "out of memory for %zu points", p->npts);
     g->err = NAN;
-    double t0 = now();
+    double t0 = hy_now();
     int rc;
     int exact_ok = hy_gamma_exact_applies(&r->model, &r->input);
     if (!strcmp(solver, "exact") && exact_ok) {
         rc = hy_gamma_exact(&r->model, &r->input, g->gamma, p->t, p->npts, g->y, NULL, err);
-        g->seconds = now() - t0;
+        g->seconds = hy_now() - t0;
         g->exact = 1;
         if (!rc && !r->no_verify) /* measured against a long-double evaluation coded apart */
             hy_verify_gamma(r, g->gamma, p->t, g->y, p->npts, &g->err, g->refbuf, sizeof g->refbuf);
@@ -153,7 +147,7 @@ static int solve_gamma(hy_scene_run *r, plan *p, gamma_solve *g, hy_error *err)
         if (rc)
             return hy_decl_error(&dc->h, offsetof(hy_decl_compute, solver), err, rc, "gamma = %g: %s", g->gamma, err->msg);
     }
-    g->seconds = now() - t0;
+    g->seconds = hy_now() - t0;
     return rc;
 }
 
@@ -215,23 +209,23 @@ static int make_plan(hy_scene_run *r, plan *p, hy_error *err)
             p->t[i] = p->t0 + (p->t1 - p->t0) * (double)i / (double)(p->npts - 1);
     }
     if (need_steady) {
-        double t0 = p->verbose ? now() : 0; /* timed for the plan only (the sweep's every point: no clock) */
+        double t0 = p->verbose ? hy_now() : 0; /* timed for the plan only (the sweep's every point: no clock) */
         static const char *const mkeys[] = {"sigma0", "sigma1", "sigma2", "fc", "fs", "vs", "beta", "rho", "tau", "x0", NULL};
         int rc = hy_steady_init(&r->steady, &r->model, &r->input, err);
         if (rc)
             return hy_scene_located(&r->doc.model.h, mkeys, err); /* at the key the message names, else at [model] */
         r->have_steady = 1;
         if (p->verbose)
-            plan_line(p, r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (now() - t0));
+            plan_line(p, r, "steady state y° (Theorem 2, fixed point of the period map): %.3f ms\n", 1e3 * (hy_now() - t0));
     }
     if (need_loops) {
-        double t0 = p->verbose ? now() : 0;
+        double t0 = p->verbose ? hy_now() : 0;
         int rc = hy_loops_find(&r->steady, &r->loops, err);
         if (rc)
             return rc;
         r->have_loops = 1;
         if (p->verbose)
-            plan_line(p, r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (now() - t0));
+            plan_line(p, r, "major and minor loops (rainflow pairing of ψ_u's extrema): %.3f ms\n", 1e3 * (hy_now() - t0));
     }
     for (size_t i = 0; i < p->nsolves; i++) {
         int rc = hy_scene_run_check_cancel(r, err);
@@ -616,7 +610,7 @@ static void series_mark(hy_scene_run *r, const plan *p, hy_run_series *se)
 /* One series of the plan, by its data kind. */
 static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error *err)
 {
-    double t0 = p->verbose ? now() : 0; /* se->seconds is for the plan's log only */
+    double t0 = p->verbose ? hy_now() : 0; /* se->seconds is for the plan's log only */
     int rc = HY_OK;
     se->err = NAN;
     se->err_ref = NULL;
@@ -655,7 +649,7 @@ static int compute_series(hy_scene_run *r, plan *p, hy_run_series *se, hy_error 
     if (rc)
         return rc;
     series_mark(r, p, se);
-    se->seconds = p->verbose ? now() - t0 : 0;
+    se->seconds = p->verbose ? hy_now() - t0 : 0;
     return HY_OK;
 }
 
@@ -712,7 +706,7 @@ int hy_scene_friction_estimate(const hy_scene_run *r, double *work, char *what, 
 
 int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
-    double t_start = now();
+    double t_start = hy_now();
     plan p;
     memset(&p, 0, sizeof p);
     p.verbose = log != NULL;
@@ -725,15 +719,13 @@ int hy_scene_friction_compute(hy_scene_run *r, FILE *log, hy_error *err)
     for (size_t i = 0; i < ns && !rc; i++)
         if (!(rc = hy_scene_run_check_cancel(r, err)))
             rc = compute_series(r, &p, &r->series[i], err);
-    r->seconds_compute = now() - t_start;
+    r->seconds_compute = hy_now() - t_start;
     if (!rc && log) {
         fprintf(log, "%s: plan\n%s", r->path, r->plan);
         for (size_t i = 0; i < ns; i++) {
             const hy_run_series *se = &r->series[i];
-            if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
-                continue; /* their own lines: hy_scene_data_log */
-            fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms", se->name, hy_scene_data_name(se->data), se->n,
-                    1e3 * se->seconds);
+            if (!hy_scene_series_log(se, log))
+                continue;
             if (se->grid_n)
                 fprintf(log, " (drawn: %s of the grid's %zu)", se->n ? "the points its curvature needs" : "its mark only",
                         se->grid_n);

@@ -16,6 +16,7 @@
 #include "hy_forc.h"
 #include "hy_forc_plot.h"
 #include "hy_limit.h"
+#include "hy_os.h"
 #include "hy_out.h"
 #include "hy_preisach_table.h"
 #include "hy_scene_policy.h"
@@ -92,26 +93,19 @@ static int protocol(const hy_scene_run *r, hy_forc_protocol *pr, hy_error *err)
     return HY_OK;
 }
 
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 /* The measured file of [forc] file, read under the scene's file policy. */
 static int read_file(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
 {
     const hy_decl_forc *f = decl(r);
     char *text;
     size_t len;
-    double t0 = now();
+    double t0 = hy_now();
     int user, rc = hy_scene_read_path_max(r->scene, "forc", NULL, "file", FORC_FILE_MAX, &text, &len, &user, err);
     if (rc)
         return rc;
     rc = hy_forc_read(&F->d, text, len, f->file, err); /* file:line:col of the FORC file */
     free(text);
-    F->seconds_data = now() - t0;
+    F->seconds_data = hy_now() - t0;
     if (rc)
         return rc;
     F->have_d = 1;
@@ -279,7 +273,7 @@ static int reproduce(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
     }
     size_t nc, nu;
     hy_preisach_table_fit_shape(&F->g, &nc, &nu);
-    double t0 = now();
+    double t0 = hy_now();
     if (!rc && !(rc = hy_preisach_table_fit(&F->d, &F->g, nc, nu, &F->fit, err))) {
         F->have_fit = 1;
         if (!(rc = hy_preisach_table_from_grid(&t, &F->fit.g, err))) {
@@ -287,7 +281,7 @@ static int reproduce(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
             hy_preisach_table_free(&t);
         }
     }
-    F->seconds_fit = now() - t0;
+    F->seconds_fit = hy_now() - t0;
     if (rc)
         return hy_decl_error(&decl(r)->h, AT(reproduce), err, rc, "%s", err->msg);
     return HY_OK;
@@ -296,11 +290,11 @@ static int reproduce(hy_scene_run *r, hy_scene_forc *F, hy_error *err)
 int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
     hy_scene_forc *F = r->forc;
-    double t0 = now();
+    double t0 = hy_now();
     int rc = HY_OK, read = F->have_d && decl(r)->protocol == 0;
     if (!read)
         rc = run_protocol(r, F, err);
-    double t1 = now();
+    double t1 = hy_now();
     if (!rc) {
         hy_forc_grid_auto(&F->d, &F->o, &F->g);
         F->have_g = 1;
@@ -318,7 +312,7 @@ int hy_scene_forc_compute(hy_scene_run *r, FILE *log, hy_error *err)
         snprintf(F->legend[1], sizeof F->legend[1], "Preisach, least-squares density ρ ≥ 0 (RMS %.2g %%)", 100 * F->rms / m_range(&F->d));
     if (!read)
         F->seconds_data = t1 - t0;
-    F->seconds_rho = now() - t1;
+    F->seconds_rho = hy_now() - t1;
     r->seconds_compute = F->seconds_data + F->seconds_rho;
     if (!rc && log) {
         double da, db;

@@ -143,6 +143,10 @@ void hy_scene_friction_needs(const hy_scene_doc *doc, int *need_steady, int *nee
 int hy_scene_series_data(const hy_decl_series *ds, int *data);
 /* The series data names, indexed by HY_DATA_*. */
 const char *hy_scene_data_name(int data);
+/* The start of a series' line of render -v (name, data, points, time; no
+ * line end): 1, or 0 and nothing written for a measured or modelled series
+ * (their own lines: hy_scene_data_log). */
+int hy_scene_series_log(const hy_run_series *se, FILE *log);
 
 /* Measured data (scene_data.c): every [data] read once, through the scene's
  * file policy (build_run, before the model's load); r->input for [input]

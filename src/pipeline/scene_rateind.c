@@ -14,6 +14,7 @@
  * integral ∫ y du the model tracks (HY_RI_PATH_AREA), else from its
  * closed-form loop area where minor loops close (HY_RI_RETURN_POINT). */
 #include "hy_cost.h"
+#include "hy_os.h"
 #include "scene_model.h"
 #include "scene_run.h"
 
@@ -25,13 +26,6 @@
 
 #define SETTLE_TOL 1e-12    /* relative change of y per period counted as periodic */
 #define SETTLE_MAX 5000     /* periods driven at most before refusing              */
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Series a rate-independent model draws; gamma is not needed (y_γ = y*). */
 static int check_series(const hy_scene_run *r, hy_error *err)
@@ -334,7 +328,7 @@ static int compute_series(hy_scene_run *r, ri_plan *p, hy_run_series *se, hy_err
 {
     const hy_input *in = &r->input;
     int q = quantity_of(r, se->decl), loopfig = r->figure_kind == FIG_LOOP, rc = HY_OK;
-    double T = in->period, t0 = now();
+    double T = in->period, t0 = hy_now();
     se->err = se->dist = NAN;
     if (r->numbers_only || se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
         return HY_OK; /* the sweep's table: loops only (computed in the plan); data series: scene_data.c */
@@ -383,7 +377,7 @@ static int compute_series(hy_scene_run *r, ri_plan *p, hy_run_series *se, hy_err
             rc = at_model(r, sample_from(from_steady ? &p->steady : &p->init, in, by_rho, &x, 1, q, &se->mark_y,
                                          NULL, err), err);
     }
-    se->seconds = now() - t0;
+    se->seconds = hy_now() - t0;
     return rc;
 }
 
@@ -393,13 +387,9 @@ static void log_run(const hy_scene_run *r, const ri_plan *p, FILE *log)
             r->path, r->mtype->name);
     if (p->have_steady)
         fprintf(log, "  periodic after %d periods (output change <= %g of its range)\n", r->ri_periods, SETTLE_TOL);
-    for (size_t i = 0; i < r->nseries; i++) {
-        const hy_run_series *se = &r->series[i];
-        if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
-            continue; /* their own lines: hy_scene_data_log */
-        fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms\n", se->name, hy_scene_data_name(se->data), se->n,
-                1e3 * se->seconds);
-    }
+    for (size_t i = 0; i < r->nseries; i++)
+        if (hy_scene_series_log(&r->series[i], log))
+            fputc('\n', log);
     if (r->have_loops)
         fprintf(log, "  %zu minor loops; energy per cycle %.10g\n", r->loops.nminor, r->loops.area_period);
     fprintf(log, "  compute total %.3f ms (work estimate %.3g)\n", 1e3 * r->seconds_compute, r->work);
@@ -407,7 +397,7 @@ static void log_run(const hy_scene_run *r, const ri_plan *p, FILE *log)
 
 int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err)
 {
-    double t_start = now();
+    double t_start = hy_now();
     ri_plan p;
     memset(&p, 0, sizeof p);
     int rc = hy_scene_run_series_new(r, err);
@@ -437,7 +427,7 @@ int hy_scene_rateind_compute(hy_scene_run *r, FILE *log, hy_error *err)
         rc = find_loops(r, &p, err);
     for (size_t i = 0; i < ns && !rc; i++)
         rc = compute_series(r, &p, &r->series[i], err);
-    r->seconds_compute = now() - t_start;
+    r->seconds_compute = hy_now() - t_start;
     if (!rc && log)
         log_run(r, &p, log);
     if (p.have_steady)

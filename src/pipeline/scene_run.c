@@ -49,6 +49,15 @@ const char *hy_scene_data_name(int data)
     return data >= 0 && data < (int)(sizeof data_names / sizeof *data_names) ? data_names[data] : "?";
 }
 
+int hy_scene_series_log(const hy_run_series *se, FILE *log)
+{
+    if (se->data == HY_DATA_MEASURED || se->data == HY_DATA_MODELLED)
+        return 0;
+    fprintf(log, "  series %-12s data=%-9s %7zu points %8.3f ms", se->name, hy_scene_data_name(se->data), se->n,
+            1e3 * se->seconds);
+    return 1;
+}
+
 /* A pwl input from its points t0, u0, t1, u1, ... */
 static int pwl_input(hy_input *in, const hy_scene_list *pts, hy_error *err)
 {

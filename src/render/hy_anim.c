@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "hy_cairo.h"
+#include "hy_os.h"
 #include "hy_out.h"
 
 /* ---- timeline ---- */
@@ -138,13 +139,6 @@ typedef struct run {
     int bar;
 } run;
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void fail(run *r, const hy_error *e)
 {
     pthread_mutex_lock(&r->mu);
@@ -157,7 +151,7 @@ static void fail(run *r, const hy_error *e)
 /* Progress bar, called with the mutex held: frames done, frames/s, time left. */
 static void progress(run *r, int final)
 {
-    double t = now();
+    double t = hy_now();
     if (!r->bar || (!final && t - r->last_bar < 0.1))
         return;
     r->last_bar = t;
@@ -221,7 +215,7 @@ static int compose(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, l
     if (!st && cairo_surface_status(rec))
         st = hy_error_set(err, HY_ENOMEM, "cairo could not record the frame's overlay: %s",
                           cairo_status_to_string(cairo_surface_status(rec)));
-    double t1 = now();
+    double t1 = hy_now();
     *fb = st ? NULL : hy_gl_finish(w->gl, err);
     if (!st && !*fb)
         st = err && err->code ? err->code : HY_ENUM;
@@ -249,10 +243,10 @@ static int render_one(run *r, worker *w, long i, hy_error *err)
 {
     const hy_anim_params *p = r->p;
     int W = p->width, H = p->height, stride = 4 * W;
-    double t0 = now();
+    double t0 = hy_now();
     const unsigned char *fb = NULL;
     int st = compose(p, r->draw, r->state, r->nframes, w, i, &fb, err);
-    double t1 = w->t_drawn, t2 = now();
+    double t1 = w->t_drawn, t2 = hy_now();
     char path[4200];
     if (!st && !p->no_frames) {
         snprintf(path, sizeof path, "%s/frame_%05ld.png", r->dir, i);
@@ -264,7 +258,7 @@ static int render_one(run *r, worker *w, long i, hy_error *err)
     }
     if (!st && r->video && pipe_frame(r, i, fb, (size_t)stride * (size_t)H))
         st = hy_error_set(err, HY_EIO, "ffmpeg stopped reading frames (see its messages above)");
-    double t3 = now();
+    double t3 = hy_now();
     if (st)
         t1 = t2;
     w->draw_s += t1 - t0, w->read_s += t2 - t1, w->png_s += t3 - t2;
@@ -465,7 +459,7 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
     pthread_mutex_init(&r.mu, NULL);
     pthread_cond_init(&r.cv, NULL);
     r.bar = !p->quiet && isatty(2);
-    r.t0 = now();
+    r.t0 = hy_now();
     int jobs = p->jobs > 0 ? p->jobs : 1;
     if (jobs > r.last - r.first)
         jobs = (int)(r.last - r.first);
@@ -495,7 +489,7 @@ int hy_anim_run(const hy_anim_params *p, hy_anim_draw_fn draw, void *state, hy_a
     pthread_mutex_destroy(&r.mu);
     pthread_cond_destroy(&r.cv);
     if (stats)
-        *stats = (hy_anim_stats){r.done, now() - r.t0, r.draw_s, r.read_s, r.png_s};
+        *stats = (hy_anim_stats){r.done, hy_now() - r.t0, r.draw_s, r.read_s, r.png_s};
     if (r.failed) {
         if (err)
             *err = r.err;

@@ -1025,6 +1025,25 @@ static double pg_point_overlap(const panel *p, const place_grid *g, size_t i, do
     return sum;
 }
 
+/* sum plus what the panel's marks (their sizes) and its inset (width plus
+ * height) put inside the rectangle, added in that order. */
+static double marks_overlap(const panel *p, double sum, double rx, double ry, double rw, double rh)
+{
+    const hy_axes *ax = p->ax;
+    for (size_t m = 0; m < ax->nmarks; m++) {
+        const hy_mark *mk = &ax->marks[m];
+        if (!usable(mk->x, p->xlog) || !usable(mk->y, p->ylog))
+            continue;
+        double x = map_x(p, mk->x), y = map_y(p, mk->y), r = 0.5 * (mk->size > 0 ? mk->size : 5.0);
+        if (x >= rx - r && x <= rx + rw + r && y >= ry - r && y <= ry + rh + r)
+            sum += 2 * r;
+    }
+    if (p->has_inset && p->inset[0] < rx + rw && p->inset[0] + p->inset[2] > rx && p->inset[1] < ry + rh &&
+        p->inset[1] + p->inset[3] > ry)
+        sum += p->inset[2] + p->inset[3];
+    return sum;
+}
+
 static int cmp_size(const void *a, const void *b)
 {
     size_t x = *(const size_t *)a, y = *(const size_t *)b;
@@ -1037,25 +1056,12 @@ static int cmp_size(const void *a, const void *b)
 static double pg_overlap(const panel *p, double rx, double ry, double rw, double rh, double bound)
 {
     place_grid *g = p->grid;
-    const hy_axes *ax = p->ax;
     double m = g->reach;
     if (rx - m < g->gx0 || ry - m < g->gy0 || rx + rw + m > g->gx1 || ry + rh + m > g->gy1)
         return -1.0;
     unsigned st = pg_stamp(g);
     size_t nf = 0;
-    double partial = 0.0, fixed = 0.0;
-    for (size_t mk = 0; mk < ax->nmarks; mk++) {
-        const hy_mark *k = &ax->marks[mk];
-        if (!usable(k->x, p->xlog) || !usable(k->y, p->ylog))
-            continue;
-        double x = map_x(p, k->x), y = map_y(p, k->y), r = 0.5 * (k->size > 0 ? k->size : 5.0);
-        if (x >= rx - r && x <= rx + rw + r && y >= ry - r && y <= ry + rh + r)
-            fixed += 2 * r;
-    }
-    if (p->has_inset && p->inset[0] < rx + rw && p->inset[0] + p->inset[2] > rx && p->inset[1] < ry + rh &&
-        p->inset[1] + p->inset[3] > ry)
-        fixed += p->inset[2] + p->inset[3];
-    partial = fixed;
+    double fixed = marks_overlap(p, 0.0, rx, ry, rw, rh), partial = fixed;
     if (partial >= bound && partial > 0)
         return partial;
     int c0, r0, c1, r1;
@@ -1329,17 +1335,7 @@ static double overlap_bounded(const panel *p, double rx, double ry, double rw, d
             px = x, py = y;
         }
     }
-    for (size_t m = 0; m < ax->nmarks; m++) {
-        const hy_mark *mk = &ax->marks[m];
-        if (!usable(mk->x, p->xlog) || !usable(mk->y, p->ylog))
-            continue;
-        double x = map_x(p, mk->x), y = map_y(p, mk->y), r = 0.5 * (mk->size > 0 ? mk->size : 5.0);
-        if (x >= rx - r && x <= rx + rw + r && y >= ry - r && y <= ry + rh + r)
-            sum += 2 * r;
-    }
-    if (p->has_inset && p->inset[0] < rx + rw && p->inset[0] + p->inset[2] > rx && p->inset[1] < ry + rh &&
-        p->inset[1] + p->inset[3] > ry)
-        sum += p->inset[2] + p->inset[3];
+    sum = marks_overlap(p, sum, rx, ry, rw, rh);
     for (size_t t = 0; t < ax->ntexts; t++) {
         double b[4];
         if (text_box(p, t, b) && b[0] < rx + rw && b[0] + b[2] > rx && b[1] < ry + rh &&

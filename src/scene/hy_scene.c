@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* hy_scene.c: the scene object: schema defaults, typed getters, --set overrides, content hash. */
 #include "hy_scene_internal.h"
+#include "hy_os.h"
 #include "hy_scene.h"
 
 #include <stdarg.h>
@@ -10,16 +11,6 @@
 
 #define FNV_OFFSET 0xcbf29ce484222325ULL
 #define FNV_PRIME 0x100000001b3ULL
-
-static char *dup_range(const char *p, size_t n)
-{
-    char *s = malloc(n + 1);
-    if (s) {
-        memcpy(s, p, n);
-        s[n] = '\0';
-    }
-    return s;
-}
 
 /* Parses every schema default once per scene so getters can return them. */
 static int prepare_defaults(hy_scene *s, hy_error *err)
@@ -196,14 +187,10 @@ hy__section *hy__scene_find(const hy_scene *s, int sec, const char *name)
 static int kind_push(hy_scene *s, int sec, size_t i)
 {
     hy__kind_list *k = &s->kinds[sec];
-    if (k->n == k->cap) {
-        size_t cap = k->cap ? 2 * k->cap : 8;
-        size_t *n = realloc(k->idx, cap * sizeof *n);
-        if (!n)
-            return -1;
-        k->idx = n;
-        k->cap = cap;
-    }
+    size_t *idx = hy_grow(k->idx, k->n, &k->cap, sizeof *idx, 8);
+    if (!idx)
+        return -1;
+    k->idx = idx;
     k->idx[k->n++] = i;
     return 0;
 }
@@ -215,14 +202,10 @@ hy__section *hy__scene_touch(hy_scene *s, int sec, const char *name, hy_scene_lo
         return x;
     if (2 * (s->nsecs + 1) > s->captable && table_grow(s))
         return NULL;
-    if (s->nsecs == s->capsecs) {
-        size_t cap = s->capsecs ? 2 * s->capsecs : 8;
-        hy__section *n = realloc(s->secs, cap * sizeof *n);
-        if (!n)
-            return NULL;
-        s->secs = n;
-        s->capsecs = cap;
-    }
+    hy__section *secs = hy_grow(s->secs, s->nsecs, &s->capsecs, sizeof *secs, 8);
+    if (!secs)
+        return NULL;
+    s->secs = secs;
     const hy_scene_section_spec *spec = hy_scene_schema(NULL);
     x = &s->secs[s->nsecs];
     memset(x, 0, sizeof *x);
@@ -521,9 +504,9 @@ int hy_scene_set_split(const char *a, char **sec, char **name, char **key, const
     if (!d1 || d1 == b || d2 == e || d2 - 1 < d1)
         return hy_error_set(err, HY_EINVAL,
                             "--set %s: expected section.key=value or section.NAME.key=value", a);
-    *sec = dup_range(b, (size_t)(d1 - b));
-    *key = dup_range(d2, (size_t)(e - d2));
-    *name = (d2 - 1 > d1) ? dup_range(d1 + 1, (size_t)(d2 - 1 - d1 - 1)) : NULL;
+    *sec = strndup(b, (size_t)(d1 - b));
+    *key = strndup(d2, (size_t)(e - d2));
+    *name = (d2 - 1 > d1) ? strndup(d1 + 1, (size_t)(d2 - 1 - d1 - 1)) : NULL;
     *value = eq + 1;
     if (!*sec || !*key || (d2 - 1 > d1 && !*name))
         return hy_error_set(err, HY_ENOMEM, "--set %s: out of memory", a);

@@ -4,6 +4,7 @@
 #include "hy_scene.h"
 
 #include "hy_file.h"
+#include "hy_os.h"
 #include "hy_scene_policy.h"
 
 #include <ctype.h>
@@ -68,20 +69,6 @@ static int perr(pctx *c, int line, int col, int code, const char *fmt, ...)
     va_end(ap);
     hy_error_prefix(c->err, "%s:%d:%d", cur_file(c), line, col);
     return code;
-}
-
-static char *dir_of(const char *path)
-{
-    const char *slash = strrchr(path, '/');
-    if (!slash)
-        return strdup(".");
-    size_t n = slash == path ? 1 : (size_t)(slash - path);
-    char *d = malloc(n + 1);
-    if (d) {
-        memcpy(d, path, n);
-        d[n] = '\0';
-    }
-    return d;
 }
 
 static size_t seen_hash(size_t sec, int key)
@@ -408,7 +395,7 @@ static int include_file(pctx *c, fstate *fs, const char *rel, int col)
     }
     frame *f = &c->stack[c->depth];
     f->inst = hy__scene_add_file(c->s, path);
-    f->dir = dir_of(path);
+    f->dir = hy_path_dir(path);
     f->canon = canon;
     canon = NULL;
     if (f->inst < 0 || !f->dir) {
@@ -504,7 +491,7 @@ static int parse_top(const char *name, const char *text, size_t len, const hy_sc
     s->propagate = hy__param_propagate;
     pctx c = {.s = s, .err = err, .depth = 1};
     c.stack[0].inst = hy__scene_add_file(s, name);
-    c.stack[0].dir = dir_of(name);
+    c.stack[0].dir = hy_path_dir(name);
     c.stack[0].canon = realpath(name, NULL);
     int rc;
     if (c.stack[0].inst < 0 || !c.stack[0].dir)
@@ -540,14 +527,13 @@ int hy_scene_parse_buffer_policy(const char *name, const char *text, size_t len,
 int hy_scene_parse_file_policy(const char *path, const hy_scene_policy *pol, hy_scene **out,
                                hy_error *err)
 {
-    char *buf = NULL, why[200];
+    char *buf = NULL;
     size_t len = 0;
     *out = NULL;
-    int e = hy_file_read(path, HY_SCENE_MAX_FILE_BYTES, &buf, &len, NULL, why, sizeof why);
-    if (e)
-        return hy_error_set(err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
-                            "%s: cannot read scene file: %s", path, why);
-    int rc = parse_top(path, buf, len, pol, out, err);
+    int rc = hy_file_load(path, HY_SCENE_MAX_FILE_BYTES, &buf, &len, "cannot read scene file", err);
+    if (rc)
+        return rc;
+    rc = parse_top(path, buf, len, pol, out, err);
     free(buf);
     return rc;
 }

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "hy_file.h"
+#include "hy_os.h"
 #include "hy_scene_internal.h"
 #include "hy_scene.h"
 
@@ -205,7 +206,7 @@ int hy_scene_read_path_max(const hy_scene *s, const char *section, const char *n
     char r[200], *real = NULL;
     int e = hy_file_read(path, max, buf, len, *user ? NULL : &real, r, sizeof r);
     if (e)
-        return hy_scene_error_at(s, section, name, key, err, e == ENOENT || e == EACCES || e == EIO ? HY_EIO : HY_EINVAL,
+        return hy_scene_error_at(s, section, name, key, err, hy_file_status(e),
                                  "%s: cannot open input file: %s", path, r);
     if (!*user && !allowed(s, real)) {
         free(*buf);
@@ -223,16 +224,7 @@ int hy_scene_read_path_max(const hy_scene *s, const char *section, const char *n
 /* The directory part of the top scene's path as written ("." if none). */
 static char *scene_dir(const hy_scene *s)
 {
-    const char *src = hy_scene_source(s), *slash = strrchr(src, '/');
-    if (!slash)
-        return strdup(".");
-    size_t n = slash == src ? 1 : (size_t)(slash - src);
-    char *d = malloc(n + 1);
-    if (d) {
-        memcpy(d, src, n);
-        d[n] = '\0';
-    }
-    return d;
+    return hy_path_dir(hy_scene_source(s));
 }
 
 /* dir normalised lexically ("a/./b/../c" -> "a/c"); -1 if '..' climbs above it. */

@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hy_os.h"
+
 /* One comma-separated element of a value as written. */
 typedef struct item {
     char *text; /* unescaped, owned */
@@ -92,16 +94,12 @@ static int lexed_push(lexed *l, char *text, int quoted, int col)
 {
     if (!text)
         return HY_ENOMEM;
-    if (l->n == l->cap) {
-        size_t cap = l->cap ? 2 * l->cap : 8;
-        item *it = realloc(l->it, cap * sizeof *it);
-        if (!it) {
-            free(text);
-            return HY_ENOMEM;
-        }
-        l->it = it;
-        l->cap = cap;
+    item *it = hy_grow(l->it, l->n, &l->cap, sizeof *it, 8);
+    if (!it) {
+        free(text);
+        return HY_ENOMEM;
     }
+    l->it = it;
     l->it[l->n++] = (item){text, quoted, col};
     return HY_OK;
 }
@@ -417,18 +415,6 @@ static int valid_name(const char *s)
     return 1;
 }
 
-static char *join_path(const char *dir, const char *rel)
-{
-    size_t a = strlen(dir), b = strlen(rel);
-    char *p = malloc(a + b + 2);
-    if (p) {
-        memcpy(p, dir, a);
-        p[a] = '/';
-        memcpy(p + a + 1, rel, b + 1);
-    }
-    return p;
-}
-
 static int text_value(vctx *c, const item *it, const char *dir, hy__value *out)
 {
     hy_scene_kind k = c->spec->kind;
@@ -447,7 +433,7 @@ static int text_value(vctx *c, const item *it, const char *dir, hy__value *out)
                     b < 0x20 || b == 0x7f ? "holds a control character" : "is not valid UTF-8 text", b);
     }
     if (k == HY_KIND_PATH && it->text[0] != '/' && dir && strcmp(dir, ".") != 0)
-        out->str = join_path(dir, it->text);
+        out->str = hy_path_join(dir, it->text);
     else
         out->str = strdup(it->text);
     return out->str ? HY_OK : HY_ENOMEM;

@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "hy_child.h"
 #include "serve_request.h"
 #include "serve_slots.h"
 
@@ -44,7 +45,6 @@ static int run_capture(char *const *argv, char *out, size_t size, int stop_fd)
     double deadline = sv_now() + CHILD_TIMEOUT_S;
     int killed = 0, stopped = 0;
     for (;;) {
-        char tmp[4096];
         struct pollfd pf[2] = {{fd[0], POLLIN, 0}, {stop_fd, POLLIN, 0}};
         double left = deadline - sv_now();
         int pr = sp ? 1 : left <= 0 ? 0 : poll(pf, stop_fd >= 0 ? 2 : 1, (int)(left * 1000) + 1);
@@ -58,14 +58,8 @@ static int run_capture(char *const *argv, char *out, size_t size, int stop_fd)
             killed = 1;
             break;
         }
-        ssize_t r = read(fd[0], tmp, sizeof tmp);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r <= 0)
+        if (hy_child_read(fd[0], out, size, &n) <= 0)
             break;
-        size_t k = (size_t)r < size - 1 - n ? (size_t)r : size - 1 - n;
-        memcpy(out + n, tmp, k);
-        n += k;
     }
     out[n] = '\0';
     close(fd[0]);

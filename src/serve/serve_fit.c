@@ -122,17 +122,13 @@ enum MHD_Result sv_api_fit(sv_server *s, struct MHD_Connection *c, const sv_args
     unsigned bad = fit_check(s, a, &o, keys, kbuf, sizeof kbuf, path, sizeof path, &text, msg, sizeof msg);
     if (bad)
         return sv_send_error(c, bad, msg);
-    sv_page_slot *slot;
-    const char *why;
-    if ((bad = sv_page_join(s, a, &slot, &why))) {
-        free(text);
-        return sv_send_error(c, bad, why);
-    }
     int anon = !a->page;
     sv_render_watch w = {.s = s, .c = c, .page = a->page, .client = -1};
-    if (slot && (void *)slot != (void *)s) { /* a newer request of the page stops this one */
-        w.slot = slot;
-        w.seq = a->seq ? strtoul(a->seq, NULL, 10) : 0;
+    sv_page_slot *slot;
+    const char *why;
+    if ((bad = sv_page_watch(s, a, &w, &slot, &why))) {
+        free(text);
+        return sv_send_error(c, bad, why);
     }
     int got = sv_render_enter(&w, anon), rc = HY_OK;
     hy_scene_fit f = {0};

@@ -353,13 +353,9 @@ enum MHD_Result sv_api_render(sv_server *s, struct MHD_Connection *c, const sv_a
         return sv_send_error(c, bad, msg);
     sv_page_slot *slot;
     const char *why;
-    if ((bad = sv_page_join(s, a, &slot, &why))) {
+    if ((bad = sv_page_watch(s, a, &j.watch, &slot, &why))) {
         free(text);
         return sv_send_error(c, bad, why);
-    }
-    if (slot && (void *)slot != (void *)s) { /* a newer request of the page stops this one */
-        j.watch.slot = slot;
-        j.watch.seq = a->seq ? strtoul(a->seq, NULL, 10) : 0;
     }
     int got, rc = HY_OK;
     for (int requeued = 0;; requeued++) {

@@ -46,6 +46,7 @@ int hy_serve_run(const hy_serve_opts *o)
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "hy_child.h"
 #include "hy_file.h"
 #include "hy_jobs.h"
 #include "serve_anim.h"
@@ -241,11 +242,7 @@ static void open_browser(const char *url)
     char *oargv[] = {"xdg-open", (char *)url, NULL};
     pid_t pid;
     posix_spawnattr_t at;
-    sigset_t none;
-    sigemptyset(&none);
-    posix_spawnattr_init(&at);
-    posix_spawnattr_setsigmask(&at, &none);
-    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK);
+    hy_child_attr(&at);
     int sp = posix_spawnp(&pid, "xdg-open", NULL, &at, oargv, environ);
     posix_spawnattr_destroy(&at);
     if (sp)

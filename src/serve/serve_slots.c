@@ -423,3 +423,13 @@ unsigned sv_page_join(sv_server *s, const sv_args *a, sv_page_slot **slot, const
         return *msg = "superseded by a newer request of the same page", 409;
     return 0;
 }
+
+unsigned sv_page_watch(sv_server *s, const sv_args *a, sv_render_watch *w, sv_page_slot **slot, const char **msg)
+{
+    unsigned bad = sv_page_join(s, a, slot, msg);
+    if (!bad && *slot && (void *)*slot != (void *)s) { /* a newer request of the page stops this one */
+        w->slot = *slot;
+        w->seq = a->seq ? strtoul(a->seq, NULL, 10) : 0;
+    }
+    return bad;
+}

@@ -70,4 +70,9 @@ void sv_page_leave(sv_server *s, sv_page_slot *p);
  * superseded) with its message in *msg. */
 unsigned sv_page_join(sv_server *s, const sv_args *a, sv_page_slot **slot, const char **msg);
 
+/* sv_page_join for a render or a fit: when the request holds a page slot of
+ * its own, w also stops on a newer request of the page (w->slot, w->seq).
+ * Returns as sv_page_join. */
+unsigned sv_page_watch(sv_server *s, const sv_args *a, sv_render_watch *w, sv_page_slot **slot, const char **msg);
+
 #endif

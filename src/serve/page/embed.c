@@ -4,7 +4,11 @@
  * and the one `hystviz export` writes).  A line that reads exactly
  * "/" "* @embed PATH *" "/" is replaced by the file PATH (relative to the file
  * that names it, one level deep): the pages share one copy of a script
- * (page/typeset.js) this way.
+ * (page/typeset.js), of the document's start (page/doc_start.html: language,
+ * charset, viewport) and the export pages their head and focus styles
+ * (src/app/export/head.html, focus.css) this way.  An embedded HTML or CSS
+ * fragment opens with its own SPDX line, which is not copied (the page that
+ * embeds it names the licence).
  *   embed OUT.c NAME FILE [NAME FILE]... */
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,8 +19,13 @@
 static int copy(FILE *out, FILE *in, const char *path, int depth, size_t *n)
 {
     char line[4096];
-    while (fgets(line, sizeof line, in)) {
+    size_t plen = strlen(path);
+    int fragment = depth > 0 && ((plen > 5 && !strcmp(path + plen - 5, ".html")) ||
+                                 (plen > 4 && !strcmp(path + plen - 4, ".css")));
+    for (int first = 1; fgets(line, sizeof line, in); first = 0) {
         size_t len = strlen(line);
+        if (fragment && first && strstr(line, "SPDX-License-Identifier"))
+            continue; /* a fragment's own licence line: the page that embeds it names it */
         if (depth == 0 && len > 14 && !strncmp(line, "/* @embed ", 10) && !strcmp(line + len - 4, " */\n")) {
             char full[8192];
             const char *slash = strrchr(path, '/');
