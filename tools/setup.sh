@@ -159,11 +159,7 @@ test)
     # $TMPDIR, removed at exit: nothing under ~/.cache, nothing from another run
     if command -v ccache >/dev/null 2>&1; then
         ccache_dir=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-ccache.XXXXXX")
-        # meson.build maps the build directory to '.' (-ffile-prefix-map=BUILD=.):
-        # the one word by which two build directories' command lines differ,
-        # and their objects do not (both say '.'), so it is left out of the hash
-        export CCACHE_DIR="$ccache_dir" CCACHE_NOHASHDIR=1 CCACHE_BASEDIR="$PWD" \
-            CCACHE_IGNOREOPTIONS='-ffile-prefix-map=*'
+        export CCACHE_DIR="$ccache_dir" CCACHE_NOHASHDIR=1 CCACHE_BASEDIR="$PWD"
     fi
     configure build
     stage "building build/"
