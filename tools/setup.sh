@@ -126,6 +126,26 @@ dist_check() {
     return "$st"
 }
 
+# wait_job PID SECONDS: the background job's exit status; past SECONDS it is
+# stopped (TERM, then KILL, it and its children) and the status is 124, so a
+# hung job cannot hold the test command forever
+wait_job() {
+    n=$2
+    while [ "$n" -gt 0 ] && kill -0 "$1" 2>/dev/null; do
+        sleep 1
+        n=$((n - 1))
+    done
+    if kill -0 "$1" 2>/dev/null; then
+        echo "setup: a background job ran past $2 s: stopped" >&2
+        pkill -TERM -P "$1" 2>/dev/null; kill -TERM "$1" 2>/dev/null
+        sleep 2
+        pkill -KILL -P "$1" 2>/dev/null; kill -KILL "$1" 2>/dev/null
+        wait "$1" 2>/dev/null
+        return 124
+    fi
+    wait "$1"
+}
+
 # stage NAME: say how long the last stage took and the whole command so far
 # (the test command's budget is 10 minutes on 2 cores), and the CPU time
 # (user + sys) its processes used: on a loaded machine the wall time says
@@ -199,12 +219,12 @@ test)
     st=0
     run_tests build || st=$?
     bg_st=0
-    wait "$bg_slurm" || bg_st=$?
+    wait_job "$bg_slurm" 900 || bg_st=$?
     echo "setup: the Slurm example (run beside build/'s tests):"
     cat "$bg_log/slurm"
     [ "$bg_st" -eq 0 ] || { echo "setup: the Slurm example failed (exit $bg_st)" >&2; st=1; }
     bg_st=0
-    wait "$bg_builds" || bg_st=$?
+    wait_job "$bg_builds" 2400 || bg_st=$?
     echo "setup: building build-osmesa, build-egl, build-nogl and build-san (beside build/'s tests):"
     tail -n 40 "$bg_log/builds"
     [ "$bg_st" -eq 0 ] || { echo "setup: building them failed (exit $bg_st; the whole log above was cut to 40 lines)" >&2; st=1; }
@@ -240,7 +260,7 @@ test)
     st=0
     run_tests build-san --no-rebuild --no-suite check --no-suite no-san || st=$?
     bg_st=0
-    wait "$bg_dist" || bg_st=$?
+    wait_job "$bg_dist" 1800 || bg_st=$?
     echo "setup: the dist tarball (run beside build-san/'s tests):"
     cat "$bg_log"
     rm -f "$bg_log"

@@ -36,8 +36,8 @@ serve_start() {
     port=
     wait_until 30 "URL printed by serve" serve_listening
     if [ -z "$port" ]; then
-        kill -9 "$srv" 2>/dev/null # still running without a URL: the wait below must end
-        wait "$srv" 2>/dev/null
+        kill -9 "$srv" 2>/dev/null # still running without a URL
+        wait_pid "$srv" 10 "serve (SIGKILL)" 2>/dev/null
         _rc=$?
         srv=
         [ $_rc -eq 3 ] && grep -q "libmicrohttpd" "$tmp/serve.err" && skip "built without libmicrohttpd"
