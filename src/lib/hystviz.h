@@ -66,11 +66,11 @@ const char *hy_version(void);
  * error inside a library call comes back as that call's status (each is
  * checked) instead of GSL's default handler aborting the process.  GSL's
  * handler is one per process: this changes it for the caller's own GSL calls
- * too, which is why the library never calls it on its own behalf but in
- * hy_fit_scene, which turns it off as hystviz fit does (its threads must not
- * abort).  For hosts that cannot know GSL is inside (the Python package calls
- * it when imported); a C program may as well keep its own handler.  Returns
- * nothing; cannot fail. */
+ * too, which is why the library does not call it on its own behalf, except
+ * in fits (hy_fit_scene and a scene's fit turn it off, as hystviz fit does:
+ * their threads must not abort).  For hosts that cannot know GSL is inside
+ * (the Python package calls it when imported); a C program may as well keep
+ * its own handler.  Returns nothing; cannot fail. */
 void hy_gsl_quiet(void);
 
 /* A computed scene: its series, loops and figure. */
