@@ -6,7 +6,9 @@
  * the same arguments and buffers as Python's calls, through the address of
  * the library Python loaded (so both sides call one copy of the library, in
  * one process, with one memory layout).  The Python side times it with the
- * clock it times its own calls with (CPU time), one ctypes call per round. */
+ * clock it times its own calls with (CPU time), one ctypes call per round.
+ * bench_pyloop_noop has hy_steady_loop's type and does nothing: bound in its
+ * place, it leaves the Python wrapper's own cost. */
 #include <stddef.h>
 
 #include "hystviz.h"
@@ -16,6 +18,7 @@ typedef int steady_fn(const char *name, const char *model, const char *input, co
 
 int bench_pyloop_steady(steady_fn *fn, const char *name, const char *model, const char *input, size_t points,
                         double *out, size_t count);
+steady_fn bench_pyloop_noop;
 
 /* count calls of fn (hy_steady_loop) writing t, u, y one after the other into
  * out (3 (points + 1) doubles); returns how many calls failed (0 expected). */
@@ -27,4 +30,12 @@ int bench_pyloop_steady(steady_fn *fn, const char *name, const char *model, cons
     for (size_t i = 0; i < count; i++)
         failed += fn(name, model, input, NULL, 0, points, out, out + n, out + 2 * n, NULL) != 0;
     return failed;
+}
+
+/* hy_steady_loop's type, nothing done: returns 0 (HY_OK), writes nothing. */
+int bench_pyloop_noop(const char *name, const char *model, const char *input, const char *const *sets, size_t nsets,
+                      size_t points, double *t, double *u, double *y, hy_error *err)
+{
+    (void)name, (void)model, (void)input, (void)sets, (void)nsets, (void)points, (void)t, (void)u, (void)y, (void)err;
+    return 0;
 }

@@ -11,9 +11,11 @@
      the same calls of hy_steady_loop in this process (BENCH_PYLOOP, a
      module loaded with ctypes that loops in C) against hystviz.steady_loop
      through its compiled fast path (hystviz._fast) and through ctypes (the
-     fallback without it): CPU time per call, 41 rounds of 500 calls each,
-     alternating; the medians of the round-by-round differences are the
-     figures (the quartiles say how far the load moved them);
+     fallback without it), and the extension's call alone: CPU time per
+     call, 101 rounds of 100 calls each, alternating; the medians of the
+     round-by-round differences are the figures (the quartiles say how far
+     the load moved them); then the wrapper alone (the library call replaced
+     by a C function that returns at once);
   3. the steady loop of Example 4 as a researcher would compute it with
      SciPy: solve_ivp (RK45, rtol 1e-10, atol 1e-12) of the limit system
      dz/dt = u' - sigma0 |u'| z / g(0), y = sigma0 z, period after period
@@ -120,6 +122,15 @@ def c_round(n):
     return (cpu() - c0) / n * 1e6
 
 
+def bare_round(n):
+    """The extension's call alone: arguments made once, one buffer (no
+    wrapper, no array made per call)."""
+    c0 = cpu()
+    for _ in range(n):
+        fast(hystviz._PY_NAME, mt, ut, [], [], POINTS, buf)
+    return (cpu() - c0) / n * 1e6
+
+
 def ctypes_round(n):
     hystviz._steady_fast = None  # the package's fallback path (as without the extension)
     try:
@@ -134,19 +145,50 @@ def extra(rounds, base):
     return f"{d[len(d) // 2]:.1f} us extra per call (quartiles {d[len(d) // 4]:.1f} to {d[3 * len(d) // 4]:.1f})"
 
 
+def wrapper_us(n=20000):
+    """hystviz.steady_loop's own CPU cost per call, fast path and ctypes: the
+    library call replaced by bench_pyloop_noop (same type, does nothing)."""
+    pyloop = ctypes.CDLL(bench_pyloop)
+    noop_addr = ctypes.cast(pyloop.bench_pyloop_noop, ctypes.c_void_p).value
+    noop = ctypes.CFUNCTYPE(ctypes.c_int)(noop_addr)
+    noop.argtypes, noop.restype = hystviz._steady.argtypes, ctypes.c_int
+    got, real = [], hystviz._steady
+    try:
+        if fast is not None:
+            fast.__self__.bind(noop_addr)
+        hystviz._steady = noop
+        got = [py_round(n) if fast is not None else float("nan"), ctypes_round(n)]
+    finally:
+        hystviz._steady = real
+        if fast is not None:
+            fast.__self__.bind(fn_addr)
+    return got
+
+
 load0 = os.getloadavg()[0]
-ROUNDS, NR = 41, 500
-cr, fr, tr = [], [], []
+ROUNDS, NR = 101, 100
+cr, fr, br, tr = [], [], [], []
 for _ in range(ROUNDS):
     cr.append(c_round(NR))
-    fr.append(py_round(NR))
+    if fast is not None:
+        fr.append(py_round(NR))
+        br.append(bare_round(NR))
     tr.append(ctypes_round(NR))
 load = f"load {load0:.1f}-{os.getloadavg()[0]:.1f}"
-path = "its compiled fast path (hystviz._fast)" if fast is not None else "SKIP fast path: hystviz._fast not built"
+if fast is not None:
+    path = (f"its compiled fast path (hystviz._fast) {extra(fr, cr)} (goal <= 5); the extension's call alone "
+            f"(arguments made once, one buffer) {extra(br, cr)}")
+else:
+    path = "its compiled fast path: SKIP, hystviz._fast not built"
 print(f"python call overhead (same process) | steady_loop {POINTS} points against C making the same calls in the "
       f"same process (tests/bench/bench_pyloop.c), CPU time per call, {ROUNDS} rounds of {NR} calls alternating "
-      f"C, Python, Python through ctypes ({load}; C median {sorted(cr)[ROUNDS // 2]:.1f} us): Python through "
-      f"{path} {extra(fr, cr)} (goal <= 5); through ctypes (the fallback) {extra(tr, cr)}")
+      f"({load}; C median {sorted(cr)[ROUNDS // 2]:.1f} us, rounds {min(cr):.1f}-{max(cr):.1f}): Python through "
+      f"{path}; through ctypes (the fallback) {extra(tr, cr)}")
+w_fast, w_ct = wrapper_us()
+print(f"python call overhead (wrapper alone) | steady_loop with the library call replaced by a C function that "
+      f"returns at once (bench_pyloop_noop), CPU time per call of 20000: {w_fast:.2f} us through the fast path, "
+      f"{w_ct:.2f} us through ctypes (load {os.getloadavg()[0]:.1f}): the rest of the extra above is the call's "
+      f"own slowdown next to Python's work (caches), not the wrapper's")
 
 try:
     from scipy.integrate import solve_ivp
