@@ -10,6 +10,7 @@ GSL's error handler off in a process that imported hystviz (issue 35).
     call the one loaded copy of it: exact equality, no tolerance), for models
     with typed keys only and with string keys (overrides), at several points;
   - a scene the library refuses raises the same SceneError through both;
+  - HYSTVIZ_CTYPES=1 turns the fast path off;
   - the module refuses arguments of the wrong kind and a short or read-only
     buffer with an exception, writing nothing;
   - GSL's own error call (gsl_error, what GSL_ERROR calls inside GSL) returns
@@ -88,6 +89,11 @@ else:
     many = np.empty(3 * 201)
     check(fast(name, m._btext, bim._btext, [b"model.sigma0=6"] * 20, [b"model.sigma0=6"] * 20, 200, many) == 0
           and many.tobytes() == buf.tobytes(), "40 overrides (past the stack array): the same bytes")
+
+# HYSTVIZ_CTYPES=1 forces the ctypes path (docs/LIBRARY.md)
+p = subprocess.run([sys.executable, "-c", "import hystviz; print(hystviz._steady_fast is None)"], capture_output=True,
+                   text=True, timeout=120, env=dict(os.environ, HYSTVIZ_CTYPES="1"))
+check(p.stdout.strip() == "True", f"HYSTVIZ_CTYPES=1: no fast path ({p.stdout.strip()} {p.stderr.strip()[-120:]})")
 
 # GSL's handler: in a child (an abort must not take this test with it), with
 # a deadline

@@ -118,14 +118,15 @@ def _load_fast() -> Any:
     to this module's library, or None (then the package calls through
     ctypes).  The one place that chooses; first found wins:
       1. hystviz._fast in this package's directory (a wheel, `meson install`);
-      2. _fast beside the library $HYSTVIZ_LIB names (the build tree: meson
-         builds it beside libhystviz);
+      2. _fast beside the library $HYSTVIZ_LIB names by a path (the build
+         tree: meson builds it beside libhystviz);
     none where $HYSTVIZ_CTYPES is 1 (the ctypes path forced: tests compare
     the two), or where the module is not built or not loadable by this
     Python (another version's ABI)."""
     if os.environ.get("HYSTVIZ_CTYPES") == "1":
         return None
-    dirs = [_here] + ([os.path.dirname(os.path.abspath(_env))] if _env else [])
+    # (a bare name in $HYSTVIZ_LIB is the loader's search: no directory of its own)
+    dirs = [_here] + ([os.path.dirname(os.path.abspath(_env))] if _env and os.sep in _env else [])
     for d in dirs:
         for suffix in importlib.machinery.EXTENSION_SUFFIXES:
             path = os.path.join(d, "_fast" + suffix)
