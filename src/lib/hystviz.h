@@ -63,8 +63,9 @@ extern "C" {
 const char *hy_version(void);
 
 /* Turns GSL's error handler off (gsl_set_error_handler_off) so that a GSL
- * error inside a library call comes back as that call's status (each is
- * checked) instead of GSL's default handler aborting the process.  GSL's
+ * error inside a library call comes back to the library (as a GSL status or
+ * an error bound it checks, then as the call's status) instead of GSL's
+ * default handler aborting the process.  GSL's
  * handler is one per process: this changes it for the caller's own GSL calls
  * too, which is why the library does not call it on its own behalf, except
  * in fits (hy_fit_scene and a scene's fit turn it off, as hystviz fit does:
