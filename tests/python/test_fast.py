@@ -10,6 +10,7 @@ GSL's error handler off in a process that imported hystviz (issue 35).
     call the one loaded copy of it: exact equality, no tolerance), for models
     with typed keys only and with string keys (overrides), at several points;
   - a scene the library refuses raises the same SceneError through both;
+  - the GIL is released for the call (a thread runs during it);
   - HYSTVIZ_CTYPES=1 turns the fast path off;
   - the module refuses arguments of the wrong kind and a short or read-only
     buffer with an exception, writing nothing;
@@ -21,6 +22,8 @@ import ctypes
 import os
 import subprocess
 import sys
+import threading
+import time
 
 import numpy as np
 
@@ -89,6 +92,27 @@ else:
     many = np.empty(3 * 201)
     check(fast(name, m._btext, bim._btext, [b"model.sigma0=6"] * 20, [b"model.sigma0=6"] * 20, 200, many) == 0
           and many.tobytes() == buf.tobytes(), "40 overrides (past the stack array): the same bytes")
+
+    # the GIL is released for the library call: a Python thread ticks during
+    # one long call (a million points, about 0.7 s); only the ticks in the
+    # call's middle 80 % count, so ticks before and after it do not (with the
+    # GIL held there would be none)
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+            stop.wait(0.001)
+    th = threading.Thread(target=tick)
+    th.start()
+    t0 = time.perf_counter()
+    hystviz.steady_loop(cases[0][0], bim, points=1000000)
+    t1 = time.perf_counter()
+    stop.set()
+    th.join(10)
+    inside = sum(t0 + 0.1 * (t1 - t0) < t < t1 - 0.1 * (t1 - t0) for t in ticks)
+    check(inside > 5, f"a Python thread ran {inside} times inside a {t1 - t0:.2f} s steady_loop call (GIL released)")
 
 # HYSTVIZ_CTYPES=1 forces the ctypes path (docs/LIBRARY.md)
 p = subprocess.run([sys.executable, "-c", "import hystviz; print(hystviz._steady_fast is None)"], capture_output=True,
