@@ -29,9 +29,12 @@ static double phi2_e(double x, double e)
 }
 
 /* expm1(-x) where φ1 or φ2 of x reads it, else 0 (not read) */
+/* Below it e^{-x} - 1 is not needed: φ1, φ2 use their series. */
+#define PHI_E_MIN 1e-8
+
 static double phi_e(double x)
 {
-    return x < 1e-8 ? 0 : expm1(-x);
+    return x < PHI_E_MIN ? 0 : expm1(-x);
 }
 
 double hy_phi1(double x)
@@ -52,8 +55,13 @@ double hy_limit_step(double a, double g0, double y, int s, double d)
 
 double hy_limit_step_area(double a, double g0, double y, int s, double d)
 {
+    return hy_limit_step_area_em(a, g0, y, s, d, phi_e(a * d));
+}
+
+double hy_limit_step_area_em(double a, double g0, double y, int s, double d, double em)
+{
     /* ∫_0^d (e^{-ar} y + s g0 (1 - e^{-ar})) s dr = s y d φ1(ad) + a g0 d² φ2(ad) */
-    double x = a * d, q = (a * g0) * d * d, e = phi_e(x); /* φ1 and φ2 share it */
+    double x = a * d, q = (a * g0) * d * d, e = x < PHI_E_MIN ? 0 : em; /* phi_e(x): φ1 and φ2 share it */
     if (isfinite(q) && x < 1e150)
         return s * y * d * phi1_e(x, e) + q * phi2_e(x, e);
     /* scaled where a g0 d² or x² (inside φ2) overflows although the area

@@ -16,6 +16,7 @@
 #include <time.h>
 
 #include "hy_config.h"
+#include "hy_cost.h"
 #include "hy_dtoa.h"
 #include "hystviz.h"
 #include "scene_model.h"
@@ -651,6 +652,8 @@ typedef struct closed_kernel {
     double y_run[5];
     void *work;            /* hy_loops_work_size(4) bytes */
     int shape;             /* [input] shape, HY_SHAPE_* */
+    double pixel_work;     /* the PNG raster's work: [figure] and the formats
+                            * only, which no typed axis writes */
     int need_steady, need_loops, want_minor, want_major;
 } closed_kernel;
 
@@ -691,6 +694,7 @@ static closed_kernel *closed_setup(const hy_sweep_opts *o, point_buf *pb)
         ck->r.figure_kind = r0.figure_kind;
         ck->r.numbers_only = ck->r.no_verify = 1;
         ck->shape = hy_scene_input_shape(&r0.doc.input);
+        ck->pixel_work = hy_cost(NULL, HY_COST_PIXEL, hy_scene_run_png_pixels(&ck->r));
         hy_scene_friction_needs(&r0.doc, &ck->need_steady, &ck->need_loops);
         for (size_t k = 0; k < r0.doc.nseries; k++) {
             ck->want_minor |= r0.doc.series[k].data == HY_DATA_MINOR;
@@ -729,7 +733,7 @@ static int closed_point(const hy_sweep_study *s, point_buf *pb, size_t i)
     double work, t0, t1, a[64], b[64];
     size_t npts, per;
     long cycles;
-    if (hy_scene_run_estimate(r, &work, NULL, 0, &e) || work > (r->budget > 0 ? r->budget : HY_SCENE_WORK_DEFAULT) ||
+    if (hy_scene_run_estimate_px(r, ck->pixel_work, &work, NULL, 0, &e) || work > (r->budget > 0 ? r->budget : HY_SCENE_WORK_DEFAULT) ||
         hy_scene_run_grid(r, &t0, &t1, &npts, &per, &cycles, &e))
         return -1;
     if (ck->need_steady && hy_steady_init_buf(&r->steady, &r->model, &r->input, ck->y_run, &e))

@@ -286,12 +286,13 @@ static double series_x(const hy_scene_run *r, const hy_run_series *se, double t)
     return hy_input_u(&r->input, t);
 }
 
-/* Samples the series over [a, b] of its parameter with n points. */
+/* Samples the series over [a, b] of its parameter with n points (numbers
+ * only: y alone, which the error is measured on; x is NaN, no table holds it). */
 static void sample(const hy_scene_run *r, const plan *p, hy_run_series *se, size_t off, size_t n, double a, double b)
 {
     for (size_t i = 0; i < n; i++) {
         double t = n > 1 ? a + (b - a) * (double)i / (double)(n - 1) : a;
-        se->x[off + i] = series_x(r, se, t);
+        se->x[off + i] = r->numbers_only ? NAN : series_x(r, se, t);
         se->y[off + i] = series_y(r, p, se, t);
     }
 }
