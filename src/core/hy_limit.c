@@ -28,10 +28,10 @@ static double phi2_e(double x, double e)
     return (x + e) / (x * x);
 }
 
-/* expm1(-x) where φ1 or φ2 of x reads it, else 0 (not read) */
 /* Below it e^{-x} - 1 is not needed: φ1, φ2 use their series. */
 #define PHI_E_MIN 1e-8
 
+/* expm1(-x) where φ1 or φ2 of x reads it, else 0 (not read) */
 static double phi_e(double x)
 {
     return x < PHI_E_MIN ? 0 : expm1(-x);
