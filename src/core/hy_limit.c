@@ -28,10 +28,13 @@ static double phi2_e(double x, double e)
     return (x + e) / (x * x);
 }
 
+/* Below it e^{-x} - 1 is not needed: φ1, φ2 use their series. */
+#define PHI_E_MIN 1e-8
+
 /* expm1(-x) where φ1 or φ2 of x reads it, else 0 (not read) */
 static double phi_e(double x)
 {
-    return x < 1e-8 ? 0 : expm1(-x);
+    return x < PHI_E_MIN ? 0 : expm1(-x);
 }
 
 double hy_phi1(double x)
@@ -44,16 +47,31 @@ double hy_phi2(double x)
     return phi2_e(x, x < 0.5 ? 0 : expm1(-x));
 }
 
+/* The runs whose e^{-aΔ}, expm1(-aΔ) hy_steady_init_buf computes once. */
+#define STEP_MEMO 16
+
+/* hy_limit_step from e = e^{-x} and em = expm1(-x) (the same expression:
+ * a run's pair, computed once, gives the same bits) */
+static double step_e(double g0, double y, int s, double e, double em)
+{
+    return e * y + s * g0 * -em;
+}
+
 double hy_limit_step(double a, double g0, double y, int s, double d)
 {
     double x = a * d;
-    return exp(-x) * y + s * g0 * -expm1(-x);
+    return step_e(g0, y, s, exp(-x), expm1(-x));
 }
 
 double hy_limit_step_area(double a, double g0, double y, int s, double d)
 {
+    return hy_limit_step_area_em(a, g0, y, s, d, phi_e(a * d));
+}
+
+double hy_limit_step_area_em(double a, double g0, double y, int s, double d, double em)
+{
     /* ∫_0^d (e^{-ar} y + s g0 (1 - e^{-ar})) s dr = s y d φ1(ad) + a g0 d² φ2(ad) */
-    double x = a * d, q = (a * g0) * d * d, e = phi_e(x); /* φ1 and φ2 share it */
+    double x = a * d, q = (a * g0) * d * d, e = x < PHI_E_MIN ? 0 : em; /* phi_e(x): φ1 and φ2 share it */
     if (isfinite(q) && x < 1e150)
         return s * y * d * phi1_e(x, e) + q * phi2_e(x, e);
     /* scaled where a g0 d² or x² (inside φ2) overflows although the area
@@ -63,18 +81,19 @@ double hy_limit_step_area(double a, double g0, double y, int s, double d)
 }
 
 /* y°(0) = B/(1 - A) for the affine period map y ↦ A y + B.
- * Large aρ_T: B by forward composition (terms of size g0, no cancellation).
+ * Large aρ_T: B by forward composition (terms of size g0, no cancellation;
+ * each run's e^{-aΔ_i}, expm1(-aΔ_i) from e, em where given, else computed).
  * Small aρ_T: B = -σ0 Σ s_i Δ_i c_i with c_i = 1 - φ1(aΔ_i) e^{-aR_i}, R_i the
  * variation after run i; uses Σ s_i Δ_i = 0 (periodic input) to remove the
  * O(1) terms that would otherwise cancel. */
-static double steady_y0(const hy_input *in, double sigma0, double g0, double a)
+static double steady_y0(const hy_input *in, double sigma0, double g0, double a, const double *e, const double *em)
 {
     double one_minus_A = -expm1(-a * in->rho_T);
     if (a * in->rho_T >= 1) {
         double B = 0;
         for (size_t i = 0; i < in->nruns; i++) {
             const hy_run *r = &in->runs[i];
-            B = hy_limit_step(a, g0, B, r->sign, r->rho1 - r->rho0);
+            B = e ? step_e(g0, B, r->sign, e[i], em[i]) : hy_limit_step(a, g0, B, r->sign, r->rho1 - r->rho0);
         }
         return B / one_minus_A;
     }
@@ -102,11 +121,20 @@ int hy_steady_init_buf(hy_steady *st, const hy_model *m, const hy_input *in, dou
         return hy_error_set(err, HY_EINVAL, "sigma0/g(0) = %g/%g is not a finite positive number", m->sigma0, st->g0);
     st->contraction = exp(-st->a * in->rho_T);
     st->y_run = y_run;
-    double y = steady_y0(in, st->sigma0, st->g0, st->a);
+    /* hy_limit_step's pair of each run, once for y°(0) and the runs (up to
+     * STEP_MEMO runs, on the stack: a bimodal input has 4) */
+    double e[STEP_MEMO], em[STEP_MEMO];
+    int memo = in->nruns <= STEP_MEMO;
+    for (size_t i = 0; memo && i < in->nruns; i++) {
+        double x = st->a * (in->runs[i].rho1 - in->runs[i].rho0);
+        e[i] = exp(-x);
+        em[i] = expm1(-x);
+    }
+    double y = steady_y0(in, st->sigma0, st->g0, st->a, memo ? e : NULL, em);
     for (size_t i = 0; i < in->nruns; i++) {
         const hy_run *r = &in->runs[i];
         st->y_run[i] = y;
-        y = hy_limit_step(st->a, st->g0, y, r->sign, r->rho1 - r->rho0);
+        y = memo ? step_e(st->g0, y, r->sign, e[i], em[i]) : hy_limit_step(st->a, st->g0, y, r->sign, r->rho1 - r->rho0);
     }
     st->y_run[in->nruns] = st->y_run[0]; /* y°(T) = y°(0) (Theorem 2(b)) */
     return HY_OK;
@@ -242,7 +270,7 @@ int hy_theorem_a_init(hy_theorem_a *th, double sigma0, double g0, double umin1, 
     if (a * r4 >= 1)
         y0 = g0 * num / -expm1(-a * r4);
     else /* small aϱ4: the general cancellation-free fixed point */
-        y0 = steady_y0(&in, sigma0, g0, a);
+        y0 = steady_y0(&in, sigma0, g0, a, NULL, NULL);
     th->y[0] = y0;
     for (int i = 1; i <= 4; i++)
         th->y[i] = hy_limit_step(a, g0, th->y[i - 1], (i % 2) ? +1 : -1, th->rho[i] - th->rho[i - 1]);

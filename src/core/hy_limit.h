@@ -35,6 +35,9 @@ double hy_phi2(double x);
 double hy_limit_step(double a, double g0, double y, int s, double d);
 /* ∫_0^d y(r) s dr along that run: its contribution to ∮ y du (exact). */
 double hy_limit_step_area(double a, double g0, double y, int s, double d);
+/* The same, given em = expm1(-(a d)) (a caller that needs e^{-ad} - 1 too
+ * computes it once); the same bits as hy_limit_step_area. */
+double hy_limit_step_area_em(double a, double g0, double y, int s, double d, double em);
 
 typedef struct hy_steady {
     const hy_input *in;   /* borrowed: must outlive the hy_steady          */

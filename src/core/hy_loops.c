@@ -167,9 +167,9 @@ static double loop_area(const hy_steady *st, const tp *seq, size_t ip, size_t iq
         if (i > iq && seq[i].u == u)
             break;
         int s = seq[i + 1].u > seq[i].u ? 1 : -1, closes = i >= iq && u > lo && u <= hi;
-        double d = closes ? fabs(u - seq[i].u) : hi - lo, x = a * d, c = s * st->g0 - y_start;
-        area += hy_limit_step_area(a, s * c, delta, s, d); /* s (δ0 d φ1 + c a d² φ2), scaled where d² overflows */
-        delta = exp(-x) * delta + c * -expm1(-x);
+        double d = closes ? fabs(u - seq[i].u) : hi - lo, x = a * d, c = s * st->g0 - y_start, em = expm1(-x);
+        area += hy_limit_step_area_em(a, s * c, delta, s, d, em); /* s (δ0 d φ1 + c a d² φ2), scaled where d² overflows */
+        delta = exp(-x) * delta + c * -em;
         if (closes)
             break;
     }
@@ -243,8 +243,9 @@ static int find(const hy_input *in, const hy_steady *st, hy_loops *out, void *wo
             L->rho_start = p->rho;
             L->rho_turn = q->rho;
             L->rho_close = close_point(seq, stack[sp - 2], stack[sp - 1], p->u);
-            L->area = st ? loop_area(st, seq, stack[sp - 3], stack[sp - 2], stack[sp - 1], hy_steady_at_rho(st, p->rho))
-                         : 0.0;
+            L->y_start = st ? hy_steady_at_rho(st, p->rho) : NAN; /* once: loop_area starts from it */
+            L->y_close = st ? hy_steady_at_rho(st, L->rho_close) : NAN;
+            L->area = st ? loop_area(st, seq, stack[sp - 3], stack[sp - 2], stack[sp - 1], L->y_start) : 0.0;
             L->u_start = p->u;
             L->u_turn = q->u;
             L->starts_at_max = p->is_max;
@@ -257,11 +258,6 @@ static int find(const hy_input *in, const hy_steady *st, hy_loops *out, void *wo
     for (size_t i = 1; i < nl; i++)
         if (fabs(loops[i].u_turn - loops[i].u_start) >= fabs(loops[imaj].u_turn - loops[imaj].u_start))
             imaj = i;
-    for (size_t i = 0; i < nl; i++) {
-        hy_loop *L = &loops[i];
-        L->y_start = st ? hy_steady_at_rho(st, L->rho_start) : NAN;
-        L->y_close = st ? hy_steady_at_rho(st, L->rho_close) : NAN;
-    }
     out->major = loops[imaj];
     out->nminor = nl - 1;
     out->minor = work ? (hy_loop *)(void *)(w + fp.minor) : malloc((nl ? nl : 1) * sizeof *out->minor);

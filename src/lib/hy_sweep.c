@@ -16,6 +16,7 @@
 #include <time.h>
 
 #include "hy_config.h"
+#include "hy_cost.h"
 #include "hy_dtoa.h"
 #include "hystviz.h"
 #include "scene_model.h"
@@ -24,31 +25,55 @@
 
 /* ---- names and rows --------------------------------------------------- */
 
-/* The point's file base name: pINDEX then _KEY-VALUE per axis, characters
- * other than [A-Za-z0-9.-] as '_', at most 200 bytes (the index alone keeps
- * names unique). */
+/* The point's file base name: pINDEX then _KEY-VALUE per axis (the
+ * study's name_parts), at most 200 bytes and size - 1 (the index alone
+ * keeps names unique). */
 static void point_name(const hy_sweep_study *s, size_t i, char *buf, size_t size)
 {
     const hy_grid *g = &s->o->grid;
-    char *w = buf, *end = buf + (size < 202 ? size : 202) - 1; /* the name is cut at 200 bytes */
+    size_t max = size - 1 < 200 ? size - 1 : 200, n = 0;
     char digits[24];
     size_t nd = 0;
     for (size_t v = i; nd < (size_t)s->index_width || v; v /= 10)
         digits[nd++] = (char)('0' + v % 10);
-    *w++ = 'p';
-    while (nd && w < end)
-        *w++ = digits[--nd];
-    for (size_t a = 0; a < g->naxes && w < end; a++) {
-        *w++ = '_';
-        for (int part = 0; part < 3; part++)
-            for (const char *c = part == 0 ? s->short_keys[a] : part == 1 ? "-" : hy_grid_value(g, i, a); *c && w < end;
-                 c++)
-                *w++ = (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '.' ||
-                       *c == '-' ? *c : '_';
+    if (n < max)
+        buf[n++] = 'p';
+    while (nd && n < max)
+        buf[n++] = digits[--nd];
+    for (size_t a = 0; a < g->naxes && n < max; a++) {
+        const char *t = s->name_parts[a][hy_grid_coord(g, i, a)];
+        size_t len = strlen(t);
+        len = len < max - n ? len : max - n;
+        memcpy(buf + n, t, len);
+        n += len;
     }
-    *w = '\0';
-    if (w - buf > 200)
-        buf[200] = '\0';
+    buf[n] = '\0';
+}
+
+/* "_KEY-VALUE" of each axis and value, as point names spell them: the short
+ * key, then the value with characters other than [A-Za-z0-9.-] as '_'
+ * (made once: a point's name is its coordinates' parts); -1 out of memory. */
+static int make_name_parts(hy_sweep_study *s)
+{
+    const hy_grid *g = &s->o->grid;
+    s->name_parts = calloc(g->naxes ? g->naxes : 1, sizeof *s->name_parts);
+    for (size_t a = 0; s->name_parts && a < g->naxes; a++) {
+        if (!(s->name_parts[a] = calloc(g->axes[a].nvalues, sizeof **s->name_parts)))
+            return -1;
+        for (size_t v = 0; v < g->axes[a].nvalues; v++) {
+            const char *val = g->axes[a].values[v];
+            size_t nk = strlen(s->short_keys[a]), nv = strlen(val);
+            char *t = malloc(nk + nv + 3);
+            if (!(s->name_parts[a][v] = t))
+                return -1;
+            snprintf(t, nk + nv + 3, "_%s-%s", s->short_keys[a], val);
+            for (char *c = t + 1; *c; c++)
+                if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '.' ||
+                      *c == '-'))
+                    *c = '_';
+        }
+    }
+    return s->name_parts ? 0 : -1;
 }
 
 /* The short key of each axis: the part after the last '.', or the whole key
@@ -103,6 +128,16 @@ static void rb_add(rowbuf *r, const char *t, size_t n)
     if (p) {
         memcpy(p, t, n);
         r->len += n;
+    }
+}
+
+/* Appends bytes from .. to - 1 of the row again. */
+static void rb_again(rowbuf *r, size_t from, size_t to)
+{
+    char *p = rb_room(r, to - from);
+    if (p) {
+        memcpy(p, r->b + from, to - from);
+        r->len += to - from;
     }
 }
 
@@ -251,12 +286,17 @@ static void write_row(const hy_sweep_study *s, rowbuf *f, size_t i, const char *
     if (v.L)
         rb_size(f, v.L->nminor);
     csv_num(f, v.major);
+    size_t m0 = f->len + 1; /* minor1_area's digits: minor_areas starts with them */
     csv_num(f, v.minor1);
+    size_t m1 = f->len;
     rb_chr(f, ',');
     for (size_t k = 0; v.L && k < v.L->nminor; k++) {
         if (k)
             rb_chr(f, ';');
-        rb_double(f, v.L->minor[k].area);
+        if (k == 0 && !isnan(v.minor1)) /* the same double, L->minor[0].area: its digits again */
+            rb_again(f, m0, m1);
+        else
+            rb_double(f, v.L->minor[k].area);
     }
     csv_num(f, v.energy);
     rb_chr(f, ',');
@@ -406,7 +446,7 @@ int hy_sweep_prepare(hy_sweep_study *s, hy_error *err)
 {
     const hy_sweep_opts *o = s->o;
     size_t npoints = hy_grid_points(&o->grid);
-    if (make_short_keys(s))
+    if (make_short_keys(s) || make_name_parts(s))
         return hy_error_set(err, HY_ENOMEM, "out of memory"), -1;
     char digits[32];
     s->index_width = snprintf(digits, sizeof digits, "%zu", npoints > 1 ? npoints - 1 : 0);
@@ -651,6 +691,8 @@ typedef struct closed_kernel {
     double y_run[5];
     void *work;            /* hy_loops_work_size(4) bytes */
     int shape;             /* [input] shape, HY_SHAPE_* */
+    double pixel_work;     /* the PNG raster's work: [figure] and the formats
+                            * only, which no typed axis writes */
     int need_steady, need_loops, want_minor, want_major;
 } closed_kernel;
 
@@ -691,6 +733,7 @@ static closed_kernel *closed_setup(const hy_sweep_opts *o, point_buf *pb)
         ck->r.figure_kind = r0.figure_kind;
         ck->r.numbers_only = ck->r.no_verify = 1;
         ck->shape = hy_scene_input_shape(&r0.doc.input);
+        ck->pixel_work = hy_cost(NULL, HY_COST_PIXEL, hy_scene_run_png_pixels(&ck->r));
         hy_scene_friction_needs(&r0.doc, &ck->need_steady, &ck->need_loops);
         for (size_t k = 0; k < r0.doc.nseries; k++) {
             ck->want_minor |= r0.doc.series[k].data == HY_DATA_MINOR;
@@ -729,7 +772,7 @@ static int closed_point(const hy_sweep_study *s, point_buf *pb, size_t i)
     double work, t0, t1, a[64], b[64];
     size_t npts, per;
     long cycles;
-    if (hy_scene_run_estimate(r, &work, NULL, 0, &e) || work > (r->budget > 0 ? r->budget : HY_SCENE_WORK_DEFAULT) ||
+    if (hy_scene_run_estimate_px(r, ck->pixel_work, &work, NULL, 0, &e) || work > (r->budget > 0 ? r->budget : HY_SCENE_WORK_DEFAULT) ||
         hy_scene_run_grid(r, &t0, &t1, &npts, &per, &cycles, &e))
         return -1;
     if (ck->need_steady && hy_steady_init_buf(&r->steady, &r->model, &r->input, ck->y_run, &e))
@@ -1076,6 +1119,12 @@ void hy_sweep_study_free(hy_sweep_study *s)
     for (size_t a = 0; s->short_keys && a < s->o->grid.naxes; a++)
         free(s->short_keys[a]);
     free(s->short_keys);
+    for (size_t a = 0; s->name_parts && a < s->o->grid.naxes; a++) {
+        for (size_t v = 0; s->name_parts[a] && v < s->o->grid.axes[a].nvalues; v++)
+            free(s->name_parts[a][v]);
+        free(s->name_parts[a]);
+    }
+    free(s->name_parts);
     for (size_t a = 0; s->axis_num && a < s->o->grid.naxes; a++)
         free(s->axis_num[a]);
     free(s->axis_num);

@@ -51,6 +51,7 @@ typedef struct hy_sweep_study {
     int *series_dist;    /* ... and whether each gets a .dist column      */
     size_t nseries;
     char **short_keys;   /* the key of each axis as a file name uses it   */
+    char ***name_parts;  /* per axis and value: "_KEY-VALUE" in point names */
     int index_width;
     size_t nmine;        /* points of this shard                          */
     hy_out out;          /* the table (sweep.csv or the shard manifest)   */

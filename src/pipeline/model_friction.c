@@ -286,12 +286,13 @@ static double series_x(const hy_scene_run *r, const hy_run_series *se, double t)
     return hy_input_u(&r->input, t);
 }
 
-/* Samples the series over [a, b] of its parameter with n points. */
+/* Samples the series over [a, b] of its parameter with n points (numbers
+ * only: y alone, which the error is measured on; x is NaN, no table holds it). */
 static void sample(const hy_scene_run *r, const plan *p, hy_run_series *se, size_t off, size_t n, double a, double b)
 {
     for (size_t i = 0; i < n; i++) {
         double t = n > 1 ? a + (b - a) * (double)i / (double)(n - 1) : a;
-        se->x[off + i] = series_x(r, se, t);
+        se->x[off + i] = r->numbers_only ? NAN : series_x(r, se, t);
         se->y[off + i] = series_y(r, p, se, t);
     }
 }
@@ -505,8 +506,30 @@ static int series_psi(hy_scene_run *r, const plan *p, hy_run_series *se, hy_erro
     return rc;
 }
 
+/* An earlier series of r that series_period sampled as it samples se (the
+ * same data, the same k for yk, all n points), or NULL. */
+static const hy_run_series *same_period(const hy_scene_run *r, const hy_run_series *se, size_t n)
+{
+    for (const hy_run_series *o = r->series; o < se; o++)
+        if (o->data == se->data && (se->data != HY_DATA_YK || o->k == se->k) && o->n == n && !o->grid_n && o->y)
+            return o;
+    return NULL;
+}
+
+/* se as a copy of o: its points and its error (the same expressions on the
+ * same operands, so the same bits: Fig. 15's two markers share y° over the
+ * period). */
+static void copy_period(hy_run_series *se, const hy_run_series *o)
+{
+    memcpy(se->x, o->x, o->n * sizeof *se->x);
+    memcpy(se->y, o->y, o->n * sizeof *se->y);
+    se->err = o->err;
+    memcpy(se->err_note, o->err_note, sizeof se->err_note);
+    se->err_ref = o->err_ref == o->err_note ? se->err_note : o->err_ref;
+}
+
 /* ysteady, yk: one period (a series drawn as its mark only: evaluated there,
- * by series_mark). */
+ * by series_mark; one sampled as an earlier one was: copied from it). */
 static int series_period(hy_scene_run *r, const plan *p, hy_run_series *se, hy_error *err)
 {
     size_t per = p->per_period;
@@ -518,6 +541,11 @@ static int series_period(hy_scene_run *r, const plan *p, hy_run_series *se, hy_e
     int rc = hy_run_series_alloc(se, per + 1, err);
     if (rc)
         return rc;
+    const hy_run_series *o = same_period(r, se, per + 1);
+    if (o) {
+        copy_period(se, o);
+        return HY_OK;
+    }
     sample(r, p, se, 0, per + 1, 0, T);
     se->y[per] = se->data == HY_DATA_YSTEADY ? r->steady.y_run[r->input.nruns]
                                              : hy_ystar_k(&r->steady, r->model.x0, (double)se->k, T);

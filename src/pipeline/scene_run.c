@@ -578,6 +578,15 @@ int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_
     return rc;
 }
 
+int hy_scene_run_estimate_px(const hy_scene_run *r, double pixel_work, double *work, char *what, size_t size,
+                             hy_error *err)
+{
+    int rc = estimate_models(r, work, what, size, err);
+    if (!rc)
+        *work += pixel_work;
+    return rc;
+}
+
 int hy_scene_run_over_budget(const hy_scene_doc *d, double work, double budget, const char *what, hy_error *err)
 {
     static const char *const keys[] = {"points", "cycles", "tspan", "gamma", "settle", "upsample", NULL};

@@ -66,6 +66,11 @@ int hy_scene_run_load_text(hy_scene_run *r, const char *path, const char *text, 
  * for Bouc-Wen scenes the Newmark steps plus the series samples (docs/SCENES.md,
  * "Work budget").  what (may be NULL) receives the breakdown. */
 int hy_scene_run_estimate(const hy_scene_run *r, double *work, char *what, size_t size, hy_error *err);
+/* The same, with the PNG raster's work given (pixel_work: hy_cost of
+ * hy_scene_run_png_pixels, which reads only [figure] and the formats: the
+ * sweep's kernel computes it once for all its points). */
+int hy_scene_run_estimate_px(const hy_scene_run *r, double pixel_work, double *work, char *what, size_t size,
+                             hy_error *err);
 
 /* What computing and drawing the scene reads of [model] and [input], as the
  * plan decides from its series: HY_READS_MODEL, the model's dynamics (any
