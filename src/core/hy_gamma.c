@@ -3,6 +3,8 @@
  * piecewise-linear inputs, and of system (16) with its first-order filter. */
 #include "hy_gamma.h"
 
+#include "hy_args.h"
+
 #include <math.h>
 #include "hy_limit.h"
 
@@ -15,6 +17,8 @@ int hy_gamma_check(double gamma, hy_error *err)
 
 int hy_gamma_exact_applies(const hy_model *m, const hy_input *in)
 {
+    if (!m || !hy__input_ready(in))
+        return 0;
     return in->all_linear || hy_model_rate_independent(m);
 }
 
@@ -94,6 +98,11 @@ int hy_gamma_exact(const hy_model *m, const hy_input *in, double gamma, const do
                    double *y_out, double *z_out, hy_error *err)
 {
     int rc;
+    HY_NONNULL(err, m);
+    HY_INPUT_READY(err, in);
+    HY_NONNULL(err, y_out);
+    if (!t && n)
+        return hy_error_set(err, HY_EINVAL, "%s: t must not be NULL (n is %zu)", __func__, n);
     if ((rc = hy_model_validate(m, err)) || (rc = hy_gamma_check(gamma, err)))
         return rc;
     if (!hy_gamma_exact_applies(m, in))

@@ -45,7 +45,9 @@ struct hy_model {
     double yf0;                        /* initial filter output (dahl-filter)*/
 };
 
-/* Fill m with a LuGre model; f is zero (set m->sigma2 for f(v) = σ2 v). */
+/* Fill m with a LuGre model; f is zero (set m->sigma2 for f(v) = σ2 v).
+ * The three _init functions: m NULL, nothing done; the numbers are checked
+ * by hy_model_validate, not here. */
 void hy_model_lugre_init(hy_model *m, double sigma0, double sigma1, double fc,
                     double fs, double vs, double beta);
 /* Fill m with a Dahl model y = Fc w, ẇ = ρ(u̇ - |u̇| w). */
@@ -53,12 +55,14 @@ void hy_model_dahl_init(hy_model *m, double rho, double fc);
 /* Fill m with system (16): Dahl(ρ, Fc) then ẏ = (x - y)/τ in unscaled time. */
 void hy_model_dahl_filter_init(hy_model *m, double rho, double fc, double tau);
 
-/* Returns HY_OK, or HY_EINVAL with a message naming the bad parameter. */
+/* Returns HY_OK, or HY_EINVAL with a message naming the bad parameter (m
+ * NULL or without a type: HY_EINVAL). */
 int hy_model_validate(const hy_model *m, hy_error *err);
-/* Finds a model type by name; NULL when unknown. */
+/* Finds a model type by name; NULL when unknown or name is NULL. */
 const hy_model_type *hy_model_type_find(const char *name);
 
-/* g(v) for the model (constant for Dahl). */
+/* g(v) for the model (constant for Dahl).  The four below: m must not be
+ * NULL (NaN; hy_model_rate_independent 0). */
 double hy_model_g(const hy_model *m, double v);
 /* g(0), the only value of g the γ → ∞ limit depends on. */
 double hy_model_g0(const hy_model *m);
