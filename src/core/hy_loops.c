@@ -297,22 +297,23 @@ static int find(const hy_input *in, const hy_steady *st, hy_loops *out, void *wo
     return HY_OK;
 }
 
-/* The refusal of find's arguments (hy_loops.h): st, when asked for, initialised. */
+/* The refusal of find's arguments (hy_loops.h): out, and st (need_st) or in. */
 static int check(const char *fn, const hy_input *in, const hy_steady *st, int need_st, hy_loops *out, hy_error *err)
 {
     if (out)
         memset(out, 0, sizeof *out);
-    if (!out || (need_st && !st) || !in)
-        return hy_error_set(err, HY_EINVAL, "%s: %s must not be NULL", fn, !out ? "out" : need_st && !st ? "st" : "in");
-    if (need_st ? !hy__steady_ready(st) : !hy__input_ready(in))
-        return hy_error_set(err, HY_EINVAL, "%s: %s", fn,
-                            need_st ? "st is not an initialised steady state" : "the input has no pieces");
-    return HY_OK;
+    const char *bad = !out                                     ? "out must not be NULL"
+                      : need_st && !st                         ? "st must not be NULL"
+                      : need_st && !hy__steady_ready(st)       ? "st is not an initialised steady state"
+                      : !need_st && !in                        ? "in must not be NULL"
+                      : !need_st && !hy__input_ready(in)       ? "in has no pieces (not made, or freed)"
+                                                               : NULL;
+    return bad ? hy_error_set(err, HY_EINVAL, "%s: %s", fn, bad) : HY_OK;
 }
 
 int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
 {
-    int rc = check(__func__, st ? st->in : NULL, st, 1, out, err);
+    int rc = check(__func__, NULL, st, 1, out, err);
     if (rc)
         return rc;
     return find(st->in, st, out, NULL, err);
@@ -320,7 +321,7 @@ int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
 
 int hy_loops_find_buf(const hy_steady *st, hy_loops *out, void *work, hy_error *err)
 {
-    int rc = check(__func__, st ? st->in : NULL, st, 1, out, err);
+    int rc = check(__func__, NULL, st, 1, out, err);
     if (rc)
         return rc;
     return find(st->in, st, out, work, err);

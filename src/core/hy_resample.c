@@ -244,11 +244,15 @@ static size_t decimate_factors(size_t r, int staged, size_t f[64])
     size_t nf = 0;
     if (staged) {
         size_t q = r;
-        for (size_t p = 2; q > 1 && nf < 64; p++)
+        /* trial division to sqrt(q): what is left above 1 is the largest
+           prime factor (a large prime r took r divisions: a hang) */
+        for (size_t p = 2; p <= q / p && nf < 64; p++)
             while (q % p == 0) {
                 f[nf++] = p;
                 q /= p;
             }
+        if (q > 1 && nf < 64)
+            f[nf++] = q;
     } else if (r > 1) {
         f[nf++] = r;
     }
