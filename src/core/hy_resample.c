@@ -244,9 +244,10 @@ static size_t decimate_factors(size_t r, int staged, size_t f[64])
     size_t nf = 0;
     if (staged) {
         size_t q = r;
-        /* trial division to sqrt(q): what is left above 1 is the largest
-           prime factor (a large prime r took r divisions: a hang) */
-        for (size_t p = 2; p <= q / p && nf < 64; p++)
+        /* trial division by p <= 65536 and p <= sqrt(q): what is left
+           above 1 is one stage, the largest prime factor when r < 2^32 (a
+           large prime r took r divisions, 2^61 - 1 a hang) */
+        for (size_t p = 2; p <= 65536 && p <= q / p && nf < 64; p++)
             while (q % p == 0) {
                 f[nf++] = p;
                 q /= p;

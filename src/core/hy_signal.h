@@ -166,9 +166,11 @@ int hy_signal_decimate(const double *x, size_t n, size_t r, double *y,
                        hy_error *err);
 
 /* Decimation by r in one stage (staged == 0) or in its prime factors in
- * increasing order (20 -> 2, 2, 5).  Writes ceil(n / r) samples to y either
- * way, and that count to *ny.  Allocates scratch internally.  x and y must
- * not be NULL (HY_EINVAL); ny may be NULL (not written). */
+ * increasing order (20 -> 2, 2, 5; what is left above 65536 once the factors
+ * up to it are divided out is one stage: a prime for r < 2^32).  Writes
+ * ceil(n / r) samples to y either way, and that count to *ny.  Allocates
+ * scratch internally.  x and y must not be NULL (HY_EINVAL); ny may be NULL
+ * (not written). */
 int hy_signal_decimate_stages(const double *x, size_t n, size_t r, int staged,
                               double *y, size_t *ny, hy_error *err);
 
