@@ -426,8 +426,7 @@ int hy_jiles_drive(const hy_jiles *j, const hy_input *in, const double *t, size_
 {
     HY_NONNULL(err, j);
     HY_INPUT_READY(err, in);
-    if (!t && n)
-        return hy_error_set(err, HY_EINVAL, "%s: t must not be NULL (n is %zu)", __func__, n);
+    HY_NONNULL_N(err, t, n);
     int rc = hy_jiles_validate(j, err);
     if (rc || n == 0)
         return rc;

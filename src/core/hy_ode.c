@@ -304,13 +304,14 @@ static double first_step(const hy_ode_opts *o, double len)
     return o->h0 > 0 ? o->h0 : o->dense ? len : 1e-3 * len;
 }
 
-/* HY_OK when hy_ode_solve's arguments are valid (the model, gamma, the
- * options, the output times and the work they ask); else the error, in err. */
+/* HY_OK when hy_ode_solve's other arguments are valid (the options, the
+ * output times and the work they ask; the model, the input and gamma were
+ * checked by hy__solve_args); else the error, in err. */
 static int check_solve_args(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                             const double *t, size_t n, hy_error *err)
 {
     int rc;
-    if ((rc = hy_model_validate(m, err)) || (rc = hy_gamma_check(gamma, err)) || (rc = check_opts(o, err)))
+    if ((rc = check_opts(o, err)))
         return rc;
     for (size_t i = 0; i < n; i++)
         if (!isfinite(t[i]) || t[i] < 0 || (i && t[i] < t[i - 1]))
@@ -322,13 +323,9 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
                  const double *t, size_t n, double *y_out, hy_ode_stats *stats, hy_error *err)
 {
     int rc;
-    HY_NONNULL(err, m);
-    HY_INPUT_READY(err, in);
     HY_NONNULL(err, o);
-    HY_NONNULL(err, y_out);
-    if (!t && n)
-        return hy_error_set(err, HY_EINVAL, "%s: t must not be NULL (n is %zu)", __func__, n);
-    if ((rc = check_solve_args(m, in, gamma, o, t, n, err)))
+    if ((rc = hy__solve_args(__func__, m, in, gamma, t, n, y_out, "y_out", err)) ||
+        (rc = check_solve_args(m, in, gamma, o, t, n, err)))
         return rc;
     hy_ode_stats local;
     if (!stats)

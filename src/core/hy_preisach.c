@@ -607,8 +607,8 @@ void hy_preisach_mem_free(hy_preisach_mem *m)
 int hy_preisach_apply(const hy_preisach *p, const double *u, size_t n, double *y, hy_error *err)
 {
     HY_NONNULL(err, p);
-    if (n && (!u || !y))
-        return hy_error_set(err, HY_EINVAL, "%s: %s must not be NULL (n is %zu)", __func__, !u ? "u" : "y", n);
+    HY_NONNULL_N(err, u, n);
+    HY_NONNULL_N(err, y, n);
     if (n == 0)
         return HY_OK;
     hy_preisach_mem m;
@@ -634,8 +634,7 @@ int hy_preisach_drive(const hy_preisach *p, const hy_input *in, const double *t,
     HY_NONNULL(err, p);
     HY_INPUT_READY(err, in);
     HY_NONNULL(err, y);
-    if (!t && n)
-        return hy_error_set(err, HY_EINVAL, "%s: t must not be NULL (n is %zu)", __func__, n);
+    HY_NONNULL_N(err, t, n);
     int rc = hy_preisach_mem_init(&m, p, hy_input_u(in, 0), err);
     if (rc)
         return rc;

@@ -22,8 +22,7 @@ int hy_rateind_drive(const hy_input *in, const double *t, size_t n, hy_rateind_f
     HY_INPUT_READY(err, in);
     HY_NONNULL(err, fn);
     HY_NONNULL(err, y);
-    if (!t && n)
-        return hy_error_set(err, HY_EINVAL, "%s: t must not be NULL (n is %zu)", __func__, n);
+    HY_NONNULL_N(err, t, n);
     size_t r = 0;
     for (size_t i = 0; i < n; i++) {
         if (!(t[i] >= tprev) || !isfinite(t[i]))
@@ -182,8 +181,7 @@ int hy_rateind_sample(hy_rateind *m, const hy_input *in, int by_rho, const doubl
     if (!ready(m))
         return not_ready(__func__, "m", m, err);
     HY_INPUT_READY(err, in);
-    if (!x && n)
-        return hy_error_set(err, HY_EINVAL, "%s: x must not be NULL (n is %zu)", __func__, n);
+    HY_NONNULL_N(err, x, n);
     size_t r = 0;
     for (size_t i = 0; i < n; i++) {
         if (!(x[i] >= prev) || !isfinite(x[i]))

@@ -5,7 +5,6 @@
 #include "hy_ref.h"
 
 #include "hy_args.h"
-#include "hy_gamma.h"
 
 #include <float.h>
 #include <math.h>
@@ -170,13 +169,8 @@ static long double g_ld(const hy_model *m, long double v)
 int hy_ref_gamma(const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n, double *y,
                  hy_error *err)
 {
-    int rc;
-    HY_NONNULL(err, m);
-    HY_INPUT_READY(err, in);
-    HY_NONNULL(err, y);
-    if (!t && n)
-        return hy_error_set(err, HY_EINVAL, "%s: t must not be NULL (n is %zu)", __func__, n);
-    if ((rc = hy_model_validate(m, err)) || (rc = hy_gamma_check(gamma, err)))
+    int rc = hy__solve_args(__func__, m, in, gamma, t, n, y, "y", err);
+    if (rc)
         return rc;
     if (m->type->has_filter || !in->all_linear)
         return hy_error_set(err, HY_EUNSUP, "long-double reference needs a piecewise-linear input and no filter");

@@ -222,8 +222,7 @@ int hy_sweep_fill(const hy_sweep *sw, double fs, double *u, size_t n,
     int rc = sweep_check(sw, fs, err);
     if (rc)
         return rc;
-    if (!u && n)
-        return hy_error_set(err, HY_EINVAL, "%s: u must not be NULL (n is %zu)", __func__, n);
+    HY_NONNULL_N(err, u, n);
     for (size_t i = 0; i < n; i++) {
         double t = (double)i / fs;
         u[i] = sw->amp * sin(2.0 * M_PI * (sw->f0 * t + 0.5 * sw->rate * t * t));
@@ -234,8 +233,7 @@ int hy_sweep_fill(const hy_sweep *sw, double fs, double *u, size_t n,
 int hy_sine_fill(double amp, double f, double fs, double *u, size_t n,
                  hy_error *err)
 {
-    if (!u && n)
-        return hy_error_set(err, HY_EINVAL, "%s: u must not be NULL (n is %zu)", __func__, n);
+    HY_NONNULL_N(err, u, n);
     if (!isfinite(amp))
         return hy_error_set(err, HY_EINVAL, "sine amplitude %g must be finite", amp);
     if (!(isfinite(f) && f > 0))
@@ -502,8 +500,7 @@ int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
 int hy_signal_add_noise(double *out, size_t n, double rms, double band_hz,
                         double fs, uint64_t seed, hy_error *err)
 {
-    if (!out && n)
-        return hy_error_set(err, HY_EINVAL, "%s: out must not be NULL (n is %zu)", __func__, n);
+    HY_NONNULL_N(err, out, n);
     if (!(isfinite(rms) && rms >= 0))
         return hy_error_set(err, HY_EINVAL, "noise rms = %g must be finite and >= 0", rms);
     if (!(isfinite(fs) && fs > 0))
