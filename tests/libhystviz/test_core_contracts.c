@@ -454,6 +454,17 @@ static void signals(void)
     CHECK(su == NULL && sn == 0, "hy_signal_read: *u NULL, *n 0 after a refusal");
     REFUSED(hy_signal_read("x", NULL, &sn, &fs, &err), err, "u must not be NULL");
     REFUSED(hy_signal_read("x", &su, NULL, &fs, &err), err, "n must not be NULL");
+    /* what may be NULL: hy_signal_read's fs, hy_file_read's real and why */
+    char path[4200], *text = NULL;
+    size_t tlen = 0;
+    FILE *f = fopen(test_tmppath(path, sizeof path, "signal.txt"), "w");
+    CHECK(f && fputs("1\n2\n3\n", f) >= 0 && fclose(f) == 0, "cannot write %s", path);
+    CHECK(hy_signal_read(path, &su, &sn, NULL, &err) == HY_OK && sn == 3 && su[2] == 3, "hy_signal_read fs NULL: %s",
+          err.msg);
+    free(su);
+    CHECK(hy_file_read(path, 100, &text, &tlen, NULL, NULL, 0) == 0 && tlen == 6 && !strcmp(text, "1\n2\n3\n"),
+          "hy_file_read real NULL, why NULL");
+    free(text);
     REFUSED(hy_signal_upsample_fft(NULL, 4, 2, y, &err), err, "x must not be NULL");
     REFUSED(hy_signal_upsample_fft(x, 4, 2, NULL, &err), err, "y must not be NULL");
     REFUSED(hy_signal_upsample_fft(x, 4, SIZE_MAX / 2, y, &err), err, "do not fit in memory");
