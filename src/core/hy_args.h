@@ -41,9 +41,10 @@
                                 !(in) ? "must not be NULL" : HY__NO_PIECES);                                          \
     } while (0)
 
-/* Whether an input has pieces and runs (in not NULL, not freed), and whether
- * a steady state has its table and such an input: what the functions that
- * read them check first (hy_input.c, hy_limit.c). */
+/* hy__input_ready: whether an input has pieces and runs (in not NULL, not
+ * freed); hy__steady_ready: whether a steady state has its table and such an
+ * input.  What the functions that read them check first (hy_input.c,
+ * hy_limit.c). */
 struct hy_input;
 struct hy_steady;
 struct hy_model;

@@ -129,9 +129,7 @@ int hy_boucwen_simulate(const hy_boucwen_params *p, const hy_newmark_opts *o,
  * from zero initial conditions, then decimates by r with MATLAB
  * decimate(y, r, 'fir') semantics, in prime-factor stages if staged != 0.
  * Writes ceil(n_int / r) samples to y_out (sample k aligned with u_int[r k]).
- * p, o, u_int and y_out must not be NULL (HY_EINVAL), here and in the two
- * periodic syntheses below (u_period for u_int), where a record too long for
- * memory (periods times n_period) is HY_EINVAL too. */
+ * p, o, u_int and y_out must not be NULL (HY_EINVAL). */
 int hy_boucwen_synth(const hy_boucwen_params *p, const hy_newmark_opts *o,
                      double fs, size_t r, int staged, const double *u_int,
                      size_t n_int, double *y_out, hy_error *err);
@@ -139,7 +137,9 @@ int hy_boucwen_synth(const hy_boucwen_params *p, const hy_newmark_opts *o,
 /* Periodic synthesis with the benchmark's edge handling: integrates
  * periods + 1 periods of u_period (n_period samples at fs * r Hz, n_period a
  * multiple of r), decimates, drops the extra last period and writes
- * periods * n_period / r samples (the first period still holds the transient). */
+ * periods * n_period / r samples (the first period still holds the transient).
+ * p, o, u_period and y_out must not be NULL, and a record too long for
+ * memory (periods times n_period) is refused (HY_EINVAL). */
 int hy_boucwen_synth_periodic(const hy_boucwen_params *p,
                               const hy_newmark_opts *o, double fs, size_t r,
                               int staged, const double *u_period,
@@ -149,7 +149,8 @@ int hy_boucwen_synth_periodic(const hy_boucwen_params *p,
 /* hy_boucwen_synth_periodic's periods first .. periods - 1 alone, the same
  * bits: writes (periods - first) * n_period / r samples.  The settling
  * periods before first are integrated but not decimated, and the extra
- * period only as far as the filter reads it. */
+ * period only as far as the filter reads it.  NULL pointers and a record too
+ * long for memory are refused as by hy_boucwen_synth_periodic. */
 int hy_boucwen_synth_periodic_kept(const hy_boucwen_params *p, const hy_newmark_opts *o, double fs, size_t r,
                                    int staged, const double *u_period, size_t n_period, size_t first,
                                    size_t periods, double *y_out, hy_error *err);

@@ -55,8 +55,8 @@ typedef struct hy_input {
 
 /* Piecewise-linear periodic input through (t[i], u[i]), i < n, t[0] = 0,
  * t strictly increasing, u[n-1] == u[0].  HY_EINVAL names the bad index.
- * The constructors below: in must not be NULL, nor any array they read
- * unless they say it may be (HY_EINVAL "FUNCTION: X must not be NULL"). */
+ * in, t and u must not be NULL (HY_EINVAL "hy_input_pwl: X must not be
+ * NULL"). */
 int hy_input_pwl(hy_input *in, const double *t, const double *u, size_t n, hy_error *err);
 
 /* Bimodal input of Definition 1: umin1 <= umin2 < umax1 <= umax2, not both
@@ -114,31 +114,33 @@ void hy_input_free(hy_input *in);
 
 /* t - k T, the time within period k, with k T carried exactly (an fma gives
  * the product's rounding error), so it is as accurate as t itself for any k:
- * no error grows with the number of periods.  The functions below that take
- * an input: in NULL, or an input with no pieces (freed), gives NaN (a size:
- * 0, with *tmod, *kcycles, *rmod NaN); p NULL gives NaN. */
+ * no error grows with the number of periods.  in NULL: NaN. */
 double hy_input_reduce(const hy_input *in, double t, double k);
 /* Width within which an output time counts as a breakpoint at time tb (or as
  * the current time of an integrator): 8 ulps of tb.  Both solvers serve such
  * a time on the piece that starts at the breakpoint. */
 double hy_input_snap(double tb);
 /* Index of the piece containing t modulo the period (t in [t0, t1)); tmod
- * and kcycles may be NULL (not written). */
+ * and kcycles may be NULL (not written).  in NULL or without pieces (freed):
+ * 0, with *tmod and *kcycles NaN. */
 size_t hy_input_piece_at(const hy_input *in, double t, double *tmod, double *kcycles);
 /* u(t), u̇(t), ü(t) for any t >= 0 (periodic extension): hy_input_u,
- * hy_input_du, hy_input_ddu. */
+ * hy_input_du, hy_input_ddu.  in NULL or without pieces (freed): NaN. */
 double hy_input_u(const hy_input *in, double t);
 double hy_input_du(const hy_input *in, double t);
 double hy_input_ddu(const hy_input *in, double t);
 /* u, u̇ on piece p at absolute time t inside it (no search): hy_piece_u,
- * hy_piece_du. */
+ * hy_piece_du.  p NULL: NaN. */
 double hy_piece_u(const hy_piece *p, double t);
 double hy_piece_du(const hy_piece *p, double t);
-/* ρ_u(t) = ∫_0^t |u̇| (Eq. 5), including whole periods. */
+/* ρ_u(t) = ∫_0^t |u̇| (Eq. 5), including whole periods.  in NULL or without
+ * pieces (freed): NaN. */
 double hy_input_rho(const hy_input *in, double t);
-/* ψ_u(ϱ) (Eqs. 9-10): the normalised input, slopes ±1, ϱ_T-periodic. */
+/* ψ_u(ϱ) (Eqs. 9-10): the normalised input, slopes ±1, ϱ_T-periodic.  in
+ * NULL or without pieces (freed): NaN. */
 double hy_input_psi(const hy_input *in, double rho);
-/* Index of the run containing ϱ modulo ρ_T; rmod may be NULL (not written). */
+/* Index of the run containing ϱ modulo ρ_T; rmod may be NULL (not written).
+ * in NULL or without pieces (freed): 0, with *rmod NaN. */
 size_t hy_input_run_at(const hy_input *in, double rho, double *rmod);
 
 #ifdef __cplusplus

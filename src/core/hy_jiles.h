@@ -94,8 +94,7 @@ int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double a
  * c in [0, 1), alpha >= 0 with alpha Ms/(3a) < 1 (else the anhysteretic curve
  * is not single-valued: spontaneous magnetisation), |m0| < Ms, rtol in
  * [1e-15, 1e-2], all finite; stepper NULL or a known name; variant known.
- * j must not be NULL (HY_EINVAL), here and in every function below that
- * returns a status. */
+ * j must not be NULL (HY_EINVAL). */
 int hy_jiles_validate(const hy_jiles *j, hy_error *err);
 
 /* HY_OK when an input reaching |H| = hmax and travelling `travel` A/m (the
@@ -107,7 +106,8 @@ int hy_jiles_validate(const hy_jiles *j, hy_error *err);
  * - travel / (HY_JILES_STEP_K k) <= the step budget: where the irreversible
  *   term acts, (M_an - M)/k pulls M onto M_an at rate 1/k, so the explicit
  *   stepper's stable step is a few k (measured: 1 to 4 k, saturation included)
- *   and the travel needs at least this many steps. */
+ *   and the travel needs at least this many steps.
+ * j must not be NULL (HY_EINVAL). */
 int hy_jiles_input_check(const hy_jiles *j, double hmax, double travel, hy_error *err);
 
 typedef struct hy_jiles_state {

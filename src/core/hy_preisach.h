@@ -97,8 +97,7 @@ typedef struct hy_preisach {
 /* The distributions' names in the order of their values, NULL-terminated
  * (the scene key model.pr_density lists them from here). */
 extern const char *const hy_preisach_dist_names[];
-/* Name of distribution d ("gaussian", "lorentzian"), NULL when unknown.
- * Every function below taking a model needs p not NULL (HY_EINVAL). */
+/* Name of distribution d ("gaussian", "lorentzian"), NULL when unknown. */
 const char *hy_preisach_dist_name(int d);
 /* Distribution by name; -1 when unknown or name is NULL. */
 int hy_preisach_dist_find(const char *name);
@@ -111,7 +110,8 @@ int hy_preisach_dist_find(const char *name);
  * NULL (HY_EINVAL). */
 int hy_preisach_init(hy_preisach *p, int dist, double ma, double sa, double mb, double sb, double ys,
                      hy_error *err);
-/* The usual symmetric density: α around +hc, β around -hc, both of width sigma. */
+/* The usual symmetric density: α around +hc, β around -hc, both of width
+ * sigma (as hy_preisach_init: p must not be NULL). */
 int hy_preisach_symmetric(hy_preisach *p, int dist, double hc, double sigma, double ys, hy_error *err);
 
 /* Fills p with the tabulated density t (weighted relays, hy_preisach_table.h;
@@ -125,7 +125,8 @@ int hy_preisach_tabulated(hy_preisach *p, const struct hy_preisach_table *t, hy_
 /* Puts the density on the triangle -hs <= β <= α <= hs (the relays outside
  * it are removed; the input saturates the model at |u| >= hs) and scales it
  * to ±ys there; hs = +∞ restores the half-plane.  HY_EINVAL when hs is not
- * > 0 or the triangle holds less than 1e-300 of the density's mass. */
+ * > 0 or the triangle holds less than 1e-300 of the density's mass, and for p
+ * NULL. */
 int hy_preisach_support(hy_preisach *p, double hs, hy_error *err);
 
 /* Everett function E(a, b) = K ∫∫_{b≤β≤α≤a} of the density, a >= b; a may be

@@ -52,12 +52,12 @@ typedef struct hy_rng {
     uint64_t s[4];
 } hy_rng;
 
-/* Seeds r from one 64-bit seed (r NULL: nothing done).  The two draws below:
- * r NULL gives NaN. */
+/* Seeds r from one 64-bit seed (r NULL: nothing done). */
 void hy_rng_seed(hy_rng *r, uint64_t seed);
-/* Next uniform double in [0, 1) with 53 random bits. */
+/* Next uniform double in [0, 1) with 53 random bits (r NULL: NaN). */
 double hy_rng_uniform(hy_rng *r);
-/* Next standard normal deviate (Box-Muller; one deviate per two uniforms). */
+/* Next standard normal deviate (Box-Muller; one deviate per two uniforms; r
+ * NULL: NaN). */
 double hy_rng_normal(hy_rng *r);
 
 /* Sets ms to the benchmark's 750 Hz, 8192 samples, 5-150 Hz, 50 N, seed 1
