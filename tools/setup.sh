@@ -23,7 +23,8 @@ set -eu
 cd "$(dirname "$0")/.."
 what=${1:-gallery}
 
-pkgs="gcc meson ninja-build pkg-config libgsl-dev libcairo2-dev libpng-dev libdeflate-dev fonts-dejavu-core fonts-stix parallel time libmicrohttpd-dev"
+pkgs="gcc meson ninja-build pkg-config python3-dev libgsl-dev libcairo2-dev libpng-dev libdeflate-dev fonts-dejavu-core fonts-stix parallel time libmicrohttpd-dev"
+# python3-dev: the Python package's compiled fast path hystviz._fast (without it, ctypes alone)
 # GL backends (OSMesa; EGL with Mesa's software device) and ffmpeg for the video tests
 pkgs="$pkgs libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 ffmpeg"
 # the fuzzer needs clang and its runtime libraries (libFuzzer, ASan, UBSan)

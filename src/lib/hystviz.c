@@ -5,6 +5,7 @@
 #include "hystviz.h"
 
 #include <errno.h>
+#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -35,6 +36,11 @@ struct hy_result {
 const char *hy_version(void)
 {
     return HY_VERSION;
+}
+
+void hy_gsl_quiet(void)
+{
+    gsl_set_error_handler_off();
 }
 
 static int finish(hy_result *r, int rc, hy_result **out)

@@ -62,6 +62,18 @@ extern "C" {
  * built with it); never NULL. */
 const char *hy_version(void);
 
+/* Turns GSL's error handler off (gsl_set_error_handler_off) so that a GSL
+ * error inside a library call comes back to the library (as a GSL status or
+ * an error bound it checks, then as the call's status) instead of GSL's
+ * default handler aborting the process.  GSL's
+ * handler is one per process: this changes it for the caller's own GSL calls
+ * too, which is why the library does not call it on its own behalf, except
+ * in fits (hy_fit_scene and a scene's fit turn it off, as hystviz fit does:
+ * their threads must not abort).  For hosts that cannot know GSL is inside
+ * (the Python package calls it when imported); a C program may as well keep
+ * its own handler.  Returns nothing; cannot fail. */
+void hy_gsl_quiet(void);
+
 /* A computed scene: its series, loops and figure. */
 typedef struct hy_result hy_result;
 

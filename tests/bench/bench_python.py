@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""bench_python.py SOURCE_ROOT LIB BENCH_LIB: the Python package's figures
+"""bench_python.py SOURCE_ROOT LIB BENCH_LIB BENCH_PYLOOP: the Python package's figures
 (issues 24, 35), printed in docs/PERFORMANCE.md's units:
   1. call overhead: hystviz.steady_loop (200 points) against a C program
      (bench_lib) making the call it makes, hy_steady_loop, on the same [model]
@@ -7,9 +7,15 @@
      medians of 7 rounds each of N calls, C and Python alternating round by
      round so that load on the machine falls on both; the difference is the
      figure (issue 35: goal <= 5 us);
-  2. the same in this process: the bare ctypes call (arguments made once)
-     against hystviz.steady_loop, single calls alternating, CPU time, median
-     of the differences: the wrapper's own cost;
+  2. the same in this process (the figure of issue 35's goal): C making
+     the same calls of hy_steady_loop in this process (BENCH_PYLOOP, a
+     module loaded with ctypes that loops in C) against hystviz.steady_loop
+     through its compiled fast path (hystviz._fast) and through ctypes (the
+     fallback without it), and the extension's call alone: CPU time per
+     call, 101 rounds of 100 calls each, alternating; the medians of the
+     round-by-round differences are the figures (the quartiles say how far
+     the load moved them); then the wrapper alone (the library call replaced
+     by a C function that returns at once);
   3. the steady loop of Example 4 as a researcher would compute it with
      SciPy: solve_ivp (RK45, rtol 1e-10, atol 1e-12) of the limit system
      dz/dt = u' - sigma0 |u'| z / g(0), y = sigma0 z, period after period
@@ -25,7 +31,7 @@ import time
 
 import numpy as np
 
-src, lib, bench_lib = sys.argv[1:4]
+src, lib, bench_lib, bench_pyloop = sys.argv[1:5]
 sys.path.insert(0, os.path.join(src, "src", "python"))
 os.environ["HYSTVIZ_LIB"] = lib
 import hystviz  # noqa: E402
@@ -46,12 +52,12 @@ def median_us(fn, n):
     return sorted(rounds)[3]
 
 
-def py_round():
-    """CPU microseconds per call of one round of N steady_loop calls."""
+def py_round(n=N):
+    """CPU microseconds per call of one round of n steady_loop calls."""
     c0 = cpu()
-    for _ in range(N):
+    for _ in range(n):
         hystviz.steady_loop(m, u, points=POINTS)
-    return (cpu() - c0) / N * 1e6
+    return (cpu() - c0) / n * 1e6
 
 
 load0 = os.getloadavg()[0]
@@ -91,37 +97,98 @@ if q_rounds:
 else:
     print("python call overhead (C with libquadmath) | SKIP: this NumPy did not load libquadmath")
 
-# the wrapper's own cost, in this process: the one C call through ctypes with
-# its arguments made once (arrays allocated once) against
-# hystviz.steady_loop, single calls alternating so that the process's caches
-# and the load fall on both alike; CPU time, median of the differences
-fn = hystviz._lib.steady_loop
-mt, ut = m.scene_text().encode(), u.scene_text().encode()
+# the same calls in this process (issue 35's figure): bench_pyloop's C loop
+# makes N calls of hy_steady_loop through the address of the library this
+# process loaded, with the same texts, points and one output buffer, timed by
+# the clock Python's rounds are timed with (CPU time; one ctypes call a
+# round); short rounds alternate C, Python (the compiled fast path where it
+# is built), Python through ctypes (the fallback), so that load falls on all
+# alike; the figure is the median of the round-by-round differences, with
+# their quartiles
+loop = ctypes.CDLL(bench_pyloop).bench_pyloop_steady
+loop.restype = ctypes.c_int
+loop.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t,
+                 ctypes.c_void_p, ctypes.c_size_t]
+fn_addr = ctypes.cast(hystviz._lib.lib.hy_steady_loop, ctypes.c_void_p).value
+mt, ut = m._btext, u._btext
 buf = np.empty(3 * (POINTS + 1))
-a = buf.ctypes.data
+fast = hystviz._steady_fast
 
 
-def c_call():
-    if fn(b"<python>/scene.scene", mt, ut, None, 0, POINTS, a, a + 8 * (POINTS + 1), a + 16 * (POINTS + 1), None):
+def c_round(n):
+    c0 = cpu()
+    if loop(fn_addr, hystviz._PY_NAME, mt, ut, POINTS, buf.ctypes.data, n):
         raise RuntimeError("hy_steady_loop failed")
+    return (cpu() - c0) / n * 1e6
+
+
+def bare_round(n):
+    """The extension's call alone: arguments made once, one buffer (no
+    wrapper, no array made per call)."""
+    c0 = cpu()
+    for _ in range(n):
+        fast(hystviz._PY_NAME, mt, ut, [], [], POINTS, buf)
+    return (cpu() - c0) / n * 1e6
+
+
+def ctypes_round(n):
+    hystviz._steady_fast = None  # the package's fallback path (as without the extension)
+    try:
+        return py_round(n)
+    finally:
+        hystviz._steady_fast = fast
+
+
+def extra(rounds, base):
+    """The median of the round-by-round differences and their quartiles."""
+    d = sorted(r - c for r, c in zip(rounds, base))
+    return f"{d[len(d) // 2]:.1f} us extra per call (quartiles {d[len(d) // 4]:.1f} to {d[3 * len(d) // 4]:.1f})"
+
+
+def wrapper_us(n=20000):
+    """hystviz.steady_loop's own CPU cost per call, fast path and ctypes: the
+    library call replaced by bench_pyloop_noop (same type, does nothing)."""
+    pyloop = ctypes.CDLL(bench_pyloop)
+    noop_addr = ctypes.cast(pyloop.bench_pyloop_noop, ctypes.c_void_p).value
+    noop = ctypes.CFUNCTYPE(ctypes.c_int)(noop_addr)
+    noop.argtypes, noop.restype = hystviz._steady.argtypes, ctypes.c_int
+    got, real = [], hystviz._steady
+    try:
+        if fast is not None:
+            fast.__self__.bind(noop_addr)
+        hystviz._steady = noop
+        got = [py_round(n) if fast is not None else float("nan"), ctypes_round(n)]
+    finally:
+        hystviz._steady = real
+        if fast is not None:
+            fast.__self__.bind(fn_addr)
+    return got
 
 
 load0 = os.getloadavg()[0]
-diffs, cs = [], []
-for _ in range(10 * N):
-    t0 = cpu()
-    c_call()
-    t1 = cpu()
-    hystviz.steady_loop(m, u, points=POINTS)
-    t2 = cpu()
-    diffs.append((t2 - t1) - (t1 - t0))
-    cs.append(t1 - t0)
-diffs.sort()
-cs.sort()
-print(f"python call overhead (in process) | steady_loop {POINTS} points against the bare ctypes call of "
-      f"hy_steady_loop, CPU time: {diffs[len(diffs) // 2] * 1e6:.1f} us extra per call (median of {len(diffs)} "
-      f"alternating pairs; the bare call {cs[len(cs) // 2] * 1e6:.1f} us; load {load0:.1f}-{os.getloadavg()[0]:.1f}; "
-      f"goal <= 5)")
+ROUNDS, NR = 101, 100
+cr, fr, br, tr = [], [], [], []
+for _ in range(ROUNDS):
+    cr.append(c_round(NR))
+    if fast is not None:
+        fr.append(py_round(NR))
+        br.append(bare_round(NR))
+    tr.append(ctypes_round(NR))
+load = f"load {load0:.1f}-{os.getloadavg()[0]:.1f}"
+if fast is not None:
+    path = (f"its compiled fast path (hystviz._fast) {extra(fr, cr)} (goal <= 5); the extension's call alone "
+            f"(arguments made once, one buffer) {extra(br, cr)}")
+else:
+    path = "its compiled fast path: SKIP, hystviz._fast not built"
+print(f"python call overhead (same process) | steady_loop {POINTS} points against C making the same calls in the "
+      f"same process (tests/bench/bench_pyloop.c), CPU time per call, {ROUNDS} rounds of {NR} calls alternating "
+      f"({load}; C median {sorted(cr)[ROUNDS // 2]:.1f} us, rounds {min(cr):.1f}-{max(cr):.1f}): Python through "
+      f"{path}; through ctypes (the fallback) {extra(tr, cr)}")
+w_fast, w_ct = wrapper_us()
+print(f"python call overhead (wrapper alone) | steady_loop with the library call replaced by a C function that "
+      f"returns at once (bench_pyloop_noop), CPU time per call of 20000: {w_fast:.2f} us through the fast path, "
+      f"{w_ct:.2f} us through ctypes (load {os.getloadavg()[0]:.1f}): the rest of the extra above is the call's "
+      f"own slowdown next to Python's work (caches), not the wrapper's")
 
 try:
     from scipy.integrate import solve_ivp

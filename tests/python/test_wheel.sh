@@ -43,13 +43,18 @@ case "$whl" in
     *-linux_*.whl) ok "pip wheel . made $(basename "$whl") (platform-tagged)" ;;
     *) bad "wheel not tagged for the platform: $whl" ;;
 esac
-(cd "$T/src" && "$py" - "$whl") <<'PYEOF' && ok "the wheel carries libhystviz.so.0, every module, the scenes and LICENSE" || bad "wheel contents"
+(cd "$T/src" && "$py" - "$whl") <<'PYEOF' && ok "the wheel carries libhystviz.so.0, every module, hystviz._fast, the scenes and LICENSE" || bad "wheel contents"
 import os, sys, zipfile
 names = set(zipfile.ZipFile(sys.argv[1]).namelist())
 mods = {f"hystviz/{m}" for m in os.listdir("src/python/hystviz") if m.endswith(".py")} if os.path.isdir("src/python/hystviz") else set()
 need = {"hystviz/libhystviz.so.0", "hystviz/__init__.py", "hystviz/py.typed", "hystviz/scenes/style.scene",
         "hystviz/scenes/fig15_minor_loop_ex4.scene"} | mods
 missing = need - names
+# the compiled fast path, where this Python has its headers (python3-dev)
+import importlib.machinery, sysconfig
+if os.path.exists(os.path.join(sysconfig.get_paths()["include"], "Python.h")):
+    fast = {"hystviz/_fast" + importlib.machinery.EXTENSION_SUFFIXES[0]}
+    missing |= fast - names
 lic = any(n.endswith(".dist-info/LICENSE") for n in names)
 print("missing:", sorted(missing) or "none", "| LICENSE:", lic)
 sys.exit(0 if not missing and lic else 1)
@@ -68,6 +73,8 @@ assert pkg.startswith(os.path.join(tmp, "venv")), f"hystviz imported from {pkg}"
 assert os.path.dirname(_lib.lib._name) == pkg, f"libhystviz loaded from {_lib.lib._name}, not the package"
 # found without ctypes.util.find_library (it runs ldconfig and a compiler)
 print("find_library", "ctypes.util" in sys.modules or "subprocess" in sys.modules)
+fast = hystviz._steady_fast
+print("fast", fast is not None and os.path.dirname(fast.__self__.__file__) == pkg)
 m = hystviz.Model("lugre", sigma0=6)
 u = hystviz.Input("bimodal", umin1=0, umin2=0.5, umax1=1, umax2=1.5)
 print(f"area {hystviz.minor_loops(m, u)[0].area:.17g}")
@@ -83,6 +90,12 @@ case "$out" in *"area 0.19910737569481529"*) ok "Fig. 15's minor-loop area from 
     *) bad "minor-loop area from the venv" ;; esac
 case "$out" in *"find_library False"*) ok "import hystviz loads no ctypes.util nor subprocess" ;;
     *) bad "import hystviz imported ctypes.util or subprocess" ;; esac
+if "$py" -c 'import os, sys, sysconfig; sys.exit(not os.path.exists(os.path.join(sysconfig.get_paths()["include"], "Python.h")))'; then
+    case "$out" in *"fast True"*) ok "steady_loop through the wheel's compiled fast path (hystviz._fast in the package)" ;;
+        *) bad "the wheel's hystviz._fast not used" ;; esac
+else
+    echo "(no Python.h for $py: no hystviz._fast to check)"
+fi
 case "$out" in *"png True svg True"*) ok "render(scene_path('fig15_minor_loop_ex4')) writes a PNG and an SVG" ;;
     *) bad "render from the venv" ;; esac
 finish python-wheel

@@ -684,6 +684,7 @@ def _scene_bytes(model_text: str, inp_text: str, series: str, points: int, cycle
 # steady_loop's hot path: the library call, numpy.empty, the scene name of the
 # package's calls, the range of [compute] points (the schema's)
 _steady = _lib.steady_loop
+_steady_fast = _lib.fast_steady_loop
 _empty = np.empty
 _addressof = ctypes.addressof
 _c_char = ctypes.c_char
@@ -1070,14 +1071,19 @@ def steady_loop(model: Model, input: Input, points: int = 2000) -> Tuple[Array, 
     if not _POINTS_MIN < n <= _POINTS_MAX + 1:  # before the arrays are made
         raise SceneError(1, f"steady_loop: 'points' in [compute] must be {_POINTS_MIN} to {_POINTS_MAX}, got {n - 1}")
     out = _empty((3, n))
-    a = _addressof(_c_char.from_buffer(out))  # type: ignore[arg-type]  # (a buffer; a third of out.ctypes.data)
-    sets = model._sets + input._sets
     # err NULL: the message is asked for only where the call failed (the same
     # call again, as the library is deterministic), so the usual call makes no
-    # hy_error; the GIL is released for the call
-    rc = _steady(_PY_NAME, model._btext, input._btext, _carray(sets) if sets else None, len(sets), n - 1,
-                 a, a + 8 * n, a + 16 * n, None)
+    # hy_error; the GIL is released for the call.  The compiled fast path
+    # where _lib found it (src/python/_fast.c), else ctypes
+    if _steady_fast is not None:
+        rc = _steady_fast(_PY_NAME, model._btext, input._btext, model._sets, input._sets, n - 1, out)
+    else:
+        a = _addressof(_c_char.from_buffer(out))  # type: ignore[arg-type]  # (a buffer; a third of out.ctypes.data)
+        sets = model._sets + input._sets
+        rc = _steady(_PY_NAME, model._btext, input._btext, _carray(sets) if sets else None, len(sets), n - 1,
+                     a, a + 8 * n, a + 16 * n, None)
     if rc:
+        sets = model._sets + input._sets
         err = _lib.Error()
         _steady(_PY_NAME, model._btext, input._btext, _carray(sets) if sets else None, len(sets), n - 1,
                 None, None, None, ctypes.byref(err))

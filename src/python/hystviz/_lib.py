@@ -13,6 +13,7 @@ Where the library is looked up, first found wins:
 from __future__ import annotations
 
 import ctypes
+import importlib.machinery
 import os
 
 TYPE_CHECKING = False  # typing for the checker only (hystviz/__init__.py says why)
@@ -20,13 +21,13 @@ if TYPE_CHECKING:
     from typing import Any, List
 
 _here = os.path.dirname(os.path.abspath(__file__))
+_env = os.environ.get("HYSTVIZ_LIB")
 SONAME = "libhystviz.so.0"
 
 
 def _load() -> ctypes.CDLL:
     tried: List[str] = []
-    env = os.environ.get("HYSTVIZ_LIB")
-    cands = [env] if env else []
+    cands = [_env] if _env else []
     own = os.path.join(_here, SONAME)
     if os.path.exists(own):
         cands.append(own)
@@ -110,6 +111,38 @@ schema_json = _sig("hy_schema_json", ctypes.c_void_p)
 # address as it is, no pointer object made per call)
 steady_loop = _sig("hy_steady_loop", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p,
                    ctypes.POINTER(ctypes.c_char_p), _sz, _sz, _vp, _vp, _vp, _E)
+
+
+def _load_fast() -> Any:
+    """steady_loop's compiled fast path: hystviz._fast's steady_loop bound
+    to this module's library, or None (then the package calls through
+    ctypes).  The one place that chooses; first found wins:
+      1. hystviz._fast in this package's directory (a wheel, `meson install`);
+      2. _fast beside the library $HYSTVIZ_LIB names by a path (the build
+         tree: meson builds it beside libhystviz);
+    none where $HYSTVIZ_CTYPES is 1 (the ctypes path forced: tests compare
+    the two), or where the module is not built or not loadable by this
+    Python (another version's ABI)."""
+    if os.environ.get("HYSTVIZ_CTYPES") == "1":
+        return None
+    # (a bare name in $HYSTVIZ_LIB is the loader's search: no directory of its own)
+    dirs = [_here] + ([os.path.dirname(os.path.abspath(_env))] if _env and os.sep in _env else [])
+    for d in dirs:
+        for suffix in importlib.machinery.EXTENSION_SUFFIXES:
+            path = os.path.join(d, "_fast" + suffix)
+            if os.path.exists(path):
+                try:
+                    loader = importlib.machinery.ExtensionFileLoader("hystviz._fast", path)
+                    spec = importlib.machinery.ModuleSpec("hystviz._fast", loader, origin=path)
+                    mod = loader.create_module(spec)
+                    loader.exec_module(mod)
+                except ImportError:
+                    continue
+                mod.bind(ctypes.cast(lib.hy_steady_loop, ctypes.c_void_p).value)
+                return mod.steady_loop
+    return None
+
+
 boucwen_run = _sig("hy_boucwen_run", ctypes.c_int, _dp, _sz, ctypes.c_double, _dp, _E)
 fit_scene = _sig("hy_fit_scene", ctypes.c_int, ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p), _sz,
                  ctypes.POINTER(ctypes.c_char_p), _sz, _sz, ctypes.c_ulonglong, ctypes.c_int,
@@ -125,6 +158,11 @@ table_parse = _sig("hy_table_parse", ctypes.c_int, ctypes.c_char_p, _sz, ctypes.
 table_free = _sig("hy_table_free", None, ctypes.POINTER(Table))
 table_area = _sig("hy_table_area", ctypes.c_double, _dp, _dp, _sz)
 table_max_bytes = 64 << 20  # HY_TABLE_MAX_BYTES
+fast_steady_loop = _load_fast()
+# GSL's default handler aborts the process on a GSL error; off, every GSL
+# status comes back through the library call as a SceneError (hy_gsl_quiet in
+# hystviz.h says why the library leaves it to its host)
+_sig("hy_gsl_quiet", None)()
 libc = ctypes.CDLL(None)
 libc.free.argtypes = [ctypes.c_void_p]
 libc.free.restype = None
