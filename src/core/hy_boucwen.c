@@ -3,15 +3,20 @@
  * rules of Eqs. (4)-(5) with Newton-Raphson on the implicit step (seeds/001,
  * Section 3); Table 2 from Table 1; the benchmark's synthesis (Section 4). */
 #include "hy_boucwen.h"
+
+#include "hy_args.h"
 #include "hy_signal.h"
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 void hy_boucwen_params_default(hy_boucwen_params *p)
 {
+    if (!p)
+        return;
     p->m = 2.0;
     p->c = 10.0;
     p->k = 5e4;
@@ -51,6 +56,7 @@ static double param_get(const hy_boucwen_params *p, size_t i)
 int hy_boucwen_params_validate(const hy_boucwen_params *p, hy_error *err)
 {
     static const char *what[] = {"finite", "finite and >= 0", "finite and > 0"};
+    HY_NONNULL(err, p);
     for (size_t i = 0; i < NPARAM; i++) {
         double v = param_get(p, i);
         int d = param_table[i].domain;
@@ -70,6 +76,8 @@ int hy_boucwen_params_validate(const hy_boucwen_params *p, hy_error *err)
 int hy_boucwen_params_set(hy_boucwen_params *p, const char *name, double value,
                           hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, name);
     for (size_t i = 0; i < NPARAM; i++) {
         if (strcmp(name, param_table[i].name) == 0) {
             *param_ptr(p, i) = value;
@@ -84,6 +92,8 @@ int hy_boucwen_params_set(hy_boucwen_params *p, const char *name, double value,
 int hy_boucwen_params_parse(hy_boucwen_params *p, const char *assignment,
                             hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, assignment);
     const char *eq = strchr(assignment, '=');
     char name[32];
     size_t len = eq ? (size_t)(eq - assignment) : 0;
@@ -105,6 +115,8 @@ int hy_boucwen_params_parse(hy_boucwen_params *p, const char *assignment,
 int hy_boucwen_table2(const hy_boucwen_params *p, hy_boucwen_modal *out,
                       hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, out);
     int rc = hy_boucwen_params_validate(p, err);
     if (rc)
         return rc;
@@ -116,6 +128,8 @@ int hy_boucwen_table2(const hy_boucwen_params *p, hy_boucwen_modal *out,
 
 void hy_newmark_opts_default(hy_newmark_opts *o)
 {
+    if (!o)
+        return;
     o->a = 0.5;
     o->b = 0.25;
     o->c = 0.5;
@@ -126,6 +140,7 @@ void hy_newmark_opts_default(hy_newmark_opts *o)
 
 int hy_newmark_opts_validate(const hy_newmark_opts *o, hy_error *err)
 {
+    HY_NONNULL(err, o);
     if (!(isfinite(o->a) && o->a > 0 && o->a <= 1))
         return hy_error_set(err, HY_EINVAL, "Newmark constant a = %g must be in (0, 1]", o->a);
     if (!(isfinite(o->b) && o->b > 0 && o->b <= 0.5))
@@ -182,6 +197,8 @@ static double zdot(const hy_boucwen_params *p, double v, double z)
 void hy_boucwen_state_init(const hy_boucwen_params *p, double u0, double y0,
                            double v0, double z0, hy_boucwen_state *s)
 {
+    if (!p || !s)
+        return;
     s->t = 0.0;
     s->y = y0;
     s->v = v0;
@@ -263,6 +280,9 @@ static int step_failed(const hy_newmark_opts *o, double h, const hy_boucwen_stat
 int hy_boucwen_step(const hy_boucwen_params *p, const hy_newmark_opts *o,
                     double h, double u1, hy_boucwen_state *s, hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, o);
+    HY_NONNULL(err, s);
     double r[2];
     int rc = p->nu == 1.0 ? step_nu(p, 1, o, h, u1, s, r) : step_nu(p, 0, o, h, u1, s, r);
     return rc ? step_failed(o, h, s, r, err) : HY_OK;
@@ -327,6 +347,10 @@ int hy_boucwen_simulate(const hy_boucwen_params *p, const hy_newmark_opts *o,
                         double h, const double *u, size_t n, const double *ic,
                         double *y, double *z, hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, o);
+    HY_NONNULL(err, u);
+    HY_NONNULL(err, y);
     return simulate(p, o, h, u, n, n, ic, y, z, err);
 }
 
@@ -334,6 +358,12 @@ int hy_boucwen_synth(const hy_boucwen_params *p, const hy_newmark_opts *o,
                      double fs, size_t r, int staged, const double *u_int,
                      size_t n_int, double *y_out, hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, o);
+    HY_NONNULL(err, u_int);
+    HY_NONNULL(err, y_out);
+    if (n_int > SIZE_MAX / sizeof(double))
+        return hy_error_set(err, HY_EINVAL, "%zu samples do not fit in memory", n_int);
     if (!(isfinite(fs) && fs > 0))
         return hy_error_set(err, HY_EINVAL, "sampling rate fs = %g must be finite and > 0", fs);
     if (r < 1)
@@ -364,12 +394,18 @@ int hy_boucwen_synth_periodic_kept(const hy_boucwen_params *p, const hy_newmark_
                                    int staged, const double *u_period, size_t n_period, size_t first,
                                    size_t periods, double *y_out, hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, o);
+    HY_NONNULL(err, u_period);
+    HY_NONNULL(err, y_out);
     if (periods < 1 || first >= periods)
         return hy_error_set(err, HY_EINVAL, "number of periods must be >= 1 (and more than the %zu dropped)", first);
     if (r < 1 || n_period == 0 || n_period % r)
         return hy_error_set(err, HY_EINVAL,
                             "period length %zu must be a positive multiple of "
                             "the upsampling factor %zu", n_period, r);
+    if (periods >= SIZE_MAX / sizeof(double) / n_period / 2)
+        return hy_error_set(err, HY_EINVAL, "%zu periods of %zu samples do not fit in memory", periods, n_period);
     if (!(isfinite(fs) && fs > 0))
         return hy_error_set(err, HY_EINVAL, "sampling rate fs = %g must be finite and > 0", fs);
     /* The record is periods + 1 periods long (the extra one keeps the

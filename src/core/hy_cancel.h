@@ -31,7 +31,8 @@ typedef struct hy_cancel {
 } hy_cancel;
 
 /* 1 when c (may be NULL: never) says stop; asks it once every `every`
- * calls (*tick, not NULL, counts them; start it at 0). */
+ * calls (*tick counts them; start it at 0).  c NULL, c->fn NULL or tick
+ * NULL: 0 (never stops); every 0 asks on every call. */
 int hy_cancel_poll(const hy_cancel *c, unsigned *tick, unsigned every);
 
 /* HY_ECANCEL with the message every stopped loop gives. */

@@ -91,10 +91,14 @@ static int read_all(int fd, size_t max, char **buf, size_t *len)
 int hy_file_read(const char *path, size_t max, char **buf, size_t *len, char **real, char *why,
                  size_t whysz)
 {
-    *buf = NULL;
-    *len = 0;
+    if (buf)
+        *buf = NULL;
+    if (len)
+        *len = 0;
     if (real)
         *real = NULL;
+    if (!path || !buf || !len)
+        return fail(why, whysz, EINVAL, "%s must not be NULL", !path ? "path" : !buf ? "buf" : "len");
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
     if (fd < 0) {
         int e = errno;
@@ -146,8 +150,12 @@ int hy_file_read(const char *path, size_t max, char **buf, size_t *len, char **r
 const char *hy_file_shown(const char *p, size_t n, size_t max, char *buf, size_t size)
 {
     size_t o = 0, i = 0;
+    if (!buf)
+        return NULL;
     if (!size)
         return buf;
+    if (!p)
+        n = 0;
     buf[0] = '\0';
     for (; i < n && i < max; i++) {
         unsigned char c = (unsigned char)p[i];
@@ -164,7 +172,7 @@ const char *hy_file_shown(const char *p, size_t n, size_t max, char *buf, size_t
 const char *hy_file_excerpt(const char *p, size_t n, char *buf, size_t size)
 {
     size_t m = 0;
-    while (m < n && p[m] != '\n' && p[m] != '\r')
+    while (p && m < n && p[m] != '\n' && p[m] != '\r')
         m++;
     return hy_file_shown(p, m, 20, buf, size);
 }
@@ -221,9 +229,13 @@ int hy_file_installed(int what, const char *sub, char *buf, size_t size)
     char self[4096], root[4096];
     const char *rel = what == HY_INSTALLED_LIBEXEC ? HY_LIBEXECDIR_REL : HY_DATADIR_REL "/hystviz";
     const char *configured = what == HY_INSTALLED_LIBEXEC ? HY_LIBEXECDIR : HY_DATA_DIR;
-    int have = exe_dir(self, sizeof self) == 0;
+    if (!buf && size)
+        return -1;
     if (size)
         buf[0] = '\0';
+    if (!sub || !size)
+        return -1;
+    int have = exe_dir(self, sizeof self) == 0;
     /* the build tree: the helper program next to the running one */
     if (have && what == HY_INSTALLED_LIBEXEC && (size_t)snprintf(buf, size, "%s/%s", self, sub) < size &&
         exists(buf, 0))

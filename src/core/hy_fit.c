@@ -6,6 +6,8 @@
  * item 2; docs/FIT.md). */
 #include "hy_fit.h"
 
+#include "hy_args.h"
+
 #include "hy_signal.h"
 
 #include <gsl/gsl_blas.h>
@@ -16,6 +18,7 @@
 #include <float.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -40,6 +43,8 @@ static void s_bounds(const hy_fit_param *q, double *sl, double *sh)
 double hy_fit_theta(const hy_fit_param *q, double u)
 {
     double sl, sh, s;
+    if (!q)
+        return NAN;
     s_bounds(q, &sl, &sh);
     if (isfinite(sl) && isfinite(sh))
         s = sl + (sh - sl) / (1 + exp(-u));
@@ -58,6 +63,8 @@ double hy_fit_theta(const hy_fit_param *q, double u)
 
 double hy_fit_u(const hy_fit_param *q, double theta)
 {
+    if (!q)
+        return NAN;
     double sl, sh, s = q->scale == HY_FIT_LOG ? log(theta) : theta;
     s_bounds(q, &sl, &sh);
     if (isfinite(sl) && isfinite(sh)) {
@@ -109,6 +116,8 @@ static int check_problem(const hy_fit_problem *pb, hy_error *err)
 
 void hy_fit_opts_default(hy_fit_opts *o)
 {
+    if (!o)
+        return;
     memset(o, 0, sizeof *o);
     o->seed = 1;
     o->jobs = 1;
@@ -124,6 +133,12 @@ void hy_fit_opts_default(hy_fit_opts *o)
 
 int hy_fit_design(size_t p, const hy_fit_param *param, size_t npts, uint64_t seed, double *x, hy_error *err)
 {
+    if (p && !param)
+        return hy_error_set(err, HY_EINVAL, "%s: param must not be NULL (p is %zu)", __func__, p);
+    if (p && npts && !x)
+        return hy_error_set(err, HY_EINVAL, "%s: x must not be NULL (p and npts are not 0)", __func__);
+    if (p && npts > SIZE_MAX / sizeof *x / p)
+        return hy_error_set(err, HY_EINVAL, "%s: %zu x %zu values do not fit in memory", __func__, npts, p);
     for (size_t j = 0; j < p; j++) {
         int rc = check_param(&param[j], j, err);
         double sl, sh;
@@ -792,6 +807,10 @@ int hy_fit_evaluate(const hy_fit_problem *pb, const double *theta, hy_fit_result
     struct timespec t0;
     gsl_set_error_handler_off(); /* every GSL status here is checked; none may abort */
     clock_gettime(CLOCK_MONOTONIC, &t0);
+    HY_NONNULL(err, res);
+    result_zero(res);
+    HY_NONNULL(err, pb);
+    HY_NONNULL(err, theta);
     int rc = check_problem(pb, err);
     if (!rc)
         rc = result_alloc(res, pb->n, pb->p, err);
@@ -836,9 +855,10 @@ static int starts_alloc(const hy_fit_problem *pb, const hy_fit_opts *o, hy_fit_r
 static int check_opts(const hy_fit_opts *o, hy_error *err)
 {
     if (!(o->fd_step > 0 && o->fd_step < 0.1) || !(o->xtol >= 0) || !(o->gtol >= 0) || !(o->ftol >= 0) ||
+        !isfinite(o->xtol) || !isfinite(o->gtol) || !isfinite(o->ftol) ||
         o->max_iter < 1 || o->jobs < 1)
         return hy_error_set(err, HY_EINVAL, "fit: options need 0 < fd_step < 0.1, tolerances >= 0, "
-                            "max_iter >= 1 and jobs >= 1");
+                            "max_iter >= 1 and jobs >= 1 (tolerances finite)");
     return HY_OK;
 }
 
@@ -847,7 +867,10 @@ int hy_fit_run(const hy_fit_problem *pb, const hy_fit_opts *o, hy_fit_result *re
     struct timespec t0;
     gsl_set_error_handler_off(); /* before any thread starts: every GSL status is checked */
     clock_gettime(CLOCK_MONOTONIC, &t0);
+    HY_NONNULL(err, res);
     result_zero(res);
+    HY_NONNULL(err, pb);
+    HY_NONNULL(err, o);
     int rc = check_problem(pb, err);
     if (!rc)
         rc = check_opts(o, err);
@@ -902,6 +925,8 @@ int hy_fit_run(const hy_fit_problem *pb, const hy_fit_opts *o, hy_fit_result *re
 
 void hy_fit_report(FILE *f, const hy_fit_problem *pb, const hy_fit_result *res)
 {
+    if (!f || !pb || !pb->param || !res || !res->theta || !res->se || !res->unident)
+        return;
     size_t p = res->p;
     fprintf(f, "%-12s %16s %12s %25s  %s\n", "parameter", "estimate", "std error", "95% interval", "");
     for (size_t j = 0; j < p; j++) {

@@ -157,7 +157,7 @@ typedef struct hy_fit_result {
     hy_fit_start *start;           /* nstarts records */
 } hy_fit_result;
 
-/* Sets o to the defaults above. */
+/* Sets o to the defaults above (o NULL: nothing done). */
 void hy_fit_opts_default(hy_fit_opts *o);
 
 /* Fits pb.  On success res holds the estimate and statistics (release with
@@ -165,31 +165,39 @@ void hy_fit_opts_default(hy_fit_opts *o);
  * option (bounds, start outside them, design over infinite bounds); HY_ENUM:
  * every start failed (res is zeroed and needs no free; the message quotes
  * the first start's reason); HY_ECANCEL: o->cancel said stop (res zeroed);
- * HY_ENOMEM. */
+ * HY_ENOMEM.  pb, o and res must not be NULL (HY_EINVAL; res, when given, is
+ * zeroed), nor pb->param and pb->f; pb->start and pb->data may be NULL (as
+ * said there); a tolerance that is not finite is refused (HY_EINVAL). */
 int hy_fit_run(const hy_fit_problem *pb, const hy_fit_opts *o, hy_fit_result *res, hy_error *err);
 
 /* The statistics of hy_fit_run at a given theta, without fitting (res->start
- * empty, nstarts 0).  Errors as hy_fit_run; HY_ENUM if an evaluation fails. */
+ * empty, nstarts 0).  Errors as hy_fit_run; HY_ENUM if an evaluation fails.
+ * pb, theta and res must not be NULL (HY_EINVAL). */
 int hy_fit_evaluate(const hy_fit_problem *pb, const double *theta, hy_fit_result *res, hy_error *err);
 
-/* Releases what a successful hy_fit_run / hy_fit_evaluate allocated; res is zeroed. */
+/* Releases what a successful hy_fit_run / hy_fit_evaluate allocated; res is
+ * zeroed (res may be NULL: nothing done). */
 void hy_fit_result_free(hy_fit_result *res);
 
 /* npts points (row-major, npts x p) of a scrambled Latin hypercube over the
  * bounds (on log theta for log parameters), deterministic for seed: in each
  * coordinate, one point in each of npts equal strata, at a uniform position
- * in it, strata permuted independently.  HY_EINVAL on an infinite bound. */
+ * in it, strata permuted independently.  HY_EINVAL on an infinite bound, and
+ * when param (p > 0) or x (p and npts > 0) is NULL or npts x p values do not
+ * fit in memory. */
 int hy_fit_design(size_t p, const hy_fit_param *param, size_t npts, uint64_t seed, double *x, hy_error *err);
 
 /* The bound map of one parameter: theta from the unbounded u (hy_fit_theta),
  * and back (hy_fit_u)
  * (a theta on a finite bound maps to the u of a point 1e-12 of the range
- * inside it). */
+ * inside it).  q NULL: NaN. */
 double hy_fit_theta(const hy_fit_param *q, double u);
 double hy_fit_u(const hy_fit_param *q, double theta);
 
 /* Prints the estimates, errors, intervals, flags, correlations |r| > 0.95,
- * condition number and fit statistics as a table. */
+ * condition number and fit statistics as a table.  f, pb (with its param) and
+ * res (a result of a successful call) must not be NULL: else nothing is
+ * printed. */
 void hy_fit_report(FILE *f, const hy_fit_problem *pb, const hy_fit_result *res);
 
 #ifdef __cplusplus

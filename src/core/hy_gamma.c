@@ -3,6 +3,8 @@
  * piecewise-linear inputs, and of system (16) with its first-order filter. */
 #include "hy_gamma.h"
 
+#include "hy_args.h"
+
 #include <math.h>
 #include "hy_limit.h"
 
@@ -13,8 +15,22 @@ int hy_gamma_check(double gamma, hy_error *err)
     return HY_OK;
 }
 
+int hy__solve_args(const char *fn, const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n,
+                   const double *y, const char *yname, hy_error *err)
+{
+    const char *null = !m ? "m" : !in ? "in" : !y ? yname : !t && n ? "t" : NULL;
+    if (null)
+        return hy_error_set(err, HY_EINVAL, "%s: %s must not be NULL", fn, null);
+    if (!hy__input_ready(in))
+        return hy_error_set(err, HY_EINVAL, "%s: in " HY__NO_PIECES, fn);
+    int rc = hy_model_validate(m, err);
+    return rc ? rc : hy_gamma_check(gamma, err);
+}
+
 int hy_gamma_exact_applies(const hy_model *m, const hy_input *in)
 {
+    if (!m || !hy__input_ready(in))
+        return 0;
     return in->all_linear || hy_model_rate_independent(m);
 }
 
@@ -93,8 +109,8 @@ static void eval_piece(const hy_model *m, const hy_piece *p, const coef *c, doub
 int hy_gamma_exact(const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n,
                    double *y_out, double *z_out, hy_error *err)
 {
-    int rc;
-    if ((rc = hy_model_validate(m, err)) || (rc = hy_gamma_check(gamma, err)))
+    int rc = hy__solve_args(__func__, m, in, gamma, t, n, y_out, "y_out", err);
+    if (rc)
         return rc;
     if (!hy_gamma_exact_applies(m, in))
         return hy_error_set(err, HY_EUNSUP,

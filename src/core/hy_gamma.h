@@ -25,13 +25,15 @@
 extern "C" {
 #endif
 
-/* Nonzero when hy_gamma_exact can solve this model/input pair. */
+/* Nonzero when hy_gamma_exact can solve this model/input pair (0 when m or
+ * in is NULL, or in has no pieces). */
 int hy_gamma_exact_applies(const hy_model *m, const hy_input *in);
 
 /* y_γ at the n ascending times t[] (>= 0) from z(0) = m->x0; z_out (may be
  * NULL) receives the internal state.  At a breakpoint the value on the piece
  * starting there is given (ż may jump).  HY_EUNSUP when it does not apply,
- * HY_EINVAL for a bad model, γ or unsorted times. */
+ * HY_EINVAL for a bad model, γ or unsorted times.  m, in (with pieces) and
+ * y_out must not be NULL, nor t when n > 0 (HY_EINVAL). */
 int hy_gamma_exact(const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n,
                    double *y_out, double *z_out, hy_error *err);
 

@@ -3,6 +3,7 @@
  * normalised input ψ_u (Eqs. 9-10) of seed 000. */
 #include "hy_input.h"
 
+#include "hy_args.h"
 #include "hy_file.h"
 #include "hy_os.h"
 
@@ -40,6 +41,8 @@ static void piece_halfcos(hy_piece *p, double t0, double t1, double u0, double u
 
 double hy_piece_u(const hy_piece *p, double t)
 {
+    if (!p)
+        return NAN;
     if (t <= p->t0)
         return p->u0;
     if (t >= p->t1)
@@ -56,6 +59,8 @@ double hy_piece_u(const hy_piece *p, double t)
 
 double hy_piece_du(const hy_piece *p, double t)
 {
+    if (!p)
+        return NAN;
     if (p->shape == HY_PIECE_LINEAR)
         return (p->u1 - p->u0) / (p->t1 - p->t0);
     return p->amp * p->omega * cos(p->omega * t + p->phase);
@@ -186,6 +191,9 @@ static int check_finite_arr(const char *what, const double *v, size_t n, hy_erro
 int hy_input_pwl(hy_input *in, const double *t, const double *u, size_t n, hy_error *err)
 {
     int rc;
+    HY_NONNULL(err, in);
+    HY_NONNULL(err, t);
+    HY_NONNULL(err, u);
     if (n < 3)
         return hy_error_set(err, HY_EINVAL, "a piecewise-linear input needs at least 3 points (got %zu)", n);
     if ((rc = check_finite_arr("t", t, n, err)) || (rc = check_finite_arr("u", u, n, err)))
@@ -214,6 +222,8 @@ int hy_input_multimodal(hy_input *in, const double *e, size_t n, const double *t
                         hy_error *err)
 {
     int rc;
+    HY_NONNULL(err, in);
+    HY_NONNULL(err, e);
     if (n < 2 || n % 2)
         return hy_error_set(err, HY_EINVAL, "a multimodal input needs an even number (>= 2) of alternating extrema (got %zu)", n);
     if ((rc = check_finite_arr("extrema", e, n, err)))
@@ -324,6 +334,7 @@ static int bimodal_pieces(hy_piece p[4], double umin1, double umin2, double umax
 int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, double umax2,
                      const double t[4], int shape, hy_error *err)
 {
+    HY_NONNULL(err, in);
     memset(in, 0, sizeof *in);
     hy_piece *p = malloc(4 * sizeof *p);
     if (!p)
@@ -342,6 +353,9 @@ int hy_input_bimodal(hy_input *in, double umin1, double umin2, double umax1, dou
 int hy_input_bimodal_buf(hy_input *in, hy_piece pieces[4], hy_run runs[4], double umin1, double umin2, double umax1,
                          double umax2, const double t[4], int shape, hy_error *err)
 {
+    HY_NONNULL(err, in);
+    HY_NONNULL(err, pieces);
+    HY_NONNULL(err, runs);
     int rc = bimodal_pieces(pieces, umin1, umin2, umax1, umax2, t, shape, err);
     if (!rc && finish_runs(in, pieces, runs, 4))
         rc = hy_error_set(err, HY_EINVAL, NO_RISE_FALL);
@@ -350,6 +364,7 @@ int hy_input_bimodal_buf(hy_input *in, hy_piece pieces[4], hy_run runs[4], doubl
 
 int hy_input_triangle(hy_input *in, double umin, double umax, double period, hy_error *err)
 {
+    HY_NONNULL(err, in);
     if (!isfinite(umin) || !isfinite(umax) || !(umin < umax))
         return hy_error_set(err, HY_EINVAL, "triangle needs finite min < max (got %g, %g)", umin, umax);
     if (!isfinite(period) || !(period > 0))
@@ -363,6 +378,7 @@ int hy_input_triangle(hy_input *in, double umin, double umax, double period, hy_
 
 int hy_input_sine(hy_input *in, double amp, double period, double offset, hy_error *err)
 {
+    HY_NONNULL(err, in);
     if (!isfinite(amp) || amp == 0)
         return hy_error_set(err, HY_EINVAL, "sine amplitude must be finite and nonzero (got %g)", amp);
     if (!isfinite(period) || !(period > 0))
@@ -515,6 +531,13 @@ int hy_input_text(hy_input *in, const char *text, size_t len, const char *name, 
 {
     double *t = NULL, *u = NULL;
     size_t n = 0;
+    HY_NONNULL(err, in);
+    if (!text && len)
+        return hy_error_set(err, HY_EINVAL, "hy_input_text: text must not be NULL (len is not 0)");
+    if (!text)
+        text = ""; /* len 0 */
+    if (!name)
+        name = "input";
     int rc = read_samples(text, len, name, quote, &t, &u, &n, err);
     if (rc)
         return rc;
@@ -530,6 +553,8 @@ int hy_input_text(hy_input *in, const char *text, size_t len, const char *name, 
 
 int hy_input_file(hy_input *in, const char *path, hy_error *err)
 {
+    HY_NONNULL(err, in);
+    HY_NONNULL(err, path);
     char *buf;
     size_t len;
     int rc = hy_file_load(path, HY_INPUT_FILE_MAX, &buf, &len, "cannot open input file", err);
@@ -567,6 +592,8 @@ static long parse_list(const char *s, double *out, size_t max, hy_error *err, co
 
 int hy_input_parse(hy_input *in, const char *spec, hy_error *err)
 {
+    HY_NONNULL(err, in);
+    HY_NONNULL(err, spec);
     const char *colon = strchr(spec, ':');
     if (!colon)
         return hy_error_set(err, HY_EINVAL, "input '%s' needs the form KIND:VALUES (bimodal, multimodal, triangle, sine, pwl, file)", spec);
@@ -635,6 +662,8 @@ int hy_input_parse(hy_input *in, const char *spec, hy_error *err)
 
 double hy_input_reduce(const hy_input *in, double t, double k)
 {
+    if (!in)
+        return NAN;
     double hi = k * in->period;
     double lo = fma(k, in->period, -hi); /* k T = hi + lo exactly */
     return (t - hi) - lo;                /* t - hi is exact when t is in period k (Sterbenz) */
@@ -645,8 +674,20 @@ double hy_input_snap(double tb)
     return 8 * DBL_EPSILON * fmax(fabs(tb), DBL_MIN);
 }
 
+int hy__input_ready(const hy_input *in)
+{
+    return in && in->npieces && in->pieces && in->nruns && in->runs;
+}
+
 size_t hy_input_piece_at(const hy_input *in, double t, double *tmod, double *kcycles)
 {
+    if (!hy__input_ready(in)) {
+        if (tmod)
+            *tmod = NAN;
+        if (kcycles)
+            *kcycles = NAN;
+        return 0;
+    }
     double k = floor(t / in->period);
     double tm = hy_input_reduce(in, t, k);
     if (tm >= in->period) { /* rounding */
@@ -676,6 +717,8 @@ size_t hy_input_piece_at(const hy_input *in, double t, double *tmod, double *kcy
 
 double hy_input_u(const hy_input *in, double t)
 {
+    if (!hy__input_ready(in))
+        return NAN;
     double tm;
     size_t i = hy_input_piece_at(in, t, &tm, NULL);
     return hy_piece_u(&in->pieces[i], tm);
@@ -683,6 +726,8 @@ double hy_input_u(const hy_input *in, double t)
 
 double hy_input_du(const hy_input *in, double t)
 {
+    if (!hy__input_ready(in))
+        return NAN;
     double tm;
     size_t i = hy_input_piece_at(in, t, &tm, NULL);
     return hy_piece_du(&in->pieces[i], tm);
@@ -690,6 +735,8 @@ double hy_input_du(const hy_input *in, double t)
 
 double hy_input_ddu(const hy_input *in, double t)
 {
+    if (!hy__input_ready(in))
+        return NAN;
     double tm;
     size_t i = hy_input_piece_at(in, t, &tm, NULL);
     return piece_ddu(&in->pieces[i], tm);
@@ -697,6 +744,8 @@ double hy_input_ddu(const hy_input *in, double t)
 
 double hy_input_rho(const hy_input *in, double t)
 {
+    if (!hy__input_ready(in))
+        return NAN;
     double tm, k;
     size_t i = hy_input_piece_at(in, t, &tm, &k);
     const hy_piece *p = &in->pieces[i];
@@ -705,6 +754,11 @@ double hy_input_rho(const hy_input *in, double t)
 
 size_t hy_input_run_at(const hy_input *in, double rho, double *rmod)
 {
+    if (!hy__input_ready(in)) {
+        if (rmod)
+            *rmod = NAN;
+        return 0;
+    }
     double k = floor(rho / in->rho_T);
     double r = rho - k * in->rho_T;
     if (r >= in->rho_T)
@@ -726,6 +780,8 @@ size_t hy_input_run_at(const hy_input *in, double rho, double *rmod)
 
 double hy_input_psi(const hy_input *in, double rho)
 {
+    if (!hy__input_ready(in))
+        return NAN;
     double r;
     const hy_run *run = &in->runs[hy_input_run_at(in, rho, &r)];
     double d = r - run->rho0;

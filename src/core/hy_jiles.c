@@ -6,6 +6,8 @@
  * reversal and at every switch of that guard, within a step budget. */
 #include "hy_jiles.h"
 
+#include "hy_args.h"
+
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 #include <math.h>
@@ -54,6 +56,7 @@ double hy_langevin_d(double x)
 int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double alpha, hy_error *err)
 {
     hy_jiles t = {ms, a, k, c, alpha, 0.0, HY_JILES_RTOL, NULL, HY_JILES_JA1986, 0, NULL};
+    HY_NONNULL(err, j);
     int rc = hy_jiles_validate(&t, err);
     if (!rc)
         *j = t;
@@ -63,6 +66,7 @@ int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double a
 int hy_jiles_validate(const hy_jiles *j, hy_error *err)
 {
     const char *names[] = {"Ms (saturation magnetisation)", "a (anhysteretic shape)", "k (pinning)"};
+    HY_NONNULL(err, j);
     const double v[] = {j->ms, j->a, j->k};
     for (int i = 0; i < 3; i++)
         if (!isfinite(v[i]) || !(v[i] > 0))
@@ -96,6 +100,7 @@ int hy_jiles_validate(const hy_jiles *j, hy_error *err)
 
 int hy_jiles_input_check(const hy_jiles *j, double hmax, double travel, hy_error *err)
 {
+    HY_NONNULL(err, j);
     double scale = fmax(j->ms, fmax(j->a, j->k)), bound = HY_JILES_HMAX * scale;
     unsigned long budget = j->max_steps ? j->max_steps : HY_JILES_MAX_STEPS;
     if (!isfinite(hmax) || !isfinite(travel))
@@ -118,13 +123,15 @@ int hy_jiles_input_check(const hy_jiles *j, double hmax, double travel, hy_error
 
 void hy_jiles_state_init(const hy_jiles *j, hy_jiles_state *s, double H0)
 {
+    if (!j || !s)
+        return;
     s->H = H0;
     s->M = j->m0;
     s->hb = 0;
     s->steps = 0;
 }
 
-double hy_jiles_b(const hy_jiles_state *s) { return HY_MU0 * (s->H + s->M); }
+double hy_jiles_b(const hy_jiles_state *s) { return s ? HY_MU0 * (s->H + s->M) : NAN; }
 
 /* ---- right-hand side in H: y[0] = M/Ms, y[1] = ∫ (H + M)/Ms dH ----------- */
 
@@ -181,6 +188,8 @@ static int ja_rhs(double H, const double y[], double f[], void *params)
 
 double hy_jiles_dmdh(const hy_jiles *j, double H, double M, int delta)
 {
+    if (!j)
+        return NAN;
     ja_ctx c = {j, delta > 0 ? 1.0 : -1.0, 0, 0, 0, 0, 0};
     double y[2] = {M / j->ms, 0}, f[2];
     c.guard = !(guard_g(&c, H, y[0]) > 0);
@@ -380,6 +389,8 @@ static int stretch(const hy_jiles *j, ja_solver *sv, hy_jiles_state *s, double H
 
 int hy_jiles_apply(const hy_jiles *j, hy_jiles_state *s, double H, hy_jiles_stats *stats, hy_error *err)
 {
+    HY_NONNULL(err, j);
+    HY_NONNULL(err, s);
     int rc = hy_jiles_input_check(j, H, 0, err);
     if (rc)
         return rc;
@@ -413,6 +424,9 @@ static int feed(void *ctx, double u, double *y, hy_error *err)
 int hy_jiles_drive(const hy_jiles *j, const hy_input *in, const double *t, size_t n, double *M, double *B,
                    hy_jiles_stats *stats, hy_error *err)
 {
+    HY_NONNULL(err, j);
+    HY_INPUT_READY(err, in);
+    HY_NONNULL_N(err, t, n);
     int rc = hy_jiles_validate(j, err);
     if (rc || n == 0)
         return rc;
@@ -478,6 +492,8 @@ static int descend_root(const hy_jiles *j, const hy_jiles_state *top, double lo,
 
 int hy_jiles_major_loop(const hy_jiles *j, double hmax, hy_jiles_loop *out, hy_error *err)
 {
+    HY_NONNULL(err, j);
+    HY_NONNULL(err, out);
     int rc = hy_jiles_validate(j, err);
     if (rc)
         return rc;
@@ -516,6 +532,9 @@ int hy_jiles_major_loop(const hy_jiles *j, double hmax, hy_jiles_loop *out, hy_e
 int hy_jiles_minor_loop(const hy_jiles *j, const hy_input *in, hy_minor_loop *out, hy_error *err)
 {
     double e[4];
+    HY_NONNULL(err, j);
+    HY_INPUT_READY(err, in);
+    HY_NONNULL(err, out);
     int rc = hy_jiles_validate(j, err);
     if (rc || (rc = hy_rateind_bimodal(in, e, err)))
         return rc;

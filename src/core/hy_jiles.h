@@ -87,12 +87,14 @@ double hy_langevin(double x);
 /* L'(x) = 1/x² - 1/sinh² x, accurate for every x (L'(0) = 1/3). */
 double hy_langevin_d(double x);
 
-/* Fills j (m0 = 0, rtol = 1e-13, variant 1986, default step budget) and validates it. */
+/* Fills j (m0 = 0, rtol = 1e-13, variant 1986, default step budget) and validates it
+ * (j must not be NULL: HY_EINVAL; j is written only when valid). */
 int hy_jiles_init(hy_jiles *j, double ms, double a, double k, double c, double alpha, hy_error *err);
 /* HY_OK, or HY_EINVAL with a message naming the parameter: Ms, a, k > 0,
  * c in [0, 1), alpha >= 0 with alpha Ms/(3a) < 1 (else the anhysteretic curve
  * is not single-valued: spontaneous magnetisation), |m0| < Ms, rtol in
- * [1e-15, 1e-2], all finite; stepper NULL or a known name; variant known. */
+ * [1e-15, 1e-2], all finite; stepper NULL or a known name; variant known.
+ * j must not be NULL (HY_EINVAL). */
 int hy_jiles_validate(const hy_jiles *j, hy_error *err);
 
 /* HY_OK when an input reaching |H| = hmax and travelling `travel` A/m (the
@@ -104,7 +106,8 @@ int hy_jiles_validate(const hy_jiles *j, hy_error *err);
  * - travel / (HY_JILES_STEP_K k) <= the step budget: where the irreversible
  *   term acts, (M_an - M)/k pulls M onto M_an at rate 1/k, so the explicit
  *   stepper's stable step is a few k (measured: 1 to 4 k, saturation included)
- *   and the travel needs at least this many steps. */
+ *   and the travel needs at least this many steps.
+ * j must not be NULL (HY_EINVAL). */
 int hy_jiles_input_check(const hy_jiles *j, double hmax, double travel, hy_error *err);
 
 typedef struct hy_jiles_state {
@@ -118,9 +121,9 @@ typedef struct hy_jiles_stats {
     unsigned long steps, fails, nfev, switches, stretches;
 } hy_jiles_stats;
 
-/* The state M = j->m0 at field H0. */
+/* The state M = j->m0 at field H0 (j or s NULL: nothing done). */
 void hy_jiles_state_init(const hy_jiles *j, hy_jiles_state *s, double H0);
-/* B = μ0 (H + M) of a state, in tesla. */
+/* B = μ0 (H + M) of a state, in tesla (s NULL: NaN). */
 double hy_jiles_b(const hy_jiles_state *s);
 
 /* Moves the field monotonically from s->H to H (any direction; δ is its
@@ -135,17 +138,19 @@ double hy_jiles_b(const hy_jiles_state *s);
  * stiff stretch; the message says "step budget" and gives the stretch's
  * length against k);
  * HY_ENUM when GSL fails (message gives H and the reason).  On error s is
- * left at the last good step. */
+ * left at the last good step.  j and s must not be NULL (HY_EINVAL). */
 int hy_jiles_apply(const hy_jiles *j, hy_jiles_state *s, double H, hy_jiles_stats *stats, hy_error *err);
 
 /* dM/dH of the variant j->variant at field H, magnetisation M (A/m), moving
  * up (delta > 0) or down (delta < 0), with the guard δ_M = [(M_an - M) δ > 0];
- * NaN where the denominator vanishes (no physical solution there). */
+ * NaN where the denominator vanishes (no physical solution there), and for j
+ * NULL. */
 double hy_jiles_dmdh(const hy_jiles *j, double H, double M, int delta);
 
 /* M and B (either may be NULL) at ascending times t[0..n-1] for an input of
  * hy_input.h read as H(t) in A/m, from M = j->m0 at H = u(0); every extremum
- * of the input between samples is a restart.  stats (may be NULL) is added to. */
+ * of the input between samples is a restart.  stats (may be NULL) is added to.
+ * j and in (with pieces) must not be NULL, nor t when n > 0 (HY_EINVAL). */
 int hy_jiles_drive(const hy_jiles *j, const hy_input *in, const double *t, size_t n, double *M, double *B,
                    hy_jiles_stats *stats, hy_error *err);
 
@@ -161,13 +166,15 @@ typedef struct hy_jiles_loop {
     int cycles;     /* cycles driven                                             */
 } hy_jiles_loop;
 /* HY_EINVAL for hmax <= 0 or a model error, HY_ENUM when the cycle does not
- * settle in 100 periods or a root is not bracketed. */
+ * settle in 100 periods or a root is not bracketed; j and out must not be
+ * NULL (HY_EINVAL). */
 int hy_jiles_major_loop(const hy_jiles *j, double hmax, hy_jiles_loop *out, hy_error *err);
 
 /* The steady minor loop of a bimodal input (hy_rateind.h), the input read as
  * H in A/m and the output as B: periods are driven from M = m0 at u(0) until
  * M at u_min,1 changes by < 1e-11 Ms per period (HY_ENUM after 400); the loop
- * does not close exactly (no return-point memory): y_close != y_start. */
+ * does not close exactly (no return-point memory): y_close != y_start.  j, in
+ * and out must not be NULL (HY_EINVAL). */
 int hy_jiles_minor_loop(const hy_jiles *j, const hy_input *in, hy_minor_loop *out, hy_error *err);
 
 #ifdef __cplusplus

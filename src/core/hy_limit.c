@@ -3,6 +3,8 @@
  * (seed 000, Theorem 2, Eqs. (4)-(8), (10)-(14)), in overflow-free form. */
 #include "hy_limit.h"
 
+#include "hy_args.h"
+
 #include <math.h>
 #include <stdlib.h>
 
@@ -109,6 +111,11 @@ static double steady_y0(const hy_input *in, double sigma0, double g0, double a, 
 
 int hy_steady_init_buf(hy_steady *st, const hy_model *m, const hy_input *in, double *y_run, hy_error *err)
 {
+    HY_NONNULL(err, st);
+    st->y_run = NULL;
+    HY_NONNULL(err, m);
+    HY_INPUT_READY(err, in);
+    HY_NONNULL(err, y_run);
     int rc = hy_model_validate(m, err);
     if (rc)
         return rc;
@@ -142,6 +149,10 @@ int hy_steady_init_buf(hy_steady *st, const hy_model *m, const hy_input *in, dou
 
 int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_error *err)
 {
+    HY_NONNULL(err, st);
+    st->y_run = NULL;
+    HY_NONNULL(err, m);
+    HY_INPUT_READY(err, in);
     double *y_run = malloc((in->nruns + 1) * sizeof *y_run);
     if (!y_run) {
         st->y_run = NULL;
@@ -164,8 +175,15 @@ void hy_steady_free(hy_steady *st)
     }
 }
 
+int hy__steady_ready(const hy_steady *st)
+{
+    return st && st->y_run && hy__input_ready(st->in);
+}
+
 double hy_steady_at_rho(const hy_steady *st, double rho)
 {
+    if (!hy__steady_ready(st))
+        return NAN;
     double r;
     size_t i = hy_input_run_at(st->in, rho, &r);
     const hy_run *run = &st->in->runs[i];
@@ -177,6 +195,8 @@ double hy_steady_at_rho(const hy_steady *st, double rho)
 
 double hy_steady_at(const hy_steady *st, double t)
 {
+    if (!hy__steady_ready(st))
+        return NAN;
     double tm;
     size_t i = hy_input_piece_at(st->in, t, &tm, NULL);
     const hy_piece *p = &st->in->pieces[i];
@@ -185,6 +205,8 @@ double hy_steady_at(const hy_steady *st, double t)
 
 double hy_ystar_k(const hy_steady *st, double x0, double k, double t)
 {
+    if (!hy__steady_ready(st))
+        return NAN;
     double tm;
     size_t i = hy_input_piece_at(st->in, t, &tm, NULL);
     if (t >= st->in->period) /* t = T exactly: the end of cycle k */
@@ -201,6 +223,8 @@ double hy_ystar_k(const hy_steady *st, double x0, double k, double t)
 
 double hy_ystar_at(const hy_steady *st, double x0, double t)
 {
+    if (!hy__steady_ready(st))
+        return NAN;
     double k = floor(t / st->in->period);
     double tm = hy_input_reduce(st->in, t, k); /* k T carried exactly */
     if (tm < 0 && k > 0)
@@ -212,6 +236,8 @@ double hy_ystar_at(const hy_steady *st, double x0, double t)
 
 void hy_steady_sample(const hy_steady *st, size_t n, double *u_out, double *y_out)
 {
+    if (!hy__steady_ready(st) || !y_out || n < 2)
+        return;
     const hy_input *in = st->in;
     double h = in->rho_T / (double)(n - 1);
     double Eh = exp(-st->a * h);
@@ -241,6 +267,7 @@ void hy_steady_sample(const hy_steady *st, size_t n, double *u_out, double *y_ou
 int hy_theorem_a_init(hy_theorem_a *th, double sigma0, double g0, double umin1, double umin2,
                       double umax1, double umax2, hy_error *err)
 {
+    HY_NONNULL(err, th);
     hy_input in;
     int rc = hy_input_bimodal(&in, umin1, umin2, umax1, umax2, NULL, HY_SHAPE_LINEAR, err);
     if (rc)
@@ -292,12 +319,16 @@ static int theorem_piece(const hy_theorem_a *th, double *rho)
 
 double hy_theorem_a_eval(const hy_theorem_a *th, double rho)
 {
+    if (!th || !isfinite(rho))
+        return NAN;
     int i = theorem_piece(th, &rho);
     return hy_limit_step(th->a, th->g0, th->y[i], (i % 2) ? -1 : +1, rho - th->rho[i]);
 }
 
 double hy_theorem_a_psi(const hy_theorem_a *th, double rho)
 {
+    if (!th || !isfinite(rho))
+        return NAN;
     int i = theorem_piece(th, &rho);
     const double base[4] = {th->umin1, th->umax1, th->umin2, th->umax2};
     return base[i] + ((i % 2) ? -1 : +1) * (rho - th->rho[i]);
@@ -305,6 +336,8 @@ double hy_theorem_a_psi(const hy_theorem_a *th, double rho)
 
 double hy_theorem_a_printed(const hy_theorem_a *th, double rho, int statement_signs)
 {
+    if (!th || !isfinite(rho))
+        return NAN;
     double a = th->a, g0 = th->g0;
     const double *q = th->rho;
     double y = g0 * exp(-a * q[4]) / (1 - exp(-a * q[4])) *

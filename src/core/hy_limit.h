@@ -47,26 +47,33 @@ typedef struct hy_steady {
 } hy_steady;
 
 /* Computes y° at every extremum of the input (fixed point of the period map).
- * Returns HY_OK, HY_EINVAL (bad model) or HY_ENOMEM. */
+ * Returns HY_OK, HY_EINVAL (bad model) or HY_ENOMEM.  st, m and in must not
+ * be NULL, and in must have runs (HY_EINVAL; st->y_run NULL when st is not). */
 int hy_steady_init(hy_steady *st, const hy_model *m, const hy_input *in, hy_error *err);
 /* As hy_steady_init, y° written into y_run (nruns + 1 doubles, the caller's:
  * st->y_run points there; do not hy_steady_free st): no allocation, the same
- * numbers (hystviz sweep's closed-form kernel).  HY_OK or HY_EINVAL. */
+ * numbers (hystviz sweep's closed-form kernel).  HY_OK or HY_EINVAL (also
+ * for st, m, in or y_run NULL, as hy_steady_init). */
 int hy_steady_init_buf(hy_steady *st, const hy_model *m, const hy_input *in, double *y_run, hy_error *err);
 /* Frees the steady state's table (st may be NULL; a second call is harmless). */
 void hy_steady_free(hy_steady *st);
 
-/* y°(ϱ): the steady state along the normalised input ψ_u (Eqs. 11-14). */
+/* y°(ϱ): the steady state along the normalised input ψ_u (Eqs. 11-14).  st
+ * NULL, or one not initialised by hy_steady_init (no table or input): NaN. */
 double hy_steady_at_rho(const hy_steady *st, double rho);
-/* y°_u(t) = y°(ρ_u(t)) for any t (periodic). */
+/* y°_u(t) = y°(ρ_u(t)) for any t (periodic).  st NULL or not initialised:
+ * NaN. */
 double hy_steady_at(const hy_steady *st, double t);
-/* y*_u(t) from the initial state z(0) = x0 (Eq. 4), any t >= 0. */
+/* y*_u(t) from the initial state z(0) = x0 (Eq. 4), any t >= 0.  st NULL or
+ * not initialised: NaN. */
 double hy_ystar_at(const hy_steady *st, double x0, double t);
-/* y*_{u,k}(t) = y*_u(t + kT), t in [0, T], without forming t + kT. */
+/* y*_{u,k}(t) = y*_u(t + kT), t in [0, T], without forming t + kT.  st NULL
+ * or not initialised: NaN. */
 double hy_ystar_k(const hy_steady *st, double x0, double k, double t);
 
 /* y° on n >= 2 points ϱ_j = j ρ_T/(n-1); u_out (ψ_u) may be NULL.  Within a
- * run one multiply-add per point, re-anchored exactly every 64 points. */
+ * run one multiply-add per point, re-anchored exactly every 64 points.  st or
+ * y_out NULL, or n < 2: nothing written. */
 void hy_steady_sample(const hy_steady *st, size_t n, double *u_out, double *y_out);
 
 /* Theorem A for a bimodal input, evaluated stably: rho[0..5] = ϱ0..ϱ5 and
@@ -78,16 +85,18 @@ typedef struct hy_theorem_a {
     double y[5];
 } hy_theorem_a;
 /* Fills th from Theorem A for LuGre's σ0 and g0 and the bimodal extrema;
- * HY_EINVAL (th unspecified) when Definition 1 fails. */
+ * HY_EINVAL (th unspecified) when Definition 1 fails or th is NULL. */
 int hy_theorem_a_init(hy_theorem_a *th, double sigma0, double g0, double umin1, double umin2,
                       double umax1, double umax2, hy_error *err);
-/* y°(ϱ) from Eqs. (11)-(14) (signs alternate: + on rising pieces). */
+/* y°(ϱ) from Eqs. (11)-(14) (signs alternate: + on rising pieces).  th NULL,
+ * or rho not finite: NaN. */
 double hy_theorem_a_eval(const hy_theorem_a *th, double rho);
-/* ψ_u(ϱ) of Theorem A (Eq. 10). */
+/* ψ_u(ϱ) of Theorem A (Eq. 10).  th NULL, or rho not finite: NaN. */
 double hy_theorem_a_psi(const hy_theorem_a *th, double rho);
 /* The closed form exactly as printed (e^{+aϱ} factors): overflows to inf/nan
  * for stiff parameters.  statement_signs != 0 uses the statement's "−" on every
- * piece instead of the proof's alternating signs.  For tests and reports only. */
+ * piece instead of the proof's alternating signs.  For tests and reports only.
+ * th NULL, or rho not finite: NaN. */
 double hy_theorem_a_printed(const hy_theorem_a *th, double rho, int statement_signs);
 
 #ifdef __cplusplus

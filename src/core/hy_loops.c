@@ -4,7 +4,10 @@
  * generalisation), with exact areas ∫ y° dψ. */
 #include "hy_loops.h"
 
+#include "hy_args.h"
+
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -67,6 +70,8 @@ static void collect_arc(void *ctx, const hy_arc *a)
 size_t hy_steady_arcs(const hy_steady *st, double rho0, double rho1, hy_arc *arcs, size_t max)
 {
     struct arc_buf b = {arcs, max, 0};
+    if (!hy__steady_ready(st) || !isfinite(rho0) || !isfinite(rho1) || (!arcs && max))
+        return 0;
     return for_each_arc(st, rho0, rho1, collect_arc, &b);
 }
 
@@ -80,6 +85,8 @@ static void add_area(void *ctx, const hy_arc *a)
 double hy_steady_area(const hy_steady *st, double rho0, double rho1)
 {
     struct area_acc acc = {st, 0};
+    if (!hy__steady_ready(st) || !isfinite(rho0) || !isfinite(rho1))
+        return NAN;
     for_each_arc(st, rho0, rho1, add_area, &acc);
     return acc.sum;
 }
@@ -133,6 +140,8 @@ static find_parts find_layout(size_t nruns)
 
 size_t hy_loops_work_size(size_t nruns)
 {
+    if (nruns >= SIZE_MAX / 8 / sizeof(hy_loop))
+        return 0;
     return find_layout(nruns).total;
 }
 
@@ -284,23 +293,50 @@ static int find(const hy_input *in, const hy_steady *st, hy_loops *out, void *wo
     return HY_OK;
 }
 
+/* The refusal of find's arguments (hy_loops.h): out, and st (need_st) or in. */
+static int check(const char *fn, const hy_input *in, const hy_steady *st, int need_st, hy_loops *out, hy_error *err)
+{
+    if (out)
+        memset(out, 0, sizeof *out);
+    const char *bad = !out                                     ? "out must not be NULL"
+                      : need_st && !st                         ? "st must not be NULL"
+                      : need_st && !hy__steady_ready(st)       ? "st is not an initialised steady state"
+                      : !need_st && !in                        ? "in must not be NULL"
+                      : !need_st && !hy__input_ready(in)       ? "in has no pieces (not made, or freed)"
+                                                               : NULL;
+    return bad ? hy_error_set(err, HY_EINVAL, "%s: %s", fn, bad) : HY_OK;
+}
+
 int hy_loops_find(const hy_steady *st, hy_loops *out, hy_error *err)
 {
+    int rc = check(__func__, NULL, st, 1, out, err);
+    if (rc)
+        return rc;
     return find(st->in, st, out, NULL, err);
 }
 
 int hy_loops_find_buf(const hy_steady *st, hy_loops *out, void *work, hy_error *err)
 {
+    int rc = check(__func__, NULL, st, 1, out, err);
+    if (rc)
+        return rc;
     return find(st->in, st, out, work, err);
 }
 
 int hy_loops_pair(const hy_input *in, hy_loops *out, hy_error *err)
 {
+    int rc = check(__func__, in, NULL, 0, out, err);
+    if (rc)
+        return rc;
     return find(in, NULL, out, NULL, err);
 }
 
 int hy_loops_nest(hy_loops *out, hy_error *err)
 {
+    HY_NONNULL(err, out);
+    if (out->nminor && !out->minor)
+        return hy_error_set(err, HY_EINVAL, "%s: out->minor must not be NULL (out->nminor is %zu)", __func__,
+                            out->nminor);
     size_t *stack = malloc((out->nminor ? out->nminor : 1) * sizeof *stack);
     if (!stack)
         return hy_error_set(err, HY_ENOMEM, "out of memory for loop nesting");

@@ -80,6 +80,8 @@ const hy_model_type *const hy_model_dahl_filter = &dahl_filter_type;
 void hy_model_lugre_init(hy_model *m, double sigma0, double sigma1, double fc, double fs,
                     double vs, double beta)
 {
+    if (!m)
+        return;
     memset(m, 0, sizeof *m);
     m->type = hy_model_lugre;
     m->sigma0 = sigma0;
@@ -93,6 +95,8 @@ void hy_model_lugre_init(hy_model *m, double sigma0, double sigma1, double fc, d
 
 void hy_model_dahl_init(hy_model *m, double rho, double fc)
 {
+    if (!m)
+        return;
     memset(m, 0, sizeof *m);
     m->type = hy_model_dahl;
     m->rho = rho;
@@ -106,6 +110,8 @@ void hy_model_dahl_init(hy_model *m, double rho, double fc)
 
 void hy_model_dahl_filter_init(hy_model *m, double rho, double fc, double tau)
 {
+    if (!m)
+        return;
     hy_model_dahl_init(m, rho, fc);
     m->type = hy_model_dahl_filter;
     m->tau = tau;
@@ -121,6 +127,8 @@ int hy_model_validate(const hy_model *m, hy_error *err)
 const hy_model_type *hy_model_type_find(const char *name)
 {
     const hy_model_type *all[] = {hy_model_dahl, hy_model_lugre, hy_model_dahl_filter};
+    if (!name)
+        return NULL;
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         if (strcmp(all[i]->name, name) == 0)
             return all[i];
@@ -129,6 +137,8 @@ const hy_model_type *hy_model_type_find(const char *name)
 
 double hy_model_g(const hy_model *m, double v)
 {
+    if (!m)
+        return NAN;
     if (m->type != hy_model_lugre || m->fs == m->fc)
         return m->fc;
     double r = fabs(v / m->vs);
@@ -139,16 +149,22 @@ double hy_model_g(const hy_model *m, double v)
 
 double hy_model_g0(const hy_model *m)
 {
+    if (!m)
+        return NAN;
     return m->type == hy_model_lugre ? m->fs : m->fc;
 }
 
 double hy_model_a(const hy_model *m)
 {
+    if (!m)
+        return NAN;
     return m->sigma0 / hy_model_g0(m);
 }
 
 int hy_model_rate_independent(const hy_model *m)
 {
+    if (!m || !m->type)
+        return 0;
     if (m->type->has_filter)
         return 0;
     if (m->type == hy_model_dahl)

@@ -45,26 +45,32 @@ struct hy_model {
     double yf0;                        /* initial filter output (dahl-filter)*/
 };
 
-/* Fill m with a LuGre model; f is zero (set m->sigma2 for f(v) = σ2 v). */
+/* Fill m with a LuGre model; f is zero (set m->sigma2 for f(v) = σ2 v).
+ * The three _init functions: m NULL, nothing done; the numbers are checked
+ * by hy_model_validate, not here. */
 void hy_model_lugre_init(hy_model *m, double sigma0, double sigma1, double fc,
                     double fs, double vs, double beta);
-/* Fill m with a Dahl model y = Fc w, ẇ = ρ(u̇ - |u̇| w). */
+/* Fill m with a Dahl model y = Fc w, ẇ = ρ(u̇ - |u̇| w) (m NULL: nothing done). */
 void hy_model_dahl_init(hy_model *m, double rho, double fc);
-/* Fill m with system (16): Dahl(ρ, Fc) then ẏ = (x - y)/τ in unscaled time. */
+/* Fill m with system (16): Dahl(ρ, Fc) then ẏ = (x - y)/τ in unscaled time
+ * (m NULL: nothing done). */
 void hy_model_dahl_filter_init(hy_model *m, double rho, double fc, double tau);
 
-/* Returns HY_OK, or HY_EINVAL with a message naming the bad parameter. */
+/* Returns HY_OK, or HY_EINVAL with a message naming the bad parameter (m
+ * NULL or without a type: HY_EINVAL). */
 int hy_model_validate(const hy_model *m, hy_error *err);
-/* Finds a model type by name; NULL when unknown. */
+/* Finds a model type by name; NULL when unknown or name is NULL. */
 const hy_model_type *hy_model_type_find(const char *name);
 
-/* g(v) for the model (constant for Dahl). */
+/* g(v) for the model (constant for Dahl); m NULL: NaN. */
 double hy_model_g(const hy_model *m, double v);
-/* g(0), the only value of g the γ → ∞ limit depends on. */
+/* g(0), the only value of g the γ → ∞ limit depends on; m NULL: NaN. */
 double hy_model_g0(const hy_model *m);
-/* a = σ0 / g(0), the decay rate of y* per unit of input variation. */
+/* a = σ0 / g(0), the decay rate of y* per unit of input variation; m NULL:
+ * NaN. */
 double hy_model_a(const hy_model *m);
-/* Nonzero when y_γ does not depend on γ (g constant, σ1 = σ2 = 0, no filter). */
+/* Nonzero when y_γ does not depend on γ (g constant, σ1 = σ2 = 0, no filter);
+ * 0 for m NULL or without a type. */
 int hy_model_rate_independent(const hy_model *m);
 
 #ifdef __cplusplus

@@ -5,6 +5,8 @@
  * where it stops, restarts and counts periods reads best in one place). */
 #include "hy_ode.h"
 
+#include "hy_args.h"
+
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 #include <math.h>
@@ -218,6 +220,8 @@ static int check_opts(const hy_ode_opts *o, hy_error *err)
         return hy_error_set(err, HY_EINVAL, "ODE tolerances must be finite, >= 0 and not both 0 (rtol = %g, atol = %g)", o->rtol, o->atol);
     if (!isfinite(o->h0) || o->h0 < 0)
         return hy_error_set(err, HY_EINVAL, "ODE first step h0 must be finite and >= 0 (got %g)", o->h0);
+    if (!o->trace_t != !o->trace_y)
+        return hy_error_set(err, HY_EINVAL, "ODE trace: trace_t and trace_y must be both NULL or both given");
     return HY_OK;
 }
 
@@ -233,6 +237,10 @@ static void serve_at_breakpoint(const ctx *c, double tb, const double y[], const
 double hy_ode_work_estimate(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                             double t_end, double *stiff)
 {
+    if (stiff)
+        *stiff = NAN;
+    if (!m || !m->type || !hy__input_ready(in) || !o || !isfinite(t_end))
+        return NAN;
     const stepper_entry *e = stepper_find(o->stepper);
     int kind = 0, order = 0; /* 1: explicit; 2: one-step implicit of this order */
     if (e && e->kind == HY_ODE_EXPLICIT)
@@ -266,6 +274,15 @@ double hy_ode_work_estimate(const hy_model *m, const hy_input *in, double gamma,
 int hy_ode_check_work(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o, double t_end,
                       hy_error *err)
 {
+    HY_NONNULL(err, m);
+    HY_INPUT_READY(err, in);
+    HY_NONNULL(err, o);
+    if (!isfinite(o->work_limit) || o->work_limit < 0)
+        return hy_error_set(err, HY_EINVAL, "the ODE work_limit must be a finite number >= 0 (got %g)", o->work_limit);
+    if (!isfinite(t_end))
+        return hy_error_set(err, HY_EINVAL, "%s: t_end must be finite (got %g)", __func__, t_end);
+    if (!m->type)
+        return hy_model_validate(m, err); /* "model has no type" */
     double stiff, work = o->work_limit > 0 ? hy_ode_work_estimate(m, in, gamma, o, t_end, &stiff) : 0;
     if (work > o->work_limit)
         return hy_error_set(err, HY_EINVAL,
@@ -287,13 +304,14 @@ static double first_step(const hy_ode_opts *o, double len)
     return o->h0 > 0 ? o->h0 : o->dense ? len : 1e-3 * len;
 }
 
-/* HY_OK when hy_ode_solve's arguments are valid (the model, gamma, the
- * options, the output times and the work they ask); else the error, in err. */
+/* HY_OK when hy_ode_solve's other arguments are valid (the options, the
+ * output times and the work they ask; the model, the input and gamma were
+ * checked by hy__solve_args); else the error, in err. */
 static int check_solve_args(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                             const double *t, size_t n, hy_error *err)
 {
     int rc;
-    if ((rc = hy_model_validate(m, err)) || (rc = hy_gamma_check(gamma, err)) || (rc = check_opts(o, err)))
+    if ((rc = check_opts(o, err)))
         return rc;
     for (size_t i = 0; i < n; i++)
         if (!isfinite(t[i]) || t[i] < 0 || (i && t[i] < t[i - 1]))
@@ -305,7 +323,9 @@ int hy_ode_solve(const hy_model *m, const hy_input *in, double gamma, const hy_o
                  const double *t, size_t n, double *y_out, hy_ode_stats *stats, hy_error *err)
 {
     int rc;
-    if ((rc = check_solve_args(m, in, gamma, o, t, n, err)))
+    HY_NONNULL(err, o);
+    if ((rc = hy__solve_args(__func__, m, in, gamma, t, n, y_out, "y_out", err)) ||
+        (rc = check_solve_args(m, in, gamma, o, t, n, err)))
         return rc;
     hy_ode_stats local;
     if (!stats)

@@ -85,7 +85,7 @@ hy_ode_opts hy_ode_defaults(void);
 
 /* Names of every stepper, NULL-terminated. */
 const char *const *hy_ode_stepper_names(void);
-/* Nonzero when name is a stepper. */
+/* Nonzero when name is a stepper (0 for NULL). */
 int hy_ode_stepper_known(const char *name);
 
 /* A lower bound on the evaluations of f the stepper needs up to t_end, from
@@ -95,18 +95,24 @@ int hy_ode_stepper_known(const char *name);
  * by stability on every piece, so >= λΔt/6 steps; rk1imp, rk2imp and rk4imp
  * by accuracy to >= rtol^{-1/(p+1)} steps (p = 1, 2, 4) on each piece that
  * starts a run (a fresh transient); bsimp and msbdf: no bound (0).  Steps
- * count as 6 (explicit) or 9 (implicit, Jacobian and solves) evaluations. */
+ * count as 6 (explicit) or 9 (implicit, Jacobian and solves) evaluations.
+ * NaN when m (with its type), in (with pieces) or o is NULL, or t_end is
+ * not finite. */
 double hy_ode_work_estimate(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o,
                             double t_end, double *stiff);
 
 /* HY_OK when hy_ode_work_estimate up to t_end is within o->work_limit (or
  * the limit is 0), else HY_EINVAL with hy_ode_solve's refusal message: what
  * hy_ode_solve checks first, for a caller that plans several solves and
- * refuses before it starts any. */
+ * refuses before it starts any.  m, in and o must not be NULL (HY_EINVAL); a
+ * work_limit that is negative or not finite (INFINITY would disable the
+ * check) and a t_end that is not finite are refused (HY_EINVAL). */
 int hy_ode_check_work(const hy_model *m, const hy_input *in, double gamma, const hy_ode_opts *o, double t_end,
                       hy_error *err);
 
-/* y_γ at n ascending times t[] >= 0 from z(0) = m->x0.  stats may be NULL.
+/* y_γ at n ascending times t[] >= 0 from z(0) = m->x0.  stats may be NULL;
+ * m, in, o and y_out must not be NULL, nor t when n > 0, and o->trace_t and
+ * o->trace_y are both NULL or both given (HY_EINVAL).
  * HY_EINVAL for bad model/γ/options (message names it) and for a run whose
  * work estimate passes o->work_limit (the message says "stiff", the ratio,
  * the estimate and which solvers to use instead), HY_ENUM when GSL fails

@@ -6,6 +6,8 @@
  * the demagnetised state (the staircase α = -β). */
 #include "hy_preisach.h"
 
+#include "hy_args.h"
+
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <float.h>
@@ -120,6 +122,7 @@ int hy_preisach_init(hy_preisach *p, int dist, double ma, double sa, double mb, 
                      hy_error *err)
 {
     int rc;
+    HY_NONNULL(err, p);
     if (!hy_preisach_dist_name(dist))
         return hy_error_set(err, HY_EINVAL, "unknown Preisach distribution %d (gaussian or lorentzian)", dist);
     if ((rc = check_axis("alpha (up-switching field)", ma, sa, err)) ||
@@ -152,6 +155,10 @@ int hy_preisach_init(hy_preisach *p, int dist, double ma, double sa, double mb, 
 int hy_preisach_tabulated(hy_preisach *p, const hy_preisach_table *t, hy_error *err)
 {
     double ys = 0;
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, t);
+    if (t->n && (!t->alpha || !t->beta || !t->w))
+        return hy_error_set(err, HY_EINVAL, "%s: the table's arrays must not be NULL (t->n is %zu)", __func__, t->n);
     for (size_t k = 0; k < t->n; k++)
         ys += t->w[k];
     if (!(ys > 0) || !isfinite(ys))
@@ -176,6 +183,7 @@ static int everett_unscaled(const hy_preisach *p, double a, double b, double *E,
 
 int hy_preisach_support(hy_preisach *p, double hs, hy_error *err)
 {
+    HY_NONNULL(err, p);
     if (isnan(hs) || !(hs > 0))
         return hy_error_set(err, HY_EINVAL, "Preisach saturation field hs must be > 0 (got %g)", hs);
     if (hs == INFINITY) { /* the half-plane: P(A >= B) in closed form, as hy_preisach_init */
@@ -373,6 +381,8 @@ static int everett_unscaled(const hy_preisach *p, double a, double b, double *E,
 
 int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, E);
     if (isnan(a) || isnan(b) || a < b || a == -INFINITY || b == INFINITY)
         return hy_error_set(err, HY_EINVAL, "Everett function E(a, b) needs a >= b (got a = %g, b = %g)", a, b);
     if (isinf(a) && isinf(b)) {
@@ -476,6 +486,8 @@ static int demag_edge(const hy_preisach *p, double u, double *T, hy_error *err)
 int hy_preisach_demag_output(const hy_preisach *p, double *y, hy_error *err)
 {
     double tu, td;
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, y);
     int rc = demag_edge(p, INFINITY, &tu, err);
     if (!rc)
         rc = demag_edge(p, -INFINITY, &td, err);
@@ -496,7 +508,9 @@ static int edge_e(const hy_preisach *p, double v, double w, double *E, hy_error 
 
 int hy_preisach_mem_init(hy_preisach_mem *m, const hy_preisach *p, double u0, hy_error *err)
 {
+    HY_NONNULL(err, m);
     memset(m, 0, sizeof *m);
+    HY_NONNULL(err, p);
     if (!isfinite(u0))
         return hy_error_set(err, HY_EINVAL, "Preisach input must be finite (got %g)", u0);
     m->cap = 16;
@@ -531,6 +545,9 @@ int hy_preisach_mem_init(hy_preisach_mem *m, const hy_preisach *p, double u0, hy
 
 int hy_preisach_mem_apply(hy_preisach_mem *m, double u, double *y, hy_error *err)
 {
+    HY_NONNULL(err, m);
+    if (!m->s || !m->c || !m->p)
+        return hy_error_set(err, HY_EINVAL, "%s: m is empty (not initialised, or freed)", __func__);
     if (!isfinite(u))
         return hy_error_set(err, HY_EINVAL, "Preisach input must be finite (got %g)", u);
     if (u != m->s[m->n]) {
@@ -579,6 +596,8 @@ int hy_preisach_mem_apply(hy_preisach_mem *m, double u, double *y, hy_error *err
 
 void hy_preisach_mem_free(hy_preisach_mem *m)
 {
+    if (!m)
+        return;
     free(m->s);
     free(m->c);
     m->s = m->c = NULL;
@@ -587,6 +606,9 @@ void hy_preisach_mem_free(hy_preisach_mem *m)
 
 int hy_preisach_apply(const hy_preisach *p, const double *u, size_t n, double *y, hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL_N(err, u, n);
+    HY_NONNULL_N(err, y, n);
     if (n == 0)
         return HY_OK;
     hy_preisach_mem m;
@@ -609,6 +631,10 @@ int hy_preisach_drive(const hy_preisach *p, const hy_input *in, const double *t,
                       hy_error *err)
 {
     hy_preisach_mem m;
+    HY_NONNULL(err, p);
+    HY_INPUT_READY(err, in);
+    HY_NONNULL(err, y);
+    HY_NONNULL_N(err, t, n);
     int rc = hy_preisach_mem_init(&m, p, hy_input_u(in, 0), err);
     if (rc)
         return rc;
@@ -636,6 +662,8 @@ static double area_f(double v, double o, const void *ctx)
 
 int hy_preisach_loop_area(const hy_preisach *p, double lo, double hi, double *area, hy_error *err)
 {
+    HY_NONNULL(err, p);
+    HY_NONNULL(err, area);
     if (!isfinite(lo) || !isfinite(hi) || !(lo < hi))
         return hy_error_set(err, HY_EINVAL, "Preisach loop area needs finite lo < hi (got %g, %g)", lo, hi);
     if (p->table) {
@@ -661,6 +689,9 @@ int hy_preisach_loop_area(const hy_preisach *p, double lo, double hi, double *ar
 int hy_preisach_minor_loop(const hy_preisach *p, const hy_input *in, hy_minor_loop *out, hy_error *err)
 {
     double e[4];
+    HY_NONNULL(err, p);
+    HY_INPUT_READY(err, in);
+    HY_NONNULL(err, out);
     int rc = hy_rateind_bimodal(in, e, err);
     if (rc)
         return rc;
@@ -686,9 +717,17 @@ int hy_preisach_minor_loop(const hy_preisach *p, const hy_input *in, hy_minor_lo
     return HY_OK;
 }
 
+/* t can be summed over: not NULL, its arrays there when it has nodes. */
+static int table_ok(const hy_preisach_table *t)
+{
+    return t && (!t->n || (t->alpha && t->beta && t->w));
+}
+
 double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b)
 {
     double e = 0;
+    if (!table_ok(t))
+        return NAN;
     for (size_t k = 0; k < t->n; k++)
         if (t->beta[k] >= b && t->alpha[k] <= a)
             e += t->w[k];
@@ -698,6 +737,8 @@ double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b)
 double hy_preisach_table_demag(const hy_preisach_table *t, double u)
 {
     double s = 0;
+    if (!table_ok(t))
+        return NAN;
     for (size_t k = 0; k < t->n; k++) {
         int down = t->alpha[k] + t->beta[k] >= 0;
         if (u > 0 ? down && t->alpha[k] <= u : u < 0 && !down && t->beta[k] >= u)
@@ -709,6 +750,8 @@ double hy_preisach_table_demag(const hy_preisach_table *t, double u)
 double hy_preisach_table_area(const hy_preisach_table *t, double lo, double hi)
 {
     double s = 0;
+    if (!table_ok(t))
+        return NAN;
     for (size_t k = 0; k < t->n; k++)
         if (t->beta[k] >= lo && t->alpha[k] <= hi)
             s += t->w[k] * (t->alpha[k] - t->beta[k]);

@@ -60,7 +60,9 @@ typedef struct hy_preisach_table {
     size_t nclipped;       /* finite nodes with ρ < 0 set to 0           */
 } hy_preisach_table;
 
-/* E(a, b): the weight of the nodes with b <= β and α <= a (0 when a <= b). */
+/* E(a, b): the weight of the nodes with b <= β and α <= a (0 when a <= b).
+ * The three table sums: t NULL, or a table with nodes but a NULL array,
+ * gives NaN. */
 double hy_preisach_table_everett(const hy_preisach_table *t, double a, double b);
 
 /* For hy_preisach's demagnetised state (relays up where α + β < 0): the
@@ -97,35 +99,40 @@ typedef struct hy_preisach {
 extern const char *const hy_preisach_dist_names[];
 /* Name of distribution d ("gaussian", "lorentzian"), NULL when unknown. */
 const char *hy_preisach_dist_name(int d);
-/* Distribution by name; -1 when unknown. */
+/* Distribution by name; -1 when unknown or name is NULL. */
 int hy_preisach_dist_find(const char *name);
 
 /* Fills p with density dist(α; ma, sa) · dist(β; mb, sb) scaled to saturation
  * ±ys, starting negatively saturated.  HY_EINVAL names the bad parameter: a
  * width must be > 0 and at least 1e-12 of its centre's magnitude (narrower
  * relays cannot be told apart in double precision), ys > 0, all finite, and
- * the density must put at least 1e-300 of its mass on α >= β. */
+ * the density must put at least 1e-300 of its mass on α >= β.  p must not be
+ * NULL (HY_EINVAL). */
 int hy_preisach_init(hy_preisach *p, int dist, double ma, double sa, double mb, double sb, double ys,
                      hy_error *err);
-/* The usual symmetric density: α around +hc, β around -hc, both of width sigma. */
+/* The usual symmetric density: α around +hc, β around -hc, both of width
+ * sigma (as hy_preisach_init: p must not be NULL). */
 int hy_preisach_symmetric(hy_preisach *p, int dist, double hc, double sigma, double ys, hy_error *err);
 
 /* Fills p with the tabulated density t (weighted relays, hy_preisach_table.h;
  * borrowed): ys = the relays' total weight, from negative saturation, on
  * the half-plane; the Everett function, the demagnetised state and loop
  * areas are the sums over the relays (exact for this discrete density).
- * HY_EINVAL for a table without a relay of weight > 0. */
+ * HY_EINVAL for a table without a relay of weight > 0; p and t must not be
+ * NULL, nor t's arrays when t->n > 0 (HY_EINVAL). */
 int hy_preisach_tabulated(hy_preisach *p, const struct hy_preisach_table *t, hy_error *err);
 
 /* Puts the density on the triangle -hs <= β <= α <= hs (the relays outside
  * it are removed; the input saturates the model at |u| >= hs) and scales it
  * to ±ys there; hs = +∞ restores the half-plane.  HY_EINVAL when hs is not
- * > 0 or the triangle holds less than 1e-300 of the density's mass. */
+ * > 0 or the triangle holds less than 1e-300 of the density's mass, and for p
+ * NULL. */
 int hy_preisach_support(hy_preisach *p, double hs, hy_error *err);
 
 /* Everett function E(a, b) = K ∫∫_{b≤β≤α≤a} of the density, a >= b; a may be
  * +∞ and b -∞ (E(+∞,-∞) = ys).  HY_EINVAL when a < b or either is NaN,
- * HY_ENUM when the quadrature cannot reach 1e-12 relative (message says where). */
+ * HY_ENUM when the quadrature cannot reach 1e-12 relative (message says where).
+ * p and E must not be NULL (HY_EINVAL). */
 int hy_preisach_everett(const hy_preisach *p, double a, double b, double *E, hy_error *err);
 
 /* The staircase memory: s[0] = ∓∞ (initial saturation) or 0 (demagnetised:
@@ -143,37 +150,43 @@ typedef struct hy_preisach_mem {
 } hy_preisach_mem;
 
 /* The output of the demagnetised state at u = 0 (0 for a symmetric density,
- * ma = -mb and sa = sb) into *y. */
+ * ma = -mb and sa = sb) into *y (p and y must not be NULL: HY_EINVAL). */
 int hy_preisach_demag_output(const hy_preisach *p, double *y, hy_error *err);
 
 /* Saturates (p->start) and then moves the input monotonically to u0.  On error
- * (HY_EINVAL for a non-finite u0, HY_ENOMEM, HY_ENUM) m owns nothing. */
+ * (HY_EINVAL for a non-finite u0, HY_ENOMEM, HY_ENUM) m owns nothing.  m and p
+ * must not be NULL (HY_EINVAL). */
 int hy_preisach_mem_init(hy_preisach_mem *m, const hy_preisach *p, double u0, hy_error *err);
 /* Moves the input monotonically from its present value to u; *y (may be NULL)
- * gets the output.  On error the memory is left as before the call. */
+ * gets the output.  On error the memory is left as before the call.  m must
+ * not be NULL nor empty (not initialised, or freed): HY_EINVAL. */
 int hy_preisach_mem_apply(hy_preisach_mem *m, double u, double *y, hy_error *err);
-/* Frees m's memory curve and empties it (m must not be NULL; a second call is
- * harmless). */
+/* Frees m's memory curve and empties it (m may be NULL: nothing done; a
+ * second call is harmless). */
 void hy_preisach_mem_free(hy_preisach_mem *m);
 
 /* Output for the input sequence u[0..n-1] (u[0] reached from saturation,
- * monotone between consecutive values): y[i] after u[i]. */
+ * monotone between consecutive values): y[i] after u[i].  p must not be NULL,
+ * nor u and y when n > 0 (HY_EINVAL). */
 int hy_preisach_apply(const hy_preisach *p, const double *u, size_t n, double *y, hy_error *err);
 
 /* Output at ascending times t[0..n-1] for an input of hy_input.h (every
- * extremum between samples is fed; exact). */
+ * extremum between samples is fed; exact).  p, in (with pieces) and y must
+ * not be NULL, nor t when n > 0 (HY_EINVAL). */
 int hy_preisach_drive(const hy_preisach *p, const hy_input *in, const double *t, size_t n, double *y,
                       hy_error *err);
 
 /* ∮ u dy of the closed loop between reversal values lo < hi (any history: the
  * loops are congruent): 2K ∫_lo^hi P(u ≤ α ≤ hi) P(lo ≤ β ≤ u) du (lo and hi
  * clipped to the triangle's ±hs), by
- * adaptive quadrature to 1e-12 relative.  Energy per cycle when u = H, y = B. */
+ * adaptive quadrature to 1e-12 relative.  Energy per cycle when u = H, y = B.
+ * p and area must not be NULL (HY_EINVAL). */
 int hy_preisach_loop_area(const hy_preisach *p, double lo, double hi, double *area, hy_error *err);
 
 /* The steady minor loop of a bimodal input (hy_rateind.h): y_close == y_start
  * (return-point memory), areas from hy_preisach_loop_area, cycles = 1 (the
- * state is periodic once both global extrema were visited). */
+ * state is periodic once both global extrema were visited).  p, in and out
+ * must not be NULL (HY_EINVAL). */
 int hy_preisach_minor_loop(const hy_preisach *p, const hy_input *in, hy_minor_loop *out, hy_error *err);
 
 #ifdef __cplusplus

@@ -3,6 +3,8 @@
  * periodic piecewise-monotone input (hy_input.h, seed 000 Definition 1). */
 #include "hy_rateind.h"
 
+#include "hy_args.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +19,10 @@ int hy_rateind_drive(const hy_input *in, const double *t, size_t n, hy_rateind_f
                      double *y, hy_error *err)
 {
     double k = 0, tprev = 0;
+    HY_INPUT_READY(err, in);
+    HY_NONNULL(err, fn);
+    HY_NONNULL(err, y);
+    HY_NONNULL_N(err, t, n);
     size_t r = 0;
     for (size_t i = 0; i < n; i++) {
         if (!(t[i] >= tprev) || !isfinite(t[i]))
@@ -45,6 +51,8 @@ int hy_rateind_drive(const hy_input *in, const double *t, size_t n, hy_rateind_f
 
 int hy_rateind_bimodal(const hy_input *in, double e[4], hy_error *err)
 {
+    HY_INPUT_READY(err, in);
+    HY_NONNULL(err, e);
     if (in->nruns != 4 || in->runs[0].sign != 1)
         return hy_error_set(err, HY_EINVAL,
                             "%s is not a bimodal input of Definition 1 (4 monotone runs from u_min,1 up)", in->desc);
@@ -62,6 +70,10 @@ int hy_rateind_bimodal(const hy_input *in, double e[4], hy_error *err)
 
 int hy_rateind_alloc(hy_rateind *m, const hy_rateind_type *type, const void *par, double u0, hy_error *err)
 {
+    HY_NONNULL(err, m);
+    m->st = NULL;
+    HY_NONNULL(err, type);
+    HY_NONNULL(err, type->init);
     m->type = type;
     m->par = par;
     m->cancel = NULL;
@@ -77,8 +89,22 @@ int hy_rateind_alloc(hy_rateind *m, const hy_rateind_type *type, const void *par
     return rc;
 }
 
+/* m was allocated (hy_rateind.h): its type, apply and state. */
+static int ready(const hy_rateind *m)
+{
+    return m && m->type && m->type->apply && m->st;
+}
+
+/* The refusal of a model that is NULL or not allocated. */
+static int not_ready(const char *fn, const char *name, const hy_rateind *m, hy_error *err)
+{
+    return hy_error_set(err, HY_EINVAL, "%s: %s %s", fn, name, m ? "is not allocated (or was freed)" : "must not be NULL");
+}
+
 int hy_rateind_apply(hy_rateind *m, double u, hy_error *err)
 {
+    if (!ready(m))
+        return not_ready(__func__, "m", m, err);
     if (hy_cancel_poll(m->cancel, &m->tick, HY_RI_CANCEL_MOVES))
         return hy_cancel_error(err);
     return m->type->apply(m->par, m->st, u, m->out, err);
@@ -86,6 +112,10 @@ int hy_rateind_apply(hy_rateind *m, double u, hy_error *err)
 
 int hy_rateind_clone(hy_rateind *dst, const hy_rateind *src, hy_error *err)
 {
+    HY_NONNULL(err, dst);
+    dst->st = NULL;
+    if (!ready(src))
+        return not_ready(__func__, "src", src, err);
     *dst = *src;
     dst->st = calloc(1, src->type->state_size ? src->type->state_size : 1);
     if (!dst->st)
@@ -104,7 +134,9 @@ int hy_rateind_clone(hy_rateind *dst, const hy_rateind *src, hy_error *err)
 
 void hy_rateind_free(hy_rateind *m)
 {
-    if (m->st && m->type->free)
+    if (!m)
+        return;
+    if (m->st && m->type && m->type->free)
         m->type->free(m->st);
     free(m->st);
     m->st = NULL;
@@ -113,6 +145,12 @@ void hy_rateind_free(hy_rateind *m)
 int hy_rateind_settle(hy_rateind *m, const hy_input *in, double tol, int max_periods, int *periods,
                       hy_error *err)
 {
+    if (!ready(m))
+        return not_ready(__func__, "m", m, err);
+    HY_INPUT_READY(err, in);
+    if (!isfinite(tol) || tol < 0 || max_periods < 1)
+        return hy_error_set(err, HY_EINVAL, "%s: tol (%g) must be finite and >= 0, max_periods (%d) >= 1", __func__,
+                            tol, max_periods);
     double prev = m->out[0];
     int calm = 0;
     for (int k = 1; k <= max_periods; k++) {
@@ -127,7 +165,8 @@ int hy_rateind_settle(hy_rateind *m, const hy_input *in, double tol, int max_per
         prev = m->out[0];
         calm = d <= tol * big ? calm + 1 : 0;
         if (calm == 2) {
-            *periods = k;
+            if (periods)
+                *periods = k;
             return HY_OK;
         }
     }
@@ -139,6 +178,10 @@ int hy_rateind_sample(hy_rateind *m, const hy_input *in, int by_rho, const doubl
                       double *const rows[HY_RI_NOUT], hy_error *err)
 {
     double k = 0, prev = 0;
+    if (!ready(m))
+        return not_ready(__func__, "m", m, err);
+    HY_INPUT_READY(err, in);
+    HY_NONNULL_N(err, x, n);
     size_t r = 0;
     for (size_t i = 0; i < n; i++) {
         if (!(x[i] >= prev) || !isfinite(x[i]))
@@ -158,7 +201,7 @@ int hy_rateind_sample(hy_rateind *m, const hy_input *in, int by_rho, const doubl
         if ((rc = hy_rateind_apply(m, by_rho ? hy_input_psi(in, x[i]) : hy_input_u(in, x[i]), err)))
             return rc;
         for (int q = 0; q < HY_RI_NOUT; q++)
-            if (rows[q])
+            if (rows && rows[q])
                 rows[q][i] = m->out[q];
         prev = x[i];
     }

@@ -31,14 +31,17 @@ typedef int (*hy_rateind_fn)(void *ctx, double u, double *y, hy_error *err);
  * time in (t[i-1], t[i]] (t[-1] = 0) in order, then u(t[i]); y[i] is the
  * output after the last.  The model must already sit at u(0).  Extremum values
  * are taken from the input's runs exactly.  Returns the first nonzero status
- * of fn (y[i..] unwritten), or HY_EINVAL for times that are not ascending. */
+ * of fn (y[i..] unwritten), or HY_EINVAL for times that are not ascending.
+ * in (with pieces), fn and y must not be NULL, nor t when n > 0 (HY_EINVAL);
+ * ctx may be NULL (handed to fn as it is). */
 int hy_rateind_drive(const hy_input *in, const double *t, size_t n, hy_rateind_fn fn, void *ctx,
                      double *y, hy_error *err);
 
 /* The extrema of a bimodal input of Definition 1 as hy_input_bimodal builds it
  * (four runs from t = 0: u_min,1 up to u_max,1, down to u_min,2, up to u_max,2,
  * down to u_min,1): e[0..3] = u_min,1, u_max,1, u_min,2, u_max,2.  HY_EINVAL
- * (naming what differs) for any other input. */
+ * (naming what differs) for any other input; in and e must not be NULL
+ * (HY_EINVAL). */
 int hy_rateind_bimodal(const hy_input *in, double e[4], hy_error *err);
 
 /* The minor loop of a bimodal input in the steady (periodic) state: it starts
@@ -118,27 +121,35 @@ typedef struct hy_rateind {
 #define HY_RI_CANCEL_MOVES 16
 
 /* Allocates the state and puts the model at input u0 (cancel NULL).  On
- * error m owns nothing. */
+ * error m owns nothing.  m, type and type->init must not be NULL (HY_EINVAL);
+ * par may be NULL when the type reads none. */
 int hy_rateind_alloc(hy_rateind *m, const hy_rateind_type *type, const void *par, double u0, hy_error *err);
 /* Moves the input monotonically to u (m->out updated); HY_ECANCEL, the
- * state unchanged, when m->cancel says stop. */
+ * state unchanged, when m->cancel says stop.  m must not be NULL, nor its
+ * type or state (HY_EINVAL: not allocated, or freed). */
 int hy_rateind_apply(hy_rateind *m, double u, hy_error *err);
-/* dst becomes an independent copy of src (dst uninitialised). */
+/* dst becomes an independent copy of src (dst uninitialised).  dst and src
+ * (allocated) must not be NULL (HY_EINVAL; dst->st NULL when dst is not). */
 int hy_rateind_clone(hy_rateind *dst, const hy_rateind *src, hy_error *err);
-/* Frees m's state (m must not be NULL; a second call is harmless). */
+/* Frees m's state (m may be NULL: nothing done; a second call is harmless). */
 void hy_rateind_free(hy_rateind *m);
 
 /* Drives the model (sitting at u(0), at a period's start) through whole
  * periods of in until its output at the period's end changes by at most
  * tol times the largest |y| of that period, twice in a row; *periods gets
- * how many were driven.  HY_ENUM (naming max_periods) when it does not settle. */
+ * how many were driven.  HY_ENUM (naming max_periods) when it does not settle.
+ * m (allocated) and in (with pieces) must not be NULL; periods may be NULL
+ * (not written); tol must be finite and >= 0 and max_periods >= 1 (else
+ * HY_EINVAL). */
 int hy_rateind_settle(hy_rateind *m, const hy_input *in, double tol, int max_periods, int *periods,
                       hy_error *err);
 
 /* From the model at a period's start (u(0) = ψ_u(0)): at each ascending x[i]
  * >= 0 feeds every extremum of the input up to x[i], then its value there,
  * and stores out[q] in rows[q][i] (rows[q] NULL: not stored).  x are times t
- * (by_rho 0: values u(t)) or variations ϱ (by_rho 1: values ψ_u(ϱ), Eq. 10). */
+ * (by_rho 0: values u(t)) or variations ϱ (by_rho 1: values ψ_u(ϱ), Eq. 10).
+ * m (allocated) and in (with pieces) must not be NULL, nor x when n > 0
+ * (HY_EINVAL); rows may be NULL (nothing stored). */
 int hy_rateind_sample(hy_rateind *m, const hy_input *in, int by_rho, const double *x, size_t n,
                       double *const rows[HY_RI_NOUT], hy_error *err);
 

@@ -4,6 +4,8 @@
  * piecewise exponential), coded apart from hy_limit and hy_gamma. */
 #include "hy_ref.h"
 
+#include "hy_args.h"
+
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -17,6 +19,9 @@ static long double limit_step(const hy_ref_limit *R, long double y, int s, long 
 
 int hy_ref_limit_init(hy_ref_limit *R, double sigma0, double g0, const hy_input *in, hy_error *err)
 {
+    HY_NONNULL(err, R);
+    R->y_run = NULL;
+    HY_INPUT_READY(err, in);
     if (!(sigma0 > 0) || !isfinite(sigma0) || !(g0 > 0) || !isfinite(g0))
         return hy_error_set(err, HY_EINVAL, "reference: sigma0 and g(0) must be finite and > 0");
     R->in = in;
@@ -72,8 +77,16 @@ static size_t run_at(const hy_input *in, long double r)
     return lo;
 }
 
+/* R was initialised: its input and table (hy_ref.h). */
+static int ready(const hy_ref_limit *R)
+{
+    return R && R->y_run && hy__input_ready(R->in);
+}
+
 double hy_ref_steady_rho(const hy_ref_limit *R, double rho)
 {
+    if (!ready(R))
+        return NAN;
     const hy_input *in = R->in;
     double k = floor(rho / in->rho_T);
     long double r = (long double)rho - (long double)k * in->rho_T;
@@ -86,6 +99,8 @@ double hy_ref_steady_rho(const hy_ref_limit *R, double rho)
 
 void hy_ref_runs(const hy_ref_limit *R, long double y0, long double *yrun)
 {
+    if (!ready(R) || !yrun)
+        return;
     const hy_input *in = R->in;
     for (size_t i = 0; i < in->nruns; i++) {
         yrun[i] = y0;
@@ -96,6 +111,10 @@ void hy_ref_runs(const hy_ref_limit *R, long double y0, long double *yrun)
 
 double hy_ref_in_period(const hy_ref_limit *R, const long double *yrun, double tm)
 {
+    if (!ready(R))
+        return NAN;
+    if (!yrun)
+        yrun = R->y_run;
     const hy_input *in = R->in;
     if (tm >= in->period)
         return (double)yrun[in->nruns];
@@ -130,6 +149,8 @@ double hy_ref_in_period(const hy_ref_limit *R, const long double *yrun, double t
 
 long double hy_ref_period(const hy_ref_limit *R, long double y0)
 {
+    if (!ready(R))
+        return NAN;
     const hy_input *in = R->in;
     for (size_t i = 0; i < in->nruns; i++)
         y0 = limit_step(R, y0, in->runs[i].sign, run_len(&in->runs[i]));
@@ -148,6 +169,9 @@ static long double g_ld(const hy_model *m, long double v)
 int hy_ref_gamma(const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n, double *y,
                  hy_error *err)
 {
+    int rc = hy__solve_args(__func__, m, in, gamma, t, n, y, "y", err);
+    if (rc)
+        return rc;
     if (m->type->has_filter || !in->all_linear)
         return hy_error_set(err, HY_EUNSUP, "long-double reference needs a piecewise-linear input and no filter");
     long double z = m->x0;   /* z at the start of piece p of period k */

@@ -34,23 +34,27 @@ typedef struct hy_ref_limit {
     double accuracy;          /* bound on the reference's own error (abs.)  */
 } hy_ref_limit;
 
-/* HY_EINVAL for a non-positive or non-finite σ0 or g0, HY_ENOMEM. */
+/* HY_EINVAL for a non-positive or non-finite σ0 or g0, HY_ENOMEM.  R and in
+ * (with pieces) must not be NULL (HY_EINVAL; R->y_run NULL when R is not). */
 int hy_ref_limit_init(hy_ref_limit *R, double sigma0, double g0, const hy_input *in, hy_error *err);
 /* Frees R's table (R may be NULL; a second call is harmless). */
 void hy_ref_limit_free(hy_ref_limit *R);
-/* y°(ρ) for any ρ >= 0 (periodic). */
+/* y°(ρ) for any ρ >= 0 (periodic); R NULL or not initialised: NaN. */
 double hy_ref_steady_rho(const hy_ref_limit *R, double rho);
 /* y at the start of every run of a period that starts at y0 (nruns + 1
- * values, the last one the period's end). */
+ * values, the last one the period's end); R NULL or not initialised, or yrun
+ * NULL: nothing written. */
 void hy_ref_runs(const hy_ref_limit *R, long double y0, long double *yrun);
 /* y at time tm in [0, T] of the period whose run starts are yrun (R->y_run:
- * the steady state y°_u). */
+ * the steady state y°_u; NULL: R->y_run).  R NULL or not initialised: NaN. */
 double hy_ref_in_period(const hy_ref_limit *R, const long double *yrun, double tm);
-/* y at the end of a period that starts at y0. */
+/* y at the end of a period that starts at y0; R NULL or not initialised: NaN. */
 long double hy_ref_period(const hy_ref_limit *R, long double y0);
 
 /* y_γ of Eq. (3) at n ascending times (no filter, piecewise-linear input),
- * with the time within the period formed exactly; HY_EUNSUP otherwise. */
+ * with the time within the period formed exactly; HY_EUNSUP otherwise.
+ * HY_EINVAL for a bad model or γ; m, in and y must not be NULL, nor t when
+ * n > 0. */
 int hy_ref_gamma(const hy_model *m, const hy_input *in, double gamma, const double *t, size_t n, double *y,
                  hy_error *err);
 

@@ -4,11 +4,14 @@
  * benchmark's 20x integration rate (seeds/001, Section 4). */
 #include "hy_signal.h"
 
+#include "hy_args.h"
+
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fft_halfcomplex.h>
 #include <gsl/gsl_fft_real.h>
 #include <gsl/gsl_sf_bessel.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -44,19 +47,29 @@ static int ifft_halfcomplex(double *x, size_t n, hy_error *err)
 
 int hy_signal_fft_forward(double *x, size_t n, hy_error *err)
 {
+    HY_NONNULL(err, x);
+    if (n < 1)
+        return hy_error_set(err, HY_EINVAL, "a DFT needs n >= 1 values");
     return fft_real(x, n, err);
 }
 
 int hy_signal_fft_inverse(double *x, size_t n, hy_error *err)
 {
+    HY_NONNULL(err, x);
+    if (n < 1)
+        return hy_error_set(err, HY_EINVAL, "a DFT needs n >= 1 values");
     return ifft_halfcomplex(x, n, err);
 }
 
 int hy_signal_upsample_fft(const double *x, size_t n, size_t r, double *y,
                            hy_error *err)
 {
+    HY_NONNULL(err, x);
+    HY_NONNULL(err, y);
     if (n == 0 || r == 0)
         return hy_error_set(err, HY_EINVAL, "upsampling needs n >= 1 samples and r >= 1");
+    if (n > SIZE_MAX / sizeof *y / r)
+        return hy_error_set(err, HY_EINVAL, "upsampling: %zu x %zu samples do not fit in memory", n, r);
     size_t L = n * r;
     double *X = malloc(n * sizeof *X);
     if (!X)
@@ -111,8 +124,12 @@ int hy_signal_upsample_sinc(const double *x, size_t n, size_t r, double *y,
 {
     enum { K = 16 };
     const double beta = 8.0;
+    HY_NONNULL(err, x);
+    HY_NONNULL(err, y);
     if (n < 2 || r == 0)
         return hy_error_set(err, HY_EINVAL, "sinc upsampling needs n >= 2 samples and r >= 1");
+    if (n > SIZE_MAX / sizeof *y / r || r > SIZE_MAX / sizeof *y / (2 * K))
+        return hy_error_set(err, HY_EINVAL, "sinc upsampling: %zu x %zu samples do not fit in memory", n, r);
     /* Polyphase kernel: w[j][m] for fraction j/r and input offset m - K + 1. */
     double *w = malloc(r * 2 * K * sizeof *w);
     if (!w)
@@ -145,6 +162,8 @@ int hy_signal_upsample_sinc(const double *x, size_t n, size_t r, double *y,
 void hy_fir1_lowpass(size_t r, double b[HY_DECIMATE_TAPS])
 {
     const int M = (HY_DECIMATE_TAPS - 1) / 2; /* 15: the group delay */
+    if (r < 2 || !b)
+        return;
     double wn = 1.0 / (double)r, sum = 0.0;
     /* half and mirror, as MATLAB's hamming does: exactly symmetric taps */
     for (int i = 0; i <= M; i++) {
@@ -181,6 +200,8 @@ int hy_signal_decimate(const double *x, size_t n, size_t r, double *y,
                        hy_error *err)
 {
     const long M = (HY_DECIMATE_TAPS - 1) / 2;
+    HY_NONNULL(err, x);
+    HY_NONNULL(err, y);
     if (r < 1)
         return hy_error_set(err, HY_EINVAL, "decimation factor r must be >= 1");
     if (r == 1) {
@@ -223,11 +244,16 @@ static size_t decimate_factors(size_t r, int staged, size_t f[64])
     size_t nf = 0;
     if (staged) {
         size_t q = r;
-        for (size_t p = 2; q > 1 && nf < 64; p++)
+        /* trial division by p <= 65536 and p <= sqrt(q): what is left
+           above 1 is one stage, the largest prime factor when r < 2^32 (a
+           large prime r took r divisions, 2^61 - 1 a hang) */
+        for (size_t p = 2; p <= 65536 && p <= q / p && nf < 64; p++)
             while (q % p == 0) {
                 f[nf++] = p;
                 q /= p;
             }
+        if (q > 1 && nf < 64)
+            f[nf++] = q;
     } else if (r > 1) {
         f[nf++] = r;
     }
@@ -249,6 +275,11 @@ size_t hy_signal_decimate_reach(size_t r, int staged)
 int hy_signal_decimate_stages(const double *x, size_t n, size_t r, int staged,
                               double *y, size_t *ny, hy_error *err)
 {
+    size_t ny_local;
+    HY_NONNULL(err, x);
+    HY_NONNULL(err, y);
+    if (!ny)
+        ny = &ny_local;
     if (r < 1)
         return hy_error_set(err, HY_EINVAL, "decimation factor r must be >= 1");
     size_t f[64], nf = decimate_factors(r, staged, f);

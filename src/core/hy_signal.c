@@ -4,6 +4,7 @@
  * e_RMS figure of merit of Eq. (6) (seeds/001, Sections 4-5). */
 #include "hy_signal.h"
 
+#include "hy_args.h"
 #include "hy_file.h"
 #include "hy_input.h"
 #include "hy_os.h"
@@ -26,6 +27,8 @@ static uint64_t splitmix64(uint64_t *x)
 
 void hy_rng_seed(hy_rng *r, uint64_t seed)
 {
+    if (!r)
+        return;
     for (int i = 0; i < 4; i++)
         r->s[i] = splitmix64(&seed);
 }
@@ -51,11 +54,15 @@ static uint64_t rng_next(hy_rng *r)
 
 double hy_rng_uniform(hy_rng *r)
 {
+    if (!r)
+        return NAN;
     return (double)(rng_next(r) >> 11) * 0x1.0p-53;
 }
 
 double hy_rng_normal(hy_rng *r)
 {
+    if (!r)
+        return NAN;
     double u1 = 1.0 - hy_rng_uniform(r); /* (0, 1]: log is finite */
     double u2 = hy_rng_uniform(r);
     return sqrt(-2.0 * log(u1)) * cos(2.0 * M_PI * u2);
@@ -63,6 +70,8 @@ double hy_rng_normal(hy_rng *r)
 
 void hy_multisine_default(hy_multisine *ms)
 {
+    if (!ms)
+        return;
     ms->fs = 750.0;
     ms->n = 8192;
     ms->fmin = 5.0;
@@ -74,6 +83,12 @@ void hy_multisine_default(hy_multisine *ms)
 int hy_multisine_lines(const hy_multisine *ms, size_t *kmin, size_t *kmax,
                        hy_error *err)
 {
+    size_t kmin_local, kmax_local;
+    if (!kmin)
+        kmin = &kmin_local;
+    if (!kmax)
+        kmax = &kmax_local;
+    HY_NONNULL(err, ms);
     if (!(isfinite(ms->fs) && ms->fs > 0))
         return hy_error_set(err, HY_EINVAL, "multisine fs = %g must be finite and > 0", ms->fs);
     if (ms->n < 4)
@@ -109,6 +124,8 @@ int hy_multisine_design(const hy_multisine *ms, size_t r, double *u,
                         hy_error *err)
 {
     size_t kmin, kmax;
+    HY_NONNULL(err, ms);
+    HY_NONNULL(err, u);
     int rc = hy_multisine_lines(ms, &kmin, &kmax, err);
     if (rc)
         return rc;
@@ -138,6 +155,8 @@ int hy_multisine_design(const hy_multisine *ms, size_t r, double *u,
 
 void hy_sweep_default(hy_sweep *sw)
 {
+    if (!sw)
+        return;
     sw->amp = 40.0;
     sw->f0 = 20.0;
     sw->f1 = 50.0;
@@ -146,6 +165,8 @@ void hy_sweep_default(hy_sweep *sw)
 
 void hy_sweep_validation(hy_sweep *sw)
 {
+    if (!sw)
+        return;
     sw->amp = 40.0;
     sw->f0 = 18.0;
     sw->f1 = 52.0;
@@ -161,6 +182,8 @@ static double sweep_samples(const hy_sweep *sw, double fs)
 
 static int sweep_check(const hy_sweep *sw, double fs, hy_error *err)
 {
+    if (!sw)
+        return hy_error_set(err, HY_EINVAL, "the sweep sw must not be NULL");
     if (!(isfinite(sw->amp)))
         return hy_error_set(err, HY_EINVAL, "sweep amplitude %g must be finite", sw->amp);
     if (!(isfinite(sw->f0) && sw->f0 >= 0))
@@ -199,6 +222,7 @@ int hy_sweep_fill(const hy_sweep *sw, double fs, double *u, size_t n,
     int rc = sweep_check(sw, fs, err);
     if (rc)
         return rc;
+    HY_NONNULL_N(err, u, n);
     for (size_t i = 0; i < n; i++) {
         double t = (double)i / fs;
         u[i] = sw->amp * sin(2.0 * M_PI * (sw->f0 * t + 0.5 * sw->rate * t * t));
@@ -209,6 +233,7 @@ int hy_sweep_fill(const hy_sweep *sw, double fs, double *u, size_t n,
 int hy_sine_fill(double amp, double f, double fs, double *u, size_t n,
                  hy_error *err)
 {
+    HY_NONNULL_N(err, u, n);
     if (!isfinite(amp))
         return hy_error_set(err, HY_EINVAL, "sine amplitude %g must be finite", amp);
     if (!(isfinite(f) && f > 0))
@@ -437,6 +462,13 @@ int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
 {
     char *text;
     size_t len;
+    if (u)
+        *u = NULL;
+    if (n)
+        *n = 0;
+    HY_NONNULL(err, path);
+    HY_NONNULL(err, u);
+    HY_NONNULL(err, n);
     int rc = hy_file_load(path, HY_INPUT_FILE_MAX, &text, &len, "cannot open", err);
     if (rc)
         return rc;
@@ -458,7 +490,8 @@ int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
         free(v);
         return rc;
     }
-    *fs = dt > 0 ? 1.0 / dt : 0.0;
+    if (fs)
+        *fs = dt > 0 ? 1.0 / dt : 0.0;
     *u = v;
     *n = nv;
     return HY_OK;
@@ -467,6 +500,7 @@ int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
 int hy_signal_add_noise(double *out, size_t n, double rms, double band_hz,
                         double fs, uint64_t seed, hy_error *err)
 {
+    HY_NONNULL_N(err, out, n);
     if (!(isfinite(rms) && rms >= 0))
         return hy_error_set(err, HY_EINVAL, "noise rms = %g must be finite and >= 0", rms);
     if (!(isfinite(fs) && fs > 0))
@@ -506,6 +540,8 @@ int hy_signal_add_noise(double *out, size_t n, double rms, double band_hz,
 double hy_signal_erms(const double *a, const double *b, size_t n)
 {
     double s = 0.0;
+    if (n && (!a || !b))
+        return NAN;
     for (size_t i = 0; i < n; i++)
         s += (a[i] - b[i]) * (a[i] - b[i]);
     return n ? sqrt(s / (double)n) : 0.0;
@@ -514,6 +550,8 @@ double hy_signal_erms(const double *a, const double *b, size_t n)
 double hy_signal_rms(const double *x, size_t n)
 {
     double s = 0.0;
+    if (n && !x)
+        return NAN;
     for (size_t i = 0; i < n; i++)
         s += x[i] * x[i];
     return n ? sqrt(s / (double)n) : 0.0;

@@ -52,26 +52,31 @@ typedef struct hy_rng {
     uint64_t s[4];
 } hy_rng;
 
-/* Seeds r from one 64-bit seed. */
+/* Seeds r from one 64-bit seed (r NULL: nothing done). */
 void hy_rng_seed(hy_rng *r, uint64_t seed);
-/* Next uniform double in [0, 1) with 53 random bits. */
+/* Next uniform double in [0, 1) with 53 random bits (r NULL: NaN). */
 double hy_rng_uniform(hy_rng *r);
-/* Next standard normal deviate (Box-Muller; one deviate per two uniforms). */
+/* Next standard normal deviate (Box-Muller; one deviate per two uniforms; r
+ * NULL: NaN). */
 double hy_rng_normal(hy_rng *r);
 
-/* Sets ms to the benchmark's 750 Hz, 8192 samples, 5-150 Hz, 50 N, seed 1. */
+/* Sets ms to the benchmark's 750 Hz, 8192 samples, 5-150 Hz, 50 N, seed 1
+ * (ms NULL: nothing done; so for hy_sweep_default and hy_sweep_validation's
+ * sw). */
 void hy_multisine_default(hy_multisine *ms);
 
 /* First and last excited DFT line of a period: ceil(fmin/f0) .. ceil(fmax/f0),
  * f0 = fs/n (the official signal holds lines 55..1639); the first is at least
  * line 1 (DC is never excited).  HY_EINVAL if the band holds no line or
- * reaches fs/2, for any finite fs, fmin, fmax. */
+ * reaches fs/2, for any finite fs, fmin, fmax.  ms must not be NULL
+ * (HY_EINVAL); kmin and kmax may be NULL (not written). */
 int hy_multisine_lines(const hy_multisine *ms, size_t *kmin, size_t *kmax,
                        hy_error *err);
 
 /* One period designed at the integration rate fs * r: n * r samples into u,
  * scaled so that sqrt(sum u² / (n r - 1)) = rms (MATLAB's std, as the
- * benchmark's example does).  u[r i] is the period at the working rate fs. */
+ * benchmark's example does).  u[r i] is the period at the working rate fs.
+ * ms and u must not be NULL (HY_EINVAL). */
 int hy_multisine_design(const hy_multisine *ms, size_t r, double *u,
                         hy_error *err);
 
@@ -92,14 +97,16 @@ void hy_sweep_validation(hy_sweep *sw);
 
 /* Number of samples of the sweep at rate fs: ceil(T fs), the samples with
  * t = i / fs < T (135000 for the paper's at 750 Hz); 0 if the parameters are
- * invalid (then hy_sweep_fill refuses them with a message). */
+ * invalid or sw is NULL (then hy_sweep_fill refuses them with a message). */
 size_t hy_sweep_length(const hy_sweep *sw, double fs);
 
-/* Writes n samples of the sweep at rate fs (sample i at t = i / fs). */
+/* Writes n samples of the sweep at rate fs (sample i at t = i / fs).  sw
+ * must not be NULL, nor u when n > 0 (HY_EINVAL). */
 int hy_sweep_fill(const hy_sweep *sw, double fs, double *u, size_t n,
                   hy_error *err);
 
-/* Writes n samples of amp sin(2π f t) at rate fs. */
+/* Writes n samples of amp sin(2π f t) at rate fs (u must not be NULL when n
+ * > 0: HY_EINVAL). */
 int hy_sine_fill(double amp, double f, double fs, double *u, size_t n,
                  hy_error *err);
 
@@ -114,13 +121,16 @@ int hy_sine_fill(double amp, double f, double fs, double *u, size_t n,
  * each time the grid through the first and last times (Δt = (t[n-1] - t[0])
  * / (n - 1)) within (q + the coarser end's q) / 2, and q <= Δt/2 so that a
  * missing sample is always seen.  Lines are at most 4095 bytes; a NUL byte
- * is refused with file:line:col. */
+ * is refused with file:line:col.  path, u and n must not be NULL (HY_EINVAL,
+ * *u NULL and *n 0 when given); fs may be NULL (not written). */
 int hy_signal_read(const char *path, double **u, size_t *n, double *fs,
                    hy_error *err);
 
 /* Exact band-limited interpolation of one period of a periodic signal by
  * zero-padding its DFT: x (n samples) -> y (n r samples), y[r i] = x[i] up to
- * rounding.  A Nyquist line (even n) is split evenly between ±n/2. */
+ * rounding.  A Nyquist line (even n) is split evenly between ±n/2.  Here and
+ * in hy_signal_upsample_sinc: x and y must not be NULL and n r must fit in
+ * memory (HY_EINVAL). */
 int hy_signal_upsample_fft(const double *x, size_t n, size_t r, double *y,
                            hy_error *err);
 
@@ -136,7 +146,7 @@ int hy_signal_upsample_sinc(const double *x, size_t n, size_t r, double *y,
 
 /* In-place real DFT of n values into GSL's halfcomplex layout
  * (hy_signal_fft_forward), and its inverse (hy_signal_fft_inverse, which
- * divides by n).  Mixed radix: any n >= 1. */
+ * divides by n).  Mixed radix: any n >= 1 (n 0 or x NULL: HY_EINVAL). */
 int hy_signal_fft_forward(double *x, size_t n, hy_error *err);
 int hy_signal_fft_inverse(double *x, size_t n, hy_error *err);
 
@@ -144,18 +154,23 @@ int hy_signal_fft_inverse(double *x, size_t n, hy_error *err);
 #define HY_DECIMATE_TAPS 31
 
 /* MATLAB fir1(30, 1/r): ideal low-pass of cutoff 1/r (of Nyquist) truncated
- * to 31 taps, Hamming window, scaled to unit DC gain.  r >= 2. */
+ * to 31 taps, Hamming window, scaled to unit DC gain.  r >= 2 (r < 2 or b
+ * NULL: nothing done). */
 void hy_fir1_lowpass(size_t r, double b[HY_DECIMATE_TAPS]);
 
 /* MATLAB decimate(x, r, 'fir'): filters with hy_fir1_lowpass(r), zero phase
  * (the 15-sample delay compensated), the ends continued by point reflection,
- * and keeps samples 0, r, 2r, ...: writes ceil(n / r) values to y.  n >= 16. */
+ * and keeps samples 0, r, 2r, ...: writes ceil(n / r) values to y.  n >= 16.
+ * x and y must not be NULL (HY_EINVAL). */
 int hy_signal_decimate(const double *x, size_t n, size_t r, double *y,
                        hy_error *err);
 
 /* Decimation by r in one stage (staged == 0) or in its prime factors in
- * increasing order (20 -> 2, 2, 5).  Writes ceil(n / r) samples to y either
- * way, and that count to *ny.  Allocates scratch internally. */
+ * increasing order (20 -> 2, 2, 5; what is left above 65536 once the factors
+ * up to it are divided out is one stage: a prime for r < 2^32).  Writes
+ * ceil(n / r) samples to y either way, and that count to *ny.  Allocates
+ * scratch internally.  x and y must not be NULL (HY_EINVAL); ny may be NULL
+ * (not written). */
 int hy_signal_decimate_stages(const double *x, size_t n, size_t r, int staged,
                               double *y, size_t *ny, hy_error *err);
 
@@ -169,14 +184,16 @@ size_t hy_signal_decimate_reach(size_t r, int staged);
 /* Gaussian noise band-limited to [0, band_hz] at rate fs, scaled so that its
  * sample RMS is exactly rms (rms = 0 writes zeros).  band_hz >= fs/2 gives
  * white noise; otherwise the DFT lines above band_hz are removed.  Seeded and
- * reproducible.  Adds to out (out[i] += noise[i]). */
+ * reproducible.  Adds to out (out[i] += noise[i]); out must not be NULL when
+ * n > 0 (HY_EINVAL). */
 int hy_signal_add_noise(double *out, size_t n, double rms, double band_hz,
                         double fs, uint64_t seed, hy_error *err);
 
-/* e_RMS of Eq. (6): sqrt(mean((a - b)²)) over n >= 1 samples. */
+/* e_RMS of Eq. (6): sqrt(mean((a - b)²)) over n >= 1 samples (0 for n = 0;
+ * a or b NULL with n > 0: NaN). */
 double hy_signal_erms(const double *a, const double *b, size_t n);
 
-/* Plain RMS sqrt(mean(x²)). */
+/* Plain RMS sqrt(mean(x²)) (0 for n = 0; x NULL with n > 0: NaN). */
 double hy_signal_rms(const double *x, size_t n);
 
 #ifdef __cplusplus

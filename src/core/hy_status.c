@@ -25,6 +25,8 @@ static size_t text_char(const unsigned char *p)
 
 long hy_text_check(const char *s)
 {
+    if (!s)
+        return -1;
     const unsigned char *p = (const unsigned char *)s;
     while (*p) {
         size_t n = *p == '\t' ? 1 : text_char(p);
@@ -39,8 +41,10 @@ void hy_text_shown(const char *src, char *dst, size_t size)
 {
     const unsigned char *p = (const unsigned char *)src;
     size_t o = 0;
-    if (!size)
+    if (!size || !dst)
         return;
+    if (!p)
+        p = (const unsigned char *)"";
     while (*p) {
         size_t n = text_char(p);
         if (n) {
@@ -60,7 +64,10 @@ void hy_text_shown(const char *src, char *dst, size_t size)
 
 int hy_error_set(hy_error *e, int code, const char *fmt, ...)
 {
-    if (e) {
+    if (e && !fmt) {
+        e->code = code;
+        snprintf(e->msg, sizeof e->msg, "(no message)");
+    } else if (e) {
         /* formatted apart first: an argument may be e->msg itself */
         char msg[sizeof e->msg];
         va_list ap;
@@ -75,7 +82,7 @@ int hy_error_set(hy_error *e, int code, const char *fmt, ...)
 
 void hy_error_prefix(hy_error *e, const char *fmt, ...)
 {
-    if (!e)
+    if (!e || !fmt)
         return;
     char pre[256], old[sizeof e->msg];
     va_list ap;
