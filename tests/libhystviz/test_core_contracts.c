@@ -240,6 +240,11 @@ static void limit_loops(void)
     CHECK(NC(hy_phi1(0)) == 1 && NC(hy_phi2(0)) == 0.5 && isnan(hy_phi1(NAN)), "phi1, phi2 at 0 and NaN");
     CHECK(NC(hy_limit_step(2, 1, 0.25, 1, 0)) == 0.25 && NC(hy_limit_step_area(2, 1, 0.25, 1, 0)) == 0,
           "a monotone run of variation 0");
+    /* the _em form is hy_limit_step_area given expm1(-ad): the same bits, at 0 and past it */
+    CHECK(NC(hy_limit_step_area_em(2, 1, 0.25, 1, 0, 0)) == 0 &&
+              hy_limit_step_area_em(2, 1, 0.25, -1, 0.5, expm1(-1.0)) == hy_limit_step_area(2, 1, 0.25, -1, 0.5) &&
+              isnan(hy_limit_step_area_em(2, 1, 0.25, 1, NAN, NAN)),
+          "hy_limit_step_area_em at variation 0, 0.5 and NaN");
     REFUSED(hy_steady_init(NULL, &m, &in, &err), err, "hy_steady_init: st must not be NULL");
     REFUSED(hy_steady_init(&st, NULL, &in, &err), err, "m must not be NULL");
     CHECK(st.y_run == NULL, "hy_steady_init: st->y_run NULL after a refusal");
