@@ -37,6 +37,7 @@ import base64
 import os
 import re
 import sys
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import browser_test as bt  # noqa: E402
@@ -334,35 +335,49 @@ def test_linked(dt, hv, base, scenes, tmp):
           "and the label set to 30, != the loop alone)")
 
 
-def sweep(dt, base, scene, npos=50):
+def sweep(dt, base, scene, npos=50, deadline=600):
     """Every slider through npos evenly spaced positions (the others at their
-    file values): the value the page would send at each, rendered by serve
-    (ten positions per call, side by side: each DevTools answer comes within a minute)."""
+    file values): the value the page would send at each, rendered by serve.
+    Two at a time (two page ids of this page load, each asking for the next position when its
+    last is answered): serve has at least two render slots (cores + 1), so
+    neither waits with nothing running and neither stops the other's render
+    (serve_slots.c's preemption would restart the heavy positions, e.g. the
+    highest fs and upsample of bw_fig1a, and answer 503 after two restarts);
+    serve remembers each page id's last seq, so the ids are new with each scene.
+    The page runs the sweep; the test awaits it 20 s at a time (each DevTools
+    answer well within a minute), deadline seconds in all."""
     check(open_url(dt, base, scene + ".scene", scene), f"{scene} opens")
     keys = dt.js("hv.info.controls.map(c => c.key)")
-    refused, total = {}, 0
-    for key in keys:
-        for i0 in range(0, npos, 10):
-            bad = dt.js(f"""(async () => {{
-                const c = ctlOf('{key}'), bad = [], all = [];
-                for (let i = {i0}; i < Math.min({i0 + 10}, {npos}); i++) {{
-                    const v = valueAt(c, Math.round(1000 * i / ({npos} - 1)));
-                    // one page id each: they render side by side in serve's slots
-                    // a 503 is serve's fair share giving the turn to another page (they are ten):
-                    // asked again after Retry-After, as the page does; a refused value is anything else
-                    const url = '/api/render?' + query() + '&set=' + encodeURIComponent(c.key + '=' + v)
-                        + '&fmt=json&seq=1&page=sweep' + i;
-                    const get = async n => {{ const r = await fetch(url);
-                        if (r.status === 503 && n < 5) {{ await new Promise(s => setTimeout(s, 1000)); return get(n + 1); }}
-                        return r; }};
-                    all.push(get(0).then(async r => {{
-                            if (r.status !== 200) bad.push(v + ': ' + ((await r.json()).error || r.status)); }}));
-                }}
-                await Promise.all(all);
-                return bad; }})()""", timeout=120)
-            if bad:
-                refused.setdefault(key, []).extend(bad)
-                total += len(bad)
+    dt.js(f"""(() => {{
+        const todo = [], bad = {{}};
+        for (const c of hv.info.controls.map(c => ctlOf(c.key)))
+            for (let i = 0; i < {npos}; i++) todo.push([c, valueAt(c, Math.round(1000 * i / ({npos} - 1)))]);
+        // a 503 is serve's fair share giving the turn to another page: asked
+        // again after Retry-After (1 s), as the page does, at most 5 times;
+        // a refused value is anything else
+        const get = async (url, n) => {{ const r = await fetch(url);
+            if (r.status === 503 && n < 5) {{ await new Promise(s => setTimeout(s, 1000)); return get(url, n + 1); }}
+            return r; }};
+        let seq = 0;
+        const worker = async w => {{
+            for (let t = todo.shift(); t; t = todo.shift()) {{
+                const [c, v] = t;
+                const url = '/api/render?' + query() + '&set=' + encodeURIComponent(c.key + '=' + v)
+                    + '&fmt=json&seq=' + (++seq) + '&page=sweep' + w + '-' + hv.page;
+                const r = await get(url, 0);
+                if (r.status !== 200) (bad[c.key] = bad[c.key] || []).push(v + ': ' + ((await r.json()).error || r.status));
+            }} }};
+        hv.sweepDone = null;
+        hv.sweep = Promise.all([worker(0), worker(1)]).then(() => {{ hv.sweepDone = bad; }});
+        return todo.length; }})()""")
+    t0 = time.monotonic()
+    while dt.js("hv.sweepDone") is None and time.monotonic() - t0 < deadline:
+        dt.js("Promise.race([hv.sweep, new Promise(r => setTimeout(r, 20000))])")
+    refused = dt.js("hv.sweepDone")
+    if refused is None:
+        check(False, f"{scene}: the sweep of {len(keys)} sliders x {npos} positions ended within {deadline} s")
+        return
+    total = sum(len(v) for v in refused.values())
     check(total == 0, f"{scene}: {len(keys)} sliders x {npos} positions, {total} refused"
           + (f": {dict((k, (len(v), v[:2])) for k, v in refused.items())}" if refused else ""))
 
