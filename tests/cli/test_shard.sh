@@ -60,9 +60,10 @@ done
 
 # the table-only study in 3 shards written into one directory, as GNU parallel does
 rm -rf "$tmp/t"
-# (each bounded: timeout ends a shard that hangs, and wait then returns)
-for k in 0 1 2; do timeout 120 "$hv" sweep "$fig15" $grid -o "$tmp/t" -q --formats none --shard "$k/3" & done
-wait
+# (each bounded: timeout ends a shard that hangs, wait_pid gives it 130 s)
+pids=
+for k in 0 1 2; do timeout 120 "$hv" sweep "$fig15" $grid -o "$tmp/t" -q --formats none --shard "$k/3" & pids="$pids $!"; done
+for p in $pids; do wait_pid "$p" 130 "a concurrent shard" || bad "a concurrent shard failed"; done
 "$hv" sweep "$fig15" $grid -o "$tmp/t1" -q --formats none
 "$hv" sweep --merge "$tmp/t" -q && cmp -s "$tmp/t/sweep.csv" "$tmp/t1/sweep.csv" && ok || bad "concurrent shards in one directory"
 [ "$(ls "$tmp/t")" = "sweep.csv" ] && ok || bad "merge left: $(ls "$tmp/t" | tr '\n' ' ')"

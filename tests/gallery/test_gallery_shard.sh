@@ -111,9 +111,11 @@ grep -q 'render failed' "$G/index.html" && ok || bad "the failure is not on the 
 
 # shards at the same time in one directory (they share its lock)
 rm -rf "$G"
-# (each bounded: timeout ends a shard that hangs, and wait then returns)
-for k in 0 1 2; do timeout 120 "$hv" gallery --scenes "$S" -o "$G" -j 1 -q --shard "$k/3" 2> /dev/null & done
-wait
+# (each bounded: timeout ends a shard that hangs, wait_pid gives it 130 s)
+pids=
+for k in 0 1 2; do timeout 120 "$hv" gallery --scenes "$S" -o "$G" -j 1 -q --shard "$k/3" 2> /dev/null & pids="$pids $!"; done
+# (a shard's status is not asked: the one with the failing scene exits 1)
+for p in $pids; do st=0; wait_pid "$p" 130 "a concurrent shard" || st=$?; [ $st -ne 124 ] || bad "a concurrent shard hung"; done
 "$hv" gallery --scenes "$S" -o "$G" --merge -q 2> /dev/null
 diff -r -x .manifest "$tmp/one" "$G" > /dev/null && ok || bad "concurrent shards in one directory: gallery differs"
 
