@@ -28,6 +28,6 @@
 
 /* The extensions as one text, "svg, pdf, png", for messages. */
 #define HY__FORMAT_LIST(id, ext, mime) ", " ext
-#define HY_FORMAT_NAMES (HY_FIGURE_FORMATS(HY__FORMAT_LIST) + 2)
+#define HY_FORMAT_NAMES (&(HY_FIGURE_FORMATS(HY__FORMAT_LIST))[2]) /* past the first ", " */
 
 #endif
