@@ -8,14 +8,14 @@
 # venv, its library from the package's own directory), Fig. 15's minor-loop
 # area (0.19910737569481529, as docs/examples/minor_loop_area.c prints it)
 # and a rendered figure of the scene the wheel carries.  SKIP (77) without
-# /usr/bin/python3's mesonpy, venv or numpy (apt-get install python3-mesonpy
-# python3-venv python3-numpy); FAIL for those when CI=true.
+# /usr/bin/python3's mesonpy, venv, pip or numpy (apt-get install python3-mesonpy
+# python3-venv python3-pip python3-numpy); FAIL for those when CI=true.
 set -u
 . "$(dirname "$0")/../lib.sh"
 src=$1
 py=/usr/bin/python3
-if ! "$py" -c "import mesonpy, venv, numpy, ensurepip" 2>/dev/null; then
-    msg="no python3-mesonpy, python3-venv or python3-numpy for $py (apt-get install python3-mesonpy python3-venv python3-numpy)"
+if ! "$py" -c "import mesonpy, venv, numpy, pip" 2>/dev/null; then
+    msg="no python3-mesonpy, python3-venv, python3-pip or python3-numpy for $py (apt-get install python3-mesonpy python3-venv python3-pip python3-numpy)"
     [ "${CI:-}" = true ] && fatal "$msg"
     skip "$msg"
 fi
@@ -60,9 +60,12 @@ print("missing:", sorted(missing) or "none", "| LICENSE:", lic)
 sys.exit(0 if not missing and lic else 1)
 PYEOF
 rm -rf "$T/src"  # the source tree out of reach
-"$py" -m venv --system-site-packages "$T/venv" >"$T/venv.log" 2>&1 || { cat "$T/venv.log"; fatal "venv"; }
-timeout 300 "$T/venv/bin/python" -m pip install -q --no-deps --no-index "$whl" >"$T/pip.log" 2>&1 ||
+# the venv without a pip of its own (ensurepip costs 8 of this test's CPU
+# seconds): Debian's pip installs into it (pip --python, pip >= 22.3)
+"$py" -m venv --without-pip --system-site-packages "$T/venv" >"$T/venv.log" 2>&1 || { cat "$T/venv.log"; fatal "venv"; }
+timeout 300 "$py" -m pip --python "$T/venv/bin/python" install -q --no-deps --no-index "$whl" >"$T/pip.log" 2>&1 ||
     { cat "$T/pip.log"; fatal "pip install the wheel"; }
+[ -z "$(ls "$T"/venv/lib/python3*/site-packages/hystviz/__init__.py 2>/dev/null)" ] && fatal "pip put hystviz outside the venv"
 out=$(cd / && timeout 300 "$T/venv/bin/python" - "$T" <<'PYEOF' 2>&1
 import os, sys
 import hystviz
