@@ -103,8 +103,12 @@ run_tests() {
     # Mesa's shader cache for this run only: nothing under ~/.cache, and
     # each shader variant compiled once for all the tests' processes
     shaders=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-shaders.XXXXXX")
+    # one test more than the cores: a tenth of the tests' time is waiting on a
+    # server, a browser or a child (at one per core the two stages kept 2
+    # cores 87 % and 91 % busy: CPU over wall of .ci/run's stage lines)
     st=0
-    TMPDIR=$tmp MESA_SHADER_CACHE_DIR=$shaders meson test -C "$dir" --print-errorlogs --num-processes 2 "$@" || st=$?
+    TMPDIR=$tmp MESA_SHADER_CACHE_DIR=$shaders meson test -C "$dir" --print-errorlogs \
+        --num-processes $(($(getconf _NPROCESSORS_ONLN) + 1)) "$@" || st=$?
     left=$(ls -A "$tmp")
     rm -rf "$tmp" "$shaders"
     if [ -n "$left" ]; then
