@@ -208,7 +208,7 @@ test)
         # compared their frames); -Dgl=egl is the machine without OSMesa; only
         # what the gl suite runs is built
         for gl in osmesa egl; do
-            configure_for build-$gl gl -Dgl=$gl
+            configure_for build-$gl "gl !gl-once" -Dgl=$gl
         done
         # the build without GL and libmicrohttpd: only what its suites run
         configure_for build-nogl "gl serve config" -Dgl=disabled -Dmicrohttpd=disabled
@@ -239,9 +239,11 @@ test)
     rm -rf "$bg_log"
     [ "$st" -eq 0 ] || exit "$st"
     stage "the tests in build/, beside them the Slurm example and building build-osmesa, -egl, -nogl, -san"
-    # the gl suite on each GL backend alone (built above)
+    # the gl suite on each GL backend alone (built above), but for the tests
+    # whose result does not depend on the backends compiled in (gl-once:
+    # tests/gl/meson.build), which ran in build/ on each backend
     for gl in osmesa egl; do
-        run_tests build-$gl --no-rebuild --suite gl
+        run_tests build-$gl --no-rebuild --suite gl --no-suite gl-once
         stage "build-$gl (its gl suite)"
     done
     # the build without GL and libmicrohttpd: cairo figures work, GL tests
