@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -224,9 +225,27 @@ static int build_source_root(const char *dir, char *root, size_t size)
     return -1;
 }
 
+/* Facts of the process, looked up once: the running program's directory
+ * and whether it runs from its build tree.  hy_file_installed runs for every
+ * scene read (hy_steady_loop's every call): a readlink and up to four opens
+ * of HY_SOURCE_ROOT_FILE each time were a tenth of a 200-point call. */
+static struct {
+    int have;     /* self known */
+    int in_build; /* a program in its build tree */
+    char self[4096];
+} exe_facts;
+static pthread_once_t exe_once = PTHREAD_ONCE_INIT;
+
+static void exe_facts_find(void)
+{
+    char root[4096];
+    exe_facts.have = exe_dir(exe_facts.self, sizeof exe_facts.self) == 0;
+    exe_facts.in_build = exe_facts.have && !build_source_root(exe_facts.self, root, sizeof root);
+}
+
 int hy_file_installed(int what, const char *sub, char *buf, size_t size)
 {
-    char self[4096], root[4096];
+    char self[4096];
     const char *rel = what == HY_INSTALLED_LIBEXEC ? HY_LIBEXECDIR_REL : HY_DATADIR_REL "/hystviz";
     const char *configured = what == HY_INSTALLED_LIBEXEC ? HY_LIBEXECDIR : HY_DATA_DIR;
     if (!buf && size)
@@ -235,7 +254,9 @@ int hy_file_installed(int what, const char *sub, char *buf, size_t size)
         buf[0] = '\0';
     if (!sub || !size)
         return -1;
-    int have = exe_dir(self, sizeof self) == 0;
+    pthread_once(&exe_once, exe_facts_find);
+    int have = exe_facts.have;
+    memcpy(self, exe_facts.self, sizeof self);
     /* the build tree: the helper program next to the running one */
     if (have && what == HY_INSTALLED_LIBEXEC && (size_t)snprintf(buf, size, "%s/%s", self, sub) < size &&
         exists(buf, 0))
@@ -244,7 +265,7 @@ int hy_file_installed(int what, const char *sub, char *buf, size_t size)
        as where nothing is installed (the tests of a build, or of an unpacked
        tarball, run the build's programs even where another hystviz is
        installed in the configured prefix: tests/cli/test_decoy.sh) */
-    if (have && !build_source_root(self, root, sizeof root)) {
+    if (exe_facts.in_build) {
         if (size)
             buf[0] = '\0';
         return -1;
