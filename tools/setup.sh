@@ -103,9 +103,9 @@ run_tests() {
     # Mesa's shader cache for this run only: nothing under ~/.cache, and
     # each shader variant compiled once for all the tests' processes
     shaders=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-shaders.XXXXXX")
-    # one test more than the cores: a tenth of the tests' time is waiting on a
-    # server, a browser or a child (at one per core the two stages kept 2
-    # cores 87 % and 91 % busy: CPU over wall of .ci/run's stage lines)
+    # one test more than the cores: part of the tests' time is waiting on a
+    # server, a browser or a child (the sanitizer stage of a fresh clone's
+    # .ci/run: 214 s at one per core, 200 s at one more)
     st=0
     TMPDIR=$tmp MESA_SHADER_CACHE_DIR=$shaders meson test -C "$dir" --print-errorlogs \
         --num-processes $(($(getconf _NPROCESSORS_ONLN) + 1)) "$@" || st=$?
@@ -154,7 +154,10 @@ wait_job() {
 # stage NAME: say how long the last stage took and the whole command so far
 # (the test command's budget is 10 minutes on 2 cores), and the CPU time
 # (user + sys) its processes used: on a loaded machine the wall time says
-# little, the CPU time over 2 cores is the time it would take on 2 quiet ones
+# little.  The CPU time counts only processes that were waited for: servers,
+# daemons and browsers a test leaves to its process group are missed (on 2
+# quiet cores the whole command keeps both busy: /proc/stat sampled every
+# 2 s, 1,274 s of CPU against 1,127 counted here)
 t_start=$(date +%s); t_stage=$t_start
 t_times=$(mktemp "${TMPDIR:-/tmp}/hystviz-times.XXXXXX")
 ccache_dir=""
