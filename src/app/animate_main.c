@@ -18,5 +18,7 @@ int main(int argc, char **argv)
         pthread_sigmask(SIG_UNBLOCK, &stop, NULL);
     gsl_set_error_handler_off();
     static char name[] = "animate";
-    return cli_program_run(name, hy_cmd_animate, argc, argv);
+    int rc = cli_program_run(name, hy_cmd_animate, argc, argv);
+    cli_leak_check_release(); /* the animation's threads have ended */
+    return rc;
 }

@@ -11,6 +11,11 @@
 #include <string.h>
 #include <unistd.h>
 
+#ifdef HY_LSAN_RELEASE
+#include <cairo.h>
+#include <fontconfig/fontconfig.h>
+#endif
+
 #include "hy_jobs.h"
 #include "hy_out.h"
 
@@ -154,6 +159,14 @@ int cli_program_run(char *name, int (*cmd)(int, char **), int argc, char **argv)
         return cli_stdout_status(name, cmd(argc, argv));
     }
     return cli_stdout_status(name, cmd(argc - 1, argv + 1));
+}
+
+void cli_leak_check_release(void)
+{
+#ifdef HY_LSAN_RELEASE
+    cairo_debug_reset_static_data();
+    FcFini();
+#endif
 }
 
 const cli_opt cli_policy_opts[] = {

@@ -146,7 +146,9 @@ int main(int argc, char **argv)
         if (!strcmp(argv[1], commands[i].name)) { /* every command's output checked here */
             if (!commands[i].own_signals && cli_signals_end())
                 pthread_sigmask(SIG_UNBLOCK, &stop, NULL); /* no thread: the default action, at least */
-            return cli_stdout_status(argv[1], commands[i].run(argc - 1, argv + 1));
+            int rc = commands[i].run(argc - 1, argv + 1);
+            cli_leak_check_release(); /* the command's threads have ended */
+            return cli_stdout_status(argv[1], rc);
         }
     fprintf(stderr, "hystviz: unknown command '%s' (try hystviz --help)\n", argv[1]);
     return 2;
