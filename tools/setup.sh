@@ -290,7 +290,9 @@ bench)
     ;;
 fuzz)
     minutes=${2:-10}
-    case "$minutes" in ''|*[!0-9]*) echo "setup: fuzz MINUTES takes a whole number of minutes" >&2; exit 2;; esac
+    # at least 1 (libFuzzer's -max_total_time=0 would mean no limit)
+    case "$minutes" in ''|*[!0-9]*) minutes=0;; esac
+    [ "$minutes" -ge 1 ] 2>/dev/null || { echo "setup: fuzz MINUTES takes a whole number of minutes, at least 1" >&2; exit 2; }
     target=${3:-scene}
     case "$target" in scene|zfast|readers) ;; *) echo "setup: fuzz MINUTES [scene|zfast|readers]" >&2; exit 2;; esac
     # clang: libFuzzer instruments every library (coverage), ASan + UBSan with
