@@ -640,9 +640,12 @@ static int apply_override(hy_scene *s, const char *a, int sec, const char *name,
         int ps = hy_scene_schema_section("param");
         const hy__section *px = hy__scene_find(s, ps, pn);
         const hy__slot *pv = px ? &px->slots[hy_scene_schema_key(ps, "value")] : NULL;
-        if (!pv || !pv->set)
+        if (!pv || !pv->set) {
+            char nm[HY_SCENE_SHOWN_MAX * 4 + 4]; /* a name of any length leaves the words whole */
+            hy_file_shown(pn, strlen(pn), HY_SCENE_SHOWN_MAX, nm, sizeof nm);
             return hy_error_set(err, HY_EINVAL, "--set %s: unknown parameter $%s: the scene has no [param %s] with a value",
-                                a, pn, pn);
+                                a, nm, nm);
+        }
         char text[40];
         snprintf(text, sizeof text, "%.17g", pv->v.num);
         rc = hy__value_parse(&ss->keys[k], where, NULL, text, strlen(text), 1, &v, &col, msg, sizeof msg);

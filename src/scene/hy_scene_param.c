@@ -72,19 +72,24 @@ int hy__scene_resolve(hy_scene *s, hy_error *err)
             int got = param_value(s, name, &v);
             hy__value out;
             const char *sug = got == -1 ? param_suggest(s, name) : NULL;
+            /* names as messages quote a scene's text (cut, "..."): a name of
+             * any length leaves the message's own words whole */
+            char nm[2][HY_SCENE_SHOWN_MAX * 4 + 4];
+            const char *sn = hy_file_shown(name, strlen(name), HY_SCENE_SHOWN_MAX, nm[0], sizeof nm[0]);
             if (got == -1 && sug)
-                snprintf(msg, sizeof msg, "unknown parameter $%s; did you mean $%s?", name, sug);
+                snprintf(msg, sizeof msg, "unknown parameter $%s; did you mean $%s?", sn,
+                         hy_file_shown(sug, strlen(sug), HY_SCENE_SHOWN_MAX, nm[1], sizeof nm[1]));
             else if (got == -1)
-                snprintf(msg, sizeof msg, "unknown parameter $%s: the scene has no [param %s]", name, name);
+                snprintf(msg, sizeof msg, "unknown parameter $%s: the scene has no [param %s]", sn, sn);
             else if (got == -2)
-                snprintf(msg, sizeof msg, "parameter $%s: [param %s] sets no value", name, name);
+                snprintf(msg, sizeof msg, "parameter $%s: [param %s] sets no value", sn, sn);
             else if (ref_value(s, i, k, v, &out, msg, sizeof msg) == HY_OK) {
                 hy__value_clear(&slot->v);
                 slot->v = out;
                 continue;
             }
             if (got == 0) /* the key's own message, said of the parameter */
-                hy_error_set(err, HY_EINVAL, "$%s = %.15g: %s", name, v, msg);
+                hy_error_set(err, HY_EINVAL, "$%s = %.15g: %s", sn, v, msg);
             else
                 hy_error_set(err, HY_EINVAL, "%s", msg);
             if (slot->loc.line)
