@@ -15,8 +15,13 @@
 #                   timeout stops it (SIGTERM); nothing else is the test's
 #   wait_pid PID SECONDS WHAT, wait_until SECONDS WHAT COMMAND..., alive PID:
 #                   bounded waits (tests/lib/wait.sh): every wait has a deadline
-# A test that starts background processes replaces the EXIT trap with one that
-# kills them and then runs lib_cleanup.
+#   bg_track PID... background processes the test started: lib_cleanup kills
+#                   each (and its children) when the test exits, also when
+#                   meson's timeout stops it mid-way; one already reaped, or
+#                   whose pid now belongs to another process (not this shell's
+#                   child), is left alone
+# (A test may instead replace the EXIT trap with one that kills its
+# background processes and then runs lib_cleanup.)
 pass=0
 fail=0
 ok() {
@@ -49,7 +54,17 @@ tmp=$(mktemp -d "${TMPDIR:-/tmp}/$(basename "$0" .sh).XXXXXX") || {
     echo "FAIL: cannot make a temporary directory under ${TMPDIR:-/tmp}"
     exit 1
 }
-lib_cleanup() { rm -rf "$tmp"; }
+lib_bg=""
+bg_track() { lib_bg="$lib_bg $*"; }
+lib_cleanup() {
+    for _p in $lib_bg; do
+        # still this shell's child (field 4 of /proc/PID/stat, after the name)?
+        [ "$(sed -n 's/^[0-9]* (.*) [A-Za-z] \([0-9]*\) .*/\1/p' "/proc/$_p/stat" 2>/dev/null)" = "$$" ] || continue
+        pkill -KILL -P "$_p" 2>/dev/null
+        kill -KILL "$_p" 2>/dev/null
+    done
+    rm -rf "$tmp"
+}
 trap lib_cleanup EXIT
 trap 'exit 1' INT TERM # (the EXIT trap runs also when meson's timeout stops the test)
 . "$(dirname "$0")/../lib/wait.sh"

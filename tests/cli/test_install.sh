@@ -65,6 +65,7 @@ if [ -x "$build/src/app/hystviz-serve" ] && command -v curl >/dev/null; then
     cp "$P/share/hystviz/scenes/fig15_minor_loop_ex4.scene" "$P/share/hystviz/scenes/style.scene" "$T/home/sv/"
     (cd / && HOME="$T/home" exec "$hv" serve "$T/home/sv" --port 0 >"$T/serve.out" 2>"$T/serve.err") &
     sp=$!
+    bg_track $sp
     url=
     for _ in $(seq 100); do
         url=$(grep -o 'http://[^ ]*' "$T/serve.out" | head -1)

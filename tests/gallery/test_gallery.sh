@@ -265,6 +265,7 @@ run tmps1
 : > "$G/notes.tmp.txt"
 flock -o "$G/.held.svg.hystviz-tmp.LiVe01" sleep 60 > /dev/null 2>&1 & # -o: flock itself holds it
 holder=$!
+bg_track $holder
 held_tmp() { ! flock -n "$G/.held.svg.hystviz-tmp.LiVe01" true; }
 wait_until 30 "lock on the held temporary" held_tmp
 run tmps2
@@ -277,6 +278,7 @@ rm -f "$G/.held.svg.hystviz-tmp.LiVe01" "$G/notes.tmp.txt"
 # a real kill -9: a writer with its temporary open in the gallery directory
 "$hv" loop --input sine:1,1 --gamma 1 --cycles 1000000 --points 2 --solver rk8pd -o "$G/slow.csv" 2> /dev/null &
 slow=$!
+bg_track $slow
 slow_tmp() { ls -A "$G" | grep -q '^\.slow\.csv\.hystviz-tmp\.'; }
 wait_until 30 "the slow writer's temporary" slow_tmp
 kill -9 $slow
@@ -291,6 +293,7 @@ ls -A "$G" | grep -q 'hystviz-tmp' && bad "kill -9 leftover kept: $(ls -A "$G")"
 #     the holder may not have it yet; the gallery gets 10 s to say it waits)
 flock -o "$G/.lock" sleep 60 > /dev/null 2>&1 &
 holder=$!
+bg_track $holder
 held() { ! flock -n "$G/.lock" true; }
 wait_until 30 "lock held by the test's holder" held
 timeout 10 "$hv" gallery --scenes "$S" -o "$G" --no-times > /dev/null 2> "$tmp/lock.err"
