@@ -193,10 +193,13 @@ test)
     stage "building build/"
     # build/'s tests leave a core idle about a third of the time (serial tests,
     # waits on servers and browsers): meanwhile, in the background, the Slurm
-    # example (mostly waiting on its daemons) and, at the lowest priority so the
-    # tests keep their CPU, the builds of build-osmesa, -egl, -nogl and -san
-    # (their tests run below, after these).  Each job's output is shown when
-    # it ends, its exit status counted.
+    # example (mostly waiting on its daemons) and the builds of build-osmesa,
+    # -egl, -nogl and -san (their tests run below, after these).  Each job's
+    # output is shown when it ends, its exit status counted.  The builds run at
+    # the tests' own priority: at nice 19 (as they did) any CPU-bound process of
+    # normal priority in the same scheduling group starved them (beside
+    # `stress-ng --cpu 4` in the same session, three runs' builds made 1.5 of
+    # their 4 directories in 38 minutes and would have met wait_job's deadline)
     bg_log=$(mktemp -d "${TMPDIR:-/tmp}/hystviz-bg.XXXXXX")
     # the README's Slurm example on a real single-node Slurm of its own
     # (tools/cluster/slurm-local.sh); once, not per build configuration
@@ -204,9 +207,6 @@ test)
     bg_slurm=$!
     (
         set -e
-        # this subshell and what it starts at the lowest priority ($$ is the
-        # parent's pid in a subshell: sh -c's parent is this one)
-        renice -n 19 -p "$(exec sh -c 'echo $PPID')" >/dev/null
         # each GL backend alone (build/ has both: its gl suite ran on each, and
         # compared their frames); -Dgl=egl is the machine without OSMesa; only
         # what the gl suite runs is built
@@ -255,7 +255,7 @@ test)
     # tagged 'config': tests/meson.build); the rest ran in build/
     run_tests build-nogl --no-rebuild --suite gl --suite serve --suite config
     stage "build-nogl (its gl, serve and config suites)"
-    # beside them, at the lowest priority, the release tarball passes its own
+    # beside them (at the tests' priority, as the builds above), the release tarball passes its own
     # tests (issue 35 item 5): `meson dist` makes it from git (--no-tests: its
     # own check rebuilds everything and runs every test, too long for the
     # budget); it is unpacked outside any checkout, built for the tests of
@@ -263,7 +263,7 @@ test)
     # tree's files against a decoy install, the library's symbols, ABI,
     # reference and pipeline
     bg_log=$(mktemp "${TMPDIR:-/tmp}/hystviz-dist-log.XXXXXX")
-    (renice -n 19 -p "$(exec sh -c 'echo $PPID')" >/dev/null; dist_check) >"$bg_log" 2>&1 </dev/null &
+    (dist_check) >"$bg_log" 2>&1 </dev/null &
     bg_dist=$!
     # every suite again under ASan + UBSan but the full check and the tests
     # tagged no-san (tests/meson.build: their C paths run here in other tests)
