@@ -30,6 +30,9 @@ mkdir "$T/src"
 (cd "$T/src" && find . | sort) >"$T/before"
 unset PYTHONPATH HYSTVIZ_LIB HYSTVIZ_SCENES LD_LIBRARY_PATH
 export PIP_CONFIG_FILE=/dev/null PIP_NO_CACHE_DIR=1 PIP_DISABLE_PIP_VERSION_CHECK=1 HOME="$T/home"
+# no ccache (setup.sh test exports one for its build directories): the wheel's
+# -O3 compilations never hit it, and storing them cost 3.7 CPU s (37.5 against 33.8)
+export CCACHE_DISABLE=1
 (cd "$T/src" && timeout 900 "$py" -m pip wheel -q --no-build-isolation --no-deps --no-index -w "$T/wheel" . \
     --config-settings=compile-args=-j2 >"$T/wheel.log" 2>&1) || { tail -40 "$T/wheel.log"; fatal "pip wheel ."; }
 # the tree is left as it was but for meson-python's native file (.gitignore'd):
